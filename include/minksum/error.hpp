@@ -1,0 +1,41 @@
+// minksum — the two kinds of failure a caller must tell apart.
+//
+// InputError: the data is bad (malformed file, NaN, open mesh, non-convex
+// solid, degenerate point set...).  The CLI prints what() on one line and
+// exits with status 3.  what() is "FILE: PLACE: PROBLEM" (PLACE may be empty).
+//
+// UsageError: the request is bad (unknown catalog name, unknown method, bad
+// option value).  The CLI exits with status 2.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace minksum {
+
+class InputError : public std::runtime_error {
+ public:
+  InputError(std::string file, std::string place, std::string problem)
+      : std::runtime_error(compose(file, place, problem)),
+        file_(std::move(file)), place_(std::move(place)), problem_(std::move(problem)) {}
+
+  const std::string& file() const { return file_; }
+  const std::string& place() const { return place_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  static std::string compose(const std::string& f, const std::string& p, const std::string& pr) {
+    std::string s = f.empty() ? std::string("<input>") : f;
+    if (!p.empty()) s += ": " + p;
+    s += ": " + pr;
+    return s;
+  }
+  std::string file_, place_, problem_;
+};
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace minksum

@@ -1,0 +1,103 @@
+// minksum — exact numbers and the points built from them.
+//
+// Every coordinate minksum stores is an exact rational (GMP's mpq_class).  A
+// coordinate read as a decimal token or a binary double is the exact value of
+// that double (a dyadic rational); a coordinate read as `p/q` or as a long
+// integer is that rational.  Nothing is rounded on the way in.
+//
+// Geometric decisions are signs of exact polynomials; the predicates live in
+// <minksum/predicates.hpp>.  This header has the number type, the point type,
+// the small exact vector algebra the library needs, and number parsing and
+// printing.
+#pragma once
+
+#include <gmpxx.h>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace minksum {
+
+using Rational = mpq_class;
+using Integer = mpz_class;
+
+// A point (or vector) with exact rational coordinates.
+struct Point3 {
+  Rational x, y, z;
+
+  Point3() = default;
+  Point3(Rational x_, Rational y_, Rational z_)
+      : x(std::move(x_)), y(std::move(y_)), z(std::move(z_)) {}
+  // Exact: every finite double is a rational.  Precondition: finite.
+  Point3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+
+  const Rational& operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  Rational& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+
+  friend bool operator==(const Point3& a, const Point3& b) {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+  }
+  // Lexicographic order (x, then y, then z).
+  friend bool operator<(const Point3& a, const Point3& b) {
+    int c = cmp(a.x, b.x);
+    if (c != 0) return c < 0;
+    c = cmp(a.y, b.y);
+    if (c != 0) return c < 0;
+    return cmp(a.z, b.z) < 0;
+  }
+};
+
+// A double triple: the nearest doubles to an exact point, for filters,
+// printing and conveniences.  Never used for a decision on its own.
+struct Vec3d {
+  double x = 0, y = 0, z = 0;
+  double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+};
+
+Point3 operator+(const Point3& a, const Point3& b);
+Point3 operator-(const Point3& a, const Point3& b);
+Point3 operator-(const Point3& a);
+Point3 operator*(const Rational& s, const Point3& a);
+Rational dot(const Point3& a, const Point3& b);
+Point3 cross(const Point3& a, const Point3& b);
+bool is_zero(const Point3& a);
+
+// Nearest double of a rational (round to nearest, ties to even), and of a point.
+double to_double(const Rational& q);
+Vec3d to_double(const Point3& p);
+// True when q is exactly a finite double.
+bool is_double(const Rational& q);
+bool is_double(const Point3& p);
+
+// Hash of an exact point (equal points hash equal).
+std::size_t hash_value(const Point3& p);
+struct Point3Hash {
+  std::size_t operator()(const Point3& p) const { return hash_value(p); }
+};
+
+// ---------------------------------------------------------------------------
+// Parsing.  `parse_number` accepts
+//   * integers of any length:        -12, 340282366920938463463374607431768211456
+//   * exact rationals p/q (q != 0):  1/3, -22/7, 4/-8
+//   * decimal / scientific tokens:   0.1, -2.5e-3, 1E300, .5, 5.  -> the nearest
+//     double (as strtod), then that double exactly
+//   * hexadecimal floats:            0x1.8p-3 -> exact
+// It rejects nan, inf, empty tokens, trailing garbage, q = 0, and decimal
+// tokens whose magnitude overflows a double.  On failure it returns nullopt
+// and, if `why` is given, a short reason ("not a number", "NaN", "infinite",
+// "zero denominator", "out of double range").
+std::optional<Rational> parse_number(std::string_view token, std::string* why = nullptr);
+
+// Printing.
+// Shortest "%.17g"-style text that reads back to the same double.
+std::string format_double(double v);
+// Exact text: an integer ("-3") or "p/q" in lowest terms.
+std::string format_exact(const Rational& q);
+// The coordinate as written by minksum's writers: exact text when `exact`,
+// else format_double(to_double(q)).
+std::string format_coordinate(const Rational& q, bool exact);
+
+}  // namespace minksum

@@ -1,0 +1,140 @@
+// minksum — validated convex polytopes with half-edge connectivity.
+//
+// A ConvexPolytope is a closed, convex, 3-dimensional polytope with exact
+// rational vertex coordinates.  It is only ever built through a validating
+// constructor:
+//   * from_mesh(): vertices + polygons (any file format, the catalog).  The
+//     mesh must be a closed connected 2-manifold of sphere topology with
+//     consistently oriented, exactly planar polygons and no reflex edge.  A
+//     consistently inward-facing mesh is flipped.  Coplanar adjacent facets
+//     are merged into one polygon and vertices in the middle of an edge are
+//     dropped, so a triangulated STL of a cube becomes 8 vertices, 12 edges,
+//     6 facets.  Exactly equal vertices are welded; unused vertices dropped.
+//   * hull(): the exact convex hull of a point cloud.
+// Both throw InputError (file, place, problem) when the data is not a convex
+// polytope, and recognise the degenerate cases (empty, a point, collinear,
+// coplanar, zero volume) with a message saying which.
+//
+// Invariants of a built polytope (checked exactly, no tolerance):
+//   * facets are convex polygons, counter-clockwise seen from outside;
+//   * no two adjacent facets are coplanar, no vertex has degree 2;
+//   * every edge is strictly convex;
+//   * V - E + F = 2.
+//
+// Half-edge conventions (all O(1)):
+//   * halfedge h runs origin(h) -> target(h); facet(h) lies on its left seen
+//     from outside, i.e. next(h) continues facet(h) counter-clockwise;
+//   * twin(h) = h ^ 1, edge(h) = h >> 1, the two halfedges of edge e are
+//     2e and 2e + 1;
+//   * around a vertex, next_around_vertex(h) = twin(prev(h)) is the next
+//     outgoing halfedge counter-clockwise seen from outside.
+#pragma once
+
+#include <minksum/kernel.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace minksum {
+
+using Index = std::uint32_t;
+inline constexpr Index kNoIndex = 0xffffffffu;
+
+// Raw polygon soup, as read from a file or made by the catalog: no
+// guarantees at all until ConvexPolytope::from_mesh() validates it.
+struct Mesh {
+  std::vector<Point3> points;
+  std::vector<std::vector<Index>> faces;  // indices into points
+};
+
+// An oriented plane a*x + b*y + c*z = d with outward normal (a, b, c).
+// Canonical form: integers with gcd(a, b, c, d) = 1, so two facets lie in the
+// same oriented plane if and only if their Plane compares equal.
+struct Plane {
+  Integer a, b, c, d;
+  friend bool operator==(const Plane&, const Plane&) = default;
+  // Sign of a*x + b*y + c*z - d: > 0 outside (above), 0 on, < 0 inside.
+  int side(const Point3& p) const;
+  Point3 normal() const { return Point3(Rational(a), Rational(b), Rational(c)); }
+};
+bool operator<(const Plane& p, const Plane& q);  // lexicographic (a, b, c, d)
+
+class ConvexPolytope {
+ public:
+  ConvexPolytope() = default;
+
+  // Validate `mesh` and build the polytope.  `source` names the input in
+  // error messages (a file path or a catalog name).
+  static ConvexPolytope from_mesh(const Mesh& mesh, const std::string& source = "");
+  // Exact convex hull of `points` (CGAL convex_hull_3 on exact points, then
+  // coplanar facets merged).  Throws InputError if the points do not span
+  // 3 dimensions.
+  static ConvexPolytope hull(const std::vector<Point3>& points, const std::string& source = "");
+
+  // Counts.
+  Index num_vertices() const { return static_cast<Index>(points_.size()); }
+  Index num_facets() const { return static_cast<Index>(facet_he_.size()); }
+  Index num_halfedges() const { return static_cast<Index>(he_origin_.size()); }
+  Index num_edges() const { return num_halfedges() / 2; }
+
+  // Geometry.
+  const Point3& point(Index v) const { return points_[v]; }
+  const Vec3d& approx(Index v) const { return approx_[v]; }
+  const std::vector<Point3>& points() const { return points_; }
+  const Plane& plane(Index f) const { return planes_[f]; }
+  // True when every vertex coordinate is exactly a double.
+  bool coordinates_are_doubles() const { return all_double_; }
+  // Index of vertex v in the mesh or point list this polytope was built from.
+  Index source_vertex(Index v) const { return source_vertex_[v]; }
+
+  // Half-edge connectivity.
+  Index origin(Index h) const { return he_origin_[h]; }
+  Index target(Index h) const { return he_origin_[h ^ 1u]; }
+  Index facet(Index h) const { return he_facet_[h]; }
+  Index next(Index h) const { return he_next_[h]; }
+  Index prev(Index h) const { return he_prev_[h]; }
+  static Index twin(Index h) { return h ^ 1u; }
+  static Index edge(Index h) { return h >> 1; }
+  Index next_around_vertex(Index h) const { return twin(prev(h)); }
+  Index facet_halfedge(Index f) const { return facet_he_[f]; }    // one halfedge of f
+  Index vertex_halfedge(Index v) const { return vertex_he_[v]; }  // one outgoing halfedge
+  Index facet_degree(Index f) const;
+  Index vertex_degree(Index v) const;
+
+  // Vertex loop of facet f, counter-clockwise seen from outside.
+  std::vector<Index> facet_vertices(Index f) const;
+  // Neighbours of v, counter-clockwise seen from outside.
+  std::vector<Index> vertex_neighbours(Index v) const;
+
+  // Exact volume (positive).
+  Rational volume() const;
+  // Euler characteristic V - E + F (always 2 for a built polytope).
+  long euler_characteristic() const {
+    return long(num_vertices()) - long(num_edges()) + long(num_facets());
+  }
+
+  // Back to a polygon mesh (one polygon per facet, CCW from outside).
+  Mesh to_mesh() const;
+
+  // Every vertex translated by t (exact), or negated (-P, the point reflection).
+  ConvexPolytope translated(const Point3& t) const;
+  ConvexPolytope negated() const;
+
+  // Check every invariant listed at the top of this header again, from
+  // scratch; returns an empty string when all hold, else the first failure.
+  // For tests and debugging (O(n) exact arithmetic).
+  std::string check_invariants() const;
+
+ private:
+  friend class PolytopeBuilder;
+  std::vector<Point3> points_;
+  std::vector<Vec3d> approx_;
+  std::vector<Index> source_vertex_;
+  std::vector<Plane> planes_;
+  std::vector<Index> he_origin_, he_facet_, he_next_, he_prev_;
+  std::vector<Index> facet_he_, vertex_he_;
+  bool all_double_ = true;
+};
+
+}  // namespace minksum

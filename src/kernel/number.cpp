@@ -1,0 +1,189 @@
+// Exact numbers: point algebra, correctly rounded conversion to double,
+// parsing and printing.
+#include <minksum/kernel.hpp>
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+
+namespace minksum {
+
+Point3 operator+(const Point3& a, const Point3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+Point3 operator-(const Point3& a, const Point3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Point3 operator-(const Point3& a) { return {-a.x, -a.y, -a.z}; }
+Point3 operator*(const Rational& s, const Point3& a) { return {s * a.x, s * a.y, s * a.z}; }
+Rational dot(const Point3& a, const Point3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Point3 cross(const Point3& a, const Point3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+bool is_zero(const Point3& a) { return sgn(a.x) == 0 && sgn(a.y) == 0 && sgn(a.z) == 0; }
+
+// Round n/d (d > 0) to the nearest double, ties to even, with gradual
+// underflow and overflow to infinity.  mpq_get_d truncates, so it is not used.
+double to_double(const Rational& q) {
+  int s = sgn(q);
+  if (s == 0) return 0.0;
+  Integer n = abs(q.get_num());
+  const Integer& d = q.get_den();
+  // e = floor(log2(n/d)), from bit lengths, corrected by one comparison.
+  long e = long(mpz_sizeinbase(n.get_mpz_t(), 2)) - long(mpz_sizeinbase(d.get_mpz_t(), 2));
+  {
+    // Is n/d >= 2^e ?  i.e. n >= d * 2^e
+    Integer lhs = n, rhs = d;
+    if (e >= 0) rhs <<= e; else lhs <<= -e;
+    if (lhs < rhs) --e;
+  }
+  if (e > 1023) return s * HUGE_VAL;
+  // Quantum: the value of the last mantissa bit.  Normal: 2^(e-52); subnormal: 2^-1074.
+  long quantum = std::max(e - 52, -1074L);
+  // m = round(n / (d * 2^quantum))
+  Integer num = n, den = d;
+  if (quantum >= 0) den <<= quantum; else num <<= -quantum;
+  Integer m, r;
+  mpz_fdiv_qr(m.get_mpz_t(), r.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+  Integer twice_r = r << 1;
+  int c = cmp(twice_r, den);
+  if (c > 0 || (c == 0 && mpz_odd_p(m.get_mpz_t()))) m += 1;
+  // m < 2^54 here; ldexp is exact (m fits in 53 bits, or is 2^53 after a carry).
+  double mant = m.get_d();
+  double v = std::ldexp(mant, int(quantum));
+  return s < 0 ? -v : v;
+}
+
+Vec3d to_double(const Point3& p) { return {to_double(p.x), to_double(p.y), to_double(p.z)}; }
+
+bool is_double(const Rational& q) {
+  double d = to_double(q);
+  return std::isfinite(d) && Rational(d) == q;
+}
+bool is_double(const Point3& p) { return is_double(p.x) && is_double(p.y) && is_double(p.z); }
+
+static std::size_t hash_mpz(const mpz_t z) {
+  std::size_t h = std::size_t(mpz_sgn(z)) * 0x9e3779b97f4a7c15ULL;
+  std::size_t n = mpz_size(z);
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= std::hash<mp_limb_t>()(mpz_getlimbn(z, i)) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2);
+  }
+  return h;
+}
+
+std::size_t hash_value(const Point3& p) {
+  std::size_t h = 0;
+  for (int i = 0; i < 3; ++i) {
+    h = h * 1000003u ^ hash_mpz(p[i].get_num_mpz_t());
+    h = h * 1000003u ^ hash_mpz(p[i].get_den_mpz_t());
+  }
+  return h;
+}
+
+// ---------------------------------------------------------------------------
+
+static bool parse_integer(std::string_view t, Integer& out) {
+  std::size_t i = 0;
+  bool neg = false;
+  if (i < t.size() && (t[i] == '+' || t[i] == '-')) neg = (t[i++] == '-');
+  if (i == t.size()) return false;
+  for (std::size_t j = i; j < t.size(); ++j)
+    if (!std::isdigit(static_cast<unsigned char>(t[j]))) return false;
+  std::string digits(t.substr(i));
+  if (mpz_set_str(out.get_mpz_t(), digits.c_str(), 10) != 0) return false;
+  if (neg) out = -out;
+  return true;
+}
+
+static bool iequals(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
+      return false;
+  return true;
+}
+
+std::optional<Rational> parse_number(std::string_view t, std::string* why) {
+  auto fail = [&](const char* reason) -> std::optional<Rational> {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  if (t.empty()) return fail("empty number");
+  std::string_view body = t;
+  if (body[0] == '+' || body[0] == '-') body.remove_prefix(1);
+  if (iequals(body, "nan") || (body.size() > 3 && iequals(body.substr(0, 4), "nan(")))
+    return fail("NaN");
+  if (iequals(body, "inf") || iequals(body, "infinity")) return fail("infinite");
+
+  if (auto slash = t.find('/'); slash != std::string_view::npos) {
+    Integer p, q;
+    if (!parse_integer(t.substr(0, slash), p) || !parse_integer(t.substr(slash + 1), q))
+      return fail("not a number");
+    if (sgn(q) == 0) return fail("zero denominator");
+    Rational r(p, q);
+    r.canonicalize();
+    return r;
+  }
+  Integer z;
+  if (parse_integer(t, z)) return Rational(z);
+
+  // Decimal or hexadecimal floating-point token: validate the shape, then strtod.
+  std::size_t i = 0;
+  if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
+  bool hex = t.size() >= i + 2 && t[i] == '0' && (t[i + 1] == 'x' || t[i + 1] == 'X');
+  if (hex) {
+    i += 2;
+    auto is_hex = [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; };
+    std::size_t digits = 0;
+    while (i < t.size() && is_hex(t[i])) ++i, ++digits;
+    if (i < t.size() && t[i] == '.') {
+      ++i;
+      while (i < t.size() && is_hex(t[i])) ++i, ++digits;
+    }
+    if (digits == 0) return fail("not a number");
+    if (i < t.size() && (t[i] == 'p' || t[i] == 'P')) {
+      ++i;
+      if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
+      std::size_t e0 = i;
+      while (i < t.size() && std::isdigit(static_cast<unsigned char>(t[i]))) ++i;
+      if (i == e0) return fail("not a number");
+    }
+  } else {
+    std::size_t digits = 0;
+    while (i < t.size() && std::isdigit(static_cast<unsigned char>(t[i]))) ++i, ++digits;
+    if (i < t.size() && t[i] == '.') {
+      ++i;
+      while (i < t.size() && std::isdigit(static_cast<unsigned char>(t[i]))) ++i, ++digits;
+    }
+    if (digits == 0) return fail("not a number");
+    if (i < t.size() && (t[i] == 'e' || t[i] == 'E')) {
+      ++i;
+      if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
+      std::size_t e0 = i;
+      while (i < t.size() && std::isdigit(static_cast<unsigned char>(t[i]))) ++i;
+      if (i == e0) return fail("not a number");
+    }
+  }
+  if (i != t.size()) return fail("not a number");
+  std::string s(t);
+  char* end = nullptr;
+  double v = std::strtod(s.c_str(), &end);
+  if (end != s.c_str() + s.size()) return fail("not a number");
+  if (std::isinf(v)) return fail("out of double range");
+  return Rational(v);
+}
+
+std::string format_double(double v) {
+  char buf[64];
+  auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
+
+std::string format_exact(const Rational& q) {
+  if (q.get_den() == 1) return q.get_num().get_str();
+  return q.get_num().get_str() + "/" + q.get_den().get_str();
+}
+
+std::string format_coordinate(const Rational& q, bool exact) {
+  return exact ? format_exact(q) : format_double(to_double(q));
+}
+
+}  // namespace minksum

@@ -1,0 +1,32 @@
+// Internal: the validating construction of a ConvexPolytope.
+#pragma once
+
+#include <minksum/polytope.hpp>
+
+#include <string>
+#include <vector>
+
+namespace minksum {
+
+class PolytopeBuilder {
+ public:
+  // Validate a polygon mesh and build the polytope (see polytope.hpp).
+  // `points_are_hull` skips nothing: it only changes the wording of errors.
+  static ConvexPolytope build(const Mesh& mesh, const std::string& source);
+
+  // The exact canonical plane through a planar polygon with (unnormalised)
+  // normal n passing through p.  Precondition: n != 0.
+  static Plane canonical_plane(const Point3& n, const Point3& p);
+};
+
+// Sign of det(a, b, c) = <a, b x c>, exact.
+int sign_det(const Point3& a, const Point3& b, const Point3& c);
+
+// Given an axis `a` and vectors d[0..k-1] listed cyclically, decide whether
+// the vectors, seen from the tip of `a` (projected along a), turn strictly
+// counter-clockwise at every step (det(a, d[i], d[i+1]) > 0) and wind around
+// exactly once.  Returns -1 on success, else the index i of the first step
+// that fails (k if only the winding number is wrong).
+long check_fan(const Point3& a, const std::vector<Point3>& d);
+
+}  // namespace minksum

@@ -1,0 +1,89 @@
+// The exact convex hull of a point cloud: CGAL's convex_hull_3 on exact
+// points (Epeck, whose exact number type is mpq_class here), then the
+// triangulated hull goes through the validating builder, which merges
+// coplanar triangles and drops points in the middle of edges.
+//
+// This is the only translation unit of src/mesh that includes CGAL.
+#include "mesh/builder.hpp"
+
+#include <minksum/error.hpp>
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <unordered_map>
+
+namespace minksum {
+
+namespace {
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using KPoint = K::Point_3;
+
+// Degenerate point sets are recognised before CGAL sees them, exactly.
+void check_dimension(const std::vector<Point3>& pts, const std::string& source) {
+  const std::string n = std::to_string(pts.size());
+  if (pts.empty()) throw InputError(source, "", "no points");
+  std::size_t i1 = 1;
+  while (i1 < pts.size() && pts[i1] == pts[0]) ++i1;
+  if (i1 == pts.size())
+    throw InputError(source, "", "degenerate: all " + n + " points coincide (a single point, not a solid)");
+  Point3 e1 = pts[i1] - pts[0];
+  std::size_t i2 = i1 + 1;
+  Point3 nrm;
+  for (; i2 < pts.size(); ++i2) {
+    nrm = cross(e1, pts[i2] - pts[0]);
+    if (!is_zero(nrm)) break;
+  }
+  if (i2 >= pts.size())
+    throw InputError(source, "", "degenerate: all " + n + " points are collinear (a segment, not a solid)");
+  std::size_t i3 = i2 + 1;
+  for (; i3 < pts.size(); ++i3)
+    if (sgn(dot(nrm, pts[i3] - pts[0])) != 0) break;
+  if (i3 >= pts.size())
+    throw InputError(source, "", "degenerate: all " + n + " points are coplanar (a polygon, not a solid)");
+}
+
+Point3 to_point3(const KPoint& p) {
+  const auto& e = CGAL::exact(p);
+  return Point3(Rational(e.x()), Rational(e.y()), Rational(e.z()));
+}
+}  // namespace
+
+ConvexPolytope ConvexPolytope::hull(const std::vector<Point3>& points, const std::string& source) {
+  check_dimension(points, source);
+  std::vector<KPoint> kp;
+  kp.reserve(points.size());
+  for (const auto& p : points) kp.emplace_back(K::FT(p.x), K::FT(p.y), K::FT(p.z));
+
+  CGAL::Surface_mesh<KPoint> sm;
+  CGAL::convex_hull_3(kp.begin(), kp.end(), sm);
+
+  // Map hull vertices back to the input points (first occurrence).
+  std::unordered_map<Point3, Index, Point3Hash> index_of;
+  index_of.reserve(points.size());
+  for (Index i = 0; i < points.size(); ++i) index_of.try_emplace(points[i], i);
+
+  Mesh m;
+  std::vector<Index> input_index;
+  std::unordered_map<std::size_t, Index> local;  // surface-mesh vertex -> mesh index
+  for (auto v : sm.vertices()) {
+    Point3 p = to_point3(sm.point(v));
+    auto it = index_of.find(p);
+    if (it == index_of.end())
+      throw std::logic_error("convex hull produced a point that is not an input point");
+    local[std::size_t(v)] = Index(m.points.size());
+    m.points.push_back(std::move(p));
+    input_index.push_back(it->second);
+  }
+  for (auto f : sm.faces()) {
+    std::vector<Index> poly;
+    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) poly.push_back(local[std::size_t(v)]);
+    m.faces.push_back(std::move(poly));
+  }
+  ConvexPolytope result = PolytopeBuilder::build(m, source);
+  for (auto& s : result.source_vertex_) s = input_index[s];
+  return result;
+}
+
+}  // namespace minksum

@@ -1,0 +1,61 @@
+// Method names and dispatch.
+#include <minksum/error.hpp>
+#include <minksum/minkowski.hpp>
+
+namespace minksum {
+
+namespace {
+struct MethodInfo {
+  Method method;
+  const char* name;
+};
+constexpr MethodInfo kMethods[] = {
+    {Method::automatic, "auto"}, {Method::walk, "walk"}, {Method::cvms, "cvms"},
+    {Method::essdms, "essdms"},  {Method::mssd, "mssd"}, {Method::chms, "chms"},
+    {Method::cgm, "cgm"},
+};
+}  // namespace
+
+const char* method_name(Method m) {
+  for (const auto& i : kMethods)
+    if (i.method == m) return i.name;
+  return "?";
+}
+
+std::optional<Method> parse_method(const std::string& name) {
+  for (const auto& i : kMethods)
+    if (name == i.name) return i.method;
+  return std::nullopt;
+}
+
+bool method_available(Method m) {
+  return m == Method::chms || m == Method::automatic;
+}
+
+const char* facet_origin_name(FacetOrigin o) {
+  switch (o) {
+    case FacetOrigin::translated: return "translated";
+    case FacetOrigin::corner: return "corner";
+    case FacetOrigin::edge: return "edge";
+    case FacetOrigin::facet_edge: return "facet_edge";
+    case FacetOrigin::facet_facet: return "facet_facet";
+    case FacetOrigin::edge_parallel: return "edge_parallel";
+  }
+  return "?";
+}
+
+SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b, Method method) {
+  switch (method) {
+    case Method::automatic:
+      // The output-sensitive method is not part of this build yet; the exact
+      // hull of pairwise sums is the method every other one is checked against.
+      return minkowski_sum_chms(a, b);
+    case Method::chms:
+      return minkowski_sum_chms(a, b);
+    default:
+      throw UsageError(std::string("method '") + method_name(method) +
+                       "' is not implemented in this version of minksum (available: auto, chms)");
+  }
+}
+
+}  // namespace minksum

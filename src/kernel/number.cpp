@@ -22,9 +22,24 @@ bool is_zero(const Point3& a) { return sgn(a.x) == 0 && sgn(a.y) == 0 && sgn(a.z
 
 // Round n/d (d > 0) to the nearest double, ties to even, with gradual
 // underflow and overflow to infinity.  mpq_get_d truncates, so it is not used.
+namespace {
+// Fast path: q = m / 2^k with |m| < 2^53 is exactly m * 2^-k, and ldexp
+// rounds correctly if the result is subnormal.  Returns false otherwise.
+bool dyadic_short(const Rational& q, double& out) {
+  const mpz_srcptr den = q.get_den_mpz_t();
+  const mpz_srcptr num = q.get_num_mpz_t();
+  std::size_t dbits = mpz_sizeinbase(den, 2);
+  if (mpz_scan1(den, 0) != dbits - 1) return false;  // not a power of two
+  if (mpz_sizeinbase(num, 2) > 53) return false;
+  out = std::ldexp(mpz_get_d(num), -int(dbits - 1));
+  return true;
+}
+}  // namespace
+
 double to_double(const Rational& q) {
   int s = sgn(q);
   if (s == 0) return 0.0;
+  if (double d; dyadic_short(q, d)) return d;
   Integer n = abs(q.get_num());
   const Integer& d = q.get_den();
   // e = floor(log2(n/d)), from bit lengths, corrected by one comparison.
@@ -55,8 +70,20 @@ double to_double(const Rational& q) {
 Vec3d to_double(const Point3& p) { return {to_double(p.x), to_double(p.y), to_double(p.z)}; }
 
 bool is_double(const Rational& q) {
-  double d = to_double(q);
-  return std::isfinite(d) && Rational(d) == q;
+  if (sgn(q) == 0) return true;
+  const mpz_srcptr den = q.get_den_mpz_t();
+  std::size_t dbits = mpz_sizeinbase(den, 2);
+  if (mpz_scan1(den, 0) != dbits - 1) return false;  // denominator not a power of two
+  // q = m * 2^e with m odd.
+  const mpz_srcptr num = q.get_num_mpz_t();
+  long tz = long(mpz_scan1(num, 0));
+  long mbits = long(mpz_sizeinbase(num, 2)) - tz;
+  long e = tz - long(dbits - 1);
+  if (mbits > 53) return false;
+  if (e < -1074) return false;             // below the subnormal quantum
+  if (e + mbits - 1 > 1023) return false;  // above DBL_MAX's exponent
+  // Normal numbers need mbits <= 53 (checked); subnormals need all bits above 2^-1074 (checked by e).
+  return true;
 }
 bool is_double(const Point3& p) { return is_double(p.x) && is_double(p.y) && is_double(p.z); }
 

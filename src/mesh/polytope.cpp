@@ -13,6 +13,8 @@
 // bounds a convex body (Hadamard; van Heijenoort), so (1)-(4) are equivalent
 // to the mesh being the boundary of a convex polytope.
 #include "mesh/builder.hpp"
+#include "kernel/interval.hpp"
+#include "kernel/plane.hpp"
 
 #include <minksum/error.hpp>
 
@@ -195,21 +197,35 @@ Plane negate(const Plane& p) { return Plane{-p.a, -p.b, -p.c, -p.d}; }
 
 int sign_det(const Point3& a, const Point3& b, const Point3& c) { return sgn(dot(a, cross(b, c))); }
 
-long check_fan(const Point3& a, const std::vector<Point3>& d) {
+namespace {
+inline int sign_any(const Rational& q) { return sgn(q); }
+inline int sign_any(const Interval& i) { return sign_of(i); }
+
+// check_fan on exact points (never uncertain) or on intervals (returns
+// kFanUncertain when an interval sign cannot be decided).
+constexpr long kFanUncertain = -2;
+template <class V>
+long check_fan_t(const V& a, const std::vector<V>& d) {
   const std::size_t k = d.size();
-  for (std::size_t i = 0; i < k; ++i)
-    if (sign_det(a, d[i], d[(i + 1) % k]) <= 0) return long(i);
+  for (std::size_t i = 0; i < k; ++i) {
+    int s = sign_any(dot(a, cross(d[i], d[(i + 1) % k])));
+    if (s == kUncertain) return kFanUncertain;
+    if (s <= 0) return long(i);
+  }
   // Regions relative to the reference ray R = d[0], seen along a:
   // Z same direction as R, P counter-clockwise within (0, pi), O opposite, N within (pi, 2pi).
-  const Point3 ra = cross(a, d[0]);  // det(a, R, x) = <a x R, x>
-  const Rational aa = dot(a, a), Ra = dot(d[0], a);
-  enum Region { Z, P, O, N };
-  auto region = [&](const Point3& x) {
-    int c = sgn(dot(ra, x));
+  const V ra = cross(a, d[0]);  // det(a, R, x) = <a x R, x>
+  const auto aa = dot(a, a);
+  const auto Ra = dot(d[0], a);
+  enum Region { Z, P, O, N, U };
+  auto region = [&](const V& x) {
+    int c = sign_any(dot(ra, x));
+    if (c == kUncertain) return U;
     if (c > 0) return P;
     if (c < 0) return N;
     // Collinear with R in projection: same or opposite direction.
-    int s = sgn(dot(x, d[0]) * aa - dot(x, a) * Ra);
+    int s = sign_any(dot(x, d[0]) * aa - dot(x, a) * Ra);
+    if (s == kUncertain) return U;
     return s > 0 ? Z : O;
   };
   // Each step turns by an angle in (0, pi); it passes (or lands on) the
@@ -218,32 +234,18 @@ long check_fan(const Point3& a, const std::vector<Point3>& d) {
   Region prev = Z;
   for (std::size_t j = 1; j <= k; ++j) {
     Region r = j == k ? Z : region(d[j]);
+    if (r == U) return kFanUncertain;
     if (prev == N && (r == Z || r == P)) ++winding;
     if (j < k && r == Z) ++winding;  // landing on R before the end: a second turn
     prev = r;
   }
   return winding == 1 ? -1 : long(k);
 }
+}  // namespace
 
-Plane PolytopeBuilder::canonical_plane(const Point3& n, const Point3& p) {
-  Rational d = dot(n, p);
-  Integer l = 1;
-  for (const Rational* q : std::initializer_list<const Rational*>{&n.x, &n.y, &n.z, &d})
-    mpz_lcm(l.get_mpz_t(), l.get_mpz_t(), q->get_den_mpz_t());
-  Plane pl;
-  Integer* out[4] = {&pl.a, &pl.b, &pl.c, &pl.d};
-  const Rational* in[4] = {&n.x, &n.y, &n.z, &d};
-  Integer g = 0;
-  for (int i = 0; i < 4; ++i) {
-    Integer t;
-    mpz_divexact(t.get_mpz_t(), l.get_mpz_t(), in[i]->get_den_mpz_t());
-    *out[i] = in[i]->get_num() * t;
-    mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), out[i]->get_mpz_t());
-  }
-  if (g != 1 && g != 0)
-    for (int i = 0; i < 4; ++i) mpz_divexact(out[i]->get_mpz_t(), out[i]->get_mpz_t(), g.get_mpz_t());
-  return pl;
-}
+long check_fan(const Point3& a, const std::vector<Point3>& d) { return check_fan_t(a, d); }
+
+Plane PolytopeBuilder::canonical_plane(const Point3& n, const Point3& p) { return minksum::canonical_plane(n, p); }
 
 int Plane::side(const Point3& p) const {
   Rational s = Rational(a) * p.x + Rational(b) * p.y + Rational(c) * p.z - Rational(d);
@@ -312,64 +314,119 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   // 3. Topology: closed, manifold, consistently oriented, connected sphere.
   Graph g = link(Index(pts.size()), faces, source, vname, fname);
 
-  // 4. Planar facets (exactly) and their outward planes.
-  std::vector<Point3> normals(faces.size());
-  for (Index f = 0; f < faces.size(); ++f) {
-    normals[f] = polygon_normal(pts, faces[f]);
-    if (is_zero(normals[f])) throw InputError(source, fct(fname[f]), "has zero area");
-    const Point3& o = pts[faces[f][0]];
-    for (Index v : faces[f])
-      if (sgn(dot(normals[f], pts[v] - o)) != 0)
-        throw InputError(source, fct(fname[f]),
-                         "is not planar (" + vtx(vname[v]) + " is off the plane of the others)");
+  // 4. Nonzero area, planar facets (exactly).  Signs are filtered with
+  //    interval arithmetic; exact Newell normals are computed only when a
+  //    filter cannot decide (and for the final planes).
+  const Index nf = Index(faces.size());
+  std::vector<IPoint> ip(pts.size());
+  std::vector<Vec3d> approx(pts.size());
+  std::vector<char> pdouble(pts.size());
+  for (Index v = 0; v < pts.size(); ++v) {
+    pdouble[v] = is_double(pts[v]);
+    if (pdouble[v]) {
+      approx[v] = to_double(pts[v]);
+      ip[v] = {Interval(approx[v].x), Interval(approx[v].y), Interval(approx[v].z)};
+    } else {
+      ip[v] = to_interval(pts[v]);
+      approx[v] = {ip[v].x.inf() == ip[v].x.sup() ? ip[v].x.inf() : to_double(pts[v].x),
+                   ip[v].y.inf() == ip[v].y.sup() ? ip[v].y.inf() : to_double(pts[v].y),
+                   ip[v].z.inf() == ip[v].z.sup() ? ip[v].z.inf() : to_double(pts[v].z)};
+    }
+  }
+  std::vector<IPoint> inrm(nf);
+  std::vector<Point3> xnrm(nf);
+  std::vector<char> has_xnrm(nf, 0);
+  auto exact_normal = [&](Index f) -> const Point3& {
+    if (!has_xnrm[f]) {
+      xnrm[f] = polygon_normal(pts, faces[f]);
+      has_xnrm[f] = 1;
+    }
+    return xnrm[f];
+  };
+  for (Index f = 0; f < nf; ++f) {
+    const auto& poly = faces[f];
+    IPoint n{Interval(0), Interval(0), Interval(0)};
+    const IPoint& o = ip[poly[0]];
+    IPoint prev = ip[poly[1]] - o;
+    for (std::size_t i = 2; i < poly.size(); ++i) {
+      IPoint cur = ip[poly[i]] - o;
+      n = n + cross(prev, cur);
+      prev = cur;
+    }
+    inrm[f] = n;
+    auto certainly_nonzero = [](const Interval& c) { int s = sign_of(c); return s == 1 || s == -1; };
+    if (!certainly_nonzero(n.x) && !certainly_nonzero(n.y) && !certainly_nonzero(n.z) &&
+        is_zero(exact_normal(f)))
+      throw InputError(source, fct(fname[f]), "has zero area");
+    if (poly.size() > 3) {
+      for (Index v : poly) {
+        int s = sign_of(dot(n, ip[v] - o));
+        if (s == kUncertain) s = sgn(dot(exact_normal(f), pts[v] - pts[poly[0]]));
+        if (s != 0)
+          throw InputError(source, fct(fname[f]),
+                           "is not planar (" + vtx(vname[v]) + " is off the plane of the others)");
+      }
+    }
   }
 
   // 5. Orientation from the sign of the volume; flip a consistently inward mesh.
-  Rational six_vol = 0;
+  int vol_sign;
   {
-    const Point3& o = pts[0];
-    for (Index f = 0; f < faces.size(); ++f) six_vol += dot(pts[faces[f][0]] - o, normals[f]);
+    Interval six(0);
+    for (Index f = 0; f < nf; ++f) six += dot(ip[faces[f][0]] - ip[0], inrm[f]);
+    vol_sign = sign_of(six);
+    if (vol_sign == kUncertain) {
+      Rational exact_six = 0;
+      for (Index f = 0; f < nf; ++f) exact_six += dot(pts[faces[f][0]] - pts[0], exact_normal(f));
+      vol_sign = sgn(exact_six);
+    }
   }
-  if (sgn(six_vol) == 0)
+  if (vol_sign == 0)
     throw InputError(source, "", "zero volume: the solid is flat (all its points are coplanar)");
-  if (sgn(six_vol) < 0) {
+  if (vol_sign < 0) {
     for (auto& poly : faces) std::reverse(poly.begin(), poly.end());
-    for (auto& n : normals) n = -n;
+    for (auto& n : inrm) n = -n;
+    for (Index f = 0; f < nf; ++f)
+      if (has_xnrm[f]) xnrm[f] = -xnrm[f];
     g = link(Index(pts.size()), faces, source, vname, fname);
   }
-  std::vector<Plane> planes(faces.size());
-  for (Index f = 0; f < faces.size(); ++f) planes[f] = canonical_plane(normals[f], pts[faces[f][0]]);
 
-  // 6. Merge adjacent coplanar facets.
-  UnionFind uf(Index(faces.size()));
+  // 6. Merge adjacent coplanar facets: adjacent facets are coplanar exactly
+  //    when their normals are parallel (they share an edge); same
+  //    orientation merges, opposite orientation is a zero-thickness fold.
+  UnionFind uf(nf);
   bool any_merge = false;
   for (Index h = 0; h < g.num_halfedges(); h += 2) {
     Index f = g.facet[h], o = g.facet[h + 1];
-    if (planes[f] == planes[o]) {
+    IPoint c = cross(inrm[f], inrm[o]);
+    auto certainly_nonzero = [](const Interval& x) { int s = sign_of(x); return s == 1 || s == -1; };
+    if (certainly_nonzero(c.x) || certainly_nonzero(c.y) || certainly_nonzero(c.z)) continue;
+    if (!is_zero(cross(exact_normal(f), exact_normal(o)))) continue;
+    if (sgn(dot(exact_normal(f), exact_normal(o))) > 0) {
       uf.unite(f, o);
       any_merge = true;
-    } else if (planes[f] == negate(planes[o])) {
+    } else {
       throw InputError(source, fct(fname[f]),
                        "lies back to back with " + fct(fname[o]) + " (zero thickness)");
     }
   }
   std::vector<std::vector<Index>> merged;
-  std::vector<Plane> merged_planes;
-  std::vector<Index> merged_name;
+  std::vector<Index> merged_name, merged_rep;  // user's facet number, representative input facet
   if (!any_merge) {
-    merged = std::move(faces);
-    merged_planes = std::move(planes);
+    merged = faces;
     merged_name = fname;
+    merged_rep.resize(nf);
+    std::iota(merged_rep.begin(), merged_rep.end(), 0);
   } else {
-    std::vector<Index> group_of(g.facet_he.size());
-    std::vector<Index> group_id(g.facet_he.size(), kNoIndex);
-    for (Index f = 0; f < g.facet_he.size(); ++f) {
+    std::vector<Index> group_of(nf);
+    std::vector<Index> group_id(nf, kNoIndex);
+    for (Index f = 0; f < nf; ++f) {
       Index r = uf.find(f);
       if (group_id[r] == kNoIndex) {
         group_id[r] = Index(merged.size());
         merged.emplace_back();
-        merged_planes.push_back(planes[r]);
         merged_name.push_back(fname[r]);
+        merged_rep.push_back(r);
       }
       group_of[f] = group_id[r];
     }
@@ -408,12 +465,19 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     for (Index v : poly) ++degree[v];
   std::vector<Index> final_id(pts.size(), kNoIndex);
   std::vector<Point3> fpts;
+  std::vector<IPoint> fip;
+  std::vector<Vec3d> fapprox;
+  bool all_double = true;
   std::vector<Index> fname_v;
   fpts.reserve(pts.size());
+  fip.reserve(pts.size());
   for (Index v = 0; v < pts.size(); ++v)
     if (degree[v] >= 3) {
       final_id[v] = Index(fpts.size());
-      fpts.push_back(std::move(pts[v]));
+      fpts.push_back(pts[v]);
+      fip.push_back(ip[v]);
+      fapprox.push_back(approx[v]);
+      all_double = all_double && pdouble[v];
       fname_v.push_back(vname[v]);
     }
   for (Index f = 0; f < merged.size(); ++f) {
@@ -428,22 +492,45 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   }
   Graph fg = link(Index(fpts.size()), merged, source, fname_v, merged_name);
 
-  // 8. Convexity: facets, edges, vertices (see the comment at the top).
+  // The exact outward plane of each facet, from its representative input facet.
+  std::vector<Plane> merged_planes(merged.size());
   std::vector<Point3> fnormal(merged.size());
-  for (Index f = 0; f < merged.size(); ++f) fnormal[f] = merged_planes[f].normal();
+  std::vector<IPoint> finrm(merged.size());
+  for (Index f = 0; f < merged.size(); ++f) {
+    Index r = merged_rep[f];
+    const auto& rp = faces[r];
+    if (rp.size() == 3 && pdouble[rp[0]] && pdouble[rp[1]] && pdouble[rp[2]])
+      merged_planes[f] = canonical_plane_of_double_triangle(approx[rp[0]], approx[rp[1]], approx[rp[2]]);
+    else
+      merged_planes[f] = canonical_plane(exact_normal(r), pts[rp[0]]);
+    fnormal[f] = merged_planes[f].normal();
+    finrm[f] = inrm[r];
+  }
+
+  // 8. Convexity: facets, edges, vertices (see the comment at the top).
+  //    Each test runs on intervals first and exactly when undecided.
   std::vector<Point3> dirs;
+  std::vector<IPoint> idirs;
   for (Index f = 0; f < merged.size(); ++f) {
     const auto& poly = merged[f];
-    dirs.clear();
-    for (std::size_t i = 0; i < poly.size(); ++i)
-      dirs.push_back(fpts[poly[(i + 1) % poly.size()]] - fpts[poly[i]]);
-    if (check_fan(fnormal[f], dirs) >= 0)
+    if (poly.size() == 3) continue;  // a triangle turns counter-clockwise about its own normal
+    idirs.clear();
+    for (std::size_t i = 0; i < poly.size(); ++i) idirs.push_back(fip[poly[(i + 1) % poly.size()]] - fip[poly[i]]);
+    long r = check_fan_t(finrm[f], idirs);
+    if (r == kFanUncertain) {
+      dirs.clear();
+      for (std::size_t i = 0; i < poly.size(); ++i) dirs.push_back(fpts[poly[(i + 1) % poly.size()]] - fpts[poly[i]]);
+      r = check_fan_t(fnormal[f], dirs);
+    }
+    if (r >= 0)
       throw InputError(source, fct(merged_name[f]), "is not a convex polygon (the solid is not convex)");
   }
   for (Index h = 0; h < fg.num_halfedges(); h += 2) {
     Index f = fg.facet[h], o = fg.facet[h + 1];
-    Point3 e = fpts[fg.origin[h + 1]] - fpts[fg.origin[h]];
-    if (sgn(dot(cross(fnormal[f], fnormal[o]), e)) <= 0)
+    int s = sign_of(dot(cross(finrm[f], finrm[o]), fip[fg.origin[h + 1]] - fip[fg.origin[h]]));
+    if (s == kUncertain)
+      s = sgn(dot(cross(fnormal[f], fnormal[o]), fpts[fg.origin[h + 1]] - fpts[fg.origin[h]]));
+    if (s <= 0)
       throw InputError(source,
                        "edge " + std::to_string(fname_v[fg.origin[h]]) + "-" +
                            std::to_string(fname_v[fg.origin[h + 1]]),
@@ -451,26 +538,33 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
                            " (the solid is not convex)");
   }
   for (Index v = 0; v < fpts.size(); ++v) {
-    dirs.clear();
-    Point3 sum(Rational(0), Rational(0), Rational(0));
+    idirs.clear();
+    IPoint isum{Interval(0), Interval(0), Interval(0)};
     Index h = fg.vertex_he[v];
     do {
-      dirs.push_back(fpts[fg.origin[h ^ 1u]] - fpts[v]);
-      sum = sum + dirs.back();
+      idirs.push_back(fip[fg.origin[h ^ 1u]] - fip[v]);
+      isum = isum + idirs.back();
       h = fg.prev[h] ^ 1u;
     } while (h != fg.vertex_he[v]);
-    if (is_zero(sum) || check_fan(-sum, dirs) >= 0)
-      throw InputError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
+    long r = check_fan_t(-isum, idirs);
+    if (r == kFanUncertain) {
+      dirs.clear();
+      Point3 sum(Rational(0), Rational(0), Rational(0));
+      do {
+        dirs.push_back(fpts[fg.origin[h ^ 1u]] - fpts[v]);
+        sum = sum + dirs.back();
+        h = fg.prev[h] ^ 1u;
+      } while (h != fg.vertex_he[v]);
+      r = is_zero(sum) ? 0 : check_fan_t(-sum, dirs);
+    }
+    if (r >= 0) throw InputError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
   }
 
   // 9. The polytope.
   ConvexPolytope p;
   p.points_ = std::move(fpts);
-  p.approx_.reserve(p.points_.size());
-  for (const auto& q : p.points_) {
-    p.approx_.push_back(to_double(q));
-    if (p.all_double_ && !is_double(q)) p.all_double_ = false;
-  }
+  p.approx_ = std::move(fapprox);
+  p.all_double_ = all_double;
   p.source_vertex_ = std::move(fname_v);
   p.planes_ = std::move(merged_planes);
   p.he_origin_ = std::move(fg.origin);

@@ -52,10 +52,12 @@ a summary (or JSON).  A and B are files or catalog names.
 Options:
   -o, --output OUT   write the sum to OUT (.off .obj .ply .stl .wrl); the file
                      is written to a temporary name and renamed when complete
-  --method M         auto (default), chms, walk, cvms, essdms, mssd, cgm.
+  --method M         auto (default), chms, cvms, walk, essdms, mssd, cgm.
                      chms: exact convex hull of all pairwise vertex sums, the
-                     reference oracle.  Methods not built into this version
-                     are refused with exit status 2.
+                     reference oracle.  cvms: contributing vertices (Barki et
+                     al.), reports the facet types (translated, corner, edge,
+                     facet_edge, facet_facet) with --json.  Methods not built
+                     into this version are refused with exit status 2.
   --exact            write coordinates as exact rationals (p/q or integers);
                      default: shortest text that reads back to the nearest
                      double.  Only .off, .obj and .wrl can hold rationals.
@@ -152,6 +154,21 @@ std::string counts_json(const ConvexPolytope& p) {
   return o.str();
 }
 
+// ", \"facet_types\": {...}" for methods that record where each facet comes from.
+std::string facet_types_json(const SumResult& r) {
+  if (r.facet_provenance.empty()) return "";
+  constexpr FacetOrigin kinds[] = {FacetOrigin::translated, FacetOrigin::corner, FacetOrigin::edge,
+                                   FacetOrigin::facet_edge, FacetOrigin::facet_facet};
+  std::map<FacetOrigin, long> count;
+  for (const auto& p : r.facet_provenance) ++count[p.origin()];
+  std::ostringstream o;
+  o << ", \"facet_types\": {";
+  for (std::size_t i = 0; i < std::size(kinds); ++i)
+    o << (i ? ", " : "") << "\"" << facet_origin_name(kinds[i]) << "\": " << count[kinds[i]];
+  o << "}";
+  return o.str();
+}
+
 // Check the output path before any long computation (bad usage fails fast).
 void check_output(const Args& a) {
   if (a.output.empty()) return;
@@ -171,6 +188,10 @@ void write_output(const Args& a, const ConvexPolytope& p) {
   WriteOptions w;
   w.exact = a.exact;
   w.binary = a.binary;
+  if (!a.exact && !p.coordinates_are_doubles())
+    std::cerr << "minksum: note: " << a.output
+              << ": some coordinates are not doubles and are written rounded to the nearest double "
+                 "(facets may no longer be exactly planar); use --exact to keep them exact\n";
   try {
     write_mesh(a.output, p.to_mesh(), w);
   } catch (const InputError& e) {
@@ -201,7 +222,7 @@ int cmd_sum(const Args& a) {
     Rational vol = s.volume();
     std::cout << "{" << counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
               << ", \"seconds\": " << format_double(r.seconds) << ", \"volume\": \"" << format_exact(vol)
-              << "\", \"volume_double\": " << format_double(to_double(vol)) << ", \"a\": {\"name\": \""
+              << "\", \"volume_double\": " << format_double(to_double(vol)) << facet_types_json(r) << ", \"a\": {\"name\": \""
               << json_escape(a.positional[0]) << "\", " << counts_json(pa) << "}, \"b\": {\"name\": \""
               << json_escape(a.positional[1]) << "\", " << counts_json(pb) << "}, \"output\": ";
     if (a.output.empty()) std::cout << "null"; else std::cout << "\"" << json_escape(a.output) << "\"";

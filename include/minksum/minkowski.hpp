@@ -25,23 +25,46 @@ std::optional<Method> parse_method(const std::string& name);
 // True when the method is implemented in this build.
 bool method_available(Method m);
 
-// Where an output facet comes from (seed 000 §4.3, seed 001 §3): its normal n
-// is an outer normal of a k_A-face of A and a k_B-face of B.
+// Where an output facet comes from (seed 000 §4.3, seed 001 §3).  A facet of
+// S = A ⊕ B with outer normal n is face_A(n) ⊕ face_B(n), the faces of A and
+// B maximising <x, n>; their dimensions (2 facet, 1 edge, 0 vertex) give:
 enum class FacetOrigin {
-  translated,    // facet of A ⊕ vertex of B
-  corner,        // vertex of A ⊕ facet of B
-  edge,          // edge of A ⊕ edge of B (non-parallel)
-  facet_edge,    // facet of A ⊕ edge of B, or edge of A ⊕ facet of B
-  facet_facet,   // facet of A ⊕ facet of B (parallel facets)
-  edge_parallel  // edge of A ⊕ parallel edge of B (normal on both arcs)
+  translated,   // facet of A ⊕ vertex of B
+  corner,       // vertex of A ⊕ facet of B
+  edge,         // edge of A ⊕ edge of B (non-parallel)
+  facet_edge,   // facet of A ⊕ edge of B, or edge of A ⊕ facet of B (parallel)
+  facet_facet,  // facet of A ⊕ facet of B (parallel, same orientation)
 };
 const char* facet_origin_name(FacetOrigin o);
+
+// A feature of an operand: dimension 0 (vertex index), 1 (edge index, see
+// ConvexPolytope::edge) or 2 (facet index).
+struct Feature {
+  int dim = 0;
+  Index index = kNoIndex;
+  friend bool operator==(const Feature&, const Feature&) = default;
+};
+
+struct FacetProvenance {
+  Feature a, b;  // face_A(n) and face_B(n)
+  FacetOrigin origin() const;
+  friend bool operator==(const FacetProvenance&, const FacetProvenance&) = default;
+};
+
+// The provenance of every facet of s = a ⊕ b, computed independently of any
+// method by scanning all vertices of a and b for each facet normal:
+// O(F (V_A + V_B)) exact.  For tests and for methods that do not track it.
+std::vector<FacetProvenance> facet_provenance(const ConvexPolytope& a, const ConvexPolytope& b,
+                                              const ConvexPolytope& s);
 
 struct SumResult {
   ConvexPolytope polytope;
   Method method = Method::chms;
   // vertex_origin[v] = (vertex of A, vertex of B) whose sum is vertex v.
   std::vector<std::pair<Index, Index>> vertex_origin;
+  // facet_provenance[f] for every facet f of polytope (empty when the method
+  // does not track it; see facet_provenance() above).
+  std::vector<FacetProvenance> facet_provenance;
   double seconds = 0;  // the computation alone
 };
 
@@ -52,5 +75,7 @@ SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b,
 
 // The CHMS method (oracle): exact convex hull of all pairwise vertex sums.
 SumResult minkowski_sum_chms(const ConvexPolytope& a, const ConvexPolytope& b);
+// CVMS (seed 000 §3-4): contributing vertices, translated / corner / edge facets.
+SumResult minkowski_sum_cvms(const ConvexPolytope& a, const ConvexPolytope& b);
 
 }  // namespace minksum

@@ -29,7 +29,7 @@ std::optional<Method> parse_method(const std::string& name) {
 }
 
 bool method_available(Method m) {
-  return m == Method::chms || m == Method::automatic;
+  return m == Method::chms || m == Method::cvms || m == Method::automatic;
 }
 
 const char* facet_origin_name(FacetOrigin o) {
@@ -39,7 +39,6 @@ const char* facet_origin_name(FacetOrigin o) {
     case FacetOrigin::edge: return "edge";
     case FacetOrigin::facet_edge: return "facet_edge";
     case FacetOrigin::facet_facet: return "facet_facet";
-    case FacetOrigin::edge_parallel: return "edge_parallel";
   }
   return "?";
 }
@@ -52,9 +51,11 @@ SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b, Method
       return minkowski_sum_chms(a, b);
     case Method::chms:
       return minkowski_sum_chms(a, b);
+    case Method::cvms:
+      return minkowski_sum_cvms(a, b);
     default:
       throw UsageError(std::string("method '") + method_name(method) +
-                       "' is not implemented in this version of minksum (available: auto, chms)");
+                       "' is not implemented in this version of minksum (available: auto, chms, cvms)");
   }
 }
 

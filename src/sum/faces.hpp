@@ -1,0 +1,35 @@
+// Internal helpers shared by the Minkowski-sum methods.
+#pragma once
+
+#include <minksum/minkowski.hpp>
+
+#include <array>
+#include <vector>
+
+namespace minksum {
+
+// The face of p spanned by the vertices vs (all maximising <x, n>): a vertex,
+// the edge joining two vertices, or the facet with outward normal along n.
+Feature face_of_vertices(const ConvexPolytope& p, const std::vector<Index>& vs, const Point3& n);
+
+// All vertices of p maximising <x, n>, by a scan (exact).
+std::vector<Index> support_vertices(const ConvexPolytope& p, const Point3& n);
+
+// One output facet before assembly: its outer normal and candidate points
+// (pairs of input vertices).  assemble_sum() groups candidates by normal
+// direction, takes the planar convex hull of each group's points (the facet
+// face_A(n) ⊕ face_B(n)) and builds the validated result polytope.
+struct FacetCandidate {
+  Point3 normal;  // outer normal, any positive scale
+  std::vector<std::pair<Index, Index>> points;
+  FacetProvenance provenance;
+};
+
+SumResult assemble_sum(const ConvexPolytope& a, const ConvexPolytope& b, std::vector<FacetCandidate> candidates,
+                       Method method);
+
+// Primitive integer direction of a nonzero rational vector (equal for
+// vectors that are positive multiples of each other).
+std::array<Integer, 3> primitive_direction(const Point3& n);
+
+}  // namespace minksum

@@ -1,14 +1,23 @@
-// minksum — the built-in database of named polytopes.
+// minksum — the built-in database of named polytopes (docs/catalog.md).
 //
 // A catalog spec is accepted anywhere a file path is.  Grammar:
 //   spec     := base ( '@' transform )*
-//   base     := tetra | cube | octahedron | dodecahedron | icosahedron
-//             | truncated-cube | ... (see catalog_entries())
-//             | sphere:L | dioctagonal:N | random:N:SEED | zonotope:N:SEED
-//             | box:X:Y:Z
-//   transform:= rot:SEED          a pseudo-random exact rational rotation
-//             | rot:A,B,C,D       the rotation of the integer quaternion (A,B,C,D)
-//             | ... (see catalog_entries())
+//   base     := NAME               a fixed solid: the 5 Platonic, 13 Archimedean
+//                                  and 13 Catalan solids (tetra, cube, ...,
+//                                  truncated-cube, ...; see catalog_entries())
+//             | sphere:L           geodesic sphere, 1 <= L <= 9 (L = 1: icosahedron)
+//             | dioctagonal:N      squashed pyramid with N facets, 4 <= N <= 100000
+//             | random:N:SEED      exact hull of N random unit vectors, 4 <= N <= 10^6
+//             | zonotope:N:SEED    N random generators in general position, 3 <= N <= 256
+//             | zonotope:X,Y,Z:... 1..16 explicit generators
+//             | box:X:Y:Z          axis-aligned box with sides X, Y, Z > 0
+//   transform:= rot:SEED           a pseudo-random exact rational rotation
+//             | rot:A,B,C,D        the rotation of the integer quaternion (A,B,C,D)
+//             | scale:S | scale:X,Y,Z | translate:X,Y,Z | neg
+// Counts and seeds are integers (a seed is 0 .. 2^64-1); lengths and
+// coordinates are read exactly by parse_number ("1/3", "1e-12").  Transforms
+// apply left to right.  A spec gives the same polytope (coordinates, vertex
+// order, facet loops) on every run and platform.
 // Every catalog polytope has exact coordinates and exactly planar facets;
 // where a solid needs an irrational constant, the rational approximation used
 // is documented in catalog_entries() and docs/catalog.md.
@@ -29,7 +38,11 @@ struct CatalogEntry {
 // All names and parameterised forms the catalog understands.
 const std::vector<CatalogEntry>& catalog_entries();
 
-// True if `spec` parses as a catalog spec (parameters not yet range-checked).
+// True if `spec` names the catalog: its base name (the text before the first
+// ':' or '@') is a catalog name.  Parameters and transforms are not checked
+// here: catalog_polytope() rejects a bad one with a UsageError saying what is
+// allowed ("sphere:12" is a catalog spec, not a missing file).  Paths such as
+// "foo.off" or "./cube" are never catalog specs.
 bool is_catalog_spec(const std::string& spec);
 
 // Build the polytope named by `spec`.  Throws UsageError for an unknown name

@@ -12,6 +12,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
 
+#include <algorithm>
 #include <unordered_map>
 
 namespace minksum {
@@ -64,23 +65,32 @@ ConvexPolytope ConvexPolytope::hull(const std::vector<Point3>& points, const std
   index_of.reserve(points.size());
   for (Index i = 0; i < points.size(); ++i) index_of.try_emplace(points[i], i);
 
+  // A canonical mesh, whatever order CGAL produced (it varies between calls):
+  // vertices in the order of the input points, each triangle starting at its
+  // smallest vertex, triangles sorted.
+  std::vector<std::pair<Index, std::size_t>> order;  // (input index, surface-mesh vertex)
+  for (auto v : sm.vertices()) {
+    auto it = index_of.find(to_point3(sm.point(v)));
+    if (it == index_of.end())
+      throw std::logic_error("convex hull produced a point that is not an input point");
+    order.emplace_back(it->second, std::size_t(v));
+  }
+  std::sort(order.begin(), order.end());
   Mesh m;
   std::vector<Index> input_index;
   std::unordered_map<std::size_t, Index> local;  // surface-mesh vertex -> mesh index
-  for (auto v : sm.vertices()) {
-    Point3 p = to_point3(sm.point(v));
-    auto it = index_of.find(p);
-    if (it == index_of.end())
-      throw std::logic_error("convex hull produced a point that is not an input point");
-    local[std::size_t(v)] = Index(m.points.size());
-    m.points.push_back(std::move(p));
-    input_index.push_back(it->second);
+  for (auto [input, v] : order) {
+    local[v] = Index(m.points.size());
+    m.points.push_back(points[input]);
+    input_index.push_back(input);
   }
   for (auto f : sm.faces()) {
     std::vector<Index> poly;
     for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) poly.push_back(local[std::size_t(v)]);
+    std::rotate(poly.begin(), std::min_element(poly.begin(), poly.end()), poly.end());
     m.faces.push_back(std::move(poly));
   }
+  std::sort(m.faces.begin(), m.faces.end());
   ConvexPolytope result = PolytopeBuilder::build(m, source);
   for (auto& s : result.source_vertex_) s = input_index[s];
   return result;

@@ -1,0 +1,322 @@
+// The catalog spec parser and dispatcher: base ( '@' transform )*.
+#include "catalog/catalog_internal.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <sstream>
+
+namespace minksum {
+
+using namespace catalog_detail;
+
+namespace {
+
+// ---------------------------------------------------------------------------
+// Families and transforms: syntax and description (fixed solids come from
+// fixed_solids()).
+struct Form {
+  const char* name;
+  const char* syntax;
+  const char* description;
+};
+
+const Form kFamilies[] = {
+    {"sphere", "sphere:L",
+     "geodesic sphere of level L (1..9): 20·4^(L-1) triangles, vertices on the unit sphere (doubles)"},
+    {"dioctagonal", "dioctagonal:N",
+     "squashed pyramid with N facets (4..100000): regular (N-1)-gon base at z=0, apex (0,0,1/8)"},
+    {"random", "random:N:SEED", "exact hull of N (4..10^6) pseudo-random unit vectors (doubles), 64-bit SEED"},
+    {"zonotope", "zonotope:N:SEED",
+     "sum of N (3..256) random integer segments in general position: N(N-1)+2 vertices, N(N-1) facets"},
+    {"zonotope", "zonotope:X,Y,Z:...", "sum of the segments [-g,g] for 1..16 explicit generators g=(X,Y,Z)"},
+    {"box", "box:X:Y:Z", "axis-aligned box centred at the origin with side lengths X, Y, Z > 0"},
+};
+
+const Form kTransforms[] = {
+    {"rot", "@rot:SEED", "exact rational rotation of a pseudo-random integer quaternion (64-bit SEED)"},
+    {"rot", "@rot:A,B,C,D", "exact rational rotation of the integer quaternion A+Bi+Cj+Dk (not all 0)"},
+    {"scale", "@scale:S", "exact scaling by S > 0 about the origin"},
+    {"scale", "@scale:X,Y,Z", "exact axis-aligned scaling by X, Y, Z > 0"},
+    {"translate", "@translate:X,Y,Z", "exact translation by (X, Y, Z)"},
+    {"neg", "@neg", "point reflection through the origin (the solid -P)"},
+};
+
+bool is_family(const std::string& name) {
+  for (const Form& f : kFamilies)
+    if (name == f.name) return true;
+  return false;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t pos = s.find(sep, start);
+    parts.push_back(s.substr(start, pos == std::string::npos ? std::string::npos : pos - start));
+    if (pos == std::string::npos) return parts;
+    start = pos + 1;
+  }
+}
+
+std::string base_name(const std::string& spec) { return spec.substr(0, spec.find_first_of(":@")); }
+
+// ---------------------------------------------------------------------------
+// Errors: "catalog spec 'SPEC': PROBLEM".
+[[noreturn]] void fail(const std::string& spec, const std::string& problem) {
+  throw UsageError("catalog spec '" + spec + "': " + problem);
+}
+
+// Levenshtein distance, for "did you mean".
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::vector<std::string> all_base_names() {
+  std::vector<std::string> names;
+  for (const FixedSolid& s : fixed_solids()) {
+    names.push_back(s.name);
+    for (const std::string& a : s.aliases) names.push_back(a);
+  }
+  for (const Form& f : kFamilies)
+    if (std::find(names.begin(), names.end(), f.name) == names.end()) names.push_back(f.name);
+  return names;
+}
+
+[[noreturn]] void unknown_name(const std::string& spec, const std::string& name) {
+  // Suggest the closest name within two edits, else one the text begins.
+  std::string best;
+  std::size_t best_d = 3;
+  for (const std::string& n : all_base_names()) {
+    const std::size_t d = edit_distance(name, n);
+    if (d < best_d) {
+      best_d = d;
+      best = n;
+    }
+  }
+  if (best.empty() && name.size() >= 3)
+    for (const std::string& n : all_base_names())
+      if (n.rfind(name, 0) == 0) {
+        best = n;
+        break;
+      }
+  std::string msg = "unknown catalog name '" + name + "'";
+  if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+  msg += "; see 'minksum gen --help' for the names";
+  fail(spec, msg);
+}
+
+// Parameter parsing.  `form` is the allowed form, e.g. "sphere:L".
+Rational number(const std::string& spec, const std::string& form, const std::string& what, const std::string& tok) {
+  std::string why;
+  const auto q = parse_number(tok, &why);
+  if (!q) fail(spec, form + " needs a number " + what + ", got '" + tok + "' (" + why + ")");
+  return *q;
+}
+
+Integer integer(const std::string& spec, const std::string& form, const std::string& what, const std::string& tok) {
+  const Rational q = number(spec, form, what, tok);
+  if (q.get_den() != 1) fail(spec, form + " needs an integer " + what + ", got '" + tok + "'");
+  return q.get_num();
+}
+
+std::uint64_t bounded(const std::string& spec, const std::string& form, const std::string& what,
+                      const std::string& tok, std::uint64_t lo, std::uint64_t hi) {
+  const Integer z = integer(spec, form, what, tok);
+  if (z < Integer(std::to_string(lo)) || z > Integer(std::to_string(hi)))
+    fail(spec, form + " needs " + std::to_string(lo) + " <= " + what + " <= " + std::to_string(hi) + ", got " + tok);
+  return std::stoull(z.get_str());
+}
+
+std::uint64_t seed(const std::string& spec, const std::string& form, const std::string& tok) {
+  const Integer z = integer(spec, form, "SEED", tok);
+  if (sgn(z) < 0 || z > Integer("18446744073709551615"))
+    fail(spec, form + " needs 0 <= SEED <= 18446744073709551615, got " + tok);
+  return std::stoull(z.get_str());
+}
+
+Rational positive(const std::string& spec, const std::string& form, const std::string& what, const std::string& tok) {
+  Rational q = number(spec, form, what, tok);
+  if (sgn(q) <= 0) fail(spec, form + " needs " + what + " > 0, got " + tok);
+  return q;
+}
+
+void arity(const std::string& spec, const std::string& form, const std::vector<std::string>& params,
+           std::size_t n) {
+  if (params.size() != n)
+    fail(spec, form + " takes " + std::to_string(n) + " parameter" + (n == 1 ? "" : "s") + ", got " +
+                   std::to_string(params.size()) + " (the form is " + form + ")");
+}
+
+// ---------------------------------------------------------------------------
+// Base.
+
+ConvexPolytope build_base(const std::string& spec, const std::string& base) {
+  std::vector<std::string> parts = split(base, ':');
+  const std::string name = parts[0];
+  const std::vector<std::string> params(parts.begin() + 1, parts.end());
+
+  if (const FixedSolid* s = find_fixed_solid(name)) {
+    if (!params.empty()) fail(spec, "'" + name + "' takes no parameters");
+    return s->build(spec);
+  }
+  if (name == "sphere") {
+    const std::string form = "sphere:L";
+    arity(spec, form, params, 1);
+    return make_sphere(int(bounded(spec, form, "L", params[0], 1, kSphereMaxLevel)), spec);
+  }
+  if (name == "dioctagonal") {
+    const std::string form = "dioctagonal:N";
+    arity(spec, form, params, 1);
+    return make_dioctagonal(bounded(spec, form, "N", params[0], 4, kDioctagonalMax), spec);
+  }
+  if (name == "random") {
+    const std::string form = "random:N:SEED";
+    arity(spec, form, params, 2);
+    const std::uint64_t n = bounded(spec, form, "N", params[0], 4, kRandomMax);
+    return make_random(n, seed(spec, form, params[1]), spec);
+  }
+  if (name == "zonotope") {
+    const bool explicit_form = !params.empty() && params[0].find(',') != std::string::npos;
+    if (!explicit_form) {
+      const std::string form = "zonotope:N:SEED";
+      arity(spec, form, params, 2);
+      const std::uint64_t n = bounded(spec, form, "N", params[0], 3, kZonotopeMax);
+      return make_zonotope(n, seed(spec, form, params[1]), spec);
+    }
+    const std::string form = "zonotope:X,Y,Z:X,Y,Z:...";
+    if (params.size() > kZonotopeExplicitMax)
+      fail(spec, form + " takes at most " + std::to_string(kZonotopeExplicitMax) + " generators, got " +
+                     std::to_string(params.size()));
+    std::vector<Point3> gens;
+    for (const std::string& p : params) {
+      const std::vector<std::string> c = split(p, ',');
+      if (c.size() != 3) fail(spec, form + " needs each generator as X,Y,Z, got '" + p + "'");
+      gens.emplace_back(number(spec, form, "X", c[0]), number(spec, form, "Y", c[1]), number(spec, form, "Z", c[2]));
+    }
+    return make_zonotope(gens, spec);
+  }
+  if (name == "box") {
+    const std::string form = "box:X:Y:Z";
+    arity(spec, form, params, 3);
+    return make_box(positive(spec, form, "X", params[0]), positive(spec, form, "Y", params[1]),
+                    positive(spec, form, "Z", params[2]), spec);
+  }
+  unknown_name(spec, name);
+}
+
+// ---------------------------------------------------------------------------
+// Transforms: parsed (and checked) before the base is built, then applied
+// to the vertices of the base's mesh in order.
+using Transform = std::function<void(Mesh&)>;
+
+Transform parse_transform(const std::string& spec, const std::string& tr) {
+  if (tr.empty()) fail(spec, "empty transform after '@'");
+  const std::size_t colon = tr.find(':');
+  const std::string name = tr.substr(0, colon);
+  const std::string arg = colon == std::string::npos ? std::string() : tr.substr(colon + 1);
+  const bool has_arg = colon != std::string::npos;
+
+  if (name == "rot") {
+    if (!has_arg) fail(spec, "the transform rot needs rot:SEED or rot:A,B,C,D");
+    const std::vector<std::string> c = split(arg, ',');
+    std::array<Integer, 4> q;
+    if (c.size() == 1) {
+      q = random_quaternion(seed(spec, "rot:SEED", c[0]));
+    } else if (c.size() == 4) {
+      for (int i = 0; i < 4; ++i) q[i] = integer(spec, "rot:A,B,C,D", std::string(1, char('A' + i)), c[i]);
+      if (sgn(q[0]) == 0 && sgn(q[1]) == 0 && sgn(q[2]) == 0 && sgn(q[3]) == 0)
+        fail(spec, "rot:A,B,C,D needs a non-zero quaternion, got 0,0,0,0");
+    } else {
+      fail(spec, "the transform rot needs rot:SEED or rot:A,B,C,D, got 'rot:" + arg + "'");
+    }
+    const Matrix3 r = quaternion_rotation(q[0], q[1], q[2], q[3]);
+    return [r](Mesh& mesh) {
+      for (Point3& p : mesh.points) p = apply(r, p);
+    };
+  }
+  if (name == "scale") {
+    if (!has_arg) fail(spec, "the transform scale needs scale:S or scale:X,Y,Z");
+    const std::vector<std::string> c = split(arg, ',');
+    std::array<Rational, 3> s;
+    if (c.size() == 1) {
+      s[0] = s[1] = s[2] = positive(spec, "scale:S", "S", c[0]);
+    } else if (c.size() == 3) {
+      const char* what[3] = {"X", "Y", "Z"};
+      for (int i = 0; i < 3; ++i) s[i] = positive(spec, "scale:X,Y,Z", what[i], c[i]);
+    } else {
+      fail(spec, "the transform scale needs scale:S or scale:X,Y,Z, got 'scale:" + arg + "'");
+    }
+    return [s](Mesh& mesh) {
+      for (Point3& p : mesh.points)
+        for (int i = 0; i < 3; ++i) p[i] *= s[i];
+    };
+  }
+  if (name == "translate") {
+    const std::string form = "translate:X,Y,Z";
+    if (!has_arg) fail(spec, "the transform translate needs " + form);
+    const std::vector<std::string> c = split(arg, ',');
+    if (c.size() != 3) fail(spec, "the transform translate needs " + form + ", got 'translate:" + arg + "'");
+    const Point3 t(number(spec, form, "X", c[0]), number(spec, form, "Y", c[1]), number(spec, form, "Z", c[2]));
+    return [t](Mesh& mesh) {
+      for (Point3& p : mesh.points) p = p + t;
+    };
+  }
+  if (name == "neg") {
+    if (has_arg) fail(spec, "the transform neg takes no parameter");
+    return [](Mesh& mesh) {
+      for (Point3& p : mesh.points) p = -p;
+      for (auto& f : mesh.faces) std::reverse(f.begin(), f.end());  // keep counter-clockwise from outside
+    };
+  }
+  fail(spec, "unknown transform '" + name +
+                 "' (known: rot:SEED, rot:A,B,C,D, scale:S, scale:X,Y,Z, translate:X,Y,Z, neg)");
+}
+
+}  // namespace
+
+const std::vector<CatalogEntry>& catalog_entries() {
+  static const std::vector<CatalogEntry> entries = [] {
+    std::vector<CatalogEntry> e;
+    for (const FixedSolid& s : fixed_solids()) {
+      std::string syntax = s.name;
+      for (const std::string& a : s.aliases) syntax += " | " + a;
+      std::ostringstream d;
+      d << s.description << " [V " << s.vertices << ", E " << s.edges << ", F " << s.facets << "]";
+      e.push_back({syntax, d.str()});
+    }
+    for (const Form& f : kFamilies) e.push_back({f.syntax, f.description});
+    for (const Form& f : kTransforms) e.push_back({f.syntax, f.description});
+    return e;
+  }();
+  return entries;
+}
+
+bool is_catalog_spec(const std::string& spec) {
+  const std::string name = base_name(spec);
+  return find_fixed_solid(name) != nullptr || is_family(name);
+}
+
+ConvexPolytope catalog_polytope(const std::string& spec) {
+  if (spec.empty()) throw UsageError("empty catalog spec; see 'minksum gen --help' for the names");
+  const std::vector<std::string> parts = split(spec, '@');
+  std::vector<Transform> transforms;
+  for (std::size_t i = 1; i < parts.size(); ++i) transforms.push_back(parse_transform(spec, parts[i]));
+  ConvexPolytope p = build_base(spec, parts[0]);
+  if (transforms.empty()) return p;
+  Mesh mesh = p.to_mesh();
+  for (const Transform& t : transforms) t(mesh);
+  return ConvexPolytope::from_mesh(mesh, spec);
+}
+
+}  // namespace minksum

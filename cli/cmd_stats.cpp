@@ -1,0 +1,53 @@
+// minksum stats P: validate a polytope and print its numbers.
+#include <minksum/io.hpp>
+
+#include <algorithm>
+#include <iostream>
+
+#include "commands.hpp"
+#include "common.hpp"
+
+namespace minksum::cli {
+
+namespace {
+const char* kStatsHelp = R"(Usage: minksum stats P [--json] [--hull]
+
+Validate P (file or catalog name) and print its numbers of vertices, edges and
+facets (coplanar facets merged), its exact volume, and whether every
+coordinate is exactly a double.  With --hull, P's points are a point cloud and
+the statistics are those of its exact convex hull.
+)";
+
+}  // namespace
+
+int run_stats(const std::vector<std::string>& argv) {
+  const Args a = parse_args(argv, "stats", {{"--json"}, {"--hull"}});
+  if (a.help) {
+    std::cout << kStatsHelp;
+    return 0;
+  }
+  if (a.positional.size() != 1) throw UsageError("'stats' needs one operand (see 'minksum stats --help')");
+  ConvexPolytope p = load_polytope(a.positional[0], a.flag("--hull"));
+  Rational vol = p.volume();
+  Index max_fdeg = 0, max_vdeg = 0;
+  for (Index f = 0; f < p.num_facets(); ++f) max_fdeg = std::max(max_fdeg, p.facet_degree(f));
+  for (Index v = 0; v < p.num_vertices(); ++v) max_vdeg = std::max(max_vdeg, p.vertex_degree(v));
+  if (a.flag("--json")) {
+    std::cout << "{\"name\": \"" << json_escape(a.positional[0]) << "\", " << counts_json(p)
+              << ", \"volume\": \"" << format_exact(vol) << "\", \"volume_double\": "
+              << format_double(to_double(vol)) << ", \"max_facet_degree\": " << max_fdeg
+              << ", \"max_vertex_degree\": " << max_vdeg << ", \"coordinates_are_doubles\": "
+              << (p.coordinates_are_doubles() ? "true" : "false") << "}\n";
+  } else {
+    std::cout << a.positional[0] << ": " << p.num_vertices() << " vertices, " << p.num_edges() << " edges, "
+              << p.num_facets() << " facets\n"
+              << "  volume " << format_double(to_double(vol));
+    if (!is_double(vol)) std::cout << " (exactly " << format_exact(vol) << ")";
+    std::cout << "\n  largest facet has " << max_fdeg << " vertices, largest vertex degree " << max_vdeg
+              << "\n  coordinates: " << (p.coordinates_are_doubles() ? "all exact doubles" : "exact rationals")
+              << "\n";
+  }
+  return 0;
+}
+
+}  // namespace minksum::cli

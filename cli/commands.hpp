@@ -1,0 +1,15 @@
+// The minksum subcommands: each file cli/cmd_<name>.cpp defines one run_<name>.
+// To add a command: declare it here and add a line to kCommands in main.cpp.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace minksum::cli {
+
+// Each returns the exit status; throws UsageError / InputError / OutputError.
+int run_sum(const std::vector<std::string>& args);
+int run_stats(const std::vector<std::string>& args);
+int run_gen(const std::vector<std::string>& args);
+
+}  // namespace minksum::cli

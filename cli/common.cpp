@@ -1,0 +1,108 @@
+// The minksum command line: argument parsing, JSON and output helpers.
+#include "common.hpp"
+
+#include <minksum/io.hpp>
+
+#include <cctype>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+namespace minksum::cli {
+
+Args parse_args(const std::vector<std::string>& argv, const std::string& command,
+                const std::vector<OptionSpec>& options) {
+  Args a;
+  for (std::size_t i = 0; i < argv.size(); ++i) {
+    std::string s = argv[i];
+    if (s == "-h" || s == "--help") {
+      a.help = true;
+      continue;
+    }
+    bool negative_number = s.size() > 1 && s[0] == '-' && (std::isdigit((unsigned char)s[1]) || s[1] == '.');
+    if (s.size() < 2 || s[0] != '-' || negative_number) {
+      a.positional.push_back(s);
+      continue;
+    }
+    std::string value;
+    bool has_value = false;
+    if (s.rfind("--", 0) == 0) {
+      if (auto eq = s.find('='); eq != std::string::npos) {
+        value = s.substr(eq + 1);
+        s = s.substr(0, eq);
+        has_value = true;
+      }
+    }
+    const OptionSpec* spec = nullptr;
+    for (const auto& o : options)
+      if (s == o.name || (!o.alias.empty() && s == o.alias)) spec = &o;
+    if (!spec)
+      throw UsageError("unknown option '" + argv[i] + "' for '" + command + "' (see 'minksum " + command +
+                       " --help')");
+    if (spec->takes_value) {
+      if (!has_value) {
+        if (i + 1 >= argv.size()) throw UsageError(spec->name + " needs a value");
+        value = argv[++i];
+      }
+      a.values[spec->name] = value;
+    } else {
+      if (has_value) throw UsageError(spec->name + " takes no value");
+      a.flags.insert(spec->name);
+    }
+  }
+  return a;
+}
+
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out;
+}
+
+std::string counts_json(const ConvexPolytope& p) {
+  std::ostringstream o;
+  o << "\"vertices\": " << p.num_vertices() << ", \"edges\": " << p.num_edges()
+    << ", \"facets\": " << p.num_facets();
+  return o.str();
+}
+
+void check_output_path(const std::string& path, bool exact) {
+  if (path.empty()) return;
+  auto f = format_from_path(path);
+  if (!f) throw UsageError("cannot tell the format of '" + path + "': use .off, .obj, .ply, .stl or .wrl");
+  if (exact && (*f == Format::ply || *f == Format::stl))
+    throw UsageError(std::string("--exact: ") + format_name(*f) +
+                     " cannot store exact rationals; use .off, .obj or .wrl");
+}
+
+void write_output(const std::string& path, const ConvexPolytope& p, bool exact, bool binary) {
+  WriteOptions w;
+  w.exact = exact;
+  w.binary = binary;
+  if (!exact && !p.coordinates_are_doubles())
+    std::cerr << "minksum: note: " << path
+              << ": some coordinates are not doubles and are written rounded to the nearest double "
+                 "(facets may no longer be exactly planar); use --exact to keep them exact\n";
+  try {
+    write_mesh(path, p.to_mesh(), w);
+  } catch (const InputError& e) {
+    throw OutputError(std::string("cannot write ") + e.what());
+  }
+}
+
+}  // namespace minksum::cli

@@ -1,0 +1,64 @@
+// The minksum command line: pieces shared by the command files.
+#pragma once
+
+#include <minksum/error.hpp>
+#include <minksum/minkowski.hpp>
+#include <minksum/polytope.hpp>
+
+#include <map>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace minksum::cli {
+
+// An option a command accepts: "--name" (and an optional short alias such as
+// "-o"), with or without a value ("--name VALUE" or "--name=VALUE").
+struct OptionSpec {
+  std::string name;
+  std::string alias;
+  bool takes_value = false;
+};
+
+struct Args {
+  std::vector<std::string> positional;
+  std::map<std::string, std::string> values;  // by long name
+  std::set<std::string> flags;                // by long name
+  bool help = false;
+
+  bool flag(const std::string& name) const { return flags.count(name) != 0; }
+  std::optional<std::string> value(const std::string& name) const {
+    auto it = values.find(name);
+    if (it == values.end()) return std::nullopt;
+    return it->second;
+  }
+  std::string value_or(const std::string& name, const std::string& fallback) const {
+    return value(name).value_or(fallback);
+  }
+};
+
+// Parse a command's arguments against its options; -h/--help always
+// accepted.  Throws UsageError for an unknown option or a missing value.
+// A token starting with '-' followed by a digit or '.' is a positional
+// (negative numbers).
+Args parse_args(const std::vector<std::string>& argv, const std::string& command,
+                const std::vector<OptionSpec>& options);
+
+std::string json_escape(const std::string& s);
+// "\"vertices\": V, \"edges\": E, \"facets\": F"
+std::string counts_json(const ConvexPolytope& p);
+
+// A failed write is not bad input: the command exits with status 1.
+struct OutputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Check that `path` has a known format (and can hold exact rationals when
+// `exact`), before any long computation.  Throws UsageError.
+void check_output_path(const std::string& path, bool exact);
+// Write p atomically; a note on stderr when rounding loses exactness.
+void write_output(const std::string& path, const ConvexPolytope& p, bool exact, bool binary);
+
+}  // namespace minksum::cli

@@ -52,6 +52,26 @@ std::string facet_types_json(const SumResult& r) {
   return o.str();
 }
 
+// ", \"facet_cases\": {...}, \"counters\": {...}" when the method records them.
+std::string method_detail_json(const SumResult& r) {
+  std::ostringstream o;
+  if (!r.facet_case.empty()) {
+    std::vector<long> count(r.facet_case_names.size(), 0);
+    for (auto c : r.facet_case) ++count.at(c);
+    o << ", \"facet_cases\": {";
+    for (std::size_t i = 0; i < count.size(); ++i)
+      o << (i ? ", " : "") << "\"" << json_escape(r.facet_case_names[i]) << "\": " << count[i];
+    o << "}";
+  }
+  if (!r.counters.empty()) {
+    o << ", \"counters\": {";
+    for (std::size_t i = 0; i < r.counters.size(); ++i)
+      o << (i ? ", " : "") << "\"" << json_escape(r.counters[i].first) << "\": " << r.counters[i].second;
+    o << "}";
+  }
+  return o.str();
+}
+
 }  // namespace
 
 int run_sum(const std::vector<std::string>& argv) {
@@ -82,7 +102,7 @@ int run_sum(const std::vector<std::string>& argv) {
     Rational vol = s.volume();
     std::cout << "{" << counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
               << ", \"seconds\": " << format_double(r.seconds) << ", \"volume\": \"" << format_exact(vol)
-              << "\", \"volume_double\": " << format_double(to_double(vol)) << facet_types_json(r)
+              << "\", \"volume_double\": " << format_double(to_double(vol)) << facet_types_json(r) << method_detail_json(r)
               << ", \"a\": {\"name\": \"" << json_escape(a.positional[0]) << "\", " << counts_json(pa)
               << "}, \"b\": {\"name\": \"" << json_escape(a.positional[1]) << "\", " << counts_json(pb)
               << "}, \"output\": ";

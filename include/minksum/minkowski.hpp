@@ -9,6 +9,7 @@
 
 #include <minksum/polytope.hpp>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -65,6 +66,13 @@ struct SumResult {
   // facet_provenance[f] for every facet f of polytope (empty when the method
   // does not track it; see facet_provenance() above).
   std::vector<FacetProvenance> facet_provenance;
+  // Method-specific detail (empty when a method records none):
+  // facet_case[f] indexes facet_case_names, e.g. the slope-diagram
+  // intersection case behind facet f; counters are named operation counts
+  // (predicate evaluations, point-in-polygon queries, ...).
+  std::vector<std::uint8_t> facet_case;
+  std::vector<std::string> facet_case_names;
+  std::vector<std::pair<std::string, long long>> counters;
   double seconds = 0;  // the computation alone
 };
 

@@ -310,3 +310,18 @@ TEST(Hull, DegenerateSetsAreNamed) {
   std::vector<Point3> thin = {P(0, 0, 0), P(1, 0, 0), P(0, 1, 0), Point3(0.5, 0.5, 4.9406564584124654e-324)};
   EXPECT_EQ(hull_error(thin), "");
 }
+
+TEST(Polytope, CollapsedSliversAfterWeldingAreDropped) {
+  // A triangulated cube whose soup repeats corner coordinates under new
+  // indices, plus two slivers that collapse to a segment once welded.
+  Mesh m = triangulated(cube_mesh(1));
+  m.points.push_back(m.points[0]);  // 8 == 0
+  m.points.push_back(m.points[6]);  // 9 == 6
+  m.faces[0][0] = m.faces[0][0] == 0 ? 8 : m.faces[0][0];
+  m.faces.push_back({0, 8, 6});  // collapses to segment 0-6
+  m.faces.push_back({6, 9, 0});  // same segment, other way
+  ConvexPolytope c = ConvexPolytope::from_mesh(m);
+  EXPECT_EQ(c.num_vertices(), 8u);
+  EXPECT_EQ(c.num_facets(), 6u);
+  EXPECT_EQ(c.volume(), Rational(8));
+}

@@ -298,17 +298,54 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
       pts.push_back(mesh.points[v]);
       vname.push_back(v);
     }
-  std::vector<std::vector<Index>> faces(mesh.faces.size());
-  std::vector<Index> fname(mesh.faces.size());
+  // After welding, a facet may repeat a vertex consecutively (a zero-length
+  // edge): the repeat is dropped; a facet left with fewer than 3 distinct
+  // corners (a collapsed sliver, common in exported STL) is dropped whole.
+  std::vector<std::vector<Index>> faces;
+  std::vector<Index> fname;
+  faces.reserve(mesh.faces.size());
+  fname.reserve(mesh.faces.size());
   for (Index f = 0; f < mesh.faces.size(); ++f) {
-    fname[f] = f;
-    faces[f].reserve(mesh.faces[f].size());
-    for (Index v : mesh.faces[f]) faces[f].push_back(new_id[canon[v]]);
-    std::vector<Index> sorted = faces[f];
+    std::vector<Index> poly;
+    poly.reserve(mesh.faces[f].size());
+    for (Index v : mesh.faces[f]) {
+      Index w = new_id[canon[v]];
+      if (poly.empty() || poly.back() != w) poly.push_back(w);
+    }
+    while (poly.size() > 1 && poly.back() == poly.front()) poly.pop_back();
+    std::vector<Index> sorted = poly;
     std::sort(sorted.begin(), sorted.end());
-    auto dup = std::adjacent_find(sorted.begin(), sorted.end());
-    if (dup != sorted.end())
-      throw InputError(source, fct(f), "visits " + vtx(vname[*dup]) + " twice");
+    sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+    if (sorted.size() < 3) continue;
+    if (sorted.size() != poly.size()) {
+      std::vector<Index> seen;
+      for (Index v : poly) {
+        if (std::find(seen.begin(), seen.end(), v) != seen.end())
+          throw InputError(source, fct(f), "visits " + vtx(vname[v]) + " twice");
+        seen.push_back(v);
+      }
+    }
+    faces.push_back(std::move(poly));
+    fname.push_back(f);
+  }
+  if (faces.empty()) throw InputError(source, "", "every facet collapses to a segment or a point");
+  if (faces.size() != mesh.faces.size()) {
+    // Dropped facets may leave vertices unused: number the used ones again.
+    std::vector<Index> renum(pts.size(), kNoIndex);
+    for (const auto& poly : faces)
+      for (Index v : poly) renum[v] = 0;
+    std::vector<Point3> kept_pts;
+    std::vector<Index> kept_names;
+    for (Index v = 0; v < pts.size(); ++v)
+      if (renum[v] == 0) {
+        renum[v] = Index(kept_pts.size());
+        kept_pts.push_back(std::move(pts[v]));
+        kept_names.push_back(vname[v]);
+      }
+    for (auto& poly : faces)
+      for (Index& v : poly) v = renum[v];
+    pts = std::move(kept_pts);
+    vname = std::move(kept_names);
   }
 
   // 3. Topology: closed, manifold, consistently oriented, connected sphere.

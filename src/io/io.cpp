@@ -1,0 +1,497 @@
+// Format dispatch, whole-file reading, atomic writing, operand resolution,
+// and the helpers the per-format readers and writers share.
+#include "io/readers.hpp"
+
+#include <minksum/catalog.hpp>
+#include <minksum/io.hpp>
+
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <istream>
+#include <iterator>
+#include <limits>
+#include <ostream>
+#include <random>
+#include <sstream>
+#include <streambuf>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace minksum {
+
+namespace io_detail {
+
+std::string line_place(std::size_t line) { return "line " + std::to_string(line); }
+
+std::string quote(std::string_view token) {
+  static const char* hex = "0123456789abcdef";
+  std::string s = "'";
+  std::size_t shown = 0;
+  for (char ch : token) {
+    if (shown == 40) {
+      s += "...";
+      break;
+    }
+    auto c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      s += ch;
+    } else {
+      s += "\\x";
+      s += hex[c >> 4];
+      s += hex[c & 15];
+    }
+    ++shown;
+  }
+  s += "'";
+  return s;
+}
+
+Rational parse_coordinate(std::string_view token, const std::string& name, const std::string& place) {
+  // Fast path for the common plain decimal token ("-0.125", "1e-3"): the
+  // nearest double by from_chars (correctly rounded, as strtod), which is what
+  // parse_number means by a decimal token.  Integers, p/q, hexadecimal and
+  // anything unusual go through parse_number.
+  if (!token.empty() && token.size() < 64) {
+    bool decimal = false, plain = true;
+    for (std::size_t i = 0; i < token.size() && plain; ++i) {
+      char c = token[i];
+      if (c == '.' || c == 'e' || c == 'E') decimal = true;
+      else if (!((c >= '0' && c <= '9') || ((c == '-' || c == '+') && (i == 0 || token[i - 1] == 'e' || token[i - 1] == 'E'))))
+        plain = false;
+    }
+    if (decimal && plain) {
+      std::string_view t = token;
+      if (t[0] == '+') t.remove_prefix(1);
+      double d = 0;
+      auto r = std::from_chars(t.data(), t.data() + t.size(), d);
+      if (r.ec == std::errc() && r.ptr == t.data() + t.size() && std::isfinite(d) &&
+          (d != 0 || t.find_first_of("123456789") == std::string_view::npos || t.find_first_of("eE") == std::string_view::npos))
+        return Rational(d);
+    }
+  }
+  std::string why;
+  if (auto q = parse_number(token, &why)) return std::move(*q);
+  if (why == "NaN") throw InputError(name, place, "coordinate is NaN");
+  if (why == "infinite") throw InputError(name, place, "coordinate is infinite");
+  if (why == "zero denominator")
+    throw InputError(name, place, "coordinate " + quote(token) + " has a zero denominator");
+  if (why == "out of double range")
+    throw InputError(name, place, "coordinate " + quote(token) + " is out of double range");
+  throw InputError(name, place, "expected a number, got " + quote(token));
+}
+
+std::optional<std::uint64_t> parse_unsigned(std::string_view t) {
+  if (t.empty() || t[0] < '0' || t[0] > '9') return std::nullopt;
+  std::uint64_t v = 0;
+  auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (r.ec != std::errc() || r.ptr != t.data() + t.size()) return std::nullopt;
+  return v;
+}
+
+std::optional<std::int64_t> parse_signed(std::string_view t) {
+  if (!t.empty() && t[0] == '+') t.remove_prefix(1);
+  if (t.empty()) return std::nullopt;
+  std::int64_t v = 0;
+  auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (r.ec != std::errc() || r.ptr != t.data() + t.size()) return std::nullopt;
+  return v;
+}
+
+bool looks_numeric(std::string_view t) {
+  if (t.empty() || t.size() > 400) return false;
+  std::string s(t);
+  char* end = nullptr;
+  (void)std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size();
+}
+
+bool iequals(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    char x = a[i], y = b[i];
+    if (x >= 'A' && x <= 'Z') x = char(x - 'A' + 'a');
+    if (y >= 'A' && y <= 'Z') y = char(y - 'A' + 'a');
+    if (x != y) return false;
+  }
+  return true;
+}
+
+double checked_double(const Rational& q) {
+  double d = to_double(q);
+  if (!std::isfinite(d)) {
+    long bits = long(mpz_sizeinbase(q.get_num_mpz_t(), 2)) - long(mpz_sizeinbase(q.get_den_mpz_t(), 2));
+    throw UsageError("a coordinate of magnitude about 2^" + std::to_string(bits) +
+                     " does not fit in a double; write exact rationals to .off, .obj or .wrl");
+  }
+  return d;
+}
+
+std::string double_text(const Rational& q) { return format_double(checked_double(q)); }
+
+float rational_to_float(const Rational& q) {
+  int s = sgn(q);
+  if (s == 0) return 0.0f;
+  {
+    // Fast path: q exactly a double (dyadic, at most 53 significant bits, in
+    // range).  Then one rounding, double -> float, is the correct one.
+    const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
+    const std::size_t den_bits = mpz_sizeinbase(den, 2);
+    if (mpz_sizeinbase(num, 2) <= 53 && den_bits <= 1000 && mpz_scan1(den, 0) == den_bits - 1) {
+      const double d = q.get_d();  // exact here
+      const float f = static_cast<float>(d);
+      if (std::isfinite(f)) return f;
+    }
+  }
+  Integer n = abs(q.get_num());
+  const Integer& d = q.get_den();
+  // e = floor(log2(n/d)).
+  long e = long(mpz_sizeinbase(n.get_mpz_t(), 2)) - long(mpz_sizeinbase(d.get_mpz_t(), 2));
+  {
+    Integer lhs = n, rhs = d;
+    if (e >= 0) rhs <<= e; else lhs <<= -e;
+    if (lhs < rhs) --e;
+  }
+  auto overflow = [&]() -> float {
+    throw UsageError("a coordinate of magnitude about 2^" + std::to_string(e) +
+                     " does not fit in the 32-bit floats of binary STL; write ascii STL or another format");
+  };
+  if (e > 127) return overflow();
+  // Quantum of the last mantissa bit: 2^(e-23) for normal floats, 2^-149 below.
+  long quantum = std::max(e - 23, -149L);
+  Integer num = n, den = d;
+  if (quantum >= 0) den <<= quantum; else num <<= -quantum;
+  Integer m, r;
+  mpz_fdiv_qr(m.get_mpz_t(), r.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+  Integer twice_r = r << 1;
+  int c = cmp(twice_r, den);
+  if (c > 0 || (c == 0 && mpz_odd_p(m.get_mpz_t()))) m += 1;
+  // m <= 2^24; the product is exact in double and then exactly a float.
+  double v = std::ldexp(m.get_d(), int(quantum));
+  if (v > double(std::numeric_limits<float>::max())) return overflow();
+  float f = static_cast<float>(v);
+  return s < 0 ? -f : f;
+}
+
+void put_le(std::ostream& out, std::uint64_t value, int bytes) {
+  char b[8];
+  for (int i = 0; i < bytes; ++i) b[i] = char((value >> (8 * i)) & 0xffu);
+  out.write(b, bytes);
+}
+
+void put_le_double(std::ostream& out, double value) {
+  std::uint64_t u;
+  std::memcpy(&u, &value, 8);
+  put_le(out, u, 8);
+}
+
+void put_le_float(std::ostream& out, float value) {
+  std::uint32_t u;
+  std::memcpy(&u, &value, 4);
+  put_le(out, u, 4);
+}
+
+// --- TextCursor -------------------------------------------------------------
+
+bool TextCursor::at_end() {
+  const std::size_t n = data_.size();
+  for (;;) {
+    while (pos_ < n && is_space(data_[pos_])) {
+      if (data_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+    if (pos_ < n && comment_ != 0 && data_[pos_] == comment_) {
+      while (pos_ < n && data_[pos_] != '\n') ++pos_;
+      continue;
+    }
+    return pos_ >= n;
+  }
+}
+
+std::string_view TextCursor::take_token() {
+  const std::size_t n = data_.size();
+  std::size_t start = pos_;
+  while (pos_ < n && !is_space(data_[pos_]) && !(comment_ != 0 && data_[pos_] == comment_)) ++pos_;
+  return data_.substr(start, pos_ - start);
+}
+
+bool TextCursor::next(std::string_view& token) {
+  if (at_end()) return false;
+  token_line_ = line_;
+  token = take_token();
+  return true;
+}
+
+void TextCursor::skip_blanks_on_line() {
+  const std::size_t n = data_.size();
+  while (pos_ < n && data_[pos_] != '\n' && is_space(data_[pos_])) ++pos_;
+  if (pos_ < n && comment_ != 0 && data_[pos_] == comment_)
+    while (pos_ < n && data_[pos_] != '\n') ++pos_;
+}
+
+bool TextCursor::next_on_line(std::string_view& token) {
+  skip_blanks_on_line();
+  if (pos_ >= data_.size() || data_[pos_] == '\n') return false;
+  token_line_ = line_;
+  token = take_token();
+  return true;
+}
+
+}  // namespace io_detail
+
+using namespace io_detail;
+
+// ---------------------------------------------------------------------------
+
+std::optional<Format> format_from_path(const std::string& path) {
+  std::size_t slash = path.find_last_of('/');
+  std::size_t base = slash == std::string::npos ? 0 : slash + 1;
+  std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || dot < base || dot + 1 >= path.size()) return std::nullopt;
+  std::string_view ext = std::string_view(path).substr(dot + 1);
+  if (iequals(ext, "off")) return Format::off;
+  if (iequals(ext, "obj")) return Format::obj;
+  if (iequals(ext, "ply")) return Format::ply;
+  if (iequals(ext, "stl")) return Format::stl;
+  if (iequals(ext, "wrl")) return Format::wrl;
+  return std::nullopt;
+}
+
+const char* format_name(Format f) {
+  switch (f) {
+    case Format::off: return "OFF";
+    case Format::obj: return "OBJ";
+    case Format::ply: return "PLY";
+    case Format::stl: return "STL";
+    case Format::wrl: return "VRML";
+  }
+  return "?";
+}
+
+namespace {
+
+std::string lower_strerror(int err) {
+  std::string s = std::strerror(err);
+  if (!s.empty() && s[0] >= 'A' && s[0] <= 'Z') s[0] = char(s[0] - 'A' + 'a');
+  return s;
+}
+
+[[noreturn]] void unknown_extension(const std::string& path, const char* verb) {
+  throw UsageError("cannot " + std::string(verb) + " '" + path +
+                   "': unknown file extension (use .off, .obj, .ply, .stl or .wrl)");
+}
+
+Mesh parse(std::string_view data, Format format, const std::string& name) {
+  if (data.empty()) throw InputError(name, "", "file is empty");
+  switch (format) {
+    case Format::off: return read_off(data, name);
+    case Format::obj: return read_obj(data, name);
+    case Format::ply: return read_ply(data, name);
+    case Format::stl: return read_stl(data, name);
+    case Format::wrl: return read_wrl(data, name);
+  }
+  throw UsageError("unknown format");
+}
+
+// Whole regular file into memory; InputError for anything else.
+std::string slurp(const std::string& path) {
+  struct stat st{};
+  if (::stat(path.c_str(), &st) != 0) {
+    int err = errno;
+    if (err == ENOENT) throw InputError(path, "", "no such file");
+    throw InputError(path, "", "cannot access: " + lower_strerror(err));
+  }
+  if (S_ISDIR(st.st_mode)) throw InputError(path, "", "is a directory, not a file");
+  if (!S_ISREG(st.st_mode)) throw InputError(path, "", "is not a regular file");
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw InputError(path, "", "cannot open: " + lower_strerror(errno));
+  std::string data;
+  data.reserve(static_cast<std::size_t>(st.st_size));
+  char buf[1 << 16];
+  for (;;) {
+    ssize_t got = ::read(fd, buf, sizeof buf);
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      int err = errno;
+      ::close(fd);
+      throw InputError(path, "", "read error: " + lower_strerror(err));
+    }
+    if (got == 0) break;
+    data.append(buf, static_cast<std::size_t>(got));
+  }
+  ::close(fd);
+  return data;
+}
+
+void check_writable(const Mesh& mesh, Format format, const WriteOptions& options) {
+  if (options.exact && (format == Format::ply || format == Format::stl))
+    throw UsageError(std::string(format_name(format)) +
+                     " cannot store exact rationals; use .off, .obj or .wrl");
+  const std::size_t n = mesh.points.size();
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (Index v : mesh.faces[f])
+      if (v >= n)
+        throw UsageError("cannot write mesh: face " + std::to_string(f) + " refers to vertex " +
+                         std::to_string(v) + " but there are " + std::to_string(n) + " vertices");
+}
+
+// A streambuf writing to a file descriptor, remembering the first errno.
+class FdBuf : public std::streambuf {
+ public:
+  explicit FdBuf(int fd) : fd_(fd) { setp(buf_, buf_ + sizeof buf_); }
+  int error() const { return err_; }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (!drain()) return traits_type::eof();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(c);
+      pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+  int sync() override { return drain() ? 0 : -1; }
+
+ private:
+  bool drain() {
+    if (err_ != 0) return false;
+    const char* p = pbase();
+    std::size_t n = static_cast<std::size_t>(pptr() - pbase());
+    while (n > 0) {
+      ssize_t w = ::write(fd_, p, n);
+      if (w < 0) {
+        if (errno == EINTR) continue;
+        err_ = errno;
+        return false;
+      }
+      p += w;
+      n -= static_cast<std::size_t>(w);
+    }
+    setp(buf_, buf_ + sizeof buf_);
+    return true;
+  }
+
+  int fd_;
+  int err_ = 0;
+  char buf_[1 << 16];
+};
+
+std::string random_suffix() {
+  static const char alphabet[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  thread_local std::mt19937_64 rng([] {
+    std::random_device rd;
+    std::uint64_t seed = (std::uint64_t(rd()) << 32) ^ rd();
+    seed ^= std::uint64_t(::getpid()) << 17;
+    seed ^= std::uint64_t(std::chrono::steady_clock::now().time_since_epoch().count());
+    return seed;
+  }());
+  std::string s;
+  for (int i = 0; i < 6; ++i) s += alphabet[rng() % (sizeof alphabet - 1)];
+  return s;
+}
+
+}  // namespace
+
+Mesh read_mesh(const std::string& path) {
+  auto format = format_from_path(path);
+  if (!format) unknown_extension(path, "read");
+  std::string data = slurp(path);
+  return parse(data, *format, path);
+}
+
+Mesh read_mesh(std::istream& in, Format format, const std::string& name) {
+  std::string data{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw InputError(name, "", "read error");
+  return parse(data, format, name);
+}
+
+void write_mesh(std::ostream& out, const Mesh& mesh, Format format, const WriteOptions& options) {
+  check_writable(mesh, format, options);
+  switch (format) {
+    case Format::off: write_off(out, mesh, options); break;
+    case Format::obj: write_obj(out, mesh, options); break;
+    case Format::ply: write_ply(out, mesh, options); break;
+    case Format::stl: write_stl(out, mesh, options); break;
+    case Format::wrl: write_wrl(out, mesh, options); break;
+  }
+}
+
+void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options) {
+  auto format = format_from_path(path);
+  if (!format) unknown_extension(path, "write");
+  // Refuse before touching the file system.
+  check_writable(mesh, *format, options);
+  write_file_atomically(path, [&](std::ostream& out) { write_mesh(out, mesh, *format, options); });
+}
+
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& fill) {
+  if (path.empty()) throw InputError(path, "", "empty output path");
+  // Create the temporary with O_EXCL and mode 0666 so the umask applies as
+  // for any new file; keep an existing target's permissions.
+  std::string tmp;
+  int fd = -1;
+  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+    tmp = path + ".tmp." + random_suffix();
+    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno != EEXIST) break;
+  }
+  if (fd < 0)
+    throw InputError(path, "", "cannot create a temporary file beside it: " + lower_strerror(errno));
+  struct stat old{};
+  if (::stat(path.c_str(), &old) == 0 && S_ISREG(old.st_mode))
+    (void)::fchmod(fd, old.st_mode & 07777);
+
+  auto fail = [&](const std::string& reason) {
+    if (fd >= 0) ::close(fd);
+    ::unlink(tmp.c_str());
+    throw InputError(path, "", reason);
+  };
+
+  FdBuf buf(fd);
+  std::ostream out(&buf);
+  try {
+    fill(out);
+    out.flush();
+  } catch (...) {
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw;
+  }
+  if (buf.error() != 0) fail("write error: " + lower_strerror(buf.error()));
+  if (!out) fail("write error");
+  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS)
+    fail("write error: " + lower_strerror(errno));
+  int closed = ::close(fd);
+  fd = -1;
+  if (closed != 0) fail("write error: " + lower_strerror(errno));
+  if (::rename(tmp.c_str(), path.c_str()) != 0) fail("cannot replace the file: " + lower_strerror(errno));
+}
+
+ConvexPolytope load_polytope(const std::string& spec, bool hull) {
+  auto format = format_from_path(spec);
+  struct stat st{};
+  bool exists = ::stat(spec.c_str(), &st) == 0;
+  // An existing file is read, unless its name has no known extension and is
+  // a catalog spec (a stray file called "cube" does not shadow the catalog).
+  if (exists && (format || !is_catalog_spec(spec))) {
+    if (!format) unknown_extension(spec, "read");
+    Mesh mesh = read_mesh(spec);  // InputError for directories, unreadable files, bad data
+    if (hull) return ConvexPolytope::hull(mesh.points, spec);
+    return ConvexPolytope::from_mesh(mesh, spec);
+  }
+  if (is_catalog_spec(spec)) {
+    ConvexPolytope p = catalog_polytope(spec);
+    if (hull) return ConvexPolytope::hull(p.points(), spec);
+    return p;
+  }
+  if (format) throw InputError(spec, "", "no such file");
+  throw UsageError("'" + spec + "' is neither a file nor a catalog name (see 'minksum gen --help')");
+}
+
+}  // namespace minksum

@@ -1,0 +1,220 @@
+// OFF (Geomview Object File Format), text only.
+//
+// Reader:
+//   * magic "OFF", optionally with Geomview's prefixes ST, C, N (in that
+//     order: "COFF", "NOFF", "CNOFF", "STOFF"...); "4OFF"/"nOFF" (other
+//     dimensions) and binary OFF are refused;
+//   * the counts "V F E" may follow the magic on the same line; E is ignored
+//     and may be omitted;
+//   * '#' starts a comment anywhere;
+//   * a vertex is 3 coordinates read with parse_number (integers of any
+//     length and p/q exactly, decimals as the nearest double); with a
+//     C/N/ST prefix, further numbers on the vertex line (colour, normal,
+//     texture coordinates) are skipped, with plain "OFF" they are an error;
+//   * a face is "k i0 ... i(k-1)" with 0-based indices, optionally followed on
+//     the same line by up to 4 colour numbers, which are ignored.
+// Counts are checked against the bytes that follow them before anything is
+// allocated: a vertex needs at least 6 bytes ("0 0 0\n"); a face is only
+// charged 2 (its count and a separator), so that a short or truncated face
+// is reported as such rather than as an implausible count.
+#include "io/readers.hpp"
+
+#include <algorithm>
+#include <ostream>
+
+namespace minksum::io_detail {
+
+namespace {
+
+struct Magic {
+  bool ok = false;
+  bool extras = false;  // vertex lines may carry more numbers
+  std::string problem;
+};
+
+Magic parse_magic(std::string_view t) {
+  Magic m;
+  std::string_view s = t;
+  bool st = false, c = false, n = false, four = false, ndim = false;
+  if (s.substr(0, 2) == "ST") st = true, s.remove_prefix(2);
+  if (s.substr(0, 1) == "C") c = true, s.remove_prefix(1);
+  if (s.substr(0, 1) == "N") n = true, s.remove_prefix(1);
+  if (s.substr(0, 1) == "4") four = true, s.remove_prefix(1);
+  if (s.substr(0, 1) == "n") ndim = true, s.remove_prefix(1);
+  if (s == "OFF" || s == "OFFBINARY") {
+    if (s == "OFFBINARY") {
+      m.problem = "binary OFF is not supported";
+    } else if (four || ndim) {
+      m.problem = "only 3-dimensional OFF is supported, got " + quote(t);
+    } else {
+      m.ok = true;
+      m.extras = st || c || n;
+    }
+    return m;
+  }
+  m.problem = "expected 'OFF' magic, got " + quote(t);
+  return m;
+}
+
+std::string plural(std::uint64_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+}  // namespace
+
+Mesh read_off(std::string_view data, const std::string& name) {
+  TextCursor cur(data, '#');
+  std::string_view tok;
+  if (!cur.next(tok))
+    throw InputError(name, line_place(cur.line()), "expected 'OFF' magic, found only blanks and comments");
+  Magic magic = parse_magic(tok);
+  if (!magic.ok) throw InputError(name, line_place(cur.token_line()), magic.problem);
+  // "OFF BINARY" is refused; any other token on the magic line is the vertex count.
+  bool pending = false;
+  if (cur.next_on_line(tok)) {
+    if (tok == "BINARY") throw InputError(name, line_place(cur.token_line()), "binary OFF is not supported");
+    pending = true;
+  }
+
+  auto read_count = [&](const char* what) -> std::uint64_t {
+    if (pending)
+      pending = false;  // tok already holds it
+    else if (!cur.next(tok))
+      throw InputError(name, line_place(cur.line()), std::string("file ends before the ") + what + " count");
+    auto v = parse_unsigned(tok);
+    if (!v) {
+      if (!tok.empty() && tok[0] == '-' && parse_signed(tok))
+        throw InputError(name, line_place(cur.token_line()), std::string("negative ") + what + " count " + quote(tok));
+      throw InputError(name, line_place(cur.token_line()),
+                       std::string("expected the ") + what + " count, got " + quote(tok));
+    }
+    return *v;
+  };
+  const std::uint64_t nv = read_count("vertex");
+  const std::uint64_t nf = read_count("face");
+  const std::size_t count_line = cur.token_line();
+  if (cur.next_on_line(tok)) {  // the edge count, ignored (some writers put -1)
+    if (!parse_signed(tok))
+      throw InputError(name, line_place(cur.token_line()), "expected the edge count, got " + quote(tok));
+  }
+  if (cur.next_on_line(tok))
+    throw InputError(name, line_place(cur.token_line()), "unexpected token " + quote(tok) + " after the counts");
+
+  // Plausibility of the counts against the bytes that follow, before any allocation.
+  cur.at_end();  // skip to the first vertex token
+  const std::uint64_t rest = data.size() - cur.pos();
+  using U128 = unsigned __int128;
+  if (U128(nv) * 6 > U128(rest) + 1)
+    throw InputError(name, line_place(count_line),
+                     "header announces " + plural(nv, "vertex", "vertices") + " but only " +
+                         plural(rest, "byte follows", "bytes follow") + " the header");
+  if (U128(nv) * 6 + U128(nf) * 2 > U128(rest) + 1)
+    throw InputError(name, line_place(count_line),
+                     "header announces " + plural(nv, "vertex", "vertices") + " and " +
+                         plural(nf, "face", "faces") + " but only " +
+                         plural(rest, "byte follows", "bytes follow") + " the header");
+  if (nv >= kNoIndex)
+    throw InputError(name, line_place(count_line), "too many vertices (" + std::to_string(nv) + ")");
+
+  Mesh mesh;
+  mesh.points.reserve(nv);
+  for (std::uint64_t i = 0; i < nv; ++i) {
+    Rational c[3];
+    for (int k = 0; k < 3; ++k) {
+      if (!cur.next(tok))
+        throw InputError(name, line_place(cur.line()),
+                         "file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
+      c[k] = parse_coordinate(tok, name, line_place(cur.token_line()));
+    }
+    while (cur.next_on_line(tok)) {
+      if (!magic.extras || !looks_numeric(tok))
+        throw InputError(name, line_place(cur.token_line()),
+                         "unexpected token " + quote(tok) + " after vertex " + std::to_string(i));
+    }
+    mesh.points.emplace_back(std::move(c[0]), std::move(c[1]), std::move(c[2]));
+  }
+
+  mesh.faces.reserve(nf);
+  for (std::uint64_t f = 0; f < nf; ++f) {
+    if (!cur.next(tok))
+      throw InputError(name, line_place(cur.line()),
+                       "file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
+    const std::size_t face_line = cur.token_line();
+    auto k = parse_unsigned(tok);
+    if (!k)
+      throw InputError(name, line_place(face_line),
+                       "expected the vertex count of face " + std::to_string(f) + ", got " + quote(tok));
+    if (*k < 3)
+      throw InputError(name, line_place(face_line),
+                       "face " + std::to_string(f) + " has " + std::to_string(*k) +
+                           " vertices (at least 3 needed)");
+    const std::uint64_t left = data.size() - cur.pos();
+    if (U128(*k) * 2 > U128(left) + 1)
+      throw InputError(name, line_place(face_line),
+                       "face " + std::to_string(f) + " announces " + std::to_string(*k) +
+                           " vertices but only " + plural(left, "byte follows", "bytes follow"));
+    std::vector<Index> face;
+    face.reserve(*k);
+    for (std::uint64_t j = 0; j < *k; ++j) {
+      if (!cur.next(tok))
+        throw InputError(name, line_place(cur.line()),
+                         "file ends inside face " + std::to_string(f) + " (after " + std::to_string(j) +
+                             " of " + std::to_string(*k) + " indices)");
+      auto idx = parse_unsigned(tok);
+      if (!idx) {
+        if (auto s = parse_signed(tok); s && *s < 0)
+          throw InputError(name, line_place(cur.token_line()),
+                           "face " + std::to_string(f) + " has negative vertex index " + std::to_string(*s));
+        throw InputError(name, line_place(cur.token_line()),
+                         "expected a vertex index in face " + std::to_string(f) + ", got " + quote(tok));
+      }
+      if (*idx >= nv)
+        throw InputError(name, line_place(cur.token_line()),
+                         "face " + std::to_string(f) + " refers to vertex " + std::to_string(*idx) +
+                             " but there are " + std::to_string(nv) + " vertices");
+      face.push_back(static_cast<Index>(*idx));
+    }
+    int colours = 0;
+    while (cur.next_on_line(tok)) {
+      if (++colours > 4 || !looks_numeric(tok))
+        throw InputError(name, line_place(cur.token_line()),
+                         "unexpected token " + quote(tok) + " after face " + std::to_string(f));
+    }
+    mesh.faces.push_back(std::move(face));
+  }
+  if (cur.next(tok))
+    throw InputError(name, line_place(cur.token_line()),
+                     "unexpected token " + quote(tok) + " after the last face");
+  return mesh;
+}
+
+void write_off(std::ostream& out, const Mesh& mesh, const WriteOptions& options) {
+  // Number of distinct undirected edges, for the header's E.
+  std::vector<std::uint64_t> edges;
+  for (const auto& f : mesh.faces)
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      std::uint64_t a = f[i], b = f[(i + 1) % f.size()];
+      if (a > b) std::swap(a, b);
+      edges.push_back(a << 32 | b);
+    }
+  std::sort(edges.begin(), edges.end());
+  std::size_t ne = std::unique(edges.begin(), edges.end()) - edges.begin();
+  edges = {};
+
+  out << "OFF\n";
+  if (options.exact) out << "# coordinates are exact rationals (integers or p/q)\n";
+  out << mesh.points.size() << ' ' << mesh.faces.size() << ' ' << ne << '\n';
+  for (const Point3& p : mesh.points) {
+    if (options.exact)
+      out << format_exact(p.x) << ' ' << format_exact(p.y) << ' ' << format_exact(p.z) << '\n';
+    else
+      out << double_text(p.x) << ' ' << double_text(p.y) << ' ' << double_text(p.z) << '\n';
+  }
+  for (const auto& f : mesh.faces) {
+    out << f.size();
+    for (Index v : f) out << ' ' << v;
+    out << '\n';
+  }
+}
+
+}  // namespace minksum::io_detail

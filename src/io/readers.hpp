@@ -1,0 +1,120 @@
+// Internal to src/io/: the per-format readers and writers behind
+// read_mesh()/write_mesh(), and the small text and binary cursors they share.
+//
+// Every reader takes the whole file in memory (`data`) and the name used in
+// error messages, and throws InputError(name, place, problem) on any defect.
+// Knowing the size up front is what lets a reader reject an absurd element
+// count before allocating anything proportional to it.
+#pragma once
+
+#include <minksum/error.hpp>
+#include <minksum/io.hpp>
+#include <minksum/kernel.hpp>
+#include <minksum/polytope.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <string_view>
+
+namespace minksum::io_detail {
+
+// ---------------------------------------------------------------------------
+// Readers (data = the whole file).
+
+Mesh read_off(std::string_view data, const std::string& name);
+Mesh read_obj(std::string_view data, const std::string& name);
+Mesh read_ply(std::string_view data, const std::string& name);
+Mesh read_stl(std::string_view data, const std::string& name);
+Mesh read_wrl(std::string_view data, const std::string& name);
+
+// Writers.  Precondition: every face index is < mesh.points.size() (checked
+// by write_mesh, which calls these).
+void write_off(std::ostream& out, const Mesh& mesh, const WriteOptions& options);
+void write_obj(std::ostream& out, const Mesh& mesh, const WriteOptions& options);
+void write_ply(std::ostream& out, const Mesh& mesh, const WriteOptions& options);
+void write_stl(std::ostream& out, const Mesh& mesh, const WriteOptions& options);
+void write_wrl(std::ostream& out, const Mesh& mesh, const WriteOptions& options);
+
+// ---------------------------------------------------------------------------
+// Shared helpers.
+
+// "line N" (1-based).
+std::string line_place(std::size_t line);
+
+// A token quoted for an error message: at most 40 characters, non-printable
+// bytes shown as \xNN, in single quotes.
+std::string quote(std::string_view token);
+
+// Parse a coordinate token with parse_number; on failure throw
+// InputError(name, place, problem) with a problem such as "coordinate is NaN",
+// "coordinate is infinite", "coordinate '1/0' has a zero denominator",
+// "expected a number, got 'foo'".
+Rational parse_coordinate(std::string_view token, const std::string& name, const std::string& place);
+
+// Parse a non-negative decimal integer token (no sign, no fraction) that fits
+// in 64 bits; nullopt otherwise.
+std::optional<std::uint64_t> parse_unsigned(std::string_view token);
+// Parse a decimal integer token with an optional sign that fits in 64 bits.
+std::optional<std::int64_t> parse_signed(std::string_view token);
+// True when strtod would read the whole token (numbers, nan, inf): used to
+// validate values that are skipped anyway (colours, normals, other properties).
+bool looks_numeric(std::string_view token);
+
+// Writing doubles: the nearest double of q, and its shortest round-trip text.
+// Both throw UsageError when q rounds beyond the double range.
+double checked_double(const Rational& q);
+std::string double_text(const Rational& q);
+
+// Text cursor over a whole file: whitespace-separated tokens, optional
+// comments (from `comment` to the end of the line; 0 for none), 1-based line
+// numbers.
+class TextCursor {
+ public:
+  explicit TextCursor(std::string_view data, char comment = '#', std::size_t pos = 0,
+                      std::size_t line = 1)
+      : data_(data), pos_(pos), line_(line), comment_(comment) {}
+
+  // Skip whitespace and comments, then return the next token; false at the end.
+  // token_line() is the line of the token returned.
+  bool next(std::string_view& token);
+  // Like next(), but only if the next token is on the current line (after the
+  // previous token); false (and nothing consumed but blanks/comment) otherwise.
+  bool next_on_line(std::string_view& token);
+  // Skip whitespace and comments; true if the end of data was reached.
+  bool at_end();
+
+  std::size_t token_line() const { return token_line_; }
+  std::size_t line() const { return line_; }
+  std::size_t pos() const { return pos_; }
+
+ private:
+  void skip_blanks_on_line();
+  std::string_view take_token();
+
+  std::string_view data_;
+  std::size_t pos_;
+  std::size_t line_;
+  std::size_t token_line_ = 0;
+  char comment_;
+};
+
+inline bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+}
+
+// Case-insensitive ASCII equality.
+bool iequals(std::string_view a, std::string_view b);
+
+// Little-endian binary output of fixed-size values.
+void put_le(std::ostream& out, std::uint64_t value, int bytes);
+void put_le_double(std::ostream& out, double value);
+void put_le_float(std::ostream& out, float value);
+
+// Nearest float (round to nearest, ties to even, gradual underflow) of an
+// exact rational; throws UsageError when |q| rounds beyond FLT_MAX.
+float rational_to_float(const Rational& q);
+
+}  // namespace minksum::io_detail

@@ -1,0 +1,779 @@
+// Readers and writers of include/minksum/io.hpp: round trips through every
+// format, parsing details of each format, malformed input, atomic writes and
+// operand resolution.
+#include <minksum/error.hpp>
+#include <minksum/io.hpp>
+
+#include "io/readers.hpp"  // parse_coordinate, rational_to_float
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+using namespace minksum;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string data_path(const std::string& rel) { return std::string(MINKSUM_TEST_DATA) + "/" + rel; }
+
+// "p/q" or an integer, base 10, in lowest terms.
+Rational q(const char* s) {
+  Rational r(s);
+  r.canonicalize();
+  return r;
+}
+
+Rational pow2(int e) {
+  Rational r(1);
+  if (e >= 0) mpq_mul_2exp(r.get_mpq_t(), r.get_mpq_t(), e);
+  else mpq_div_2exp(r.get_mpq_t(), r.get_mpq_t(), -e);
+  return r;
+}
+
+Mesh cube_mesh() {
+  Mesh m;
+  for (int z = 0; z < 2; ++z)
+    for (int y = 0; y < 2; ++y)
+      for (int x = 0; x < 2; ++x) m.points.emplace_back(Rational(x), Rational(y), Rational(z));
+  m.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  return m;
+}
+
+const std::vector<std::vector<Index>> kTetraFaces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+
+// Exact rationals that are not doubles, and huge integers.
+Mesh rational_tetra() {
+  Mesh m;
+  m.points.emplace_back(q("1/3"), q("-22/7"), pow2(200));
+  m.points.emplace_back(-pow2(200) - 1, q("5/1000000000000000000000000000000"), Rational(0));
+  m.points.emplace_back(Rational(0), q("123456789012345678901234567890"), q("-1/3"));
+  m.points.emplace_back(q("7/2"), Rational(1), q("1/1099511627776"));
+  m.faces = kTetraFaces;
+  return m;
+}
+
+// Every coordinate exactly a double, including extremes.
+Mesh double_tetra() {
+  Mesh m;
+  m.points.emplace_back(1e-300, 5e-324, 1e300);
+  m.points.emplace_back(-0.1, 2.2250738585072014e-308, -1.7976931348623157e308);
+  m.points.emplace_back(0.0, 1.0 / 3.0, 4.9406564584124654e-324 * 3);
+  m.points.emplace_back(123456789.125, -2.5e-3, 1e22);
+  m.faces = kTetraFaces;
+  return m;
+}
+
+// Every coordinate exactly a float (binary STL stores 32-bit floats).
+Mesh float_tetra() {
+  Mesh m;
+  m.points.emplace_back(0.5, -1024.75, 3.0);
+  m.points.emplace_back(double(1e-3f), 0.0, double(3.4028234663852886e38f));
+  m.points.emplace_back(-7.0, double(1.17549435e-38f), 0.125);
+  m.points.emplace_back(1.0, 1.0, double(1.4e-45f));
+  m.faces = kTetraFaces;
+  return m;
+}
+
+Mesh with_nearest_doubles(Mesh m) {
+  for (auto& p : m.points)
+    for (int i = 0; i < 3; ++i) p[i] = Rational(to_double(p[i]));
+  return m;
+}
+
+std::string write_to_string(const Mesh& m, Format f, WriteOptions o = {}) {
+  std::ostringstream out;
+  write_mesh(out, m, f, o);
+  return out.str();
+}
+
+Mesh read_from_string(const std::string& s, Format f, const std::string& name = "mem") {
+  std::istringstream in(s);
+  return read_mesh(in, f, name);
+}
+
+Mesh round_trip(const Mesh& m, Format f, WriteOptions o = {}) {
+  return read_from_string(write_to_string(m, f, o), f);
+}
+
+void expect_same(const Mesh& a, const Mesh& b) {
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) EXPECT_TRUE(a.points[i] == b.points[i]) << "point " << i;
+  EXPECT_EQ(a.faces, b.faces);
+}
+
+// Triangles of a mesh as coordinate triples, each rotated to start at its
+// smallest point (orientation kept), sorted: equal for a mesh and its STL.
+std::vector<std::array<Point3, 3>> triangles(const Mesh& m) {
+  std::vector<std::array<Point3, 3>> out;
+  for (const auto& f : m.faces)
+    for (std::size_t i = 1; i + 1 < f.size(); ++i) {
+      std::array<Point3, 3> t = {m.points[f[0]], m.points[f[i]], m.points[f[i + 1]]};
+      auto smallest = std::min_element(t.begin(), t.end()) - t.begin();
+      std::rotate(t.begin(), t.begin() + smallest, t.end());
+      out.push_back(t);
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Expect InputError whose what() names the file, and has the problem phrase
+// and place given.
+template <class F>
+void expect_input_error(F&& f, const std::string& file, const std::string& problem,
+                        const std::string& place = "*") {
+  try {
+    f();
+    ADD_FAILURE() << "no InputError for " << file << " (expected '" << problem << "')";
+  } catch (const InputError& e) {
+    std::string what = e.what();
+    EXPECT_NE(what.find(file), std::string::npos) << what;
+    EXPECT_NE(e.problem().find(problem), std::string::npos) << what;
+    if (place != "*") {
+      EXPECT_EQ(e.place(), place) << what;
+    }
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected InputError for " << file << ", got: " << e.what();
+  }
+}
+
+void expect_bad_file(const std::string& rel, const std::string& problem, const std::string& place = "*") {
+  const std::string path = data_path(rel);
+  expect_input_error([&] { read_mesh(path); }, rel, problem, place);
+}
+
+// A scratch directory removed at the end of each test.
+class TempDir {
+ public:
+  TempDir() {
+    auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
+    dir_ = fs::temp_directory_path() / ("minksum_test_io_" + std::to_string(::getpid()) + "_" + std::to_string(stamp));
+    fs::create_directories(dir_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> v;
+    for (const auto& e : fs::directory_iterator(dir_)) v.push_back(e.path().filename().string());
+    std::sort(v.begin(), v.end());
+    return v;
+  }
+
+ private:
+  fs::path dir_;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A big-endian binary PLY of a mesh, built here independently of the writer.
+std::string big_endian_ply(const Mesh& m) {
+  std::string s = "ply\nformat binary_big_endian 1.0\nelement vertex " + std::to_string(m.points.size()) +
+                  "\nproperty double x\nproperty double y\nproperty double z\nelement face " +
+                  std::to_string(m.faces.size()) + "\nproperty list uchar uint vertex_indices\nend_header\n";
+  auto put = [&](std::uint64_t v, int bytes) {
+    for (int i = bytes - 1; i >= 0; --i) s += char((v >> (8 * i)) & 0xff);
+  };
+  for (const auto& p : m.points)
+    for (int i = 0; i < 3; ++i) {
+      double d = to_double(p[i]);
+      std::uint64_t u;
+      std::memcpy(&u, &d, 8);
+      put(u, 8);
+    }
+  for (const auto& f : m.faces) {
+    put(f.size(), 1);
+    for (Index v : f) put(v, 4);
+  }
+  return s;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+
+TEST(IoFormat, FromPath) {
+  EXPECT_EQ(format_from_path("a.off"), Format::off);
+  EXPECT_EQ(format_from_path("dir/A.OFF"), Format::off);
+  EXPECT_EQ(format_from_path("x.Obj"), Format::obj);
+  EXPECT_EQ(format_from_path("/tmp/y.ply"), Format::ply);
+  EXPECT_EQ(format_from_path("z.stl"), Format::stl);
+  EXPECT_EQ(format_from_path("scene.wrl"), Format::wrl);
+  EXPECT_EQ(format_from_path("cube"), std::nullopt);
+  EXPECT_EQ(format_from_path("sphere:6"), std::nullopt);
+  EXPECT_EQ(format_from_path("notes.txt"), std::nullopt);
+  EXPECT_EQ(format_from_path("dir.off/file"), std::nullopt);
+  EXPECT_EQ(format_from_path("file."), std::nullopt);
+  EXPECT_STREQ(format_name(Format::off), "OFF");
+  EXPECT_STREQ(format_name(Format::wrl), "VRML");
+}
+
+// --- round trips --------------------------------------------------------------
+
+TEST(IoRoundTrip, ExactFormatsKeepRationalsExactly) {
+  for (Format f : {Format::off, Format::obj, Format::wrl}) {
+    SCOPED_TRACE(format_name(f));
+    for (const Mesh& m : {cube_mesh(), rational_tetra(), double_tetra()}) {
+      expect_same(round_trip(m, f, {.exact = true}), m);
+    }
+  }
+}
+
+TEST(IoRoundTrip, DoubleTextKeepsDoublesExactly) {
+  // OFF/OBJ/VRML without --exact, PLY ascii and binary, STL ascii.
+  const std::vector<std::pair<Format, WriteOptions>> cases = {
+      {Format::off, {}}, {Format::obj, {}}, {Format::wrl, {}}, {Format::ply, {}}, {Format::ply, {.binary = true}}};
+  for (const auto& [f, o] : cases) {
+    SCOPED_TRACE(std::string(format_name(f)) + (o.binary ? " binary" : " ascii"));
+    expect_same(round_trip(cube_mesh(), f, o), cube_mesh());
+    expect_same(round_trip(double_tetra(), f, o), double_tetra());
+    // Not doubles: written as (and read back as) the nearest doubles.
+    expect_same(round_trip(rational_tetra(), f, o), with_nearest_doubles(rational_tetra()));
+  }
+}
+
+TEST(IoRoundTrip, BigEndianPly) {
+  for (const Mesh& m : {cube_mesh(), double_tetra()}) expect_same(read_from_string(big_endian_ply(m), Format::ply), m);
+}
+
+TEST(IoRoundTrip, StlAsciiWeldsAndKeepsDoubles) {
+  for (const Mesh& m : {cube_mesh(), double_tetra()}) {
+    Mesh r = round_trip(m, Format::stl);
+    EXPECT_EQ(r.points.size(), m.points.size());  // welded back
+    EXPECT_EQ(triangles(r), triangles(m));
+  }
+  Mesh r = round_trip(cube_mesh(), Format::stl);
+  EXPECT_EQ(r.faces.size(), 12u);  // quads fan-triangulated
+  for (const auto& f : r.faces) EXPECT_EQ(f.size(), 3u);
+  EXPECT_EQ(triangles(round_trip(rational_tetra(), Format::stl)), triangles(with_nearest_doubles(rational_tetra())));
+}
+
+TEST(IoRoundTrip, StlBinaryKeepsFloats) {
+  for (const Mesh& m : {cube_mesh(), float_tetra()}) {
+    std::string s = write_to_string(m, Format::stl, {.binary = true});
+    std::size_t tris = 0;
+    for (const auto& f : m.faces) tris += f.size() - 2;
+    EXPECT_EQ(s.size(), 84 + 50 * tris);
+    EXPECT_NE(s.substr(0, 5), "solid");
+    Mesh r = read_from_string(s, Format::stl);
+    EXPECT_EQ(r.points.size(), m.points.size());
+    EXPECT_EQ(triangles(r), triangles(m));
+  }
+  // A double that is not a float is rounded to the nearest float.
+  Mesh m = cube_mesh();
+  m.points[7] = Point3(Rational(1), Rational(1), q("1/3"));
+  Mesh r = read_from_string(write_to_string(m, Format::stl, {.binary = true}), Format::stl);
+  bool found = false;
+  for (const auto& p : r.points) found |= p.z == Rational(double(1.0f / 3.0f));
+  EXPECT_TRUE(found);
+  // Beyond the float range: refused, not written as infinity.
+  m.points[7] = Point3(Rational(1), Rational(1), Rational(1e300));
+  EXPECT_THROW(write_to_string(m, Format::stl, {.binary = true}), UsageError);
+}
+
+TEST(IoRoundTrip, ThroughFilesForEveryFormat) {
+  TempDir dir;
+  for (const char* name : {"a.off", "a.obj", "a.wrl"}) {
+    write_mesh(dir.path(name), rational_tetra(), {.exact = true});
+    expect_same(read_mesh(dir.path(name)), rational_tetra());
+  }
+  for (const char* name : {"b.ply", "b.stl", "b.OFF"}) {
+    for (bool binary : {false, true}) {
+      write_mesh(dir.path(name), double_tetra(), {.binary = binary});
+      Mesh r = read_mesh(dir.path(name));
+      EXPECT_EQ(triangles(r), triangles(double_tetra())) << name;
+      if (std::string(name) == "b.stl") break;  // binary STL holds floats only
+    }
+  }
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"a.obj", "a.off", "a.wrl", "b.OFF", "b.ply", "b.stl"}));
+}
+
+TEST(IoWrite, ExactRefusedByDoubleOnlyFormats) {
+  for (Format f : {Format::ply, Format::stl}) {
+    try {
+      write_to_string(cube_mesh(), f, {.exact = true});
+      ADD_FAILURE() << "no UsageError";
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find("cannot store exact rationals; use .off, .obj or .wrl"), std::string::npos);
+    }
+  }
+}
+
+TEST(IoWrite, CoordinatesBeyondDoubleRangeNeedExact) {
+  Mesh m = cube_mesh();
+  m.points[7] = Point3(pow2(2000), Rational(1), Rational(1));
+  for (Format f : {Format::off, Format::obj, Format::wrl, Format::ply, Format::stl})
+    EXPECT_THROW(write_to_string(m, f), UsageError) << format_name(f);
+  expect_same(round_trip(m, Format::off, {.exact = true}), m);
+}
+
+TEST(IoWrite, OffExactTextAndHeader) {
+  std::string s = write_to_string(rational_tetra(), Format::off, {.exact = true});
+  EXPECT_EQ(s.rfind("OFF\n", 0), 0u);
+  EXPECT_NE(s.find("\n4 4 6\n"), std::string::npos);  // V F E
+  EXPECT_NE(s.find("1/3 -22/7 1606938044258990275541962092341162602522202993782792835301376\n"), std::string::npos);
+  std::string d = write_to_string(double_tetra(), Format::off);
+  EXPECT_NE(d.find("1e-300 5e-324 1e+300\n"), std::string::npos) << d;
+}
+
+TEST(IoWrite, VrmlExactUsesExactCoordinate) {
+  std::string s = write_to_string(rational_tetra(), Format::wrl, {.exact = true});
+  EXPECT_EQ(s.rfind("#VRML V2.0 utf8\n", 0), 0u);
+  EXPECT_NE(s.find("ExactCoordinate"), std::string::npos);
+  EXPECT_NE(s.find("ratPoint"), std::string::npos);
+  std::string d = write_to_string(double_tetra(), Format::wrl);
+  EXPECT_NE(d.find("coord Coordinate"), std::string::npos);
+  EXPECT_EQ(d.find("ExactCoordinate"), std::string::npos);
+}
+
+TEST(IoWrite, PlyWideListCountForLargeFaces) {
+  Mesh m;
+  for (int i = 0; i < 300; ++i) m.points.emplace_back(Rational(i), Rational(i * i), Rational(0));
+  m.faces.emplace_back();
+  for (Index i = 0; i < 300; ++i) m.faces[0].push_back(i);
+  for (bool binary : {false, true}) {
+    std::string s = write_to_string(m, Format::ply, {.binary = binary});
+    EXPECT_NE(s.find("property list uint int vertex_indices"), std::string::npos);
+    expect_same(read_from_string(s, Format::ply), m);
+  }
+  EXPECT_NE(write_to_string(cube_mesh(), Format::ply).find("property list uchar int vertex_indices"), std::string::npos);
+}
+
+TEST(IoWrite, FaceIndexOutOfRangeIsRefused) {
+  Mesh m = cube_mesh();
+  m.faces[0][0] = 8;
+  EXPECT_THROW(write_to_string(m, Format::off), UsageError);
+}
+
+// --- parsing details ------------------------------------------------------------
+
+TEST(IoParse, OffCommentsAndRationals) {
+  Mesh m = read_mesh(data_path("io/comments_rational.off"));
+  ASSERT_EQ(m.points.size(), 4u);
+  EXPECT_EQ(m.points[1].x, q("1/3"));
+  EXPECT_EQ(m.points[2].y, q("-22/7"));
+  EXPECT_EQ(m.points[3].z, pow2(200));
+  EXPECT_EQ(m.faces, kTetraFaces);
+}
+
+TEST(IoParse, OffColourVariantAndCountsOnMagicLine) {
+  Mesh m = read_mesh(data_path("io/coff_inline_counts.off"));
+  ASSERT_EQ(m.points.size(), 4u);
+  EXPECT_TRUE(m.points[3] == Point3(Rational(0), Rational(0), Rational(1)));
+  EXPECT_EQ(m.faces, kTetraFaces);
+  // Decimal tokens mean the nearest double; the edge count may be absent.
+  Mesh d = read_from_string("OFF\n3 1\n0.1 -2.5e-3 .5\n5. 1E300 0x1.8p-3\n0 0 0\n3 0 1 2\n", Format::off);
+  EXPECT_EQ(d.points[0].x, Rational(0.1));
+  EXPECT_EQ(d.points[0].y, Rational(-2.5e-3));
+  EXPECT_EQ(d.points[0].z, q("1/2"));
+  EXPECT_EQ(d.points[1].y, Rational(1e300));
+  EXPECT_EQ(d.points[1].z, q("3/16"));
+  // Plain OFF with extra numbers on a vertex line is an error.
+  expect_input_error([] { read_from_string("OFF\n3 1 0\n0 0 0 1\n1 0 0\n0 1 0\n3 0 1 2\n", Format::off); },
+                     "mem", "unexpected token '1' after vertex 0", "line 3");
+}
+
+TEST(IoParse, OffWithoutFacesIsAPointCloud) {
+  Mesh m = read_from_string("OFF\n2 0 0\n1 2 3\n4 5 6\n", Format::off);
+  EXPECT_EQ(m.points.size(), 2u);
+  EXPECT_TRUE(m.faces.empty());
+}
+
+TEST(IoParse, ObjNegativeIndicesAndVertexTokens) {
+  Mesh m = read_mesh(data_path("io/relative_indices.obj"));
+  ASSERT_EQ(m.points.size(), 8u);
+  EXPECT_TRUE(m.points[7] == Point3(Rational(1), Rational(1), Rational(1)));  // v 2 2 2 2 (w divides)
+  expect_same(m, cube_mesh());
+}
+
+TEST(IoParse, ObjRationalsHomogeneousAndColours) {
+  Mesh m = read_from_string("v 1/3 -22/7 1 3\nv 1 2 3 0.5 0.5 0.5\nv 0 0 0\nl 1 2\nf 1 2 3\n", Format::obj);
+  EXPECT_EQ(m.points[0].x, q("1/9"));
+  EXPECT_EQ(m.points[0].y, q("-22/21"));
+  EXPECT_EQ(m.points[0].z, q("1/3"));
+  EXPECT_TRUE(m.points[1] == Point3(Rational(1), Rational(2), Rational(3)));
+  EXPECT_EQ(m.faces, (std::vector<std::vector<Index>>{{0, 1, 2}}));
+  expect_input_error([] { read_from_string("v 1 2 3 0\n", Format::obj); }, "mem", "w = 0", "line 1");
+  expect_input_error([] { read_from_string("v 0 0 0\nf -1 -2 -3\n", Format::obj); }, "mem",
+                     "refers to vertex -2 but only 1 vertices are defined so far", "line 2");
+  expect_input_error([] { read_from_string("v 0 0 0\nfoo 1\n", Format::obj); }, "mem", "unexpected token 'foo'",
+                     "line 2");
+  expect_input_error([] { read_from_string("v 0 0 0\nf 1 2\n", Format::obj); }, "mem",
+                     "face 1 has 2 vertices (at least 3 needed)", "line 2");
+}
+
+TEST(IoParse, PlyExtraPropertiesAndElements) {
+  Mesh m = read_mesh(data_path("io/extra_props.ply"));
+  ASSERT_EQ(m.points.size(), 4u);
+  EXPECT_TRUE(m.points[1] == Point3(1.5, 0.0, 0.0));
+  EXPECT_TRUE(m.points[2] == Point3(0.0, -2.25, 0.0));
+  EXPECT_EQ(m.points[3].z, Rational(1e-3));
+  EXPECT_EQ(m.faces, kTetraFaces);
+}
+
+TEST(IoParse, PlyBigEndianMixedTypesAndVertexIndex) {
+  Mesh m = read_mesh(data_path("io/big_endian_types.ply"));
+  ASSERT_EQ(m.points.size(), 4u);
+  EXPECT_TRUE(m.points[1] == Point3(Rational(-3), Rational(0), Rational(0)));
+  EXPECT_TRUE(m.points[2] == Point3(Rational(0), Rational(70000), Rational(0)));
+  EXPECT_EQ(m.points[3].z, Rational(0.1));  // the double 0.1, exactly
+  EXPECT_EQ(m.faces, kTetraFaces);
+}
+
+TEST(IoParse, BinaryStlWhoseHeaderSaysSolid) {
+  const std::string path = data_path("io/solid_header_binary.stl");
+  EXPECT_EQ(slurp(path).substr(0, 5), "solid");
+  Mesh m = read_mesh(path);
+  EXPECT_EQ(m.points.size(), 4u);  // 12 vertices welded to 4
+  ASSERT_EQ(m.faces.size(), 4u);
+  Mesh tetra;
+  tetra.points = {Point3(0., 0., 0.), Point3(1., 0., 0.), Point3(0., 1., 0.), Point3(0., 0., 1.)};
+  tetra.faces = kTetraFaces;
+  EXPECT_EQ(triangles(m), triangles(tetra));
+}
+
+TEST(IoParse, AsciiStlWelds) {
+  Mesh m = read_mesh(data_path("bad/triangulated_cube.stl"));
+  EXPECT_EQ(m.points.size(), 8u);
+  EXPECT_EQ(m.faces.size(), 12u);
+  EXPECT_EQ(triangles(m), triangles(cube_mesh()));
+}
+
+TEST(IoParse, VrmlExactCoordinateSample) {
+  Mesh m = read_mesh(data_path("io/exact_tetra.wrl"));
+  ASSERT_EQ(m.points.size(), 4u);
+  EXPECT_EQ(m.points[1].x, q("1/3"));
+  EXPECT_EQ(m.points[2].y, q("-22/7"));
+  EXPECT_EQ(m.points[3].z, pow2(200));
+  EXPECT_EQ(m.faces, kTetraFaces);
+}
+
+TEST(IoParse, VrmlCoordinateCcwAndUse) {
+  const std::string s =
+      "#VRML V2.0 utf8\n"
+      "Group { children [ Shape { geometry IndexedFaceSet {\n"
+      "  ccw FALSE\n"
+      "  coord DEF pts Coordinate { point [ 0 0 0 1 0 0, 0 1 0, 0 0 0.5 ] }\n"
+      "  coordIndex [ 0 1 2 -1 0 3 1 -1 0 2 3 -1 1 3 2 ]\n"
+      "} } ] }\n";
+  Mesh m = read_from_string(s, Format::wrl);
+  ASSERT_EQ(m.points.size(), 4u);
+  EXPECT_EQ(m.points[3].z, q("1/2"));
+  EXPECT_EQ(m.faces, kTetraFaces);  // ccw FALSE: every polygon reversed
+  expect_input_error([] { read_from_string("#VRML V1.0 ascii\n", Format::wrl); }, "mem", "VRML 1.0");
+  expect_input_error([] { read_from_string("#VRML V2.0 utf8\nShape { }\n", Format::wrl); }, "mem",
+                     "no IndexedFaceSet");
+  expect_input_error(
+      [] {
+        read_from_string("#VRML V2.0 utf8\nIndexedFaceSet { coord Coordinate { point [ 0 0 0 1 ] } }\n",
+                         Format::wrl);
+      },
+      "mem", "point list has 4 numbers, not a multiple of 3", "line 2");
+  expect_input_error(
+      [] {
+        read_from_string("#VRML V2.0 utf8\nIndexedFaceSet {\n coord Coordinate { point [ 0 0 0 ] }\n"
+                         " coordIndex [ 0 0 5 ] }\n",
+                         Format::wrl);
+      },
+      "mem", "face 0 refers to vertex 5 but there are 1 vertices", "line 4");
+  // An identity Transform is fine.
+  Mesh t = read_from_string(
+      "#VRML V2.0 utf8\nTransform { translation 0 0 0 rotation 1 0 0 0 scale 1 1 1 center 5 5 5\n"
+      " children Shape { geometry IndexedFaceSet { coord Coordinate { point [ 0 0 0 1 0 0 0 1 0 ] }"
+      " coordIndex [ 0 1 2 ] } } }\n",
+      Format::wrl);
+  EXPECT_EQ(t.faces.size(), 1u);
+}
+
+// parse_coordinate has a fast path for plain decimal tokens; it must mean
+// exactly what parse_number means.
+TEST(IoParse, CoordinateFastPathAgreesWithParseNumber) {
+  std::vector<std::string> tokens = {
+      "0.1", "-0.0", "0.000", "1e-400", "5e-324", "2.4703282292062327e-324", "2.4703282292062328e-324",
+      "1e308", "1.7976931348623157e308", "1.7976931348623158e308", "1.7976931348623159e308", "1e309",
+      ".5", "5.", "+1.5", "-1e+5", "1E5", "1e", "e5", ".", "-", "+", "1.2.3", "1e5.5", "0e0", "1-2", "+-1",
+      "12345678901234567890.5", "1/3", "-22/7", "7", "0x1p-3", "nan", "-inf", "1e-5e", "--1", "1e--5", "1e+-5"};
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 3000; ++i) {
+    std::uint64_t bits = rng();
+    double d;
+    std::memcpy(&d, &bits, 8);
+    if (!std::isfinite(d)) continue;
+    char buf[64];
+    for (const char* fmt : {"%.17g", "%.3g", "%.25e", "%.20f"}) {
+      std::snprintf(buf, sizeof buf, fmt, d);
+      tokens.push_back(buf);
+    }
+  }
+  for (const auto& t : tokens) {
+    std::optional<Rational> fast;
+    try {
+      fast = io_detail::parse_coordinate(t, "x", "");
+    } catch (const InputError&) {
+    }
+    std::optional<Rational> ref = parse_number(t);
+    ASSERT_EQ(fast.has_value(), ref.has_value()) << t;
+    if (ref) {
+      ASSERT_EQ(*fast, *ref) << t;
+    }
+  }
+}
+
+TEST(IoWrite, RationalToFloatIsCorrectlyRounded) {
+  // Ties and near-ties that a double rounding (rational -> double -> float) gets wrong.
+  const Rational one(1);
+  const Rational tie = one + pow2(-24);                   // halfway between 1 and 1 + 2^-23
+  EXPECT_EQ(io_detail::rational_to_float(tie), 1.0f);     // ties to even
+  EXPECT_EQ(io_detail::rational_to_float(tie + pow2(-80)), 1.0f + 0x1p-23f);  // just above: up
+  EXPECT_EQ(io_detail::rational_to_float(q("1/3")), 1.0f / 3.0f);
+  EXPECT_EQ(io_detail::rational_to_float(-pow2(-149)), -0x1p-149f);  // smallest subnormal
+  EXPECT_EQ(io_detail::rational_to_float(pow2(-151)), 0.0f);         // below half of it
+  EXPECT_THROW(io_detail::rational_to_float(pow2(128)), UsageError);
+  std::mt19937_64 rng(3);
+  for (int i = 0; i < 2000; ++i) {
+    double d = std::ldexp(double(rng() >> 11), int(rng() % 200) - 220);
+    EXPECT_EQ(io_detail::rational_to_float(Rational(d)), static_cast<float>(d)) << d;
+  }
+}
+
+TEST(IoParse, StreamAndFileAgree) {
+  const std::string path = data_path("io/extra_props.ply");
+  std::ifstream in(path, std::ios::binary);
+  expect_same(read_mesh(in, Format::ply, path), read_mesh(path));
+}
+
+// --- malformed input --------------------------------------------------------------
+
+TEST(IoBad, EveryBadFileGivesAnInputError) {
+  expect_bad_file("bad/empty.off", "file is empty", "");
+  expect_bad_file("bad/wrong_magic.off", "expected 'OFF' magic, got 'OFX'", "line 1");
+  expect_bad_file("bad/nan.off", "coordinate is NaN", "line 4");
+  expect_bad_file("bad/inf.obj", "coordinate is infinite", "line 2");
+  expect_bad_file("bad/absurd_count.off", "header announces 4000000000 vertices but only 0 bytes follow the header",
+                  "line 2");
+  expect_bad_file("bad/absurd_count_binary.ply", "header announces 4000000000 vertices but only 12 bytes follow",
+                  "line 3");
+  expect_bad_file("bad/lying_count.off", "file ends after 5 of 8 vertices", "line 8");
+  expect_bad_file("bad/out_of_range_index.obj", "face 1 refers to vertex 9 but there are 3 vertices", "line 4");
+  expect_bad_file("bad/zero_index.obj", "face 1 has vertex index 0", "line 4");
+  expect_bad_file("bad/truncated_binary.stl", "file ends after 1 of 2 triangles", "byte 134");
+  expect_bad_file("bad/truncated.ply", "file ends after 0 of 1 face", "face 0");
+  expect_bad_file("bad/nan_binary.ply", "coordinate is NaN", "vertex 1");
+  expect_bad_file("bad/garbage_token.off", "expected a number, got 'foo'", "line 4");
+  expect_bad_file("bad/zero_denominator.off", "coordinate '1/0' has a zero denominator", "line 4");
+  expect_bad_file("bad/short_face.off", "face 0 has 2 vertices (at least 3 needed)", "line 6");
+  expect_bad_file("bad/trailing_garbage.off", "unexpected token 'junk' after the last face", "line 7");
+  expect_bad_file("bad/two_shapes.wrl", "more than one IndexedFaceSet", "line 3");
+  expect_bad_file("bad/translated.wrl", "non-identity 'translation'", "line 7");
+}
+
+TEST(IoBad, MessageIsFilePlaceProblem) {
+  try {
+    read_mesh(data_path("bad/nan.off"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), data_path("bad/nan.off") + ": line 4: coordinate is NaN");
+    EXPECT_EQ(e.file(), data_path("bad/nan.off"));
+  }
+}
+
+TEST(IoBad, EmptyInputInEveryFormat) {
+  for (Format f : {Format::off, Format::obj, Format::ply, Format::stl, Format::wrl}) {
+    std::istringstream in("");
+    expect_input_error([&] { read_mesh(in, f, "empty-stream"); }, "empty-stream", "file is empty", "");
+  }
+}
+
+TEST(IoBad, AbsurdCountsFailFastInEveryCountedFormat) {
+  auto t0 = std::chrono::steady_clock::now();
+  // Binary STL announcing 4e9 triangles in a 100-byte file.
+  std::string stl(84, '\0');
+  const std::uint32_t n = 4000000000u;
+  std::memcpy(&stl[80], &n, 4);
+  stl += std::string(16, '\0');
+  expect_input_error([&] { read_from_string(stl, Format::stl, "big.stl"); }, "big.stl",
+                     "header announces 4000000000 triangles but the file has only 100 bytes", "byte 80");
+  // Ascii PLY, faces.
+  expect_input_error(
+      [] {
+        read_from_string("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                         "property float z\nelement face 4000000000\nproperty list uchar int vertex_indices\n"
+                         "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                         Format::ply, "faces.ply");
+      },
+      "faces.ply", "header announces 4000000000 faces", "line 7");
+  // OFF, faces only.
+  expect_input_error([] { read_from_string("OFF 3 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n", Format::off, "f.off"); },
+                     "f.off", "header announces 3 vertices and 4000000000 faces", "line 1");
+  // A face announcing 4e9 vertices.
+  expect_input_error([] { read_from_string("OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n", Format::off); },
+                     "mem", "face 0 announces 4000000000 vertices", "line 5");
+  // Binary PLY list length 4e9.
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty uchar x\nproperty uchar y\n"
+      "property uchar z\nelement face 1\nproperty list uint uint vertex_indices\nend_header\n";
+  ply += std::string(3, '\0');
+  ply += std::string("\x00\x28\x6b\xee", 4);  // 4e9 little-endian
+  ply += std::string(8, '\0');
+  expect_input_error([&] { read_from_string(ply, Format::ply); }, "mem", "file ends after 0 of 1 face", "face 0");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
+}
+
+TEST(IoBad, MoreReaderChecks) {
+  auto off = [](const std::string& s) { return read_from_string(s, Format::off); };
+  expect_input_error([&] { off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"); }, "mem",
+                     "face 0 refers to vertex 3 but there are 3 vertices", "line 6");
+  expect_input_error([&] { off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n"); }, "mem",
+                     "face 0 has negative vertex index -1", "line 6");
+  expect_input_error([&] { off("OFF\n-3 1 0\n"); }, "mem", "negative vertex count", "line 2");
+  expect_input_error([&] { off("OFF BINARY\n"); }, "mem", "binary OFF is not supported", "line 1");
+  expect_input_error([&] { off("4OFF\n"); }, "mem", "only 3-dimensional OFF", "line 1");
+  expect_input_error([&] { off("# only a comment\n"); }, "mem", "expected 'OFF' magic");
+  expect_input_error([&] { off("OFF\n1 0 0\n1e999 0 0\n"); }, "mem", "out of double range", "line 3");
+  expect_input_error([&] { off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 1 2 3 4 5\n"); }, "mem",
+                     "unexpected token '5' after face 0", "line 6");
+  // PLY header problems.
+  auto ply = [](const std::string& s) { return read_from_string(s, Format::ply); };
+  expect_input_error([&] { ply("plx\n"); }, "mem", "expected 'ply' magic", "line 1");
+  expect_input_error([&] { ply("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"); }, "mem",
+                     "no 'end_header'", "header");
+  expect_input_error([&] { ply("ply\nformat ascii 1.0\nelement vertex 0\nproperty quad x\nend_header\n"); }, "mem",
+                     "unknown property type 'quad'", "line 4");
+  expect_input_error(
+      [&] { ply("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nend_header\n"); },
+      "mem", "vertex element has no 'z' property", "line 3");
+  expect_input_error(
+      [&] {
+        ply("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+            "end_header\n0 0 0 7\n");
+      },
+      "mem", "unexpected token '7' after the last element", "line 8");
+  const std::string header =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty uchar x\nproperty uchar y\n"
+      "property uchar z\nend_header\n";
+  expect_input_error([&] { ply(header + "\x01\x02\x03\x04"); }, "mem",
+                     "1 bytes of unexpected data after the last element", "byte " + std::to_string(header.size() + 3));
+  // STL.
+  auto stl = [](const std::string& s) { return read_from_string(s, Format::stl); };
+  expect_input_error([&] { stl("not an stl"); }, "mem", "not an STL file");
+  expect_input_error([&] { stl("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"); }, "mem",
+                     "file ends where 'vertex' or 'endloop' was expected", "line 6");
+  expect_input_error(
+      [&] { stl("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 nan\nvertex 0 1 0\n"); }, "mem",
+      "coordinate is NaN", "line 5");
+  expect_input_error([&] { stl("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nendloop\nendfacet\n"); },
+                     "mem", "facet has 1 vertices (at least 3 needed)", "line 3");
+  expect_input_error([&] { stl("solid x\nendsolid x\ngarbage\n"); }, "mem", "unexpected token 'garbage'", "line 3");
+}
+
+// --- atomic writes -----------------------------------------------------------------
+
+TEST(IoAtomic, NonexistentDirectoryThrowsAndLeavesNothing) {
+  TempDir dir;
+  const std::string path = dir.path("no/such/dir/out.off");
+  expect_input_error([&] { write_mesh(path, cube_mesh()); }, path, "cannot create a temporary file");
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoAtomic, FailedWriteKeepsOldContentAndNoTemporary) {
+  TempDir dir;
+  const std::string stl = dir.path("old.stl");
+  write_mesh(stl, cube_mesh());
+  const std::string before = slurp(stl);
+  ASSERT_FALSE(before.empty());
+  // Refused request: nothing touched.
+  EXPECT_THROW(write_mesh(stl, cube_mesh(), {.exact = true}), UsageError);
+  EXPECT_EQ(slurp(stl), before);
+  // A failure in the middle of writing: the temporary is removed, the old file kept.
+  Mesh huge = cube_mesh();
+  huge.points[7] = Point3(pow2(5000), Rational(1), Rational(1));  // fails after some output
+  EXPECT_THROW(write_mesh(stl, huge), UsageError);
+  EXPECT_EQ(slurp(stl), before);
+  EXPECT_THROW(write_file_atomically(stl,
+                                     [](std::ostream& out) {
+                                       out << std::string(100000, 'x');
+                                       throw std::runtime_error("simulated failure");
+                                     }),
+               std::runtime_error);
+  EXPECT_EQ(slurp(stl), before);
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"old.stl"});
+  // And a successful write replaces the content.
+  write_mesh(stl, cube_mesh(), {.binary = true});
+  EXPECT_NE(slurp(stl), before);
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"old.stl"});
+}
+
+TEST(IoAtomic, UnknownExtensionIsAUsageError) {
+  TempDir dir;
+  EXPECT_THROW(write_mesh(dir.path("x.txt"), cube_mesh()), UsageError);
+  EXPECT_THROW(read_mesh(dir.path("x.txt")), UsageError);
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(IoAtomic, ReplacingADirectoryFails) {
+  TempDir dir;
+  fs::create_directories(dir.path("d.off"));
+  expect_input_error([&] { write_mesh(dir.path("d.off"), cube_mesh()); }, "d.off", "cannot replace");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"d.off"});
+}
+
+// --- reading files and resolving operands ------------------------------------------
+
+TEST(IoFiles, MissingDirectoryAndUnknownNames) {
+  TempDir dir;
+  expect_input_error([&] { read_mesh(dir.path("missing.off")); }, "missing.off", "no such file", "");
+  fs::create_directories(dir.path("adir.off"));
+  expect_input_error([&] { read_mesh(dir.path("adir.off")); }, "adir.off", "is a directory");
+  expect_input_error([&] { load_polytope(dir.path("missing.ply")); }, "missing.ply", "no such file", "");
+  expect_input_error([&] { load_polytope(dir.path("adir.off")); }, "adir.off", "is a directory");
+  try {
+    load_polytope("definitely-not-a-catalog-name");
+    ADD_FAILURE() << "no UsageError";
+  } catch (const UsageError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "'definitely-not-a-catalog-name' is neither a file nor a catalog name (see 'minksum gen --help')");
+  }
+}
+
+TEST(IoFiles, LoadPolytopeReadsAndValidates) {
+  ConvexPolytope cube = load_polytope(data_path("bad/triangulated_cube.stl"));
+  EXPECT_EQ(cube.num_vertices(), 8u);
+  EXPECT_EQ(cube.num_edges(), 12u);
+  EXPECT_EQ(cube.num_facets(), 6u);
+  ConvexPolytope tetra = load_polytope(data_path("io/exact_tetra.wrl"));
+  EXPECT_EQ(tetra.num_vertices(), 4u);
+  EXPECT_EQ(tetra.num_facets(), 4u);
+  // As a point cloud: the faces are ignored.
+  ConvexPolytope hull = load_polytope(data_path("bad/two_cubes.off"), true);
+  EXPECT_EQ(hull.num_vertices(), 8u);
+  EXPECT_EQ(hull.num_facets(), 6u);
+  EXPECT_EQ(hull.volume(), Rational(4));
+  // Not a polytope: an InputError naming the file.
+  expect_input_error([] { load_polytope(data_path("bad/open_mesh.off")); }, "open_mesh.off", "");
+}
+
+TEST(IoFiles, LoadPolytopeFromCatalog) {
+  ConvexPolytope cube = load_polytope("cube");
+  EXPECT_EQ(cube.num_facets(), 6u);
+  ConvexPolytope hull = load_polytope("cube", true);
+  EXPECT_EQ(hull.num_facets(), 6u);
+  EXPECT_EQ(hull.volume(), cube.volume());
+}

@@ -24,7 +24,16 @@ Options:
                      chms: exact convex hull of all pairwise vertex sums, the
                      reference oracle.  cvms: contributing vertices (Barki et
                      al.), reports the facet types (translated, corner, edge,
-                     facet_edge, facet_facet) with --json.  Methods not built
+                     facet_edge, facet_facet) with --json.  essdms: slope
+                     diagrams merged without embedding, contributing vertices
+                     instead of point-in-polygon queries (Barki et al.).
+                     mssd: Wu et al.'s improved 3D-MSSD, the same merge with
+                     point-in-polygon queries and all edge-arc pairs; both
+                     report the intersection case per facet and operation
+                     counts with --json.  cgm: overlay of the six pairs of
+                     planar maps of the Cubical Gaussian Maps (Fogel &
+                     Halperin), reports the overlay cases met with --json.
+                     Methods not built
                      into this version are refused with exit status 2.
   --exact            write coordinates as exact rationals (p/q or integers);
                      default: shortest text that reads back to the nearest

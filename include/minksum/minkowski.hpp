@@ -85,5 +85,18 @@ SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b,
 SumResult minkowski_sum_chms(const ConvexPolytope& a, const ConvexPolytope& b);
 // CVMS (seed 000 §3-4): contributing vertices, translated / corner / edge facets.
 SumResult minkowski_sum_cvms(const ConvexPolytope& a, const ConvexPolytope& b);
+// ESSDMS (seed 000 §5.2): slope diagrams merged without embedding, with
+// contributing vertices instead of point-in-polygon queries.  facet_case
+// holds the intersection case of each facet (two_facet_points,
+// facet_point_on_edge_arc, two_edge_arcs, facet_point_in_vertex_region);
+// counters hold the operation counts.
+SumResult minkowski_sum_essdms(const ConvexPolytope& a, const ConvexPolytope& b);
+// Wu et al.'s improved 3D-MSSD as seed 000 re-implements it: the same merge
+// with point-in-spherical-polygon queries and every pair of edge arcs; the
+// same facet cases and counters as essdms.
+SumResult minkowski_sum_mssd(const ConvexPolytope& a, const ConvexPolytope& b);
+// The Cubical Gaussian Map method (seed 001 §2-3): the overlay of the six
+// pairs of planar maps of the two CGMs (<minksum/cubical_gaussian_map.hpp>).
+SumResult minkowski_sum_cgm(const ConvexPolytope& a, const ConvexPolytope& b);
 
 }  // namespace minksum

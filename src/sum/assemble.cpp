@@ -75,13 +75,14 @@ SumResult assemble_sum(const ConvexPolytope& a, const ConvexPolytope& b, std::ve
     Point3 normal;
     std::vector<std::pair<Index, Index>> pairs;
     FacetProvenance prov;
+    int facet_case;
   };
   std::map<std::array<Integer, 3>, std::size_t> by_direction;
   std::vector<Group> groups;
   for (auto& c : candidates) {
     auto [it, fresh] = by_direction.try_emplace(primitive_direction(c.normal), groups.size());
     if (fresh) {
-      groups.push_back({c.normal, std::move(c.points), c.provenance});
+      groups.push_back({c.normal, std::move(c.points), c.provenance, c.facet_case});
       continue;
     }
     Group& g = groups[it->second];
@@ -126,6 +127,10 @@ SumResult assemble_sum(const ConvexPolytope& a, const ConvexPolytope& b, std::ve
   for (Index v = 0; v < r.polytope.num_vertices(); ++v) r.vertex_origin.push_back(origin[r.polytope.source_vertex(v)]);
   r.facet_provenance.reserve(groups.size());
   for (const Group& g : groups) r.facet_provenance.push_back(g.prov);
+  if (std::any_of(groups.begin(), groups.end(), [](const Group& g) { return g.facet_case >= 0; })) {
+    r.facet_case.reserve(groups.size());
+    for (const Group& g : groups) r.facet_case.push_back(static_cast<std::uint8_t>(std::max(g.facet_case, 0)));
+  }
   return r;
 }
 

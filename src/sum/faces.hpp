@@ -23,6 +23,10 @@ struct FacetCandidate {
   Point3 normal;  // outer normal, any positive scale
   std::vector<std::pair<Index, Index>> points;
   FacetProvenance provenance;
+  // Method-specific case (an index into SumResult::facet_case_names), or -1
+  // when the method records none.  A group's case is that of its first
+  // candidate; SumResult::facet_case is filled when any candidate has one.
+  int facet_case = -1;
 };
 
 SumResult assemble_sum(const ConvexPolytope& a, const ConvexPolytope& b, std::vector<FacetCandidate> candidates,

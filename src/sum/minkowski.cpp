@@ -29,7 +29,8 @@ std::optional<Method> parse_method(const std::string& name) {
 }
 
 bool method_available(Method m) {
-  return m == Method::chms || m == Method::cvms || m == Method::automatic;
+  return m == Method::chms || m == Method::cvms || m == Method::essdms || m == Method::mssd ||
+         m == Method::cgm || m == Method::automatic;
 }
 
 const char* facet_origin_name(FacetOrigin o) {
@@ -53,9 +54,15 @@ SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b, Method
       return minkowski_sum_chms(a, b);
     case Method::cvms:
       return minkowski_sum_cvms(a, b);
+    case Method::essdms:
+      return minkowski_sum_essdms(a, b);
+    case Method::mssd:
+      return minkowski_sum_mssd(a, b);
+    case Method::cgm:
+      return minkowski_sum_cgm(a, b);
     default:
       throw UsageError(std::string("method '") + method_name(method) +
-                       "' is not implemented in this version of minksum (available: auto, chms, cvms)");
+                       "' is not implemented in this version of minksum (available: auto, chms, cvms, essdms, mssd, cgm)");
   }
 }
 

@@ -1,0 +1,404 @@
+// The slope-diagram methods, ESSDMS and the improved 3D-MSSD (seed 000 §5):
+// exactly equal to the chms oracle (same vertex set, same facet planes) on the
+// catalog, degenerate pairs and random pairs; commutative; facet provenance
+// equal to the brute-force one; each facet's intersection case consistent
+// with its provenance; the degree-3 forms of eq. 8-9, eq. 12 and the
+// point-in-spherical-polygon test equal to the paper's expressions on exact
+// facet normals.
+#include <minksum/catalog.hpp>
+#include <minksum/error.hpp>
+#include <minksum/minkowski.hpp>
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+#include "sum/slope_diagram.hpp"
+#include "test_support.hpp"
+
+using namespace minksum;
+using namespace minksum::testing;
+
+namespace {
+
+ConvexPolytope cat(const std::string& s) { return catalog_polytope(s); }
+
+using SdCase = slope_diagram::Case;
+
+// Facets per intersection case.
+std::array<long, 4> case_counts(const SumResult& r) {
+  std::array<long, 4> c{0, 0, 0, 0};
+  for (auto k : r.facet_case) ++c.at(k);
+  return c;
+}
+
+long counter(const SumResult& r, const std::string& name) {
+  for (const auto& [n, v] : r.counters)
+    if (n == name) return long(v);
+  ADD_FAILURE() << "no counter " << name;
+  return -1;
+}
+
+// The case a facet must come from, given the faces of A and B behind it.
+SdCase expected_case(const FacetProvenance& p) {
+  switch (p.origin()) {
+    case FacetOrigin::facet_facet: return SdCase::two_facet_points;
+    case FacetOrigin::facet_edge: return SdCase::facet_point_on_edge_arc;
+    case FacetOrigin::edge: return SdCase::two_edge_arcs;
+    default: return SdCase::facet_point_in_vertex_region;
+  }
+}
+
+void expect_method_matches(const SumResult& oracle, const ConvexPolytope& a, const ConvexPolytope& b, Method m,
+                           bool check_provenance) {
+  SCOPED_TRACE(method_name(m));
+  SumResult ab = minkowski_sum(a, b, m);
+  EXPECT_EQ(ab.method, m);
+  ASSERT_EQ(ab.polytope.num_vertices(), oracle.polytope.num_vertices());
+  ASSERT_EQ(ab.polytope.num_edges(), oracle.polytope.num_edges());
+  ASSERT_EQ(ab.polytope.num_facets(), oracle.polytope.num_facets());
+  EXPECT_TRUE(same_polytope(ab.polytope, oracle.polytope));
+  for (Index v = 0; v < ab.polytope.num_vertices(); ++v) {
+    auto [i, j] = ab.vertex_origin[v];
+    ASSERT_EQ(ab.polytope.point(v), a.point(i) + b.point(j));
+  }
+  ASSERT_EQ(ab.facet_provenance.size(), ab.polytope.num_facets());
+  ASSERT_EQ(ab.facet_case.size(), ab.polytope.num_facets());
+  ASSERT_EQ(ab.facet_case_names, slope_diagram::case_names());
+  for (Index f = 0; f < ab.polytope.num_facets(); ++f)
+    EXPECT_EQ(ab.facet_case[f], std::uint8_t(expected_case(ab.facet_provenance[f]))) << "facet " << f;
+  if (check_provenance) {
+    EXPECT_EQ(ab.facet_provenance, facet_provenance(a, b, ab.polytope));
+  }
+  SumResult ba = minkowski_sum(b, a, m);
+  EXPECT_TRUE(same_polytope(ba.polytope, ab.polytope));
+  EXPECT_EQ(case_counts(ba), case_counts(ab));
+}
+
+// essdms(A, B) == mssd(A, B) == chms(A, B), both commutative.
+void expect_matches_oracle(const ConvexPolytope& a, const ConvexPolytope& b, const std::string& label,
+                           bool check_provenance = true) {
+  SCOPED_TRACE(label);
+  SumResult oracle = minkowski_sum_chms(a, b);
+  expect_method_matches(oracle, a, b, Method::essdms, check_provenance);
+  expect_method_matches(oracle, a, b, Method::mssd, check_provenance);
+}
+
+void expect_matches_oracle(const std::string& a, const std::string& b, bool check_provenance = true) {
+  expect_matches_oracle(cat(a), cat(b), a + " + " + b, check_provenance);
+}
+
+const char* kSmallSolids[] = {
+    "tetra",          "cube",           "octahedron",          "dodecahedron",         "icosahedron",
+    "truncated-tetrahedron", "cuboctahedron", "truncated-cube", "truncated-octahedron", "rhombicuboctahedron",
+    "triakis-tetrahedron", "rhombic-dodecahedron", "triakis-octahedron", "tetrakis-hexahedron",
+    "rhombic-triacontahedron", "icosidodecahedron",
+};
+
+}  // namespace
+
+TEST(SlopeDiagram, MethodsAreAvailable) {
+  EXPECT_TRUE(method_available(Method::essdms));
+  EXPECT_TRUE(method_available(Method::mssd));
+  EXPECT_EQ(parse_method("essdms"), Method::essdms);
+  EXPECT_EQ(parse_method("mssd"), Method::mssd);
+}
+
+TEST(SlopeDiagram, AllPairsOfSmallSolids) {
+  for (const char* x : kSmallSolids)
+    for (const char* y : kSmallSolids)
+      if (std::string(x) <= std::string(y)) expect_matches_oracle(x, y);
+}
+
+TEST(SlopeDiagram, CubePlusGeodesicSpheres) {
+  for (int level = 1; level <= 5; ++level)
+    expect_matches_oracle("cube", "sphere:" + std::to_string(level), level <= 3);
+}
+
+TEST(SlopeDiagram, IdenticalSpheres) {
+  // A = B: every facet point of A coincides with one of B, every edge arc of
+  // A lies on one of B (parallel, no crossing).
+  const ConvexPolytope s = cat("sphere:3");
+  for (Method m : {Method::essdms, Method::mssd}) {
+    SCOPED_TRACE(method_name(m));
+    SumResult r = minkowski_sum(s, s, m);
+    EXPECT_EQ(r.polytope.num_facets(), 320u);
+    EXPECT_EQ(case_counts(r), (std::array<long, 4>{320, 0, 0, 0}));
+    for (const auto& p : r.facet_provenance) EXPECT_EQ(p.origin(), FacetOrigin::facet_facet);
+    // Case 1 stops at the first coincidence and skips the facet points of B
+    // already matched: with both facet lists in the same order, facet f of A
+    // is tested against facet f of B only.
+    EXPECT_EQ(counter(r, "facet_point_tests"), 320);
+    EXPECT_EQ(counter(r, "facet_point_arc_tests"), 0);
+    EXPECT_EQ(counter(r, "point_in_polygon_queries"), 0);
+    if (m == Method::essdms) {
+      // Property 1: the two facets of every edge share the edge's ends as
+      // contributing vertices, so every arc is pruned.
+      EXPECT_EQ(counter(r, "edge_arcs_pruned"), 2L * 480);
+      EXPECT_EQ(counter(r, "arc_pair_tests"), 0);
+    } else {
+      EXPECT_EQ(counter(r, "edge_arcs_pruned"), 0);
+      EXPECT_EQ(counter(r, "arc_pair_tests"), 480L * 480);
+    }
+  }
+  expect_matches_oracle("sphere:3", "sphere:3");
+}
+
+TEST(SlopeDiagram, IdenticalSolidsAreAllFacetPlusFacet) {
+  for (const char* x : kSmallSolids) {
+    SCOPED_TRACE(x);
+    const ConvexPolytope p = cat(x);
+    for (Method m : {Method::essdms, Method::mssd}) {
+      SumResult r = minkowski_sum(p, p, m);
+      EXPECT_EQ(case_counts(r), (std::array<long, 4>{long(p.num_facets()), 0, 0, 0}));
+    }
+  }
+}
+
+TEST(SlopeDiagram, RotatedIdenticalSolidsNeedTheExactFallback) {
+  // Rational coordinates: coincident facet points and facet points on arcs
+  // cannot be certified by the interval enclosures, only by the exact
+  // predicates behind them.
+  for (const char* x : {"dodecahedron@rot:3", "cuboctahedron@rot:17", "sphere:2@rot:5"}) {
+    SCOPED_TRACE(x);
+    const ConvexPolytope p = cat(x);
+    ASSERT_FALSE(p.coordinates_are_doubles());
+    for (Method m : {Method::essdms, Method::mssd}) {
+      SumResult r = minkowski_sum(p, p, m);
+      EXPECT_EQ(case_counts(r), (std::array<long, 4>{long(p.num_facets()), 0, 0, 0}));
+      EXPECT_GT(counter(r, "interval_exact_fallbacks"), 0);
+    }
+    expect_matches_oracle(p, p, std::string(x) + " twice");
+    expect_matches_oracle(p, p.negated(), std::string(x) + " and its negation");
+  }
+  expect_matches_oracle(cat("cube@rot:9"), cat("rhombic-dodecahedron@rot:9"), "rotated cube + rhombic dodecahedron");
+}
+
+TEST(SlopeDiagram, SphereAndRotatedSphere) { expect_matches_oracle("sphere:3", "sphere:3@rot:5", false); }
+
+TEST(SlopeDiagram, CubeOctahedronCounts) {
+  // 6 cube facets and 8 octahedron facets in vertex regions, 12 crossings of
+  // edge arcs; no coincidence.
+  const ConvexPolytope cube = cat("cube"), octa = cat("octahedron");
+  for (Method m : {Method::essdms, Method::mssd}) {
+    SCOPED_TRACE(method_name(m));
+    SumResult r = minkowski_sum(cube, octa, m);
+    EXPECT_EQ(case_counts(r), (std::array<long, 4>{0, 0, 12, 14}));
+    int count[5] = {0, 0, 0, 0, 0};
+    for (const auto& p : r.facet_provenance) ++count[int(p.origin())];
+    EXPECT_EQ(count[int(FacetOrigin::translated)], 6);
+    EXPECT_EQ(count[int(FacetOrigin::corner)], 8);
+    EXPECT_EQ(count[int(FacetOrigin::edge)], 12);
+    EXPECT_EQ(counter(r, "facet_point_tests"), 6 * 8);
+    EXPECT_EQ(counter(r, "facet_point_arc_tests"), 6 * 12 + 8 * 12);
+    // No edge arc lies in a single vertex region: nothing is pruned.
+    EXPECT_EQ(counter(r, "arc_pair_tests"), 12 * 12);
+    if (m == Method::essdms) {
+      EXPECT_EQ(counter(r, "point_in_polygon_queries"), 0);
+      EXPECT_EQ(counter(r, "contributing_vertex_tests"), 6 * (6 - 1) + 8 * (8 - 1));
+    } else {
+      EXPECT_GE(counter(r, "point_in_polygon_queries"), 14);
+      EXPECT_EQ(counter(r, "contributing_vertex_tests"), 0);
+    }
+  }
+  expect_matches_oracle("octahedron", "cube");
+}
+
+TEST(SlopeDiagram, CubeRhombicDodecahedronFacetPointsOnArcs) {
+  // Every facet point (±1,±1,0), ... of the rhombic dodecahedron lies in the
+  // middle of an edge arc of the cube; the cube's facet points lie in the
+  // regions of the degree-4 vertices.
+  for (Method m : {Method::essdms, Method::mssd}) {
+    SCOPED_TRACE(method_name(m));
+    SumResult r = minkowski_sum(cat("cube"), cat("rhombic-dodecahedron"), m);
+    EXPECT_EQ(case_counts(r), (std::array<long, 4>{0, 12, 0, 6}));
+  }
+  expect_matches_oracle("cube", "rhombic-dodecahedron");
+  expect_matches_oracle("cuboctahedron", "rhombic-dodecahedron");
+}
+
+TEST(SlopeDiagram, PruningOnlyRemovesArcsThatCrossNothing) {
+  // ESSDMS tests a subset of MSSD's arc pairs and finds the same crossings.
+  for (auto [x, y] : {std::pair{"cube", "sphere:3"}, {"sphere:2", "sphere:2@rot:7"}, {"dodecahedron", "icosahedron"},
+                      {"truncated-cube", "cuboctahedron"}}) {
+    SCOPED_TRACE(std::string(x) + " + " + y);
+    const ConvexPolytope a = cat(x), b = cat(y);
+    SumResult e = minkowski_sum_essdms(a, b), w = minkowski_sum_mssd(a, b);
+    EXPECT_EQ(case_counts(e), case_counts(w));
+    EXPECT_EQ(counter(w, "arc_pair_tests"), long(a.num_edges()) * long(b.num_edges()));
+    EXPECT_LE(counter(e, "arc_pair_tests"), counter(w, "arc_pair_tests"));
+    EXPECT_EQ(counter(e, "facet_point_tests"), counter(w, "facet_point_tests"));
+    EXPECT_EQ(counter(e, "facet_point_arc_tests"), counter(w, "facet_point_arc_tests"));
+  }
+}
+
+TEST(SlopeDiagram, DioctagonalPairs) {
+  expect_matches_oracle("dioctagonal:17", "dioctagonal:17@rot:1,0,0,1");  // 90°: identical pyramids
+  expect_matches_oracle("dioctagonal:17", "dioctagonal:17@rot:100,0,0,99");  // approximately 90°
+  expect_matches_oracle("dioctagonal:9", "dioctagonal:9@rot:7");
+}
+
+TEST(SlopeDiagram, ZonotopesWithParallelEdges) {
+  expect_matches_oracle("zonotope:5:1", "zonotope:5:2");
+  expect_matches_oracle("zonotope:6:3", "zonotope:6:3");
+  expect_matches_oracle("zonotope:4:7", "cube");
+  expect_matches_oracle("zonotope:1,0,0:0,1,0:1,1,0:0,0,1", "zonotope:1,1,0:0,0,1:1,-1,2");
+}
+
+TEST(SlopeDiagram, MixedSolids) {
+  expect_matches_oracle("truncated-cube", "dodecahedron");
+  expect_matches_oracle("cube", "truncated-cube");
+  expect_matches_oracle("snub-cube", "truncated-icosahedron", false);
+}
+
+TEST(SlopeDiagram, ThinBoxAndExtremeScales) {
+  expect_matches_oracle("box:1:1:1e-12", "sphere:2");
+  expect_matches_oracle("box:1e-12:2:3", "box:4:1e-12:5");
+  expect_matches_oracle("cube@scale:1e150", "octahedron@scale:1e-150");
+  expect_matches_oracle("sphere:2@scale:1e-150", "dodecahedron@scale:1e-150");
+  expect_matches_oracle("icosahedron@scale:1e150", "tetra@scale:1e150@rot:3");
+}
+
+TEST(SlopeDiagram, TranslatedAndNegatedOperands) {
+  const ConvexPolytope a = cat("truncated-octahedron@rot:11"), b = cat("icosahedron");
+  expect_matches_oracle(a.translated(Q("1/3", "-7/5", "2")), b, "translated");
+  expect_matches_oracle(a, a.negated(), "A + (-A)");
+  expect_matches_oracle(b, b.negated(), "icosahedron + (-icosahedron)");
+}
+
+// The degree-3 forms used by the methods against the paper's expressions
+// evaluated on the exact integer facet normals (degree 2 each).
+namespace {
+
+int sgn_of(const Rational& q) { return sgn(q); }
+
+void expect_reductions_hold(const ConvexPolytope& a, const ConvexPolytope& b, const std::string& label) {
+  SCOPED_TRACE(label);
+  using namespace slope_diagram;
+  const Diagram da(a), db(b);
+  const Geometry g(da, db);
+  auto n = [](const ConvexPolytope& p, Index f) { return p.plane(f).normal(); };
+  // Eq. 6.
+  for (Index f = 0; f < a.num_facets(); ++f)
+    for (Index j = 0; j < b.num_facets(); ++j) {
+      const Point3 x = n(a, f), y = n(b, j);
+      EXPECT_EQ(g.same_facet_point(da, f, db, j), is_zero(cross(x, y)) && sgn_of(dot(x, y)) > 0);
+    }
+  // Eq. 8-9, both ways.
+  auto on_arc = [&](const Diagram& P, Index f, const Diagram& Q, Index e) {
+    const Point3 fp = n(P.p, f), s = n(Q.p, Q.p.facet(2 * e)), t = n(Q.p, Q.p.facet(2 * e + 1));
+    const Point3 nn = cross(s, t);
+    return sgn_of(dot(fp, nn)) == 0 && sgn_of(dot(cross(s, fp), nn)) > 0 && sgn_of(dot(cross(fp, t), nn)) > 0;
+  };
+  for (Index f = 0; f < a.num_facets(); ++f)
+    for (Index e = 0; e < b.num_edges(); ++e) EXPECT_EQ(g.facet_point_on_arc(da, f, db, e), on_arc(da, f, db, e));
+  for (Index f = 0; f < b.num_facets(); ++f)
+    for (Index e = 0; e < a.num_edges(); ++e) EXPECT_EQ(g.facet_point_on_arc(db, f, da, e), on_arc(db, f, da, e));
+  // Eq. 12: x = n × n' on both arcs (eq. 9 for x), or x' = −x.
+  auto strictly_on = [&](const Point3& x, const Point3& s, const Point3& t) {
+    const Point3 nn = cross(s, t);
+    return sgn_of(dot(cross(s, x), nn)) > 0 && sgn_of(dot(cross(x, t), nn)) > 0;
+  };
+  for (Index ea = 0; ea < a.num_edges(); ++ea)
+    for (Index eb = 0; eb < b.num_edges(); ++eb) {
+      const Point3 s = n(a, a.facet(2 * ea)), t = n(a, a.facet(2 * ea + 1));
+      const Point3 s2 = n(b, b.facet(2 * eb)), t2 = n(b, b.facet(2 * eb + 1));
+      const Point3 x = cross(cross(s, t), cross(s2, t2));
+      int want = 0;
+      if (!is_zero(x)) {
+        if (strictly_on(x, s, t) && strictly_on(x, s2, t2)) want = 1;
+        else if (strictly_on(-x, s, t) && strictly_on(-x, s2, t2)) want = -1;
+      }
+      long long tests = 0;
+      EXPECT_EQ(g.arcs_cross(ea, eb, tests), want) << ea << " " << eb;
+    }
+  // Point-in-spherical-polygon: strictly inside iff det(n_i, n_{i+1}, f) < 0
+  // for every side, the determinant on exact normals (degree 6).
+  for (Index f = 0; f < a.num_facets(); ++f)
+    for (Index v = 0; v < b.num_vertices(); ++v) {
+      bool inside = true;
+      Index h = b.vertex_halfedge(v);
+      do {
+        if (normals_det_exact(b, b.facet(h), b.facet(h ^ 1u), a, f) >= 0) inside = false;
+        h = b.next_around_vertex(h);
+      } while (h != b.vertex_halfedge(v));
+      long long tests = 0;
+      EXPECT_EQ(g.facet_point_in_vertex_region(da, f, db, v, tests), inside) << f << " " << v;
+    }
+}
+
+}  // namespace
+
+TEST(SlopeDiagram, DegreeThreeFormsEqualThePapersExpressions) {
+  expect_reductions_hold(cat("cube"), cat("octahedron"), "cube + octahedron");
+  expect_reductions_hold(cat("cube"), cat("rhombic-dodecahedron"), "cube + rhombic-dodecahedron");
+  expect_reductions_hold(cat("cube"), cat("cube"), "cube + cube");
+  expect_reductions_hold(cat("sphere:1"), cat("sphere:1@rot:3"), "sphere:1 + rotated");
+  expect_reductions_hold(cat("dodecahedron"), cat("truncated-tetrahedron@rot:9"), "dodecahedron + rotated");
+  expect_reductions_hold(cat("random:12:1"), cat("random:15:2"), "random hulls");
+  expect_reductions_hold(cat("zonotope:5:1"), cat("zonotope:5:2"), "zonotopes");
+}
+
+TEST(SlopeDiagram, JsonCountersAreNamed) {
+  for (Method m : {Method::essdms, Method::mssd}) {
+    SumResult r = minkowski_sum(cat("cube"), cat("sphere:2"), m);
+    std::map<std::string, long long> c(r.counters.begin(), r.counters.end());
+    for (const char* k : {"facet_point_tests", "facet_point_arc_tests", "arc_pair_tests", "point_in_polygon_queries",
+                          "contributing_vertex_tests", "edge_arcs_pruned"})
+      EXPECT_TRUE(c.count(k)) << k;
+  }
+}
+
+TEST(SlopeDiagram, DegenerateOperandsAreRefusedBeforeAnyMethod) {
+  std::vector<Point3> flat = {P(0, 0, 0), P(1, 0, 0), P(0, 1, 0), P(1, 1, 0)};
+  EXPECT_THROW(ConvexPolytope::hull(flat, "flat"), InputError);
+}
+
+// 1200 pairs with fixed seeds (4 tests of 100 seeds, 3 pairs per seed), the
+// same as the cvms suite: random hulls, lattice polytopes with many coplanar
+// points, and random exact rotations of catalog solids.  Each pair is checked
+// with both methods against one oracle.
+void random_pairs(unsigned first_seed, unsigned last_seed) {
+  const std::vector<std::string> solids = {"tetra", "cube", "octahedron", "dodecahedron", "icosahedron",
+                                           "cuboctahedron", "truncated-cube", "rhombic-dodecahedron"};
+  int done = 0;
+  for (unsigned seed = first_seed; seed <= last_seed; ++seed) {
+    std::mt19937_64 rng(seed);
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    {
+      std::string a = "random:" + std::to_string(4 + rng() % 30) + ":" + std::to_string(seed);
+      std::string b = "random:" + std::to_string(4 + rng() % 30) + ":" + std::to_string(seed + 1000);
+      expect_matches_oracle(cat(a), cat(b), a + " + " + b, seed % 10 == 0);
+    }
+    {
+      auto lattice = [&](int n, long r) {
+        std::vector<Point3> pts;
+        for (int i = 0; i < n; ++i)
+          pts.push_back(P(long(rng() % (2 * r + 1)) - r, long(rng() % (2 * r + 1)) - r, long(rng() % (2 * r + 1)) - r));
+        for (;;) {
+          try {
+            return ConvexPolytope::hull(pts);
+          } catch (const InputError&) {  // flat sample: add a point
+            pts.push_back(P(long(rng() % (2 * r + 1)) - r, long(rng() % (2 * r + 1)) - r, long(rng() % (2 * r + 1)) - r));
+          }
+        }
+      };
+      ConvexPolytope a = lattice(8 + int(rng() % 20), 2), b = lattice(8 + int(rng() % 20), 3);
+      expect_matches_oracle(a, b, "lattice", seed % 10 == 0);
+    }
+    {
+      std::string a = solids[rng() % solids.size()] + "@rot:" + std::to_string(rng() % 100000);
+      std::string b = solids[rng() % solids.size()] + "@rot:" + std::to_string(rng() % 100000);
+      expect_matches_oracle(cat(a), cat(b), a + " + " + b, seed % 10 == 0);
+    }
+    done += 3;
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  EXPECT_EQ(done, 3 * int(last_seed - first_seed + 1));
+}
+
+TEST(SlopeDiagram, RandomPairsSeeds1To100) { random_pairs(1, 100); }
+TEST(SlopeDiagram, RandomPairsSeeds101To200) { random_pairs(101, 200); }
+TEST(SlopeDiagram, RandomPairsSeeds201To300) { random_pairs(201, 300); }
+TEST(SlopeDiagram, RandomPairsSeeds301To400) { random_pairs(301, 400); }

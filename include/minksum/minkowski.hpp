@@ -76,7 +76,10 @@ struct SumResult {
   double seconds = 0;  // the computation alone
 };
 
-// Compute A ⊕ B with `method`.  Throws UsageError if the method is not
+// The method Method::automatic uses for these operands (see minkowski.cpp).
+Method automatic_choice(const ConvexPolytope& a, const ConvexPolytope& b);
+
+// Compute A ⊕ B with `method`; SumResult::method names the method used.  Throws UsageError if the method is not
 // available in this build.
 SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b,
                         Method method = Method::automatic);

@@ -30,9 +30,18 @@ build: $(BUILD)/CMakeCache.txt
 # The main job on built-in polytopes: no input files needed.
 demo: build
 	@mkdir -p $(BUILD)/demo
-	$(BUILD)/bin/minksum sum cube sphere:3 --method chms -o $(BUILD)/demo/cube+sphere3.off
-	$(BUILD)/bin/minksum sum dodecahedron truncated-cube --method chms -o $(BUILD)/demo/dodeca+trunccube.off
+	$(BUILD)/bin/minksum sum cube sphere:3 --exact -o $(BUILD)/demo/cube+sphere3.off
+	$(BUILD)/bin/minksum sum dodecahedron truncated-cube --method essdms --exact -o $(BUILD)/demo/dodeca+trunccube.off
+	$(BUILD)/bin/minksum sum sphere:3 sphere:3@rot:5 --method cgm --exact -o $(BUILD)/demo/sphere3+rotated.off
 	$(BUILD)/bin/minksum stats $(BUILD)/demo/cube+sphere3.off
+	$(BUILD)/bin/minksum cgm dioctagonal:17 dioctagonal:17@rot:100,0,0,99 --svg $(BUILD)/demo/cgm.svg
+
+# Seed 001 Fig. 4: a robot grazing, then penetrating an obstacle, turning every
+# other frame (M recomputed then); per-frame state and query time, and an SVG trail.
+.PHONY: demo-motion
+demo-motion: build
+	@mkdir -p $(BUILD)/demo
+	$(BUILD)/bin/minksum simulate --frames 40 -o $(BUILD)/demo/motion.svg
 
 # The whole suite, with assertions on (MINKSUM_ASSERTIONS keeps assert() live in Release).
 test: build
@@ -47,3 +56,4 @@ asan:
 
 clean:
 	rm -rf $(BUILD) build-asan
+

@@ -11,5 +11,8 @@ namespace minksum::cli {
 int run_sum(const std::vector<std::string>& args);
 int run_stats(const std::vector<std::string>& args);
 int run_gen(const std::vector<std::string>& args);
+int run_query(const std::vector<std::string>& args);
+int run_simulate(const std::vector<std::string>& args);
+int run_cgm(const std::vector<std::string>& args);
 
 }  // namespace minksum::cli

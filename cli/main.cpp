@@ -22,6 +22,11 @@ Usage:
   minksum sum A B [-o OUT] [--method M] [--exact] [--binary] [--json] [--hull]
   minksum stats P [--json] [--hull]
   minksum gen NAME -o OUT [--exact] [--binary]
+  minksum query collide|distance|depth|ddepth P Q [--translate-p X,Y,Z]
+                [--translate-q X,Y,Z] [--rotate-q A,B,C,D] [--direction X,Y,Z]
+                [--trajectory FILE] [--json]
+  minksum simulate [--obstacle Q] [--robot P] [--frames N] [-o OUT.svg|.html]
+  minksum cgm P [Q] [--svg OUT.svg] [--stats] [--json]
   minksum COMMAND --help          help on one command
   minksum --version
 
@@ -45,6 +50,9 @@ constexpr Command kCommands[] = {
     {"sum", run_sum},
     {"stats", run_stats},
     {"gen", run_gen},
+    {"query", run_query},
+    {"simulate", run_simulate},
+    {"cgm", run_cgm},
 };
 
 }  // namespace

@@ -1,0 +1,276 @@
+// minksum simulate: seed 001 Fig. 4 — a static obstacle and a robot moving
+// along a path that first grazes the obstacle without penetrating it and then
+// penetrates it; the robot rotates every other frame (M is recomputed then).
+#include <minksum/catalog.hpp>
+#include <minksum/io.hpp>
+#include <minksum/proximity.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include "commands.hpp"
+#include "common.hpp"
+
+namespace minksum::cli {
+
+namespace {
+
+const char* kSimulateHelp = R"(Usage: minksum simulate [options]
+
+Seed 001 Fig. 4: a static obstacle Q at the origin and a robot P moving in
+the x-y plane.  In the first pass the robot slides along a horizontal line
+whose height is computed exactly so that the robot grazes the obstacle
+(touching, never penetrating) at one frame; in the second pass it slides back
+through the obstacle.  The robot turns about the z axis (exact rational
+rotation) every other frame; M = P ⊕ (−Q) is recomputed then.  Each frame
+prints its status (separate / touching / penetrating), the exact distance or
+penetration depth, and the time of the query (and of M's computation).
+
+Options:
+  --obstacle SPEC   the obstacle Q (file or catalog name; default dodecahedron@scale:2)
+  --robot SPEC      the robot P (default cube@scale:1/2)
+  --frames N        number of frames, 4 <= N <= 10000 (default 40)
+  --turn A,B,C,D    the rotation applied every other frame, an integer
+                    quaternion (default 10,0,0,1: about z by ≈ 11.4°)
+  -o, --output OUT  write a picture of the trail: .svg, or .html (the SVG in a
+                    page); written to a temporary file and renamed
+  --json            one JSON object per frame instead of text
+)";
+
+struct Frame {
+  Point3 u;         // translation of the robot
+  std::size_t orientation;
+  ContactStatus status;
+  Rational value;   // squared distance or squared depth
+  double query_seconds = 0, build_seconds = 0;
+  bool rebuilt = false;
+};
+
+struct P2 {
+  double x, y;
+};
+std::vector<P2> hull2(std::vector<P2> pts) {  // drawing only (doubles)
+  std::sort(pts.begin(), pts.end(), [](P2 a, P2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  if (pts.size() < 3) return pts;
+  auto cross = [](P2 o, P2 a, P2 b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); };
+  std::vector<P2> h(2 * pts.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
+    h[k++] = pts[i];
+  }
+  for (std::size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
+    while (k >= t && cross(h[k - 2], h[k - 1], pts[i - 1]) <= 0) --k;
+    h[k++] = pts[i - 1];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+std::string svg_polygon(const std::vector<P2>& h, const std::string& style) {
+  std::ostringstream o;
+  o << "<polygon points=\"";
+  for (const auto& p : h) o << format_double(p.x) << "," << format_double(-p.y) << " ";
+  o << "\" style=\"" << style << "\"/>\n";
+  return o.str();
+}
+
+std::vector<P2> outline(const ConvexPolytope& p, const Point3& t) {
+  std::vector<P2> pts;
+  for (Index v = 0; v < p.num_vertices(); ++v) {
+    const Vec3d a = p.approx(v);
+    pts.push_back({a.x + to_double(t.x), a.y + to_double(t.y)});
+  }
+  return hull2(pts);
+}
+
+const char* status_colour(ContactStatus s) {
+  return s == ContactStatus::separate ? "#2a8f3a" : s == ContactStatus::touching ? "#e08a00" : "#d02020";
+}
+
+}  // namespace
+
+int run_simulate(const std::vector<std::string>& argv) {
+  const Args a = parse_args(argv, "simulate",
+                            {{"--obstacle", "", true}, {"--robot", "", true}, {"--frames", "", true},
+                             {"--turn", "", true}, {"--output", "-o", true}, {"--json", "", false}});
+  if (a.help) {
+    std::cout << kSimulateHelp;
+    return 0;
+  }
+  if (!a.positional.empty()) throw UsageError("'simulate' takes no operands (see 'minksum simulate --help')");
+  const std::string frames_text = a.value_or("--frames", "40");
+  auto frames_num = parse_number(frames_text);
+  if (!frames_num || frames_num->get_den() != 1 || *frames_num < 4 || *frames_num > 10000)
+    throw UsageError("--frames needs an integer 4 <= N <= 10000, got '" + frames_text + "'");
+  const long frames = frames_num->get_num().get_si();
+  const std::string output = a.value_or("--output", "");
+  bool html = false;
+  if (!output.empty()) {
+    const std::string ext = output.size() >= 5 ? output.substr(output.size() - 5) : "";
+    html = ext == ".html";
+    if (!html && (output.size() < 4 || output.substr(output.size() - 4) != ".svg"))
+      throw UsageError("--output: the picture is .svg or .html, got '" + output + "'");
+  }
+  Quaternion turn = {Integer(10), Integer(0), Integer(0), Integer(1)};
+  if (auto t = a.value("--turn")) {
+    std::vector<std::string> parts;
+    std::stringstream ss(*t);
+    for (std::string x; std::getline(ss, x, ',');) parts.push_back(x);
+    bool ok = parts.size() == 4;
+    for (int i = 0; ok && i < 4; ++i) {
+      auto v = parse_number(parts[i]);
+      ok = v && v->get_den() == 1;
+      if (ok) turn[i] = v->get_num();
+    }
+    if (!ok || (sgn(turn[0]) == 0 && sgn(turn[1]) == 0 && sgn(turn[2]) == 0 && sgn(turn[3]) == 0))
+      throw UsageError("--turn needs a non-zero integer quaternion A,B,C,D, got '" + *t + "'");
+  }
+  const bool json = a.flag("--json");
+  const ConvexPolytope obstacle = load_polytope(a.value_or("--obstacle", "dodecahedron@scale:2"));
+  const ConvexPolytope robot = load_polytope(a.value_or("--robot", "cube@scale:1/2"));
+
+  // Orientation k (frames 2k, 2k+1): the robot turned k times.
+  const std::size_t orientations = std::size_t((frames + 1) / 2);
+  std::vector<ConvexPolytope> robots;
+  Quaternion q = {Integer(1), Integer(0), Integer(0), Integer(0)};
+  for (std::size_t k = 0; k < orientations; ++k) {
+    robots.push_back(k == 0 ? robot : rotated(robot, q));
+    q = quaternion_product(turn, q);
+  }
+
+  // x positions: pass 1 from −X to X, pass 2 back; X clears both bodies.
+  double reach = 0;
+  for (Index v = 0; v < obstacle.num_vertices(); ++v)
+    reach = std::max({reach, std::fabs(obstacle.approx(v).x), std::fabs(obstacle.approx(v).y)});
+  double rreach = 0;
+  for (Index v = 0; v < robot.num_vertices(); ++v)
+    rreach = std::max({rreach, std::fabs(robot.approx(v).x), std::fabs(robot.approx(v).y), std::fabs(robot.approx(v).z)});
+  const long X = long(std::ceil(reach + 2 * rreach)) + 1;
+  const long pass1 = frames / 2, pass2 = frames - pass1;
+  auto xpos = [&](long i) -> Rational {
+    Rational step = i < pass1 ? Rational(2 * X * i, pass1 - 1) : Rational(2 * X * (i - pass1), pass2 > 1 ? pass2 - 1 : 1);
+    step.canonicalize();
+    if (i < pass1) return Rational(-X) + step;
+    return Rational(X) - step;
+  };
+
+  // Grazing height: P+u meets Q iff s = −u ∈ M.  On the line s = (−x, y, 0)
+  // the lowest y inside M_k is an exact rational (intersection of M_k's
+  // half-spaces with the line); the robot flies at the highest of these over
+  // the first pass, so it touches at one frame and never penetrates.
+  Rational height;
+  bool have_height = false;
+  {
+    for (std::size_t k = 0; long(2 * k) < pass1; ++k) {
+      TranslationalObstacle ob(robots[k], obstacle);
+      const ConvexPolytope& m = ob.obstacle();
+      for (long j = long(2 * k); j < std::min(long(2 * k + 2), pass1); ++j) {
+        const Rational sx = -xpos(j);
+        bool feasible = true, have_lo = false, have_hi = false;
+        Rational lo, hi;
+        for (Index f = 0; f < m.num_facets() && feasible; ++f) {
+          const Plane& pl = m.plane(f);
+          const Rational rhs = Rational(pl.d) - Rational(pl.a) * sx;  // b·y <= rhs
+          if (sgn(pl.b) == 0) {
+            if (sgn(rhs) < 0) feasible = false;
+          } else if (sgn(pl.b) > 0) {
+            Rational b = rhs / Rational(pl.b);
+            if (!have_hi || b < hi) hi = b, have_hi = true;
+          } else {
+            Rational b = rhs / Rational(pl.b);
+            if (!have_lo || b > lo) lo = b, have_lo = true;
+          }
+        }
+        if (!feasible || !have_lo || (have_hi && hi < lo)) continue;
+        if (!have_height || -lo > height) height = -lo, have_height = true;
+      }
+    }
+    if (!have_height) height = Rational(X);
+  }
+
+  TranslationalObstacle ob(robots[0], obstacle);
+  std::vector<Frame> trail;
+  std::size_t current = 0;
+  for (long i = 0; i < frames; ++i) {
+    Frame fr;
+    fr.orientation = std::size_t(i / 2);
+    if (fr.orientation != current) {
+      const auto t0 = std::chrono::steady_clock::now();
+      ob.set_p(robots[fr.orientation]);
+      fr.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      fr.rebuilt = true;
+      current = fr.orientation;
+    }
+    const Rational y = i < pass1 ? height : Rational(0);
+    fr.u = Point3(xpos(i), y, Rational(0));
+    const Point3 w(Rational(0), Rational(0), Rational(0));
+    const auto t0 = std::chrono::steady_clock::now();
+    DistanceResult d = ob.distance(fr.u, w);
+    fr.status = d.status;
+    fr.value = d.squared_distance;
+    if (d.status == ContactStatus::penetrating) fr.value = ob.penetration_depth(fr.u, w).squared_depth;
+    fr.query_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (json) {
+      std::cout << "{\"frame\": " << i << ", \"orientation\": " << fr.orientation << ", \"rebuilt\": "
+                << (fr.rebuilt ? "true" : "false") << ", \"translation\": [\"" << format_exact(fr.u.x) << "\", \""
+                << format_exact(fr.u.y) << "\", \"" << format_exact(fr.u.z) << "\"], \"status\": \""
+                << contact_status_name(fr.status) << "\", \""
+                << (fr.status == ContactStatus::penetrating ? "squared_depth" : "squared_distance") << "\": \""
+                << format_exact(fr.value) << "\", \"query_seconds\": " << format_double(fr.query_seconds)
+                << ", \"build_seconds\": " << format_double(fr.build_seconds) << "}\n";
+    } else {
+      std::cout << "frame " << i << (i < pass1 ? " (pass 1)" : " (pass 2)") << "  x = "
+                << format_double(to_double(fr.u.x)) << "  y = " << format_double(to_double(fr.u.y)) << "  "
+                << contact_status_name(fr.status);
+      if (fr.status == ContactStatus::separate)
+        std::cout << "  distance ≈ " << format_double(std::sqrt(to_double(fr.value)));
+      else if (fr.status == ContactStatus::penetrating)
+        std::cout << "  depth ≈ " << format_double(std::sqrt(to_double(fr.value)));
+      std::cout << "  query " << format_double(std::round(fr.query_seconds * 1e7) / 10) << " µs";
+      if (fr.rebuilt)
+        std::cout << "  (robot turned, M recomputed in " << format_double(std::round(fr.build_seconds * 1e5) / 100)
+                  << " ms)";
+      std::cout << "\n";
+    }
+    trail.push_back(std::move(fr));
+  }
+
+  if (!output.empty()) {
+    std::ostringstream svg;
+    const double lim = double(X) + rreach + 0.5;
+    const double w = 2 * lim, h = 2 * (to_double(height) + reach + 2 * rreach + 1);
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" << format_double(-lim) << " "
+        << format_double(-h / 2 - 1) << " " << format_double(w) << " " << format_double(h + 2)
+        << "\" width=\"900\" height=\"" << int(900 * (h + 2) / w) << "\">\n"
+        << "<title>minksum simulate: obstacle and robot trail (side view, x right, y up)</title>\n"
+        << "<rect x=\"" << format_double(-lim) << "\" y=\"" << format_double(-h / 2 - 1) << "\" width=\""
+        << format_double(w) << "\" height=\"" << format_double(h + 2) << "\" fill=\"white\"/>\n"
+        << svg_polygon(outline(obstacle, Point3(Rational(0), Rational(0), Rational(0))),
+                       "fill:#9db4d6;stroke:#2b4a7a;stroke-width:0.04");
+    for (const Frame& fr : trail)
+      svg << svg_polygon(outline(robots[fr.orientation], fr.u),
+                         std::string("fill:none;stroke-width:0.03;stroke:") + status_colour(fr.status));
+    svg << "<text x=\"" << format_double(-lim + 0.2) << "\" y=\"" << format_double(-h / 2) << "\" font-size=\"0.5\">"
+        << "green: separate, orange: touching, red: penetrating</text>\n</svg>\n";
+    const std::string body = svg.str();
+    try {
+      write_file_atomically(output, [&](std::ostream& out) {
+        if (html)
+          out << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>minksum simulate</title></head><body>\n"
+              << body << "</body></html>\n";
+        else
+          out << body;
+      });
+    } catch (const InputError& e) {
+      throw OutputError(e.what());
+    }
+    if (!json) std::cout << "picture written to " << output << "\n";
+  }
+  return 0;
+}
+
+}  // namespace minksum::cli

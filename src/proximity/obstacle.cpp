@@ -1,0 +1,675 @@
+// TranslationalObstacle: exact collision, separation distance, penetration
+// depth and directional penetration depth on M = P ⊕ (−Q) (seed 001 §4).
+//
+// Walks (docs/proximity.md):
+//   * stab(): the facet of M hit by a ray from a point strictly inside M — a
+//     visibility walk over M's facets (cross the edge whose plane through the
+//     apex separates the facet's cone from the ray), starting from the last
+//     answer; the edge tried first rotates pseudo-randomly so the walk cannot
+//     cycle forever; after F + 16 moves it gives up for a scan of all facets.
+//     Tests: orient3d (degree 3, filtered, exact).
+//   * closest_feature(): the Lin–Canny style descent over vertices, edges and
+//     facets for a point outside M.  Each move strictly decreases the
+//     distance to the current feature or keeps it and lowers the dimension,
+//     so no feature is visited twice; a stop at a vertex or an edge is the
+//     global optimum (s − x lies in the normal cone).  The only local trap is a
+//     facet whose plane does not have s strictly above it while s projects
+//     into it; there the walk falls back to a scan of the facets s sees.
+//   * penetration depth: a filtered scan of all facet planes (doubles with a
+//     proven margin) followed by exact comparisons among the candidates.
+#include <minksum/error.hpp>
+#include <minksum/predicates.hpp>
+#include <minksum/proximity.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+#include <unordered_map>
+
+namespace minksum {
+
+const char* contact_status_name(ContactStatus s) {
+  switch (s) {
+    case ContactStatus::separate: return "separate";
+    case ContactStatus::touching: return "touching";
+    case ContactStatus::penetrating: return "penetrating";
+  }
+  return "?";
+}
+
+namespace {
+
+// Feature of `poly` whose vertex set is `vs` (sorted, unique, non-empty and
+// the vertex set of a face of poly).
+Feature feature_from_vertices(const ConvexPolytope& poly, const std::vector<Index>& vs) {
+  if (vs.size() == 1) return {0, vs[0]};
+  const Index a = vs[0];
+  const Index h0 = poly.vertex_halfedge(a);
+  if (vs.size() == 2) {
+    Index h = h0;
+    do {
+      if (poly.target(h) == vs[1]) return {1, ConvexPolytope::edge(h)};
+      h = poly.next_around_vertex(h);
+    } while (h != h0);
+  }
+  Index h = h0;
+  do {
+    const Index f = poly.facet(h);
+    std::vector<Index> fv = poly.facet_vertices(f);
+    std::sort(fv.begin(), fv.end());
+    if (std::includes(fv.begin(), fv.end(), vs.begin(), vs.end())) return {2, f};
+    h = poly.next_around_vertex(h);
+  } while (h != h0);
+  return {2, poly.facet(h0)};  // unreachable for a face's vertex set
+}
+
+Rational squared_norm(const Point3& v) { return dot(v, v); }
+
+Point3 average(const std::vector<Point3>& pts) {
+  Point3 s(Rational(0), Rational(0), Rational(0));
+  for (const auto& p : pts) s = s + p;
+  return Rational(1, long(pts.size())) * s;
+}
+
+}  // namespace
+
+TranslationalObstacle::TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method)
+    : p_(std::move(p)), q_(std::move(q)), method_(method) {
+  rebuild();
+}
+
+void TranslationalObstacle::set_p(ConvexPolytope p) {
+  p_ = std::move(p);
+  rebuild();
+}
+void TranslationalObstacle::set_q(ConvexPolytope q) {
+  q_ = std::move(q);
+  rebuild();
+}
+void TranslationalObstacle::set_operands(ConvexPolytope p, ConvexPolytope q) {
+  p_ = std::move(p);
+  q_ = std::move(q);
+  rebuild();
+}
+
+void TranslationalObstacle::rebuild() {
+  neg_q_ = q_.negated();
+  std::unordered_map<Point3, Index, Point3Hash> q_index;
+  for (Index v = 0; v < q_.num_vertices(); ++v) q_index.emplace(q_.point(v), v);
+  neg_to_q_.assign(neg_q_.num_vertices(), kNoIndex);
+  for (Index v = 0; v < neg_q_.num_vertices(); ++v) neg_to_q_[v] = q_index.at(-neg_q_.point(v));
+  sum_ = minkowski_sum(p_, neg_q_, method_);
+  const ConvexPolytope& m = sum_.polytope;
+  const Index nf = m.num_facets();
+  normal_.resize(nf);
+  offset_.resize(nf);
+  norm2_.resize(nf);
+  unit_plane_.resize(nf);
+  plane_approx_.resize(nf);
+  for (Index f = 0; f < nf; ++f) {
+    const Plane& pl = m.plane(f);
+    normal_[f] = pl.normal();
+    offset_[f] = Rational(pl.d);
+    norm2_[f] = squared_norm(normal_[f]);
+    const double len = std::sqrt(to_double(norm2_[f]));
+    plane_approx_[f] = {to_double(Rational(pl.a)), to_double(Rational(pl.b)), to_double(Rational(pl.c)),
+                        to_double(offset_[f])};
+    unit_plane_[f] = {to_double(normal_[f].x) / len, to_double(normal_[f].y) / len,
+                      to_double(normal_[f].z) / len, to_double(offset_[f]) / len};
+  }
+  // avg(P) − avg(Q) is strictly inside M and has the obvious decomposition.
+  center_ = average(p_.points()) - average(q_.points());
+  center_approx_ = to_double(center_);
+  facet_features_.assign(nf, {});
+  facet_features_known_.assign(nf, 0);
+  last_stab_ = last_exit_ = last_depth_ = 0;
+  last_closest_ = {-1, kNoIndex};  // first distance walk starts at the stabbed facet
+  ++stats_.rebuilds;
+}
+
+// ---------------------------------------------------------------------------
+// Witness helpers.
+
+Feature TranslationalObstacle::feature_on_facet(Index f, const Point3& x) const {
+  const ConvexPolytope& m = sum_.polytope;
+  const Index h0 = m.facet_halfedge(f);
+  Index h = h0;
+  do {
+    if (m.point(m.origin(h)) == x) return {0, m.origin(h)};
+    h = m.next(h);
+  } while (h != h0);
+  h = h0;
+  do {
+    const Point3& a = m.point(m.origin(h));
+    const Point3& b = m.point(m.target(h));
+    if (is_zero(cross(b - a, x - a))) return {1, ConvexPolytope::edge(h)};
+    h = m.next(h);
+  } while (h != h0);
+  return {2, f};
+}
+
+void TranslationalObstacle::fill_operand_features(Witness& w) const {
+  const ConvexPolytope& m = sum_.polytope;
+  if (w.m.dim == 2 && facet_features_known_[w.m.index]) {
+    w.p = facet_features_[w.m.index][0];
+    w.q = facet_features_[w.m.index][1];
+    return;
+  }
+  std::vector<Index> mv;
+  if (w.m.dim == 0) {
+    mv = {w.m.index};
+  } else if (w.m.dim == 1) {
+    mv = {m.origin(2 * w.m.index), m.target(2 * w.m.index)};
+  } else {
+    mv = m.facet_vertices(w.m.index);
+  }
+  std::vector<Index> pv, qv;
+  for (Index v : mv) {
+    pv.push_back(sum_.vertex_origin[v].first);
+    qv.push_back(neg_to_q_[sum_.vertex_origin[v].second]);
+  }
+  std::sort(pv.begin(), pv.end());
+  pv.erase(std::unique(pv.begin(), pv.end()), pv.end());
+  std::sort(qv.begin(), qv.end());
+  qv.erase(std::unique(qv.begin(), qv.end()), qv.end());
+  w.p = feature_from_vertices(p_, pv);
+  w.q = feature_from_vertices(q_, qv);
+  if (w.m.dim == 2) {
+    facet_features_[w.m.index] = {w.p, w.q};
+    facet_features_known_[w.m.index] = 1;
+  }
+}
+
+std::pair<Point3, Point3> TranslationalObstacle::decompose(const Feature& feat, const Point3& x) const {
+  const ConvexPolytope& m = sum_.polytope;
+  auto pq = [&](Index v) -> std::pair<Point3, Point3> {
+    return {p_.point(sum_.vertex_origin[v].first), q_.point(neg_to_q_[sum_.vertex_origin[v].second])};
+  };
+  if (feat.dim == 0) return pq(feat.index);
+  if (feat.dim == 1) {
+    const Index a = m.origin(2 * feat.index), b = m.target(2 * feat.index);
+    const Point3 e = m.point(b) - m.point(a);
+    const Rational t = dot(x - m.point(a), e) / dot(e, e);
+    auto [pa, qa] = pq(a);
+    auto [pb, qb] = pq(b);
+    return {pa + t * (pb - pa), qa + t * (qb - qa)};
+  }
+  const std::vector<Index> vs = m.facet_vertices(feat.index);
+  const Point3& n = normal_[feat.index];
+  const Point3& w0 = m.point(vs[0]);
+  for (std::size_t i = 1; i + 1 < vs.size(); ++i) {
+    const Point3& wi = m.point(vs[i]);
+    const Point3& wj = m.point(vs[i + 1]);
+    const Rational area = dot(cross(wi - w0, wj - w0), n);
+    const Rational li = dot(cross(x - w0, wj - w0), n) / area;
+    const Rational lj = dot(cross(wi - w0, x - w0), n) / area;
+    const Rational l0 = 1 - li - lj;
+    if (sgn(li) < 0 || sgn(lj) < 0 || sgn(l0) < 0) continue;
+    auto [p0, q0] = pq(vs[0]);
+    auto [pi, qi] = pq(vs[i]);
+    auto [pj, qj] = pq(vs[i + 1]);
+    return {l0 * p0 + li * pi + lj * pj, l0 * q0 + li * qi + lj * qj};
+  }
+  throw std::logic_error("proximity: point not in the facet it was attributed to");
+}
+
+// ---------------------------------------------------------------------------
+// Ray stabbing.
+
+struct TranslationalObstacle::RayApprox {
+  Vec3d apex, through;
+};
+
+namespace {
+constexpr double kEps = 0x1p-53;
+}  // namespace
+
+// Filtered orient3d(apex, m[a], m[b], through) for rational points.  Every
+// input is rounded to the nearest double (relative error <= ε = 2^-53 each);
+// with D_i = |p_i| + |apex| (componentwise) bounding the rows of the exact
+// matrix, rounding the inputs and the differences moves each row by at most
+// 3ε·D_i, which moves the determinant by at most 9ε·perm(D) (multilinearity,
+// plus O(ε²)); evaluating the determinant of the rounded rows adds at most
+// 8ε·perm(D)(1 + 3ε).  The filter answers only when |det| > 64ε·perm(D) +
+// 1e-300 (the absolute term covers subnormal rounding); otherwise the exact
+// predicate decides.
+int TranslationalObstacle::orient_filtered(const Point3& apex, Index a, Index b, const Point3& through,
+                                           const RayApprox& ra) const {
+  const ConvexPolytope& m = sum_.polytope;
+  const Vec3d& pa = m.approx(a);
+  const Vec3d& pb = m.approx(b);
+  const Vec3d& c = ra.apex;
+  const double r[3][3] = {{pa.x - c.x, pa.y - c.y, pa.z - c.z},
+                          {pb.x - c.x, pb.y - c.y, pb.z - c.z},
+                          {ra.through.x - c.x, ra.through.y - c.y, ra.through.z - c.z}};
+  const double ac[3] = {std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)};
+  const double D[3][3] = {{std::fabs(pa.x) + ac[0], std::fabs(pa.y) + ac[1], std::fabs(pa.z) + ac[2]},
+                          {std::fabs(pb.x) + ac[0], std::fabs(pb.y) + ac[1], std::fabs(pb.z) + ac[2]},
+                          {std::fabs(ra.through.x) + ac[0], std::fabs(ra.through.y) + ac[1],
+                           std::fabs(ra.through.z) + ac[2]}};
+  const double det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) -
+                     r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
+                     r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+  const double perm = D[0][0] * (D[1][1] * D[2][2] + D[1][2] * D[2][1]) +
+                      D[0][1] * (D[1][0] * D[2][2] + D[1][2] * D[2][0]) +
+                      D[0][2] * (D[1][0] * D[2][1] + D[1][1] * D[2][0]);
+  const double bound = 64 * kEps * perm + 1e-300;
+  if (std::isfinite(perm) && std::isfinite(det)) {
+    if (det > bound) return 1;
+    if (det < -bound) return -1;
+  }
+  return orient3d(apex, m.point(a), m.point(b), through);
+}
+
+// Filtered sign of a·s − d (integer plane, rational s): the rounded terms
+// carry relative errors <= ε each, the 4-term sum adds <= 4ε of the sum of
+// magnitudes; the filter answers when the value exceeds 16ε·(|a||sx| + |b||sy|
+// + |c||sz| + |d|) + 1e-300.
+int TranslationalObstacle::side_filtered(Index f, const Point3& s) const {
+  const auto& p = plane_approx_[f];
+  const Vec3d sd = to_double(s);
+  const double v = p[0] * sd.x + p[1] * sd.y + p[2] * sd.z - p[3];
+  const double mag = std::fabs(p[0] * sd.x) + std::fabs(p[1] * sd.y) + std::fabs(p[2] * sd.z) + std::fabs(p[3]);
+  const double bound = 16 * kEps * mag + 1e-300;
+  if (std::isfinite(mag) && std::isfinite(v)) {
+    if (v > bound) return 1;
+    if (v < -bound) return -1;
+  }
+  return sum_.polytope.plane(f).side(s);
+}
+
+bool TranslationalObstacle::in_cone(Index f, const Point3& apex, const Point3& through, const RayApprox& ra,
+                                    Index* exit) {
+  const ConvexPolytope& m = sum_.polytope;
+  Index h0 = m.facet_halfedge(f);
+  rng_ ^= rng_ << 13, rng_ ^= rng_ >> 7, rng_ ^= rng_ << 17;
+  for (std::uint64_t k = rng_ % 4; k > 0; --k) h0 = m.next(h0);
+  Index h = h0;
+  do {
+    if (orient_filtered(apex, m.origin(h), m.target(h), through, ra) < 0) {
+      *exit = h;
+      return false;
+    }
+    h = m.next(h);
+  } while (h != h0);
+  return true;
+}
+
+Index TranslationalObstacle::stab_scan(const Point3& apex, const Point3& through) const {
+  const ConvexPolytope& m = sum_.polytope;
+  for (Index f = 0; f < m.num_facets(); ++f) {
+    bool inside = true;
+    const Index h0 = m.facet_halfedge(f);
+    Index h = h0;
+    do {
+      if (orient3d(apex, m.point(m.origin(h)), m.point(m.target(h)), through) < 0) {
+        inside = false;
+        break;
+      }
+      h = m.next(h);
+    } while (h != h0);
+    if (inside) return f;
+  }
+  throw std::logic_error("proximity: no facet of M is hit by the ray");
+}
+
+Index TranslationalObstacle::stab(const Point3& apex, const Point3& through, Index start) {
+  const ConvexPolytope& m = sum_.polytope;
+  Index f = start < m.num_facets() ? start : 0;
+  const std::uint64_t limit = std::uint64_t(m.num_facets()) + 16;
+  const RayApprox ra{&apex == &center_ ? center_approx_ : to_double(apex), to_double(through)};
+  for (std::uint64_t steps = 0; steps <= limit; ++steps) {
+    Index exit;
+    if (in_cone(f, apex, through, ra, &exit)) return f;
+    f = m.facet(ConvexPolytope::twin(exit));
+    ++stats_.walk_steps;
+  }
+  ++stats_.full_scans;
+  return stab_scan(apex, through);
+}
+
+// ---------------------------------------------------------------------------
+// Collision.
+
+CollisionResult TranslationalObstacle::collide_point(const Point3& s) {
+  ++stats_.queries;
+  CollisionResult r;
+  const ConvexPolytope& m = sum_.polytope;
+  if (s == center_) {
+    r.status = ContactStatus::penetrating;
+    r.witness.facet = last_stab_ < m.num_facets() ? last_stab_ : 0;
+    r.witness.m = {2, r.witness.facet};
+    fill_operand_features(r.witness);
+    return r;
+  }
+  const Index f = stab(center_, s, last_stab_);
+  last_stab_ = f;
+  const int side = side_filtered(f, s);
+  r.status = side > 0 ? ContactStatus::separate : side == 0 ? ContactStatus::touching : ContactStatus::penetrating;
+  r.witness.facet = f;
+  r.witness.m = side == 0 ? feature_on_facet(f, s) : Feature{2, f};
+  fill_operand_features(r.witness);
+  return r;
+}
+
+CollisionResult TranslationalObstacle::collide(const Point3& u, const Point3& w) { return collide_point(w - u); }
+
+// ---------------------------------------------------------------------------
+// Separation distance.
+
+namespace {
+struct Closest {
+  Rational d2;
+  Point3 x;
+  Feature feat;
+};
+// Closest point of segment [a, b] to s.
+Closest segment_closest(const Point3& s, const Point3& a, const Point3& b, Index ia, Index ib, Index edge) {
+  const Point3 e = b - a;
+  const Rational t = dot(s - a, e) / dot(e, e);
+  Closest c;
+  if (sgn(t) <= 0) {
+    c.x = a, c.feat = {0, ia};
+  } else if (cmp(t, 1) >= 0) {
+    c.x = b, c.feat = {0, ib};
+  } else {
+    c.x = a + t * e, c.feat = {1, edge};
+  }
+  c.d2 = squared_norm(s - c.x);
+  return c;
+}
+}  // namespace
+
+Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const {
+  const ConvexPolytope& m = sum_.polytope;
+  bool found = false;
+  Feature best{2, 0};
+  for (Index f = 0; f < m.num_facets(); ++f) {
+    if (m.plane(f).side(s) <= 0) continue;  // the closest point lies on a facet s sees
+    const Point3& n = normal_[f];
+    const Index h0 = m.facet_halfedge(f);
+    bool outside = false;
+    Closest c;
+    bool have = false;
+    Index h = h0;
+    do {
+      const Point3& a = m.point(m.origin(h));
+      const Point3& b = m.point(m.target(h));
+      if (sgn(dot(s - a, cross(b - a, n))) > 0) outside = true;
+      h = m.next(h);
+    } while (h != h0);
+    if (!outside) {
+      const Rational t = (dot(n, s) - offset_[f]) / norm2_[f];
+      c.x = s - t * n;
+      c.d2 = t * t * norm2_[f];
+      c.feat = {2, f};
+      have = true;
+    } else {
+      h = h0;
+      do {
+        Closest e = segment_closest(s, m.point(m.origin(h)), m.point(m.target(h)), m.origin(h), m.target(h),
+                                    ConvexPolytope::edge(h));
+        if (!have || e.d2 < c.d2) c = std::move(e), have = true;
+        h = m.next(h);
+      } while (h != h0);
+    }
+    if (!found || c.d2 < d2) {
+      d2 = c.d2, x = c.x, best = c.feat, facet = f;
+      found = true;
+    }
+  }
+  if (!found) throw std::logic_error("proximity: distance query on a point inside M");
+  return best;
+}
+
+Feature TranslationalObstacle::closest_feature(const Point3& s, Feature cur, Point3& x, Rational& d2, Index& facet) {
+  const ConvexPolytope& m = sum_.polytope;
+  const std::uint64_t limit = 2 * (std::uint64_t(m.num_vertices()) + m.num_edges() + m.num_facets()) + 16;
+  auto valid = [&](const Feature& f) {
+    return (f.dim == 0 && f.index < m.num_vertices()) || (f.dim == 1 && f.index < m.num_edges()) ||
+           (f.dim == 2 && f.index < m.num_facets());
+  };
+  if (!valid(cur)) cur = {2, last_stab_ < m.num_facets() ? last_stab_ : 0};
+  for (std::uint64_t steps = 0; steps < limit; ++steps) {
+    if (cur.dim == 0) {
+      const Index v = cur.index;
+      const Point3& pv = m.point(v);
+      const Point3 sv = s - pv;
+      const Index h0 = m.vertex_halfedge(v);
+      Index h = h0, move = kNoIndex;
+      do {
+        if (sgn(dot(sv, m.point(m.target(h)) - pv)) > 0) {
+          move = h;
+          break;
+        }
+        h = m.next_around_vertex(h);
+      } while (h != h0);
+      if (move == kNoIndex) {
+        x = pv;
+        d2 = squared_norm(sv);
+        h = h0;
+        facet = m.facet(h0);
+        do {  // a facet through v that s sees
+          if (m.plane(m.facet(h)).side(s) > 0) {
+            facet = m.facet(h);
+            break;
+          }
+          h = m.next_around_vertex(h);
+        } while (h != h0);
+        return cur;
+      }
+      cur = {1, ConvexPolytope::edge(move)};
+    } else if (cur.dim == 1) {
+      const Index h = 2 * cur.index;
+      const Index ia = m.origin(h), ib = m.target(h);
+      const Point3& a = m.point(ia);
+      const Point3& b = m.point(ib);
+      const Point3 e = b - a;
+      const Rational t = dot(s - a, e) / dot(e, e);
+      if (sgn(t) <= 0) {
+        cur = {0, ia};
+      } else if (cmp(t, 1) >= 0) {
+        cur = {0, ib};
+      } else {
+        const Point3 px = a + t * e;
+        const Point3 sx = s - px;
+        const Index f1 = m.facet(h), f2 = m.facet(ConvexPolytope::twin(h));
+        if (sgn(dot(sx, cross(e, normal_[f1]))) < 0) {
+          cur = {2, f1};
+        } else if (sgn(dot(sx, cross(-e, normal_[f2]))) < 0) {
+          cur = {2, f2};
+        } else {
+          x = px;
+          d2 = squared_norm(sx);
+          facet = m.plane(f1).side(s) > 0 ? f1 : f2;
+          return cur;
+        }
+      }
+    } else {
+      const Index f = cur.index;
+      const Point3& n = normal_[f];
+      const Index h0 = m.facet_halfedge(f);
+      bool outside = false;
+      Index h = h0;
+      do {
+        const Point3& a = m.point(m.origin(h));
+        if (sgn(dot(s - a, cross(m.point(m.target(h)) - a, n))) > 0) {
+          outside = true;
+          break;
+        }
+        h = m.next(h);
+      } while (h != h0);
+      if (outside) {
+        Closest best;
+        bool have = false;
+        h = h0;
+        do {
+          Closest c = segment_closest(s, m.point(m.origin(h)), m.point(m.target(h)), m.origin(h), m.target(h),
+                                      ConvexPolytope::edge(h));
+          if (!have || c.d2 < best.d2) best = std::move(c), have = true;
+          h = m.next(h);
+        } while (h != h0);
+        cur = best.feat;
+      } else {
+        const Rational side = dot(n, s) - offset_[f];
+        if (sgn(side) <= 0) break;  // local trap: scan
+        const Rational t = side / norm2_[f];
+        x = s - t * n;
+        d2 = t * side;
+        facet = f;
+        return cur;
+      }
+    }
+    ++stats_.walk_steps;
+  }
+  ++stats_.full_scans;
+  return closest_feature_scan(s, x, d2, facet);
+}
+
+DistanceResult TranslationalObstacle::distance_point(const Point3& s) {
+  CollisionResult c = collide_point(s);
+  DistanceResult r;
+  r.status = c.status;
+  r.squared_distance = 0;
+  if (c.status != ContactStatus::separate) {
+    r.witness = c.witness;
+    Point3 p, q;
+    if (c.status == ContactStatus::touching) {
+      std::tie(p, q) = decompose(c.witness.m, s);
+    } else {
+      // s = (1 − λ) c + λ y with y the exit point of the ray from c through s.
+      const Index f = c.witness.facet;
+      const Point3 dir = s - center_;
+      const Rational along = dot(normal_[f], dir);
+      if (sgn(along) <= 0) {  // s == center_
+        p = average(p_.points()), q = average(q_.points());
+      } else {
+        const Rational mu = (offset_[f] - dot(normal_[f], center_)) / along;  // >= 1
+        const Point3 y = center_ + mu * dir;
+        auto [py, qy] = decompose(feature_on_facet(f, y), y);
+        const Rational lambda = 1 / mu;
+        const Point3 pc = average(p_.points()), qc = average(q_.points());
+        p = (1 - lambda) * pc + lambda * py;
+        q = (1 - lambda) * qc + lambda * qy;
+      }
+    }
+    r.point_p = p;
+    r.point_q = q + s;
+    r.direction = Point3(Rational(0), Rational(0), Rational(0));
+    return r;
+  }
+  Point3 x;
+  Rational d2;
+  Index facet = c.witness.facet;
+  closest_feature(s, last_closest_, x, d2, facet);
+  r.squared_distance = d2;
+  r.distance = std::sqrt(to_double(d2));
+  r.witness.facet = facet;
+  r.witness.m = feature_on_facet(facet, x);
+  last_closest_ = r.witness.m;
+  fill_operand_features(r.witness);
+  auto [p, q] = decompose(r.witness.m, x);
+  r.point_p = p;
+  r.point_q = q + s;
+  r.direction = r.point_q - r.point_p;
+  return r;
+}
+
+DistanceResult TranslationalObstacle::distance(const Point3& u, const Point3& w) {
+  DistanceResult r = distance_point(w - u);
+  r.point_p = r.point_p + u;
+  r.point_q = r.point_q + u;
+  return r;
+}
+
+// ---------------------------------------------------------------------------
+// Penetration depth.
+
+DepthResult TranslationalObstacle::penetration_depth_point(const Point3& s) {
+  CollisionResult c = collide_point(s);
+  DepthResult r;
+  r.status = c.status;
+  r.squared_depth = 0;
+  r.direction = Point3(Rational(0), Rational(0), Rational(0));
+  r.witness = c.witness;
+  if (c.status != ContactStatus::penetrating) return r;
+  const ConvexPolytope& m = sum_.polytope;
+  const Index nf = m.num_facets();
+  // Filter: approximate distances (d − n̂·s) with unit normals in doubles.
+  // Each value is within 1e-12·(|s|∞·3 + |d̂| + 1) of the exact distance (the
+  // computed unit normal and offset carry a few ulps of relative error, s a
+  // half ulp; the margin is ~10³ times the worst case).  The exact minimum is
+  // among the facets whose approximation is within twice that margin of the
+  // smallest approximation; only those are compared exactly.
+  const Vec3d sd = to_double(s);
+  const double smax = std::max({std::fabs(sd.x), std::fabs(sd.y), std::fabs(sd.z)});
+  std::vector<double> approx(nf);
+  double best = std::numeric_limits<double>::infinity();
+  double dmax = 0;
+  for (Index f = 0; f < nf; ++f) {
+    const auto& u = unit_plane_[f];
+    approx[f] = u[3] - (u[0] * sd.x + u[1] * sd.y + u[2] * sd.z);
+    best = std::min(best, approx[f]);
+    dmax = std::max(dmax, std::fabs(u[3]));
+  }
+  const double margin = 2e-12 * (3 * smax + dmax + 1);
+  Index arg = kNoIndex;
+  Rational arg_gap, gap;  // d − n·s (>= 0 for s inside)
+  for (Index f = 0; f < nf; ++f) {
+    if (!(approx[f] <= best + margin) && std::isfinite(approx[f])) continue;
+    gap = offset_[f] - dot(normal_[f], s);
+    // gap_f² / |n_f|² < gap_arg² / |n_arg|²
+    if (arg == kNoIndex || gap * gap * norm2_[arg] < arg_gap * arg_gap * norm2_[f]) {
+      arg = f;
+      arg_gap = gap;
+    }
+  }
+  last_depth_ = arg;
+  const Rational t = arg_gap / norm2_[arg];  // s + t n lies on the facet plane
+  r.squared_depth = t * arg_gap;
+  r.depth = std::sqrt(to_double(r.squared_depth));
+  const Point3 move = t * normal_[arg];
+  r.direction = -move;
+  const Point3 x = s + move;
+  r.witness.facet = arg;
+  r.witness.m = feature_on_facet(arg, x);
+  fill_operand_features(r.witness);
+  return r;
+}
+
+DepthResult TranslationalObstacle::penetration_depth(const Point3& u, const Point3& w) {
+  return penetration_depth_point(w - u);
+}
+
+// ---------------------------------------------------------------------------
+// Directional penetration depth.
+
+DirectionalDepthResult TranslationalObstacle::directional_depth_point(const Point3& s, const Point3& d) {
+  if (is_zero(d)) throw UsageError("the direction of a directional penetration depth must not be zero");
+  CollisionResult c = collide_point(s);
+  DirectionalDepthResult r;
+  r.status = c.status;
+  r.t = 0;
+  r.translation = Point3(Rational(0), Rational(0), Rational(0));
+  r.witness = c.witness;
+  if (c.status != ContactStatus::penetrating) return r;
+  // s is strictly inside M: shoot the ray s − α d, α >= 0, from s itself.
+  const Index f = stab(s, s - d, last_exit_);
+  last_exit_ = f;
+  const Rational along = -dot(normal_[f], d);  // > 0: the ray leaves through f
+  r.t = (offset_[f] - dot(normal_[f], s)) / along;
+  r.translation = r.t * d;
+  r.depth = std::sqrt(to_double(r.t * r.t * dot(d, d)));
+  const Point3 y = s - r.translation;
+  r.witness.facet = f;
+  r.witness.m = feature_on_facet(f, y);
+  fill_operand_features(r.witness);
+  return r;
+}
+
+DirectionalDepthResult TranslationalObstacle::directional_depth(const Point3& u, const Point3& w, const Point3& d) {
+  return directional_depth_point(w - u, d);
+}
+
+}  // namespace minksum

@@ -1,0 +1,512 @@
+// Exact proximity queries on M = P ⊕ (−Q): every answer of TranslationalObstacle
+// is checked against brute force over all features of M, on query points that
+// lie exactly on facets, edges and vertices of M, just inside and just outside
+// them, and on a rational grid; and against certificates computed on P and Q
+// translated directly.  Plus the `minksum query` and `minksum simulate`
+// commands.
+#include <gtest/gtest.h>
+
+#include <cctype>
+
+#include <minksum/catalog.hpp>
+#include <minksum/error.hpp>
+#include <minksum/proximity.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "test_support.hpp"
+
+using namespace minksum;
+using minksum::testing::P;
+namespace fs = std::filesystem;
+
+namespace {
+
+Point3 R(const char* x, const char* y, const char* z) { return Point3(Rational(x), Rational(y), Rational(z)); }
+// p/q in lowest terms (mpq_class arithmetic requires canonical operands).
+Rational frac(long p, long q) {
+  Rational r(p, q);
+  r.canonicalize();
+  return r;
+}
+Point3 zero() { return Point3(Rational(0), Rational(0), Rational(0)); }
+
+// ---------------------------------------------------------------------------
+// Brute force on M, independent of the library's walks.
+
+ContactStatus brute_status(const ConvexPolytope& m, const Point3& s) {
+  int worst = -1;
+  for (Index f = 0; f < m.num_facets(); ++f) worst = std::max(worst, m.plane(f).side(s));
+  return worst > 0 ? ContactStatus::separate : worst == 0 ? ContactStatus::touching : ContactStatus::penetrating;
+}
+
+// Squared distance from s to M, over every vertex, edge and facet.
+Rational brute_distance2(const ConvexPolytope& m, const Point3& s) {
+  if (brute_status(m, s) != ContactStatus::separate) return 0;
+  Rational best = -1;
+  auto take = [&](const Rational& d2) {
+    if (best < 0 || d2 < best) best = d2;
+  };
+  for (Index v = 0; v < m.num_vertices(); ++v) take(dot(s - m.point(v), s - m.point(v)));
+  for (Index e = 0; e < m.num_edges(); ++e) {
+    const Point3& a = m.point(m.origin(2 * e));
+    const Point3& b = m.point(m.target(2 * e));
+    const Rational t = dot(s - a, b - a) / dot(b - a, b - a);
+    if (t > 0 && t < 1) {
+      const Point3 x = a + t * (b - a);
+      take(dot(s - x, s - x));
+    }
+  }
+  for (Index f = 0; f < m.num_facets(); ++f) {
+    const Point3 n = m.plane(f).normal();
+    const Rational t = (dot(n, s) - Rational(m.plane(f).d)) / dot(n, n);
+    const Point3 x = s - t * n;
+    bool inside = true;  // x within the facet's polygon: inside every edge's outward plane
+    const Index h0 = m.facet_halfedge(f);
+    Index h = h0;
+    do {
+      const Point3& a = m.point(m.origin(h));
+      if (sgn(dot(x - a, cross(m.point(m.target(h)) - a, n))) > 0) inside = false;
+      h = m.next(h);
+    } while (h != h0);
+    if (inside) take(dot(s - x, s - x));
+  }
+  return best;
+}
+
+Rational brute_depth2(const ConvexPolytope& m, const Point3& s) {
+  if (brute_status(m, s) != ContactStatus::penetrating) return 0;
+  Rational best = -1;
+  for (Index f = 0; f < m.num_facets(); ++f) {
+    const Point3 n = m.plane(f).normal();
+    const Rational gap = Rational(m.plane(f).d) - dot(n, s);
+    const Rational d2 = gap * gap / dot(n, n);
+    if (best < 0 || d2 < best) best = d2;
+  }
+  return best;
+}
+
+Rational brute_alpha(const ConvexPolytope& m, const Point3& s, const Point3& d) {
+  if (brute_status(m, s) != ContactStatus::penetrating) return 0;
+  Rational best = -1;
+  for (Index f = 0; f < m.num_facets(); ++f) {
+    const Point3 n = m.plane(f).normal();
+    const Rational along = -dot(n, d);
+    if (sgn(along) <= 0) continue;
+    const Rational a = (Rational(m.plane(f).d) - dot(n, s)) / along;
+    if (best < 0 || a < best) best = a;
+  }
+  return best;
+}
+
+// Vertex set of a feature.
+std::vector<Index> feature_vertices(const ConvexPolytope& p, const Feature& f) {
+  std::vector<Index> v;
+  if (f.dim == 0) v = {f.index};
+  else if (f.dim == 1) v = {p.origin(2 * f.index), p.target(2 * f.index)};
+  else v = p.facet_vertices(f.index);
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+// Vertices of `p` maximising <x, n>.
+std::vector<Index> support_set(const ConvexPolytope& p, const Point3& n) {
+  Rational best;
+  std::vector<Index> out;
+  for (Index v = 0; v < p.num_vertices(); ++v) {
+    const Rational h = dot(p.point(v), n);
+    if (out.empty() || h > best) best = h, out = {v};
+    else if (h == best) out.push_back(v);
+  }
+  return out;
+}
+
+bool point_in_feature(const ConvexPolytope& m, const Feature& f, const Point3& x) {
+  if (f.dim == 0) return m.point(f.index) == x;
+  if (f.dim == 1) {
+    const Point3& a = m.point(m.origin(2 * f.index));
+    const Point3& b = m.point(m.target(2 * f.index));
+    if (!is_zero(cross(b - a, x - a))) return false;
+    const Rational t = dot(x - a, b - a) / dot(b - a, b - a);
+    return t > 0 && t < 1;
+  }
+  if (m.plane(f.index).side(x) != 0) return false;
+  for (Index g = 0; g < m.num_facets(); ++g)
+    if (m.plane(g).side(x) > 0) return false;
+  // Relative interior: not on any edge of the facet.
+  for (Index v : m.facet_vertices(f.index))
+    if (m.point(v) == x) return false;
+  return true;
+}
+
+// The features of P and Q behind a feature of M are face_P(n) and face_Q(−n)
+// for a normal n of the feature (the facet normal, or the sum of the normals
+// of the facets around it).
+void check_operand_features(const TranslationalObstacle& ob, const Witness& w) {
+  const ConvexPolytope& m = ob.obstacle();
+  Point3 n = zero();
+  if (w.m.dim == 2) n = m.plane(w.m.index).normal();
+  else if (w.m.dim == 1)
+    n = m.plane(m.facet(2 * w.m.index)).normal() + m.plane(m.facet(2 * w.m.index + 1)).normal();
+  else {
+    const Index h0 = m.vertex_halfedge(w.m.index);
+    Index h = h0;
+    do {
+      n = n + m.plane(m.facet(h)).normal();
+      h = m.next_around_vertex(h);
+    } while (h != h0);
+  }
+  std::vector<Index> sp = support_set(ob.p(), n), sq = support_set(ob.q(), -n);
+  std::sort(sp.begin(), sp.end());
+  std::sort(sq.begin(), sq.end());
+  EXPECT_EQ(feature_vertices(ob.p(), w.p), sp);
+  EXPECT_EQ(feature_vertices(ob.q(), w.q), sq);
+}
+
+// Query points: every vertex, edge midpoint and facet centroid of M, and
+// points on the segments from M's interior point through them at k/4 of the
+// way (k = 4: on the feature; k < 4 inside; k > 4 outside), and a grid.
+std::vector<Point3> query_points(const TranslationalObstacle& ob, bool grid) {
+  const ConvexPolytope& m = ob.obstacle();
+  std::vector<Point3> base;
+  for (Index v = 0; v < m.num_vertices(); ++v) base.push_back(m.point(v));
+  for (Index e = 0; e < m.num_edges(); ++e)
+    base.push_back(Rational(1, 2) * (m.point(m.origin(2 * e)) + m.point(m.target(2 * e))));
+  for (Index f = 0; f < m.num_facets(); ++f) {
+    auto vs = m.facet_vertices(f);
+    Point3 c = zero();
+    for (Index v : vs) c = c + m.point(v);
+    base.push_back(frac(1, long(vs.size())) * c);
+  }
+  const Point3 o = ob.interior_point();
+  std::vector<Point3> out;
+  for (const auto& b : base)
+    for (int k : {1, 3, 4, 5, 9}) out.push_back(o + frac(k, 4) * (b - o));
+  // Just inside / just outside vertices and edges.
+  for (const auto& b : base) {
+    out.push_back(o + (Rational(1) - Rational(1, 1000000)) * (b - o));
+    out.push_back(o + (Rational(1) + Rational(1, 1000000)) * (b - o));
+  }
+  if (grid)
+    for (int x = -6; x <= 6; x += 2)
+      for (int y = -6; y <= 6; y += 3)
+        for (int z = -6; z <= 6; z += 4) out.emplace_back(frac(x, 3), frac(y, 3), frac(z, 3));
+  return out;
+}
+
+void check_all_queries(TranslationalObstacle& ob, const std::vector<Point3>& points) {
+  const ConvexPolytope& m = ob.obstacle();
+  const Point3 dirs[] = {P(1, 0, 0), P(0, -1, 0), R("1/3", "-2/7", "5/11"), P(1, 1, 1)};
+  int k = 0;
+  for (const Point3& s : points) {
+    SCOPED_TRACE("s = (" + format_exact(s.x) + ", " + format_exact(s.y) + ", " + format_exact(s.z) + ")");
+    const ContactStatus want = brute_status(m, s);
+    // Collision: status and the stabbed facet.
+    CollisionResult c = ob.collide_point(s);
+    ASSERT_EQ(c.status, want);
+    ASSERT_LT(c.witness.facet, m.num_facets());
+    if (!(s == ob.interior_point())) {
+      const Point3 dir = s - ob.interior_point();
+      const Point3 n = m.plane(c.witness.facet).normal();
+      const Rational along = dot(n, dir);
+      ASSERT_GT(along, 0);
+      const Point3 y = ob.interior_point() + ((Rational(m.plane(c.witness.facet).d) - dot(n, ob.interior_point())) / along) * dir;
+      EXPECT_EQ(brute_status(m, y), ContactStatus::touching) << "stabbed facet does not hold the exit point";
+    }
+    if (want == ContactStatus::touching) {
+      EXPECT_TRUE(point_in_feature(m, c.witness.m, s)) << "touching feature dim " << c.witness.m.dim;
+    }
+    check_operand_features(ob, c.witness);
+
+    // Distance.
+    DistanceResult d = ob.distance_point(s);
+    EXPECT_EQ(d.status, want);
+    EXPECT_EQ(d.squared_distance, brute_distance2(m, s));
+    EXPECT_EQ(dot(d.point_q - d.point_p, d.point_q - d.point_p), d.squared_distance);
+    EXPECT_NE(brute_status(ob.p(), d.point_p), ContactStatus::separate);
+    EXPECT_NE(brute_status(ob.q().translated(s), d.point_q), ContactStatus::separate);
+    if (want == ContactStatus::separate) {
+      EXPECT_TRUE(point_in_feature(m, d.witness.m, d.point_p - (d.point_q - s)));
+      check_operand_features(ob, d.witness);
+    }
+
+    // Penetration depth.
+    DepthResult p = ob.penetration_depth_point(s);
+    EXPECT_EQ(p.status, want);
+    EXPECT_EQ(p.squared_depth, brute_depth2(m, s));
+    EXPECT_EQ(dot(p.direction, p.direction), p.squared_depth);
+    if (want == ContactStatus::penetrating) {
+      EXPECT_EQ(brute_status(m, s - p.direction), ContactStatus::touching);
+      EXPECT_TRUE(point_in_feature(m, p.witness.m, s - p.direction));
+      check_operand_features(ob, p.witness);
+    }
+
+    // Directional penetration depth.
+    const Point3& dd = dirs[k++ % 4];
+    DirectionalDepthResult r = ob.directional_depth_point(s, dd);
+    EXPECT_EQ(r.status, want);
+    EXPECT_EQ(r.t, brute_alpha(m, s, dd));
+    if (want == ContactStatus::penetrating) {
+      EXPECT_EQ(brute_status(m, s - r.translation), ContactStatus::touching);
+      EXPECT_TRUE(point_in_feature(m, r.witness.m, s - r.translation));
+      check_operand_features(ob, r.witness);
+    }
+  }
+}
+
+struct Pair {
+  const char* p;
+  const char* q;
+};
+
+class ProximityPairs : public ::testing::TestWithParam<Pair> {};
+
+TEST_P(ProximityPairs, AllQueriesMatchBruteForce) {
+  const Pair pr = GetParam();
+  TranslationalObstacle ob(catalog_polytope(pr.p), catalog_polytope(pr.q));
+  ASSERT_EQ(ob.obstacle().check_invariants(), "");
+  check_all_queries(ob, query_points(ob, true));
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalog, ProximityPairs,
+                         ::testing::Values(Pair{"cube", "cube"}, Pair{"cube", "tetra"},
+                                           Pair{"octahedron", "cube@rot:1,2,3,4"}, Pair{"tetra", "tetra"},
+                                           Pair{"dodecahedron", "tetra@rot:7"}, Pair{"random:8:3", "random:7:4"},
+                                           Pair{"icosahedron", "cube@scale:1/2"}, Pair{"box:1:2:3", "octahedron@rot:0,0,1,1"}),
+                         [](const ::testing::TestParamInfo<Pair>& info) {
+                           // A readable test name: the two specs, non-alphanumerics as '_'.
+                           std::string n = std::to_string(info.index) + "_" + std::string(info.param.p) + "_" + info.param.q;
+                           for (char& c : n)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return n;
+                         });
+
+TEST(Proximity, CvmsAndChmsObstaclesAnswerAlike) {
+  TranslationalObstacle a(catalog_polytope("cube@rot:3"), catalog_polytope("icosahedron"), Method::cvms);
+  TranslationalObstacle b(catalog_polytope("cube@rot:3"), catalog_polytope("icosahedron"), Method::chms);
+  for (const Point3& s : query_points(a, false)) {
+    EXPECT_EQ(a.collide_point(s).status, b.collide_point(s).status);
+    EXPECT_EQ(a.distance_point(s).squared_distance, b.distance_point(s).squared_distance);
+    EXPECT_EQ(a.penetration_depth_point(s).squared_depth, b.penetration_depth_point(s).squared_depth);
+  }
+}
+
+// Grazing contacts: two unit cubes side by side, touching along a facet, an
+// edge, a vertex; then moved by 10^-40 either way.
+TEST(Proximity, GrazingContactsAreExact) {
+  TranslationalObstacle ob(catalog_polytope("cube"), catalog_polytope("cube"));
+  const Rational tiny("1/10000000000000000000000000000000000000000");
+  const Point3 contacts[] = {P(2, 0, 0), P(2, 2, 0), P(2, 2, 2), P(2, 1, -1), R("2", "3/2", "-2")};
+  const int want_dim[] = {2, 1, 0, 2, 1};
+  for (int i = 0; i < 5; ++i) {
+    const Point3& w = contacts[i];
+    CollisionResult c = ob.collide(zero(), w);
+    EXPECT_EQ(c.status, ContactStatus::touching);
+    EXPECT_EQ(c.witness.m.dim, want_dim[i]);
+    const Point3 out = (Rational(1) + tiny) * w, in = (Rational(1) - tiny) * w;
+    EXPECT_EQ(ob.collide(zero(), out).status, ContactStatus::separate);
+    EXPECT_EQ(ob.collide(zero(), in).status, ContactStatus::penetrating);
+    // Translating both by the same amount changes nothing.
+    EXPECT_EQ(ob.collide(R("1/3", "1/7", "-5"), w + R("1/3", "1/7", "-5")).status, ContactStatus::touching);
+    DistanceResult d = ob.distance(zero(), out);
+    EXPECT_EQ(d.status, ContactStatus::separate);
+    EXPECT_EQ(d.squared_distance, brute_distance2(ob.obstacle(), out));
+    if (i < 3) {
+      EXPECT_EQ(d.squared_distance, tiny * tiny * dot(w, w));  // facet, edge, vertex: along w
+    }
+    EXPECT_GT(d.distance, 0);
+    DepthResult p = ob.penetration_depth(zero(), in);
+    EXPECT_EQ(p.status, ContactStatus::penetrating);
+    EXPECT_GT(p.squared_depth, 0);
+  }
+}
+
+// The distance through M equals the distance of P+u and Q+w computed directly:
+// the closest points lie in the translated bodies and the plane orthogonal to
+// their difference separates them (a certificate that needs no M), and an
+// independently computed sum of the translated bodies gives the same value.
+TEST(Proximity, DistanceThroughMEqualsDirectDistance) {
+  ConvexPolytope p = catalog_polytope("dodecahedron"), q = catalog_polytope("cube@rot:5");
+  TranslationalObstacle ob(p, q);
+  const Point3 us[] = {R("-3", "1/2", "0"), R("0", "0", "0"), R("1/3", "-4", "2/7"), R("5", "5", "5")};
+  const Point3 ws[] = {R("3", "0", "1/5"), R("4", "-1/2", "1"), R("-2", "2", "-3"), R("-1", "1", "2")};
+  for (const Point3& u : us)
+    for (const Point3& w : ws) {
+      DistanceResult d = ob.distance(u, w);
+      ConvexPolytope pu = p.translated(u), qw = q.translated(w);
+      EXPECT_NE(brute_status(pu, d.point_p), ContactStatus::separate);
+      EXPECT_NE(brute_status(qw, d.point_q), ContactStatus::separate);
+      const Point3 dir = d.point_q - d.point_p;
+      EXPECT_EQ(dot(dir, dir), d.squared_distance);
+      if (d.status == ContactStatus::separate) {
+        for (Index v = 0; v < pu.num_vertices(); ++v) EXPECT_LE(dot(pu.point(v), dir), dot(d.point_p, dir));
+        for (Index v = 0; v < qw.num_vertices(); ++v) EXPECT_GE(dot(qw.point(v), dir), dot(d.point_q, dir));
+      }
+      SumResult direct = minkowski_sum(pu, qw.negated(), Method::chms);
+      EXPECT_EQ(d.squared_distance, brute_distance2(direct.polytope, zero()));
+    }
+}
+
+// A coherent trajectory: the walks move a few steps per query, never scan.
+TEST(Proximity, CoherentTrajectoryWalksLocally) {
+  TranslationalObstacle ob(catalog_polytope("random:20:5"), catalog_polytope("cube@rot:2"));
+  const int n = 200;
+  for (int i = 0; i < n; ++i) {
+    const Rational t = frac(i - n / 2, n / 8);
+    const Point3 s(t, frac(1, 3) + t / 5, frac(-1, 2));
+    const ContactStatus want = brute_status(ob.obstacle(), s);
+    EXPECT_EQ(ob.collide_point(s).status, want);
+    EXPECT_EQ(ob.distance_point(s).squared_distance, brute_distance2(ob.obstacle(), s));
+  }
+  EXPECT_EQ(ob.stats().full_scans, 0u);
+  EXPECT_LT(ob.stats().walk_steps, std::uint64_t(20 * n));
+}
+
+TEST(Proximity, RotationRebuildsM) {
+  ConvexPolytope p = catalog_polytope("cube"), q = catalog_polytope("tetra");
+  TranslationalObstacle ob(p, q);
+  ob.collide_point(P(3, 0, 0));
+  const Quaternion quat = {Integer(1), Integer(2), Integer(3), Integer(4)};
+  ob.set_q(rotated(q, quat));
+  EXPECT_EQ(ob.stats().rebuilds, 2u);
+  EXPECT_TRUE(minksum::testing::same_polytope(ob.q(), catalog_polytope("tetra@rot:1,2,3,4")));
+  check_all_queries(ob, query_points(ob, false));
+  // The product of quaternions composes the rotations.
+  const Quaternion a = {Integer(2), Integer(1), Integer(0), Integer(0)}, b = {Integer(1), Integer(0), Integer(3), Integer(1)};
+  const Point3 x = R("1/3", "-2", "5");
+  EXPECT_EQ(rotate(quaternion_product(a, b), x), rotate(a, rotate(b, x)));
+  EXPECT_THROW(rotate({Integer(0), Integer(0), Integer(0), Integer(0)}, x), UsageError);
+}
+
+TEST(Proximity, DirectionalDepthIsNotNormalised) {
+  TranslationalObstacle ob(catalog_polytope("cube"), catalog_polytope("cube"));
+  // s = (1, 0, 0): P must move by 3 along -x (M is [-2,2]^3: exit at x = -2).
+  DirectionalDepthResult r = ob.directional_depth(P(0, 0, 0), P(1, 0, 0), P(-2, 0, 0));
+  EXPECT_EQ(r.status, ContactStatus::penetrating);
+  EXPECT_EQ(r.t, Rational(1, 2));  // P moves by (1/2)(-2,0,0)... s − α d = (1 + 2α) hits 2 at α = 1/2
+  EXPECT_DOUBLE_EQ(r.depth, 1.0);
+  EXPECT_THROW(ob.directional_depth(zero(), zero(), zero()), UsageError);
+}
+
+// ---------------------------------------------------------------------------
+// The command line.
+
+struct CmdResult {
+  int status;
+  std::string out, err;
+};
+
+CmdResult run(const std::string& args, const std::string& input = "") {
+  static int counter = 0;
+  const fs::path dir = fs::temp_directory_path() / ("minksum_prox_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string err = (dir / ("err" + std::to_string(counter))).string();
+  const std::string in = (dir / ("in" + std::to_string(counter++))).string();
+  std::string cmd = std::string(MINKSUM_BIN) + " " + args + " 2>" + err;
+  if (!input.empty()) {
+    std::ofstream(in) << input;
+    cmd += " <" + in;
+  }
+  CmdResult r;
+  FILE* p = ::popen(cmd.c_str(), "r");
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int st = ::pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  std::ifstream e(err);
+  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  return r;
+}
+
+bool has(const std::string& s, const std::string& what) { return s.find(what) != std::string::npos; }
+
+TEST(ProximityCli, CollideDistanceDepthDdepthJson) {
+  CmdResult c = run("query collide cube cube --translate-q 2,1/3,0 --json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  EXPECT_TRUE(has(c.out, "\"status\": \"touching\"")) << c.out;
+  EXPECT_TRUE(has(c.out, "\"witness\"")) << c.out;
+
+  CmdResult d = run("query distance cube cube --translate-q 3,1/3,0 --translate-p 0,0,-1/2 --json");
+  ASSERT_EQ(d.status, 0) << d.err;
+  EXPECT_TRUE(has(d.out, "\"status\": \"separate\"")) << d.out;
+  EXPECT_TRUE(has(d.out, "\"squared_distance\": \"1\"")) << d.out;
+  EXPECT_TRUE(has(d.out, "\"distance\": 1")) << d.out;
+  EXPECT_TRUE(has(d.out, "\"direction\"")) << d.out;
+
+  CmdResult p = run("query depth cube cube --translate-q 1/3,0,0 --json");
+  ASSERT_EQ(p.status, 0) << p.err;
+  EXPECT_TRUE(has(p.out, "\"status\": \"penetrating\"")) << p.out;
+  EXPECT_TRUE(has(p.out, "\"squared_depth\": \"25/9\"")) << p.out;
+
+  CmdResult r = run("query ddepth cube cube --translate-q 1/3,0,0 --direction -1,0,0 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "\"t\": \"5/3\"")) << r.out;
+
+  CmdResult rot = run("query collide cube cube --rotate-q 1,0,0,1 --translate-q 2,0,0 --json");
+  ASSERT_EQ(rot.status, 0) << rot.err;
+  EXPECT_TRUE(has(rot.out, "\"status\": \"touching\"")) << rot.out;
+
+  CmdResult text = run("query distance cube tetra --translate-q 5,0,0");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_TRUE(has(text.out, "separate")) << text.out;
+}
+
+TEST(ProximityCli, BadVectorsAndUsage) {
+  EXPECT_EQ(run("query collide cube cube --translate-q 1,2").status, 2);
+  EXPECT_EQ(run("query collide cube cube --translate-q 1,x,2").status, 2);
+  EXPECT_EQ(run("query collide cube cube --translate-q 1,nan,2").status, 2);
+  EXPECT_EQ(run("query collide cube cube --translate-q 1/0,0,2").status, 2);
+  EXPECT_EQ(run("query ddepth cube cube").status, 2);
+  EXPECT_EQ(run("query ddepth cube cube --direction 0,0,0").status, 2);
+  EXPECT_EQ(run("query collide cube cube --rotate-q 0,0,0,0").status, 2);
+  EXPECT_EQ(run("query frobnicate cube cube").status, 2);
+  EXPECT_EQ(run("query collide cube").status, 2);
+  EXPECT_EQ(run("query --help").status, 0);
+}
+
+TEST(ProximityCli, TrajectoryMode) {
+  const std::string poses =
+      "# P translation, then Q translation\n"
+      "0,0,0 3,0,0\n"
+      "0,0,0 2,0,0\n"
+      "\n"
+      "1/2,0,0 2,0,0\n";
+  CmdResult r = run("query collide cube cube --trajectory - --json", poses);
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string l1, l2, l3;
+  std::getline(lines, l1), std::getline(lines, l2), std::getline(lines, l3);
+  EXPECT_TRUE(has(l1, "separate")) << r.out;
+  EXPECT_TRUE(has(l2, "touching")) << r.out;
+  EXPECT_TRUE(has(l3, "penetrating")) << r.out;
+
+  CmdResult bad = run("query distance cube cube --trajectory -", "0,0,0 1,2\n");
+  EXPECT_EQ(bad.status, 3);
+  EXPECT_TRUE(has(bad.err, "line 1")) << bad.err;
+}
+
+TEST(ProximityCli, SimulateWritesItsPictureAtomically) {
+  const fs::path dir = fs::temp_directory_path() / ("minksum_sim_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string out = (dir / "trail.svg").string();
+  CmdResult r = run("simulate --frames 12 -o " + out);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(has(r.out, "touching")) << r.out;
+  EXPECT_TRUE(has(r.out, "penetrating")) << r.out;
+  std::ifstream f(out);
+  std::string svg((std::istreambuf_iterator<char>(f)), {});
+  EXPECT_TRUE(has(svg, "<svg")) << svg.substr(0, 200);
+  EXPECT_TRUE(has(svg, "</svg>"));
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+  EXPECT_EQ(run("simulate --frames 12 -o " + (dir / "x.txt").string()).status, 2);
+  fs::remove_all(dir);
+}
+
+}  // namespace

@@ -55,5 +55,29 @@ asan:
 	$(MAKE) --no-print-directory test BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON
 
 clean:
-	rm -rf $(BUILD) build-asan
+	rm -rf $(BUILD) build-asan $(BENCH_BUILD)
 
+# The side-by-side benchmark (bench/, docs/benchmarks.md): a separate Release
+# build with assertions off.  `make bench` runs the full suite and rewrites
+# docs/benchmarks.md, docs/benchmarks-plot.svg and docs/benchmarks-proximity.md
+# (minksum's proximity queries against libccd); `make bench-quick` runs the
+# short development suite and writes build-bench/quick/benchmarks.md.
+BENCH_BUILD ?= build-bench
+BENCH_JOBS  ?= 2
+BENCH_CONFIGURE = cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DMINKSUM_BENCH=ON \
+                  -DMINKSUM_ASSERTIONS=OFF -DMINKSUM_TESTS=OFF
+.PHONY: bench bench-quick
+
+bench:
+	@$(MAKE) --no-print-directory setup
+	$(BENCH_CONFIGURE)
+	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target minksum_bench bench_proximity
+	$(BENCH_BUILD)/bin/minksum_bench --suite full --out docs --command "make bench"
+	bash bench/proximity/run.sh $(BENCH_BUILD)
+
+bench-quick:
+	@$(MAKE) --no-print-directory setup
+	$(BENCH_CONFIGURE)
+	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target minksum_bench
+	@mkdir -p $(BENCH_BUILD)/quick
+	$(BENCH_BUILD)/bin/minksum_bench --suite quick --out $(BENCH_BUILD)/quick --command "make bench-quick"

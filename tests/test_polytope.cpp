@@ -325,3 +325,28 @@ TEST(Polytope, CollapsedSliversAfterWeldingAreDropped) {
   EXPECT_EQ(c.num_facets(), 6u);
   EXPECT_EQ(c.volume(), Rational(8));
 }
+
+TEST(Hull, OutputIsCanonicalWhateverTheTriangulation) {
+  // Coplanar points on every facet: the hull triangulates them in some order,
+  // the polytope must come out the same every time (regression: catalog
+  // builds were not deterministic).
+  std::vector<Point3> pts;
+  for (long x = -2; x <= 2; ++x)
+    for (long y = -2; y <= 2; ++y)
+      for (long z = -2; z <= 2; ++z)
+        if (std::abs(x) == 2 || std::abs(y) == 2 || std::abs(z) == 2) pts.push_back(P(x, y, z));
+  const ConvexPolytope first = ConvexPolytope::hull(pts);
+  for (int run = 0; run < 20; ++run) {
+    const ConvexPolytope again = ConvexPolytope::hull(pts);
+    ASSERT_EQ(again.num_facets(), first.num_facets());
+    for (Index f = 0; f < first.num_facets(); ++f) {
+      EXPECT_EQ(again.facet_vertices(f), first.facet_vertices(f)) << "run " << run << " facet " << f;
+      EXPECT_EQ(again.plane(f), first.plane(f));
+    }
+  }
+  EXPECT_EQ(first.check_invariants(), "");
+  for (Index f = 0; f < first.num_facets(); ++f) {
+    auto loop = first.facet_vertices(f);
+    EXPECT_EQ(loop.front(), *std::min_element(loop.begin(), loop.end()));
+  }
+}

@@ -14,6 +14,10 @@ class PolytopeBuilder {
   // `points_are_hull` skips nothing: it only changes the wording of errors.
   static ConvexPolytope build(const Mesh& mesh, const std::string& source);
 
+  // Renumber the facets of p canonically: each facet's loop starts at its
+  // smallest vertex, facets sorted by their loops.  O(n log n), no geometry.
+  static void canonicalize_facets(ConvexPolytope& p);
+
   // The exact canonical plane through a planar polygon with (unnormalised)
   // normal n passing through p.  Precondition: n != 0.
   static Plane canonical_plane(const Point3& n, const Point3& p);

@@ -92,6 +92,9 @@ ConvexPolytope ConvexPolytope::hull(const std::vector<Point3>& points, const std
   }
   std::sort(m.faces.begin(), m.faces.end());
   ConvexPolytope result = PolytopeBuilder::build(m, source);
+  // CGAL may triangulate a coplanar facet differently from call to call,
+  // which changes the merged facets' order and first vertices: fix both.
+  PolytopeBuilder::canonicalize_facets(result);
   for (auto& s : result.source_vertex_) s = input_index[s];
   return result;
 }

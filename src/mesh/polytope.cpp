@@ -613,6 +613,34 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   return p;
 }
 
+void PolytopeBuilder::canonicalize_facets(ConvexPolytope& p) {
+  const Index nf = p.num_facets();
+  std::vector<std::vector<Index>> loops(nf);
+  for (Index f = 0; f < nf; ++f) {
+    Index h = p.facet_he_[f], best = h;
+    do {
+      if (p.he_origin_[h] < p.he_origin_[best]) best = h;
+      h = p.he_next_[h];
+    } while (h != p.facet_he_[f]);
+    p.facet_he_[f] = best;
+    loops[f] = p.facet_vertices(f);
+  }
+  std::vector<Index> order(nf);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](Index x, Index y) { return loops[x] < loops[y]; });
+  std::vector<Index> new_id(nf);
+  for (Index i = 0; i < nf; ++i) new_id[order[i]] = i;
+  std::vector<Plane> planes(nf);
+  std::vector<Index> facet_he(nf);
+  for (Index f = 0; f < nf; ++f) {
+    planes[new_id[f]] = std::move(p.planes_[f]);
+    facet_he[new_id[f]] = p.facet_he_[f];
+  }
+  p.planes_ = std::move(planes);
+  p.facet_he_ = std::move(facet_he);
+  for (auto& f : p.he_facet_) f = new_id[f];
+}
+
 // ---------------------------------------------------------------------------
 
 ConvexPolytope ConvexPolytope::from_mesh(const Mesh& mesh, const std::string& source) {

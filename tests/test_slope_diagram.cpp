@@ -15,6 +15,7 @@
 #include <random>
 
 #include "sum/slope_diagram.hpp"
+#include "method_families.hpp"
 #include "test_support.hpp"
 
 using namespace minksum;
@@ -89,12 +90,6 @@ void expect_matches_oracle(const std::string& a, const std::string& b, bool chec
   expect_matches_oracle(cat(a), cat(b), a + " + " + b, check_provenance);
 }
 
-const char* kSmallSolids[] = {
-    "tetra",          "cube",           "octahedron",          "dodecahedron",         "icosahedron",
-    "truncated-tetrahedron", "cuboctahedron", "truncated-cube", "truncated-octahedron", "rhombicuboctahedron",
-    "triakis-tetrahedron", "rhombic-dodecahedron", "triakis-octahedron", "tetrakis-hexahedron",
-    "rhombic-triacontahedron", "icosidodecahedron",
-};
 
 }  // namespace
 
@@ -106,9 +101,9 @@ TEST(SlopeDiagram, MethodsAreAvailable) {
 }
 
 TEST(SlopeDiagram, AllPairsOfSmallSolids) {
-  for (const char* x : kSmallSolids)
-    for (const char* y : kSmallSolids)
-      if (std::string(x) <= std::string(y)) expect_matches_oracle(x, y);
+  for (const std::string& x : small_solids())
+    for (const std::string& y : small_solids())
+      if (x <= y) expect_matches_oracle(x, y);
 }
 
 TEST(SlopeDiagram, CubePlusGeodesicSpheres) {
@@ -146,7 +141,7 @@ TEST(SlopeDiagram, IdenticalSpheres) {
 }
 
 TEST(SlopeDiagram, IdenticalSolidsAreAllFacetPlusFacet) {
-  for (const char* x : kSmallSolids) {
+  for (const std::string& x : small_solids()) {
     SCOPED_TRACE(x);
     const ConvexPolytope p = cat(x);
     for (Method m : {Method::essdms, Method::mssd}) {
@@ -360,42 +355,10 @@ TEST(SlopeDiagram, DegenerateOperandsAreRefusedBeforeAnyMethod) {
 // points, and random exact rotations of catalog solids.  Each pair is checked
 // with both methods against one oracle.
 void random_pairs(unsigned first_seed, unsigned last_seed) {
-  const std::vector<std::string> solids = {"tetra", "cube", "octahedron", "dodecahedron", "icosahedron",
-                                           "cuboctahedron", "truncated-cube", "rhombic-dodecahedron"};
-  int done = 0;
-  for (unsigned seed = first_seed; seed <= last_seed; ++seed) {
-    std::mt19937_64 rng(seed);
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    {
-      std::string a = "random:" + std::to_string(4 + rng() % 30) + ":" + std::to_string(seed);
-      std::string b = "random:" + std::to_string(4 + rng() % 30) + ":" + std::to_string(seed + 1000);
-      expect_matches_oracle(cat(a), cat(b), a + " + " + b, seed % 10 == 0);
-    }
-    {
-      auto lattice = [&](int n, long r) {
-        std::vector<Point3> pts;
-        for (int i = 0; i < n; ++i)
-          pts.push_back(P(long(rng() % (2 * r + 1)) - r, long(rng() % (2 * r + 1)) - r, long(rng() % (2 * r + 1)) - r));
-        for (;;) {
-          try {
-            return ConvexPolytope::hull(pts);
-          } catch (const InputError&) {  // flat sample: add a point
-            pts.push_back(P(long(rng() % (2 * r + 1)) - r, long(rng() % (2 * r + 1)) - r, long(rng() % (2 * r + 1)) - r));
-          }
-        }
-      };
-      ConvexPolytope a = lattice(8 + int(rng() % 20), 2), b = lattice(8 + int(rng() % 20), 3);
-      expect_matches_oracle(a, b, "lattice", seed % 10 == 0);
-    }
-    {
-      std::string a = solids[rng() % solids.size()] + "@rot:" + std::to_string(rng() % 100000);
-      std::string b = solids[rng() % solids.size()] + "@rot:" + std::to_string(rng() % 100000);
-      expect_matches_oracle(cat(a), cat(b), a + " + " + b, seed % 10 == 0);
-    }
-    done += 3;
-    if (::testing::Test::HasFatalFailure()) return;
-  }
-  EXPECT_EQ(done, 3 * int(last_seed - first_seed + 1));
+  int checked = for_each_random_pair(first_seed, last_seed,
+                                     [](const ConvexPolytope& a, const ConvexPolytope& b, const std::string& label,
+                                        unsigned seed) { expect_matches_oracle(a, b, label, seed % 10 == 0); });
+  EXPECT_EQ(checked, 3 * int(last_seed - first_seed + 1));
 }
 
 TEST(SlopeDiagram, RandomPairsSeeds1To100) { random_pairs(1, 100); }

@@ -1,11 +1,20 @@
 // Exact proximity queries (minksum::TranslationalObstacle) against libccd's
 // GJK intersection, GJK+EPA penetration and MPR intersection, on the same
 // pairs and the same translations (doubles, so both sides see the same input).
+// When built with FCL (MINKSUM_HAVE_FCL), FCL's Convex/Convex collide and
+// signed distance (libccd GJK solver) are compared as well.
 // Prints a markdown section on stdout (docs/benchmarks-proximity.md).
 //
 // Usage: bench_proximity [--steps N] [--reps R]
 #include <ccd/ccd.h>
 #include <ccd/quat.h>
+
+#ifdef MINKSUM_HAVE_FCL
+#include <fcl/config.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+#endif
 
 #include <minksum/catalog.hpp>
 #include <minksum/proximity.hpp>
@@ -14,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -80,6 +90,45 @@ double now_us(Clock::time_point t0, long n) {
   return std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / double(n);
 }
 
+#ifdef MINKSUM_HAVE_FCL
+std::shared_ptr<fcl::Convexd> fcl_convex(const ConvexPolytope& p) {
+  auto verts = std::make_shared<std::vector<fcl::Vector3d>>();
+  for (Index v = 0; v < p.num_vertices(); ++v) {
+    const Vec3d a = p.approx(v);
+    verts->emplace_back(a.x, a.y, a.z);
+  }
+  auto faces = std::make_shared<std::vector<int>>();
+  for (Index f = 0; f < p.num_facets(); ++f) {
+    const std::vector<Index> loop = p.facet_vertices(f);
+    faces->push_back(int(loop.size()));
+    for (Index v : loop) faces->push_back(int(v));
+  }
+  return std::make_shared<fcl::Convexd>(verts, int(p.num_facets()), faces);
+}
+struct Fcl {
+  fcl::CollisionObjectd a, b;
+  fcl::CollisionRequestd creq;
+  fcl::DistanceRequestd dreq;
+  Fcl(const ConvexPolytope& p, const ConvexPolytope& q) : a(fcl_convex(p)), b(fcl_convex(q)) {
+    creq.gjk_solver_type = fcl::GST_LIBCCD;
+    dreq.gjk_solver_type = fcl::GST_LIBCCD;
+    dreq.enable_signed_distance = true;
+    dreq.enable_nearest_points = true;
+  }
+  void at(double x, double y, double z) { b.setTranslation(fcl::Vector3d(x, y, z)); }
+  bool collide() {
+    fcl::CollisionResultd r;
+    fcl::collide(&a, &b, creq, r);
+    return r.isCollision();
+  }
+  double distance() {  // signed: < 0 when penetrating
+    fcl::DistanceResultd r;
+    fcl::distance(&a, &b, dreq, r);
+    return r.min_distance;
+  }
+};
+#endif
+
 bool rel_off(double a, double b) { return std::fabs(a - b) > 1e-6 * std::max(std::fabs(b), 1e-300); }
 
 }  // namespace
@@ -97,7 +146,11 @@ int main(int argc, char** argv) {
   } configs[] = {{"separated", 1.5}, {"touching", 1.0}, {"near-touching out", 1 + 1e-9},
                  {"near-touching in", 1 - 1e-9}, {"penetrating", 0.5}};
 
+#ifdef MINKSUM_HAVE_FCL
+  std::printf("## Proximity queries: exact minksum vs libccd and FCL\n\n");
+#else
   std::printf("## Proximity queries: exact minksum vs libccd\n\n");
+#endif
   std::printf("Command: `bench/proximity/run.sh` (bench_proximity --steps %ld --reps %ld).  P is at the origin,\n"
               "Q is translated by s (doubles, the same for both libraries).  Our answers are exact;\n"
               "a libccd answer is *wrong* when its status differs (GJK/MPR: intersecting or not;\n"
@@ -106,11 +159,25 @@ int main(int argc, char** argv) {
               "Configurations: s = c + f·α*·dir with c inside M and α* the exact exit parameter of the ray,\n"
               "f = 1.5 (separated), 1 (touching), 1 ± 1e-9 (near-touching), 0.5 (penetrating); s is then\n"
               "rounded to doubles, so the 'touching' point's exact status is whatever the rounding gives.\n"
-              "Distance is exact rational arithmetic throughout (closest points, features): the slow column.\n\n",
+              "Distance is exact rational arithmetic throughout (closest points, features): the slow column.\n",
               steps, reps, reps);
+#ifdef MINKSUM_HAVE_FCL
+  std::printf("FCL %s: fcl::Convexd pairs (same vertices and facets), fcl::collide and fcl::distance with\n"
+              "the libccd GJK solver and signed distance.  An FCL collide answer is wrong when its status\n"
+              "differs; an FCL distance answer is wrong when its sign differs (> 0 separate, <= 0 touching or\n"
+              "penetrating) or, for separate/penetrating, |distance| is off from the exact distance/depth\n"
+              "by more than 1e-6 relative.\n\n",
+              FCL_VERSION);
+  std::printf("| pair | configuration | exact status | ours collide µs | ours depth µs | ours distance µs | "
+              "GJK µs | GJK+EPA µs | MPR µs | FCL collide µs | FCL distance µs | GJK/ours collide | "
+              "libccd wrong (GJK, EPA, MPR) | FCL wrong (collide, distance) |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
+#else
+  std::printf("\n");
   std::printf("| pair | configuration | exact status | ours collide µs | ours depth µs | ours distance µs | "
               "GJK µs | GJK+EPA µs | MPR µs | GJK/ours collide | libccd wrong (GJK, EPA, MPR) |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
+#endif
 
   for (auto& pr : pairs) {
     const ConvexPolytope p = catalog_polytope(pr[0]), q = catalog_polytope(pr[1]);
@@ -130,6 +197,7 @@ int main(int argc, char** argv) {
       ccdVec3Set(&bq.t, sd.x, sd.y, sd.z);
       const ContactStatus exact = ob.collide_point(s).status;
       const DepthResult dr = ob.penetration_depth_point(s);
+      const DistanceResult sr = ob.distance_point(s);
 
       auto t0 = Clock::now();
       for (long r = 0; r < reps; ++r) ob.collide_point(s);
@@ -159,9 +227,31 @@ int main(int argc, char** argv) {
       const int wrong_mpr = (mpr != 0) != inter;
       int wrong_epa = (epa_ret == 0) != inter;
       if (!wrong_epa && epa_ret == 0 && exact == ContactStatus::penetrating) wrong_epa = rel_off(depth, dr.depth);
+#ifdef MINKSUM_HAVE_FCL
+      Fcl fc(p, q);
+      fc.at(sd.x, sd.y, sd.z);
+      bool fcol = false;
+      double fdist = 0;
+      t0 = Clock::now();
+      for (long r = 0; r < reps; ++r) fcol = fc.collide();
+      const double us_fcol = now_us(t0, reps);
+      t0 = Clock::now();
+      for (long r = 0; r < reps; ++r) fdist = fc.distance();
+      const double us_fdist = now_us(t0, reps);
+      const int wrong_fcol = fcol != inter;
+      int wrong_fdist = (fdist <= 0) != inter;
+      if (!wrong_fdist && exact == ContactStatus::separate) wrong_fdist = rel_off(fdist, sr.distance);
+      if (!wrong_fdist && exact == ContactStatus::penetrating) wrong_fdist = rel_off(-fdist, dr.depth);
+      std::printf("| %s / %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %d, %d, %d | %d, %d |\n",
+                  pr[0], pr[1], cf.name, contact_status_name(exact), us_collide, us_depth, us_dist, us_gjk, us_epa,
+                  us_mpr, us_fcol, us_fdist, us_gjk / us_collide, wrong_gjk, wrong_epa, wrong_mpr, wrong_fcol,
+                  wrong_fdist);
+#else
+      (void)sr;
       std::printf("| %s / %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %d, %d, %d |\n", pr[0], pr[1],
                   cf.name, contact_status_name(exact), us_collide, us_depth, us_dist, us_gjk, us_epa, us_mpr,
                   us_gjk / us_collide, wrong_gjk, wrong_epa, wrong_mpr);
+#endif
     }
   }
 
@@ -169,8 +259,14 @@ int main(int argc, char** argv) {
   std::printf("\n### Coherent trajectory (%ld steps)\n\n", steps);
   std::printf("s(i) = c + α*·(1.1 cos θ, 0.9 sin θ, 0.2 sin 3θ) with θ = 2π·3i/N (three laps, crossing the boundary\n"
               "of M twice per lap).  Our statuses are checked against a scan of all facet planes on every step.\n\n");
+#ifdef MINKSUM_HAVE_FCL
+  std::printf("| pair | ours collide µs | GJK µs | MPR µs | FCL collide µs | GJK / ours | ours wrong | GJK wrong | "
+              "MPR wrong | FCL wrong | walk moves / query | full scans |\n"
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+#else
   std::printf("| pair | ours collide µs | GJK µs | MPR µs | GJK / ours | ours wrong | GJK wrong | MPR wrong | "
               "walk moves / query | full scans |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+#endif
   for (auto& pr : pairs) {
     const ConvexPolytope p = catalog_polytope(pr[0]), q = catalog_polytope(pr[1]);
     TranslationalObstacle ob(p, q);
@@ -209,7 +305,17 @@ int main(int argc, char** argv) {
       mpr[std::size_t(i)] = ccdMPRIntersect(&bp, &bq, &ccd);
     }
     const double us_mpr = now_us(t0, steps);
-    long wrong_ours = 0, wrong_gjk = 0, wrong_mpr = 0;
+    long wrong_ours = 0, wrong_gjk = 0, wrong_mpr = 0, wrong_fcl = 0;
+#ifdef MINKSUM_HAVE_FCL
+    Fcl fc(p, q);
+    std::vector<char> fcol(static_cast<std::size_t>(steps));
+    t0 = Clock::now();
+    for (long i = 0; i < steps; ++i) {
+      fc.at(trajd[std::size_t(i)].x, trajd[std::size_t(i)].y, trajd[std::size_t(i)].z);
+      fcol[std::size_t(i)] = fc.collide();
+    }
+    const double us_fcl = now_us(t0, steps);
+#endif
     const ConvexPolytope& m = ob.obstacle();
     for (long i = 0; i < steps; ++i) {
       int worst = -1;
@@ -220,10 +326,22 @@ int main(int argc, char** argv) {
       const bool inter = want != ContactStatus::separate;
       wrong_gjk += (gjk[std::size_t(i)] != 0) != inter;
       wrong_mpr += (mpr[std::size_t(i)] != 0) != inter;
+#ifdef MINKSUM_HAVE_FCL
+      wrong_fcl += (fcol[std::size_t(i)] != 0) != inter;
+#endif
     }
+#ifdef MINKSUM_HAVE_FCL
+    std::printf("| %s / %s | %.2f | %.2f | %.2f | %.2f | %.2f | %ld | %ld | %ld | %ld | %.4f | %llu |\n", pr[0], pr[1],
+                us_ours, us_gjk, us_mpr, us_fcl, us_gjk / us_ours, wrong_ours, wrong_gjk, wrong_mpr, wrong_fcl, walk,
+                (unsigned long long)scans);
+#else
+    (void)wrong_fcl;
     std::printf("| %s / %s | %.2f | %.2f | %.2f | %.2f | %ld | %ld | %ld | %.4f | %llu |\n", pr[0], pr[1], us_ours, us_gjk,
                 us_mpr, us_gjk / us_ours, wrong_ours, wrong_gjk, wrong_mpr, walk, (unsigned long long)scans);
+#endif
   }
-  std::printf("\nFCL is not compared: libfcl-dev is not part of this machine's set-up.\n");
+#ifndef MINKSUM_HAVE_FCL
+  std::printf("\nFCL is not compared: this build did not find FCL (libfcl-dev).\n");
+#endif
   return 0;
 }

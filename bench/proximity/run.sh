@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Build and run the proximity benchmark (minksum vs libccd) and write its
+# Build and run the proximity benchmark (minksum vs libccd, and FCL when
+# libfcl-dev is installed) and write its
 # markdown section to docs/benchmarks-proximity.md.
 #   bench/proximity/run.sh [BUILD_DIR] [extra bench_proximity arguments]
 # BUILD_DIR defaults to build-bench-prox (Release, assertions off).

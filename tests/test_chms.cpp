@@ -151,15 +151,15 @@ TEST(Chms, DispatchRefusesMethodsNotBuilt) {
   }
 }
 
-TEST(Chms, AutoPicksAnExactMethodAndSaysWhich) {
-  // Small double operands go to cvms, rational ones to cgm; the result is the
-  // oracle's either way.
+TEST(Chms, AutoPicksWalkAndSaysWhich) {
+  // auto is the output-sensitive walk for double and rational operands; the
+  // result is the oracle's either way.
   ConvexPolytope c = poly(cube_mesh(1)), o = poly(octahedron_mesh());
   SumResult small = minkowski_sum(c, o, Method::automatic);
-  EXPECT_EQ(small.method, Method::cvms);
+  EXPECT_EQ(small.method, Method::walk);
   EXPECT_TRUE(same_polytope(small.polytope, minkowski_sum_chms(c, o).polytope));
   ConvexPolytope t = poly(tetra_mesh()).translated(Q("1/3", "0", "0"));
   SumResult rational = minkowski_sum(t, o, Method::automatic);
-  EXPECT_EQ(rational.method, Method::cgm);
+  EXPECT_EQ(rational.method, Method::walk);
   EXPECT_TRUE(same_polytope(rational.polytope, minkowski_sum_chms(t, o).polytope));
 }

@@ -84,6 +84,30 @@ Method automatic_choice(const ConvexPolytope& a, const ConvexPolytope& b);
 SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b,
                         Method method = Method::automatic);
 
+// Output-sensitive exact sum (DESIGN.md §4): hill climbing to the first
+// support, then walks along the great arcs of A's edges over B's Gaussian
+// map (and of B's edges over A's), each crossing one output edge facet; every
+// output facet is face_A(n) ⊕ face_B(n).  The structure alone, with implicit
+// coordinates, is minkowski_walk() in <minksum/walk.hpp>; this wraps it into
+// a SumResult (explicit exact coordinates and canonical planes).  counters:
+// crossings, walk steps, and the microseconds of the walk and of the
+// conversion to the ConvexPolytope.
+SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b);
+
+// Progress of the Minkowski sum being computed (any thread), for progress
+// displays: the current phase ("walk", "convert", a method name...; empty
+// when none is running) and the fraction of it done in [0, 1], or a negative
+// number when the phase does not measure it.  Methods update it a few
+// hundred times per sum at most; reading is lock-free.
+struct SumProgress {
+  std::string phase;
+  double fraction = -1;
+};
+SumProgress sum_progress();
+// Set by the methods (and minkowski_sum, which clears it when done).  phase
+// must be a string with static storage duration (a literal); nullptr clears.
+void report_sum_progress(const char* phase, double fraction);
+
 // The CHMS method (oracle): exact convex hull of all pairwise vertex sums.
 SumResult minkowski_sum_chms(const ConvexPolytope& a, const ConvexPolytope& b);
 // CVMS (seed 000 §3-4): contributing vertices, translated / corner / edge facets.

@@ -29,7 +29,7 @@ std::optional<Method> parse_method(const std::string& name) {
 }
 
 bool method_available(Method m) {
-  return m == Method::chms || m == Method::cvms || m == Method::essdms || m == Method::mssd ||
+  return m == Method::walk || m == Method::chms || m == Method::cvms || m == Method::essdms || m == Method::mssd ||
          m == Method::cgm || m == Method::automatic;
 }
 
@@ -44,22 +44,18 @@ const char* facet_origin_name(FacetOrigin o) {
   return "?";
 }
 
-Method automatic_choice(const ConvexPolytope& a, const ConvexPolytope& b) {
-  // cvms scans the other operand's vertices for every facet: with double
-  // coordinates (filtered predicates) it is the fastest method up to about
-  // 10^7 such tests.  Beyond that, or with rational coordinates (exact
-  // predicates cost more), the cgm overlay, whose cost grows with the input
-  // and output rather than their product in practice, is faster.  Both are
-  // exact; the choice only affects time.
-  const double scans = double(a.num_facets()) * b.num_vertices() + double(b.num_facets()) * a.num_vertices();
-  const bool doubles = a.coordinates_are_doubles() && b.coordinates_are_doubles();
-  return doubles && scans <= 1e7 ? Method::cvms : Method::cgm;
+Method automatic_choice(const ConvexPolytope&, const ConvexPolytope&) {
+  // walk is output-sensitive and exact on every input (docs/walk.md).
+  return Method::walk;
 }
 
-SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b, Method method) {
+namespace {
+SumResult dispatch(const ConvexPolytope& a, const ConvexPolytope& b, Method method) {
   switch (method) {
     case Method::automatic:
-      return minkowski_sum(a, b, automatic_choice(a, b));
+      return dispatch(a, b, automatic_choice(a, b));
+    case Method::walk:
+      return minkowski_sum_walk(a, b);
     case Method::chms:
       return minkowski_sum_chms(a, b);
     case Method::cvms:
@@ -72,8 +68,20 @@ SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b, Method
       return minkowski_sum_cgm(a, b);
     default:
       throw UsageError(std::string("method '") + method_name(method) +
-                       "' is not implemented in this version of minksum (available: auto, chms, cvms, essdms, mssd, cgm)");
+                       "' is not implemented in this version of minksum (available: auto, walk, chms, cvms, essdms, mssd, cgm)");
   }
+}
+
+// Clears the progress report however the method ends.
+struct ProgressScope {
+  explicit ProgressScope(Method m) { report_sum_progress(method_name(m), -1); }
+  ~ProgressScope() { report_sum_progress(nullptr, -1); }
+};
+}  // namespace
+
+SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b, Method method) {
+  ProgressScope scope(method == Method::automatic ? automatic_choice(a, b) : method);
+  return dispatch(a, b, method);
 }
 
 }  // namespace minksum

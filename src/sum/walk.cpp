@@ -1,0 +1,591 @@
+// The walk method (DESIGN.md §4): the output-sensitive exact Minkowski sum.
+// The algorithm and its output are described in include/minksum/walk.hpp;
+// docs/walk.md has the case analysis.  Conventions used below:
+//
+//  * Gaussian map.  For a half-edge h of a convex polytope with facet(h) on
+//    its left, n(facet(h)) × n(facet(twin h)) is a positive multiple of the
+//    edge direction target(h) − origin(h).  So the great arc of the edge of
+//    h, walked from n(facet(h)) to n(facet(twin h)), has the side
+//    <n, d_h> > 0 on its left.
+//  * Around a vertex b, the outgoing half-edges h_0, h_1, ... follow each
+//    other counter-clockwise (next_around_vertex), facet(h_i) lies between
+//    h_i and h_{i+1}, and the vertex region of b on the Gaussian sphere is
+//    the convex spherical polygon n(facet(h_0)), n(facet(h_1)), ...
+//    (counter-clockwise seen from outside); its side between
+//    n(facet(h_{i-1})) and n(facet(h_i)) is the arc of the edge of h_i.
+//  * A directed great circle crossing a convex region counter-clockwise
+//    numbered leaves it where the side signs go from − to + (possibly
+//    through one 0: the exit is then a vertex of the region).
+//
+// Every decision is the sign of  <x − y, n(f)>  with x, y two vertices of one
+// operand and n(f) = (f1 − f0) × (f2 − f0) the normal of a facet f of either
+// operand (f0, f1, f2: the facet's first three vertices; every corner of a
+// facet is strictly convex, so n(f) is a positive multiple of its outer
+// normal).  It is evaluated with the det3 filter of the kernel (same
+// evaluation tree and error bound, predicates_internal.hpp, with the per-
+// facet cross product cached) and, when the filter cannot decide, exactly by
+// support_compare().
+#include <minksum/predicates.hpp>
+#include <minksum/walk.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "kernel/predicates_internal.hpp"
+#include "mesh/builder.hpp"
+#include "sum/faces.hpp"
+
+namespace minksum {
+
+std::uint64_t WalkSum::features(const ConvexPolytope& a, const ConvexPolytope& b) const {
+  auto n = [](const auto& p) { return std::uint64_t(p.num_vertices()) + p.num_edges() + p.num_facets(); };
+  return n(a) + n(b) + n(*this);
+}
+
+namespace {
+
+using detail::kShapeDet3;
+using detail::kSlack;
+constexpr double kEpsSlack = 0x1.00001p-52;  // ε (1 + 2^-20)
+
+struct Stats {
+  std::uint64_t calls = 0, exact = 0, steps = 0;
+};
+
+// One operand with what the filter needs: rounded coordinates, and per facet
+// the rounded edge vectors' maxima and their cross product.
+struct Operand {
+  const ConvexPolytope* P = nullptr;
+  bool doubles = false;      // every coordinate is exactly a double
+  std::vector<Vec3d> x;      // nearest doubles (exact when `doubles`)
+  std::vector<double> cmax;  // max |coordinate| of x[v]
+  struct Facet {
+    Index v0, v1, v2;
+    double nx, ny, nz;  // fl((f1 − f0) × (f2 − f0)) on the rounded coordinates
+    double du, dv;      // max |coordinate| of the rounded f1 − f0, f2 − f0
+    double ru, rv;      // their error bounds ρ against the exact differences
+    bool ok;            // within the filter's range
+  };
+  std::vector<Facet> f;
+
+  explicit Operand(const ConvexPolytope& p) : P(&p), doubles(p.coordinates_are_doubles()) {
+    const double lo = kShapeDet3.lo, hi = kShapeDet3.hi;
+    x.resize(p.num_vertices());
+    cmax.resize(p.num_vertices());
+    for (Index v = 0; v < p.num_vertices(); ++v) {
+      x[v] = p.approx(v);
+      cmax[v] = std::max({std::fabs(x[v].x), std::fabs(x[v].y), std::fabs(x[v].z)});
+    }
+    f.resize(p.num_facets());
+    for (Index k = 0; k < p.num_facets(); ++k) {
+      Facet& g = f[k];
+      const Index h = p.facet_halfedge(k);
+      g.v0 = p.origin(h), g.v1 = p.target(h), g.v2 = p.target(p.next(h));
+      const Vec3d &a = x[g.v0], &b = x[g.v1], &c = x[g.v2];
+      const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
+      const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
+      g.nx = uy * vz - uz * vy;
+      g.ny = uz * vx - ux * vz;
+      g.nz = ux * vy - uy * vx;
+      g.du = std::max({std::fabs(ux), std::fabs(uy), std::fabs(uz)});
+      g.dv = std::max({std::fabs(vx), std::fabs(vy), std::fabs(vz)});
+      const double cu = std::max(cmax[g.v0], cmax[g.v1]), cv = std::max(cmax[g.v0], cmax[g.v2]);
+      g.ru = kEpsSlack * (g.du + 8 * cu);
+      g.rv = kEpsSlack * (g.dv + 8 * cv);
+      g.ok = g.du >= lo && g.du <= hi && g.dv >= lo && g.dv <= hi && cu <= hi && cv <= hi;
+    }
+  }
+};
+
+// sign <X(xi) − X(yi), n(F facet fi)>: degree 3, the det3 shape with
+// e = xi − yi, u = f1 − f0, v = f2 − f0, evaluated as
+// (e_x (u×v)_x + e_y (u×v)_y) + e_z (u×v)_z, (u×v)_x = u_y v_z − u_z v_y, ...
+// — the tree of kernel predicate 2, so its bounds apply:
+//  * exact double coordinates: |value − P| ≤ c_vec · M_e M_u M_v;
+//  * otherwise (rounded rationals): c_rat Π D + T (1 + 2^-20) Σ_k ρ_k Π_{h≠k} (D_h + ρ_h)
+// (derivations at the top of src/kernel/predicates.cpp).
+inline int det3(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, Stats& st) {
+  ++st.calls;
+  const Operand::Facet& g = F.f[fi];
+  if (g.ok) {
+    const Vec3d &p = X.x[xi], &q = X.x[yi];
+    const double ex = p.x - q.x, ey = p.y - q.y, ez = p.z - q.z;
+    const double de = std::max({std::fabs(ex), std::fabs(ey), std::fabs(ez)});
+    const double value = (ex * g.nx + ey * g.ny) + ez * g.nz;
+    if (F.doubles && X.doubles) {
+      if (de == 0) return 0;  // xi and yi are the same point
+      if (de >= kShapeDet3.lo && de <= kShapeDet3.hi) {
+        const double bound = kShapeDet3.c_vec * de * g.du * g.dv;
+        if (value > bound) return 1;
+        if (value < -bound) return -1;
+      }
+    } else {
+      const double ce = std::max(X.cmax[xi], X.cmax[yi]);
+      if (de >= kShapeDet3.lo && de <= kShapeDet3.hi && ce <= kShapeDet3.hi) {
+        const double re = kEpsSlack * (de + 8 * ce);
+        const double eval = kShapeDet3.c_rat * de * g.du * g.dv;
+        const double pert = re * (g.du + g.ru) * (g.dv + g.rv) + g.ru * (de + re) * (g.dv + g.rv) +
+                            g.rv * (de + re) * (g.du + g.ru);
+        const double bound = eval + (kShapeDet3.terms * kSlack) * pert;
+        if (value > bound) return 1;
+        if (value < -bound) return -1;
+      }
+    }
+  }
+  ++st.exact;
+  const ConvexPolytope& PF = *F.P;
+  const ConvexPolytope& PX = *X.P;
+  return support_compare(PF.point(g.v0), PF.point(g.v1), PF.point(g.v2), PX.point(xi), PX.point(yi));
+}
+
+constexpr Feature kUnknown{-1, kNoIndex};
+
+// Walks the arcs of P's edges over Q's Gaussian map.
+class Walker {
+ public:
+  Walker(const Operand& p, const Operand& q, Stats& st) : P_(p), Q_(q), p_(*p.P), q_(*q.P), st_(st) {}
+
+  // face_Q(n(f)) for every facet f of P; with `crossings`, every proper
+  // crossing of an arc of P with an arc of Q as (half-edge of P walked,
+  // half-edge of Q crossed from the region of its origin into its target's).
+  std::vector<Feature> run(std::vector<std::pair<Index, Index>>* crossings, double progress0, double progress_span) {
+    crossings_ = crossings;
+    const Index nf = p_.num_facets();
+    std::vector<Feature> S(nf, kUnknown);
+    std::vector<std::uint8_t> walked(p_.num_edges(), 0);
+    std::vector<Index> queue;
+    queue.reserve(nf);
+    S[0] = climb(0);
+    queue.push_back(0);
+    for (std::size_t qi = 0; qi < queue.size(); ++qi) {
+      if ((qi & 4095) == 0) report_sum_progress("walk", progress0 + progress_span * double(qi) / nf);
+      const Index f1 = queue[qi];
+      const Index h0 = p_.facet_halfedge(f1);
+      Index h = h0;
+      do {
+        const Index e = ConvexPolytope::edge(h);
+        if (!walked[e]) {
+          walked[e] = 1;
+          const Index f2 = p_.facet(ConvexPolytope::twin(h));
+          const bool need = S[f2].dim < 0;
+          Feature s2 = walk(h, S[f1], need);
+          if (need) {
+            S[f2] = s2;
+            queue.push_back(f2);
+          }
+        }
+        h = p_.next(h);
+      } while (h != h0);
+    }
+    if (queue.size() != nf) throw std::logic_error("walk: the facets of an operand are not connected");
+    return S;
+  }
+
+ private:
+  struct State {
+    bool overlap;  // running along the arc of Q's edge `index` (a half-edge) instead of inside a region
+    Index index;   // vertex of Q, or half-edge of Q directed like the walked edge
+  };
+
+  // sign <x − y, n(f)>, f a facet of P, x and y vertices of Q.
+  int higher(Index f, Index x, Index y) { return det3(P_, f, Q_, x, y, st_); }
+  // sign <d_h, n(g)>, h a half-edge of P, g a facet of Q.
+  int side(Index g, Index h) { return det3(Q_, g, P_, p_.target(h), p_.origin(h), st_); }
+
+  // The face of Q maximising <x, n(f)>, given its vertex b (a maximiser):
+  // b and its neighbours as high as b.
+  Feature support_face_at(Index b, Index f) {
+    ring(b);
+    const std::size_t k = hbuf_.size();
+    std::size_t ties = 0;
+    tie_.assign(k, 0);
+    for (std::size_t i = 0; i < k; ++i) {
+      const int c = higher(f, q_.target(hbuf_[i]), b);
+      if (c > 0) throw std::logic_error("walk: the support vertex is not a maximum");
+      if (c == 0) tie_[i] = 1, ++ties;
+    }
+    if (ties == 0) return {0, b};
+    if (ties == 1)
+      for (std::size_t i = 0; i < k; ++i)
+        if (tie_[i]) return {1, ConvexPolytope::edge(hbuf_[i])};
+    for (std::size_t i = 0; i < k; ++i)
+      if (tie_[i] && tie_[(i + 1) % k]) return {2, q_.facet(hbuf_[i])};
+    throw std::logic_error("walk: the support set is not a face");
+  }
+
+  // Hill climbing on Q's vertex graph to the support of n(f).
+  Feature climb(Index f) {
+    Index b = 0;
+    for (bool moved = true; moved;) {
+      moved = false;
+      const Index h0 = q_.vertex_halfedge(b);
+      Index h = h0;
+      do {
+        ++st_.steps;
+        if (higher(f, q_.target(h), b) > 0) {
+          b = q_.target(h);
+          moved = true;
+          break;
+        }
+        h = q_.next_around_vertex(h);
+      } while (h != h0);
+    }
+    return support_face_at(b, f);
+  }
+
+  // Outgoing half-edges of b, counter-clockwise, into hbuf_.
+  void ring(Index b) {
+    hbuf_.clear();
+    const Index h0 = q_.vertex_halfedge(b);
+    Index h = h0;
+    do {
+      hbuf_.push_back(h);
+      h = q_.next_around_vertex(h);
+    } while (h != h0);
+  }
+
+  // Where the arc of hp continues from a point whose support in Q is the
+  // face S: the vertex of S highest along n(f2) (the arc's end), or, when two
+  // vertices of S tie, the edge joining them (parallel to hp: the arc runs
+  // along that edge's arc).
+  State enter(Feature S, Index hp, Index f2) {
+    if (S.dim == 0) return {false, S.index};
+    verts_.clear();
+    if (S.dim == 1) {
+      verts_.push_back(q_.origin(2 * S.index));
+      verts_.push_back(q_.target(2 * S.index));
+    } else {
+      const Index h0 = q_.facet_halfedge(S.index);
+      Index h = h0;
+      do {
+        verts_.push_back(q_.origin(h));
+        h = q_.next(h);
+      } while (h != h0);
+    }
+    Index best = verts_[0], tie = kNoIndex;
+    for (std::size_t i = 1; i < verts_.size(); ++i) {
+      const int c = higher(f2, verts_[i], best);
+      if (c > 0) best = verts_[i], tie = kNoIndex;
+      else if (c == 0) tie = verts_[i];
+    }
+    if (tie == kNoIndex) return {false, best};
+    // The edge best–tie, directed like hp.
+    const Index h0 = q_.vertex_halfedge(best);
+    Index h = h0;
+    while (q_.target(h) != tie) {
+      h = q_.next_around_vertex(h);
+      if (h == h0) throw std::logic_error("walk: tied support vertices are not adjacent");
+    }
+    ++st_.calls;
+    const int d = dot_sign(q_.point(q_.origin(h)), q_.point(q_.target(h)), p_.point(p_.origin(hp)),
+                           p_.point(p_.target(hp)));
+    if (d == 0) throw std::logic_error("walk: overlapping arcs of non-parallel edges");
+    return {true, d > 0 ? h : ConvexPolytope::twin(h)};
+  }
+
+  // Walk the arc of P's half-edge hp from n(facet(hp)) (support S1 in Q) to
+  // n(facet(twin hp)); returns the support there when `need_end`.
+  Feature walk(Index hp, Feature S1, bool need_end) {
+    const Index f2 = p_.facet(ConvexPolytope::twin(hp));
+    State s = enter(S1, hp, f2);
+    for (;;) {
+      ++st_.steps;
+      if (s.overlap) {
+        // Along the arc of Q's edge hq: it ends at n(facet(twin hq)).  The
+        // arc's end n(f2) lies on it iff origin(hq) supports n(f2).
+        const Index hq = s.index, x = q_.origin(hq);
+        bool support = true;
+        const Index h0 = q_.vertex_halfedge(x);
+        Index h = h0;
+        do {
+          if (higher(f2, q_.target(h), x) > 0) {
+            support = false;
+            break;
+          }
+          h = q_.next_around_vertex(h);
+        } while (h != h0);
+        if (support) return need_end ? support_face_at(x, f2) : kUnknown;
+        s = enter({2, q_.facet(ConvexPolytope::twin(hq))}, hp, f2);
+        continue;
+      }
+      // Inside the region of vertex b: find where the arc's great circle
+      // leaves it (side signs − then +, or −, 0, +).
+      const Index b = s.index;
+      ring(b);
+      const std::size_t k = hbuf_.size();
+      sbuf_.resize(k);
+      for (std::size_t i = 0; i < k; ++i) sbuf_[i] = std::int8_t(side(q_.facet(hbuf_[i]), hp));
+      std::size_t exit = k;
+      bool through_vertex = false;
+      for (std::size_t i = 0; i < k; ++i) {
+        const int sp = sbuf_[(i + k - 1) % k], si = sbuf_[i];
+        if (sp < 0 && si > 0) {
+          exit = i;
+          break;
+        }
+        if (si == 0 && sp < 0 && sbuf_[(i + 1) % k] > 0) {
+          exit = i;
+          through_vertex = true;
+          break;
+        }
+      }
+      if (exit == k) throw std::logic_error("walk: the arc does not leave a vertex region");
+      const Index he = hbuf_[exit];
+      // The arc ends before the exit iff n(f2) is on b's side of the exit
+      // side's great circle.
+      if (higher(f2, q_.target(he), b) <= 0) return need_end ? support_face_at(b, f2) : kUnknown;
+      if (through_vertex) {
+        s = enter({2, q_.facet(he)}, hp, f2);
+      } else {
+        if (crossings_) crossings_->emplace_back(hp, he);
+        s = {false, q_.target(he)};
+      }
+    }
+  }
+
+  const Operand &P_, &Q_;
+  const ConvexPolytope &p_, &q_;
+  Stats& st_;
+  std::vector<std::pair<Index, Index>>* crossings_ = nullptr;
+  std::vector<Index> hbuf_, verts_;
+  std::vector<std::int8_t> sbuf_;
+  std::vector<std::uint8_t> tie_;
+};
+
+// Open-addressing hash map from 64-bit keys to indices (keys != ~0).
+class KeyMap {
+ public:
+  explicit KeyMap(std::size_t n) {
+    std::size_t cap = 16;
+    while (cap < 2 * n + 16) cap *= 2;
+    keys_.assign(cap, kEmpty);
+    vals_.resize(cap);
+    mask_ = cap - 1;
+  }
+  // The value of key, inserting `fresh` if absent; `inserted` tells which.
+  Index find_or_insert(std::uint64_t key, Index fresh, bool& inserted) {
+    std::size_t i = hash(key) & mask_;
+    for (;;) {
+      if (keys_[i] == key) {
+        inserted = false;
+        return vals_[i];
+      }
+      if (keys_[i] == kEmpty) {
+        keys_[i] = key;
+        vals_[i] = fresh;
+        inserted = true;
+        return fresh;
+      }
+      i = (i + 1) & mask_;
+    }
+  }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+  static std::size_t hash(std::uint64_t k) {
+    k ^= k >> 29;
+    k *= 0xbf58476d1ce4e5b9ull;
+    k ^= k >> 32;
+    return std::size_t(k);
+  }
+  std::vector<std::uint64_t> keys_;
+  std::vector<Index> vals_;
+  std::size_t mask_ = 0;
+};
+
+// The loops of the output facets, before linking.
+struct Loops {
+  std::vector<std::pair<Index, Index>> corners;  // (vertex of A, vertex of B)
+  std::vector<Index> start{0};                   // facet i: corners[start[i], start[i+1])
+  std::vector<FacetProvenance> prov;
+  void close(FacetProvenance p) {
+    start.push_back(Index(corners.size()));
+    prov.push_back(p);
+  }
+};
+
+std::vector<Index> face_vertices(const ConvexPolytope& p, Feature f) {
+  if (f.dim == 0) return {f.index};
+  if (f.dim == 1) return {p.origin(2 * f.index), p.target(2 * f.index)};
+  return p.facet_vertices(f.index);
+}
+
+// face_A ⊕ face_B when both have dimension ≥ 1 and lie in parallel planes
+// (normal n): the planar convex hull of the pairwise sums.  Rare (parallel
+// features), exact.
+void planar_sum(const ConvexPolytope& a, Feature fa, const ConvexPolytope& b, Feature fb, const Point3& n,
+                Loops& out) {
+  std::vector<std::pair<Index, Index>> pairs;
+  std::vector<Point3> pts;
+  for (Index i : face_vertices(a, fa))
+    for (Index j : face_vertices(b, fb)) {
+      pairs.emplace_back(i, j);
+      pts.push_back(a.point(i) + b.point(j));
+    }
+  for (std::size_t t : planar_hull(pts, n)) out.corners.push_back(pairs[t]);
+  out.close({fa, fb});
+}
+
+}  // namespace
+
+WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
+  Stats st;
+  const Operand A(a), B(b);
+  std::vector<std::pair<Index, Index>> crossings;
+  const double fa = a.num_facets(), fb = b.num_facets();
+  const std::vector<Feature> SB = Walker(A, B, st).run(&crossings, 0, 0.8 * fa / (fa + fb));
+  const std::vector<Feature> SA = Walker(B, A, st).run(nullptr, 0.8 * fa / (fa + fb), 0.8 * fb / (fa + fb));
+  report_sum_progress("walk", 0.8);
+
+  // Output facets: A's facets, B's facets not parallel to one of A's, and
+  // the edge facets of the crossings.
+  Loops L;
+  L.corners.reserve(std::size_t(3) * (a.num_halfedges() / 2 + b.num_halfedges() / 2) + 4 * crossings.size());
+  L.start.reserve(a.num_facets() + b.num_facets() + crossings.size() + 1);
+  L.prov.reserve(a.num_facets() + b.num_facets() + crossings.size());
+  for (Index f = 0; f < a.num_facets(); ++f) {
+    const Feature s = SB[f];
+    if (s.dim == 0) {
+      const Index h0 = a.facet_halfedge(f);
+      Index h = h0;
+      do {
+        L.corners.emplace_back(a.origin(h), s.index);
+        h = a.next(h);
+      } while (h != h0);
+      L.close({{2, f}, s});
+    } else {
+      planar_sum(a, {2, f}, b, s, a.plane(f).normal(), L);
+    }
+  }
+  for (Index g = 0; g < b.num_facets(); ++g) {
+    const Feature s = SA[g];
+    if (s.dim == 2) continue;  // parallel to a facet of A: done above
+    if (s.dim == 0) {
+      const Index h0 = b.facet_halfedge(g);
+      Index h = h0;
+      do {
+        L.corners.emplace_back(s.index, b.origin(h));
+        h = b.next(h);
+      } while (h != h0);
+      L.close({s, {2, g}});
+    } else {
+      planar_sum(a, s, b, {2, g}, b.plane(g).normal(), L);
+    }
+  }
+  // An edge facet e_a ⊕ e_b, crossed from the region of x into that of y
+  // while walking u → v: its loop is (v,x) (u,x) (u,y) (v,y) — the side
+  // e_a ⊕ x borders the output facet met before on the arc, so it runs
+  // against the walk (first bullet at the top of the file).
+  for (auto [ha, hb] : crossings) {
+    const Index u = a.origin(ha), v = a.target(ha), x = b.origin(hb), y = b.target(hb);
+    L.corners.emplace_back(v, x);
+    L.corners.emplace_back(u, x);
+    L.corners.emplace_back(u, y);
+    L.corners.emplace_back(v, y);
+    L.close({{1, ConvexPolytope::edge(ha)}, {1, ConvexPolytope::edge(hb)}});
+  }
+
+  // Link: vertices are pairs, edges are pairs of vertices.
+  WalkSum w;
+  const Index nf = Index(L.prov.size());
+  const std::size_t nc = L.corners.size();
+  if (nc % 2) throw std::logic_error("walk: the facet loops do not close up into edges");
+  const std::size_t ne = nc / 2;
+  const std::size_t nv = 2 + ne - nf;
+  w.vertex_origin.reserve(nv);
+  w.he_origin.assign(nc, kNoIndex);
+  w.he_next.assign(nc, kNoIndex);
+  w.he_facet.assign(nc, kNoIndex);
+  w.facet_he.resize(nf);
+  KeyMap vmap(nv), emap(ne);
+  std::vector<Index> vid;
+  Index edges = 0;
+  for (Index f = 0; f < nf; ++f) {
+    const Index s = L.start[f], t = L.start[f + 1];
+    vid.clear();
+    for (Index i = s; i < t; ++i) {
+      const auto [pa, pb] = L.corners[i];
+      bool inserted;
+      const Index v = vmap.find_or_insert((std::uint64_t(pa) << 32) | pb, Index(w.vertex_origin.size()), inserted);
+      if (inserted) w.vertex_origin.emplace_back(pa, pb);
+      vid.push_back(v);
+    }
+    const Index k = t - s;
+    Index first = kNoIndex, last = kNoIndex;
+    for (Index i = 0; i < k; ++i) {
+      const Index p = vid[i], q = vid[(i + 1) % k];
+      bool inserted;
+      const Index e = emap.find_or_insert((std::uint64_t(std::min(p, q)) << 32) | std::max(p, q), edges, inserted);
+      if (inserted) {
+        if (edges == ne) throw std::logic_error("walk: more edges than the facet loops allow");
+        ++edges;
+      }
+      const Index h = 2 * e + (p < q ? 0 : 1);
+      if (w.he_origin[h] != kNoIndex) throw std::logic_error("walk: an output half-edge is used twice");
+      w.he_origin[h] = p;
+      w.he_facet[h] = f;
+      if (last != kNoIndex) w.he_next[last] = h;
+      else first = h;
+      last = h;
+    }
+    w.he_next[last] = first;
+    w.facet_he[f] = first;
+  }
+  if (edges != ne || w.vertex_origin.size() != nv)
+    throw std::logic_error("walk: the output is not a sphere (V − E + F ≠ 2)");
+  w.provenance = std::move(L.prov);
+  w.crossings = crossings.size();
+  w.steps = st.steps;
+  w.predicates = st.calls;
+  w.exact_predicates = st.exact;
+  return w;
+}
+
+ConvexPolytope to_polytope(const WalkSum& w, const ConvexPolytope& a, const ConvexPolytope& b) {
+  std::vector<Point3> pts;
+  pts.reserve(w.num_vertices());
+  for (auto [i, j] : w.vertex_origin) pts.push_back(a.point(i) + b.point(j));
+  std::vector<Point3> normals;
+  normals.reserve(w.num_facets());
+  for (Index f = 0; f < w.num_facets(); ++f) {
+    const FacetProvenance& p = w.provenance[f];
+    if (p.a.dim == 2) {
+      normals.push_back(a.plane(p.a.index).normal());
+    } else if (p.b.dim == 2) {
+      normals.push_back(b.plane(p.b.index).normal());
+    } else {
+      const Index h = w.facet_he[f], h1 = w.he_next[h];
+      const Point3& p0 = pts[w.he_origin[h]];
+      normals.push_back(cross(pts[w.he_origin[h1]] - p0, pts[w.he_origin[w.he_next[h1]]] - p0));
+    }
+  }
+  return PolytopeBuilder::from_trusted_parts(std::move(pts), w.he_origin, w.he_next, w.he_facet, w.facet_he, normals);
+}
+
+SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  WalkSum w = minkowski_walk(a, b);
+  const auto t1 = clock::now();
+  report_sum_progress("convert", -1);
+  SumResult r;
+  r.method = Method::walk;
+  r.polytope = to_polytope(w, a, b);
+  const auto t2 = clock::now();
+  r.vertex_origin = std::move(w.vertex_origin);
+  r.facet_provenance = std::move(w.provenance);
+  auto us = [](auto d) { return (long long)std::chrono::duration_cast<std::chrono::microseconds>(d).count(); };
+  r.counters = {{"crossings", (long long)w.crossings},
+                {"walk_steps", (long long)w.steps},
+                {"predicates", (long long)w.predicates},
+                {"exact_predicates", (long long)w.exact_predicates},
+                {"walk_microseconds", us(t1 - t0)},
+                {"convert_microseconds", us(t2 - t1)}};
+  r.seconds = std::chrono::duration<double>(t2 - t0).count();
+  return r;
+}
+
+}  // namespace minksum

@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "progress.hpp"
 
 namespace minksum::cli {
 
@@ -44,6 +45,13 @@ Options:
   --json             print one JSON object: vertices, edges, facets, method,
                      seconds (the computation alone, not the I/O), volume
                      (exact rational as a string), and the operands' counts
+
+Progress: when stderr is a terminal and the sum takes more than a second, one
+line is rewritten in place on stderr every 0.2 s and erased when the sum is
+done: the phase, the fraction done when the method measures it, and the time
+so far, for example
+    minksum sum: walk 42% (2.3 s)
+Nothing is printed when stderr is redirected to a file or a pipe.
 )";
 
 // ", \"facet_types\": {...}" for methods that record where each facet comes from.
@@ -104,7 +112,10 @@ int run_sum(const std::vector<std::string>& argv) {
   check_output_path(output, exact);
   ConvexPolytope pa = load_polytope(a.positional[0], hull);
   ConvexPolytope pb = load_polytope(a.positional[1], hull);
-  SumResult r = minkowski_sum(pa, pb, *method);
+  SumResult r = [&] {
+    ProgressTicker ticker("minksum sum");  // a progress line on a terminal after 1 s; erased when done
+    return minkowski_sum(pa, pb, *method);
+  }();
   if (!output.empty()) write_output(output, r.polytope, exact, a.flag("--binary"));
   const ConvexPolytope& s = r.polytope;
   if (json) {

@@ -10,7 +10,13 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <poll.h>
+#include <pty.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -60,6 +66,47 @@ class Cli : public ::testing::Test {
     std::regex re("\"" + key + "\": (-?[0-9]+)");
     if (!std::regex_search(json, m, re)) return -1;
     return std::stol(m[1]);
+  }
+
+  // Run the command with stdin, stdout and stderr on a new pseudo-terminal,
+  // as in an interactive shell; out is everything the terminal received
+  // (stdout and stderr interleaved, "\n" written as "\r\n").
+  CmdResult run_pty(const std::string& args) {
+    const std::string cmd = "exec " + std::string(MINKSUM_BIN) + " " + args;
+    CmdResult r;
+    int master = -1;
+    const pid_t pid = ::forkpty(&master, nullptr, nullptr, nullptr);
+    if (pid < 0) return r;
+    if (pid == 0) {
+      ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    std::array<char, 4096> buf;
+    for (;;) {
+      if (std::chrono::steady_clock::now() > deadline) {
+        ::kill(pid, SIGKILL);
+        break;
+      }
+      pollfd fd{master, POLLIN, 0};
+      if (::poll(&fd, 1, 100) <= 0) continue;
+      const ssize_t n = ::read(master, buf.data(), buf.size());
+      if (n > 0) r.out.append(buf.data(), static_cast<std::size_t>(n));
+      else if (n == 0 || errno != EINTR) break;  // EIO: the child closed the terminal
+    }
+    ::close(master);
+    int st = 0;
+    ::waitpid(pid, &st, 0);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    return r;
+  }
+
+  // Value of "key": X.Y in a JSON line (-1 when absent).
+  static double json_double(const std::string& json, const std::string& key) {
+    std::smatch m;
+    std::regex re("\"" + key + "\": ([0-9.eE+-]+)");
+    if (!std::regex_search(json, m, re)) return -1;
+    return std::stod(m[1]);
   }
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
@@ -217,4 +264,52 @@ TEST_F(Cli, GenWritesEveryFormat) {
     EXPECT_EQ(json_int(s.out, "edges"), 30) << ext;
     EXPECT_EQ(json_int(s.out, "facets"), 12) << ext;
   }
+}
+
+// The progress line of `minksum sum` (stderr, after 1 s, only on a terminal).
+// A sum of about 2.5 s on 2 cores: the hull of 642 × 400 = 256 800 pairwise sums.
+constexpr const char* kSlowSum = "sum sphere:4 random:400:1 --method chms --json";
+
+TEST_F(Cli, SumProgressNotPrintedWhenStderrIsNotATerminal) {
+  CmdResult r = run(kSlowSum);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_GT(json_double(r.out, "seconds"), 1.0) << "the sum is too fast to exercise the progress line";
+  EXPECT_EQ(r.err, "");
+}
+
+TEST_F(Cli, SumProgressLineOnATerminal) {
+  CmdResult r = run_pty(kSlowSum);
+  ASSERT_EQ(r.status, 0) << r.out;
+  const double seconds = json_double(r.out, "seconds");
+  ASSERT_GT(seconds, 0) << r.out;
+  if (seconds < 1.3) GTEST_SKIP() << "the sum took " << seconds << " s: too fast for a progress line";
+  // At least one line "\rminksum sum: PHASE[ NN%] (S.S s)", each redrawn from column 0
+  // and cleared to the end of the line.
+  std::regex line("\rminksum sum: ([a-z][a-z0-9_-]*)( [0-9]{1,3}%)? \\([0-9]+\\.[0-9] s\\)\x1b\\[K");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, line)) << r.out;
+  RecordProperty("phase", m[1].str());  // "computing", or the phase the method reports
+  // Then the line is erased, and stdout follows intact on a clean line.
+  const std::size_t erase = r.out.rfind("\r\x1b[K");
+  ASSERT_NE(erase, std::string::npos);
+  const std::string rest = r.out.substr(erase + 4);
+  EXPECT_EQ(rest.find("minksum sum:"), std::string::npos) << rest;
+  EXPECT_EQ(rest.find('\x1b'), std::string::npos) << rest;
+  ASSERT_FALSE(rest.empty());
+  EXPECT_EQ(rest.front(), '{') << rest;
+  EXPECT_EQ(rest.substr(rest.size() - 3), "}\r\n") << rest;
+  EXPECT_NE(rest.find("\"method\": \"chms\""), std::string::npos) << rest;
+  EXPECT_EQ(json_int(rest, "vertices"), json_int(r.out, "vertices"));
+  EXPECT_GT(json_int(rest, "vertices"), 0) << rest;
+  // Nothing but progress lines, their erasure and the JSON object reached the terminal.
+  EXPECT_EQ(std::regex_replace(r.out.substr(0, erase), line, ""), "") << r.out;
+}
+
+TEST_F(Cli, SumProgressNotPrintedForAFastSum) {
+  CmdResult r = run_pty("sum cube cube");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out.find("minksum sum:"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.rfind("cube (8 V, 6 F)", 0), 0u) << r.out;  // the summary, from the first byte
+  EXPECT_NE(r.out.find("= 8 vertices, 12 edges, 6 facets"), std::string::npos) << r.out;
 }

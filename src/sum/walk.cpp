@@ -29,7 +29,9 @@
 #include <minksum/walk.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cfenv>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -51,8 +53,21 @@ using detail::kShapeDet3;
 using detail::kSlack;
 constexpr double kEpsSlack = 0x1.00001p-52;  // ε (1 + 2^-20)
 
+// Error-free checks, valid in round-to-nearest without overflow or
+// underflow (operands are 0 or at least 2^-300 in magnitude, at most 2^333):
+// s = fl(x + y) is exact iff Knuth's TwoSum error is 0; p = fl(x · y) is exact
+// iff fma(x, y, −p) (the exact x·y − p, representable) is 0.
+bool round_to_nearest() { return std::fegetround() == FE_TONEAREST; }
+inline bool usable(double x) { return x == 0 || (std::fabs(x) >= 0x1p-300 && std::fabs(x) <= 0x1p333); }
+inline bool sum_exact(double x, double y, double s) {
+  const double bb = s - x;
+  return (x - (s - bb)) + (y - bb) == 0;
+}
+inline bool product_exact(double x, double y, double p) { return std::fma(x, y, -p) == 0; }
+
 struct Stats {
-  std::uint64_t calls = 0, exact = 0, steps = 0;
+  std::uint64_t calls = 0, exact = 0, exact_free = 0, steps = 0;
+  bool round_to_nearest = false;
 };
 
 // One operand with what the filter needs: rounded coordinates, and per facet
@@ -68,10 +83,15 @@ struct Operand {
     double du, dv;      // max |coordinate| of the rounded f1 − f0, f2 − f0
     double ru, rv;      // their error bounds ρ against the exact differences
     bool ok;            // within the filter's range
+    bool exact;         // (nx, ny, nz) is exactly n(f) (see exact_value)
   };
   std::vector<Facet> f;
 
+  // Exact signs of the coordinates of n(f), computed on demand (0, ±1; 2 = not yet).
+  mutable std::vector<std::array<std::int8_t, 3>> axis_sign;
+
   explicit Operand(const ConvexPolytope& p) : P(&p), doubles(p.coordinates_are_doubles()) {
+    const bool nearest = round_to_nearest();
     const double lo = kShapeDet3.lo, hi = kShapeDet3.hi;
     x.resize(p.num_vertices());
     cmax.resize(p.num_vertices());
@@ -80,6 +100,7 @@ struct Operand {
       cmax[v] = std::max({std::fabs(x[v].x), std::fabs(x[v].y), std::fabs(x[v].z)});
     }
     f.resize(p.num_facets());
+    if (doubles) axis_sign.assign(p.num_facets(), {2, 2, 2});
     for (Index k = 0; k < p.num_facets(); ++k) {
       Facet& g = f[k];
       const Index h = p.facet_halfedge(k);
@@ -96,6 +117,21 @@ struct Operand {
       g.ru = kEpsSlack * (g.du + 8 * cu);
       g.rv = kEpsSlack * (g.dv + 8 * cv);
       g.ok = g.du >= lo && g.du <= hi && g.dv >= lo && g.dv <= hi && cu <= hi && cv <= hi;
+      g.exact = false;
+      if (doubles && g.ok && nearest) {
+        const double u[3] = {ux, uy, uz}, v[3] = {vx, vy, vz};
+        const double pa[3] = {a.x, a.y, a.z}, pb[3] = {b.x, b.y, b.z}, pc[3] = {c.x, c.y, c.z};
+        bool exact = true;
+        for (int i = 0; i < 3; ++i)
+          exact = exact && usable(u[i]) && usable(v[i]) && sum_exact(pb[i], -pa[i], u[i]) &&
+                  sum_exact(pc[i], -pa[i], v[i]);
+        for (int i = 0; i < 3 && exact; ++i) {
+          const int j = (i + 1) % 3, k = (i + 2) % 3;
+          const double p1 = u[j] * v[k], p2 = u[k] * v[j];
+          exact = product_exact(u[j], v[k], p1) && product_exact(u[k], v[j], p2) && sum_exact(p1, -p2, p1 - p2);
+        }
+        g.exact = exact;
+      }
     }
   }
 };
@@ -135,7 +171,53 @@ inline int det3(const Operand& F, Index fi, const Operand& X, Index xi, Index yi
       }
     }
   }
+  if (F.doubles && X.doubles && g.exact) {
+    // Often the value was computed without any rounding (axis-parallel
+    // facets, edges in coordinate planes: the degenerate signs 0 of
+    // symmetric inputs).  Then it is exact, zero included.
+    const Vec3d &p = X.x[xi], &q = X.x[yi];
+    const double pe[3] = {p.x, p.y, p.z}, qe[3] = {q.x, q.y, q.z}, n[3] = {g.nx, g.ny, g.nz};
+    double t[3];
+    bool exact = st.round_to_nearest;
+    for (int i = 0; i < 3 && exact; ++i) {
+      if (n[i] == 0) {
+        t[i] = 0;  // exactly 0 whatever the difference
+        continue;
+      }
+      const double e = pe[i] - qe[i];
+      t[i] = e * n[i];
+      exact = usable(e) && sum_exact(pe[i], -qe[i], e) && product_exact(e, n[i], t[i]);
+    }
+    if (exact) {
+      const double s01 = t[0] + t[1], v = s01 + t[2];
+      if (sum_exact(t[0], t[1], s01) && sum_exact(s01, t[2], v)) {
+        ++st.exact_free;
+        return (v > 0) - (v < 0);
+      }
+    }
+  }
+  if (F.doubles && X.doubles) {
+    // An axis-parallel difference (the other two coordinates equal, e.g. an
+    // edge of a box): the sign is sign(e_i) times the exact sign of the
+    // coordinate i of n(f), computed once per facet and axis.
+    const Vec3d &p = X.x[xi], &q = X.x[yi];
+    const int axis = p.x != q.x ? (p.y == q.y && p.z == q.z ? 0 : -1)
+                                : p.y != q.y ? (p.z == q.z ? 1 : -1) : (p.z != q.z ? 2 : -1);
+    if (axis >= 0) {
+      std::int8_t& c = F.axis_sign[fi][axis];
+      if (c == 2) {
+        const Vec3d o{0, 0, 0}, unit{axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0};
+        ++st.exact;
+        c = std::int8_t(edge_facet_sign(o, unit, F.x[g.v0], F.x[g.v1], F.x[g.v2]));
+      }
+      const double e = axis == 0 ? p.x - q.x : axis == 1 ? p.y - q.y : p.z - q.z;
+      return e > 0 ? c : -c;
+    }
+  }
   ++st.exact;
+  // Exact doubles: the kernel's Vec3d form (its dynamic filter, then GMP
+  // integers in a reused workspace).  Rationals: the Point3 form.
+  if (F.doubles && X.doubles) return support_compare(F.x[g.v0], F.x[g.v1], F.x[g.v2], X.x[xi], X.x[yi]);
   const ConvexPolytope& PF = *F.P;
   const ConvexPolytope& PX = *X.P;
   return support_compare(PF.point(g.v0), PF.point(g.v1), PF.point(g.v2), PX.point(xi), PX.point(yi));
@@ -355,47 +437,6 @@ class Walker {
   std::vector<std::uint8_t> tie_;
 };
 
-// Open-addressing hash map from 64-bit keys to indices (keys != ~0).
-class KeyMap {
- public:
-  explicit KeyMap(std::size_t n) {
-    std::size_t cap = 16;
-    while (cap < 2 * n + 16) cap *= 2;
-    keys_.assign(cap, kEmpty);
-    vals_.resize(cap);
-    mask_ = cap - 1;
-  }
-  // The value of key, inserting `fresh` if absent; `inserted` tells which.
-  Index find_or_insert(std::uint64_t key, Index fresh, bool& inserted) {
-    std::size_t i = hash(key) & mask_;
-    for (;;) {
-      if (keys_[i] == key) {
-        inserted = false;
-        return vals_[i];
-      }
-      if (keys_[i] == kEmpty) {
-        keys_[i] = key;
-        vals_[i] = fresh;
-        inserted = true;
-        return fresh;
-      }
-      i = (i + 1) & mask_;
-    }
-  }
-
- private:
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
-  static std::size_t hash(std::uint64_t k) {
-    k ^= k >> 29;
-    k *= 0xbf58476d1ce4e5b9ull;
-    k ^= k >> 32;
-    return std::size_t(k);
-  }
-  std::vector<std::uint64_t> keys_;
-  std::vector<Index> vals_;
-  std::size_t mask_ = 0;
-};
-
 // The loops of the output facets, before linking.
 struct Loops {
   std::vector<std::pair<Index, Index>> corners;  // (vertex of A, vertex of B)
@@ -429,10 +470,49 @@ void planar_sum(const ConvexPolytope& a, Feature fa, const ConvexPolytope& b, Fe
   out.close({fa, fb});
 }
 
+// Facet fi of F ⊕ edge ei of E, the edge parallel to the facet's plane
+// (normal n): the facet's loop with its chain facing −d translated by x, the
+// chain facing +d by y (d = y − x); an edge of the facet parallel to d merges
+// with the segment.  Edge e_i = p_{i+1} − p_i faces ±d by the sign of
+// det(e_i, n, d) = −arc_side(p_i, p_{i+1}, x, y, f0, f1, f2) (exact, filtered).
+void facet_plus_edge(const ConvexPolytope& F, Index fi, const ConvexPolytope& E, Index ei, bool f_is_a,
+                     Loops& out) {
+  const Index x = E.origin(2 * ei), y = E.target(2 * ei);
+  const std::vector<Index> p = F.facet_vertices(fi);
+  const std::size_t k = p.size();
+  const bool dbl = F.coordinates_are_doubles() && E.coordinates_are_doubles();
+  std::vector<int> side(k);
+  for (std::size_t i = 0; i < k; ++i) {
+    const Index p0 = p[i], p1 = p[(i + 1) % k];
+    side[i] = -(dbl ? arc_side(F.approx(p0), F.approx(p1), E.approx(x), E.approx(y), F.approx(p[0]), F.approx(p[1]),
+                               F.approx(p[2]))
+                    : arc_side(F.point(p0), F.point(p1), E.point(x), E.point(y), F.point(p[0]), F.point(p[1]),
+                               F.point(p[2])));
+  }
+  auto emit = [&](Index pv, Index ev) { out.corners.push_back(f_is_a ? std::pair(pv, ev) : std::pair(ev, pv)); };
+  for (std::size_t i = 0; i < k; ++i) {
+    const int prev = side[(i + k - 1) % k], cur = side[i];
+    const bool hx = prev < 0 || cur < 0, hy = prev > 0 || cur > 0;
+    if (hx && hy) {
+      if (prev < 0) emit(p[i], x), emit(p[i], y);
+      else emit(p[i], y), emit(p[i], x);
+    } else if (hx) {
+      emit(p[i], x);
+    } else if (hy) {
+      emit(p[i], y);
+    } else {
+      throw std::logic_error("walk: two consecutive edges of a facet are parallel");
+    }
+  }
+  const Feature ff{2, fi}, fe{1, ei};
+  out.close(f_is_a ? FacetProvenance{ff, fe} : FacetProvenance{fe, ff});
+}
+
 }  // namespace
 
 WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
   Stats st;
+  st.round_to_nearest = round_to_nearest();
   const Operand A(a), B(b);
   std::vector<std::pair<Index, Index>> crossings;
   const double fa = a.num_facets(), fb = b.num_facets();
@@ -456,6 +536,8 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
         h = a.next(h);
       } while (h != h0);
       L.close({{2, f}, s});
+    } else if (s.dim == 1) {
+      facet_plus_edge(a, f, b, s.index, true, L);
     } else {
       planar_sum(a, {2, f}, b, s, a.plane(f).normal(), L);
     }
@@ -472,7 +554,7 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
       } while (h != h0);
       L.close({s, {2, g}});
     } else {
-      planar_sum(a, s, b, {2, g}, b.plane(g).normal(), L);
+      facet_plus_edge(b, g, a, s.index, false, L);
     }
   }
   // An edge facet e_a ⊕ e_b, crossed from the region of x into that of y
@@ -500,28 +582,47 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
   w.he_next.assign(nc, kNoIndex);
   w.he_facet.assign(nc, kNoIndex);
   w.facet_he.resize(nf);
-  KeyMap vmap(nv), emap(ne);
+  // Vertex (pa, pb) is found through the vertex of the operand with more
+  // vertices (short lists), edge {p, q} through its smaller endpoint: linked
+  // lists threaded through the vertex and edge arrays, no hashing.
+  const bool key_b = b.num_vertices() >= a.num_vertices();
+  std::vector<Index> vhead(key_b ? b.num_vertices() : a.num_vertices(), kNoIndex), vnext;
+  std::vector<Index> ehead(nv, kNoIndex), enext, eother;
+  vnext.reserve(nv);
+  enext.reserve(ne);
+  eother.reserve(ne);
   std::vector<Index> vid;
   Index edges = 0;
   for (Index f = 0; f < nf; ++f) {
     const Index s = L.start[f], t = L.start[f + 1];
     vid.clear();
     for (Index i = s; i < t; ++i) {
-      const auto [pa, pb] = L.corners[i];
-      bool inserted;
-      const Index v = vmap.find_or_insert((std::uint64_t(pa) << 32) | pb, Index(w.vertex_origin.size()), inserted);
-      if (inserted) w.vertex_origin.emplace_back(pa, pb);
+      const auto c = L.corners[i];
+      const Index key = key_b ? c.second : c.first;
+      Index v = vhead[key];
+      while (v != kNoIndex && w.vertex_origin[v] != c) v = vnext[v];
+      if (v == kNoIndex) {
+        if (w.vertex_origin.size() == nv) throw std::logic_error("walk: the output is not a sphere (V − E + F ≠ 2)");
+        v = Index(w.vertex_origin.size());
+        w.vertex_origin.push_back(c);
+        vnext.push_back(vhead[key]);
+        vhead[key] = v;
+      }
       vid.push_back(v);
     }
     const Index k = t - s;
     Index first = kNoIndex, last = kNoIndex;
     for (Index i = 0; i < k; ++i) {
       const Index p = vid[i], q = vid[(i + 1) % k];
-      bool inserted;
-      const Index e = emap.find_or_insert((std::uint64_t(std::min(p, q)) << 32) | std::max(p, q), edges, inserted);
-      if (inserted) {
+      const Index lo = std::min(p, q), hi = std::max(p, q);
+      Index e = ehead[lo];
+      while (e != kNoIndex && eother[e] != hi) e = enext[e];
+      if (e == kNoIndex) {
         if (edges == ne) throw std::logic_error("walk: more edges than the facet loops allow");
-        ++edges;
+        e = edges++;
+        eother.push_back(hi);
+        enext.push_back(ehead[lo]);
+        ehead[lo] = e;
       }
       const Index h = 2 * e + (p < q ? 0 : 1);
       if (w.he_origin[h] != kNoIndex) throw std::logic_error("walk: an output half-edge is used twice");

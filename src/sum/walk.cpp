@@ -143,34 +143,60 @@ struct Operand {
 //  * exact double coordinates: |value − P| ≤ c_vec · M_e M_u M_v;
 //  * otherwise (rounded rationals): c_rat Π D + T (1 + 2^-20) Σ_k ρ_k Π_{h≠k} (D_h + ρ_h)
 // (derivations at the top of src/kernel/predicates.cpp).
+// A difference of two vertices of one operand, rounded, with what the
+// filter needs: its largest coordinate and the operands' coordinates' bound.
+struct Diff {
+  double ex, ey, ez, de, ce;
+};
+inline Diff make_diff(const Operand& X, Index xi, Index yi) {
+  const Vec3d &p = X.x[xi], &q = X.x[yi];
+  Diff d;
+  d.ex = p.x - q.x, d.ey = p.y - q.y, d.ez = p.z - q.z;
+  d.de = std::max({std::fabs(d.ex), std::fabs(d.ey), std::fabs(d.ez)});
+  d.ce = std::max(X.cmax[xi], X.cmax[yi]);
+  return d;
+}
+
+// The filter: the sign, or 2 when it cannot decide.
+inline int det3_filter(const Operand::Facet& g, bool doubles, const Diff& d) {
+  if (!g.ok) return 2;
+  const double value = (d.ex * g.nx + d.ey * g.ny) + d.ez * g.nz;
+  if (doubles) {
+    if (d.de == 0) return 0;  // the same point
+    if (d.de >= kShapeDet3.lo && d.de <= kShapeDet3.hi) {
+      const double bound = kShapeDet3.c_vec * d.de * g.du * g.dv;
+      if (value > bound) return 1;
+      if (value < -bound) return -1;
+    }
+  } else if (d.de >= kShapeDet3.lo && d.de <= kShapeDet3.hi && d.ce <= kShapeDet3.hi) {
+    const double re = kEpsSlack * (d.de + 8 * d.ce);
+    const double eval = kShapeDet3.c_rat * d.de * g.du * g.dv;
+    const double pert = re * (g.du + g.ru) * (g.dv + g.rv) + g.ru * (d.de + re) * (g.dv + g.rv) +
+                        g.rv * (d.de + re) * (g.du + g.ru);
+    const double bound = eval + (kShapeDet3.terms * kSlack) * pert;
+    if (value > bound) return 1;
+    if (value < -bound) return -1;
+  }
+  return 2;
+}
+
+int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, Stats& st);
+
 inline int det3(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, Stats& st) {
   ++st.calls;
+  const int s = det3_filter(F.f[fi], F.doubles && X.doubles, make_diff(X, xi, yi));
+  return s != 2 ? s : det3_slow(F, fi, X, xi, yi, st);
+}
+// The same with the difference X(xi) − X(yi) already made.
+inline int det3(const Operand& F, Index fi, const Operand& X, const Diff& d, Index xi, Index yi, Stats& st) {
+  ++st.calls;
+  const int s = det3_filter(F.f[fi], F.doubles && X.doubles, d);
+  return s != 2 ? s : det3_slow(F, fi, X, xi, yi, st);
+}
+
+// When the filter cannot decide.
+int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, Stats& st) {
   const Operand::Facet& g = F.f[fi];
-  if (g.ok) {
-    const Vec3d &p = X.x[xi], &q = X.x[yi];
-    const double ex = p.x - q.x, ey = p.y - q.y, ez = p.z - q.z;
-    const double de = std::max({std::fabs(ex), std::fabs(ey), std::fabs(ez)});
-    const double value = (ex * g.nx + ey * g.ny) + ez * g.nz;
-    if (F.doubles && X.doubles) {
-      if (de == 0) return 0;  // xi and yi are the same point
-      if (de >= kShapeDet3.lo && de <= kShapeDet3.hi) {
-        const double bound = kShapeDet3.c_vec * de * g.du * g.dv;
-        if (value > bound) return 1;
-        if (value < -bound) return -1;
-      }
-    } else {
-      const double ce = std::max(X.cmax[xi], X.cmax[yi]);
-      if (de >= kShapeDet3.lo && de <= kShapeDet3.hi && ce <= kShapeDet3.hi) {
-        const double re = kEpsSlack * (de + 8 * ce);
-        const double eval = kShapeDet3.c_rat * de * g.du * g.dv;
-        const double pert = re * (g.du + g.ru) * (g.dv + g.rv) + g.ru * (de + re) * (g.dv + g.rv) +
-                            g.rv * (de + re) * (g.du + g.ru);
-        const double bound = eval + (kShapeDet3.terms * kSlack) * pert;
-        if (value > bound) return 1;
-        if (value < -bound) return -1;
-      }
-    }
-  }
   if (F.doubles && X.doubles && g.exact) {
     // Often the value was computed without any rounding (axis-parallel
     // facets, edges in coordinate planes: the degenerate signs 0 of
@@ -275,7 +301,8 @@ class Walker {
   // sign <x − y, n(f)>, f a facet of P, x and y vertices of Q.
   int higher(Index f, Index x, Index y) { return det3(P_, f, Q_, x, y, st_); }
   // sign <d_h, n(g)>, h a half-edge of P, g a facet of Q.
-  int side(Index g, Index h) { return det3(Q_, g, P_, p_.target(h), p_.origin(h), st_); }
+  // (The walk of h sets hd_ = d_h once.)
+  int side(Index g, Index h) { return det3(Q_, g, P_, hd_, p_.target(h), p_.origin(h), st_); }
 
   // The face of Q maximising <x, n(f)>, given its vertex b (a maximiser):
   // b and its neighbours as high as b.
@@ -318,10 +345,11 @@ class Walker {
     return support_face_at(b, f);
   }
 
-  // Outgoing half-edges of b, counter-clockwise, into hbuf_.
-  void ring(Index b) {
+  // Outgoing half-edges of b, counter-clockwise, into hbuf_, starting with
+  // h0 (an outgoing half-edge of b) or any.
+  void ring(Index b, Index h0 = kNoIndex) {
     hbuf_.clear();
-    const Index h0 = q_.vertex_halfedge(b);
+    if (h0 == kNoIndex) h0 = q_.vertex_halfedge(b);
     Index h = h0;
     do {
       hbuf_.push_back(h);
@@ -372,7 +400,9 @@ class Walker {
   // n(facet(twin hp)); returns the support there when `need_end`.
   Feature walk(Index hp, Feature S1, bool need_end) {
     const Index f2 = p_.facet(ConvexPolytope::twin(hp));
+    hd_ = make_diff(P_, p_.target(hp), p_.origin(hp));
     State s = enter(S1, hp, f2);
+    Index entry = kNoIndex;  // the half-edge of Q through which the region was entered by a crossing
     for (;;) {
       ++st_.steps;
       if (s.overlap) {
@@ -391,24 +421,34 @@ class Walker {
         } while (h != h0);
         if (support) return need_end ? support_face_at(x, f2) : kUnknown;
         s = enter({2, q_.facet(ConvexPolytope::twin(hq))}, hp, f2);
+        entry = kNoIndex;
         continue;
       }
       // Inside the region of vertex b: find where the arc's great circle
-      // leaves it (side signs − then +, or −, 0, +).
+      // leaves it (side signs − then +, or −, 0, +), evaluating the signs
+      // lazily.  Entered by crossing the edge `entry`, the two facets beside
+      // it are known: − after it, + before it.
       const Index b = s.index;
-      ring(b);
+      ring(b, entry);
       const std::size_t k = hbuf_.size();
-      sbuf_.resize(k);
-      for (std::size_t i = 0; i < k; ++i) sbuf_[i] = std::int8_t(side(q_.facet(hbuf_[i]), hp));
+      sbuf_.assign(k, 2);
+      if (entry != kNoIndex) sbuf_[0] = -1, sbuf_[k - 1] = 1;
+      auto S = [&](std::size_t i) {
+        i %= k;
+        if (sbuf_[i] == 2) sbuf_[i] = std::int8_t(side(q_.facet(hbuf_[i]), hp));
+        return int(sbuf_[i]);
+      };
       std::size_t exit = k;
       bool through_vertex = false;
       for (std::size_t i = 0; i < k; ++i) {
-        const int sp = sbuf_[(i + k - 1) % k], si = sbuf_[i];
-        if (sp < 0 && si > 0) {
+        const int sp = S(i + k - 1);
+        if (sp >= 0) continue;
+        const int si = S(i);
+        if (si > 0) {
           exit = i;
           break;
         }
-        if (si == 0 && sp < 0 && sbuf_[(i + 1) % k] > 0) {
+        if (si == 0 && S(i + 1) > 0) {
           exit = i;
           through_vertex = true;
           break;
@@ -417,13 +457,18 @@ class Walker {
       if (exit == k) throw std::logic_error("walk: the arc does not leave a vertex region");
       const Index he = hbuf_[exit];
       // The arc ends before the exit iff n(f2) is on b's side of the exit
-      // side's great circle.
-      if (higher(f2, q_.target(he), b) <= 0) return need_end ? support_face_at(b, f2) : kUnknown;
+      // side's great circle; strictly inside that side, n(f2) lies on the
+      // open chord of the region cut by the arc's circle: b alone supports it.
+      const int c = higher(f2, q_.target(he), b);
+      if (c < 0) return {0, b};
+      if (c == 0) return need_end ? support_face_at(b, f2) : kUnknown;
       if (through_vertex) {
         s = enter({2, q_.facet(he)}, hp, f2);
+        entry = kNoIndex;
       } else {
         if (crossings_) crossings_->emplace_back(hp, he);
         s = {false, q_.target(he)};
+        entry = ConvexPolytope::twin(he);
       }
     }
   }
@@ -432,6 +477,7 @@ class Walker {
   const ConvexPolytope &p_, &q_;
   Stats& st_;
   std::vector<std::pair<Index, Index>>* crossings_ = nullptr;
+  Diff hd_{};
   std::vector<Index> hbuf_, verts_;
   std::vector<std::int8_t> sbuf_;
   std::vector<std::uint8_t> tie_;

@@ -40,7 +40,8 @@ Options:
   --rotate-p A,B,C,D    rotate P by the integer quaternion A+Bi+Cj+Dk (exact,
   --rotate-q A,B,C,D    the same matrix as the catalog's @rot:A,B,C,D)
   --direction X,Y,Z     the direction d of ddepth (non-zero)
-  --method M            how M is computed: auto (default), chms, cvms
+  --method M            how M = P ⊕ (−Q) is computed: any method of `minksum sum`
+                        (default auto, i.e. walk)
   --trajectory FILE     read one pose per line from FILE ('-': stdin) and
                         answer the query for each, reusing the previous
                         answer as the start of the next (coherence).  A line

@@ -21,7 +21,13 @@ a summary (or JSON).  A and B are files or catalog names.
 Options:
   -o, --output OUT   write the sum to OUT (.off .obj .ply .stl .wrl); the file
                      is written to a temporary name and renamed when complete
-  --method M         auto (default), chms, cvms, walk, essdms, mssd, cgm.
+  --method M         auto (default), walk, chms, cvms, essdms, mssd, cgm.
+                     walk (what auto uses): output-sensitive — walks along
+                     the Gaussian arcs of each operand's edges over the
+                     other's Gaussian map, building the result directly; cost
+                     grows with input + output.  --json adds its counters
+                     (crossings, steps, predicates, microseconds of the walk
+                     and of the conversion to exact coordinates).
                      chms: exact convex hull of all pairwise vertex sums, the
                      reference oracle.  cvms: contributing vertices (Barki et
                      al.), reports the facet types (translated, corner, edge,
@@ -34,8 +40,7 @@ Options:
                      counts with --json.  cgm: overlay of the six pairs of
                      planar maps of the Cubical Gaussian Maps (Fogel &
                      Halperin), reports the overlay cases met with --json.
-                     Methods not built
-                     into this version are refused with exit status 2.
+                     All are exact and give the same polytope.
   --exact            write coordinates as exact rationals (p/q or integers);
                      default: shortest text that reads back to the nearest
                      double.  Only .off, .obj and .wrl can hold rationals.

@@ -31,6 +31,7 @@ build: $(BUILD)/CMakeCache.txt
 demo: build
 	@mkdir -p $(BUILD)/demo
 	$(BUILD)/bin/minksum sum cube sphere:3 --exact -o $(BUILD)/demo/cube+sphere3.off
+	$(BUILD)/bin/minksum sum sphere:6 sphere:6@rot:1
 	$(BUILD)/bin/minksum sum dodecahedron truncated-cube --method essdms --exact -o $(BUILD)/demo/dodeca+trunccube.off
 	$(BUILD)/bin/minksum sum sphere:3 sphere:3@rot:5 --method cgm --exact -o $(BUILD)/demo/sphere3+rotated.off
 	$(BUILD)/bin/minksum stats $(BUILD)/demo/cube+sphere3.off

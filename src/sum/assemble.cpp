@@ -27,6 +27,8 @@ std::array<Integer, 3> primitive_direction(const Point3& n) {
   return d;
 }
 
+namespace {
+
 // Indices of the convex hull of coplanar points (plane normal n), counter-
 // clockwise about n, without collinear points.  Andrew's monotone chain on
 // the projection that drops the coordinate where n is largest; exact.
@@ -64,6 +66,8 @@ std::vector<std::size_t> planar_hull(const std::vector<Point3>& pts, const Point
   if (sgn(n[k]) < 0) std::reverse(h.begin(), h.end());
   return h;
 }
+
+}  // namespace
 
 SumResult assemble_sum(const ConvexPolytope& a, const ConvexPolytope& b, std::vector<FacetCandidate> candidates,
                        Method method) {

@@ -32,10 +32,6 @@ struct FacetCandidate {
 SumResult assemble_sum(const ConvexPolytope& a, const ConvexPolytope& b, std::vector<FacetCandidate> candidates,
                        Method method);
 
-// Indices of the convex hull of coplanar points (plane normal n, nonzero),
-// counter-clockwise about n, without collinear or repeated points; exact.
-std::vector<std::size_t> planar_hull(const std::vector<Point3>& pts, const Point3& n);
-
 // Primitive integer direction of a nonzero rational vector (equal for
 // vectors that are positive multiples of each other).
 std::array<Integer, 3> primitive_direction(const Point3& n);

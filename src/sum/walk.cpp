@@ -38,7 +38,6 @@
 
 #include "kernel/predicates_internal.hpp"
 #include "mesh/builder.hpp"
-#include "sum/faces.hpp"
 
 namespace minksum {
 
@@ -494,26 +493,57 @@ struct Loops {
   }
 };
 
-std::vector<Index> face_vertices(const ConvexPolytope& p, Feature f) {
-  if (f.dim == 0) return {f.index};
-  if (f.dim == 1) return {p.origin(2 * f.index), p.target(2 * f.index)};
-  return p.facet_vertices(f.index);
-}
 
-// face_A ⊕ face_B when both have dimension ≥ 1 and lie in parallel planes
-// (normal n): the planar convex hull of the pairwise sums.  Rare (parallel
-// features), exact.
-void planar_sum(const ConvexPolytope& a, Feature fa, const ConvexPolytope& b, Feature fb, const Point3& n,
-                Loops& out) {
-  std::vector<std::pair<Index, Index>> pairs;
-  std::vector<Point3> pts;
-  for (Index i : face_vertices(a, fa))
-    for (Index j : face_vertices(b, fb)) {
-      pairs.emplace_back(i, j);
-      pts.push_back(a.point(i) + b.point(j));
+// Facet fa of A ⊕ facet fb of B with the same outer normal n: the merge of
+// the two counter-clockwise edge sequences by angle (the planar Minkowski sum
+// of convex polygons).  Both start at the edge direction of A's first edge
+// e_0: A at its vertex 0, B at its vertex supporting the in-plane outer
+// normal m_0 = e_0 × n of e_0 (the origin of B's edge parallel to e_0, if
+// any).  Then, from (i, j), the next vertex is (i+1, j) when e_i turns before
+// f_j (det(e_i, f_j, n) > 0), (i, j+1) when after, (i+1, j+1) when they are
+// parallel — then the same direction, since two consecutive edges of a convex
+// polygon turn by less than π.  Signs: arc_side (exact, filtered).
+void facet_plus_facet(const ConvexPolytope& a, Index fa, const ConvexPolytope& b, Index fb, Loops& out) {
+  const std::vector<Index> p = a.facet_vertices(fa), q = b.facet_vertices(fb);
+  const std::size_t k = p.size(), m = q.size();
+  const bool dbl = a.coordinates_are_doubles() && b.coordinates_are_doubles();
+  // det(x1 − x0, y1 − y0, n(fa)), x from X, y from Y.
+  auto det = [&](const ConvexPolytope& X, Index x0, Index x1, const ConvexPolytope& Y, Index y0, Index y1) {
+    return dbl ? arc_side(X.approx(x0), X.approx(x1), Y.approx(y0), Y.approx(y1), a.approx(p[0]), a.approx(p[1]),
+                          a.approx(p[2]))
+               : arc_side(X.point(x0), X.point(x1), Y.point(y0), Y.point(y1), a.point(p[0]), a.point(p[1]),
+                          a.point(p[2]));
+  };
+  // <y − x, m_0> = det(y − x, e_0, n): B's vertex highest along m_0, the
+  // first of two tied ones in B's order (the tie is an edge parallel to e_0,
+  // and its origin comes first).
+  std::size_t j0 = 0;
+  for (std::size_t j = 1; j < m; ++j)
+    if (det(b, q[j0], q[j], a, p[0], p[1]) > 0) j0 = j;
+  for (std::size_t j = 0; j < m; ++j)
+    if (j != j0 && det(b, q[j0], q[j], a, p[0], p[1]) == 0) {
+      // Tied: q[j] is the neighbour of q[j0] along an edge parallel to e_0;
+      // start at the edge's origin.
+      if (q[(j + 1) % m] == q[j0]) j0 = j;
+      break;
     }
-  for (std::size_t t : planar_hull(pts, n)) out.corners.push_back(pairs[t]);
-  out.close({fa, fb});
+  std::size_t i = 0, j = 0;
+  while (i < k || j < m) {
+    out.corners.emplace_back(p[i % k], q[(j0 + j) % m]);
+    if (i == k) {
+      ++j;
+      continue;
+    }
+    if (j == m) {
+      ++i;
+      continue;
+    }
+    const Index pi = p[i % k], pn = p[(i + 1) % k], qj = q[(j0 + j) % m], qn = q[(j0 + j + 1) % m];
+    const int c = det(a, pi, pn, b, qj, qn);
+    if (c >= 0) ++i;
+    if (c <= 0) ++j;
+  }
+  out.close({{2, fa}, {2, fb}});
 }
 
 // Facet fi of F ⊕ edge ei of E, the edge parallel to the facet's plane
@@ -585,7 +615,7 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
     } else if (s.dim == 1) {
       facet_plus_edge(a, f, b, s.index, true, L);
     } else {
-      planar_sum(a, {2, f}, b, s, a.plane(f).normal(), L);
+      facet_plus_facet(a, f, b, s.index, L);
     }
   }
   for (Index g = 0; g < b.num_facets(); ++g) {

@@ -402,7 +402,11 @@ class Walker {
     hd_ = make_diff(P_, p_.target(hp), p_.origin(hp));
     State s = enter(S1, hp, f2);
     Index entry = kNoIndex;  // the half-edge of Q through which the region was entered by a crossing
-    for (;;) {
+    // The arc is shorter than π and the regions and edge arcs are convex:
+    // each is met at most once.  More steps than that is a bug, not a loop.
+    const std::uint64_t limit = std::uint64_t(q_.num_vertices()) + q_.num_edges() + q_.num_facets() + 2;
+    for (std::uint64_t n = 0;; ++n) {
+      if (n > limit) throw std::logic_error("walk: an arc walk does not end");
       ++st_.steps;
       if (s.overlap) {
         // Along the arc of Q's edge hq: it ends at n(facet(twin hq)).  The

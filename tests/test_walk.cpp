@@ -147,6 +147,10 @@ TEST(Walk, ThinBoxAndExtremeScales) {
   expect_matches_oracle("sphere:2@scale:1e-150", "dodecahedron@scale:1e-150");
   expect_matches_oracle("icosahedron@scale:1e150", "tetra@scale:1e150@rot:3");
   expect_matches_oracle("cube@scale:1e-300", "cube@rot:1@scale:1e-300");
+  // Rational coordinates below the normal range of doubles: their nearest
+  // doubles carry no relative error bound, so the filter stands aside.
+  expect_matches_oracle("tetra@rot:3@scale:1e-310", "cube@rot:5@scale:1e-310");
+  expect_matches_oracle("octahedron@rot:2@scale:1e-320", "icosahedron@scale:1e-300");
 }
 
 TEST(Walk, FarApartOperands) {

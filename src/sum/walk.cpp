@@ -74,6 +74,7 @@ struct Stats {
 struct Operand {
   const ConvexPolytope* P = nullptr;
   bool doubles = false;      // every coordinate is exactly a double
+  bool filterable = true;    // every rounded coordinate within the filters' assumptions
   std::vector<Vec3d> x;      // nearest doubles (exact when `doubles`)
   std::vector<double> cmax;  // max |coordinate| of x[v]
   struct Facet {
@@ -97,6 +98,15 @@ struct Operand {
     for (Index v = 0; v < p.num_vertices(); ++v) {
       x[v] = p.approx(v);
       cmax[v] = std::max({std::fabs(x[v].x), std::fabs(x[v].y), std::fabs(x[v].z)});
+      // The rational filter needs |x̂ − x| ≤ κ|x̂| for every rounded
+      // coordinate: true for the nearest double in the normal range, and for
+      // 0 only when the coordinate is 0.  Tiny coordinates (underflow) make
+      // every sign of this operand exact-only.
+      if (!doubles)
+        for (int i = 0; i < 3; ++i) {
+          const double c = x[v][i];
+          if (c == 0 ? sgn(p.point(v)[i]) != 0 : std::fabs(c) < 0x1p-1022) filterable = false;
+        }
     }
     f.resize(p.num_facets());
     if (doubles) axis_sign.assign(p.num_facets(), {2, 2, 2});
@@ -115,7 +125,7 @@ struct Operand {
       const double cu = std::max(cmax[g.v0], cmax[g.v1]), cv = std::max(cmax[g.v0], cmax[g.v2]);
       g.ru = kEpsSlack * (g.du + 8 * cu);
       g.rv = kEpsSlack * (g.dv + 8 * cv);
-      g.ok = g.du >= lo && g.du <= hi && g.dv >= lo && g.dv <= hi && cu <= hi && cv <= hi;
+      g.ok = filterable && g.du >= lo && g.du <= hi && g.dv >= lo && g.dv <= hi && cu <= hi && cv <= hi;
       g.exact = false;
       if (doubles && g.ok && nearest) {
         const double u[3] = {ux, uy, uz}, v[3] = {vx, vy, vz};
@@ -157,8 +167,8 @@ inline Diff make_diff(const Operand& X, Index xi, Index yi) {
 }
 
 // The filter: the sign, or 2 when it cannot decide.
-inline int det3_filter(const Operand::Facet& g, bool doubles, const Diff& d) {
-  if (!g.ok) return 2;
+inline int det3_filter(const Operand::Facet& g, bool doubles, bool filterable, const Diff& d) {
+  if (!g.ok || !filterable) return 2;
   const double value = (d.ex * g.nx + d.ey * g.ny) + d.ez * g.nz;
   if (doubles) {
     if (d.de == 0) return 0;  // the same point
@@ -183,13 +193,13 @@ int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, 
 
 inline int det3(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, Stats& st) {
   ++st.calls;
-  const int s = det3_filter(F.f[fi], F.doubles && X.doubles, make_diff(X, xi, yi));
+  const int s = det3_filter(F.f[fi], F.doubles && X.doubles, X.filterable, make_diff(X, xi, yi));
   return s != 2 ? s : det3_slow(F, fi, X, xi, yi, st);
 }
 // The same with the difference X(xi) − X(yi) already made.
 inline int det3(const Operand& F, Index fi, const Operand& X, const Diff& d, Index xi, Index yi, Stats& st) {
   ++st.calls;
-  const int s = det3_filter(F.f[fi], F.doubles && X.doubles, d);
+  const int s = det3_filter(F.f[fi], F.doubles && X.doubles, X.filterable, d);
   return s != 2 ? s : det3_slow(F, fi, X, xi, yi, st);
 }
 

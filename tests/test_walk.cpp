@@ -113,6 +113,7 @@ TEST(Walk, QuarterTurnsAndArcsThroughVertices) {
   expect_matches_oracle("truncated-octahedron", "cube@rot:1,1,1,1");
   expect_matches_oracle("dioctagonal:17", "dioctagonal:17@rot:1,0,0,1");
   expect_matches_oracle("dioctagonal:17", "dioctagonal:17@rot:1,1,0,0");
+  expect_matches_oracle("dioctagonal:9", "dioctagonal:9@rot:7");
 }
 
 TEST(Walk, NearlyDegeneratePairs) {
@@ -134,6 +135,7 @@ TEST(Walk, ZonotopesWithParallelEdges) {
 
 TEST(Walk, MixedSolids) {
   expect_matches_oracle("truncated-cube", "dodecahedron");
+  expect_matches_oracle("cube", "truncated-cube");
   expect_matches_oracle("snub-cube", "truncated-icosahedron", false);
   expect_matches_oracle("sphere:3", "sphere:3@rot:5", false);
   expect_matches_oracle("random:300:1", "random:300:2", false);

@@ -288,6 +288,12 @@ class Walker {
           walked[e] = 1;
           const Index f2 = p_.facet(ConvexPolytope::twin(h));
           const bool need = S[f2].dim < 0;
+          // Without crossings to record, only the arcs of a spanning tree of
+          // the facets are needed.
+          if (!need && !crossings) {
+            h = p_.next(h);
+            continue;
+          }
           Feature s2 = walk(h, S[f1], need);
           if (need) {
             S[f2] = s2;
@@ -606,8 +612,17 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
   const Operand A(a), B(b);
   std::vector<std::pair<Index, Index>> crossings;
   const double fa = a.num_facets(), fb = b.num_facets();
-  const std::vector<Feature> SB = Walker(A, B, st).run(&crossings, 0, 0.8 * fa / (fa + fb));
-  const std::vector<Feature> SA = Walker(B, A, st).run(nullptr, 0.8 * fa / (fa + fb), 0.8 * fb / (fa + fb));
+  // The operand with fewer edges walks all its arcs and records the
+  // crossings; the other walks a spanning tree of its facets only.
+  const bool a_records = a.num_edges() <= b.num_edges();
+  std::vector<Feature> SA, SB;
+  if (a_records) {
+    SB = Walker(A, B, st).run(&crossings, 0, 0.8 * fa / (fa + fb));
+    SA = Walker(B, A, st).run(nullptr, 0.8 * fa / (fa + fb), 0.8 * fb / (fa + fb));
+  } else {
+    SA = Walker(B, A, st).run(&crossings, 0, 0.8 * fb / (fa + fb));
+    SB = Walker(A, B, st).run(nullptr, 0.8 * fb / (fa + fb), 0.8 * fa / (fa + fb));
+  }
   report_sum_progress("walk", 0.8);
 
   // Output facets: A's facets, B's facets not parallel to one of A's, and
@@ -651,13 +666,19 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
   // while walking u → v: its loop is (v,x) (u,x) (u,y) (v,y) — the side
   // e_a ⊕ x borders the output facet met before on the arc, so it runs
   // against the walk (first bullet at the top of the file).
-  for (auto [ha, hb] : crossings) {
-    const Index u = a.origin(ha), v = a.target(ha), x = b.origin(hb), y = b.target(hb);
-    L.corners.emplace_back(v, x);
-    L.corners.emplace_back(u, x);
-    L.corners.emplace_back(u, y);
-    L.corners.emplace_back(v, y);
-    L.close({{1, ConvexPolytope::edge(ha)}, {1, ConvexPolytope::edge(hb)}});
+  // (The loop is that of the sum of the walked edge and the crossed one,
+  // whichever operand walked: as pairs (vertex of A, vertex of B).)
+  const ConvexPolytope &P = a_records ? a : b, &Q = a_records ? b : a;
+  for (auto [hp, hq] : crossings) {
+    const Index u = P.origin(hp), v = P.target(hp), x = Q.origin(hq), y = Q.target(hq);
+    const Feature ep{1, ConvexPolytope::edge(hp)}, eq{1, ConvexPolytope::edge(hq)};
+    if (a_records) {
+      L.corners.insert(L.corners.end(), {{v, x}, {u, x}, {u, y}, {v, y}});
+      L.close({ep, eq});
+    } else {
+      L.corners.insert(L.corners.end(), {{x, v}, {x, u}, {y, u}, {y, v}});
+      L.close({eq, ep});
+    }
   }
 
   // Link: vertices are pairs, edges are pairs of vertices.

@@ -14,7 +14,8 @@ namespace minksum::bench {
 
 struct Outcome {
   double seconds = 0;       // the computation alone (no I/O, no input conversion)
-  double sub_seconds = -1;  // a second timing when a competitor has two phases (SGM: overlay only)
+  double sub_seconds = -1;  // a second timing when a contender has two phases (SGM: overlay only, part of
+                            // `seconds`; walk: the conversion to a ConvexPolytope, after `seconds`)
   long v = -1, e = -1, f = -1;  // output counts, coplanar facets merged
   std::string note;         // why counts are missing, or how they were obtained
 };

@@ -15,6 +15,7 @@
 #include <minksum/catalog.hpp>
 #include <minksum/io.hpp>
 #include <minksum/minkowski.hpp>
+#include <minksum/walk.hpp>
 
 #include <gmp.h>
 #include <signal.h>
@@ -26,12 +27,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <ctime>
 #include <fstream>
 #include <functional>
 #include <iostream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 namespace minksum::bench {
 namespace {
@@ -42,6 +45,8 @@ struct Config {
   std::string command = "make bench";
   std::string only;
   int runs = 5;
+  double min_total = 1.0;      // fast cells repeat beyond `runs` until this many seconds of runs ...
+  int max_runs = 500;          // ... or this many runs
   double cap = 120;            // seconds per cell (all runs of a cell)
   double long_run = 10;        // a first run longer than this is not repeated
   double exact_pair_limit = 1.2e7;  // v_A * v_B beyond which exact pairwise methods are skipped
@@ -66,6 +71,36 @@ std::vector<Entry> contenders() {
     c.label = std::string("minksum ") + method_name(m);
     c.ours = true;
     c.pairwise = (m == Method::chms);
+    if (m == Method::walk) {
+      // Timed: the walk alone, whose result is the exact sum as a half-edge
+      // structure with implicit coordinates (vertex = pair of input vertices);
+      // counts from it.  The second timing is to_polytope(), the conversion to
+      // explicit exact rational coordinates and canonical planes (what
+      // minkowski_sum(a, b, Method::walk) adds), run after it in every run.
+      c.sub_label = "+ conversion";
+      c.sub_extra = true;
+      out.push_back({c, [](const ConvexPolytope& a, const ConvexPolytope& b) {
+                       Outcome o;
+                       Stopwatch sw;
+                       WalkSum w = minkowski_walk(a, b);
+                       o.seconds = sw.seconds();
+                       o.v = w.num_vertices();
+                       o.e = w.num_edges();
+                       o.f = w.num_facets();
+                       Stopwatch conv;
+                       ConvexPolytope p = to_polytope(w, a, b);
+                       o.sub_seconds = conv.seconds();
+                       if (p.num_vertices() != o.v || p.num_edges() != o.e || p.num_facets() != o.f)
+                         throw std::logic_error("to_polytope changed the counts of the walk's result: " +
+                                                std::to_string(o.v) + "/" + std::to_string(o.e) + "/" +
+                                                std::to_string(o.f) + " became " +
+                                                std::to_string(p.num_vertices()) + "/" +
+                                                std::to_string(p.num_edges()) + "/" +
+                                                std::to_string(p.num_facets()));
+                       return o;
+                     }});
+      continue;
+    }
     out.push_back({c, [m](const ConvexPolytope& a, const ConvexPolytope& b) {
                      Stopwatch sw;
                      SumResult r = minkowski_sum(a, b, m);
@@ -77,11 +112,11 @@ std::vector<Entry> contenders() {
                      return o;
                    }});
   }
-  out.push_back({{"cgal-exact", "CGAL hull, exact sums", false, true, true}, cgal_exact_hull});
-  out.push_back({{"cgal-epick", "CGAL hull, Epick (rounded)", false, false, true}, cgal_epick_hull});
-  out.push_back({{"qhull", "Qhull (rounded)", false, false, true}, qhull_rounded});
-  out.push_back({{"nef", "CGAL Nef minkowski_sum_3", false, true, true}, cgal_nef_sum});
-  out.push_back({{"sgm", "CGAL SGM (build + overlay)", false, true, false}, cgal_sgm_sum});
+  out.push_back({{"cgal-exact", "CGAL hull, exact sums", false, true, true, "", false}, cgal_exact_hull});
+  out.push_back({{"cgal-epick", "CGAL hull, Epick (rounded)", false, false, true, "", false}, cgal_epick_hull});
+  out.push_back({{"qhull", "Qhull (rounded)", false, false, true, "", false}, qhull_rounded});
+  out.push_back({{"nef", "CGAL Nef minkowski_sum_3", false, true, true, "", false}, cgal_nef_sum});
+  out.push_back({{"sgm", "CGAL SGM (build + overlay)", false, true, false, "overlay", false}, cgal_sgm_sum});
   return out;
 }
 
@@ -144,11 +179,15 @@ std::vector<Row> suite_rows(const std::string& suite) {
 // cell from the previous (smaller) row of its series: all pairwise sums for
 // the hull methods (and Nef, whose convex case is a hull of pairwise sums),
 // the f_A v_B + f_B v_A + e_A e_B of seed 000's CVMS/ESSDMS/MSSD analysis,
-// and input size (a lower bound for any method) for the others.
+// and input size (a lower bound for any method) for the others.  walk is
+// output-sensitive (input + output size), but a row's output is not known
+// before its first cell runs, so its prediction uses the input size too (the
+// sums of a series grow with their operands).
 const char* cost_name(const std::string& key) {
   if (key == "chms" || key == "cgal-exact" || key == "cgal-epick" || key == "qhull" || key == "nef")
     return "v_A·v_B";
   if (key == "cvms" || key == "essdms" || key == "mssd") return "f_A·v_B + f_B·v_A + e_A·e_B";
+  if (key == "walk") return "input size V+E+F of A and B, standing for input + output size";
   return "input size V+E+F of A and B";
 }
 double cost(const std::string& key, const RowResult& r, double input) {
@@ -207,13 +246,18 @@ Cell run_cell(const Entry& entry, const ConvexPolytope& a, const ConvexPolytope&
       std::vector<double> times, subs;
       Outcome last;
       Stopwatch total;
-      for (int r = 0; r < cfg.runs; ++r) {
+      // At least `runs` runs; a fast cell keeps repeating until min_total
+      // seconds of runs (at most max_runs): the median of a millisecond cell
+      // over a handful of runs is mostly the machine's noise.
+      for (int r = 0; r < cfg.runs || (total.seconds() < cfg.min_total && r < cfg.max_runs); ++r) {
         last = entry.run(a, b);
         times.push_back(last.seconds);
         if (last.sub_seconds >= 0) subs.push_back(last.sub_seconds);
-        if (r == 0 && last.seconds > cfg.long_run) break;
+        // A run's length: the timed part, and the second phase when it comes on top (walk's conversion).
+        const double run = last.seconds + (entry.c.sub_extra && last.sub_seconds > 0 ? last.sub_seconds : 0);
+        if (r == 0 && run > cfg.long_run) break;
         // Stop before the alarm would kill a run whose predecessors finished.
-        if (total.seconds() + 1.5 * last.seconds > 0.9 * cfg.cap) break;
+        if (total.seconds() + 1.5 * run > 0.9 * cfg.cap) break;
       }
       const long peak = proc_status_kb("VmHWM:");
       msg.precision(9);
@@ -292,6 +336,8 @@ RunInfo machine_info(const Config& cfg) {
   info.suite = cfg.suite;
   info.command = cfg.command;
   info.runs = cfg.runs;
+  info.min_total = cfg.min_total;
+  info.max_runs = cfg.max_runs;
   info.cap = cfg.cap;
   info.long_run = cfg.long_run;
   info.predict_factor = cfg.predict_factor;
@@ -359,6 +405,7 @@ int main(int argc, char** argv) {
   }
   if (cfg.suite == "quick") {
     cfg.runs = 3;
+    cfg.min_total = 0.2;
     cfg.cap = 5;
     cfg.long_run = 0.5;
     cfg.predict_factor = 1;
@@ -426,12 +473,15 @@ int main(int argc, char** argv) {
           (cell.state == Cell::skipped && st.capped))
         st.capped = true;
       if (cell.state == Cell::ok) {
-        st.seconds = cell.median;
+        // The cell's whole run (walk: with its conversion) is what the cap bounds.
+        st.seconds = cell.median + (c.sub_extra && cell.sub > 0 ? cell.sub : 0);
         st.size = size;
       }
       std::cerr << "    " << c.key << ": ";
       if (cell.state == Cell::ok)
-        std::cerr << cell.median << " s x" << cell.runs << "  V/E/F " << cell.v << "/" << cell.e << "/" << cell.f
+        std::cerr << cell.median << " s x" << cell.runs
+                  << (cell.sub >= 0 ? " (" + c.sub_label + " " + std::to_string(cell.sub) + " s)" : std::string())
+                  << "  V/E/F " << cell.v << "/" << cell.e << "/" << cell.f
                   << "  " << cell.peak_kb / 1024 << " MiB";
       else
         std::cerr << (cell.state == Cell::capped ? "capped" : cell.state == Cell::skipped ? "skipped" : "failed")
@@ -451,6 +501,9 @@ int main(int argc, char** argv) {
   }
   info.load_end = load_average();
   info.wall_seconds = wall.seconds();
+  // The output directory may not exist yet (--out /tmp/x): create it rather than lose the run.
+  std::error_code ec;
+  std::filesystem::create_directories(cfg.out, ec);
   const std::string md = cfg.out + "/benchmarks.md";
   const std::string svg_name = "benchmarks-plot.svg";
   write_svg(cfg.out + "/" + svg_name, cs, results);

@@ -64,7 +64,8 @@ struct Notes {
   }
 };
 
-std::string cell_text(const Cell& c, const RowResult& rr, const RunInfo& info, Notes& notes, bool with_sub) {
+std::string cell_text(const Cell& c, const Contender& who, const RowResult& rr, const RunInfo& info, Notes& notes,
+                      bool with_sub) {
   switch (c.state) {
     case Cell::none: return "";
     case Cell::capped: return "> " + fmt(info.cap) + " s";
@@ -74,7 +75,7 @@ std::string cell_text(const Cell& c, const RowResult& rr, const RunInfo& info, N
   }
   std::string s = fmt(c.median);
   if (c.runs < info.runs) s += " (" + std::to_string(c.runs) + "×)";
-  if (with_sub && c.sub >= 0) s += " (overlay " + fmt(c.sub) + ")";
+  if (with_sub && c.sub >= 0) s += " (" + (who.sub_label.empty() ? "second phase" : who.sub_label) + " " + fmt(c.sub) + ")";
   if (rr.v < 0) {
     s += " " + vef(c.v, c.e, c.f);
   } else if (c.v < 0) {
@@ -113,7 +114,7 @@ void table(std::ostream& md, const RunInfo& info, const std::vector<Contender>& 
     }
     for (const auto& c : cs) {
       auto it = rr->cells.find(c.key);
-      md << " " << (it == rr->cells.end() ? std::string() : cell_text(it->second, *rr, info, notes, true)) << " |";
+      md << " " << (it == rr->cells.end() ? std::string() : cell_text(it->second, c, *rr, info, notes, true)) << " |";
     }
     md << "\n";
   }
@@ -130,6 +131,140 @@ double geomean(const std::vector<double>& v) {
   return std::exp(s / double(v.size()));
 }
 
+const RowResult* find_row(const std::vector<RowResult>& rows, const std::string& group, const std::string& a,
+                          const std::string& b) {
+  for (const auto& r : rows)
+    if (r.row.group == group && r.row.a == a && r.row.b == b) return &r;
+  return nullptr;
+}
+
+// Why a cell has no time, in a few words.
+std::string no_time(const RowResult& rr, const std::string& key, const std::string& label) {
+  auto it = rr.cells.find(key);
+  if (it == rr.cells.end()) return label + " not run";
+  switch (it->second.state) {
+    case Cell::capped: return label + " stopped at the cap";
+    case Cell::skipped: return label + " skipped";
+    case Cell::failed: return label + " failed";
+    default: return label + " not run";
+  }
+}
+
+// --- The targets of the default method walk, from this run's cells.
+void walk_targets(std::ostream& md, const RunInfo& info, const std::vector<Contender>& cs,
+                  const std::vector<RowResult>& rows) {
+  const std::string not_measured = "not measured in this run";
+  md << "## The default method `walk`: targets\n\n";
+  if (std::none_of(cs.begin(), cs.end(), [](const Contender& c) { return c.key == "walk"; })) {
+    md << "`walk` is not in this build: no target is measured.\n\n";
+    return;
+  }
+  md << "walk's time, here and in every table below, is `minkowski_walk` alone: its result is the exact sum as a "
+        "half-edge structure with implicit coordinates (each vertex a pair of input vertices), and the counts are "
+        "read off it. The conversion to explicit exact rational coordinates and canonical planes (`to_polytope`, "
+        "what `minkowski_sum(a, b, Method::walk)` adds) is timed separately, in the same runs, and shown as the "
+        "second figure of walk's cells, `(+ conversion s)`. A ratio is the competitor's median ÷ walk's median, "
+        "both measured in this run on this machine; a target whose cell did not finish in this run (or whose row "
+        "is not in the " << info.suite << " suite) is " << not_measured << ".\n\n"
+     << "| target | measured | goal | verdict |\n|---|---|---|---|\n";
+  auto line = [&](const std::string& what, const std::string& measured, const std::string& goal,
+                  const std::string& verdict) {
+    md << "| " << what << " | " << measured << " | " << goal << " | " << verdict << " |\n";
+  };
+  auto at_least = [](double x, double goal) {
+    return x >= goal ? std::string("met") : "missed by " + fmt_ratio(goal / x);
+  };
+  auto below = [](double x, double goal, bool strict) {
+    return (strict ? x < goal : x <= goal) ? std::string("met") : "missed by " + fmt_ratio(x / goal);
+  };
+  auto pair_of = [](const std::string& a, const std::string& b) { return "`" + a + "` ⊕ `" + b + "`"; };
+
+  // Speed-ups over a competitor on one row.
+  auto speedup = [&](const std::string& group, const std::string& a, const std::string& b, const std::string& comp,
+                     const std::string& comp_label, double goal) {
+    const std::string what = pair_of(a, b) + ": " + comp_label + " ÷ walk";
+    char gb[32];
+    std::snprintf(gb, sizeof gb, "≥ %g×", goal);
+    const std::string g = gb;
+    const RowResult* rr = find_row(rows, group, a, b);
+    if (!rr) return line(what, "— (row not in this suite)", g, not_measured);
+    const Cell* w = ok_cell(*rr, "walk");
+    const Cell* c = ok_cell(*rr, comp);
+    if (!w || w->median <= 0) return line(what, "— (" + no_time(*rr, "walk", "walk") + ")", g, not_measured);
+    if (!c) return line(what, "— (" + no_time(*rr, comp, comp_label) + ")", g, not_measured);
+    const double r = c->median / w->median;
+    line(what, fmt_ratio(r) + " (" + fmt(c->median) + " s ÷ " + fmt(w->median) + " s)", g, at_least(r, goal));
+  };
+  speedup("table1", "cube", "sphere:6", "qhull", "Qhull (rounded)", 20);
+  speedup("table1", "cube", "sphere:6", "chms", "minksum chms", 40);
+  speedup("rotated", "sphere:5", "sphere:5@rot:1", "qhull", "Qhull (rounded)", 50);
+
+  // Time per input + output feature along the rotated series.
+  std::vector<double> ns;
+  const int k0 = 3, k1 = 7, k_check = 6;
+  const double ns_goal = 150;
+  for (int k = k0; k <= k1; ++k) {
+    const std::string a = "sphere:" + std::to_string(k), b = a + "@rot:1";
+    const std::string what = pair_of(a, b) + ": walk time per feature (V+E+F of A, B and the sum)";
+    const std::string g = k == k_check ? "< " + fmt(ns_goal) + " ns" : "—";
+    const std::string v_none = k == k_check ? not_measured : "—";
+    const RowResult* rr = find_row(rows, "rotated", a, b);
+    if (!rr) {
+      line(what, "— (row not in this suite)", g, v_none);
+      continue;
+    }
+    const Cell* w = ok_cell(*rr, "walk");
+    if (!w || w->v < 0) {
+      line(what, "— (" + no_time(*rr, "walk", "walk") + ")", g, v_none);
+      continue;
+    }
+    const double features = double(rr->va + rr->ea + rr->fa + rr->vb + rr->eb + rr->fb + w->v + w->e + w->f);
+    const double x = w->median * 1e9 / features;
+    ns.push_back(x);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%.1f ns (%s s ÷ %.0f features)", x, fmt(w->median).c_str(), features);
+    line(what, buf, g, k == k_check ? below(x, ns_goal, true) : "—");
+  }
+  {
+    const int want = k1 - k0 + 1;
+    const std::string what = "walk time per feature, max ÷ min over `sphere:" + std::to_string(k0) + "` … `sphere:" +
+                             std::to_string(k1) + "` (flat within 2×)";
+    if (ns.size() < 2) {
+      line(what, "— (" + std::to_string(ns.size()) + " of " + std::to_string(want) + " rows measured)", "≤ 2×",
+           not_measured);
+    } else {
+      const auto [lo, hi] = std::minmax_element(ns.begin(), ns.end());
+      const double r = *hi / *lo;
+      std::string m = fmt_ratio(r);
+      if (int(ns.size()) < want) m += " (only " + std::to_string(ns.size()) + " of " + std::to_string(want) + " rows)";
+      line(what, m, "≤ 2×",
+           int(ns.size()) < want ? not_measured + " (" + std::to_string(want - int(ns.size())) + " rows missing)"
+                                 : below(r, 2, false));
+    }
+  }
+
+  // Peak memory on the largest row of the series.
+  {
+    const std::string a = "sphere:" + std::to_string(k1), b = a + "@rot:1";
+    const std::string what = pair_of(a, b) + ": peak memory of the walk cell";
+    const std::string g = "< 1 GiB (1024 MiB)";
+    const RowResult* rr = find_row(rows, "rotated", a, b);
+    const Cell* w = rr ? ok_cell(*rr, "walk") : nullptr;
+    if (!rr) line(what, "— (row not in this suite)", g, not_measured);
+    else if (!w || w->peak_kb < 0) line(what, "— (" + no_time(*rr, "walk", "walk") + ")", g, not_measured);
+    else {
+      char buf[320];
+      std::snprintf(buf, sizeof buf,
+                    "%.0f MiB peak (VmHWM of the cell's child process: it includes the operands, inherited from "
+                    "the parent, %.0f MiB resident when the cell started; and the conversion, run in the same "
+                    "process)",
+                    w->peak_kb / 1024.0, w->base_kb / 1024.0);
+      line(what, buf, g, below(double(w->peak_kb), 1024.0 * 1024.0, true));
+    }
+  }
+  md << "\n";
+}
+
 }  // namespace
 
 void write_markdown(const std::string& path, const std::string& svg_name, const RunInfo& info,
@@ -138,6 +273,7 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
   std::vector<std::string> ours;
   for (const auto& c : cs)
     if (c.ours) ours.push_back(c.key);
+  const bool has_walk = std::find(ours.begin(), ours.end(), "walk") != ours.end();
 
   md << "# Benchmarks: minksum against the tools users pick today\n\n"
      << "<!-- Generated by `" << info.command << "` (bench/main.cpp, bench/report.cpp). Do not edit by hand: "
@@ -147,6 +283,8 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
   md << ") and five competitors, on the same inputs, in the same run, on the machine below. "
      << "Suite: **" << info.suite << "** (`" << info.command << "`), " << rows.size() << " pairs, "
      << "total wall time " << fmt(info.wall_seconds) << " s.\n\n";
+
+  walk_targets(md, info, cs, rows);
 
   md << "## Machine and software\n\n"
      << "| | |\n|---|---|\n"
@@ -162,7 +300,9 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
      << "cells of one row, measured in the same run, are what counts.**\n\n";
 
   md << "## How to read the tables\n\n"
-     << "* A cell is the **median of " << info.runs << " runs** in seconds; `(k×)` marks a cell with fewer runs "
+     << "* A cell is the **median of " << info.runs << " runs** in seconds — of more for fast cells, which repeat "
+     << "until " << fmt(info.min_total) << " s of runs (at most " << info.max_runs << " runs), so that a "
+     << "millisecond cell is not the machine's noise; `(k×)` marks a cell with fewer runs "
      << "(a first run over " << fmt(info.long_run) << " s is not repeated; a cell also stops repeating before "
      << "its cap). "
      << "Times exclude file I/O and the construction of the operands; each cell runs in its own child process.\n"
@@ -173,8 +313,18 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
      << "run, for the reason in footnote n (e.g. the v_A·v_B pairwise sums would not fit; or a smaller row of the "
      << "same series already exceeded the cap, or its time times the growth of the method's cost term — v_A·v_B "
      << "for hull-of-pairwise-sums methods and Nef, f_A·v_B + f_B·v_A + e_A·e_B for cvms/essdms/mssd, the input "
-     << "size for the others — predicts more than " << fmt(info.predict_factor) << " × the cap). `failed [n]`: "
+     << "size for the others (cgm, walk, SGM; walk's cost is input + output size, but a row's output is not "
+     << "known before its cells run, and the input size grows like it along a series) — predicts more than " << fmt(info.predict_factor) << " × the cap). `failed [n]`: "
      << "the contender threw or crashed.\n"
+     << "* minksum methods: `minkowski_sum(a, b, method)`, whose result has explicit exact coordinates"
+     << (std::any_of(cs.begin(), cs.end(), [](const Contender& c) { return c.key == "walk"; })
+             ? "; except **walk**: `minkowski_walk(a, b)` alone, whose result is the exact sum as a half-edge "
+               "structure with implicit coordinates (vertex = pair of input vertices); `(+ conversion s)` is "
+               "`to_polytope`, the conversion of that result to explicit exact rational coordinates and canonical "
+               "planes, timed in the same runs after the walk and not included in the first figure (walk's first "
+               "figure plus its conversion is what `minkowski_sum(a, b, Method::walk)` costs)"
+             : "")
+     << ".\n"
      << "* Competitors:\n"
      << "  * **CGAL hull, exact sums** — `CGAL::convex_hull_3` (Epeck) on the exact pairwise sums a_i + b_j "
      << "(the same algorithm as minksum `chms`, without the exact merge of coplanar triangles, which is done "
@@ -211,7 +361,11 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
     md << "Seed 000's published seconds for the same pairs (2.2 GHz Intel Core 2 Duo, 2 GB RAM), beside this "
           "run's. NGM is CGAL's Nef `minkowski_sum_3`; CGM is Fogel and Halperin's cubical Gaussian map (the "
           "closest thing here is CGAL's spherical Gaussian map, a different but related structure); Fuk. is "
-          "Weibel's implementation of Fukuda's algorithm (not run here).\n\n"
+          "Weibel's implementation of Fukuda's algorithm (not run here)."
+       << (has_walk ? " walk's figure, when it is the fastest, is the walk alone (implicit coordinates), "
+                      "without its conversion."
+                    : "")
+       << "\n\n"
        << "| A ⊕ B | CHMS | ESSDMS | CVMS | MSSD | NGM | Fuk. | CGM overlay | CGM whole | this run: chms | "
           "this run: cvms | this run: fastest minksum | this run: Nef | this run: SGM |\n"
        << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -279,9 +433,17 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
   md << "## Ratios (same run): competitor time ÷ minksum time\n\n"
      << "Per row, the fastest minksum method that finished, and each competitor's median divided by it "
         "(> 1: minksum is faster). `chms ÷ CGAL exact` compares minksum's oracle with the same algorithm run "
-        "bare in CGAL.\n\n"
+        "bare in CGAL.";
+  if (has_walk)
+    md << " walk's time is the walk alone: its exact half-edge result with implicit coordinates, without the "
+          "conversion to explicit rational coordinates that the other minksum methods' results include (the "
+          "conversion is shown beside it when walk is the fastest). `Qhull ÷ (walk + conversion)` compares Qhull, "
+          "whose output has explicit (rounded) coordinates, with walk's explicit result.";
+  md << "\n\n"
      << "| A ⊕ B | fastest minksum | Qhull ÷ | Epick hull ÷ | CGAL exact hull ÷ | Nef ÷ | SGM ÷ | CGAL exact hull ÷ "
-        "chms | Qhull ÷ cvms |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+        "chms | Qhull ÷ cvms |"
+     << (has_walk ? " Qhull ÷ (walk + conversion) |" : "") << "\n|---|---|---:|---:|---:|---:|---:|---:|---:|"
+     << (has_walk ? "---:|" : "") << "\n";
   std::map<std::string, std::vector<double>> all;
   for (const auto& rr : rows) {
     const Cell* best = nullptr;
@@ -289,16 +451,20 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
     for (const auto& k : ours)
       if (const Cell* c = ok_cell(rr, k); c && (!best || c->median < best->median)) best = c, bk = k;
     if (!best) continue;
-    md << "| " << pair_name(rr.row) << " | " << bk << " " << fmt(best->median) << " s |";
-    auto ratio = [&](const std::string& comp, const Cell* base, const std::string& tag) {
+    md << "| " << pair_name(rr.row) << " | " << bk << " " << fmt(best->median) << " s"
+       << (bk == "walk" && best->sub >= 0 ? " (+ conversion " + fmt(best->sub) + " s)" : "") << " |";
+    auto ratio_to = [&](const std::string& comp, double base, const std::string& tag) {
       const Cell* c = ok_cell(rr, comp);
-      if (!c || !base || base->median <= 0) {
+      if (!c || base <= 0) {
         md << " — |";
         return;
       }
-      double r = c->median / base->median;
+      double r = c->median / base;
       all[tag].push_back(r);
       md << " " << fmt_ratio(r) << " |";
+    };
+    auto ratio = [&](const std::string& comp, const Cell* base, const std::string& tag) {
+      ratio_to(comp, base ? base->median : -1, tag);
     };
     ratio("qhull", best, "qhull");
     ratio("cgal-epick", best, "epick");
@@ -307,10 +473,16 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
     ratio("sgm", best, "sgm");
     ratio("cgal-exact", ok_cell(rr, "chms"), "exact/chms");
     ratio("qhull", ok_cell(rr, "cvms"), "qhull/cvms");
+    if (has_walk) {
+      const Cell* w = ok_cell(rr, "walk");
+      ratio_to("qhull", w && w->sub >= 0 ? w->median + w->sub : -1, "qhull/walk+conv");
+    }
     md << "\n";
   }
   md << "| **geometric mean** | |";
-  for (const char* tag : {"qhull", "epick", "exact", "nef", "sgm", "exact/chms", "qhull/cvms"}) {
+  std::vector<std::string> tags = {"qhull", "epick", "exact", "nef", "sgm", "exact/chms", "qhull/cvms"};
+  if (has_walk) tags.push_back("qhull/walk+conv");
+  for (const auto& tag : tags) {
     auto it = all.find(tag);
     if (it == all.end() || it->second.empty()) md << " — |";
     else md << " " << fmt_ratio(geomean(it->second)) << " (" << it->second.size() << " rows) |";
@@ -342,7 +514,10 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
   // --- Memory.
   md << "## Peak memory of the largest rows\n\n"
      << "Peak resident set (VmHWM) of each cell's process in MiB; it includes the operands, inherited from the "
-        "parent (their size, VmRSS when the cell started, is in the second column).\n\n"
+        "parent (their size, VmRSS when the cell started, is in the second column)."
+     << (has_walk ? " walk's cell runs the walk and then the conversion in the same process: its peak covers both."
+                  : "")
+     << "\n\n"
      << "| A ⊕ B | operands |";
   for (const auto& c : cs) md << " " << c.label << " |";
   md << "\n|---|---:|";

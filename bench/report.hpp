@@ -14,6 +14,12 @@ struct Contender {
   bool ours = false;   // a minksum method
   bool exact = true;   // exact arithmetic (false: floating point on rounded sums)
   bool pairwise = false;  // works on all v_A * v_B pairwise sums
+  // The cell's second timing (Cell::sub), when the contender has one: how it
+  // is labelled in a cell ("overlay" for CGAL SGM: a phase included in the
+  // median; "+ conversion" for walk: a further phase after the timed result),
+  // and whether it comes on top of the median (true) or is part of it.
+  std::string sub_label;
+  bool sub_extra = false;
 };
 
 struct Cell {
@@ -46,6 +52,8 @@ struct RunInfo {
   std::string suite;       // "full" or "quick"
   std::string command;     // the make target that produced the page
   int runs = 5;
+  double min_total = 1.0;     // fast cells repeat until this many seconds of runs
+  int max_runs = 500;
   double cap = 120;
   double long_run = 10;       // a first run longer than this is not repeated
   double predict_factor = 2;  // cells predicted over this many caps are skipped

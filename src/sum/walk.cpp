@@ -33,6 +33,7 @@
 #include <chrono>
 #include <cfenv>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -77,15 +78,47 @@ struct Operand {
   bool filterable = true;    // every rounded coordinate within the filters' assumptions
   std::vector<Vec3d> x;      // nearest doubles (exact when `doubles`)
   std::vector<double> cmax;  // max |coordinate| of x[v]
+  // Per facet, what the filter reads (hot) and what the exact stages need.
   struct Facet {
-    Index v0, v1, v2;
     double nx, ny, nz;  // fl((f1 − f0) × (f2 − f0)) on the rounded coordinates
-    double du, dv;      // max |coordinate| of the rounded f1 − f0, f2 − f0
-    double ru, rv;      // their error bounds ρ against the exact differences
-    bool ok;            // within the filter's range
-    bool exact;         // (nx, ny, nz) is exactly n(f) (see exact_value)
+    // Bound coefficients (NaN when out of the filter's range, so that no
+    // comparison succeeds): with D_u, D_v the largest coordinates of the
+    // rounded f1 − f0, f2 − f0 and ρ_u, ρ_v their error bounds,
+    //   kv = c_vec D_u D_v, kr = c_rat D_u D_v,
+    //   a1 = (D_u + ρ_u)(D_v + ρ_v), a2 = ρ_u (D_v + ρ_v) + ρ_v (D_u + ρ_u),
+    // so that the kernel's rational bound is kr D_e + T (1 + 2^-20) (ρ_e a1 + (D_e + ρ_e) a2).
+    double kv, kr, a1, a2;
+  };
+  struct FacetCorners {
+    Index v0, v1, v2;
+    // (nx, ny, nz) is exactly n(f): 1 yes, 0 no, 2 not checked yet (on
+    // demand, by exact_normal()).
+    mutable std::int8_t exact;
   };
   std::vector<Facet> f;
+  std::vector<FacetCorners> fc;
+
+  // Whether facet k's rounded normal is exact: every difference and product
+  // of the cross product computed without rounding (checked once).
+  bool exact_normal(Index k) const {
+    const FacetCorners& gc = fc[k];
+    if (gc.exact != 2) return gc.exact == 1;
+    const Vec3d &a = x[gc.v0], &b = x[gc.v1], &c = x[gc.v2];
+    const double u[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, v[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
+    const double pa[3] = {a.x, a.y, a.z}, pb[3] = {b.x, b.y, b.z}, pc[3] = {c.x, c.y, c.z};
+    const double n[3] = {f[k].nx, f[k].ny, f[k].nz};
+    bool exact = true;
+    for (int i = 0; i < 3; ++i)
+      exact = exact && usable(u[i]) && usable(v[i]) && sum_exact(pb[i], -pa[i], u[i]) && sum_exact(pc[i], -pa[i], v[i]);
+    for (int i = 0; i < 3 && exact; ++i) {
+      const int j = (i + 1) % 3, l = (i + 2) % 3;
+      const double p1 = u[j] * v[l], p2 = u[l] * v[j];
+      exact = product_exact(u[j], v[l], p1) && product_exact(u[l], v[j], p2) && sum_exact(p1, -p2, p1 - p2) &&
+              n[i] == p1 - p2;
+    }
+    gc.exact = exact ? 1 : 0;
+    return exact;
+  }
 
   // Exact signs of the coordinates of n(f), computed on demand (0, ±1; 2 = not yet).
   mutable std::vector<std::array<std::int8_t, 3>> axis_sign;
@@ -109,38 +142,33 @@ struct Operand {
         }
     }
     f.resize(p.num_facets());
+    fc.resize(p.num_facets());
     if (doubles) axis_sign.assign(p.num_facets(), {2, 2, 2});
     for (Index k = 0; k < p.num_facets(); ++k) {
       Facet& g = f[k];
+      FacetCorners& gc = fc[k];
       const Index h = p.facet_halfedge(k);
-      g.v0 = p.origin(h), g.v1 = p.target(h), g.v2 = p.target(p.next(h));
-      const Vec3d &a = x[g.v0], &b = x[g.v1], &c = x[g.v2];
+      gc.v0 = p.origin(h), gc.v1 = p.target(h), gc.v2 = p.target(p.next(h));
+      const Vec3d &a = x[gc.v0], &b = x[gc.v1], &c = x[gc.v2];
       const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
       const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
       g.nx = uy * vz - uz * vy;
       g.ny = uz * vx - ux * vz;
       g.nz = ux * vy - uy * vx;
-      g.du = std::max({std::fabs(ux), std::fabs(uy), std::fabs(uz)});
-      g.dv = std::max({std::fabs(vx), std::fabs(vy), std::fabs(vz)});
-      const double cu = std::max(cmax[g.v0], cmax[g.v1]), cv = std::max(cmax[g.v0], cmax[g.v2]);
-      g.ru = kEpsSlack * (g.du + 8 * cu);
-      g.rv = kEpsSlack * (g.dv + 8 * cv);
-      g.ok = filterable && g.du >= lo && g.du <= hi && g.dv >= lo && g.dv <= hi && cu <= hi && cv <= hi;
-      g.exact = false;
-      if (doubles && g.ok && nearest) {
-        const double u[3] = {ux, uy, uz}, v[3] = {vx, vy, vz};
-        const double pa[3] = {a.x, a.y, a.z}, pb[3] = {b.x, b.y, b.z}, pc[3] = {c.x, c.y, c.z};
-        bool exact = true;
-        for (int i = 0; i < 3; ++i)
-          exact = exact && usable(u[i]) && usable(v[i]) && sum_exact(pb[i], -pa[i], u[i]) &&
-                  sum_exact(pc[i], -pa[i], v[i]);
-        for (int i = 0; i < 3 && exact; ++i) {
-          const int j = (i + 1) % 3, k = (i + 2) % 3;
-          const double p1 = u[j] * v[k], p2 = u[k] * v[j];
-          exact = product_exact(u[j], v[k], p1) && product_exact(u[k], v[j], p2) && sum_exact(p1, -p2, p1 - p2);
-        }
-        g.exact = exact;
+      const double du = std::max({std::fabs(ux), std::fabs(uy), std::fabs(uz)});
+      const double dv = std::max({std::fabs(vx), std::fabs(vy), std::fabs(vz)});
+      const double cu = std::max(cmax[gc.v0], cmax[gc.v1]), cv = std::max(cmax[gc.v0], cmax[gc.v2]);
+      const double ru = kEpsSlack * (du + 8 * cu), rv = kEpsSlack * (dv + 8 * cv);
+      const bool ok = filterable && du >= lo && du <= hi && dv >= lo && dv <= hi && cu <= hi && cv <= hi;
+      if (ok) {
+        g.kv = kShapeDet3.c_vec * du * dv;
+        g.kr = kShapeDet3.c_rat * du * dv;
+        g.a1 = (du + ru) * (dv + rv);
+        g.a2 = ru * (dv + rv) + rv * (du + ru);
+      } else {
+        g.kv = g.kr = g.a1 = g.a2 = std::numeric_limits<double>::quiet_NaN();
       }
+      gc.exact = doubles && ok && nearest ? 2 : 0;
     }
   }
 };
@@ -168,21 +196,18 @@ inline Diff make_diff(const Operand& X, Index xi, Index yi) {
 
 // The filter: the sign, or 2 when it cannot decide.
 inline int det3_filter(const Operand::Facet& g, bool doubles, bool filterable, const Diff& d) {
-  if (!g.ok || !filterable) return 2;
+  if (!filterable) return 2;
   const double value = (d.ex * g.nx + d.ey * g.ny) + d.ez * g.nz;
   if (doubles) {
     if (d.de == 0) return 0;  // the same point
     if (d.de >= kShapeDet3.lo && d.de <= kShapeDet3.hi) {
-      const double bound = kShapeDet3.c_vec * d.de * g.du * g.dv;
+      const double bound = g.kv * d.de;
       if (value > bound) return 1;
       if (value < -bound) return -1;
     }
   } else if (d.de >= kShapeDet3.lo && d.de <= kShapeDet3.hi && d.ce <= kShapeDet3.hi) {
     const double re = kEpsSlack * (d.de + 8 * d.ce);
-    const double eval = kShapeDet3.c_rat * d.de * g.du * g.dv;
-    const double pert = re * (g.du + g.ru) * (g.dv + g.rv) + g.ru * (d.de + re) * (g.dv + g.rv) +
-                        g.rv * (d.de + re) * (g.du + g.ru);
-    const double bound = eval + (kShapeDet3.terms * kSlack) * pert;
+    const double bound = g.kr * d.de + (kShapeDet3.terms * kSlack) * (re * g.a1 + (d.de + re) * g.a2);
     if (value > bound) return 1;
     if (value < -bound) return -1;
   }
@@ -206,7 +231,8 @@ inline int det3(const Operand& F, Index fi, const Operand& X, const Diff& d, Ind
 // When the filter cannot decide.
 int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, Stats& st) {
   const Operand::Facet& g = F.f[fi];
-  if (F.doubles && X.doubles && g.exact) {
+  const Operand::FacetCorners& gc = F.fc[fi];
+  if (F.doubles && X.doubles && F.exact_normal(fi)) {
     // Often the value was computed without any rounding (axis-parallel
     // facets, edges in coordinate planes: the degenerate signs 0 of
     // symmetric inputs).  Then it is exact, zero included.
@@ -243,7 +269,7 @@ int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, 
       if (c == 2) {
         const Vec3d o{0, 0, 0}, unit{axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0};
         ++st.exact;
-        c = std::int8_t(edge_facet_sign(o, unit, F.x[g.v0], F.x[g.v1], F.x[g.v2]));
+        c = std::int8_t(edge_facet_sign(o, unit, F.x[gc.v0], F.x[gc.v1], F.x[gc.v2]));
       }
       const double e = axis == 0 ? p.x - q.x : axis == 1 ? p.y - q.y : p.z - q.z;
       return e > 0 ? c : -c;
@@ -252,10 +278,10 @@ int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, 
   ++st.exact;
   // Exact doubles: the kernel's Vec3d form (its dynamic filter, then GMP
   // integers in a reused workspace).  Rationals: the Point3 form.
-  if (F.doubles && X.doubles) return support_compare(F.x[g.v0], F.x[g.v1], F.x[g.v2], X.x[xi], X.x[yi]);
+  if (F.doubles && X.doubles) return support_compare(F.x[gc.v0], F.x[gc.v1], F.x[gc.v2], X.x[xi], X.x[yi]);
   const ConvexPolytope& PF = *F.P;
   const ConvexPolytope& PX = *X.P;
-  return support_compare(PF.point(g.v0), PF.point(g.v1), PF.point(g.v2), PX.point(xi), PX.point(yi));
+  return support_compare(PF.point(gc.v0), PF.point(gc.v1), PF.point(gc.v2), PX.point(xi), PX.point(yi));
 }
 
 constexpr Feature kUnknown{-1, kNoIndex};
@@ -263,7 +289,9 @@ constexpr Feature kUnknown{-1, kNoIndex};
 // Walks the arcs of P's edges over Q's Gaussian map.
 class Walker {
  public:
-  Walker(const Operand& p, const Operand& q, Stats& st) : P_(p), Q_(q), p_(*p.P), q_(*q.P), st_(st) {}
+  Walker(const Operand& p, const Operand& q, Stats& st)
+      : P_(p), Q_(q), p_(*p.P), q_(*q.P), st_(st),
+        short_arcs_(std::uint64_t(q_.num_vertices()) * 4 <= p_.num_vertices()) {}
 
   // face_Q(n(f)) for every facet f of P; with `crossings`, every proper
   // crossing of an arc of P with an arc of Q as (half-edge of P walked,
@@ -443,6 +471,24 @@ class Walker {
         entry = kNoIndex;
         continue;
       }
+      // Arcs much shorter than Q's regions mostly end where they start: then
+      // test the end first (one sign per neighbour of b, stopping at the
+      // first neighbour higher along n(f2)).
+      if (short_arcs_ && need_end && n == 0) {
+        const Index b = s.index, h0 = q_.vertex_halfedge(b);
+        Index h = h0;
+        bool support = true, tie = false;
+        do {
+          const int c = higher(f2, q_.target(h), b);
+          if (c > 0) {
+            support = false;
+            break;
+          }
+          tie = tie || c == 0;
+          h = q_.next_around_vertex(h);
+        } while (h != h0);
+        if (support) return tie ? support_face_at(b, f2) : Feature{0, b};
+      }
       // Inside the region of vertex b: find where the arc's great circle
       // leaves it (side signs − then +, or −, 0, +), evaluating the signs
       // lazily.  Entered by crossing the edge `entry`, the two facets beside
@@ -453,7 +499,7 @@ class Walker {
       sbuf_.assign(k, 2);
       if (entry != kNoIndex) sbuf_[0] = -1, sbuf_[k - 1] = 1;
       auto S = [&](std::size_t i) {
-        i %= k;
+        if (i >= k) i -= k;
         if (sbuf_[i] == 2) sbuf_[i] = std::int8_t(side(q_.facet(hbuf_[i]), hp));
         return int(sbuf_[i]);
       };
@@ -497,6 +543,9 @@ class Walker {
   Stats& st_;
   std::vector<std::pair<Index, Index>>* crossings_ = nullptr;
   Diff hd_{};
+  // Q has far fewer vertices than P (its regions are much larger than P's
+  // arcs): the walks test whether they end in their first region first.
+  bool short_arcs_ = false;
   std::vector<Index> hbuf_, verts_;
   std::vector<std::int8_t> sbuf_;
   std::vector<std::uint8_t> tie_;
@@ -724,7 +773,7 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
     const Index k = t - s;
     Index first = kNoIndex, last = kNoIndex;
     for (Index i = 0; i < k; ++i) {
-      const Index p = vid[i], q = vid[(i + 1) % k];
+      const Index p = vid[i], q = vid[i + 1 == k ? 0 : i + 1];
       const Index lo = std::min(p, q), hi = std::max(p, q);
       Index e = ehead[lo];
       while (e != kNoIndex && eother[e] != hi) e = enext[e];

@@ -76,7 +76,7 @@ struct Operand {
   const ConvexPolytope* P = nullptr;
   bool doubles = false;      // every coordinate is exactly a double
   bool filterable = true;    // every rounded coordinate within the filters' assumptions
-  std::vector<Vec3d> x;      // nearest doubles (exact when `doubles`)
+  const Vec3d* x = nullptr;  // nearest doubles (exact when `doubles`): P's own approximations
   std::vector<double> cmax;  // max |coordinate| of x[v]
   // Per facet, what the filter reads (hot) and what the exact stages need.
   struct Facet {
@@ -126,10 +126,9 @@ struct Operand {
   explicit Operand(const ConvexPolytope& p) : P(&p), doubles(p.coordinates_are_doubles()) {
     const bool nearest = round_to_nearest();
     const double lo = kShapeDet3.lo, hi = kShapeDet3.hi;
-    x.resize(p.num_vertices());
+    x = p.num_vertices() ? &p.approx(0) : nullptr;
     cmax.resize(p.num_vertices());
     for (Index v = 0; v < p.num_vertices(); ++v) {
-      x[v] = p.approx(v);
       cmax[v] = std::max({std::fabs(x[v].x), std::fabs(x[v].y), std::fabs(x[v].z)});
       // The rational filter needs |x̂ − x| ≤ κ|x̂| for every rounded
       // coordinate: true for the nearest double in the normal range, and for

@@ -66,7 +66,7 @@ inline bool sum_exact(double x, double y, double s) {
 inline bool product_exact(double x, double y, double p) { return std::fma(x, y, -p) == 0; }
 
 struct Stats {
-  std::uint64_t calls = 0, exact = 0, exact_free = 0, steps = 0;
+  std::uint64_t calls = 0, exact = 0, steps = 0;
   bool round_to_nearest = false;
 };
 
@@ -251,7 +251,6 @@ int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, 
     if (exact) {
       const double s01 = t[0] + t[1], v = s01 + t[2];
       if (sum_exact(t[0], t[1], s01) && sum_exact(s01, t[2], v)) {
-        ++st.exact_free;
         return (v > 0) - (v < 0);
       }
     }

@@ -1,6 +1,7 @@
 // minksum sum A B: the Minkowski sum.
 #include <minksum/io.hpp>
 
+#include <chrono>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -48,8 +49,11 @@ Options:
   --hull             take the convex hull of each input file's points instead
                      of requiring a valid convex mesh (point clouds)
   --json             print one JSON object: vertices, edges, facets, method,
-                     seconds (the computation alone, not the I/O), volume
-                     (exact rational as a string), and the operands' counts
+                     seconds (the computation alone, not the I/O), phases
+                     (seconds spent reading both operands, validating them,
+                     computing the sum, making its explicit polytope, and
+                     writing OUT), volume (exact rational as a string), and
+                     the operands' counts
 
 Progress: when stderr is a terminal and the sum takes more than a second, one
 line is rewritten in place on stderr every 0.2 s and erased when the sum is
@@ -115,18 +119,25 @@ int run_sum(const std::vector<std::string>& argv) {
   if (!method_available(*method))
     throw UsageError(std::string("method '") + method_name(*method) + "' is not implemented in this version of minksum");
   check_output_path(output, exact);
-  ConvexPolytope pa = load_polytope(a.positional[0], hull);
-  ConvexPolytope pb = load_polytope(a.positional[1], hull);
+  LoadPhases la, lb;
+  ConvexPolytope pa = load_polytope(a.positional[0], hull, &la);
+  ConvexPolytope pb = load_polytope(a.positional[1], hull, &lb);
   SumResult r = [&] {
     ProgressTicker ticker("minksum sum");  // a progress line on a terminal after 1 s; erased when done
     return minkowski_sum(pa, pb, *method);
   }();
+  const auto w0 = std::chrono::steady_clock::now();
   if (!output.empty()) write_output(output, r.polytope, exact, a.flag("--binary"));
+  const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   const ConvexPolytope& s = r.polytope;
   if (json) {
     Rational vol = s.volume();
     std::cout << "{" << counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
-              << ", \"seconds\": " << format_double(r.seconds) << ", \"volume\": \"" << format_exact(vol)
+              << ", \"seconds\": " << format_double(r.seconds) << ", \"phases\": {\"read\": "
+              << format_double(la.read + lb.read) << ", \"validate\": " << format_double(la.validate + lb.validate)
+              << ", \"sum\": " << format_double(r.seconds - r.explicit_seconds)
+              << ", \"explicit\": " << format_double(r.explicit_seconds) << ", \"write\": " << format_double(write_seconds)
+              << "}, \"volume\": \"" << format_exact(vol)
               << "\", \"volume_double\": " << format_double(to_double(vol)) << facet_types_json(r) << method_detail_json(r)
               << ", \"a\": {\"name\": \"" << json_escape(a.positional[0]) << "\", " << counts_json(pa)
               << "}, \"b\": {\"name\": \"" << json_escape(a.positional[1]) << "\", " << counts_json(pb)

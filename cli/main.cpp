@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "memory.hpp"
 
 using namespace minksum;
 using namespace minksum::cli;
@@ -58,6 +59,7 @@ constexpr Command kCommands[] = {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tune_memory();
   std::vector<std::string> args(argv + 1, argv + argc);
   std::ios::sync_with_stdio(false);
   try {

@@ -290,7 +290,7 @@ TEST(CatalogSphere, MeshIsDeterministicAndKeepsCoarserVerticesFirst) {
   // icosahedron's own coordinates.
   const Mesh m3 = cd::sphere_mesh(3);
   ASSERT_EQ(m3.points.size(), 162u);
-  EXPECT_EQ(m3.points.back(), Point3(-0x1.b38880b4603e4p-1, -0x1.0d2ca0da1530ep-1, 0.0));
+  EXPECT_EQ(m3.points[m3.points.size() - 1], Point3(-0x1.b38880b4603e4p-1, -0x1.0d2ca0da1530ep-1, 0.0));
 }
 
 TEST(CatalogSphere, SubdivisionMeshIsExactlyConvexWithoutFallback) {

@@ -89,8 +89,10 @@ Mesh float_tetra() {
 }
 
 Mesh with_nearest_doubles(Mesh m) {
-  for (auto& p : m.points)
+  m.points.transform([](Point3 p) {
     for (int i = 0; i < 3; ++i) p[i] = Rational(to_double(p[i]));
+    return p;
+  });
   return m;
 }
 
@@ -279,13 +281,13 @@ TEST(IoRoundTrip, StlBinaryKeepsFloats) {
   }
   // A double that is not a float is rounded to the nearest float.
   Mesh m = cube_mesh();
-  m.points[7] = Point3(Rational(1), Rational(1), q("1/3"));
+  m.points.set(7, Point3(Rational(1), Rational(1), q("1/3")));
   Mesh r = read_from_string(write_to_string(m, Format::stl, {.binary = true}), Format::stl);
   bool found = false;
   for (const auto& p : r.points) found |= p.z == Rational(double(1.0f / 3.0f));
   EXPECT_TRUE(found);
   // Beyond the float range: refused, not written as infinity.
-  m.points[7] = Point3(Rational(1), Rational(1), Rational(1e300));
+  m.points.set(7, Point3(Rational(1), Rational(1), Rational(1e300)));
   EXPECT_THROW(write_to_string(m, Format::stl, {.binary = true}), UsageError);
 }
 
@@ -319,7 +321,7 @@ TEST(IoWrite, ExactRefusedByDoubleOnlyFormats) {
 
 TEST(IoWrite, CoordinatesBeyondDoubleRangeNeedExact) {
   Mesh m = cube_mesh();
-  m.points[7] = Point3(pow2(2000), Rational(1), Rational(1));
+  m.points.set(7, Point3(pow2(2000), Rational(1), Rational(1)));
   for (Format f : {Format::off, Format::obj, Format::wrl, Format::ply, Format::stl})
     EXPECT_THROW(write_to_string(m, f), UsageError) << format_name(f);
   expect_same(round_trip(m, Format::off, {.exact = true}), m);
@@ -704,7 +706,7 @@ TEST(IoAtomic, FailedWriteKeepsOldContentAndNoTemporary) {
   EXPECT_EQ(slurp(stl), before);
   // A failure in the middle of writing: the temporary is removed, the old file kept.
   Mesh huge = cube_mesh();
-  huge.points[7] = Point3(pow2(5000), Rational(1), Rational(1));  // fails after some output
+  huge.points.set(7, Point3(pow2(5000), Rational(1), Rational(1)));  // fails after some output
   EXPECT_THROW(write_mesh(stl, huge), UsageError);
   EXPECT_EQ(slurp(stl), before);
   EXPECT_THROW(write_file_atomically(stl,

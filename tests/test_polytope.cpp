@@ -132,7 +132,7 @@ TEST(Polytope, VertexInsideAFacetIsDropped) {
 
 TEST(Polytope, RationalAndExtremeCoordinates) {
   Mesh m = tetra_mesh();
-  for (auto& p : m.points) p = Rational(1, 3) * p;
+  m.points.transform([](const Point3& p) { return Rational(1, 3) * p; });
   ConvexPolytope t = ConvexPolytope::from_mesh(m);
   EXPECT_FALSE(t.coordinates_are_doubles());
   EXPECT_EQ(t.volume(), Rational(8, 3) / 27);  // regular tetra of volume 8/3, scaled by 1/3
@@ -146,7 +146,7 @@ TEST(Polytope, RationalAndExtremeCoordinates) {
   }
   for (double s : {1e150, 1e-150, 1e300, 4.9406564584124654e-322}) {
     Mesh c = cube_mesh(1);
-    for (auto& p : c.points) p = Rational(s) * p;
+    c.points.transform([&](const Point3& p) { return Rational(s) * p; });
     ConvexPolytope k = ConvexPolytope::from_mesh(c, "scaled");
     EXPECT_EQ(k.num_facets(), 6u) << s;
     EXPECT_EQ(k.volume(), Rational(8) * Rational(s) * Rational(s) * Rational(s)) << s;
@@ -213,7 +213,7 @@ TEST(PolytopeBad, NonManifoldEdge) {
 
 TEST(PolytopeBad, NonPlanarFacet) {
   Mesh m = cube_mesh();
-  m.points[7] = P(1, 1, 2);  // lift one corner of the top quad
+  m.points.set(7, P(1, 1, 2));  // lift one corner of the top quad
   EXPECT_NE(build_error(m).find("not planar"), std::string::npos);
 }
 
@@ -234,7 +234,7 @@ TEST(PolytopeBad, TwoComponents) {
   Mesh m = cube_mesh(1);
   Mesh c2 = box_mesh(5, 6, 5, 6, 5, 6);
   Index base = 8;
-  for (auto& p : c2.points) m.points.push_back(p);
+  for (const Point3& p : c2.points) m.points.push_back(p);
   for (auto f : c2.faces) {
     for (auto& v : f) v += base;
     m.faces.push_back(f);
@@ -288,7 +288,7 @@ TEST(Hull, LatticeCubeWithCoplanarPoints) {
 }
 
 TEST(Hull, OctahedronWithInteriorPoints) {
-  std::vector<Point3> pts = octahedron_mesh().points;
+  std::vector<Point3> pts = octahedron_mesh().points.to_points();
   std::mt19937_64 rng(12345);
   for (int i = 0; i < 200; ++i) {
     long a = long(rng() % 7) - 3, b = long(rng() % 7) - 3, c = long(rng() % 7) - 3;

@@ -82,7 +82,8 @@ void write_mesh(std::ostream& out, const Mesh& mesh, Format format, const WriteO
 
 // Atomic file write helper used by every writer: calls `fill` with a stream on
 // a temporary file beside `path` (created with the usual permissions, or the
-// existing file's), flushes, fsyncs, checks for errors, renames.  On any I/O
+// existing file's), flushes, checks for errors, renames (no fsync: the
+// rename is what makes the write atomic).  On any I/O
 // failure the temporary is removed and InputError(path, "", reason) thrown;
 // an exception thrown by `fill` itself removes the temporary and propagates
 // unchanged.  Either way `path` keeps its previous content.
@@ -97,6 +98,11 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 // directory, an unreadable file, or a missing file named with a known
 // extension ("no such file"); UsageError for a name that is neither a file
 // nor a catalog name.
-ConvexPolytope load_polytope(const std::string& spec, bool hull = false);
+// `phases`, when given, receives the seconds spent reading the file (or
+// building the catalog polytope) and validating it (or taking its hull).
+struct LoadPhases {
+  double read = 0, validate = 0;
+};
+ConvexPolytope load_polytope(const std::string& spec, bool hull = false, LoadPhases* phases = nullptr);
 
 }  // namespace minksum

@@ -96,6 +96,10 @@ std::optional<Rational> parse_number(std::string_view token, std::string* why = 
 std::string format_double(double v);
 // Exact text: an integer ("-3") or "p/q" in lowest terms.
 std::string format_exact(const Rational& q);
+// The same text for the exact value hi + lo of two finite doubles (lo = 0:
+// one double), appended to `out`, computed from the mantissas: machine
+// integers when they suffice, GMP integers (never rationals) otherwise.
+void append_exact_dyadic(std::string& out, double hi, double lo = 0.0);
 // The coordinate as written by minksum's writers: exact text when `exact`,
 // else format_double(to_double(q)).
 std::string format_coordinate(const Rational& q, bool exact);

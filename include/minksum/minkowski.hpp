@@ -74,6 +74,9 @@ struct SumResult {
   std::vector<std::string> facet_case_names;
   std::vector<std::pair<std::string, long long>> counters;
   double seconds = 0;  // the computation alone
+  // Of `seconds`, the time spent making the explicit ConvexPolytope from the
+  // method's own result (walk: to_polytope; 0 where the two are one step).
+  double explicit_seconds = 0;
 };
 
 // The method Method::automatic uses for these operands (see minkowski.cpp).
@@ -89,7 +92,7 @@ SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b,
 // map (and of B's edges over A's), each crossing one output edge facet; every
 // output facet is face_A(n) ⊕ face_B(n).  The structure alone, with implicit
 // coordinates, is minkowski_walk() in <minksum/walk.hpp>; this wraps it into
-// a SumResult (explicit exact coordinates and canonical planes).  counters:
+// a SumResult (explicit exact coordinates, planes on demand).  counters:
 // crossings, walk steps, and the microseconds of the walk and of the
 // conversion to the ConvexPolytope.
 SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b);

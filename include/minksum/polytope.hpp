@@ -1,8 +1,9 @@
 // minksum — validated convex polytopes with half-edge connectivity.
 //
 // A ConvexPolytope is a closed, convex, 3-dimensional polytope with exact
-// rational vertex coordinates.  It is only ever built through a validating
-// constructor:
+// rational vertex coordinates, stored in their cheapest exact form (a
+// PointList: doubles, exact pairs of doubles, or GMP rationals; see
+// point_list.hpp).  It is only ever built through a validating constructor:
 //   * from_mesh(): vertices + polygons (any file format, the catalog).  The
 //     mesh must be a closed connected 2-manifold of sphere topology with
 //     consistently oriented, exactly planar polygons and no reflex edge.  A
@@ -31,8 +32,10 @@
 #pragma once
 
 #include <minksum/kernel.hpp>
+#include <minksum/point_list.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,7 +47,7 @@ inline constexpr Index kNoIndex = 0xffffffffu;
 // Raw polygon soup, as read from a file or made by the catalog: no
 // guarantees at all until ConvexPolytope::from_mesh() validates it.
 struct Mesh {
-  std::vector<Point3> points;
+  PointList points;
   std::vector<std::vector<Index>> faces;  // indices into points
 };
 
@@ -71,20 +74,32 @@ class ConvexPolytope {
   // coplanar facets merged).  Throws InputError if the points do not span
   // 3 dimensions.
   static ConvexPolytope hull(const std::vector<Point3>& points, const std::string& source = "");
+  static ConvexPolytope hull(const PointList& points, const std::string& source = "");
 
   // Counts.
-  Index num_vertices() const { return static_cast<Index>(points_.size()); }
+  Index num_vertices() const { return static_cast<Index>(coords_.size()); }
   Index num_facets() const { return static_cast<Index>(facet_he_.size()); }
   Index num_halfedges() const { return static_cast<Index>(he_origin_.size()); }
   Index num_edges() const { return num_halfedges() / 2; }
 
-  // Geometry.
-  const Point3& point(Index v) const { return points_[v]; }
-  const Vec3d& approx(Index v) const { return approx_[v]; }
-  const std::vector<Point3>& points() const { return points_; }
-  const Plane& plane(Index f) const { return planes_[f]; }
+  // Geometry.  What each accessor costs:
+  //   coordinates(), approx(v):  O(1), no allocation (approx(v) is the
+  //       nearest double point, exact when coordinates_are_doubles());
+  //   point(v), points():  the exact rational point.  Free for rational
+  //       coordinates; for double coordinates the first call builds every
+  //       exact point once (O(V) GMP rationals, then cached, thread-safe) —
+  //       use approx(v) or coordinates() where doubles suffice;
+  //   plane(f):  the canonical integer plane, computed on the first call for
+  //       that facet from three of its vertices (integer arithmetic on the
+  //       doubles' mantissas, GMP only for rational coordinates), then
+  //       cached; safe when several threads read the same polytope.
+  const PointList& coordinates() const { return coords_; }
+  const Vec3d& approx(Index v) const { return coords_.approx(v); }
+  const Point3& point(Index v) const;
+  const std::vector<Point3>& points() const;
+  const Plane& plane(Index f) const;
   // True when every vertex coordinate is exactly a double.
-  bool coordinates_are_doubles() const { return all_double_; }
+  bool coordinates_are_doubles() const { return coords_.all_doubles(); }
   // Index of vertex v in the mesh or point list this polytope was built from.
   Index source_vertex(Index v) const { return source_vertex_[v]; }
 
@@ -107,7 +122,8 @@ class ConvexPolytope {
   // Neighbours of v, counter-clockwise seen from outside.
   std::vector<Index> vertex_neighbours(Index v) const;
 
-  // Exact volume (positive).
+  // Exact volume (positive).  For double and double-pair coordinates it is
+  // computed in integers scaled by a power of two (no rational arithmetic).
   Rational volume() const;
   // Euler characteristic V - E + F (always 2 for a built polytope).
   long euler_characteristic() const {
@@ -128,13 +144,16 @@ class ConvexPolytope {
 
  private:
   friend class PolytopeBuilder;
-  std::vector<Point3> points_;
-  std::vector<Vec3d> approx_;
+  struct Cache;  // lazily computed exact points and planes (polytope.cpp)
+  // Fresh caches; every constructor calls it once the geometry is final.
+  void reset_cache();
+
+  PointList coords_;
   std::vector<Index> source_vertex_;
-  std::vector<Plane> planes_;
   std::vector<Index> he_origin_, he_facet_, he_next_, he_prev_;
   std::vector<Index> facet_he_, vertex_he_;
-  bool all_double_ = true;
+  // Shared by copies (the geometry is immutable once built).
+  std::shared_ptr<Cache> cache_;
 };
 
 }  // namespace minksum

@@ -63,10 +63,16 @@ struct WalkSum {
 // consistency check fails (a bug, never an input condition).
 WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b);
 
-// The ConvexPolytope of a WalkSum: exact vertex coordinates (a + b) and the
-// canonical plane of every facet, connectivity copied, no re-validation
-// (ConvexPolytope::check_invariants() re-checks everything from scratch).
-// Vertex v of the result is vertex v of w; its source_vertex is v.
+// The ConvexPolytope of a WalkSum: exact vertex coordinates (a + b, see
+// sum_coordinates), connectivity copied, planes computed on demand, no
+// re-validation (ConvexPolytope::check_invariants() re-checks everything from
+// scratch).  Vertex v of the result is vertex v of w; its source_vertex is v.
 ConvexPolytope to_polytope(const WalkSum& w, const ConvexPolytope& a, const ConvexPolytope& b);
+
+// The exact points a_i + b_j for the given index pairs, in the cheapest exact
+// form: exact pairs of doubles (TwoSum, no allocation) when both lists hold
+// doubles and the FPU rounds to nearest, GMP rationals otherwise (and for a
+// sum beyond the double range).
+PointList sum_coordinates(const std::vector<std::pair<Index, Index>>& pairs, const PointList& a, const PointList& b);
 
 }  // namespace minksum

@@ -242,7 +242,7 @@ Transform parse_transform(const std::string& spec, const std::string& tr) {
     }
     const Matrix3 r = quaternion_rotation(q[0], q[1], q[2], q[3]);
     return [r](Mesh& mesh) {
-      for (Point3& p : mesh.points) p = apply(r, p);
+      mesh.points.transform([&](const Point3& p) { return apply(r, p); });
     };
   }
   if (name == "scale") {
@@ -258,8 +258,10 @@ Transform parse_transform(const std::string& spec, const std::string& tr) {
       fail(spec, "the transform scale needs scale:S or scale:X,Y,Z, got 'scale:" + arg + "'");
     }
     return [s](Mesh& mesh) {
-      for (Point3& p : mesh.points)
+      mesh.points.transform([&](Point3 p) {
         for (int i = 0; i < 3; ++i) p[i] *= s[i];
+        return p;
+      });
     };
   }
   if (name == "translate") {
@@ -269,13 +271,13 @@ Transform parse_transform(const std::string& spec, const std::string& tr) {
     if (c.size() != 3) fail(spec, "the transform translate needs " + form + ", got 'translate:" + arg + "'");
     const Point3 t(number(spec, form, "X", c[0]), number(spec, form, "Y", c[1]), number(spec, form, "Z", c[2]));
     return [t](Mesh& mesh) {
-      for (Point3& p : mesh.points) p = p + t;
+      mesh.points.transform([&](const Point3& p) { return p + t; });
     };
   }
   if (name == "neg") {
     if (has_arg) fail(spec, "the transform neg takes no parameter");
     return [](Mesh& mesh) {
-      for (Point3& p : mesh.points) p = -p;
+      mesh.points.negate();
       for (auto& f : mesh.faces) std::reverse(f.begin(), f.end());  // keep counter-clockwise from outside
     };
   }

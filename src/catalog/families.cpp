@@ -140,7 +140,7 @@ ConvexPolytope make_sphere(int level, const std::string& source) {
     // rounding of its coordinates) outside the planes of the other facets.
     // Should a rounding ever make a facet pair reflex or coplanar, the exact
     // hull of the same points is the honest answer.
-    return exact_hull(m.points, source);
+    return exact_hull(m.points.to_points(), source);
   }
 }
 

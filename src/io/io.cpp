@@ -52,10 +52,13 @@ std::string quote(std::string_view token) {
   return s;
 }
 
-Rational parse_coordinate(std::string_view token, const std::string& name, const std::string& place) {
-  // Fast path for the common plain decimal token ("-0.125", "1e-3"): the
-  // nearest double by from_chars (correctly rounded, as strtod), which is what
-  // parse_number means by a decimal token.  Integers, p/q, hexadecimal and
+static Rational parse_coordinate_exact(std::string_view token, const std::string& name, const std::string& place);
+
+Coordinate read_coordinate(std::string_view token, const std::string& name, const std::string& place) {
+  // Fast paths, no allocation: a plain decimal token ("-0.125", "1e-3") is
+  // the nearest double by from_chars (correctly rounded, as strtod), which is
+  // what parse_number means by a decimal token; an integer of at most 15
+  // digits is exactly a double.  p/q, longer integers, hexadecimal and
   // anything unusual go through parse_number.
   if (!token.empty() && token.size() < 64) {
     bool decimal = false, plain = true;
@@ -65,16 +68,61 @@ Rational parse_coordinate(std::string_view token, const std::string& name, const
       else if (!((c >= '0' && c <= '9') || ((c == '-' || c == '+') && (i == 0 || token[i - 1] == 'e' || token[i - 1] == 'E'))))
         plain = false;
     }
-    if (decimal && plain) {
-      std::string_view t = token;
-      if (t[0] == '+') t.remove_prefix(1);
+    std::string_view t = token;
+    if (plain && t[0] == '+') t.remove_prefix(1);
+    if (decimal && plain && !t.empty()) {
       double d = 0;
       auto r = std::from_chars(t.data(), t.data() + t.size(), d);
       if (r.ec == std::errc() && r.ptr == t.data() + t.size() && std::isfinite(d) &&
           (d != 0 || t.find_first_of("123456789") == std::string_view::npos || t.find_first_of("eE") == std::string_view::npos))
-        return Rational(d);
+        return {d, std::nullopt};
+    } else if (plain && !t.empty() && t.size() <= 16) {
+      long long n = 0;
+      auto r = std::from_chars(t.data(), t.data() + t.size(), n);
+      if (r.ec == std::errc() && r.ptr == t.data() + t.size() && n < 1000000000000000LL && n > -1000000000000000LL)
+        return {double(n), std::nullopt};
     }
   }
+  Rational q = parse_coordinate_exact(token, name, place);
+  if (is_double(q)) return {to_double(q), std::nullopt};
+  return {0.0, std::move(q)};
+}
+
+Coordinate read_coordinate(std::string_view token, const std::string& name, std::size_t line) {
+  if (!token.empty() && token.size() < 32) {
+    // The common plain decimal, without making the place text.
+    const char c0 = token[0];
+    if ((c0 >= '0' && c0 <= '9') || c0 == '-' || c0 == '.') {
+      bool plain = true;
+      for (char c : token)
+        if (!((c >= '0' && c <= '9') || c == '.' || c == '-' || c == 'e' || c == 'E')) plain = false;
+      if (plain) {
+        double d = 0;
+        auto r = std::from_chars(token.data(), token.data() + token.size(), d);
+        if (r.ec == std::errc() && r.ptr == token.data() + token.size() && std::isfinite(d) && d != 0 &&
+            token.find('.') != std::string_view::npos)
+          return {d, std::nullopt};
+      }
+    }
+  }
+  return read_coordinate(token, name, line_place(line));
+}
+
+Rational parse_coordinate(std::string_view token, const std::string& name, const std::string& place) {
+  Coordinate c = read_coordinate(token, name, place);
+  return c.exact ? std::move(*c.exact) : Rational(c.d);
+}
+
+void push_point(PointList& points, Coordinate (&c)[3]) {
+  if (!c[0].exact && !c[1].exact && !c[2].exact) {
+    points.push_back(Vec3d{c[0].d, c[1].d, c[2].d});
+    return;
+  }
+  auto value = [](Coordinate& x) { return x.exact ? std::move(*x.exact) : Rational(x.d); };
+  points.push_back(Point3(value(c[0]), value(c[1]), value(c[2])));
+}
+
+static Rational parse_coordinate_exact(std::string_view token, const std::string& name, const std::string& place) {
   std::string why;
   if (auto q = parse_number(token, &why)) return std::move(*q);
   if (why == "NaN") throw InputError(name, place, "coordinate is NaN");
@@ -176,6 +224,95 @@ float rational_to_float(const Rational& q) {
   if (v > double(std::numeric_limits<float>::max())) return overflow();
   float f = static_cast<float>(v);
   return s < 0 ? -f : f;
+}
+
+double coordinate_double(const PointList& points, std::size_t i, int k) {
+  if (points.form() != PointList::Form::rationals) return points.approx(i)[k];  // finite by construction
+  const double d = points.approx(i)[k];
+  if (std::isfinite(d)) return d;
+  return checked_double(points.exact_ref(i)[k]);  // throws the range error
+}
+
+namespace {
+// Nearest float of a finite double (one correctly rounded conversion in the
+// default rounding mode); the range error of rational_to_float beyond it.
+float double_to_float(double d) {
+  const float f = static_cast<float>(d);
+  return std::isfinite(f) ? f : rational_to_float(Rational(d));
+}
+}  // namespace
+
+float coordinate_float(const PointList& points, std::size_t i, int k) {
+  switch (points.form()) {
+    case PointList::Form::rationals: return rational_to_float(points.exact_ref(i)[k]);
+    case PointList::Form::doubles: return double_to_float(points.approx(i)[k]);
+    case PointList::Form::double_pairs: break;
+  }
+  const double hi = points.approx(i)[k], lo = points.low(i)[k];
+  if (lo == 0) return double_to_float(hi);
+  // Nearest float of hi + lo: |lo| is at most half an ulp of hi, far below
+  // half an ulp of a float, so it only matters when hi lies exactly halfway
+  // between two floats (such midpoints are doubles): then lo's sign breaks
+  // the tie.  Otherwise the nearest float of hi is the answer.
+  const float f = double_to_float(hi);  // range errors as usual
+  const double df = f;
+  if (df == hi) return f;
+  const float g = std::nextafter(f, hi > df ? std::numeric_limits<float>::infinity()
+                                             : -std::numeric_limits<float>::infinity());
+  if (std::isfinite(g) && (df + double(g)) / 2 == hi) return (lo > 0) == (double(g) > df) ? g : f;
+  return f;
+}
+
+void append_coordinate(std::string& out, const PointList& points, std::size_t i, int k, bool exact) {
+  if (!exact) {
+    char buf[32];
+    auto r = std::to_chars(buf, buf + sizeof buf, coordinate_double(points, i, k));
+    out.append(buf, r.ptr);
+    return;
+  }
+  switch (points.form()) {
+    case PointList::Form::doubles: append_exact_dyadic(out, points.approx(i)[k]); return;
+    case PointList::Form::double_pairs: append_exact_dyadic(out, points.approx(i)[k], points.low(i)[k]); return;
+    case PointList::Form::rationals: out += format_exact(points.exact_ref(i)[k]); return;
+  }
+}
+
+void append_index(std::string& out, std::uint64_t v) {
+  char buf[24];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+void write_point_lines(std::ostream& out, const PointList& points, bool exact) {
+  std::string line;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    line.clear();
+    append_point(line, points, i, exact);
+    out.write(line.data(), std::streamsize(line.size()));
+  }
+}
+
+void write_counted_face_lines(std::ostream& out, const std::vector<std::vector<Index>>& faces) {
+  std::string line;
+  for (const auto& f : faces) {
+    line.clear();
+    append_index(line, f.size());
+    for (Index v : f) {
+      line += ' ';
+      append_index(line, v);
+    }
+    line += '\n';
+    out.write(line.data(), std::streamsize(line.size()));
+  }
+}
+
+void append_point(std::string& out, const PointList& points, std::size_t i, bool exact, char sep, const char* end) {
+  append_coordinate(out, points, i, 0, exact);
+  out += sep;
+  append_coordinate(out, points, i, 1, exact);
+  out += sep;
+  append_coordinate(out, points, i, 2, exact);
+  out += end;
 }
 
 void put_le(std::ostream& out, std::uint64_t value, int bytes) {
@@ -465,15 +602,19 @@ void write_file_atomically(const std::string& path,
   }
   if (buf.error() != 0) fail("write error: " + lower_strerror(buf.error()));
   if (!out) fail("write error");
-  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS)
-    fail("write error: " + lower_strerror(errno));
+  // No fsync: the rename makes the write atomic for every reader (the old
+  // content or the whole new file, never a part), which is the guarantee
+  // minksum gives; durability across a power failure is the file system's
+  // (an fsync per output costs more than a whole sum of mid-sized operands).
   int closed = ::close(fd);
   fd = -1;
   if (closed != 0) fail("write error: " + lower_strerror(errno));
   if (::rename(tmp.c_str(), path.c_str()) != 0) fail("cannot replace the file: " + lower_strerror(errno));
 }
 
-ConvexPolytope load_polytope(const std::string& spec, bool hull) {
+ConvexPolytope load_polytope(const std::string& spec, bool hull, LoadPhases* phases) {
+  using clock = std::chrono::steady_clock;
+  auto seconds = [](clock::time_point a, clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
   auto format = format_from_path(spec);
   struct stat st{};
   bool exists = ::stat(spec.c_str(), &st) == 0;
@@ -481,13 +622,19 @@ ConvexPolytope load_polytope(const std::string& spec, bool hull) {
   // a catalog spec (a stray file called "cube" does not shadow the catalog).
   if (exists && (format || !is_catalog_spec(spec))) {
     if (!format) unknown_extension(spec, "read");
+    const auto t0 = clock::now();
     Mesh mesh = read_mesh(spec);  // InputError for directories, unreadable files, bad data
-    if (hull) return ConvexPolytope::hull(mesh.points, spec);
-    return ConvexPolytope::from_mesh(mesh, spec);
+    const auto t1 = clock::now();
+    ConvexPolytope p = hull ? ConvexPolytope::hull(mesh.points, spec) : ConvexPolytope::from_mesh(mesh, spec);
+    if (phases) *phases = {seconds(t0, t1), seconds(t1, clock::now())};
+    return p;
   }
   if (is_catalog_spec(spec)) {
+    const auto t0 = clock::now();
     ConvexPolytope p = catalog_polytope(spec);
-    if (hull) return ConvexPolytope::hull(p.points(), spec);
+    const auto t1 = clock::now();
+    if (hull) p = ConvexPolytope::hull(p.coordinates(), spec);
+    if (phases) *phases = {seconds(t0, t1), seconds(t1, clock::now())};
     return p;
   }
   if (format) throw InputError(spec, "", "no such file");

@@ -97,20 +97,24 @@ Mesh read_obj(std::string_view data, const std::string& name) {
         throw InputError(name, place, "vertex has " + std::to_string(n) + " coordinates (3 needed)");
       if (n == 5 || n > 7)
         throw InputError(name, place, "unexpected token " + quote(tokens[n == 5 ? 5 : 8]) + " after the vertex");
-      std::array<Rational, 3> c;
-      for (int k = 0; k < 3; ++k) c[k] = parse_coordinate(tokens[1 + k], name, place);
+      Coordinate c[3];
+      for (int k = 0; k < 3; ++k) c[k] = read_coordinate(tokens[1 + k], name, place);
       if (n == 4) {
         Rational w = parse_coordinate(tokens[4], name, place);
         if (sgn(w) == 0) throw InputError(name, place, "vertex has w = 0 (a point at infinity)");
         if (w != 1)
-          for (auto& x : c) x /= w;
+          for (auto& x : c) {
+            Rational v = x.exact ? *x.exact : Rational(x.d);
+            v /= w;
+            x.exact = std::move(v);
+          }
       } else if (n >= 6) {
         for (std::size_t k = 4; k <= n; ++k)
           if (!looks_numeric(tokens[k]))
             throw InputError(name, place, "expected a colour number, got " + quote(tokens[k]));
       }
       if (mesh.points.size() + 1 >= kNoIndex) throw InputError(name, place, "too many vertices");
-      mesh.points.emplace_back(std::move(c[0]), std::move(c[1]), std::move(c[2]));
+      push_point(mesh.points, c);
     } else if (key == "f" || key == "fo") {
       const std::size_t face_no = mesh.faces.size() + 1;
       const std::size_t n = tokens.size() - 1;
@@ -186,15 +190,20 @@ void write_obj(std::ostream& out, const Mesh& mesh, const WriteOptions& options)
   out << "# minksum: " << mesh.points.size() << " vertices, " << mesh.faces.size() << " faces";
   if (options.exact) out << "; coordinates are exact rationals (integers or p/q)";
   out << '\n';
-  for (const Point3& p : mesh.points) {
-    out << "v";
-    for (int i = 0; i < 3; ++i) out << ' ' << (options.exact ? format_exact(p[i]) : double_text(p[i]));
-    out << '\n';
+  std::string line;
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    line.assign("v ");
+    append_point(line, mesh.points, i, options.exact);
+    out.write(line.data(), std::streamsize(line.size()));
   }
   for (const auto& f : mesh.faces) {
-    out << 'f';
-    for (Index v : f) out << ' ' << (std::uint64_t(v) + 1);
-    out << '\n';
+    line.assign("f");
+    for (Index v : f) {
+      line += ' ';
+      append_index(line, std::uint64_t(v) + 1);
+    }
+    line += '\n';
+    out.write(line.data(), std::streamsize(line.size()));
   }
 }
 

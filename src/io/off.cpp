@@ -119,19 +119,19 @@ Mesh read_off(std::string_view data, const std::string& name) {
   Mesh mesh;
   mesh.points.reserve(nv);
   for (std::uint64_t i = 0; i < nv; ++i) {
-    Rational c[3];
+    Coordinate c[3];
     for (int k = 0; k < 3; ++k) {
       if (!cur.next(tok))
         throw InputError(name, line_place(cur.line()),
                          "file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
-      c[k] = parse_coordinate(tok, name, line_place(cur.token_line()));
+      c[k] = read_coordinate(tok, name, cur.token_line());
     }
     while (cur.next_on_line(tok)) {
       if (!magic.extras || !looks_numeric(tok))
         throw InputError(name, line_place(cur.token_line()),
                          "unexpected token " + quote(tok) + " after vertex " + std::to_string(i));
     }
-    mesh.points.emplace_back(std::move(c[0]), std::move(c[1]), std::move(c[2]));
+    push_point(mesh.points, c);
   }
 
   mesh.faces.reserve(nf);
@@ -189,32 +189,36 @@ Mesh read_off(std::string_view data, const std::string& name) {
 }
 
 void write_off(std::ostream& out, const Mesh& mesh, const WriteOptions& options) {
-  // Number of distinct undirected edges, for the header's E.
-  std::vector<std::uint64_t> edges;
+  // Number of distinct undirected edges, for the header's E: an
+  // open-addressing set of (min, max) pairs.
+  std::size_t total = 0;
+  for (const auto& f : mesh.faces) total += f.size();
+  std::size_t cap = 16;
+  while (cap < 2 * total + 2) cap *= 2;
+  std::vector<std::uint64_t> set(cap, ~std::uint64_t(0));
+  std::size_t ne = 0;
   for (const auto& f : mesh.faces)
     for (std::size_t i = 0; i < f.size(); ++i) {
       std::uint64_t a = f[i], b = f[(i + 1) % f.size()];
       if (a > b) std::swap(a, b);
-      edges.push_back(a << 32 | b);
+      const std::uint64_t key = a << 32 | b;
+      std::uint64_t h = key * 0x9e3779b97f4a7c15ULL;
+      for (std::size_t j = (h ^ (h >> 29)) & (cap - 1);; j = (j + 1) & (cap - 1)) {
+        if (set[j] == key) break;
+        if (set[j] == ~std::uint64_t(0)) {
+          set[j] = key;
+          ++ne;
+          break;
+        }
+      }
     }
-  std::sort(edges.begin(), edges.end());
-  std::size_t ne = std::unique(edges.begin(), edges.end()) - edges.begin();
-  edges = {};
+  set = {};
 
   out << "OFF\n";
   if (options.exact) out << "# coordinates are exact rationals (integers or p/q)\n";
   out << mesh.points.size() << ' ' << mesh.faces.size() << ' ' << ne << '\n';
-  for (const Point3& p : mesh.points) {
-    if (options.exact)
-      out << format_exact(p.x) << ' ' << format_exact(p.y) << ' ' << format_exact(p.z) << '\n';
-    else
-      out << double_text(p.x) << ' ' << double_text(p.y) << ' ' << double_text(p.z) << '\n';
-  }
-  for (const auto& f : mesh.faces) {
-    out << f.size();
-    for (Index v : f) out << ' ' << v;
-    out << '\n';
-  }
+  write_point_lines(out, mesh.points, options.exact);
+  write_counted_face_lines(out, mesh.faces);
 }
 
 }  // namespace minksum::io_detail

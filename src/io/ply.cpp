@@ -143,6 +143,17 @@ std::string count_phrase(const Element& e, std::uint64_t n) {
 
 }  // namespace
 
+namespace {
+void finish_points(PointList& points, std::vector<std::array<Coordinate, 3>>& coords) {
+  points.reserve(coords.size());
+  for (auto& c : coords) {
+    Coordinate t[3] = {std::move(c[0]), std::move(c[1]), std::move(c[2])};
+    push_point(points, t);
+  }
+  coords = {};
+}
+}  // namespace
+
 Mesh read_ply(std::string_view data, const std::string& name) {
   // --- header ---------------------------------------------------------------
   std::size_t pos = 0, line_no = 0;
@@ -287,7 +298,8 @@ Mesh read_ply(std::string_view data, const std::string& name) {
   }
 
   Mesh mesh;
-  mesh.points.resize(nv);  // bounded by the body size (checked above)
+  // Coordinates as read (properties may come in any order), pushed once complete.
+  std::vector<std::array<Coordinate, 3>> coords(nv);  // bounded by the body size (checked above)
   if (face) mesh.faces.reserve(face->count);
 
   auto face_error = [&](std::uint64_t f, std::int64_t v, const std::string& place) {
@@ -320,7 +332,7 @@ Mesh read_ply(std::string_view data, const std::string& name) {
               for (int c = 0; c < 3; ++c)
                 if (coord_prop[c] == int(pi)) k = c;
             if (k >= 0) {
-              mesh.points[n][k] = parse_coordinate(t, name, line_place(cur.token_line()));
+              coords[n][k] = read_coordinate(t, name, cur.token_line());
             } else if (!looks_numeric(t)) {
               throw InputError(name, line_place(cur.token_line()), "expected a number, got " + quote(t));
             }
@@ -351,6 +363,7 @@ Mesh read_ply(std::string_view data, const std::string& name) {
     if (cur.next(t))
       throw InputError(name, line_place(cur.token_line()),
                        "unexpected token " + quote(t) + " after the last element");
+    finish_points(mesh.points, coords);
     return mesh;
   }
 
@@ -382,9 +395,11 @@ Mesh read_ply(std::string_view data, const std::string& name) {
           if (s.floating) {
             if (std::isnan(s.f)) throw InputError(name, place(), "coordinate is NaN");
             if (std::isinf(s.f)) throw InputError(name, place(), "coordinate is infinite");
-            mesh.points[n][k] = Rational(s.f);
+            coords[n][k] = {s.f, std::nullopt};
+          } else if (s.i < (std::int64_t(1) << 53) && s.i > -(std::int64_t(1) << 53)) {
+            coords[n][k] = {double(s.i), std::nullopt};
           } else {
-            mesh.points[n][k] = Rational(static_cast<long>(s.i));
+            coords[n][k] = {0.0, Rational(static_cast<long>(s.i))};
           }
           continue;
         }
@@ -414,6 +429,7 @@ Mesh read_ply(std::string_view data, const std::string& name) {
   if (in.left() != 0)
     throw InputError(name, "byte " + std::to_string(in.pos()),
                      std::to_string(in.left()) + " bytes of unexpected data after the last element");
+  finish_points(mesh.points, coords);
   return mesh;
 }
 
@@ -432,21 +448,16 @@ void write_ply(std::ostream& out, const Mesh& mesh, const WriteOptions& options)
       << " vertex_indices\n"
       << "end_header\n";
   if (options.binary) {
-    for (const Point3& p : mesh.points)
-      for (int i = 0; i < 3; ++i) put_le_double(out, checked_double(p[i]));
+    for (std::size_t v = 0; v < mesh.points.size(); ++v)
+      for (int i = 0; i < 3; ++i) put_le_double(out, coordinate_double(mesh.points, v, i));
     for (const auto& f : mesh.faces) {
       put_le(out, f.size(), wide_count ? 4 : 1);
       for (Index v : f) put_le(out, v, 4);
     }
     return;
   }
-  for (const Point3& p : mesh.points)
-    out << double_text(p.x) << ' ' << double_text(p.y) << ' ' << double_text(p.z) << '\n';
-  for (const auto& f : mesh.faces) {
-    out << f.size();
-    for (Index v : f) out << ' ' << v;
-    out << '\n';
-  }
+  write_point_lines(out, mesh.points, false);
+  write_counted_face_lines(out, mesh.faces);
 }
 
 }  // namespace minksum::io_detail

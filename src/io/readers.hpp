@@ -54,6 +54,38 @@ std::string quote(std::string_view token);
 // "expected a number, got 'foo'".
 Rational parse_coordinate(std::string_view token, const std::string& name, const std::string& place);
 
+// The same, in the cheapest exact form: the double when the token's exact
+// value is one (no allocation), else the exact rational in `exact`.
+struct Coordinate {
+  double d = 0;
+  std::optional<Rational> exact;
+};
+Coordinate read_coordinate(std::string_view token, const std::string& name, const std::string& place);
+// The same at "line N" (the place text is only made on the slow path).
+Coordinate read_coordinate(std::string_view token, const std::string& name, std::size_t line);
+// Append the point with these coordinates (as doubles when all three are).
+void push_point(PointList& points, Coordinate (&c)[3]);
+
+// Writing one coordinate (k = 0, 1, 2) of point i:
+//  * its nearest double; UsageError when it rounds beyond the double range
+//    (only rational coordinates can);
+//  * its nearest float (binary STL); UsageError beyond the float range;
+//  * appended to `out` as text: the shortest round-trip text of the nearest
+//    double, or with `exact` the exact value (an integer or p/q), printed
+//    from the doubles' mantissas when the coordinate is a double or a pair.
+double coordinate_double(const PointList& points, std::size_t i, int k);
+float coordinate_float(const PointList& points, std::size_t i, int k);
+void append_coordinate(std::string& out, const PointList& points, std::size_t i, int k, bool exact);
+// One line "x y z" per point, and one line "k i0 ... i(k-1)" per face (the
+// bodies of OFF and ascii PLY).
+void write_point_lines(std::ostream& out, const PointList& points, bool exact);
+void write_counted_face_lines(std::ostream& out, const std::vector<std::vector<Index>>& faces);
+// A decimal index or count, appended.
+void append_index(std::string& out, std::uint64_t v);
+// The three coordinates of point i separated by `sep`, then `end`, appended.
+void append_point(std::string& out, const PointList& points, std::size_t i, bool exact, char sep = ' ',
+                  const char* end = "\n");
+
 // Parse a non-negative decimal integer token (no sign, no fraction) that fits
 // in 64 bits; nullopt otherwise.
 std::optional<std::uint64_t> parse_unsigned(std::string_view token);

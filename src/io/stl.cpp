@@ -37,23 +37,48 @@ namespace minksum::io_detail {
 namespace {
 
 // Welds exactly equal points: an open-addressing table of indices into
-// mesh.points (so each point is stored once, in the mesh).
+// mesh.points (so each point is stored once, in the mesh).  Double points are
+// compared by their bits (zeros unsigned), rational ones by value; the two
+// kinds never coincide (a rational token equal to a double is read as it).
 class Welder {
  public:
   explicit Welder(Mesh& mesh) : mesh_(mesh), slots_(64, kNoIndex) {}
-  Index add(Point3 p) {
-    std::uint64_t h = hash_value(p);
-    h ^= h >> 33;  // spread the bits: the table uses the low ones
-    h *= 0xff51afd7ed558ccdULL;
-    h ^= h >> 33;
+  Index add(Coordinate (&c)[3]) {
+    const bool dbl = !c[0].exact && !c[1].exact && !c[2].exact;
+    std::uint64_t h;
+    Point3 p;
+    if (dbl) {
+      h = 0x9e3779b97f4a7c15ULL;
+      for (int k = 0; k < 3; ++k) {
+        const double d = c[k].d == 0 ? 0.0 : c[k].d;
+        std::uint64_t b;
+        std::memcpy(&b, &d, 8);
+        h = (h ^ b) * 0xbf58476d1ce4e5b9ULL;
+        h ^= h >> 31;
+      }
+    } else {
+      auto value = [](Coordinate& x) { return x.exact ? std::move(*x.exact) : Rational(x.d); };
+      p = Point3(value(c[0]), value(c[1]), value(c[2]));
+      h = hash_value(p);
+      h ^= h >> 33;  // spread the bits: the table uses the low ones
+      h *= 0xff51afd7ed558ccdULL;
+      h ^= h >> 33;
+    }
     std::size_t mask = slots_.size() - 1;
     for (std::size_t i = h & mask;; i = (i + 1) & mask) {
       const Index s = slots_[i];
       if (s == kNoIndex) break;
-      if (hashes_[s] == h && mesh_.points[s] == p) return s;
+      if (hashes_[s] != h || mesh_.points.is_double(s) != dbl) continue;
+      if (dbl) {
+        const Vec3d& q = mesh_.points.approx(s);
+        if (q.x == c[0].d && q.y == c[1].d && q.z == c[2].d) return s;
+      } else if (mesh_.points.exact_ref(s) == p) {
+        return s;
+      }
     }
     const auto index = static_cast<Index>(mesh_.points.size());
-    mesh_.points.push_back(std::move(p));
+    if (dbl) mesh_.points.push_back(Vec3d{c[0].d, c[1].d, c[2].d});
+    else mesh_.points.push_back(p);
     hashes_.push_back(h);
     if (2 * hashes_.size() > slots_.size()) {
       std::vector<Index>(slots_.size() * 2, kNoIndex).swap(slots_);
@@ -140,7 +165,7 @@ Mesh read_binary(std::string_view data, const std::string& name) {
       if (slots[i] == kNoIndex) {
         slots[i] = static_cast<Index>(keys.size());
         keys.push_back(key);
-        mesh.points.emplace_back(double(c[0]), double(c[1]), double(c[2]));
+        mesh.points.push_back(Vec3d{double(c[0]), double(c[1]), double(c[2])});
       }
       tri[v] = slots[i];
     }
@@ -201,12 +226,12 @@ Mesh read_ascii(std::string_view data, const std::string& name) {
       if (iequals(t, "endloop")) break;
       if (!iequals(t, "vertex"))
         throw InputError(name, here(), "expected 'vertex' or 'endloop', got " + quote(t));
-      Rational c[3];
+      Coordinate c[3];
       for (int k = 0; k < 3; ++k) {
         need("a coordinate");
-        c[k] = parse_coordinate(t, name, here());
+        c[k] = read_coordinate(t, name, cur.token_line());
       }
-      face.push_back(weld.add(Point3(std::move(c[0]), std::move(c[1]), std::move(c[2]))));
+      face.push_back(weld.add(c));
       if (mesh.points.size() + 1 >= kNoIndex) throw InputError(name, here(), "too many vertices");
     }
     if (face.size() < 3)
@@ -220,17 +245,18 @@ Mesh read_ascii(std::string_view data, const std::string& name) {
 
 // Unit normal of triangle (a, b, c), rounded (readers ignore it; it is
 // informative only); zero for a degenerate triangle.
-Vec3d unit_normal(const Point3& a, const Point3& b, const Point3& c) {
+Vec3d unit_normal(const PointList& pts, Index ia, Index ib, Index ic) {
   {
     // Usually doubles suffice; the exact computation below handles the rest
     // (overflow, underflow, cancellation to zero).
-    const Vec3d p = to_double(a), q = to_double(b), r = to_double(c);
+    const Vec3d p = pts.approx(ia), q = pts.approx(ib), r = pts.approx(ic);
     const double u[3] = {q.x - p.x, q.y - p.y, q.z - p.z}, v[3] = {r.x - p.x, r.y - p.y, r.z - p.z};
     const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (std::isfinite(len) && len > 1e-150 && len < 1e150) return {n[0] / len, n[1] / len, n[2] / len};
   }
-  Point3 n = cross(b - a, c - a);
+  const Point3 a = pts.exact(ia);
+  Point3 n = cross(pts.exact(ib) - a, pts.exact(ic) - a);
   if (is_zero(n)) return {};
   // Scale by a power of two so that the largest component is near 1 before
   // rounding, which keeps huge and tiny coordinates out of overflow/underflow.
@@ -281,24 +307,25 @@ void write_stl(std::ostream& out, const Mesh& mesh, const WriteOptions& options)
     out.write(header, 80);
     put_le(out, triangles, 4);
     each_triangle([&](Index a, Index b, Index c) {
-      const Point3* p[3] = {&mesh.points[a], &mesh.points[b], &mesh.points[c]};
-      Vec3d n = unit_normal(*p[0], *p[1], *p[2]);
+      Vec3d n = unit_normal(mesh.points, a, b, c);
       for (int i = 0; i < 3; ++i) put_le_float(out, static_cast<float>(n[i]));
-      for (const Point3* q : p)
-        for (int i = 0; i < 3; ++i) put_le_float(out, rational_to_float((*q)[i]));
+      for (Index q : {a, b, c})
+        for (int i = 0; i < 3; ++i) put_le_float(out, coordinate_float(mesh.points, q, i));
       put_le(out, 0, 2);
     });
     return;
   }
   out << "solid minksum\n";
   each_triangle([&](Index a, Index b, Index c) {
-    const Point3* p[3] = {&mesh.points[a], &mesh.points[b], &mesh.points[c]};
-    Vec3d n = unit_normal(*p[0], *p[1], *p[2]);
-    out << "  facet normal " << format_double(n.x) << ' ' << format_double(n.y) << ' ' << format_double(n.z)
-        << "\n    outer loop\n";
-    for (const Point3* q : p)
-      out << "      vertex " << double_text(q->x) << ' ' << double_text(q->y) << ' ' << double_text(q->z) << '\n';
-    out << "    endloop\n  endfacet\n";
+    Vec3d n = unit_normal(mesh.points, a, b, c);
+    std::string text = "  facet normal " + format_double(n.x) + ' ' + format_double(n.y) + ' ' +
+                       format_double(n.z) + "\n    outer loop\n";
+    for (Index q : {a, b, c}) {
+      text += "      vertex ";
+      append_point(text, mesh.points, q, false);
+    }
+    text += "    endloop\n  endfacet\n";
+    out.write(text.data(), std::streamsize(text.size()));
   });
   out << "endsolid minksum\n";
 }

@@ -283,8 +283,8 @@ class Reader {
   }
 
   // Numbers of a point / ratPoint field, 3 per point.
-  std::vector<Point3> parse_points(const char* field) {
-    std::vector<Rational> v;
+  PointList parse_points(const char* field) {
+    std::vector<Coordinate> v;
     Tok t;
     need(t, "a point list");
     std::size_t end_line = t.line;
@@ -296,25 +296,27 @@ class Reader {
           break;
         }
         if (t.string) fail(t.line, "expected a number, got a string");
-        v.push_back(parse_coordinate(t.text, name_, line_place(t.line)));
+        v.push_back(read_coordinate(t.text, name_, t.line));
       }
     } else {
       for (int i = 0; i < 3; ++i) {
         if (i > 0) need(t, "a number");
-        v.push_back(parse_coordinate(t.text, name_, line_place(t.line)));
+        v.push_back(read_coordinate(t.text, name_, t.line));
       }
     }
     if (v.size() % 3 != 0)
       fail(end_line, std::string(field) + " list has " + std::to_string(v.size()) + " numbers, not a multiple of 3");
     if (v.size() / 3 >= kNoIndex) fail(end_line, "too many vertices");
-    std::vector<Point3> pts;
+    PointList pts;
     pts.reserve(v.size() / 3);
-    for (std::size_t i = 0; i < v.size(); i += 3)
-      pts.emplace_back(std::move(v[i]), std::move(v[i + 1]), std::move(v[i + 2]));
+    for (std::size_t i = 0; i < v.size(); i += 3) {
+      Coordinate c[3] = {std::move(v[i]), std::move(v[i + 1]), std::move(v[i + 2])};
+      push_point(pts, c);
+    }
     return pts;
   }
 
-  std::vector<Point3> parse_coord() {
+  PointList parse_coord() {
     Tok t;
     need(t, "a coordinate node");
     std::string def;
@@ -335,7 +337,7 @@ class Reader {
       fail(t.line, "unsupported coord node " + quote(t.text) + " (expected Coordinate or ExactCoordinate)");
     const bool exact = t.text == "ExactCoordinate";
     expect("{");
-    std::vector<Point3> pts;
+    PointList pts;
     for (;;) {
       need(t, "'}'");
       if (!t.string && t.text == "}") break;
@@ -391,7 +393,7 @@ class Reader {
   void parse_ifs(std::size_t ifs_line) {
     expect("{");
     bool have_coord = false, have_index = false, ccw = true;
-    std::vector<Point3> pts;
+    PointList pts;
     Tok t;
     for (;;) {
       if (!lex_.next(t)) fail(lex_.line(), "file ends inside the IndexedFaceSet");
@@ -429,7 +431,7 @@ class Reader {
   const std::string& name_;
   Mesh mesh_;
   std::vector<std::size_t> face_line_;
-  std::map<std::string, std::vector<Point3>> defs_;
+  std::map<std::string, PointList> defs_;
   bool found_ = false;
 };
 
@@ -453,14 +455,11 @@ void write_wrl(std::ostream& out, const Mesh& mesh, const WriteOptions& options)
       << "  geometry IndexedFaceSet {\n"
       << "    coord " << (options.exact ? "ExactCoordinate" : "Coordinate") << " {\n"
       << "      " << (options.exact ? "ratPoint" : "point") << " [\n";
+  std::string line;
   for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    const Point3& p = mesh.points[i];
-    out << "        ";
-    for (int k = 0; k < 3; ++k) {
-      if (k) out << ' ';
-      out << (options.exact ? format_exact(p[k]) : double_text(p[k]));
-    }
-    out << (i + 1 < mesh.points.size() ? ",\n" : "\n");
+    line.assign("        ");
+    append_point(line, mesh.points, i, options.exact, ' ', i + 1 < mesh.points.size() ? ",\n" : "\n");
+    out.write(line.data(), std::streamsize(line.size()));
   }
   out << "      ]\n"
       << "    }\n"

@@ -2,7 +2,10 @@
 // parsing and printing.
 #include <minksum/kernel.hpp>
 
+#include <algorithm>
 #include <cctype>
+#include <climits>
+#include <cstdint>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -207,6 +210,81 @@ std::string format_double(double v) {
 std::string format_exact(const Rational& q) {
   if (q.get_den() == 1) return q.get_num().get_str();
   return q.get_num().get_str() + "/" + q.get_den().get_str();
+}
+
+namespace {
+// x = m * 2^e with an integer m, |m| < 2^53 (x finite, nonzero).
+inline void split_double(double x, std::int64_t& m, int& e) {
+  int ex;
+  const double f = std::frexp(x, &ex);
+  m = static_cast<std::int64_t>(std::ldexp(f, 53));
+  e = ex - 53;
+  const int tz = __builtin_ctzll(static_cast<std::uint64_t>(m < 0 ? -m : m));
+  m >>= tz;  // exact: the low tz bits are zero
+  e += tz;
+}
+void append_int(std::string& out, long long v) {
+  char buf[24];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+void append_uint(std::string& out, unsigned long long v) {
+  char buf[24];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+}  // namespace
+
+void append_exact_dyadic(std::string& out, double hi, double lo) {
+  if (hi == 0 && lo == 0) {
+    out += '0';
+    return;
+  }
+  if (lo == 0 || hi == 0) {
+    std::int64_t m;
+    int e;
+    split_double(hi != 0 ? hi : lo, m, e);  // m odd
+    if (e >= 0 && e <= 9) {  // |m| * 2^e < 2^62
+      append_int(out, static_cast<long long>(m) << e);
+      return;
+    }
+    if (e < 0 && e >= -63) {
+      append_int(out, m);
+      out += '/';
+      append_uint(out, 1ULL << -e);
+      return;
+    }
+  }
+  // General case: N * 2^emin with a GMP integer N.
+  std::int64_t m[2] = {0, 0};
+  int e[2] = {0, 0};
+  int emin = INT_MAX;
+  const double parts[2] = {hi, lo};
+  for (int i = 0; i < 2; ++i)
+    if (parts[i] != 0) {
+      split_double(parts[i], m[i], e[i]);
+      emin = std::min(emin, e[i]);
+    }
+  Integer n = 0, t;
+  for (int i = 0; i < 2; ++i)
+    if (m[i] != 0) {
+      mpz_set_si(t.get_mpz_t(), static_cast<long>(m[i]));
+      mpz_mul_2exp(t.get_mpz_t(), t.get_mpz_t(), mp_bitcnt_t(e[i] - emin));
+      n += t;
+    }
+  const long tz = long(mpz_scan1(n.get_mpz_t(), 0));
+  mpz_fdiv_q_2exp(n.get_mpz_t(), n.get_mpz_t(), mp_bitcnt_t(tz));
+  long ex = long(emin) + tz;
+  if (ex >= 0) {
+    mpz_mul_2exp(n.get_mpz_t(), n.get_mpz_t(), mp_bitcnt_t(ex));
+    out += n.get_str();
+    return;
+  }
+  out += n.get_str();
+  out += '/';
+  Integer d;
+  mpz_setbit(d.get_mpz_t(), mp_bitcnt_t(-ex));
+  out += d.get_str();
 }
 
 std::string format_coordinate(const Rational& q, bool exact) {

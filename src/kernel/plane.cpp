@@ -1,5 +1,6 @@
 #include "kernel/plane.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <initializer_list>
@@ -32,34 +33,44 @@ Plane canonical_plane(const Point3& n, const Point3& p) {
   return pl;
 }
 
-Plane canonical_plane_of_double_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  // Every double is M * 2^E with an integer |M| < 2^53.
-  const Vec3d* v[3] = {&a, &b, &c};
-  long long m[3][3];
-  int e[3][3];
-  int emin = INT_MAX;
+ScaledIntegers::ScaledIntegers(const double* values, std::size_t n) {
+  // Every nonzero double is M * 2^E with an odd or even integer |M| < 2^53;
+  // the smallest E over all values is the common exponent.
+  exponent = INT_MAX;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (values[i] == 0) continue;
+    int ex;
+    std::frexp(values[i], &ex);
+    exponent = std::min(exponent, ex - 53);
+  }
+  if (exponent == INT_MAX) exponent = 0;
+  value.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = values[i];
+    if (x == 0) continue;
+    int ex;
+    const double f = std::frexp(x, &ex);
+    mpz_set_si(value[i].get_mpz_t(), static_cast<long>(std::ldexp(f, 53)));
+    mpz_mul_2exp(value[i].get_mpz_t(), value[i].get_mpz_t(), mp_bitcnt_t(ex - 53 - exponent));
+  }
+}
+
+Plane canonical_plane_of_dyadic_triangle(const Vec3d hi[3], const Vec3d lo[3]) {
+  double raw[18];
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) {
-      double x = (*v[i])[k];
-      if (x == 0) {
-        m[i][k] = 0;
-        e[i][k] = INT_MAX;
-        continue;
-      }
-      int ex;
-      double f = std::frexp(x, &ex);
-      m[i][k] = static_cast<long long>(std::ldexp(f, 53));
-      e[i][k] = ex - 53;
-      if (e[i][k] < emin) emin = e[i][k];
+      raw[3 * i + k] = hi[i][k];
+      raw[9 + 3 * i + k] = lo ? lo[i][k] : 0.0;
     }
-  // X = M * 2^(E - emin): integers; the true coordinates are X * 2^emin.
+  // X = the exact coordinates times 2^-emin: integers.
+  ScaledIntegers s(raw, lo ? 18 : 9);
   Integer X[3][3];
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k) {
-      if (m[i][k] == 0) continue;
-      mpz_set_si(X[i][k].get_mpz_t(), m[i][k]);
-      mpz_mul_2exp(X[i][k].get_mpz_t(), X[i][k].get_mpz_t(), mp_bitcnt_t(e[i][k] - emin));
+      X[i][k] = s.value[3 * i + k];
+      if (lo) X[i][k] += s.value[9 + 3 * i + k];
     }
+  const int emin = s.exponent;
   Integer u[3], w[3];
   for (int k = 0; k < 3; ++k) {
     u[k] = X[1][k] - X[0][k];
@@ -78,6 +89,11 @@ Plane canonical_plane_of_double_triangle(const Vec3d& a, const Vec3d& b, const V
   }
   make_primitive(pl);
   return pl;
+}
+
+Plane canonical_plane_of_double_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const Vec3d hi[3] = {a, b, c};
+  return canonical_plane_of_dyadic_triangle(hi, nullptr);
 }
 
 }  // namespace minksum

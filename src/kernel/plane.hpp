@@ -3,6 +3,8 @@
 
 #include <minksum/polytope.hpp>
 
+#include <vector>
+
 namespace minksum {
 
 // The canonical plane with (unnormalised, nonzero) normal n through p.
@@ -13,5 +15,19 @@ Plane canonical_plane(const Point3& n, const Point3& p);
 // scaling every coordinate by one power of two (no rational arithmetic).
 // Precondition: the triangle has nonzero area; all coordinates finite.
 Plane canonical_plane_of_double_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& c);
+
+// The same for coordinates that are exact sums of two doubles, hi[i] + lo[i]
+// (lo may be null: all low parts zero).  Integer arithmetic on the scaled
+// mantissas; no rational arithmetic.
+Plane canonical_plane_of_dyadic_triangle(const Vec3d hi[3], const Vec3d lo[3]);
+
+// Finite doubles as integers with one common power of two: values[i] =
+// value[i] * 2^exponent exactly (exponent = the smallest exponent of the
+// nonzero values' last mantissa bits).
+struct ScaledIntegers {
+  ScaledIntegers(const double* values, std::size_t n);
+  std::vector<Integer> value;
+  int exponent = 0;
+};
 
 }  // namespace minksum

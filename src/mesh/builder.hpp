@@ -21,13 +21,12 @@ class PolytopeBuilder {
   // A polytope from parts its producer has already proven valid (the walk
   // method builds the half-edge structure of a Minkowski sum directly):
   // points, the half-edge links (twin(h) = h ^ 1), one half-edge per facet.
-  // Fills prev, the vertex half-edges, the approximations and computes each
-  // facet's canonical plane from the exact normal normals[f] (any positive
-  // multiple) through one of its vertices.  No validation: call
-  // check_invariants() to re-check from scratch.
-  static ConvexPolytope from_trusted_parts(std::vector<Point3> points, std::vector<Index> he_origin,
+  // Fills prev and the vertex half-edges; planes are computed on demand like
+  // every polytope's.  No validation: call check_invariants() to re-check
+  // from scratch.
+  static ConvexPolytope from_trusted_parts(PointList points, std::vector<Index> he_origin,
                                            std::vector<Index> he_next, std::vector<Index> he_facet,
-                                           std::vector<Index> facet_he, const std::vector<Point3>& normals);
+                                           std::vector<Index> facet_he);
 
   // The exact canonical plane through a planar polygon with (unnormalised)
   // normal n passing through p.  Precondition: n != 0.

@@ -99,4 +99,8 @@ ConvexPolytope ConvexPolytope::hull(const std::vector<Point3>& points, const std
   return result;
 }
 
+ConvexPolytope ConvexPolytope::hull(const PointList& points, const std::string& source) {
+  return hull(points.to_points(), source);
+}
+
 }  // namespace minksum

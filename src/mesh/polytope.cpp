@@ -19,6 +19,10 @@
 #include <minksum/error.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <cstring>
+#include <memory>
+#include <mutex>
 #include <numeric>
 #include <unordered_map>
 
@@ -28,6 +32,51 @@ namespace {
 
 std::string vtx(Index v) { return "vertex " + std::to_string(v); }
 std::string fct(Index f) { return "facet " + std::to_string(f); }
+
+inline std::uint64_t mix64(std::uint64_t h) {
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdULL;
+  h ^= h >> 33;
+  h *= 0xc4ceb9fe1a85ec53ULL;
+  h ^= h >> 33;
+  return h;
+}
+
+// Open-addressing map from 64-bit keys to indices, sized once for at most
+// `capacity` keys (load <= 1/2).  find_or_insert returns the value stored
+// for the key, inserting `value` first if the key is new.
+class FlatMap64 {
+ public:
+  explicit FlatMap64(std::size_t capacity) {
+    std::size_t n = 16;
+    while (n < 2 * capacity + 2) n *= 2;
+    keys_.assign(n, 0);
+    vals_.assign(n, kNoIndex);
+    mask_ = n - 1;
+  }
+  // (value, inserted)
+  std::pair<Index, bool> find_or_insert(std::uint64_t key, Index value) {
+    for (std::size_t i = mix64(key) & mask_;; i = (i + 1) & mask_) {
+      if (vals_[i] == kNoIndex) {
+        keys_[i] = key;
+        vals_[i] = value;
+        return {value, true};
+      }
+      if (keys_[i] == key) return {vals_[i], false};
+    }
+  }
+  Index find(std::uint64_t key) const {
+    for (std::size_t i = mix64(key) & mask_;; i = (i + 1) & mask_) {
+      if (vals_[i] == kNoIndex) return kNoIndex;
+      if (keys_[i] == key) return vals_[i];
+    }
+  }
+
+ private:
+  std::vector<std::uint64_t> keys_;
+  std::vector<Index> vals_;
+  std::size_t mask_ = 0;
+};
 
 struct Graph {
   std::vector<Index> origin, facet, next, prev, facet_he, vertex_he;
@@ -44,10 +93,9 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
     unsigned dirs = 0;  // bit 0: min->max seen, bit 1: max->min seen
     bool same_direction = false;
   };
-  std::unordered_map<std::uint64_t, Index> edge_id;
   std::size_t total = 0;
   for (const auto& f : faces) total += f.size();
-  edge_id.reserve(total);
+  FlatMap64 edge_id(total);
   std::vector<EdgeUse> uses;
   uses.reserve(total / 2 + 1);
   std::vector<std::pair<Index, Index>> ends;  // (min, max) per edge
@@ -58,12 +106,12 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
     const auto& poly = faces[f];
     for (std::size_t i = 0; i < poly.size(); ++i) {
       Index u = poly[i], v = poly[(i + 1) % poly.size()];
-      auto [it, inserted] = edge_id.try_emplace(key(u, v), Index(uses.size()));
+      auto [id, inserted] = edge_id.find_or_insert(key(u, v), Index(uses.size()));
       if (inserted) {
         uses.emplace_back();
         ends.emplace_back(std::min(u, v), std::max(u, v));
       }
-      EdgeUse& e = uses[it->second];
+      EdgeUse& e = uses[id];
       unsigned bit = u < v ? 1u : 2u;
       if (e.dirs & bit) e.same_direction = true;
       e.dirs |= bit;
@@ -102,7 +150,7 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
     hs.clear();
     for (std::size_t i = 0; i < poly.size(); ++i) {
       Index u = poly[i], v = poly[(i + 1) % poly.size()];
-      Index e = edge_id.find(key(u, v))->second;
+      Index e = edge_id.find(key(u, v));
       Index h = 2 * e + (u < v ? 0u : 1u);
       g.origin[h] = u;
       g.facet[h] = f;
@@ -162,12 +210,12 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
 }
 
 // Newell normal (twice the vector area) of a polygon: sum (p_i - p_0) x (p_{i+1} - p_0).
-Point3 polygon_normal(const std::vector<Point3>& pts, const std::vector<Index>& poly) {
+Point3 polygon_normal(const PointList& pts, const std::vector<Index>& poly) {
   Point3 n(Rational(0), Rational(0), Rational(0));
-  const Point3& o = pts[poly[0]];
-  Point3 prev = pts[poly[1]] - o;
+  const Point3 o = pts.exact(poly[0]);
+  Point3 prev = pts.exact(poly[1]) - o;
   for (std::size_t i = 2; i < poly.size(); ++i) {
-    Point3 cur = pts[poly[i]] - o;
+    Point3 cur = pts.exact(poly[i]) - o;
     Point3 c = cross(prev, cur);
     n.x += c.x;
     n.y += c.y;
@@ -200,6 +248,7 @@ int sign_det(const Point3& a, const Point3& b, const Point3& c) { return sgn(dot
 namespace {
 inline int sign_any(const Rational& q) { return sgn(q); }
 inline int sign_any(const Interval& i) { return sign_of(i); }
+inline int sign_any(const FastInterval& i) { return sign_of(i); }
 
 // check_fan on exact points (never uncertain) or on intervals (returns
 // kFanUncertain when an interval sign cannot be decided).
@@ -280,22 +329,70 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   }
 
   // 2. Weld exactly equal points; number the used vertices in input order.
+  //    Points in the doubles / double-pairs forms are equal exactly when
+  //    their bits are (zeros are stored unsigned), so they are welded by
+  //    their bits; rationals by their exact value.
   std::vector<Index> canon(n_in, kNoIndex);
   {
     std::vector<char> used(n_in, 0);
     for (const auto& poly : mesh.faces)
       for (Index v : poly) used[v] = 1;
-    std::unordered_map<Point3, Index, Point3Hash> first;
-    first.reserve(n_in);
-    for (Index v = 0; v < n_in; ++v)
-      if (used[v]) canon[v] = first.try_emplace(mesh.points[v], v).first->second;
+    const PointList& mp = mesh.points;
+    if (mp.form() == PointList::Form::rationals) {
+      std::unordered_map<Point3, Index, Point3Hash> first;
+      first.reserve(n_in);
+      for (Index v = 0; v < n_in; ++v)
+        if (used[v]) canon[v] = first.try_emplace(mp.exact_ref(v), v).first->second;
+    } else {
+      // Open addressing on the coordinates' bits (hash, then exact compare).
+      const bool pairs = mp.form() == PointList::Form::double_pairs;
+      auto bits = [](double d) {
+        std::uint64_t b;
+        std::memcpy(&b, &d, 8);
+        return b;
+      };
+      auto hash = [&](Index v) {
+        const Vec3d& a = mp.approx(v);
+        std::uint64_t h = mix64(bits(a.x)) ^ (mix64(bits(a.y) + 0x9e3779b97f4a7c15ULL) * 3) ^
+                          (mix64(bits(a.z) + 0x3c6ef372fe94f82aULL) * 7);
+        if (pairs) {
+          const Vec3d& l = mp.low(v);
+          h ^= mix64(bits(l.x) ^ (bits(l.y) << 1) ^ (bits(l.z) << 2));
+        }
+        return h;
+      };
+      auto same = [&](Index u, Index v) {
+        const Vec3d &a = mp.approx(u), &b = mp.approx(v);
+        if (a.x != b.x || a.y != b.y || a.z != b.z) return false;
+        if (!pairs) return true;
+        const Vec3d &c = mp.low(u), &d = mp.low(v);
+        return c.x == d.x && c.y == d.y && c.z == d.z;
+      };
+      std::size_t n = 16;
+      while (n < 2 * std::size_t(n_in) + 2) n *= 2;
+      std::vector<Index> slot(n, kNoIndex);
+      for (Index v = 0; v < n_in; ++v) {
+        if (!used[v]) continue;
+        for (std::size_t i = hash(v) & (n - 1);; i = (i + 1) & (n - 1)) {
+          if (slot[i] == kNoIndex) {
+            slot[i] = v;
+            canon[v] = v;
+            break;
+          }
+          if (same(slot[i], v)) {
+            canon[v] = slot[i];
+            break;
+          }
+        }
+      }
+    }
   }
   std::vector<Index> new_id(n_in, kNoIndex), vname;
-  std::vector<Point3> pts;
+  PointList pts;
   for (Index v = 0; v < n_in; ++v)
     if (canon[v] == v) {
       new_id[v] = Index(pts.size());
-      pts.push_back(mesh.points[v]);
+      pts.push_from(mesh.points, v);
       vname.push_back(v);
     }
   // After welding, a facet may repeat a vertex consecutively (a zero-length
@@ -313,11 +410,21 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
       if (poly.empty() || poly.back() != w) poly.push_back(w);
     }
     while (poly.size() > 1 && poly.back() == poly.front()) poly.pop_back();
-    std::vector<Index> sorted = poly;
-    std::sort(sorted.begin(), sorted.end());
-    sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
-    if (sorted.size() < 3) continue;
-    if (sorted.size() != poly.size()) {
+    std::size_t distinct;
+    if (poly.size() <= 16) {
+      distinct = 0;
+      for (std::size_t i = 0; i < poly.size(); ++i) {
+        bool repeat = false;
+        for (std::size_t j = 0; j < i && !repeat; ++j) repeat = poly[j] == poly[i];
+        distinct += !repeat;
+      }
+    } else {
+      std::vector<Index> sorted = poly;
+      std::sort(sorted.begin(), sorted.end());
+      distinct = std::size_t(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
+    }
+    if (distinct < 3) continue;
+    if (distinct != poly.size()) {
       std::vector<Index> seen;
       for (Index v : poly) {
         if (std::find(seen.begin(), seen.end(), v) != seen.end())
@@ -334,12 +441,12 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     std::vector<Index> renum(pts.size(), kNoIndex);
     for (const auto& poly : faces)
       for (Index v : poly) renum[v] = 0;
-    std::vector<Point3> kept_pts;
+    PointList kept_pts;
     std::vector<Index> kept_names;
     for (Index v = 0; v < pts.size(); ++v)
       if (renum[v] == 0) {
         renum[v] = Index(kept_pts.size());
-        kept_pts.push_back(std::move(pts[v]));
+        kept_pts.push_from(pts, v);
         kept_names.push_back(vname[v]);
       }
     for (auto& poly : faces)
@@ -355,22 +462,30 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   //    interval arithmetic; exact Newell normals are computed only when a
   //    filter cannot decide (and for the final planes).
   const Index nf = Index(faces.size());
-  std::vector<IPoint> ip(pts.size());
-  std::vector<Vec3d> approx(pts.size());
-  std::vector<char> pdouble(pts.size());
+  //    Intervals of the exact coordinates: point intervals for doubles,
+  //    hi + lo (rounded outward) for double pairs.
+  std::vector<IPoint> ip0(pts.size());
   for (Index v = 0; v < pts.size(); ++v) {
-    pdouble[v] = is_double(pts[v]);
-    if (pdouble[v]) {
-      approx[v] = to_double(pts[v]);
-      ip[v] = {Interval(approx[v].x), Interval(approx[v].y), Interval(approx[v].z)};
-    } else {
-      ip[v] = to_interval(pts[v]);
-      approx[v] = {ip[v].x.inf() == ip[v].x.sup() ? ip[v].x.inf() : to_double(pts[v].x),
-                   ip[v].y.inf() == ip[v].y.sup() ? ip[v].y.inf() : to_double(pts[v].y),
-                   ip[v].z.inf() == ip[v].z.sup() ? ip[v].z.inf() : to_double(pts[v].z)};
+    const Vec3d& a = pts.approx(v);
+    switch (pts.form()) {
+      case PointList::Form::doubles: ip0[v] = {Interval(a.x), Interval(a.y), Interval(a.z)}; break;
+      case PointList::Form::double_pairs: {
+        const Vec3d& l = pts.low(v);
+        ip0[v] = {Interval(a.x) + Interval(l.x), Interval(a.y) + Interval(l.y), Interval(a.z) + Interval(l.z)};
+        break;
+      }
+      case PointList::Form::rationals: ip0[v] = to_interval(pts.exact_ref(v)); break;
     }
   }
-  std::vector<IPoint> inrm(nf);
+  // From here on every interval operation runs with the FPU rounding upward,
+  // set once (unprotected intervals); the guard restores the mode, also when
+  // an InputError leaves.  Exact fallbacks use GMP integers and rationals,
+  // which do not depend on the rounding mode.
+  CGAL::Protect_FPU_rounding<true> upward;
+  std::vector<FastIPoint> ip(pts.size());
+  for (Index v = 0; v < pts.size(); ++v) ip[v] = to_fast(ip0[v]);
+  ip0 = {};
+  std::vector<FastIPoint> inrm(nf);
   std::vector<Point3> xnrm(nf);
   std::vector<char> has_xnrm(nf, 0);
   auto exact_normal = [&](Index f) -> const Point3& {
@@ -382,23 +497,23 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   };
   for (Index f = 0; f < nf; ++f) {
     const auto& poly = faces[f];
-    IPoint n{Interval(0), Interval(0), Interval(0)};
-    const IPoint& o = ip[poly[0]];
-    IPoint prev = ip[poly[1]] - o;
+    FastIPoint n{FastInterval(0), FastInterval(0), FastInterval(0)};
+    const FastIPoint& o = ip[poly[0]];
+    FastIPoint prev = ip[poly[1]] - o;
     for (std::size_t i = 2; i < poly.size(); ++i) {
-      IPoint cur = ip[poly[i]] - o;
+      FastIPoint cur = ip[poly[i]] - o;
       n = n + cross(prev, cur);
       prev = cur;
     }
     inrm[f] = n;
-    auto certainly_nonzero = [](const Interval& c) { int s = sign_of(c); return s == 1 || s == -1; };
+    auto certainly_nonzero = [](const FastInterval& c) { int s = sign_of(c); return s == 1 || s == -1; };
     if (!certainly_nonzero(n.x) && !certainly_nonzero(n.y) && !certainly_nonzero(n.z) &&
         is_zero(exact_normal(f)))
       throw InputError(source, fct(fname[f]), "has zero area");
     if (poly.size() > 3) {
       for (Index v : poly) {
         int s = sign_of(dot(n, ip[v] - o));
-        if (s == kUncertain) s = sgn(dot(exact_normal(f), pts[v] - pts[poly[0]]));
+        if (s == kUncertain) s = sgn(dot(exact_normal(f), pts.exact(v) - pts.exact(poly[0])));
         if (s != 0)
           throw InputError(source, fct(fname[f]),
                            "is not planar (" + vtx(vname[v]) + " is off the plane of the others)");
@@ -409,12 +524,13 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   // 5. Orientation from the sign of the volume; flip a consistently inward mesh.
   int vol_sign;
   {
-    Interval six(0);
+    FastInterval six(0);
     for (Index f = 0; f < nf; ++f) six += dot(ip[faces[f][0]] - ip[0], inrm[f]);
     vol_sign = sign_of(six);
     if (vol_sign == kUncertain) {
       Rational exact_six = 0;
-      for (Index f = 0; f < nf; ++f) exact_six += dot(pts[faces[f][0]] - pts[0], exact_normal(f));
+      const Point3 o = pts.exact(0);
+      for (Index f = 0; f < nf; ++f) exact_six += dot(pts.exact(faces[f][0]) - o, exact_normal(f));
       vol_sign = sgn(exact_six);
     }
   }
@@ -435,8 +551,8 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   bool any_merge = false;
   for (Index h = 0; h < g.num_halfedges(); h += 2) {
     Index f = g.facet[h], o = g.facet[h + 1];
-    IPoint c = cross(inrm[f], inrm[o]);
-    auto certainly_nonzero = [](const Interval& x) { int s = sign_of(x); return s == 1 || s == -1; };
+    FastIPoint c = cross(inrm[f], inrm[o]);
+    auto certainly_nonzero = [](const FastInterval& x) { int s = sign_of(x); return s == 1 || s == -1; };
     if (certainly_nonzero(c.x) || certainly_nonzero(c.y) || certainly_nonzero(c.z)) continue;
     if (!is_zero(cross(exact_normal(f), exact_normal(o)))) continue;
     if (sgn(dot(exact_normal(f), exact_normal(o))) > 0) {
@@ -450,8 +566,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   std::vector<std::vector<Index>> merged;
   std::vector<Index> merged_name, merged_rep;  // user's facet number, representative input facet
   if (!any_merge) {
-    merged = faces;
-    merged_name = fname;
+    merged_name = fname;  // merged stays empty: the facets are `faces`
     merged_rep.resize(nf);
     std::iota(merged_rep.begin(), merged_rep.end(), 0);
   } else {
@@ -498,66 +613,68 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   // 7. Drop vertices of degree 2 (in the middle of an edge) and vertices that
   //    vanished inside merged facets; renumber.
   std::vector<Index> degree(pts.size(), 0);
-  for (const auto& poly : merged)
+  for (const auto& poly : any_merge ? merged : faces)
     for (Index v : poly) ++degree[v];
-  std::vector<Index> final_id(pts.size(), kNoIndex);
-  std::vector<Point3> fpts;
-  std::vector<IPoint> fip;
-  std::vector<Vec3d> fapprox;
-  bool all_double = true;
-  std::vector<Index> fname_v;
-  fpts.reserve(pts.size());
-  fip.reserve(pts.size());
-  for (Index v = 0; v < pts.size(); ++v)
-    if (degree[v] >= 3) {
-      final_id[v] = Index(fpts.size());
-      fpts.push_back(pts[v]);
-      fip.push_back(ip[v]);
-      fapprox.push_back(approx[v]);
-      all_double = all_double && pdouble[v];
-      fname_v.push_back(vname[v]);
+  const bool unchanged =
+      !any_merge && std::all_of(degree.begin(), degree.end(), [](Index d) { return d >= 3; });
+  // Unchanged (the usual case for a valid mesh): the final structure is the
+  // one linked above.  Otherwise renumber and link again.
+  PointList fpts_own;
+  std::vector<FastIPoint> fip_own;
+  std::vector<Index> fname_v_own;
+  Graph fg_own;
+  if (!unchanged) {
+    if (!any_merge) merged = faces;
+    std::vector<Index> final_id(pts.size(), kNoIndex);
+    fpts_own.reserve(pts.size());
+    fip_own.reserve(pts.size());
+    for (Index v = 0; v < pts.size(); ++v)
+      if (degree[v] >= 3) {
+        final_id[v] = Index(fpts_own.size());
+        fpts_own.push_from(pts, v);
+        fip_own.push_back(ip[v]);
+        fname_v_own.push_back(vname[v]);
+      }
+    for (Index f = 0; f < merged.size(); ++f) {
+      auto& poly = merged[f];
+      std::vector<Index> kept;
+      kept.reserve(poly.size());
+      for (Index v : poly)
+        if (final_id[v] != kNoIndex) kept.push_back(final_id[v]);
+      if (kept.size() < 3)
+        throw InputError(source, fct(merged_name[f]), "degenerates to fewer than 3 corners");
+      poly = std::move(kept);
     }
-  for (Index f = 0; f < merged.size(); ++f) {
-    auto& poly = merged[f];
-    std::vector<Index> kept;
-    kept.reserve(poly.size());
-    for (Index v : poly)
-      if (final_id[v] != kNoIndex) kept.push_back(final_id[v]);
-    if (kept.size() < 3)
-      throw InputError(source, fct(merged_name[f]), "degenerates to fewer than 3 corners");
-    poly = std::move(kept);
+    fg_own = link(Index(fpts_own.size()), merged, source, fname_v_own, merged_name);
   }
-  Graph fg = link(Index(fpts.size()), merged, source, fname_v, merged_name);
+  const PointList& fpts = unchanged ? pts : fpts_own;
+  const std::vector<FastIPoint>& fip = unchanged ? ip : fip_own;
+  std::vector<Index>& fname_v = unchanged ? vname : fname_v_own;
+  Graph& fg = unchanged ? g : fg_own;
+  const std::vector<std::vector<Index>>& final_faces = unchanged ? faces : merged;
 
-  // The exact outward plane of each facet, from its representative input facet.
-  std::vector<Plane> merged_planes(merged.size());
-  std::vector<Point3> fnormal(merged.size());
-  std::vector<IPoint> finrm(merged.size());
-  for (Index f = 0; f < merged.size(); ++f) {
-    Index r = merged_rep[f];
-    const auto& rp = faces[r];
-    if (rp.size() == 3 && pdouble[rp[0]] && pdouble[rp[1]] && pdouble[rp[2]])
-      merged_planes[f] = canonical_plane_of_double_triangle(approx[rp[0]], approx[rp[1]], approx[rp[2]]);
-    else
-      merged_planes[f] = canonical_plane(exact_normal(r), pts[rp[0]]);
-    fnormal[f] = merged_planes[f].normal();
-    finrm[f] = inrm[r];
-  }
+  // The outward normal of each facet, from its representative input facet:
+  //    intervals for the filters, the exact Newell normal only when a filter
+  //    cannot decide.  (The canonical planes are computed on demand later.)
+  std::vector<FastIPoint> finrm(final_faces.size());
+  for (Index f = 0; f < final_faces.size(); ++f) finrm[f] = inrm[merged_rep[f]];
+  auto fnormal = [&](Index f) -> const Point3& { return exact_normal(merged_rep[f]); };
+  auto fpoint = [&](Index v) { return fpts.exact(v); };
 
   // 8. Convexity: facets, edges, vertices (see the comment at the top).
   //    Each test runs on intervals first and exactly when undecided.
   std::vector<Point3> dirs;
-  std::vector<IPoint> idirs;
-  for (Index f = 0; f < merged.size(); ++f) {
-    const auto& poly = merged[f];
+  std::vector<FastIPoint> idirs;
+  for (Index f = 0; f < final_faces.size(); ++f) {
+    const auto& poly = final_faces[f];
     if (poly.size() == 3) continue;  // a triangle turns counter-clockwise about its own normal
     idirs.clear();
     for (std::size_t i = 0; i < poly.size(); ++i) idirs.push_back(fip[poly[(i + 1) % poly.size()]] - fip[poly[i]]);
     long r = check_fan_t(finrm[f], idirs);
     if (r == kFanUncertain) {
       dirs.clear();
-      for (std::size_t i = 0; i < poly.size(); ++i) dirs.push_back(fpts[poly[(i + 1) % poly.size()]] - fpts[poly[i]]);
-      r = check_fan_t(fnormal[f], dirs);
+      for (std::size_t i = 0; i < poly.size(); ++i) dirs.push_back(fpoint(poly[(i + 1) % poly.size()]) - fpoint(poly[i]));
+      r = check_fan_t(fnormal(f), dirs);
     }
     if (r >= 0)
       throw InputError(source, fct(merged_name[f]), "is not a convex polygon (the solid is not convex)");
@@ -566,7 +683,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     Index f = fg.facet[h], o = fg.facet[h + 1];
     int s = sign_of(dot(cross(finrm[f], finrm[o]), fip[fg.origin[h + 1]] - fip[fg.origin[h]]));
     if (s == kUncertain)
-      s = sgn(dot(cross(fnormal[f], fnormal[o]), fpts[fg.origin[h + 1]] - fpts[fg.origin[h]]));
+      s = sgn(dot(cross(fnormal(f), fnormal(o)), fpoint(fg.origin[h + 1]) - fpoint(fg.origin[h])));
     if (s <= 0)
       throw InputError(source,
                        "edge " + std::to_string(fname_v[fg.origin[h]]) + "-" +
@@ -576,7 +693,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   }
   for (Index v = 0; v < fpts.size(); ++v) {
     idirs.clear();
-    IPoint isum{Interval(0), Interval(0), Interval(0)};
+    FastIPoint isum{FastInterval(0), FastInterval(0), FastInterval(0)};
     Index h = fg.vertex_he[v];
     do {
       idirs.push_back(fip[fg.origin[h ^ 1u]] - fip[v]);
@@ -587,8 +704,9 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     if (r == kFanUncertain) {
       dirs.clear();
       Point3 sum(Rational(0), Rational(0), Rational(0));
+      const Point3 pv = fpoint(v);
       do {
-        dirs.push_back(fpts[fg.origin[h ^ 1u]] - fpts[v]);
+        dirs.push_back(fpoint(fg.origin[h ^ 1u]) - pv);
         sum = sum + dirs.back();
         h = fg.prev[h] ^ 1u;
       } while (h != fg.vertex_he[v]);
@@ -599,17 +717,15 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
 
   // 9. The polytope.
   ConvexPolytope p;
-  p.points_ = std::move(fpts);
-  p.approx_ = std::move(fapprox);
-  p.all_double_ = all_double;
+  p.coords_ = unchanged ? std::move(pts) : std::move(fpts_own);
   p.source_vertex_ = std::move(fname_v);
-  p.planes_ = std::move(merged_planes);
   p.he_origin_ = std::move(fg.origin);
   p.he_facet_ = std::move(fg.facet);
   p.he_next_ = std::move(fg.next);
   p.he_prev_ = std::move(fg.prev);
   p.facet_he_ = std::move(fg.facet_he);
   p.vertex_he_ = std::move(fg.vertex_he);
+  p.reset_cache();
   return p;
 }
 
@@ -630,15 +746,11 @@ void PolytopeBuilder::canonicalize_facets(ConvexPolytope& p) {
   std::sort(order.begin(), order.end(), [&](Index x, Index y) { return loops[x] < loops[y]; });
   std::vector<Index> new_id(nf);
   for (Index i = 0; i < nf; ++i) new_id[order[i]] = i;
-  std::vector<Plane> planes(nf);
   std::vector<Index> facet_he(nf);
-  for (Index f = 0; f < nf; ++f) {
-    planes[new_id[f]] = std::move(p.planes_[f]);
-    facet_he[new_id[f]] = p.facet_he_[f];
-  }
-  p.planes_ = std::move(planes);
+  for (Index f = 0; f < nf; ++f) facet_he[new_id[f]] = p.facet_he_[f];
   p.facet_he_ = std::move(facet_he);
   for (auto& f : p.he_facet_) f = new_id[f];
+  p.reset_cache();
 }
 
 // ---------------------------------------------------------------------------
@@ -685,21 +797,129 @@ std::vector<Index> ConvexPolytope::vertex_neighbours(Index v) const {
   return out;
 }
 
-Rational ConvexPolytope::volume() const {
-  Rational six = 0;
-  const Point3& o = points_[0];
-  for (Index f = 0; f < num_facets(); ++f) {
-    auto vs = facet_vertices(f);
-    Point3 p0 = points_[vs[0]] - o;
-    for (std::size_t i = 1; i + 1 < vs.size(); ++i)
-      six += dot(p0, cross(points_[vs[i]] - o, points_[vs[i + 1]] - o));
+// ---------------------------------------------------------------------------
+// Lazy exact data: the exact points (built all at once, on first use) and the
+// canonical plane of each facet (built per facet, on first use).  Both are
+// published with release/acquire atomics, so concurrent readers of one
+// polytope are safe; two threads racing on one plane both compute it and one
+// result is kept (they are equal).
+
+struct ConvexPolytope::Cache {
+  explicit Cache(Index nf) : planes(new std::atomic<const Plane*>[nf]), num_facets(nf) {
+    for (Index f = 0; f < nf; ++f) planes[f].store(nullptr, std::memory_order_relaxed);
   }
-  return six / 6;
+  ~Cache() {
+    for (Index f = 0; f < num_facets; ++f) delete planes[f].load(std::memory_order_relaxed);
+  }
+  Cache(const Cache&) = delete;
+  Cache& operator=(const Cache&) = delete;
+
+  std::once_flag points_once;
+  std::vector<Point3> points;
+  std::unique_ptr<std::atomic<const Plane*>[]> planes;
+  Index num_facets;
+};
+
+void ConvexPolytope::reset_cache() { cache_ = std::make_shared<Cache>(num_facets()); }
+
+const std::vector<Point3>& ConvexPolytope::points() const {
+  // Rationals: the stored points; otherwise built once.
+  std::call_once(cache_->points_once, [this] { cache_->points = coords_.to_points(); });
+  return cache_->points;
+}
+
+const Point3& ConvexPolytope::point(Index v) const {
+  if (coords_.form() == PointList::Form::rationals) return coords_.exact_ref(v);
+  return points()[v];
+}
+
+const Plane& ConvexPolytope::plane(Index f) const {
+  std::atomic<const Plane*>& slot = cache_->planes[f];
+  if (const Plane* p = slot.load(std::memory_order_acquire)) return *p;
+  // Three consecutive corners of a strictly convex facet are never collinear;
+  // counter-clockwise seen from outside, so (v1 - v0) x (v2 - v0) points out.
+  const Index h0 = facet_he_[f], h1 = he_next_[h0], h2 = he_next_[h1];
+  const Index v[3] = {he_origin_[h0], he_origin_[h1], he_origin_[h2]};
+  auto made = std::make_unique<Plane>();
+  switch (coords_.form()) {
+    case PointList::Form::doubles: {
+      const Vec3d hi[3] = {coords_.approx(v[0]), coords_.approx(v[1]), coords_.approx(v[2])};
+      *made = canonical_plane_of_dyadic_triangle(hi, nullptr);
+      break;
+    }
+    case PointList::Form::double_pairs: {
+      const Vec3d hi[3] = {coords_.approx(v[0]), coords_.approx(v[1]), coords_.approx(v[2])};
+      const Vec3d lo[3] = {coords_.low(v[0]), coords_.low(v[1]), coords_.low(v[2])};
+      *made = canonical_plane_of_dyadic_triangle(hi, lo);
+      break;
+    }
+    case PointList::Form::rationals: {
+      const Point3& p0 = coords_.exact_ref(v[0]);
+      *made = canonical_plane(cross(coords_.exact_ref(v[1]) - p0, coords_.exact_ref(v[2]) - p0), p0);
+      break;
+    }
+  }
+  const Plane* expected = nullptr;
+  if (slot.compare_exchange_strong(expected, made.get(), std::memory_order_acq_rel, std::memory_order_acquire))
+    return *made.release();
+  return *expected;  // another thread was first; ours is dropped
+}
+
+Rational ConvexPolytope::volume() const {
+  // Six times the volume: the sum over facets (fanned from their first
+  // vertex) of det(p0 - o, pi - o, pi+1 - o).
+  auto fan = [&](auto&& term) {
+    for (Index f = 0; f < num_facets(); ++f) {
+      auto vs = facet_vertices(f);
+      for (std::size_t i = 1; i + 1 < vs.size(); ++i) term(vs[0], vs[i], vs[i + 1]);
+    }
+  };
+  if (coords_.form() == PointList::Form::rationals) {
+    Rational six = 0;
+    const Point3& o = coords_.exact_ref(0);
+    fan([&](Index a, Index b, Index c) {
+      six += dot(coords_.exact_ref(a) - o, cross(coords_.exact_ref(b) - o, coords_.exact_ref(c) - o));
+    });
+    return six / 6;
+  }
+  // Dyadic coordinates: integers after one common scaling by 2^-e; the
+  // determinant scales by 2^(3e).
+  const bool pairs = coords_.form() == PointList::Form::double_pairs;
+  const Index nv = num_vertices();
+  std::vector<double> raw(std::size_t(nv) * (pairs ? 6 : 3));
+  for (Index v = 0; v < nv; ++v)
+    for (int k = 0; k < 3; ++k) {
+      raw[3 * std::size_t(v) + k] = coords_.approx(v)[k];
+      if (pairs) raw[3 * (std::size_t(nv) + v) + k] = coords_.low(v)[k];
+    }
+  ScaledIntegers si(raw.data(), raw.size());
+  std::vector<Integer> X(std::size_t(nv) * 3);
+  for (std::size_t i = 0; i < X.size(); ++i) {
+    X[i] = si.value[i];
+    if (pairs) X[i] += si.value[X.size() + i];
+  }
+  Integer six = 0, t, d[3][3];
+  fan([&](Index a, Index b, Index c) {
+    const Index ids[3] = {a, b, c};
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 3; ++k) d[r][k] = X[3 * std::size_t(ids[r]) + k] - X[k];
+    t = d[1][1] * d[2][2] - d[1][2] * d[2][1];
+    six += d[0][0] * t;
+    t = d[1][2] * d[2][0] - d[1][0] * d[2][2];
+    six += d[0][1] * t;
+    t = d[1][0] * d[2][1] - d[1][1] * d[2][0];
+    six += d[0][2] * t;
+  });
+  Rational vol(six);
+  const long e = 3L * si.exponent;
+  if (e >= 0) mpq_mul_2exp(vol.get_mpq_t(), vol.get_mpq_t(), mp_bitcnt_t(e));
+  else mpq_div_2exp(vol.get_mpq_t(), vol.get_mpq_t(), mp_bitcnt_t(-e));
+  return vol / 6;
 }
 
 Mesh ConvexPolytope::to_mesh() const {
   Mesh m;
-  m.points = points_;
+  m.points = coords_;
   m.faces.reserve(num_facets());
   for (Index f = 0; f < num_facets(); ++f) m.faces.push_back(facet_vertices(f));
   return m;
@@ -707,7 +927,7 @@ Mesh ConvexPolytope::to_mesh() const {
 
 ConvexPolytope ConvexPolytope::translated(const Point3& t) const {
   Mesh m = to_mesh();
-  for (auto& p : m.points) p = p + t;
+  m.points.transform([&](const Point3& p) { return p + t; });
   ConvexPolytope r = from_mesh(m);
   r.source_vertex_ = source_vertex_;
   return r;
@@ -715,7 +935,7 @@ ConvexPolytope ConvexPolytope::translated(const Point3& t) const {
 
 ConvexPolytope ConvexPolytope::negated() const {
   Mesh m = to_mesh();
-  for (auto& p : m.points) p = -p;
+  m.points.negate();
   for (auto& f : m.faces) std::reverse(f.begin(), f.end());
   ConvexPolytope r = from_mesh(m);
   r.source_vertex_ = source_vertex_;
@@ -739,7 +959,7 @@ std::string ConvexPolytope::check_invariants() const {
   if (euler_characteristic() != 2) return "V - E + F != 2";
   for (Index f = 0; f < num_facets(); ++f)
     for (Index v : facet_vertices(f))
-      if (planes_[f].side(points_[v]) != 0) return "facet " + std::to_string(f) + ": vertex off its plane";
+      if (plane(f).side(point(v)) != 0) return "facet " + std::to_string(f) + ": vertex off its plane";
   ConvexPolytope again;
   try {
     again = from_mesh(to_mesh());
@@ -750,7 +970,7 @@ std::string ConvexPolytope::check_invariants() const {
       again.num_facets() != num_facets())
     return "revalidation changed the counts (coplanar facets or degree-2 vertices left)";
   for (Index f = 0; f < num_facets(); ++f)
-    if (!(again.plane(f) == planes_[f])) return "facet " + std::to_string(f) + ": plane not canonical";
+    if (!(again.plane(f) == plane(f))) return "facet " + std::to_string(f) + ": plane not canonical";
   return "";
 }
 

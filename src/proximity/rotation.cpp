@@ -20,7 +20,7 @@ Point3 rotate(const Quaternion& q, const Point3& p) { return catalog_detail::app
 ConvexPolytope rotated(const ConvexPolytope& p, const Quaternion& q) {
   const catalog_detail::Matrix3 r = matrix_of(q);
   Mesh m = p.to_mesh();
-  for (Point3& x : m.points) x = catalog_detail::apply(r, x);
+  m.points.transform([&](const Point3& x) { return catalog_detail::apply(r, x); });
   return ConvexPolytope::from_mesh(m, "rotated polytope");
 }
 

@@ -431,8 +431,11 @@ class Walker {
       if (h == h0) throw std::logic_error("walk: tied support vertices are not adjacent");
     }
     ++st_.calls;
-    const int d = dot_sign(q_.point(q_.origin(h)), q_.point(q_.target(h)), p_.point(p_.origin(hp)),
-                           p_.point(p_.target(hp)));
+    const int d = q_.coordinates_are_doubles() && p_.coordinates_are_doubles()
+                      ? dot_sign(q_.approx(q_.origin(h)), q_.approx(q_.target(h)), p_.approx(p_.origin(hp)),
+                                 p_.approx(p_.target(hp)))
+                      : dot_sign(q_.point(q_.origin(h)), q_.point(q_.target(h)), p_.point(p_.origin(hp)),
+                                 p_.point(p_.target(hp)));
     if (d == 0) throw std::logic_error("walk: overlapping arcs of non-parallel edges");
     return {true, d > 0 ? h : ConvexPolytope::twin(h)};
   }
@@ -803,25 +806,47 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
   return w;
 }
 
-ConvexPolytope to_polytope(const WalkSum& w, const ConvexPolytope& a, const ConvexPolytope& b) {
-  std::vector<Point3> pts;
-  pts.reserve(w.num_vertices());
-  for (auto [i, j] : w.vertex_origin) pts.push_back(a.point(i) + b.point(j));
-  std::vector<Point3> normals;
-  normals.reserve(w.num_facets());
-  for (Index f = 0; f < w.num_facets(); ++f) {
-    const FacetProvenance& p = w.provenance[f];
-    if (p.a.dim == 2) {
-      normals.push_back(a.plane(p.a.index).normal());
-    } else if (p.b.dim == 2) {
-      normals.push_back(b.plane(p.b.index).normal());
-    } else {
-      const Index h = w.facet_he[f], h1 = w.he_next[h];
-      const Point3& p0 = pts[w.he_origin[h]];
-      normals.push_back(cross(pts[w.he_origin[h1]] - p0, pts[w.he_origin[w.he_next[h1]]] - p0));
+namespace {
+// Error-free sum (Knuth's TwoSum): s + e = x + y exactly, s = fl(x + y), in
+// round-to-nearest and when s is finite.
+inline void two_sum(double x, double y, double& s, double& e) {
+  s = x + y;
+  const double yv = s - x;
+  const double xv = s - yv;
+  e = (x - xv) + (y - yv);
+}
+}  // namespace
+
+PointList sum_coordinates(const std::vector<std::pair<Index, Index>>& pairs, const PointList& a, const PointList& b) {
+  PointList out;
+  out.reserve(pairs.size());
+  // Double operands: every vertex a_i + b_j as the exact pair (fl(a + b),
+  // error), which needs round-to-nearest (the default; checked) and no
+  // overflow (checked per sum: then the exact rational path).
+  const bool dbl = a.all_doubles() && b.all_doubles() && std::fegetround() == FE_TONEAREST;
+  if (dbl) {
+    for (auto [i, j] : pairs) {
+      const Vec3d& p = a.approx(i);
+      const Vec3d& q = b.approx(j);
+      Vec3d hi, lo;
+      two_sum(p.x, q.x, hi.x, lo.x);
+      two_sum(p.y, q.y, hi.y, lo.y);
+      two_sum(p.z, q.z, hi.z, lo.z);
+      if (!std::isfinite(hi.x) || !std::isfinite(hi.y) || !std::isfinite(hi.z)) {
+        out.push_back(a.exact(i) + b.exact(j));
+        continue;
+      }
+      out.push_pair(hi, lo);
     }
+    return out;
   }
-  return PolytopeBuilder::from_trusted_parts(std::move(pts), w.he_origin, w.he_next, w.he_facet, w.facet_he, normals);
+  for (auto [i, j] : pairs) out.push_back(a.exact(i) + b.exact(j));
+  return out;
+}
+
+ConvexPolytope to_polytope(const WalkSum& w, const ConvexPolytope& a, const ConvexPolytope& b) {
+  return PolytopeBuilder::from_trusted_parts(sum_coordinates(w.vertex_origin, a.coordinates(), b.coordinates()),
+                                             w.he_origin, w.he_next, w.he_facet, w.facet_he);
 }
 
 SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
@@ -844,6 +869,7 @@ SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
                 {"walk_microseconds", us(t1 - t0)},
                 {"convert_microseconds", us(t2 - t1)}};
   r.seconds = std::chrono::duration<double>(t2 - t0).count();
+  r.explicit_seconds = std::chrono::duration<double>(t2 - t1).count();
   return r;
 }
 

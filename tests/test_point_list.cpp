@@ -1,0 +1,301 @@
+// The lazy-exact data model: coordinates in their cheapest exact form
+// (PointList), exact text and floats printed from doubles' mantissas, the
+// exact pairs of a Minkowski sum of double operands, planes and exact points
+// computed on demand (also from several threads), and the dyadic volume.
+// Every cheap representation is checked against plain GMP rationals.
+#include <minksum/catalog.hpp>
+#include <minksum/io.hpp>
+#include <minksum/minkowski.hpp>
+#include <minksum/walk.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cfenv>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "io/readers.hpp"
+#include "kernel/plane.hpp"
+#include "test_support.hpp"
+
+using namespace minksum;
+using namespace minksum::testing;
+
+namespace {
+
+// A double drawn over a wide range of magnitudes and signs, with exact zeros,
+// integers and subnormals now and then.
+double wild_double(std::mt19937_64& rng) {
+  std::uniform_int_distribution<int> kind(0, 9), ex(-1070, 1020), small_ex(-60, 60);
+  std::uniform_real_distribution<double> m(1.0, 2.0);
+  std::bernoulli_distribution neg(0.5);
+  double v;
+  switch (kind(rng)) {
+    case 0: v = 0.0; break;
+    case 1: v = double(std::uniform_int_distribution<long>(-1000000, 1000000)(rng)); break;
+    case 2: v = std::ldexp(double(std::uniform_int_distribution<int>(1, 1 << 20)(rng)), -1074); break;  // subnormal
+    case 3: v = std::ldexp(m(rng), ex(rng)); break;
+    default: v = std::ldexp(m(rng), small_ex(rng)); break;
+  }
+  return neg(rng) ? -v : v;
+}
+
+void two_sum(double x, double y, double& s, double& e) {
+  s = x + y;
+  const double yv = s - x;
+  const double xv = s - yv;
+  e = (x - xv) + (y - yv);
+}
+
+Rational exact_of(const std::string& text) {
+  auto q = parse_number(text);
+  EXPECT_TRUE(q.has_value()) << text;
+  return q ? *q : Rational(0);
+}
+
+}  // namespace
+
+TEST(PointList, FormsFollowTheData) {
+  PointList l;
+  EXPECT_EQ(l.form(), PointList::Form::doubles);
+  l.push_back(Vec3d{1.5, -0.0, 3});
+  l.push_back(Point3(Rational(1, 4), Rational(2), Rational(-8)));  // a rational that is a double
+  EXPECT_EQ(l.form(), PointList::Form::doubles);
+  EXPECT_TRUE(l.all_doubles());
+  EXPECT_TRUE(std::signbit(l.approx(0).y) == false) << "zeros are stored unsigned";
+  l.push_pair(Vec3d{1.0, 2.0, 3.0}, Vec3d{0x1p-60, 0.0, -0x1p-70});
+  EXPECT_EQ(l.form(), PointList::Form::double_pairs);
+  EXPECT_FALSE(l.all_doubles());
+  EXPECT_FALSE(l.is_double(2));
+  EXPECT_TRUE(l.is_double(1));
+  EXPECT_EQ(l.exact(2).x, Rational(1) + Rational(0x1p-60));
+  EXPECT_EQ(l.exact(2).z, Rational(3) - Rational(0x1p-70));
+  l.push_back(Point3(Rational(1, 3), Rational(0), Rational(0)));
+  EXPECT_EQ(l.form(), PointList::Form::rationals);
+  ASSERT_EQ(l.size(), 4u);
+  EXPECT_EQ(l.exact(0), Point3(Rational(3, 2), Rational(0), Rational(3)));
+  EXPECT_EQ(l.exact(2).x, Rational(1) + Rational(0x1p-60));  // promotion kept every point exactly
+  EXPECT_EQ(l.exact_ref(3).x, Rational(1, 3));
+  EXPECT_EQ(l.approx(3).x, to_double(Rational(1, 3)));
+  // set() back to doubles everywhere: the count of non-doubles follows.
+  l.set(2, P(1, 2, 3));
+  l.set(3, P(0, 0, 0));
+  EXPECT_TRUE(l.all_doubles());
+  PointList d{P(1, 0, 0), P(0, 2, 0)};
+  d.negate();
+  EXPECT_EQ(d.exact(1), P(0, -2, 0));
+  EXPECT_FALSE(std::signbit(d.approx(0).y));
+}
+
+TEST(PointList, EqualityAcrossForms) {
+  PointList a{P(1, 2, 3), Q("1/3", "0", "1")};
+  PointList b;
+  b.push_back(Point3(1.0, 2.0, 3.0));
+  b.push_back(Point3(Rational(1, 3), Rational(0), Rational(1)));
+  EXPECT_TRUE(a == b);
+  b.set(1, Q("1/3", "0", "2"));
+  EXPECT_FALSE(a == b);
+}
+
+TEST(ExactText, DyadicMatchesRationalOnRandomDoublesAndPairs) {
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    std::mt19937_64 rng(seed);
+    for (int i = 0; i < 500; ++i) {
+      const double x = wild_double(rng), y = wild_double(rng);
+      std::string one;
+      append_exact_dyadic(one, x);
+      ASSERT_EQ(one, format_exact(Rational(x))) << "seed " << seed << " x " << x;
+      double hi, lo;
+      two_sum(x, y, hi, lo);
+      if (!std::isfinite(hi)) continue;
+      std::string two;
+      append_exact_dyadic(two, hi, lo);
+      ASSERT_EQ(two, format_exact(Rational(x) + Rational(y))) << "seed " << seed << " x " << x << " y " << y;
+      ASSERT_EQ(exact_of(two), Rational(x) + Rational(y)) << "seed " << seed;
+    }
+  }
+  std::string s;
+  append_exact_dyadic(s, -0.0);
+  EXPECT_EQ(s, "0");
+  s.clear();
+  append_exact_dyadic(s, std::numeric_limits<double>::max());
+  EXPECT_EQ(s, format_exact(Rational(std::numeric_limits<double>::max())));
+  s.clear();
+  append_exact_dyadic(s, std::numeric_limits<double>::denorm_min());
+  EXPECT_EQ(s, format_exact(Rational(std::numeric_limits<double>::denorm_min())));
+}
+
+TEST(ExactText, NearestFloatOfPairsAtFloatMidpoints) {
+  // hi exactly halfway between two floats: lo decides; elsewhere hi's nearest float.
+  for (float f : {1.0f, 3.5f, 1e-40f, -7.25e20f, 1.17549435e-38f}) {
+    const float g = std::nextafter(f, std::numeric_limits<float>::infinity());
+    const double mid = (double(f) + double(g)) / 2;
+    for (double lo : {0x1p-80 * std::fabs(mid), -0x1p-80 * std::fabs(mid), 0.0}) {
+      if (lo != 0 && std::fabs(lo) >= std::fabs(mid) * 0x1p-54) continue;
+      PointList l;
+      l.push_pair(Vec3d{mid, 1.0, 1.0}, Vec3d{lo, 0.0, 0.0});
+      const Rational exact = Rational(mid) + Rational(lo);
+      EXPECT_EQ(io_detail::coordinate_float(l, 0, 0), io_detail::rational_to_float(exact)) << f << " lo " << lo;
+    }
+  }
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 5000; ++i) {
+    const double x = std::ldexp(std::uniform_real_distribution<double>(1, 2)(rng), int(rng() % 200) - 100);
+    const double y = std::ldexp(std::uniform_real_distribution<double>(1, 2)(rng), int(rng() % 200) - 100);
+    double hi, lo;
+    two_sum(x, y, hi, lo);
+    PointList l;
+    l.push_pair(Vec3d{hi, 0.0, 0.0}, Vec3d{lo, 0.0, 0.0});
+    ASSERT_EQ(io_detail::coordinate_float(l, 0, 0), io_detail::rational_to_float(Rational(x) + Rational(y)))
+        << "seed 7, case " << i;
+  }
+}
+
+TEST(ReadCoordinate, CheapFormAgreesWithParseNumber) {
+  const char* tokens[] = {"0",      "-0",     "-0.0",      "12",   "123456789012345", "9007199254740993",
+                          "-9007199254740993",  "1e-400",    "5e-324", "0.1",   "-2.5e-3",
+                          "1/3",    "4/-8",     "0x1.8p-3",  "+7",   "1E300", ".5",   "5.",
+                          "12345678901234567890123"};
+  for (const char* t : tokens) {
+    io_detail::Coordinate c = io_detail::read_coordinate(t, "test", 1);
+    const Rational want = *parse_number(t);
+    if (c.exact) {
+      EXPECT_EQ(*c.exact, want) << t;
+      EXPECT_FALSE(is_double(want)) << t << " is a double but was kept as a rational";
+    } else {
+      EXPECT_EQ(Rational(c.d), want) << t;
+    }
+  }
+}
+
+TEST(SumCoordinates, DoublePairsAreTheExactSums) {
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    std::mt19937_64 rng(seed);
+    PointList a, b;
+    for (int i = 0; i < 50; ++i) {
+      a.push_back(Vec3d{wild_double(rng), wild_double(rng), wild_double(rng)});
+      b.push_back(Vec3d{wild_double(rng), wild_double(rng), wild_double(rng)});
+    }
+    std::vector<std::pair<Index, Index>> pairs;
+    for (Index i = 0; i < 50; ++i)
+      for (Index j = 0; j < 50; j += 7) pairs.emplace_back(i, j);
+    const PointList s = sum_coordinates(pairs, a, b);
+    ASSERT_EQ(s.size(), pairs.size());
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const Point3 want = a.exact(pairs[k].first) + b.exact(pairs[k].second);
+      ASSERT_EQ(s.exact(k), want) << "seed " << seed << " pair " << k;
+      ASSERT_EQ(s.approx(k).x, to_double(want.x)) << "seed " << seed << ": approx must be the nearest double";
+      ASSERT_EQ(s.is_double(k), is_double(want)) << "seed " << seed;
+    }
+  }
+}
+
+TEST(SumCoordinates, OverflowAndDirectedRoundingFallBackToRationals) {
+  PointList a{Point3(1e308, 1.0, 0.0)}, b{Point3(1e308, 0x1p-80, 0.0)};
+  const PointList s = sum_coordinates({{0, 0}}, a, b);
+  EXPECT_EQ(s.form(), PointList::Form::rationals);
+  EXPECT_EQ(s.exact(0).x, Rational(1e308) * 2);
+  EXPECT_EQ(s.exact(0).y, Rational(1) + Rational(0x1p-80));
+  // TwoSum needs round-to-nearest: in any other mode the exact path is taken.
+  PointList c{Point3(1.0, 0.1, 3.0)}, d{Point3(0x1p-70, 0.2, 0.0)};
+  const int old = std::fegetround();
+  std::fesetround(FE_UPWARD);
+  const PointList u = sum_coordinates({{0, 0}}, c, d);
+  std::fesetround(old);
+  EXPECT_EQ(u.form(), PointList::Form::rationals);
+  EXPECT_EQ(u.exact(0), c.exact(0) + d.exact(0));
+}
+
+// Every form of polytope: its lazily computed planes equal the canonical
+// plane of an exact normal computed here from the exact points.
+TEST(LazyPlanes, AgreeWithExactPlanesInEveryForm) {
+  const ConvexPolytope dbl = catalog_polytope("sphere:3");
+  const ConvexPolytope rat = catalog_polytope("cube@rot:7");
+  const SumResult sum = minkowski_sum(catalog_polytope("dodecahedron"), catalog_polytope("sphere:2@scale:1/1024"),
+                                      Method::walk);
+  ASSERT_EQ(dbl.coordinates().form(), PointList::Form::doubles);
+  ASSERT_EQ(rat.coordinates().form(), PointList::Form::rationals);
+  ASSERT_EQ(sum.polytope.coordinates().form(), PointList::Form::double_pairs);
+  for (const ConvexPolytope* p : {&dbl, &rat, &sum.polytope}) {
+    for (Index f = 0; f < p->num_facets(); ++f) {
+      const auto vs = p->facet_vertices(f);
+      const Point3 n = cross(p->point(vs[1]) - p->point(vs[0]), p->point(vs[2]) - p->point(vs[0]));
+      ASSERT_EQ(p->plane(f), canonical_plane(n, p->point(vs[0]))) << "facet " << f;
+      for (Index v : vs) ASSERT_EQ(p->plane(f).side(p->point(v)), 0);
+    }
+    EXPECT_EQ(p->check_invariants(), "");
+  }
+}
+
+TEST(LazyVolume, DyadicEqualsRational) {
+  const SumResult sum = minkowski_sum(catalog_polytope("cube"), catalog_polytope("sphere:2@scale:1/1024"), Method::walk);
+  const ConvexPolytope& s = sum.polytope;
+  ASSERT_EQ(s.coordinates().form(), PointList::Form::double_pairs);
+  Rational six = 0;
+  const Point3& o = s.point(0);
+  for (Index f = 0; f < s.num_facets(); ++f) {
+    auto vs = s.facet_vertices(f);
+    for (std::size_t i = 1; i + 1 < vs.size(); ++i)
+      six += dot(s.point(vs[0]) - o, cross(s.point(vs[i]) - o, s.point(vs[i + 1]) - o));
+  }
+  EXPECT_EQ(s.volume(), six / 6);
+  const ConvexPolytope big = catalog_polytope("cube@scale:1e300");
+  EXPECT_EQ(big.volume(), Rational(8) * Rational(1e300) * Rational(1e300) * Rational(1e300));
+}
+
+TEST(LazyCache, ConcurrentReadersGetTheSameAnswers) {
+  const SumResult sum = minkowski_sum(catalog_polytope("sphere:3"), catalog_polytope("sphere:3@rot:1"), Method::walk);
+  const ConvexPolytope copy = sum.polytope;  // copies share the cache
+  std::vector<Plane> planes[4];
+  std::vector<Point3> points[4];
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      const ConvexPolytope& p = t % 2 ? copy : sum.polytope;
+      for (Index f = 0; f < p.num_facets(); ++f) planes[t].push_back(p.plane((f * 7 + Index(t)) % p.num_facets()));
+      for (Index v = 0; v < p.num_vertices(); ++v) points[t].push_back(p.point(v));
+    });
+  for (auto& th : threads) th.join();
+  for (int t = 1; t < 4; ++t) EXPECT_EQ(points[t], points[0]);
+  for (int t = 0; t < 4; ++t)
+    for (Index f = 0; f < copy.num_facets(); ++f)
+      ASSERT_EQ(planes[t][f], copy.plane((f * 7 + Index(t)) % copy.num_facets()));
+}
+
+TEST(Writers, ExactOutputOfPairsReadsBackExactly) {
+  const SumResult sum = minkowski_sum(catalog_polytope("octahedron@scale:1/3"), catalog_polytope("sphere:2"), Method::walk);
+  ASSERT_EQ(sum.polytope.coordinates().form(), PointList::Form::rationals);  // 1/3 is not a double
+  const SumResult pairs = minkowski_sum(catalog_polytope("icosahedron@scale:1/1024"), catalog_polytope("sphere:2"),
+                                        Method::walk);
+  ASSERT_EQ(pairs.polytope.coordinates().form(), PointList::Form::double_pairs);
+  for (const ConvexPolytope* p : {&sum.polytope, &pairs.polytope})
+    for (Format f : {Format::off, Format::obj, Format::wrl}) {
+      std::stringstream s;
+      WriteOptions w;
+      w.exact = true;
+      write_mesh(s, p->to_mesh(), f, w);
+      const Mesh back = read_mesh(s, f, "memory");
+      EXPECT_TRUE(back.points == p->coordinates()) << format_name(f);
+      const ConvexPolytope q = ConvexPolytope::from_mesh(back);
+      EXPECT_EQ(q.num_facets(), p->num_facets());
+    }
+}
+
+// Regression for the welding shortcut: points are welded by their bits, so
+// -0.0 and 0.0 must be stored alike.
+TEST(Welding, SignedZerosWeld) {
+  Mesh m = octahedron_mesh();  // vertex 4 is (0, 0, 1)
+  m.points.push_back(Vec3d{-0.0, -0.0, 1.0});  // the same point, zeros signed
+  int moved = 0;
+  for (auto& f : m.faces)
+    for (Index& v : f)
+      if (v == 4 && moved++ % 2 == 0) v = 6;  // half of the apex's facets use the copy
+  ASSERT_GT(moved, 1);
+  const ConvexPolytope c = ConvexPolytope::from_mesh(m, "octahedron");
+  EXPECT_EQ(c.num_vertices(), 6u);
+  EXPECT_EQ(c.num_facets(), 8u);
+  EXPECT_EQ(c.volume(), Rational(4, 3));
+}

@@ -564,7 +564,13 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
      << "```sh\nmake bench        # the full suite: configures build-bench/ (Release, MINKSUM_BENCH=ON, "
         "assertions off), builds, runs, rewrites this page and " << svg_name << "\n"
      << "make bench-quick  # the quick suite for development (under 2 minutes once built), "
-        "written to build-bench/quick/\n```\n";
+        "written to build-bench/quick/\n"
+     << "make bench-e2e    # the section \"End to end: file to file\" alone (bench/e2e.py; `make bench` runs it "
+        "too)\n"
+     << "build-bench/bin/qhull_standalone --runs 9            # Qhull's call on cube ⊕ sphere:6 in a program of its "
+        "own\n"
+     << "build-bench/bin/qhull_standalone --runs 9 --fork --ballast 500   # ... in a child forked from a large, "
+        "fragmented heap\n```\n";
 
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write " + path);

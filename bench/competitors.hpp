@@ -25,11 +25,13 @@ struct Outcome {
 // ConvexPolytope::from_mesh (coplanar triangles merged exactly).
 Outcome cgal_exact_hull(const ConvexPolytope& a, const ConvexPolytope& b);
 // CGAL convex_hull_3 with Epick on the pairwise sums of the nearest doubles,
-// added in double arithmetic (what a floating-point user does).  Counts: the
+// added in double arithmetic (what a floating-point user does; the sums are
+// prepared before the clock starts, timed: convex_hull_3 alone).  Counts: the
 // hull of those rounded points, coplanar triangles merged exactly.
 Outcome cgal_epick_hull(const ConvexPolytope& a, const ConvexPolytope& b);
 // Qhull (reentrant libqhull_r, options "qhull", i.e. the default C-0
-// pre-merge) on the same rounded pairwise sums.  Counts: Qhull's own
+// pre-merge) on the same rounded pairwise sums (prepared untimed; timed:
+// qh_new_qhull alone, as bench/qhull_standalone does).  Counts: Qhull's own
 // (merged) facets and vertices, E = V + F - 2.
 Outcome qhull_rounded(const ConvexPolytope& a, const ConvexPolytope& b);
 // CGAL::minkowski_sum_3 on Nef_polyhedron_3<Epeck>; timed: minkowski_sum_3

@@ -2,12 +2,17 @@
 // on the same inputs, in the same run.  Writes docs/benchmarks.md and its plot.
 //
 //   minksum_bench [--suite full|quick] [--out DIR] [--command TEXT] [--only GROUP]
+//                 [--contenders KEY,KEY,...] [--verbose]
 //
-// Each cell (one pair, one contender) runs in a child process: the operands
-// are built once per row in the parent (catalog construction is not timed),
-// the child runs the contender up to `runs` times, reports the median time,
-// the output's V/E/F and its peak resident memory, and is killed by SIGALRM
-// when it exceeds the cap.
+// The operands are built once per row in the parent (catalog construction is
+// not timed) for the row's sizes.  Each cell (one pair, one contender) runs in
+// a process of its own, started afresh (this program with --worker), which
+// builds the operands itself before its first run, so that a run costs what
+// the same call costs in a program of its own.  The cells of a row take turns,
+// one run each per round; a cell runs up to `runs` times (more when fast) and
+// reports the median time, the output's V/E/F and its peak resident memory;
+// it is killed by SIGALRM when it exceeds the cap.  --verbose prints every
+// run's time and minor page faults.
 #include "competitors.hpp"
 #include "report.hpp"
 #include "timer.hpp"
@@ -18,12 +23,14 @@
 #include <minksum/walk.hpp>
 
 #include <gmp.h>
+#include <malloc.h>
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -44,6 +51,8 @@ struct Config {
   std::string out = "docs";
   std::string command = "make bench";
   std::string only;
+  std::string contenders;      // comma-separated contender keys to run (empty: all)
+  bool verbose = false;        // each run's seconds and minor page faults on stderr
   int runs = 5;
   double min_total = 1.0;      // fast cells repeat beyond `runs` until this many seconds of runs ...
   int max_runs = 500;          // ... or this many runs
@@ -52,6 +61,7 @@ struct Config {
   double exact_pair_limit = 1.2e7;  // v_A * v_B beyond which exact pairwise methods are skipped
   double float_pair_limit = 3e7;    // ... floating-point pairwise methods
   long mem_limit_mb = 8192;    // address-space limit of a cell's process
+  long trim_mb = 1024;         // a cell's process over this resident size returns free memory between runs
   double predict_factor = 2;   // skip a cell predicted to take this many caps
 };
 
@@ -226,91 +236,228 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// Run one cell in a child process.
-Cell run_cell(const Entry& entry, const ConvexPolytope& a, const ConvexPolytope& b, const Config& cfg) {
-  Cell cell;
-  int fd[2];
-  if (pipe(fd) != 0) {
-    cell.state = Cell::failed;
-    cell.note = "pipe failed";
-    return cell;
-  }
-  std::fflush(stdout);
-  std::fflush(stderr);
-  pid_t pid = fork();
-  if (pid == 0) {
-    ::close(fd[0]);
-    struct rlimit rl;
-    rl.rlim_cur = rl.rlim_max = rlim_t(cfg.mem_limit_mb) * 1024 * 1024;
-    setrlimit(RLIMIT_AS, &rl);
-    signal(SIGALRM, SIG_DFL);
-    alarm(unsigned(std::ceil(cfg.cap)));
-    std::ostringstream msg;
-    try {
-      const long base = proc_status_kb("VmRSS:");
-      std::vector<double> times, subs;
-      Outcome last;
-      Stopwatch total;
-      // At least `runs` runs; a fast cell keeps repeating until min_total
-      // seconds of runs (at most max_runs): the median of a millisecond cell
-      // over a handful of runs is mostly the machine's noise.
-      for (int r = 0; r < cfg.runs || (total.seconds() < cfg.min_total && r < cfg.max_runs); ++r) {
-        last = entry.run(a, b);
-        times.push_back(last.seconds);
-        if (last.sub_seconds >= 0) subs.push_back(last.sub_seconds);
-        // A run's length: the timed part, and the second phase when it comes on top (walk's conversion).
-        const double run = last.seconds + (entry.c.sub_extra && last.sub_seconds > 0 ? last.sub_seconds : 0);
-        if (r == 0 && run > cfg.long_run) break;
-        // Stop before the alarm would kill a run whose predecessors finished.
-        if (total.seconds() + 1.5 * run > 0.9 * cfg.cap) break;
-      }
-      const long peak = proc_status_kb("VmHWM:");
-      msg.precision(9);
-      msg << "OK " << median(times) << ' ' << times.size() << ' ' << (subs.empty() ? -1.0 : median(subs)) << ' '
-          << last.v << ' ' << last.e << ' ' << last.f << ' ' << peak << ' ' << base << '\n'
-          << last.note;
-    } catch (const std::bad_alloc&) {
-      msg << "ERR out of memory (limit " << cfg.mem_limit_mb << " MiB)";
-    } catch (const std::exception& e) {
-      msg << "ERR " << e.what();
-    }
-    write_all(fd[1], msg.str());
-    ::close(fd[1]);
-    _exit(0);
-  }
-  ::close(fd[1]);
-  std::string data;
-  char buf[4096];
-  ssize_t n;
-  while ((n = ::read(fd[0], buf, sizeof buf)) > 0) data.append(buf, std::size_t(n));
-  ::close(fd[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  if (WIFSIGNALED(status)) {
-    if (WTERMSIG(status) == SIGALRM) {
-      cell.state = Cell::capped;
-      cell.note = "stopped after " + std::to_string(int(cfg.cap)) + " s";
-    } else {
-      cell.state = Cell::failed;
-      cell.note = std::string("killed by signal ") + strsignal(WTERMSIG(status));
-    }
-    return cell;
-  }
-  std::istringstream in(data);
-  std::string tag;
-  in >> tag;
-  if (tag == "OK") {
-    in >> cell.median >> cell.runs >> cell.sub >> cell.v >> cell.e >> cell.f >> cell.peak_kb >> cell.base_kb;
-    in.ignore(1);
-    std::getline(in, cell.note);
-    cell.state = Cell::ok;
-  } else {
-    cell.state = Cell::failed;
-    cell.note = data.size() > 4 ? data.substr(4) : "no result";
-  }
-  return cell;
+// A cell's process.  Each cell of a row runs in a process of its own, started
+// afresh (fork + exec of this program with --worker): it builds the operands
+// itself, untimed, and then runs the contender once per "run" request on its
+// standard input, answering on its standard output.  A child merely forked
+// from this (large, long-lived) parent would share the parent's heap
+// copy-on-write and pay a page fault for each inherited page its first run
+// writes to, and would allocate from the parent's fragmented free lists: not
+// what the same call costs in a program of its own (bench/qhull_standalone
+// measures both).
+//
+// Protocol, one line each: the worker says "READY <VmRSS kB>" once the
+// operands are built; "run <seconds left>" → "RUN <seconds> <sub> <v> <e> <f>"
+// and a line with the note (the worker sets an alarm for the seconds left
+// of the cell's cap around the run); "quit" → "PEAK <VmHWM kB>", exit.
+// Errors: "ERR <message>", exit.
+std::string one_line(std::string s) {
+  for (char& ch : s)
+    if (ch == '\n' || ch == '\r') ch = ' ';
+  return s;
 }
 
+int worker_main(const std::string& key, const std::string& spec_a, const std::string& spec_b, const Config& cfg) {
+  std::signal(SIGPIPE, SIG_DFL);
+  struct rlimit rl;
+  rl.rlim_cur = rl.rlim_max = rlim_t(cfg.mem_limit_mb) * 1024 * 1024;
+  setrlimit(RLIMIT_AS, &rl);
+  signal(SIGALRM, SIG_DFL);
+  std::vector<Entry> entries = contenders();
+  const Entry* entry = nullptr;
+  for (const auto& e : entries)
+    if (e.c.key == key) entry = &e;
+  auto say = [](const std::string& s) { write_all(1, s); };
+  if (!entry) {
+    say("ERR no contender " + key + "\n");
+    return 1;
+  }
+  try {
+    ConvexPolytope a = load_polytope(spec_a), b = load_polytope(spec_b);
+    say("READY " + std::to_string(proc_status_kb("VmRSS:")) + "\n");
+    std::string line;
+    int r = 0;
+    while (std::getline(std::cin, line)) {
+      if (line.rfind("run ", 0) == 0) {
+        const double left = std::atof(line.c_str() + 4);
+        struct rusage ru0, ru1;
+        getrusage(RUSAGE_SELF, &ru0);
+        alarm(unsigned(std::max(1.0, std::ceil(left))));
+        Outcome o = entry->run(a, b);
+        alarm(0);
+        getrusage(RUSAGE_SELF, &ru1);
+        if (cfg.verbose)
+          std::fprintf(stderr, "      %s run %d: %.4f s, %ld minor page faults\n", key.c_str(), ++r, o.seconds,
+                       ru1.ru_minflt - ru0.ru_minflt);
+        // A cell whose memory runs into gigabytes gives it back between runs (untimed), so
+        // that the row's other cells, alive at the same time, are not starved of memory.
+        if (proc_status_kb("VmRSS:") > cfg.trim_mb * 1024) malloc_trim(0);
+        char buf[256];
+        std::snprintf(buf, sizeof buf, "RUN %.9g %.9g %ld %ld %ld\n", o.seconds, o.sub_seconds, o.v, o.e, o.f);
+        say(buf + one_line(o.note) + "\n");
+      } else if (line == "quit") {
+        say("PEAK " + std::to_string(proc_status_kb("VmHWM:")) + "\n");
+        return 0;
+      }
+    }
+  } catch (const std::bad_alloc&) {
+    say("ERR out of memory (limit " + std::to_string(cfg.mem_limit_mb) + " MiB)\n");
+  } catch (const std::exception& e) {
+    say("ERR " + one_line(e.what()) + "\n");
+  }
+  return 0;
+}
+
+// The parent's side of one cell's process.
+struct Worker {
+  const Entry* entry = nullptr;
+  pid_t pid = -1;
+  FILE* in = nullptr;   // the worker's stdout
+  int out = -1;         // the worker's stdin
+  Cell cell;
+  std::vector<double> times, subs;
+  double total = 0;     // wall seconds of its runs, as the parent sees them (a run and its untimed counting)
+  bool done = false;
+  long v = -1, e = -1, f = -1;
+  std::string note;
+};
+
+bool spawn_worker(Worker& w, const std::string& self, const Row& row, const Config& cfg) {
+  int to[2], from[2];
+  if (pipe(to) != 0) return false;
+  if (pipe(from) != 0) {
+    ::close(to[0]), ::close(to[1]);
+    return false;
+  }
+  std::vector<std::string> args = {self,        "--worker",   w.entry->c.key, "--a", row.a, "--b", row.b,
+                                   "--mem-limit", std::to_string(cfg.mem_limit_mb), "--trim",
+                                   std::to_string(cfg.trim_mb)};
+  if (cfg.verbose) args.push_back("--verbose");
+  std::fflush(stdout);
+  std::fflush(stderr);
+  w.pid = fork();
+  if (w.pid == 0) {
+    dup2(to[0], 0);
+    dup2(from[1], 1);
+    ::close(to[0]), ::close(to[1]), ::close(from[0]), ::close(from[1]);
+    std::vector<char*> argv;
+    for (auto& s : args) argv.push_back(s.data());
+    argv.push_back(nullptr);
+    execv(self.c_str(), argv.data());
+    _exit(127);
+  }
+  ::close(to[0]);
+  ::close(from[1]);
+  w.out = to[1];
+  w.in = fdopen(from[0], "r");
+  return w.pid > 0;
+}
+
+std::string read_line(FILE* in) {
+  std::string s;
+  int ch;
+  while ((ch = std::fgetc(in)) != EOF && ch != '\n') s.push_back(char(ch));
+  if (ch == EOF && s.empty()) return "\x04";  // end of file
+  return s;
+}
+
+// The worker is gone or broken: reap it and say why in its cell.
+void finish_worker(Worker& w, const Config& cfg, const std::string& reply) {
+  if (w.out >= 0) ::close(w.out), w.out = -1;
+  if (w.in) std::fclose(w.in), w.in = nullptr;
+  int status = 0;
+  if (w.pid > 0) waitpid(w.pid, &status, 0);
+  w.pid = -1;
+  w.done = true;
+  if (w.cell.state == Cell::ok) return;
+  if (WIFSIGNALED(status)) {
+    if (WTERMSIG(status) == SIGALRM) {
+      w.cell.state = Cell::capped;
+      w.cell.note = "stopped after " + std::to_string(int(cfg.cap)) + " s";
+    } else {
+      w.cell.state = Cell::failed;
+      w.cell.note = std::string("killed by signal ") + strsignal(WTERMSIG(status));
+    }
+  } else {
+    w.cell.state = Cell::failed;
+    w.cell.note = reply.rfind("ERR ", 0) == 0 ? reply.substr(4) : "no result";
+  }
+}
+
+// Run a row's cells, interleaved: every cell's process is started (and builds
+// the operands), then one run of each cell that still wants runs per round —
+// A, B, C, A, B, C, ... — so that a burst of load on the shared machine falls
+// on all contenders of the row rather than on one.  Each cell keeps the
+// stopping rules of a cell run on its own: at least `runs` runs, more for a
+// fast cell until min_total seconds of runs (at most max_runs), a first run
+// over long_run not repeated, no run started that would likely end past the
+// cap.  A cell is the median of its runs.
+std::map<std::string, Cell> run_cells(const std::vector<const Entry*>& todo, const Row& row, const Config& cfg,
+                                      const std::string& self) {
+  std::vector<Worker> ws(todo.size());
+  for (std::size_t i = 0; i < todo.size(); ++i) {
+    ws[i].entry = todo[i];
+    if (!spawn_worker(ws[i], self, row, cfg)) {
+      ws[i].cell.state = Cell::failed;
+      ws[i].cell.note = "could not start the cell's process";
+      ws[i].done = true;
+    }
+  }
+  for (auto& w : ws) {
+    if (w.done) continue;
+    const std::string reply = read_line(w.in);
+    if (reply.rfind("READY ", 0) == 0) w.cell.base_kb = std::atol(reply.c_str() + 6);
+    else finish_worker(w, cfg, reply);
+  }
+  for (int round = 0;; ++round) {
+    bool any = false;
+    for (auto& w : ws) {
+      if (w.done) continue;
+      any = true;
+      char req[64];
+      std::snprintf(req, sizeof req, "run %.3f\n", cfg.cap - w.total);
+      Stopwatch sw;
+      write_all(w.out, req);
+      const std::string reply = read_line(w.in);
+      if (reply.rfind("RUN ", 0) != 0) {
+        finish_worker(w, cfg, reply);
+        continue;
+      }
+      std::istringstream in(reply.substr(4));
+      double sec = 0, sub = -1;
+      in >> sec >> sub >> w.v >> w.e >> w.f;
+      w.note = read_line(w.in);
+      if (w.note == "\x04") w.note.clear();
+      const double run = sw.seconds();
+      w.total += run;
+      w.times.push_back(sec);
+      if (sub >= 0) w.subs.push_back(sub);
+      const int r = int(w.times.size());
+      // A run's length: the timed part, and the second phase when it comes on top (walk's conversion).
+      const double len = sec + (w.entry->c.sub_extra && sub > 0 ? sub : 0);
+      bool stop = !(r < cfg.runs || (w.total < cfg.min_total && r < cfg.max_runs));
+      if (r == 1 && len > cfg.long_run) stop = true;
+      // Stop before the alarm would kill a run whose predecessors finished.
+      if (w.total + 1.5 * std::max(len, run) > 0.9 * cfg.cap) stop = true;
+      if (stop) {
+        write_all(w.out, "quit\n");
+        const std::string peak = read_line(w.in);
+        w.cell.state = Cell::ok;
+        w.cell.median = median(w.times);
+        w.cell.runs = r;
+        w.cell.sub = w.subs.empty() ? -1.0 : median(w.subs);
+        w.cell.v = w.v, w.cell.e = w.e, w.cell.f = w.f;
+        w.cell.note = w.note;
+        w.cell.peak_kb = peak.rfind("PEAK ", 0) == 0 ? std::atol(peak.c_str() + 5) : -1;
+        finish_worker(w, cfg, "");
+      }
+    }
+    if (!any) break;
+  }
+  std::map<std::string, Cell> out;
+  for (auto& w : ws) out[w.entry->c.key] = w.cell;
+  return out;
+}
 std::string read_first_line(const std::string& cmd) {
   std::string out;
   if (FILE* p = popen(cmd.c_str(), "r")) {
@@ -349,6 +496,7 @@ RunInfo machine_info(const Config& cfg) {
   info.exact_pair_limit = cfg.exact_pair_limit;
   info.float_pair_limit = cfg.float_pair_limit;
   info.mem_limit_mb = cfg.mem_limit_mb;
+  info.trim_mb = cfg.trim_mb;
   info.date = utc_now();
   {
     std::ifstream in("/proc/cpuinfo");
@@ -381,7 +529,8 @@ RunInfo machine_info(const Config& cfg) {
 
 int usage(const char* msg) {
   std::cerr << "minksum_bench: " << msg
-            << "\nusage: minksum_bench [--suite full|quick] [--out DIR] [--command TEXT] [--only GROUP]\n";
+            << "\nusage: minksum_bench [--suite full|quick] [--out DIR] [--command TEXT] [--only GROUP]"
+               " [--contenders KEY,...] [--verbose]\n";
   return 2;
 }
 
@@ -392,6 +541,7 @@ int main(int argc, char** argv) {
   using namespace minksum;
   using namespace minksum::bench;
   Config cfg;
+  std::string worker, spec_a, spec_b;  // --worker KEY --a SPEC --b SPEC: one cell's process (see run_cells)
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     auto value = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -399,14 +549,32 @@ int main(int argc, char** argv) {
     else if (a == "--out") cfg.out = value();
     else if (a == "--command") cfg.command = value();
     else if (a == "--only") cfg.only = value();
+    else if (a == "--contenders") cfg.contenders = value();
+    else if (a == "--verbose") cfg.verbose = true;
+    else if (a == "--worker") worker = value();
+    else if (a == "--a") spec_a = value();
+    else if (a == "--b") spec_b = value();
+    else if (a == "--mem-limit") cfg.mem_limit_mb = std::atol(value().c_str());
+    else if (a == "--trim") cfg.trim_mb = std::atol(value().c_str());
     else if (a == "-h" || a == "--help") {
       std::cout << "usage: minksum_bench [--suite full|quick] [--out DIR] [--command TEXT] [--only GROUP]\n"
+                   "                     [--contenders KEY,...] [--verbose]\n"
                    "Runs every minksum method and the competitors (CGAL hulls, Qhull, CGAL Nef, CGAL SGM) on the\n"
                    "suite's pairs and writes DIR/benchmarks.md and DIR/benchmarks-plot.svg.\n"
-                   "GROUP: table1 rotated random dioctagonal identical catalog\n";
+                   "GROUP: table1 rotated random dioctagonal identical catalog\n"
+                   "KEY: walk cvms essdms mssd cgm chms cgal-exact cgal-epick qhull nef sgm (default: all)\n"
+                   "--verbose: each run's seconds and minor page faults on stderr\n";
       return 0;
     }
     else return usage(("unknown argument " + a).c_str());
+  }
+  if (!worker.empty()) return worker_main(worker, spec_a, spec_b, cfg);
+  std::signal(SIGPIPE, SIG_IGN);  // a cell's process that died is noticed on its pipe, not by a signal
+  std::string self;
+  {
+    std::error_code ec;
+    self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+    if (ec || self.empty()) self = argv[0];
   }
   if (cfg.suite == "quick") {
     cfg.runs = 3;
@@ -425,6 +593,10 @@ int main(int argc, char** argv) {
   RunInfo info = machine_info(cfg);
   info.load_start = load_average();
   std::vector<Entry> entries = contenders();
+  if (!cfg.contenders.empty()) {
+    const std::string list = "," + cfg.contenders + ",";
+    std::erase_if(entries, [&](const Entry& e) { return list.find("," + e.c.key + ",") == std::string::npos; });
+  }
   std::vector<Contender> cs;
   for (const auto& e : entries) cs.push_back(e.c);
 
@@ -448,6 +620,9 @@ int main(int argc, char** argv) {
               << rr.vb << ")\n";
     const double pairs = double(rr.va) * double(rr.vb);
     const double input = double(rr.va + rr.ea + rr.fa + rr.vb + rr.eb + rr.fb);
+    // Which cells run (decided from the previous rows of each series), then all of them, interleaved.
+    std::map<std::string, Cell> cells;
+    std::vector<const Entry*> todo;
     for (const Entry& entry : entries) {
       const Contender& c = entry.c;
       const double size = cost(c.key, rr, input);
@@ -472,8 +647,17 @@ int main(int argc, char** argv) {
                       cost_name(c.key));
         cell.note = why;
       } else {
-        cell = run_cell(entry, a, b, cfg);
+        todo.push_back(&entry);
+        continue;
       }
+      cells[c.key] = cell;
+    }
+    for (auto& [key, cell] : run_cells(todo, row, cfg, self)) cells[key] = cell;
+    for (const Entry& entry : entries) {
+      const Contender& c = entry.c;
+      const double size = cost(c.key, rr, input);
+      SeriesState& st = series[row.series + "/" + c.key];
+      const Cell cell = cells[c.key];
       if (cell.state == Cell::capped || (cell.state == Cell::skipped && cell.note.rfind("predicted", 0) == 0) ||
           (cell.state == Cell::skipped && st.capped))
         st.capped = true;

@@ -256,9 +256,8 @@ void walk_targets(std::ostream& md, const RunInfo& info, const std::vector<Conte
     else {
       char buf[320];
       std::snprintf(buf, sizeof buf,
-                    "%.0f MiB peak (VmHWM of the cell's child process: it includes the operands, inherited from "
-                    "the parent, %.0f MiB resident when the cell started; and the conversion, run in the same "
-                    "process)",
+                    "%.0f MiB peak (VmHWM of the cell's process: it includes the operands, built by that process "
+                    "before its runs, %.0f MiB resident then; and the conversion, run in the same process)",
                     w->peak_kb / 1024.0, w->base_kb / 1024.0);
       line(what, buf, g, below(double(w->peak_kb), 1024.0 * 1024.0, true));
     }
@@ -306,7 +305,16 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
      << "millisecond cell is not the machine's noise; `(k×)` marks a cell with fewer runs "
      << "(a first run over " << fmt(info.long_run) << " s is not repeated; a cell also stops repeating before "
      << "its cap). "
-     << "Times exclude file I/O and the construction of the operands; each cell runs in its own child process.\n"
+     << "Times exclude file I/O and the construction of the operands.\n"
+     << "* How cells are timed: each cell runs in a process of its own, started afresh (fork and exec of the "
+     << "benchmark program), which builds the operands itself, untimed, before its first run — so a run costs what "
+     << "the same call costs in a program of its own, not what it costs in a child forked from the large "
+     << "benchmark process (which pays copy-on-write page faults on the inherited heap; `bench/qhull_standalone` "
+     << "compares the two). The contenders of a row take turns, one run each per round (A, B, C, A, B, C, …), so "
+     << "that a burst of load on the shared machine falls on all of them alike; the figure is the **median** of a "
+     << "cell's runs, each timed with a monotonic wall clock around the call alone (the competitor's input, e.g. the "
+     << "pairwise sums handed to Qhull, is prepared before the clock starts). A cell whose process grows past "
+     << info.trim_mb << " MiB returns its free memory to the system between runs (untimed).\n"
      << "* `✓`: the output's vertex/edge/facet counts (coplanar facets merged) equal the exact result's. "
      << "`✗ V/E/F`: they differ, and the competitor's counts are shown. The exact result is minksum's (`chms`, the "
      << "oracle, when it ran; all minksum methods must agree, and are checked here too).\n"
@@ -331,11 +339,11 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
      << "  * **CGAL hull, exact sums** — `CGAL::convex_hull_3` (Epeck) on the exact pairwise sums a_i + b_j "
      << "(the same algorithm as minksum `chms`, without the exact merge of coplanar triangles, which is done "
      << "untimed for counting).\n"
-     << "  * **CGAL hull, Epick (rounded)** — the pairwise sums of the nearest doubles, added in double arithmetic, "
-     << "then `convex_hull_3` with `Exact_predicates_inexact_constructions_kernel`. Its counts are those of the "
+     << "  * **CGAL hull, Epick (rounded)** — the pairwise sums of the nearest doubles, added in double arithmetic "
+     << "(untimed), then `convex_hull_3` (timed) with `Exact_predicates_inexact_constructions_kernel`. Its counts are those of the "
      << "exact hull of the *rounded* points, coplanar triangles merged exactly.\n"
      << "  * **Qhull (rounded)** — `qh_new_qhull` with options `qhull` (default pre-merge `C-0`) on the same "
-     << "rounded sums. Counts: Qhull's merged facets and vertices, E = V + F − 2.\n"
+     << "rounded sums, timed alone. Counts: Qhull's merged facets and vertices, E = V + F − 2.\n"
      << "  * **CGAL Nef minkowski_sum_3** — Hachenberger's method on `Nef_polyhedron_3<Epeck>` (\"NGM\" in seed "
      << "000); timed: `minkowski_sum_3` alone, not the conversion of the operands to Nef polyhedra.\n"
      << "  * **CGAL SGM (build + overlay)** — the undocumented `Arr_polyhedral_sgm` (spherical Gaussian map) "
@@ -515,8 +523,8 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
 
   // --- Memory.
   md << "## Peak memory of the largest rows\n\n"
-     << "Peak resident set (VmHWM) of each cell's process in MiB; it includes the operands, inherited from the "
-        "parent (their size, VmRSS when the cell started, is in the second column)."
+     << "Peak resident set (VmHWM) of each cell's process in MiB; it includes the operands, built by that process "
+        "(their size, VmRSS once they were built, is in the second column)."
      << (has_walk ? " walk's cell runs the walk and then the conversion in the same process: its peak covers both."
                   : "")
      << "\n\n"
@@ -556,7 +564,13 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
      << "```sh\nmake bench        # the full suite: configures build-bench/ (Release, MINKSUM_BENCH=ON, "
         "assertions off), builds, runs, rewrites this page and " << svg_name << "\n"
      << "make bench-quick  # the quick suite for development (under 2 minutes once built), "
-        "written to build-bench/quick/\n```\n";
+        "written to build-bench/quick/\n"
+     << "make bench-e2e    # the section \"End to end: file to file\" alone (bench/e2e.py; `make bench` runs it "
+        "too)\n"
+     << "build-bench/bin/qhull_standalone --runs 9            # Qhull's call on cube ⊕ sphere:6 in a program of its "
+        "own\n"
+     << "build-bench/bin/qhull_standalone --runs 9 --fork --ballast 500   # ... in a child forked from a large, "
+        "fragmented heap\n```\n";
 
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write " + path);

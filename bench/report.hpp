@@ -29,7 +29,7 @@ struct Cell {
   int runs = 0;
   long v = -1, e = -1, f = -1;
   long peak_kb = -1;    // VmHWM of the cell's process
-  long base_kb = -1;    // its VmRSS when the cell started (the operands, inherited)
+  long base_kb = -1;    // its VmRSS once it had built the operands, before its first run
   std::string note;     // skip/failure reason, or a remark
 };
 
@@ -59,6 +59,7 @@ struct RunInfo {
   double predict_factor = 2;  // cells predicted over this many caps are skipped
   double exact_pair_limit = 0, float_pair_limit = 0;
   long mem_limit_mb = 0;
+  long trim_mb = 0;        // a cell's process over this size returns free memory between runs
   std::string date, cpu, compiler, flags, cgal, qhull, gmp, minksum, git;
   long cores = 0, mem_mb = 0;
   std::string load_start, load_end;

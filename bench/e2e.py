@@ -1,0 +1,373 @@
+#!/usr/bin/python3
+"""minksum bench, end to end: whole processes, file to file.
+
+    python3 bench/e2e.py [--minksum build-bench/bin/minksum] [--work build-bench/e2e]
+                         [--rounds 7] [--memory-rounds 3] [--page docs/benchmarks.md]
+                         [--command "make bench-e2e"]
+
+For each row the operands are written as double OFF files with `minksum gen`
+(untimed); for the rows Qhull can take, the pairwise sums of the files'
+coordinates (added in double arithmetic) are written in qhull's input format
+(untimed).  Then, interleaved over the rounds (minksum, qconvex, minksum,
+qconvex, ...), each contender runs as a whole process:
+
+    minksum sum A.off B.off -o S.off
+    qconvex o TI pts.txt TO out.off
+
+timed from spawn to exit (wall clock) with its peak resident memory from
+wait4's ru_maxrss.  The section "End to end: file to file" of the page is
+replaced (or inserted before "## Machine and software", or appended).
+"""
+
+import argparse
+import datetime
+import json
+import os
+import statistics
+import subprocess
+import sys
+import time
+
+BEGIN = "<!-- e2e:begin -->"
+END = "<!-- e2e:end -->"
+
+
+def run_process(argv, stdout=subprocess.DEVNULL):
+    """Run argv to completion: (wall seconds, peak RSS KiB, exit status, stdout text or None)."""
+    t0 = time.perf_counter()
+    p = subprocess.Popen(argv, stdout=stdout, stderr=subprocess.PIPE)
+    out = p.stdout.read() if stdout == subprocess.PIPE else None
+    err = p.stderr.read()
+    _, status, ru = os.wait4(p.pid, 0)
+    t = time.perf_counter() - t0
+    p.returncode = os.waitstatus_to_exitcode(status)
+    return t, ru.ru_maxrss, p.returncode, (out.decode() if out is not None else None), err.decode()
+
+
+def check(argv):
+    t, rss, rc, out, err = run_process(argv, stdout=subprocess.PIPE)
+    if rc != 0:
+        raise SystemExit("e2e: %s failed (%d): %s" % (" ".join(argv), rc, err.strip()))
+    return out
+
+
+def off_points(path):
+    """Vertex coordinates of an OFF file (text, doubles) and its V/F header counts."""
+    with open(path) as f:
+        toks = []
+        for line in f:
+            line = line.split("#", 1)[0].strip()
+            if line:
+                toks.append(line)
+            if len(toks) >= 2 or (toks and toks[0].split() != ["OFF"]):
+                break
+        head = toks[0].split()
+        counts = (toks[1].split() if head == ["OFF"] else head[1:])
+        nv, nf = int(counts[0]), int(counts[1])
+        pts = []
+        while len(pts) < nv:
+            line = f.readline()
+            if not line:
+                break
+            line = line.split("#", 1)[0].split()
+            if line:
+                pts.append((float(line[0]), float(line[1]), float(line[2])))
+    return pts, nv, nf
+
+
+def off_counts(path):
+    """(vertices, facets) of an OFF file as a polytope: the vertices its facets use (Qhull's `o` lists every
+    input point, interior ones too) and the number of facets.  Also reads qhull's header (a dimension line
+    instead of "OFF")."""
+    with open(path) as f:
+        def lines():
+            for line in f:
+                line = line.split("#", 1)[0].split()
+                if line:
+                    yield line
+        it = lines()
+        head = next(it)
+        if head[0] == "OFF" and len(head) == 1:
+            head = next(it)
+        elif head[0] == "OFF":
+            head = head[1:]
+        elif len(head) == 1:  # qhull: the dimension, then the counts
+            head = next(it)
+        nv, nf = int(head[0]), int(head[1])
+        for _ in range(nv):
+            next(it)
+        used = set()
+        for _ in range(nf):
+            face = next(it)
+            used.update(face[1:1 + int(face[0])])
+    return len(used), nf
+
+
+def write_qhull_points(a, b, path):
+    """The pairwise sums a_i + b_j (double arithmetic) in qhull's input format."""
+    with open(path, "w") as f:
+        f.write("3\n%d\n" % (len(a) * len(b)))
+        for (x, y, z) in a:
+            f.write("".join("%r %r %r\n" % (x + u, y + v, z + w) for (u, v, w) in b))
+
+
+def fmt_s(x):
+    return "%.3g" % x if x < 100 else "%.0f" % x
+
+
+def fmt_mib(kb):
+    return "%.0f MiB" % (kb / 1024.0)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--minksum", default="build-bench/bin/minksum")
+    ap.add_argument("--qconvex", default="qconvex")
+    ap.add_argument("--work", default="build-bench/e2e")
+    ap.add_argument("--rounds", type=int, default=7)
+    ap.add_argument("--memory-rounds", type=int, default=3)
+    ap.add_argument("--page", default="docs/benchmarks.md")
+    ap.add_argument("--command", default="make bench-e2e")
+    ap.add_argument("--only", default="", help="comma-separated row keys (a,b,c1,c2,load)")
+    args = ap.parse_args()
+    ms = os.path.abspath(args.minksum)
+    os.makedirs(args.work, exist_ok=True)
+    W = lambda name: os.path.join(args.work, name)
+    only = set(filter(None, args.only.split(",")))
+    log = lambda *m: print("e2e:", *m, file=sys.stderr, flush=True)
+    wall0 = time.perf_counter()
+    load_start = open("/proc/loadavg").read().split()[:3]
+
+    def gen(spec, name):
+        path = W(name)
+        out = check([ms, "gen", spec, "-o", path])
+        log(out.strip())
+        return path
+
+    def convex_as_written(path):
+        t, rss, rc, out, err = run_process([ms, "stats", path], stdout=subprocess.PIPE)
+        return rc == 0, err.strip()
+
+    rows = [
+        dict(key="a", a="cube", fa="cube.off", b="sphere:6", fb="sphere6.off", qhull=True,
+             goal="ratio", goal_value=10, rounds=args.rounds),
+        dict(key="b", a="sphere:4", fa="sphere4.off", b="sphere:4@rot:5", fb="sphere4rot5.off", qhull=True,
+             goal="ratio", goal_value=20, rounds=args.rounds),
+        dict(key="c1", a="sphere:7", fa="sphere7.off", b="sphere:7@rot:1", fb="sphere7rot1.off", qhull=False,
+             goal="rss", goal_value=1024, rounds=args.memory_rounds),
+        dict(key="c2", a="random:100000:1", fa="random100000-1.off", b="random:100000:2",
+             fb="random100000-2.off", qhull=False, goal="rss", goal_value=2048, rounds=args.memory_rounds),
+    ]
+    results = []
+    for row in rows:
+        if only and row["key"] not in only:
+            continue
+        log("row", row["key"], row["a"], "+", row["b"])
+        fa, fb = gen(row["a"], row["fa"]), gen(row["b"], row["fb"])
+        notes = []
+        hull = False
+        for spec, path in ((row["a"], fa), (row["b"], fb)):
+            ok, why = convex_as_written(path)
+            if ok and "@rot" in spec:
+                notes.append("`%s` rounded to doubles is still exactly convex (`minksum stats` accepts the file): "
+                             "no `--hull`" % spec)
+            if not ok:
+                hull = True
+                notes.append("`%s` rounded to doubles is not exactly convex (`minksum stats`: %s): the sum "
+                             "runs with `--hull` (the exact hull of each file's points)" % (spec, why))
+        sum_cmd = [ms, "sum", fa, fb, "-o", W("sum-%s.off" % row["key"])] + (["--hull"] if hull else [])
+        contenders = [("minksum", sum_cmd)]
+        pa, nva, _ = off_points(fa)
+        pb, nvb, _ = off_points(fb)
+        pairs = nva * nvb
+        if row["qhull"]:
+            pts = W("pts-%s.txt" % row["key"])
+            log("writing %d pairwise sums to %s" % (pairs, pts))
+            write_qhull_points(pa, pb, pts)
+            contenders.append(("qconvex", [args.qconvex, "o", "TI", pts, "TO", W("qconvex-%s.off" % row["key"])]))
+        del pa, pb
+        # One untimed run of each (files in the page cache, binaries loaded), then the rounds, interleaved.
+        for name, cmd in contenders:
+            t, rss, rc, out, err = run_process(cmd)
+            if rc != 0:
+                raise SystemExit("e2e: %s failed (%d): %s" % (" ".join(cmd), rc, err.strip()))
+        times = {name: [] for name, _ in contenders}
+        rsss = {name: [] for name, _ in contenders}
+        for r in range(row["rounds"]):
+            for name, cmd in contenders:
+                t, rss, rc, out, err = run_process(cmd)
+                if rc != 0:
+                    raise SystemExit("e2e: %s failed (%d): %s" % (" ".join(cmd), rc, err.strip()))
+                times[name].append(t)
+                rsss[name].append(rss)
+                log("  round %d %s: %.3f s, %s" % (r + 1, name, t, fmt_mib(rss)))
+        res = dict(row=row, hull=hull, notes=notes, pairs=pairs, cmds=dict(contenders), times=times, rss=rsss)
+        res["counts"] = {"minksum": off_counts(W("sum-%s.off" % row["key"]))}
+        if row["qhull"]:
+            res["counts"]["qconvex"] = off_counts(W("qconvex-%s.off" % row["key"]))
+        # The phases of one further run, when the CLI reports them (untimed here).
+        try:
+            js = json.loads(check(sum_cmd + ["--json"]))
+            res["phases"] = js.get("phases")
+        except (SystemExit, ValueError):
+            res["phases"] = None
+        results.append(res)
+
+    load = None
+    if not only or "load" in only:
+        log("row load")
+        path = gen("random:10000:1", "random10000-1.off")
+        nv, nf = off_counts(path)
+        ok, why = convex_as_written(path)
+        if not ok:
+            raise SystemExit("e2e: %s is not exactly convex as written: %s" % (path, why))
+        cmd = [ms, "stats", path]
+        run_process(cmd)
+        times, rsss, phases = [], [], []
+        for r in range(args.rounds):
+            t, rss, rc, out, err = run_process(cmd)
+            times.append(t)
+            rsss.append(rss)
+            try:
+                js = json.loads(check(cmd + ["--json"]))
+                if isinstance(js.get("phases"), dict):
+                    phases.append(js["phases"])
+            except (SystemExit, ValueError):
+                pass
+        load = dict(path=path, nv=nv, nf=nf, cmd=cmd, times=times, rss=rsss, phases=phases)
+
+    md = section(args, results, load, load_start, time.perf_counter() - wall0)
+    write_page(args.page, md)
+    log("wrote the section \"End to end: file to file\" of %s in %.0f s" % (args.page, time.perf_counter() - wall0))
+
+
+def rel(path):
+    return os.path.relpath(path) if os.path.isabs(path) else path
+
+
+def shown(cmd):
+    return " ".join(rel(c) if os.path.sep in c else c for c in cmd)
+
+
+def section(args, results, load, load_start, wall):
+    L = []
+    add = L.append
+    add(BEGIN)
+    add("## End to end: file to file")
+    add("")
+    add("<!-- Generated by `%s` (bench/e2e.py). Do not edit by hand. -->" % args.command)
+    add("")
+    add("Whole processes, from operand files to the sum's file, on the machine of \"Machine and software\" (shared: other jobs may be "
+        "running). Produced by `%s`, i.e. `/usr/bin/python3 bench/e2e.py --minksum %s --work %s --rounds %d "
+        "--memory-rounds %d`, on %s; load average at start %s, at end %s; %.0f s in all."
+        % (args.command, rel(args.minksum), rel(args.work), args.rounds, args.memory_rounds,
+           datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"), " ".join(load_start),
+           " ".join(open("/proc/loadavg").read().split()[:3]), wall))
+    add("")
+    add("* The operands are written as double OFF files with `minksum gen SPEC -o FILE` (rotated solids are "
+        "rounded to the nearest doubles). For Qhull, the pairwise sums a_i + b_j of the files' coordinates "
+        "(added in double arithmetic) are written beforehand in qhull's input format; neither step is timed.")
+    add("* Timed, each as a process from spawn to exit (wall clock): `minksum sum A.off B.off -o S.off` and "
+        "`qconvex o TI pts.txt TO out.off` (Qhull's command-line hull, default pre-merge `C-0`, output as OFF). "
+        "Peak memory: the process's maximum resident set (`ru_maxrss` from `wait4`).")
+    add("* After one untimed run of each, the contenders of a row alternate (minksum, qconvex, minksum, "
+        "qconvex, ...) for the row's rounds; a figure is the **median** over the rounds, the ratio is "
+        "qconvex's median ÷ minksum's median.")
+    add("")
+    add("| A ⊕ B | files | rounds | minksum sum: time | peak RSS | V/F | qconvex o: time | peak RSS | V/F | "
+        "qconvex ÷ minksum | target | verdict |")
+    add("|---|---|---:|---:|---:|---|---:|---:|---|---:|---|---|")
+    notes = []
+    for r in results:
+        row = r["row"]
+        tm = statistics.median(r["times"]["minksum"])
+        rm = max(r["rss"]["minksum"])
+        vm = "%d/%d" % r["counts"]["minksum"]
+        files = "`%s`, `%s`" % (row["fa"], row["fb"])
+        if r["hull"]:
+            files += " (`--hull`)"
+        if row["qhull"]:
+            tq = statistics.median(r["times"]["qconvex"])
+            rq = max(r["rss"]["qconvex"])
+            vq = "%d/%d" % r["counts"]["qconvex"]
+            ratio = tq / tm
+            q = (fmt_s(tq) + " s", fmt_mib(rq), vq, "%.2f×" % ratio)
+        else:
+            q = ("not run: %.3g pairwise sums" % r["pairs"], "—", "—", "—")
+        if row["goal"] == "ratio":
+            target = "≥ %d×" % row["goal_value"]
+            met = ratio >= row["goal_value"]
+        else:
+            target = "peak RSS < %s" % ("%d GiB" % (row["goal_value"] // 1024))
+            met = rm < row["goal_value"] * 1024
+        add("| `%s` ⊕ `%s` | %s | %d | %s s | %s | %s | %s | %s | %s | %s | %s | %s |"
+            % (row["a"], row["b"], files, row["rounds"], fmt_s(tm), fmt_mib(rm), vm, q[0], q[1], q[2], q[3],
+               target, "met" if met else "not met"))
+        for n in r["notes"]:
+            notes.append("`%s` ⊕ `%s`: %s." % (row["a"], row["b"], n))
+        if r.get("phases"):
+            notes.append("`%s` ⊕ `%s`, phases of one `minksum sum --json` run: %s." % (
+                row["a"], row["b"], ", ".join("%s %s s" % (k, fmt_s(float(v))) for k, v in r["phases"].items())))
+        if r["times"]["minksum"]:
+            notes.append("`%s` ⊕ `%s`: minksum range %s–%s s%s." % (
+                row["a"], row["b"], fmt_s(min(r["times"]["minksum"])), fmt_s(max(r["times"]["minksum"])),
+                ("; qconvex range %s–%s s" % (fmt_s(min(r["times"]["qconvex"])), fmt_s(max(r["times"]["qconvex"]))))
+                if row["qhull"] else ""))
+    add("")
+    add("Peak RSS is the largest over the rounds. V/F: the vertices used by the output file's facets, and its "
+        "facets (Qhull's `o` lists every input point; its facets are its merged facets).")
+    add("")
+    for n in notes:
+        add("* " + n)
+    if load:
+        add("")
+        add("### Load and validate")
+        add("")
+        tl = statistics.median(load["times"])
+        add("`minksum stats FILE` on `%s` (`minksum gen random:10000:1`: %d vertices, %d triangles, doubles), "
+            "%d rounds, median, as a process." % (os.path.basename(load["path"]), load["nv"], load["nf"],
+                                                  len(load["times"])))
+        add("")
+        add("| what | time | peak RSS | target | verdict |")
+        add("|---|---:|---:|---|---|")
+        ph = [p for p in load["phases"] if "read" in p]
+        if ph:
+            read = statistics.median(float(p["read"]) for p in ph)
+            val = statistics.median(float(p.get("read", 0)) + float(p.get("validate", 0)) for p in ph)
+            add("| load + validate (`stats`, process) | %s s | %s | | |" % (fmt_s(tl), fmt_mib(max(load["rss"]))))
+            add("| load + validate (phases `read` + `validate` of `stats --json`) | %s s | | ≤ 5× parse | %s |"
+                % (fmt_s(val), "met" if val <= 5 * read else "not met"))
+            add("| parse only (phase `read`) | %s s | | | |" % fmt_s(read))
+            add("")
+            add("load + validate ÷ parse = %.2f×." % (val / read))
+        else:
+            add("| load + validate (`stats`, process) | %s s | %s | ≤ 5× parse | not measured |"
+                % (fmt_s(tl), fmt_mib(max(load["rss"]))))
+            add("| parse only | — | — | | |")
+            add("")
+            add("TODO: parse-only time needs a phase report from minksum (`\"phases\"` with `read` and `validate` "
+                "seconds in `minksum stats --json`); this build's `stats --json` has none, so the ratio "
+                "load + validate ÷ parse is not measured.")
+    add(END)
+    return "\n".join(L) + "\n"
+
+
+def write_page(page, md):
+    text = open(page).read() if os.path.exists(page) else ""
+    if BEGIN in text and END in text:
+        i, j = text.index(BEGIN), text.index(END) + len(END)
+        if j < len(text) and text[j] == "\n":
+            j += 1
+        text = text[:i] + md + text[j:]
+    elif "\n## Machine and software" in text:
+        i = text.index("\n## Machine and software") + 1
+        text = text[:i] + md + "\n" + text[i:]
+    else:
+        text = text + ("\n" if text and not text.endswith("\n\n") else "") + md
+    os.makedirs(os.path.dirname(page) or ".", exist_ok=True)
+    with open(page, "w") as f:
+        f.write(text)
+
+
+if __name__ == "__main__":
+    main()

@@ -15,7 +15,9 @@ const char* kStatsHelp = R"(Usage: minksum stats P [--json] [--hull]
 Validate P (file or catalog name) and print its numbers of vertices, edges and
 facets (coplanar facets merged), its exact volume, and whether every
 coordinate is exactly a double.  With --hull, P's points are a point cloud and
-the statistics are those of its exact convex hull.
+the statistics are those of its exact convex hull.  --json adds "phases": the
+seconds spent reading P (or building the catalog polytope) and validating it
+(or taking its hull).
 )";
 
 }  // namespace
@@ -27,7 +29,8 @@ int run_stats(const std::vector<std::string>& argv) {
     return 0;
   }
   if (a.positional.size() != 1) throw UsageError("'stats' needs one operand (see 'minksum stats --help')");
-  ConvexPolytope p = load_polytope(a.positional[0], a.flag("--hull"));
+  LoadPhases phases;
+  ConvexPolytope p = load_polytope(a.positional[0], a.flag("--hull"), &phases);
   Rational vol = p.volume();
   Index max_fdeg = 0, max_vdeg = 0;
   for (Index f = 0; f < p.num_facets(); ++f) max_fdeg = std::max(max_fdeg, p.facet_degree(f));
@@ -37,7 +40,8 @@ int run_stats(const std::vector<std::string>& argv) {
               << ", \"volume\": \"" << format_exact(vol) << "\", \"volume_double\": "
               << format_double(to_double(vol)) << ", \"max_facet_degree\": " << max_fdeg
               << ", \"max_vertex_degree\": " << max_vdeg << ", \"coordinates_are_doubles\": "
-              << (p.coordinates_are_doubles() ? "true" : "false") << "}\n";
+              << (p.coordinates_are_doubles() ? "true" : "false") << ", \"phases\": {\"read\": "
+              << format_double(phases.read) << ", \"validate\": " << format_double(phases.validate) << "}}\n";
   } else {
     std::cout << a.positional[0] << ": " << p.num_vertices() << " vertices, " << p.num_edges() << " edges, "
               << p.num_facets() << " facets\n"

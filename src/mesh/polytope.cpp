@@ -50,31 +50,27 @@ class FlatMap64 {
   explicit FlatMap64(std::size_t capacity) {
     std::size_t n = 16;
     while (n < 2 * capacity + 2) n *= 2;
-    keys_.assign(n, 0);
-    vals_.assign(n, kNoIndex);
+    slots_.assign(n, Slot{0, kNoIndex});
     mask_ = n - 1;
   }
   // (value, inserted)
   std::pair<Index, bool> find_or_insert(std::uint64_t key, Index value) {
     for (std::size_t i = mix64(key) & mask_;; i = (i + 1) & mask_) {
-      if (vals_[i] == kNoIndex) {
-        keys_[i] = key;
-        vals_[i] = value;
+      Slot& s = slots_[i];
+      if (s.value == kNoIndex) {
+        s = {key, value};
         return {value, true};
       }
-      if (keys_[i] == key) return {vals_[i], false};
-    }
-  }
-  Index find(std::uint64_t key) const {
-    for (std::size_t i = mix64(key) & mask_;; i = (i + 1) & mask_) {
-      if (vals_[i] == kNoIndex) return kNoIndex;
-      if (keys_[i] == key) return vals_[i];
+      if (s.key == key) return {s.value, false};
     }
   }
 
  private:
-  std::vector<std::uint64_t> keys_;
-  std::vector<Index> vals_;
+  struct Slot {
+    std::uint64_t key;
+    Index value;
+  };
+  std::vector<Slot> slots_;
   std::size_t mask_ = 0;
 };
 
@@ -102,11 +98,14 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   auto key = [](Index u, Index v) {
     return (std::uint64_t(std::min(u, v)) << 32) | std::uint64_t(std::max(u, v));
   };
+  std::vector<Index> corner_edge(total);  // edge of each corner, faces in order
+  std::size_t corner = 0;
   for (Index f = 0; f < faces.size(); ++f) {
     const auto& poly = faces[f];
     for (std::size_t i = 0; i < poly.size(); ++i) {
       Index u = poly[i], v = poly[(i + 1) % poly.size()];
       auto [id, inserted] = edge_id.find_or_insert(key(u, v), Index(uses.size()));
+      corner_edge[corner++] = id;
       if (inserted) {
         uses.emplace_back();
         ends.emplace_back(std::min(u, v), std::max(u, v));
@@ -145,12 +144,13 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   g.facet_he.assign(faces.size(), kNoIndex);
   g.vertex_he.assign(nv, kNoIndex);
   std::vector<Index> hs;
+  corner = 0;
   for (Index f = 0; f < faces.size(); ++f) {
     const auto& poly = faces[f];
     hs.clear();
     for (std::size_t i = 0; i < poly.size(); ++i) {
       Index u = poly[i], v = poly[(i + 1) % poly.size()];
-      Index e = edge_id.find(key(u, v));
+      Index e = corner_edge[corner++];
       Index h = 2 * e + (u < v ? 0u : 1u);
       g.origin[h] = u;
       g.facet[h] = f;

@@ -486,14 +486,12 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   for (Index v = 0; v < pts.size(); ++v) ip[v] = to_fast(ip0[v]);
   ip0 = {};
   std::vector<FastIPoint> inrm(nf);
-  std::vector<Point3> xnrm(nf);
-  std::vector<char> has_xnrm(nf, 0);
+  // Exact normals, made only where a filter cannot decide (a default Point3
+  // would cost three GMP rationals per facet).
+  std::vector<std::unique_ptr<Point3>> xnrm(nf);
   auto exact_normal = [&](Index f) -> const Point3& {
-    if (!has_xnrm[f]) {
-      xnrm[f] = polygon_normal(pts, faces[f]);
-      has_xnrm[f] = 1;
-    }
-    return xnrm[f];
+    if (!xnrm[f]) xnrm[f] = std::make_unique<Point3>(polygon_normal(pts, faces[f]));
+    return *xnrm[f];
   };
   for (Index f = 0; f < nf; ++f) {
     const auto& poly = faces[f];
@@ -540,7 +538,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     for (auto& poly : faces) std::reverse(poly.begin(), poly.end());
     for (auto& n : inrm) n = -n;
     for (Index f = 0; f < nf; ++f)
-      if (has_xnrm[f]) xnrm[f] = -xnrm[f];
+      if (xnrm[f]) *xnrm[f] = -*xnrm[f];
     g = link(Index(pts.size()), faces, source, vname, fname);
   }
 

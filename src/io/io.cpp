@@ -335,50 +335,6 @@ void put_le_float(std::ostream& out, float value) {
 
 // --- TextCursor -------------------------------------------------------------
 
-bool TextCursor::at_end() {
-  const std::size_t n = data_.size();
-  for (;;) {
-    while (pos_ < n && is_space(data_[pos_])) {
-      if (data_[pos_] == '\n') ++line_;
-      ++pos_;
-    }
-    if (pos_ < n && comment_ != 0 && data_[pos_] == comment_) {
-      while (pos_ < n && data_[pos_] != '\n') ++pos_;
-      continue;
-    }
-    return pos_ >= n;
-  }
-}
-
-std::string_view TextCursor::take_token() {
-  const std::size_t n = data_.size();
-  std::size_t start = pos_;
-  while (pos_ < n && !is_space(data_[pos_]) && !(comment_ != 0 && data_[pos_] == comment_)) ++pos_;
-  return data_.substr(start, pos_ - start);
-}
-
-bool TextCursor::next(std::string_view& token) {
-  if (at_end()) return false;
-  token_line_ = line_;
-  token = take_token();
-  return true;
-}
-
-void TextCursor::skip_blanks_on_line() {
-  const std::size_t n = data_.size();
-  while (pos_ < n && data_[pos_] != '\n' && is_space(data_[pos_])) ++pos_;
-  if (pos_ < n && comment_ != 0 && data_[pos_] == comment_)
-    while (pos_ < n && data_[pos_] != '\n') ++pos_;
-}
-
-bool TextCursor::next_on_line(std::string_view& token) {
-  skip_blanks_on_line();
-  if (pos_ >= data_.size() || data_[pos_] == '\n') return false;
-  token_line_ = line_;
-  token = take_token();
-  return true;
-}
-
 }  // namespace io_detail
 
 using namespace io_detail;

@@ -137,6 +137,52 @@ inline bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
 }
 
+// TextCursor's members, inline: readers call them once per token.
+inline bool TextCursor::at_end() {
+  const std::size_t n = data_.size();
+  for (;;) {
+    while (pos_ < n && is_space(data_[pos_])) {
+      if (data_[pos_] == '\n') ++line_;
+      ++pos_;
+    }
+    if (pos_ < n && comment_ != 0 && data_[pos_] == comment_) {
+      while (pos_ < n && data_[pos_] != '\n') ++pos_;
+      continue;
+    }
+    return pos_ >= n;
+  }
+}
+
+inline std::string_view TextCursor::take_token() {
+  const std::size_t n = data_.size();
+  std::size_t start = pos_;
+  while (pos_ < n && !is_space(data_[pos_]) && !(comment_ != 0 && data_[pos_] == comment_)) ++pos_;
+  return data_.substr(start, pos_ - start);
+}
+
+inline bool TextCursor::next(std::string_view& token) {
+  if (at_end()) return false;
+  token_line_ = line_;
+  token = take_token();
+  return true;
+}
+
+inline void TextCursor::skip_blanks_on_line() {
+  const std::size_t n = data_.size();
+  while (pos_ < n && data_[pos_] != '\n' && is_space(data_[pos_])) ++pos_;
+  if (pos_ < n && comment_ != 0 && data_[pos_] == comment_)
+    while (pos_ < n && data_[pos_] != '\n') ++pos_;
+}
+
+inline bool TextCursor::next_on_line(std::string_view& token) {
+  skip_blanks_on_line();
+  if (pos_ >= data_.size() || data_[pos_] == '\n') return false;
+  token_line_ = line_;
+  token = take_token();
+  return true;
+}
+
+
 // Case-insensitive ASCII equality.
 bool iequals(std::string_view a, std::string_view b);
 

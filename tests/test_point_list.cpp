@@ -299,3 +299,32 @@ TEST(Welding, SignedZerosWeld) {
   EXPECT_EQ(c.num_facets(), 8u);
   EXPECT_EQ(c.volume(), Rational(4, 3));
 }
+
+// The builder's interval filters run under their own upward-rounding guard
+// and sum_coordinates needs round-to-nearest: whatever mode the caller left
+// the FPU in, validation and sums give the same exact polytope.
+TEST(RoundingModes, ValidationAndSumsDoNotDependOnTheCallersMode) {
+  // (The operands are made before: the catalog's spheres are computed in
+  // floating point in the current mode.)
+  const ConvexPolytope a = catalog_polytope("sphere:3"), b = catalog_polytope("cube@rot:3");
+  const ConvexPolytope c = catalog_polytope("sphere:2");
+  const Mesh m = catalog_polytope("sphere:3@scale:1/1024").to_mesh();
+  const SumResult ref = minkowski_sum(a, c, Method::walk);
+  const ConvexPolytope vref = ConvexPolytope::from_mesh(m);
+  for (int mode : {FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO, FE_TONEAREST}) {
+    const int old = std::fegetround();
+    std::fesetround(mode);
+    const ConvexPolytope v = ConvexPolytope::from_mesh(m);
+    const SumResult s = minkowski_sum(a, c, Method::walk);
+    const SumResult r = minkowski_sum(a, b, Method::walk);
+    const int after = std::fegetround();
+    std::fesetround(old);
+    EXPECT_EQ(after, mode) << "the FPU mode must be restored";
+    EXPECT_TRUE(v.coordinates() == vref.coordinates()) << mode;
+    EXPECT_EQ(v.num_facets(), vref.num_facets()) << mode;
+    EXPECT_TRUE(s.polytope.coordinates() == ref.polytope.coordinates()) << mode;
+    EXPECT_EQ(s.polytope.num_facets(), ref.polytope.num_facets()) << mode;
+    EXPECT_EQ(s.polytope.volume(), ref.polytope.volume()) << mode;
+    EXPECT_EQ(r.polytope.check_invariants(), "") << mode;
+  }
+}

@@ -53,6 +53,20 @@ inline auto filtered(const Pt& first, const More&... more) {
   ++counter.fallbacks;
   return detail::exact_points<D>(p);
 }
+
+// The same for rounded rational points: the rational filter on the cached
+// roundings first, then the Point3 form's filter, then exact.
+template <class D, class... More>
+inline auto filtered(const RoundedPoint3& first, const More&... more) {
+  const std::array<const RoundedPoint3*, D::arity> r{&first, &more...};
+  PredicateCounter& counter = t_stats.counters[int(D::id)];
+  ++counter.calls;
+  if (auto a = D::decide(detail::approx_rounded<D>(r))) return *a;
+  const detail::PointsOf<D, Point3> p{&first.exact, &more.exact...};
+  if (auto a = detail::filter_points<D>(p)) return *a;
+  ++counter.fallbacks;
+  return detail::exact_points<D>(p);
+}
 }  // namespace
 
 using namespace detail;
@@ -61,6 +75,10 @@ int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
   return filtered<Orient3dPred>(a, b, c, d);
 }
 int orient3d(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return filtered<Orient3dPred>(a, b, c, d);
+}
+int orient3d(const RoundedPoint3& a, const RoundedPoint3& b, const RoundedPoint3& c,
+             const RoundedPoint3& d) {
   return filtered<Orient3dPred>(a, b, c, d);
 }
 int support_compare(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2, const Vec3d& bi,

@@ -41,6 +41,7 @@
 #include <cstddef>
 #include <minksum/predicates.hpp>
 #include <optional>
+#include <vector>
 
 #include "kernel/exact.hpp"
 #include "kernel/filter.hpp"
@@ -289,5 +290,54 @@ inline constexpr StageFunction<DotSignPred, Stage::exact> dot_sign_exact;
 inline constexpr StageFunction<CompareAlongPred, Stage::approx> compare_along_approx;
 inline constexpr StageFunction<CompareAlongPred, Stage::filter> compare_along_filter;
 inline constexpr StageFunction<CompareAlongPred, Stage::exact> compare_along_exact;
+
+// ===========================================================================
+// Rounded rational inputs (RoundedPoint3, kernel/rounded.cpp).
+
+// Whether the rational filter may use p.approx: every coordinate's rounding
+// is normal, or zero with the exact coordinate zero.  Then, the rounding
+// being faithful, |approx − exact| ≤ ε |approx| ≤ κ |approx| coordinatewise,
+// the premise of the rational filter (filter.hpp).
+bool rounded_usable(const RoundedPoint3& p);
+
+// Stage 1 of descriptor D on rounded points: the rational filter on the
+// cached roundings, or nothing (kDecline) when one is unusable.
+template <class D>
+ApproxOf<typename D::Shape> approx_rounded(const std::array<const RoundedPoint3*, D::arity>& p) {
+  for (const RoundedPoint3* q : p)
+    if (!rounded_usable(*q)) return {};
+  std::array<QGroup, D::Shape::K> g;
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const GroupIndex i = D::groups[k];
+    g[k] = {&p[i.p]->approx, i.q == kVector ? nullptr : &p[i.q]->approx};
+  }
+  return approx_rat<typename D::Shape>(g);
+}
+
+// plane_side's filter.  value = ((â x̂ + b̂ ŷ) + ĉ ẑ) − d̂ from the roundings;
+// bound = c · M̃ + 2^-1000 with M̃ = ((|â x̂| + |b̂ ŷ|) + |ĉ ẑ|) + |d̂|, c = 2^-49:
+//  * the inputs: a = â(1 + α), x = x̂(1 + ξ), |α|, |ξ| ≤ ε (faithful, normal
+//    or exactly zero), so |a x − â x̂| ≤ (2ε + ε²)|â x̂| and |d − d̂| ≤ ε |d̂|;
+//  * the evaluation: monomial paths of at most 4 roundings, γ_4 Σ|terms|,
+//    plus 3 product underflows of at most 2^-1074 each;
+//  * in all: |value − P| ≤ (γ_4 + 2ε + ε²) M + 4·2^-1074 with M the exact
+//    Σ|â_i x̂_i| + |d̂| ≤ (M̃ + 6·2^-1074)(1 − ε)^-4.  c = 8ε covers
+//    (γ_4 + 2ε + ε²)(1 − ε)^-6 ≈ 6ε (with the bound's own two roundings), and
+//    2^-1000 all the absolute terms.
+//  * range: M̃ < 2^1000 (else decline; an overflowed product makes M̃
+//    infinite or ≥ DBL_MAX), so nothing overflows.
+// status kDecline when a rounding is unusable or M̃ is out of range.
+inline constexpr double kPlaneSideFactor = 0x1p-49;
+inline constexpr double kPlaneSideAbsolute = 0x1p-1000;
+Approx plane_side_approx(const std::array<double, 4>& rounded, const RoundedPoint3& s);
+std::optional<int> plane_side_filter(const std::array<double, 4>& rounded, const RoundedPoint3& s);
+int plane_side_exact(const Plane& plane, const Point3& s);
+
+// nearest_plane's filter: the indices of the planes whose squared distance
+// to s an interval evaluation (CGAL::Interval_nt, rounded outward, on the
+// one-ulp enclosures of the faithful roundings) cannot prove larger than
+// the smallest upper bound.  Every minimiser is among them.
+std::vector<std::size_t> nearest_plane_candidates(const std::array<double, 4>* rounded,
+                                                  std::size_t n, const RoundedPoint3& s);
 
 }  // namespace minksum::detail

@@ -1,4 +1,4 @@
-// Tests of the sign predicates (src/kernel/predicates.cpp).
+// Tests of the sign predicates (src/kernel/: filter, exact, predicates).
 //
 // Every answer is compared with an oracle computed here, independently of the
 // kernel: the predicate's polynomial evaluated in mpq arithmetic on the exact

@@ -16,7 +16,7 @@
 // The answers never depend on the path: the filter only answers when its
 // bound proves the sign, and zero is always the exact zero.  The polynomials,
 // their degrees and the error-bound derivations are in docs/kernel.md and
-// next to each filter in src/kernel/predicates.cpp.
+// in src/kernel/filter.hpp (shapes) and predicates_internal.hpp (descriptors).
 //
 // Notation: for three points a0, a1, a2, their normal is
 //   n(a0, a1, a2) = (a1 − a0) × (a2 − a0),
@@ -33,6 +33,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <minksum/kernel.hpp>
 
@@ -128,6 +129,38 @@ int dot_sign(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1)
 int dot_sign(const Point3& p0, const Point3& p1, const Point3& q0, const Point3& q1);
 int compare_along(const Vec3d& d, const Vec3d& p, const Vec3d& q);
 int compare_along(const Point3& d, const Point3& p, const Point3& q);
+
+// ---------------------------------------------------------------------------
+// 7. Rational inputs with cached roundings (kernel/rounded.cpp).
+//
+// A RoundedPoint3 pairs an exact point with a faithful rounding of each of
+// its coordinates (|approx − exact| < one ulp of approx), such as
+// to_double(p) or ConvexPolytope::approx(v), which round to nearest.  The
+// filters below run on the cached doubles (no rational → double conversion
+// per call); a coordinate whose rounding is subnormal, or zero while the
+// exact coordinate is not, makes the filter decline.  The answers are the
+// exact ones, as for every predicate.
+struct RoundedPoint3 {
+  const Point3& exact;
+  const Vec3d& approx;
+};
+
+// orient3d(a.exact, b.exact, c.exact, d.exact); counted as orient3d.
+int orient3d(const RoundedPoint3& a, const RoundedPoint3& b, const RoundedPoint3& c,
+             const RoundedPoint3& d);
+
+struct Plane;  // <minksum/polytope.hpp>
+// plane.side(s.exact) = sign(a·x + b·y + c·z − d), given `rounded`, faithful
+// roundings of the plane's integers (a, b, c, d).  Not counted in the
+// statistics.
+int plane_side(const Plane& plane, const std::array<double, 4>& rounded, const RoundedPoint3& s);
+
+// The plane nearest to s: the index i minimising (d_i − n_i·s)² / |n_i|²
+// over planes[0..n), the smallest such index on ties.  rounded[i] holds
+// faithful roundings of plane i's (a, b, c, d).  Only the planes an interval
+// filter cannot rule out are compared exactly.  Precondition: n > 0.
+std::size_t nearest_plane(const Plane* const* planes, const std::array<double, 4>* rounded,
+                          std::size_t n, const RoundedPoint3& s);
 
 // ---------------------------------------------------------------------------
 // Filter statistics.

@@ -1,4 +1,5 @@
-// minksum — the two stages of every predicate, exposed separately.
+// minksum — the predicates' descriptors, the generic stages, and each
+// predicate's stages exposed separately.
 //
 // Internal header for the kernel and its tests: the public predicates in
 // <minksum/predicates.hpp> are `filter, then exact when the filter declines`.
@@ -26,195 +27,317 @@
 // dynamic_bound, else nothing.
 //
 // Stage 2, exact: the sign of P computed with GMP integers.
+// Layout of src/kernel/ (one file per stage):
+//   filter.hpp/.cpp   the shapes, their bounds and the approximation (stage 1)
+//   exact.hpp/.cpp    the GMP evaluation of the shapes (stage 2)
+//   this header       one descriptor per predicate and the generic stages
+//   predicates.cpp    the generic filtered predicate (count, filter, fall
+//                     back to exact) behind the public functions, and the
+//                     statistics
 #pragma once
 
 #include <array>
+#include <concepts>
+#include <cstddef>
 #include <minksum/predicates.hpp>
 #include <optional>
+#include <vector>
+
+#include "kernel/exact.hpp"
+#include "kernel/filter.hpp"
 
 namespace minksum::detail {
 
-struct Approx {
-  enum Status : unsigned char { kOk, kZero, kDecline };
-  Status status = kDecline;
-  double value = 0;  // approximates P · 2^scale
-  double bound = 0;  // |value − P · 2^scale| ≤ bound
-  int scale = 0;
-  bool has_dynamic = false;  // the dynamic step ran (Vec3d forms)
-  double dynamic_value = 0;  // approximates P · 2^dynamic_scale
-  double dynamic_bound = 0;  // |dynamic_value − P · 2^dynamic_scale| ≤ dynamic_bound
-  int dynamic_scale = 0;
+// ===========================================================================
+// The generic stages.  A descriptor D names
+//   id       its PredicateId (statistics),
+//   arity    how many points it reads,
+//   Shape    its expression shape (filter.hpp), with Shape::K group vectors,
+//   groups   each group as point indices {p, q}: points[p] − points[q], or
+//            the exact vector points[p] when q = kVector,
+//   exact    the exact shape on the loaded groups (exact.hpp),
+//   decide   the answer the filter's approximation proves, if any;
+// or, instead of Shape/groups/decide, its own filter(points).
+
+struct GroupIndex {
+  int p, q;
+};
+inline constexpr int kVector = -1;
+
+template <class Pt>
+concept KernelPoint = std::same_as<Pt, Vec3d> || std::same_as<Pt, Point3>;
+
+template <class D, class Pt>
+using PointsOf = std::array<const Pt*, D::arity>;
+
+// Stage 1 on exact doubles.
+template <class D>
+ApproxOf<typename D::Shape> approx_points(const PointsOf<D, Vec3d>& p, bool lazy) {
+  std::array<V, D::Shape::K> g;
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const GroupIndex i = D::groups[k];
+    g[k] = i.q == kVector ? vof(*p[i.p]) : vsub(*p[i.p], *p[i.q]);
+  }
+  return approx_vec<typename D::Shape>(g, lazy);
+}
+
+// Stage 1 on rationals: the Vec3d form when every coordinate is a double,
+// the rational filter on the rounded coordinates otherwise, nothing out of
+// range.
+template <class D>
+ApproxOf<typename D::Shape> approx_points(const PointsOf<D, Point3>& p, bool lazy) {
+  std::array<Vec3d, D::arity> v;
+  switch (convert_points(p, v)) {
+    case kAllDoubles: {
+      PointsOf<D, Vec3d> pv;
+      for (std::size_t i = 0; i < pv.size(); ++i) pv[i] = &v[i];
+      return approx_points<D>(pv, lazy);
+    }
+    case kRationals: {
+      std::array<QGroup, D::Shape::K> g;
+      for (std::size_t k = 0; k < g.size(); ++k) {
+        const GroupIndex i = D::groups[k];
+        g[k] = {&v[i.p], i.q == kVector ? nullptr : &v[i.q]};
+      }
+      return approx_rat<typename D::Shape>(g);
+    }
+    default:
+      return {};
+  }
+}
+
+// Stage 1': the answer the approximation certifies.
+template <class D, KernelPoint Pt>
+auto filter_points(const PointsOf<D, Pt>& p) {
+  if constexpr (requires { D::filter(p); })
+    return D::filter(p);
+  else
+    return D::decide(approx_points<D>(p, true));
+}
+
+// Stage 2.
+template <class D, KernelPoint Pt>
+auto exact_points(const PointsOf<D, Pt>& p) {
+  std::array<std::array<const Pt*, 2>, D::Shape::K> g;
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const GroupIndex i = D::groups[k];
+    g[k] = {p[i.p], i.q == kVector ? nullptr : p[i.q]};
+  }
+  return D::exact(load(g.data(), g.size()));
+}
+
+// ===========================================================================
+// The descriptors.  Constants and derivations: filter.hpp (shapes) and
+// docs/kernel.md (per predicate).
+
+struct SignPredicate {
+  static std::optional<int> decide(const Approx& a) { return certified_sign(a); }
 };
 
-// The three coordinates of a vector-valued polynomial (n1 × n2): one
-// semi-static bound for all three, one dynamic bound per coordinate.
-struct Approx3 {
-  Approx::Status status = Approx::kDecline;
-  std::array<double, 3> value{};
-  double bound = 0;
-  int scale = 0;
-  bool has_dynamic = false;
-  std::array<double, 3> dynamic_value{};
-  std::array<double, 3> dynamic_bound{};
-  int dynamic_scale = 0;
+// 1. orient3d = sign ⟨b − a, (c − a) × (d − a)⟩.  Shape det3: T = 6, N = 8
+//    (N' = 5); semi-static 0x1.80002p-47 · M_u M_v M_w (≈ 1.07e-14; with
+//    round-to-nearest only, ε/2 would give 5.33e-15, next to Shewchuk's
+//    (7u + 56u²) · permanent and CGAL's semi-static 5.11e-15 · Π max).
+struct Orient3dPred : SignPredicate {
+  static constexpr PredicateId id = PredicateId::orient3d;
+  static constexpr std::size_t arity = 4;  // a, b, c, d
+  using Shape = Det3;
+  static constexpr std::array<GroupIndex, 3> groups{{{1, 0}, {2, 0}, {3, 0}}};
+  static int exact(Workspace& w) { return exact_det3(w); }
 };
 
-// The sign the bounds prove (0 for kZero), or nothing.
-std::optional<int> certified_sign(const Approx& a);
-// Per coordinate of an Approx3: the proven sign of coordinate i, or nothing.
-std::optional<int> certified_sign(const Approx3& a, int i);
-
-// ---------------------------------------------------------------------------
-// The filter constants (derivation: src/kernel/predicates.cpp and
-// docs/kernel.md).  Each predicate polynomial is evaluated as one of five
-// expression shapes on difference vectors:
-//   det3  ⟨e, u × v⟩            (orient3d, support_compare, edge_facet_sign)
-//   dcc   ⟨a × b, c × d⟩        (arc_side, normals_dot_sign)
-//   ccc   (a × b) × (c × d)     (normals_parallel, normals_same_direction)
-//   dot   ⟨a, b⟩, a and b differences           (dot_sign)
-//   along ⟨d, e⟩, d exact, e a difference       (compare_along)
-struct FilterShape {
-  const char* name;
-  int degree;     // K: number of vector factors in each monomial
-  int terms;      // T: monomials of the evaluation tree, expanded
-  int ops_vec;    // N: roundings on a monomial's path, Vec3d inputs (with the differences)
-  int ops_rat;    // N': the same without the differences (rational inputs)
-  double c_vec;   // ≥ T·γ_N·(1 + 2^-20),  γ_n = n·ε/(1 − n·ε),  ε = 2^-52
-  double c_rat;   // ≥ T·γ_N'·(1 + 2^-20)
-  double c_dyn;   // ≥ γ_N·(1 + 2^-20)  (multiplies the permanent)
-  double lo, hi;  // every group maximum must lie in [lo, hi] (else rescale / decline)
+// 2. support_compare = sign ⟨bi − bj, (a1 − a0) × (a2 − a0)⟩.  Shape det3.
+struct SupportComparePred : SignPredicate {
+  static constexpr PredicateId id = PredicateId::support_compare;
+  static constexpr std::size_t arity = 5;  // a0, a1, a2, bi, bj
+  using Shape = Det3;
+  static constexpr std::array<GroupIndex, 3> groups{{{3, 4}, {1, 0}, {2, 0}}};
+  static int exact(Workspace& w) { return exact_det3(w); }
 };
 
-inline constexpr FilterShape kShapeDet3{
-    "det3", 3, 6, 8, 5, 0x1.80002p-47, 0x1.e0002p-48, 0x1.00002p-49, 0x1p-320, 0x1p333};
-inline constexpr FilterShape kShapeDcc{
-    "dcc", 4, 12, 11, 7, 0x1.08002p-45, 0x1.50002p-46, 0x1.60002p-49, 0x1p-240, 0x1p250};
-inline constexpr FilterShape kShapeCcc{
-    "ccc", 4, 8, 10, 6, 0x1.40002p-46, 0x1.80002p-47, 0x1.40002p-49, 0x1p-240, 0x1p250};
-inline constexpr FilterShape kShapeDot{
-    "dot", 2, 3, 5, 3, 0x1.e0002p-49, 0x1.20002p-49, 0x1.40002p-50, 0x1p-480, 0x1p500};
-inline constexpr FilterShape kShapeAlong{
-    "along", 2, 3, 4, 3, 0x1.80002p-49, 0x1.20002p-49, 0x1.00002p-50, 0x1p-480, 0x1p500};
-inline constexpr std::array<const FilterShape*, 5> kShapes{&kShapeDet3, &kShapeDcc, &kShapeCcc,
-                                                           &kShapeDot, &kShapeAlong};
-// The absolute term of the dynamic bound (covers underflow, see the .cpp).
-inline constexpr double kDynamicAbsolute = 0x1p-1000;
+// 3. edge_facet_sign = sign ⟨p1 − p0, (a1 − a0) × (a2 − a0)⟩.  Shape det3.
+struct EdgeFacetSignPred : SignPredicate {
+  static constexpr PredicateId id = PredicateId::edge_facet_sign;
+  static constexpr std::size_t arity = 5;  // p0, p1, a0, a1, a2
+  using Shape = Det3;
+  static constexpr std::array<GroupIndex, 3> groups{{{1, 0}, {3, 2}, {4, 2}}};
+  static int exact(Workspace& w) { return exact_det3(w); }
+};
 
-// The slack factor folded into every constant.
-inline constexpr double kSlack = 1 + 0x1p-20;
-// Relative error bound κ of the rational → double conversion used by the
-// Point3 filters (2ε/(1 − 3ε), rounded up to 4ε = 2^-50).
-inline constexpr double kConvEps = 0x1p-50;
+// 4. arc_side = sign ⟨(p1 − p0) × (q1 − q0), (r1 − r0) × (r2 − r0)⟩.
+//    Shape dcc: T = 12, N = 11 (N' = 7); semi-static 0x1.08002p-45 · Π M.
+struct ArcSidePred : SignPredicate {
+  static constexpr PredicateId id = PredicateId::arc_side;
+  static constexpr std::size_t arity = 7;  // p0, p1, q0, q1, r0, r1, r2
+  using Shape = Dcc;
+  static constexpr std::array<GroupIndex, 4> groups{{{1, 0}, {3, 2}, {5, 4}, {6, 4}}};
+  static int exact(Workspace& w) { return exact_dcc(w); }
+};
 
-// The rational → double conversion of the Point3 filters.  Returns false
-// when q's double would not lie in the normal range [2^-1022, 2^1023] (the
-// filter then declines); otherwise |out − q| ≤ kConvEps · |out|, and `exact`
-// tells whether out = q (q is a double).  Zero converts exactly.
-bool rational_to_filter_double(const Rational& q, double& out, bool& exact);
+// 5a. normals_dot_sign = sign ⟨n1, n2⟩, n1 = (a1 − a0) × (a2 − a0),
+//     n2 = (b1 − b0) × (b2 − b0).  Shape dcc.
+struct NormalsDotPred : SignPredicate {
+  static constexpr PredicateId id = PredicateId::normals_dot_sign;
+  static constexpr std::size_t arity = 6;  // a0, a1, a2, b0, b1, b2
+  using Shape = Dcc;
+  static constexpr std::array<GroupIndex, 4> groups{{{1, 0}, {2, 0}, {4, 3}, {5, 3}}};
+  static int exact(Workspace& w) { return exact_dcc(w); }
+};
 
-// ---------------------------------------------------------------------------
-// Stage functions, one set per predicate and input type.
+// 5b. normals_parallel: n1 × n2 = 0, three polynomials, shape ccc: T = 8,
+//     N = 10 (N' = 6); semi-static 0x1.40002p-46 · Π M.  The filter proves
+//     "not parallel" (a coordinate certified non-zero) or "a normal is zero"
+//     (a zero difference vector); "parallel" otherwise needs the exact stage.
+struct NormalsParallelPred {
+  static constexpr PredicateId id = PredicateId::normals_parallel;
+  static constexpr std::size_t arity = 6;
+  using Shape = Ccc;
+  static constexpr std::array<GroupIndex, 4> groups = NormalsDotPred::groups;
+  static bool exact(Workspace& w) { return exact_parallel(w); }
+  static std::optional<bool> decide(const Approx3& c) {
+    if (c.status == Approx::kZero) return true;  // n1 = 0 or n2 = 0
+    for (int i = 0; i < 3; ++i)
+      if (auto s = certified_sign(c, i); s && *s != 0) return false;
+    return std::nullopt;
+  }
+};
 
-Approx orient3d_approx(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
-Approx orient3d_approx(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
-std::optional<int> orient3d_filter(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
-std::optional<int> orient3d_filter(const Point3& a, const Point3& b, const Point3& c,
-                                   const Point3& d);
-int orient3d_exact(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
-int orient3d_exact(const Point3& a, const Point3& b, const Point3& c, const Point3& d);
+// 5c. normals_same_direction: false as soon as the filter proves ⟨n1, n2⟩ ≤ 0
+//     (5a) or non-parallel (5b); otherwise exact.
+struct NormalsSameDirectionPred {
+  static constexpr PredicateId id = PredicateId::normals_same_direction;
+  static constexpr std::size_t arity = 6;
+  using Shape = Ccc;  // for the exact stage's groups
+  static constexpr std::array<GroupIndex, 4> groups = NormalsDotPred::groups;
+  static bool exact(Workspace& w) { return exact_same_direction(w); }
+  template <KernelPoint Pt>
+  static std::optional<bool> filter(const std::array<const Pt*, 6>& p) {
+    if (auto s = certified_sign(approx_points<NormalsDotPred>(p, true)); s && *s <= 0) return false;
+    if (auto par = NormalsParallelPred::decide(approx_points<NormalsParallelPred>(p, true));
+        par && !*par)
+      return false;
+    return std::nullopt;
+  }
+};
 
-Approx support_compare_approx(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2, const Vec3d& bi,
-                              const Vec3d& bj);
-Approx support_compare_approx(const Point3& a0, const Point3& a1, const Point3& a2,
-                              const Point3& bi, const Point3& bj);
-std::optional<int> support_compare_filter(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2,
-                                          const Vec3d& bi, const Vec3d& bj);
-std::optional<int> support_compare_filter(const Point3& a0, const Point3& a1, const Point3& a2,
-                                          const Point3& bi, const Point3& bj);
-int support_compare_exact(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2, const Vec3d& bi,
-                          const Vec3d& bj);
-int support_compare_exact(const Point3& a0, const Point3& a1, const Point3& a2, const Point3& bi,
-                          const Point3& bj);
+// 6a. dot_sign = sign ⟨p1 − p0, q1 − q0⟩.  Shape dot: T = 3, N = 5 (N' = 3).
+struct DotSignPred : SignPredicate {
+  static constexpr PredicateId id = PredicateId::dot_sign;
+  static constexpr std::size_t arity = 4;  // p0, p1, q0, q1
+  using Shape = Dot;
+  static constexpr std::array<GroupIndex, 2> groups{{{1, 0}, {3, 2}}};
+  static int exact(Workspace& w) { return exact_dot(w); }
+};
 
-Approx edge_facet_sign_approx(const Vec3d& p0, const Vec3d& p1, const Vec3d& a0, const Vec3d& a1,
-                              const Vec3d& a2);
-Approx edge_facet_sign_approx(const Point3& p0, const Point3& p1, const Point3& a0,
-                              const Point3& a1, const Point3& a2);
-std::optional<int> edge_facet_sign_filter(const Vec3d& p0, const Vec3d& p1, const Vec3d& a0,
-                                          const Vec3d& a1, const Vec3d& a2);
-std::optional<int> edge_facet_sign_filter(const Point3& p0, const Point3& p1, const Point3& a0,
-                                          const Point3& a1, const Point3& a2);
-int edge_facet_sign_exact(const Vec3d& p0, const Vec3d& p1, const Vec3d& a0, const Vec3d& a1,
-                          const Vec3d& a2);
-int edge_facet_sign_exact(const Point3& p0, const Point3& p1, const Point3& a0, const Point3& a1,
-                          const Point3& a2);
+// 6b. compare_along = sign ⟨d, p − q⟩, d exact.  Shape along: T = 3, N = 4.
+struct CompareAlongPred : SignPredicate {
+  static constexpr PredicateId id = PredicateId::compare_along;
+  static constexpr std::size_t arity = 3;  // d, p, q
+  using Shape = Along;
+  static constexpr std::array<GroupIndex, 2> groups{{{0, kVector}, {1, 2}}};
+  static int exact(Workspace& w) { return exact_dot(w); }
+};
 
-Approx arc_side_approx(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1,
-                       const Vec3d& r0, const Vec3d& r1, const Vec3d& r2);
-Approx arc_side_approx(const Point3& p0, const Point3& p1, const Point3& q0, const Point3& q1,
-                       const Point3& r0, const Point3& r1, const Point3& r2);
-std::optional<int> arc_side_filter(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0,
-                                   const Vec3d& q1, const Vec3d& r0, const Vec3d& r1,
-                                   const Vec3d& r2);
-std::optional<int> arc_side_filter(const Point3& p0, const Point3& p1, const Point3& q0,
-                                   const Point3& q1, const Point3& r0, const Point3& r1,
-                                   const Point3& r2);
-int arc_side_exact(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1,
-                   const Vec3d& r0, const Vec3d& r1, const Vec3d& r2);
-int arc_side_exact(const Point3& p0, const Point3& p1, const Point3& q0, const Point3& q1,
-                   const Point3& r0, const Point3& r1, const Point3& r2);
+// ===========================================================================
+// Each predicate's stages, callable on its points (all Vec3d or all Point3)
+// as in the public function: orient3d_approx(a, b, c, d), ...
+//   *_approx  both steps of stage 1 (not lazy: the dynamic step always runs
+//             on Vec3d inputs), for the tests;
+//   *_filter  stage 1' (lazy);
+//   *_exact   stage 2.
 
-Approx normals_dot_approx(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2, const Vec3d& b0,
-                          const Vec3d& b1, const Vec3d& b2);
-Approx normals_dot_approx(const Point3& a0, const Point3& a1, const Point3& a2, const Point3& b0,
-                          const Point3& b1, const Point3& b2);
-std::optional<int> normals_dot_sign_filter(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2,
-                                           const Vec3d& b0, const Vec3d& b1, const Vec3d& b2);
-std::optional<int> normals_dot_sign_filter(const Point3& a0, const Point3& a1, const Point3& a2,
-                                           const Point3& b0, const Point3& b1, const Point3& b2);
-int normals_dot_sign_exact(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2, const Vec3d& b0,
-                           const Vec3d& b1, const Vec3d& b2);
-int normals_dot_sign_exact(const Point3& a0, const Point3& a1, const Point3& a2, const Point3& b0,
-                           const Point3& b1, const Point3& b2);
+enum class Stage { approx, filter, exact };
 
+template <class D, Stage S>
+struct StageFunction {
+  template <KernelPoint Pt, class... More>
+    requires(sizeof...(More) + 1 == D::arity && (std::same_as<More, Pt> && ...))
+  auto operator()(const Pt& first, const More&... more) const {
+    const PointsOf<D, Pt> p{&first, &more...};
+    if constexpr (S == Stage::approx)
+      return approx_points<D>(p, false);
+    else if constexpr (S == Stage::filter)
+      return filter_points<D>(p);
+    else
+      return exact_points<D>(p);
+  }
+};
+
+inline constexpr StageFunction<Orient3dPred, Stage::approx> orient3d_approx;
+inline constexpr StageFunction<Orient3dPred, Stage::filter> orient3d_filter;
+inline constexpr StageFunction<Orient3dPred, Stage::exact> orient3d_exact;
+inline constexpr StageFunction<SupportComparePred, Stage::approx> support_compare_approx;
+inline constexpr StageFunction<SupportComparePred, Stage::filter> support_compare_filter;
+inline constexpr StageFunction<SupportComparePred, Stage::exact> support_compare_exact;
+inline constexpr StageFunction<EdgeFacetSignPred, Stage::approx> edge_facet_sign_approx;
+inline constexpr StageFunction<EdgeFacetSignPred, Stage::filter> edge_facet_sign_filter;
+inline constexpr StageFunction<EdgeFacetSignPred, Stage::exact> edge_facet_sign_exact;
+inline constexpr StageFunction<ArcSidePred, Stage::approx> arc_side_approx;
+inline constexpr StageFunction<ArcSidePred, Stage::filter> arc_side_filter;
+inline constexpr StageFunction<ArcSidePred, Stage::exact> arc_side_exact;
+inline constexpr StageFunction<NormalsDotPred, Stage::approx> normals_dot_approx;
+inline constexpr StageFunction<NormalsDotPred, Stage::filter> normals_dot_sign_filter;
+inline constexpr StageFunction<NormalsDotPred, Stage::exact> normals_dot_sign_exact;
 // n1 × n2 approximated (the parallel and same-direction tests share it).
-Approx3 normals_cross_approx(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2, const Vec3d& b0,
-                             const Vec3d& b1, const Vec3d& b2);
-Approx3 normals_cross_approx(const Point3& a0, const Point3& a1, const Point3& a2, const Point3& b0,
-                             const Point3& b1, const Point3& b2);
-std::optional<bool> normals_parallel_filter(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2,
-                                            const Vec3d& b0, const Vec3d& b1, const Vec3d& b2);
-std::optional<bool> normals_parallel_filter(const Point3& a0, const Point3& a1, const Point3& a2,
-                                            const Point3& b0, const Point3& b1, const Point3& b2);
-bool normals_parallel_exact(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2, const Vec3d& b0,
-                            const Vec3d& b1, const Vec3d& b2);
-bool normals_parallel_exact(const Point3& a0, const Point3& a1, const Point3& a2, const Point3& b0,
-                            const Point3& b1, const Point3& b2);
-std::optional<bool> normals_same_direction_filter(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2,
-                                                  const Vec3d& b0, const Vec3d& b1,
-                                                  const Vec3d& b2);
-std::optional<bool> normals_same_direction_filter(const Point3& a0, const Point3& a1,
-                                                  const Point3& a2, const Point3& b0,
-                                                  const Point3& b1, const Point3& b2);
-bool normals_same_direction_exact(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2,
-                                  const Vec3d& b0, const Vec3d& b1, const Vec3d& b2);
-bool normals_same_direction_exact(const Point3& a0, const Point3& a1, const Point3& a2,
-                                  const Point3& b0, const Point3& b1, const Point3& b2);
+inline constexpr StageFunction<NormalsParallelPred, Stage::approx> normals_cross_approx;
+inline constexpr StageFunction<NormalsParallelPred, Stage::filter> normals_parallel_filter;
+inline constexpr StageFunction<NormalsParallelPred, Stage::exact> normals_parallel_exact;
+inline constexpr StageFunction<NormalsSameDirectionPred, Stage::filter> normals_same_direction_filter;
+inline constexpr StageFunction<NormalsSameDirectionPred, Stage::exact> normals_same_direction_exact;
+inline constexpr StageFunction<DotSignPred, Stage::approx> dot_sign_approx;
+inline constexpr StageFunction<DotSignPred, Stage::filter> dot_sign_filter;
+inline constexpr StageFunction<DotSignPred, Stage::exact> dot_sign_exact;
+inline constexpr StageFunction<CompareAlongPred, Stage::approx> compare_along_approx;
+inline constexpr StageFunction<CompareAlongPred, Stage::filter> compare_along_filter;
+inline constexpr StageFunction<CompareAlongPred, Stage::exact> compare_along_exact;
 
-Approx dot_sign_approx(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1);
-Approx dot_sign_approx(const Point3& p0, const Point3& p1, const Point3& q0, const Point3& q1);
-std::optional<int> dot_sign_filter(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0,
-                                   const Vec3d& q1);
-std::optional<int> dot_sign_filter(const Point3& p0, const Point3& p1, const Point3& q0,
-                                   const Point3& q1);
-int dot_sign_exact(const Vec3d& p0, const Vec3d& p1, const Vec3d& q0, const Vec3d& q1);
-int dot_sign_exact(const Point3& p0, const Point3& p1, const Point3& q0, const Point3& q1);
+// ===========================================================================
+// Rounded rational inputs (RoundedPoint3, kernel/rounded.cpp).
 
-Approx compare_along_approx(const Vec3d& d, const Vec3d& p, const Vec3d& q);
-Approx compare_along_approx(const Point3& d, const Point3& p, const Point3& q);
-std::optional<int> compare_along_filter(const Vec3d& d, const Vec3d& p, const Vec3d& q);
-std::optional<int> compare_along_filter(const Point3& d, const Point3& p, const Point3& q);
-int compare_along_exact(const Vec3d& d, const Vec3d& p, const Vec3d& q);
-int compare_along_exact(const Point3& d, const Point3& p, const Point3& q);
+// Whether the rational filter may use p.approx: every coordinate's rounding
+// is normal, or zero with the exact coordinate zero.  Then, the rounding
+// being faithful, |approx − exact| ≤ ε |approx| ≤ κ |approx| coordinatewise,
+// the premise of the rational filter (filter.hpp).
+bool rounded_usable(const RoundedPoint3& p);
+
+// Stage 1 of descriptor D on rounded points: the rational filter on the
+// cached roundings, or nothing (kDecline) when one is unusable.
+template <class D>
+ApproxOf<typename D::Shape> approx_rounded(const std::array<const RoundedPoint3*, D::arity>& p) {
+  for (const RoundedPoint3* q : p)
+    if (!rounded_usable(*q)) return {};
+  std::array<QGroup, D::Shape::K> g;
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const GroupIndex i = D::groups[k];
+    g[k] = {&p[i.p]->approx, i.q == kVector ? nullptr : &p[i.q]->approx};
+  }
+  return approx_rat<typename D::Shape>(g);
+}
+
+// plane_side's filter.  value = ((â x̂ + b̂ ŷ) + ĉ ẑ) − d̂ from the roundings;
+// bound = c · M̃ + 2^-1000 with M̃ = ((|â x̂| + |b̂ ŷ|) + |ĉ ẑ|) + |d̂|, c = 2^-49:
+//  * the inputs: a = â(1 + α), x = x̂(1 + ξ), |α|, |ξ| ≤ ε (faithful, normal
+//    or exactly zero), so |a x − â x̂| ≤ (2ε + ε²)|â x̂| and |d − d̂| ≤ ε |d̂|;
+//  * the evaluation: monomial paths of at most 4 roundings, γ_4 Σ|terms|,
+//    plus 3 product underflows of at most 2^-1074 each;
+//  * in all: |value − P| ≤ (γ_4 + 2ε + ε²) M + 4·2^-1074 with M the exact
+//    Σ|â_i x̂_i| + |d̂| ≤ (M̃ + 6·2^-1074)(1 − ε)^-4.  c = 8ε covers
+//    (γ_4 + 2ε + ε²)(1 − ε)^-6 ≈ 6ε (with the bound's own two roundings), and
+//    2^-1000 all the absolute terms.
+//  * range: M̃ < 2^1000 (else decline; an overflowed product makes M̃
+//    infinite or ≥ DBL_MAX), so nothing overflows.
+// status kDecline when a rounding is unusable or M̃ is out of range.
+inline constexpr double kPlaneSideFactor = 0x1p-49;
+inline constexpr double kPlaneSideAbsolute = 0x1p-1000;
+Approx plane_side_approx(const std::array<double, 4>& rounded, const RoundedPoint3& s);
+std::optional<int> plane_side_filter(const std::array<double, 4>& rounded, const RoundedPoint3& s);
+int plane_side_exact(const Plane& plane, const Point3& s);
+
+// nearest_plane's filter: the indices of the planes whose squared distance
+// to s an interval evaluation (CGAL::Interval_nt, rounded outward, on the
+// one-ulp enclosures of the faithful roundings) cannot prove larger than
+// the smallest upper bound.  Every minimiser is among them.
+std::vector<std::size_t> nearest_plane_candidates(const std::array<double, 4>* rounded,
+                                                  std::size_t n, const RoundedPoint3& s);
 
 }  // namespace minksum::detail

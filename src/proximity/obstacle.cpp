@@ -15,15 +15,14 @@
 //     global optimum (s − x lies in the normal cone).  The only local trap is a
 //     facet whose plane does not have s strictly above it while s projects
 //     into it; there the walk falls back to a scan of the facets s sees.
-//   * penetration depth: a filtered scan of all facet planes (doubles with a
-//     proven margin) followed by exact comparisons among the candidates.
+//   * penetration depth: the kernel's nearest_plane over all facet planes (an
+//     interval filter, then exact comparisons among the candidates).
 #include <minksum/error.hpp>
 #include <minksum/predicates.hpp>
 #include <minksum/proximity.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <tuple>
 #include <unordered_map>
 
@@ -105,18 +104,14 @@ void TranslationalObstacle::rebuild() {
   normal_.resize(nf);
   offset_.resize(nf);
   norm2_.resize(nf);
-  unit_plane_.resize(nf);
   plane_approx_.resize(nf);
   for (Index f = 0; f < nf; ++f) {
     const Plane& pl = m.plane(f);
     normal_[f] = pl.normal();
     offset_[f] = Rational(pl.d);
     norm2_[f] = squared_norm(normal_[f]);
-    const double len = std::sqrt(to_double(norm2_[f]));
     plane_approx_[f] = {to_double(Rational(pl.a)), to_double(Rational(pl.b)), to_double(Rational(pl.c)),
                         to_double(offset_[f])};
-    unit_plane_[f] = {to_double(normal_[f].x) / len, to_double(normal_[f].y) / len,
-                      to_double(normal_[f].z) / len, to_double(offset_[f]) / len};
   }
   // avg(P) − avg(Q) is strictly inside M and has the obvious decomposition.
   center_ = average(p_.points()) - average(q_.points());
@@ -221,62 +216,20 @@ struct TranslationalObstacle::RayApprox {
   Vec3d apex, through;
 };
 
-namespace {
-constexpr double kEps = 0x1p-53;
-}  // namespace
-
-// Filtered orient3d(apex, m[a], m[b], through) for rational points.  Every
-// input is rounded to the nearest double (relative error <= ε = 2^-53 each);
-// with D_i = |p_i| + |apex| (componentwise) bounding the rows of the exact
-// matrix, rounding the inputs and the differences moves each row by at most
-// 3ε·D_i, which moves the determinant by at most 9ε·perm(D) (multilinearity,
-// plus O(ε²)); evaluating the determinant of the rounded rows adds at most
-// 8ε·perm(D)(1 + 3ε).  The filter answers only when |det| > 64ε·perm(D) +
-// 1e-300 (the absolute term covers subnormal rounding); otherwise the exact
-// predicate decides.
+// orient3d(apex, m[a], m[b], through) on the cached roundings of M's
+// vertices, the apex and the ray point (kernel: orient3d on RoundedPoint3).
 int TranslationalObstacle::orient_filtered(const Point3& apex, Index a, Index b, const Point3& through,
                                            const RayApprox& ra) const {
   const ConvexPolytope& m = sum_.polytope;
-  const Vec3d& pa = m.approx(a);
-  const Vec3d& pb = m.approx(b);
-  const Vec3d& c = ra.apex;
-  const double r[3][3] = {{pa.x - c.x, pa.y - c.y, pa.z - c.z},
-                          {pb.x - c.x, pb.y - c.y, pb.z - c.z},
-                          {ra.through.x - c.x, ra.through.y - c.y, ra.through.z - c.z}};
-  const double ac[3] = {std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)};
-  const double D[3][3] = {{std::fabs(pa.x) + ac[0], std::fabs(pa.y) + ac[1], std::fabs(pa.z) + ac[2]},
-                          {std::fabs(pb.x) + ac[0], std::fabs(pb.y) + ac[1], std::fabs(pb.z) + ac[2]},
-                          {std::fabs(ra.through.x) + ac[0], std::fabs(ra.through.y) + ac[1],
-                           std::fabs(ra.through.z) + ac[2]}};
-  const double det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) -
-                     r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
-                     r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
-  const double perm = D[0][0] * (D[1][1] * D[2][2] + D[1][2] * D[2][1]) +
-                      D[0][1] * (D[1][0] * D[2][2] + D[1][2] * D[2][0]) +
-                      D[0][2] * (D[1][0] * D[2][1] + D[1][1] * D[2][0]);
-  const double bound = 64 * kEps * perm + 1e-300;
-  if (std::isfinite(perm) && std::isfinite(det)) {
-    if (det > bound) return 1;
-    if (det < -bound) return -1;
-  }
-  return orient3d(apex, m.point(a), m.point(b), through);
+  return orient3d(RoundedPoint3{apex, ra.apex}, RoundedPoint3{m.point(a), m.approx(a)},
+                  RoundedPoint3{m.point(b), m.approx(b)}, RoundedPoint3{through, ra.through});
 }
 
-// Filtered sign of a·s − d (integer plane, rational s): the rounded terms
-// carry relative errors <= ε each, the 4-term sum adds <= 4ε of the sum of
-// magnitudes; the filter answers when the value exceeds 16ε·(|a||sx| + |b||sy|
-// + |c||sz| + |d|) + 1e-300.
+// The side of s with respect to facet f's plane, filtered on the plane's
+// cached roundings (kernel: plane_side).
 int TranslationalObstacle::side_filtered(Index f, const Point3& s) const {
-  const auto& p = plane_approx_[f];
   const Vec3d sd = to_double(s);
-  const double v = p[0] * sd.x + p[1] * sd.y + p[2] * sd.z - p[3];
-  const double mag = std::fabs(p[0] * sd.x) + std::fabs(p[1] * sd.y) + std::fabs(p[2] * sd.z) + std::fabs(p[3]);
-  const double bound = 16 * kEps * mag + 1e-300;
-  if (std::isfinite(mag) && std::isfinite(v)) {
-    if (v > bound) return 1;
-    if (v < -bound) return -1;
-  }
-  return sum_.polytope.plane(f).side(s);
+  return plane_side(sum_.polytope.plane(f), plane_approx_[f], RoundedPoint3{s, sd});
 }
 
 bool TranslationalObstacle::in_cone(Index f, const Point3& apex, const Point3& through, const RayApprox& ra,
@@ -596,35 +549,13 @@ DepthResult TranslationalObstacle::penetration_depth_point(const Point3& s) {
   if (c.status != ContactStatus::penetrating) return r;
   const ConvexPolytope& m = sum_.polytope;
   const Index nf = m.num_facets();
-  // Filter: approximate distances (d − n̂·s) with unit normals in doubles.
-  // Each value is within 1e-12·(|s|∞·3 + |d̂| + 1) of the exact distance (the
-  // computed unit normal and offset carry a few ulps of relative error, s a
-  // half ulp; the margin is ~10³ times the worst case).  The exact minimum is
-  // among the facets whose approximation is within twice that margin of the
-  // smallest approximation; only those are compared exactly.
+  // The facet nearest to s, the first on ties (kernel: nearest_plane, an
+  // interval filter on the planes' roundings, then exact comparisons).
   const Vec3d sd = to_double(s);
-  const double smax = std::max({std::fabs(sd.x), std::fabs(sd.y), std::fabs(sd.z)});
-  std::vector<double> approx(nf);
-  double best = std::numeric_limits<double>::infinity();
-  double dmax = 0;
-  for (Index f = 0; f < nf; ++f) {
-    const auto& u = unit_plane_[f];
-    approx[f] = u[3] - (u[0] * sd.x + u[1] * sd.y + u[2] * sd.z);
-    best = std::min(best, approx[f]);
-    dmax = std::max(dmax, std::fabs(u[3]));
-  }
-  const double margin = 2e-12 * (3 * smax + dmax + 1);
-  Index arg = kNoIndex;
-  Rational arg_gap, gap;  // d − n·s (>= 0 for s inside)
-  for (Index f = 0; f < nf; ++f) {
-    if (!(approx[f] <= best + margin) && std::isfinite(approx[f])) continue;
-    gap = offset_[f] - dot(normal_[f], s);
-    // gap_f² / |n_f|² < gap_arg² / |n_arg|²
-    if (arg == kNoIndex || gap * gap * norm2_[arg] < arg_gap * arg_gap * norm2_[f]) {
-      arg = f;
-      arg_gap = gap;
-    }
-  }
+  std::vector<const Plane*> planes(nf);
+  for (Index f = 0; f < nf; ++f) planes[f] = &m.plane(f);
+  const Index arg = Index(nearest_plane(planes.data(), plane_approx_.data(), nf, RoundedPoint3{s, sd}));
+  const Rational arg_gap = offset_[arg] - dot(normal_[arg], s);  // d − n·s (> 0 for s inside)
   last_depth_ = arg;
   const Rational t = arg_gap / norm2_[arg];  // s + t n lies on the facet plane
   r.squared_depth = t * arg_gap;

@@ -1,0 +1,206 @@
+// Tests of the kernel predicates on rational points with cached roundings
+// (RoundedPoint3: orient3d, plane_side, nearest_plane; src/kernel/rounded.cpp).
+//
+// Oracles: the polynomials in mpq arithmetic on the exact inputs.  Every
+// filter answer must equal the oracle's sign, every approximation must keep
+// |value − P| ≤ bound (checked in rationals), in all four IEEE rounding
+// modes, on random and on degenerate inputs (fixed seeds, printed on failure).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cfenv>
+#include <cstdint>
+#include <minksum/kernel.hpp>
+#include <minksum/polytope.hpp>
+#include <minksum/predicates.hpp>
+#include <random>
+#include <vector>
+
+#include "kernel/predicates_internal.hpp"
+
+using namespace minksum;
+
+namespace {
+
+struct Gen {
+  std::mt19937_64 rng;
+  explicit Gen(std::uint64_t seed) : rng(seed) {}
+  std::int64_t integer(std::int64_t lo, std::int64_t hi) {
+    return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng);
+  }
+  // A rational of varied size: small fractions, huge integers, tiny values.
+  Rational rational() {
+    Rational q(mpz_class(long(integer(-1000000, 1000000))), mpz_class(long(integer(1, 999))));
+    q.canonicalize();
+    switch (integer(0, 5)) {
+      case 0: return q * Rational(mpz_class(1) << 70);
+      case 1: return q / Rational(mpz_class(1) << 60);
+      case 2: return Rational(0);
+      default: return q;
+    }
+  }
+  Point3 point() { return {rational(), rational(), rational()}; }
+};
+
+struct Rounded {
+  Point3 exact;
+  Vec3d approx;
+  explicit Rounded(Point3 p) : exact(std::move(p)), approx(to_double(exact)) {}
+  RoundedPoint3 ref() const { return {exact, approx}; }
+};
+
+Rational qdet(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  return dot(b - a, cross(c - a, d - a));
+}
+
+// Runs f in each rounding mode.
+template <class F>
+void in_all_modes(F&& f) {
+  struct Restore {
+    ~Restore() { std::fesetround(FE_TONEAREST); }
+  } restore;
+  for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+    ASSERT_EQ(std::fesetround(mode), 0);
+    f(mode);
+  }
+}
+
+void check_bound(const detail::Approx& a, const Rational& exact, std::uint64_t seed, int mode) {
+  if (a.status != detail::Approx::kOk) return;
+  ASSERT_LE(abs(Rational(a.value) - exact), Rational(a.bound)) << "seed " << seed << " mode " << mode;
+}
+
+}  // namespace
+
+TEST(RoundedPredicates, Orient3dAgreesAndBoundHolds) {
+  for (std::uint64_t seed = 1; seed <= 400; ++seed) {
+    Gen g(seed);
+    Rounded a(g.point()), b(g.point()), c(g.point());
+    // Half of the cases: d coplanar with a, b, c (a rational combination).
+    Point3 dp = g.point();
+    if (seed % 2 == 0) {
+      Rational s(mpz_class(long(g.integer(-5, 5))), mpz_class(7)), t(mpz_class(long(g.integer(-5, 5))), mpz_class(3));
+      s.canonicalize(), t.canonicalize();
+      dp = a.exact + s * (b.exact - a.exact) + t * (c.exact - a.exact);
+    }
+    Rounded d(dp);
+    const Rational P = qdet(a.exact, b.exact, c.exact, d.exact);
+    in_all_modes([&](int mode) {
+      const RoundedPoint3 ra = a.ref(), rb = b.ref(), rc = c.ref(), rd = d.ref();
+      const auto approx = detail::approx_rounded<detail::Orient3dPred>({&ra, &rb, &rc, &rd});
+      check_bound(approx, P, seed, mode);
+      if (auto s = detail::certified_sign(approx)) ASSERT_EQ(*s, sgn(P)) << "seed " << seed;
+      ASSERT_EQ(orient3d(ra, rb, rc, rd), sgn(P)) << "seed " << seed << " mode " << mode;
+    });
+  }
+}
+
+TEST(RoundedPredicates, Orient3dDeclinesOnUnusableRoundings) {
+  // A coordinate below the subnormal range rounds to zero: unusable.
+  const Point3 tiny(Rational(1) / Rational(mpz_class(1) << 1100), Rational(0), Rational(0));
+  const Rounded t(tiny), o(Point3(0, 0, 0)), x(Point3(1, 0, 0)), y(Point3(0, 1, 0));
+  EXPECT_FALSE(detail::rounded_usable(t.ref()));
+  EXPECT_TRUE(detail::rounded_usable(o.ref()));
+  const RoundedPoint3 rt = t.ref(), ro = o.ref(), rx = x.ref(), ry = y.ref();
+  EXPECT_EQ(detail::approx_rounded<detail::Orient3dPred>({&ro, &rx, &ry, &rt}).status,
+            detail::Approx::kDecline);
+  EXPECT_EQ(orient3d(ro, rx, ry, rt), 0);  // t lies in the plane z = 0
+}
+
+TEST(RoundedPredicates, PlaneSideAgreesAndBoundHolds) {
+  for (std::uint64_t seed = 1; seed <= 2000; ++seed) {
+    Gen g(seed);
+    Plane pl;
+    const int bits = int(g.integer(1, 80));
+    auto coef = [&] { return Integer(long(g.integer(-1000000, 1000000))) << (bits / 2); };
+    pl.a = coef(), pl.b = coef(), pl.c = coef();
+    Rounded s(g.point());
+    if (seed % 3 == 0) {  // s on the plane: d = n·s must be an integer, so scale the plane
+      const Rational v = Rational(pl.a) * s.exact.x + Rational(pl.b) * s.exact.y + Rational(pl.c) * s.exact.z;
+      const Integer den = v.get_den();
+      pl.a *= den, pl.b *= den, pl.c *= den;
+      pl.d = v.get_num();
+    } else {
+      pl.d = coef() << int(g.integer(0, 40));
+    }
+    const std::array<double, 4> r{to_double(Rational(pl.a)), to_double(Rational(pl.b)),
+                                  to_double(Rational(pl.c)), to_double(Rational(pl.d))};
+    const Rational P = Rational(pl.a) * s.exact.x + Rational(pl.b) * s.exact.y +
+                       Rational(pl.c) * s.exact.z - Rational(pl.d);
+    in_all_modes([&](int mode) {
+      const auto approx = detail::plane_side_approx(r, s.ref());
+      check_bound(approx, P, seed, mode);
+      if (auto f = detail::plane_side_filter(r, s.ref())) ASSERT_EQ(*f, sgn(P)) << "seed " << seed;
+      ASSERT_EQ(plane_side(pl, r, s.ref()), sgn(P)) << "seed " << seed << " mode " << mode;
+      ASSERT_EQ(detail::plane_side_exact(pl, s.exact), sgn(P)) << "seed " << seed;
+    });
+  }
+}
+
+TEST(RoundedPredicates, PlaneSideFilterDecidesEasyCases) {
+  Plane pl{Integer(1), Integer(0), Integer(0), Integer(0)};
+  const std::array<double, 4> r{1, 0, 0, 0};
+  const Rounded s(Point3(Rational(1, 3), Rational(5), Rational(7)));
+  EXPECT_EQ(detail::plane_side_filter(r, s.ref()), std::optional<int>(1));
+}
+
+TEST(RoundedPredicates, NearestPlaneIsTheFirstExactMinimiser) {
+  for (std::uint64_t seed = 1; seed <= 300; ++seed) {
+    Gen g(seed);
+    auto coord = [&] {
+      Rational q(mpz_class(long(g.integer(-50, 50))), mpz_class(long(g.integer(1, 9))));
+      q.canonicalize();
+      return q;
+    };
+    const Rational sx = coord(), sy = coord(), sz = coord();
+    const Rounded s(Point3(sx, sy, sz));
+    const std::size_t n = std::size_t(g.integer(1, 30));
+    std::vector<Plane> planes;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i > 0 && g.integer(0, 3) == 0) {  // an exact tie: an earlier plane scaled
+        Plane q = planes[std::size_t(g.integer(0, long(i) - 1))];
+        const Integer k(long(g.integer(2, 5)));
+        q.a *= k, q.b *= k, q.c *= k, q.d *= k;
+        planes.push_back(q);
+        continue;
+      }
+      Plane p;
+      do {
+        p.a = Integer(long(g.integer(-20, 20))) << int(g.integer(0, 30));
+        p.b = Integer(long(g.integer(-20, 20)));
+        p.c = Integer(long(g.integer(-20, 20)));
+      } while (p.a == 0 && p.b == 0 && p.c == 0);
+      // d > n·s, so s is strictly below the plane.
+      const Rational ns = Rational(p.a) * s.exact.x + Rational(p.b) * s.exact.y + Rational(p.c) * s.exact.z;
+      Integer fl;
+      mpz_fdiv_q(fl.get_mpz_t(), ns.get_num_mpz_t(), ns.get_den_mpz_t());  // ⌊n·s⌋
+      p.d = fl + 1 + Integer(long(g.integer(0, 3)));
+      planes.push_back(p);
+    }
+    std::vector<const Plane*> ptr;
+    std::vector<std::array<double, 4>> r;
+    for (const Plane& p : planes) {
+      ptr.push_back(&p);
+      r.push_back({to_double(Rational(p.a)), to_double(Rational(p.b)), to_double(Rational(p.c)),
+                   to_double(Rational(p.d))});
+    }
+    // The oracle: every plane compared exactly.
+    auto d2 = [&](const Plane& p) -> Rational {
+      const Rational gap = Rational(p.d) - (Rational(p.a) * s.exact.x + Rational(p.b) * s.exact.y +
+                                            Rational(p.c) * s.exact.z);
+      return gap * gap / Rational(p.a * p.a + p.b * p.b + p.c * p.c);
+    };
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < n; ++i)
+      if (d2(planes[i]) < d2(planes[best])) best = i;
+    in_all_modes([&](int mode) {
+      const auto cand = detail::nearest_plane_candidates(r.data(), n, s.ref());
+      for (std::size_t i = 0; i < n; ++i)
+        if (d2(planes[i]) == d2(planes[best]))
+          ASSERT_TRUE(std::find(cand.begin(), cand.end(), i) != cand.end())
+              << "seed " << seed << ": minimiser " << i << " filtered out";
+      ASSERT_EQ(nearest_plane(ptr.data(), r.data(), n, s.ref()), best) << "seed " << seed << " mode " << mode;
+    });
+  }
+}

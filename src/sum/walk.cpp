@@ -23,8 +23,10 @@
 // facet is strictly convex, so n(f) is a positive multiple of its outer
 // normal).  It is evaluated with the det3 filter of the kernel (same
 // evaluation tree and error bound, predicates_internal.hpp, with the per-
-// facet cross product cached) and, when the filter cannot decide, exactly by
-// support_compare().
+// facet cross product cached) and, when the filter cannot decide, by the
+// error-free certificates of det3_slow (exact double evaluations, axis-
+// parallel differences, a difference equal to ± an edge of the facet: the
+// kernel's same_difference) or exactly by support_compare().
 #include <minksum/predicates.hpp>
 #include <minksum/walk.hpp>
 

@@ -95,6 +95,62 @@ TEST(Walk, IdenticalOperands) {
   expect_matches_oracle("random:40:7", "random:40:7");
 }
 
+TEST(Walk, IdenticalOperandsNeedNoExactStage) {
+  // A ⊕ A with facets not axis-aligned: almost every degenerate sign is
+  // <an edge of one copy, n(the facet of the other copy carrying the same
+  // edge)> = 0, or two equal edge vectors in the facet merge, certified by
+  // the exact equality of the difference vectors (no GMP).  The few left
+  // are nonzero signs too close for the filter.
+  const ConvexPolytope a = cat("sphere:4");
+  const WalkSum w = minkowski_walk(a, a);
+  EXPECT_EQ(w.num_vertices(), 642u);
+  EXPECT_EQ(w.num_edges(), 1920u);
+  EXPECT_EQ(w.num_facets(), 1280u);
+  EXPECT_LT(100 * w.exact_predicates, w.predicates) << w.exact_predicates << " of " << w.predicates;
+  expect_matches_oracle(a, a, "sphere:4 + sphere:4", false);
+}
+
+TEST(Walk, CopiesTranslatedScaledReflected) {
+  // The zero certificates (equal or opposite difference vectors) against
+  // copies whose differences are equal (translates by exact doubles),
+  // opposite (point reflections), scaled by a power of two (no equal
+  // difference), scaled by 3 (rounded), and rational copies (certified only
+  // for identical points).
+  expect_matches_oracle("sphere:3", "sphere:3@translate:1/2,-3,1/4");
+  expect_matches_oracle("sphere:3", "sphere:3@translate:1e-20,0,0", false);
+  expect_matches_oracle("sphere:3", "sphere:3@neg");
+  expect_matches_oracle("sphere:3@translate:5,0,0", "sphere:3@neg");
+  expect_matches_oracle("sphere:3", "sphere:3@scale:2");
+  expect_matches_oracle("sphere:3", "sphere:3@scale:3", false);
+  expect_matches_oracle("icosahedron@rot:3", "icosahedron@rot:3");
+  expect_matches_oracle("sphere:2@rot:1", "sphere:2@rot:1");
+  expect_matches_oracle("sphere:2@rot:1", "sphere:2@rot:1@neg");
+  expect_matches_oracle("random:60:5", "random:60:5@translate:1/8,1/16,-2");
+  expect_matches_oracle("random:60:5", "random:60:5@neg");
+}
+
+TEST(Walk, NearlyIdenticalOperandsWithEqualRoundedDifferences) {
+  // B is A with one vertex moved by 2^-60 along y: the edges at that vertex
+  // differ from A's by 2^-60, below the rounding of their differences
+  // (fl(0.5 − 2^-60) = 0.5), so the rounded differences are equal and the
+  // exact ones are not: the zero certificate must not fire (the signs are
+  // nonzero and decided exactly).
+  const std::vector<Vec3d> pts = {{0.3, 0, 0.7},    {1, 0.3, 0.2},     {-0.7, 1, 0.1},   {0.2, -0.9, 0.8},
+                                  {0.1, 0.2, -1},   {-0.5, -0.4, -0.6}, {0.6, 0.7, 0.9},  {-0.8, -0.1, 0.5},
+                                  {0.5, -0.5, -0.5}};
+  std::vector<Point3> pa, pb;
+  for (const Vec3d& v : pts) pa.emplace_back(v.x, v.y, v.z);
+  pb = pa;
+  pb[0] = Point3(0.3, 0x1p-60, 0.7);
+  const ConvexPolytope a = ConvexPolytope::hull(pa), b = ConvexPolytope::hull(pb);
+  ASSERT_TRUE(a.coordinates_are_doubles());
+  ASSERT_TRUE(b.coordinates_are_doubles());
+  ASSERT_EQ(a.num_vertices(), b.num_vertices());
+  expect_matches_oracle(a, b, "A + A with one vertex moved by 2^-60");
+  expect_matches_oracle(a, a.negated(), "A + -A");
+  expect_matches_oracle(b, a.negated(), "B + -A");
+}
+
 TEST(Walk, PointReflections) {
   // A ⊕ −A (the configuration-space obstacle of A against itself): every
   // arc of A meets the antipodal image of itself.
@@ -129,6 +185,11 @@ TEST(Walk, NearlyDegeneratePairs) {
 TEST(Walk, ZonotopesWithParallelEdges) {
   expect_matches_oracle("zonotope:5:1", "zonotope:5:2");
   expect_matches_oracle("zonotope:6:3", "zonotope:6:3");
+  // Parallel edges everywhere, equal and opposite edge vectors: the zero
+  // certificates.
+  expect_matches_oracle("zonotope:6:3", "zonotope:6:3@neg");
+  expect_matches_oracle("zonotope:6:3", "zonotope:6:3@translate:1/2,1/2,0");
+  expect_matches_oracle("zonotope:5:1", "zonotope:5:1@scale:2");
   expect_matches_oracle("zonotope:4:7", "cube");
   expect_matches_oracle("zonotope:1,0,0:0,1,0:1,1,0:0,0,1", "zonotope:1,1,0:0,0,1:1,-1,2");
 }

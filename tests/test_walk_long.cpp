@@ -2,7 +2,9 @@
 // "long"): walk against the chms oracle on 20 100 random pairs of the shared
 // families (seeds 10001-16700, three pairs per seed), plus, per seed, the
 // degenerate pairs the walk's special cases exist for — a lattice polytope
-// with itself and with its point reflection — in 10 tests of 670 seeds.
+// with itself and with its point reflection — and, every fifth seed, each
+// random operand with itself and with its point reflection, in 10 tests of
+// 670 seeds.
 #include <minksum/minkowski.hpp>
 #include <minksum/walk.hpp>
 
@@ -27,9 +29,17 @@ void expect_walk_matches(const ConvexPolytope& a, const ConvexPolytope& b, const
 
 void walk_agrees(unsigned first_seed, unsigned last_seed) {
   int checked = for_each_random_pair(
-      first_seed, last_seed, [&](const ConvexPolytope& a, const ConvexPolytope& b, const std::string& label, unsigned) {
+      first_seed, last_seed, [&](const ConvexPolytope& a, const ConvexPolytope& b, const std::string& label, unsigned seed) {
         SCOPED_TRACE(label);
         expect_walk_matches(a, b, minkowski_sum_chms(a, b));
+        // Every fifth seed, copies of the random operand: A ⊕ A and A ⊕ −A
+        // (the zero certificates of equal and opposite edge vectors).
+        if (seed % 5 == 0) {
+          SCOPED_TRACE("copies of the first operand, seed " + std::to_string(seed));
+          const ConvexPolytope n = a.negated();
+          expect_walk_matches(a, a, minkowski_sum_chms(a, a));
+          expect_walk_matches(a, n, minkowski_sum_chms(a, n));
+        }
       });
   EXPECT_EQ(checked, 3 * int(last_seed - first_seed + 1));
   for (unsigned seed = first_seed; seed <= last_seed && !::testing::Test::HasFatalFailure(); ++seed) {

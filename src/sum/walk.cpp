@@ -23,8 +23,10 @@
 // facet is strictly convex, so n(f) is a positive multiple of its outer
 // normal).  It is evaluated with the det3 filter of the kernel (same
 // evaluation tree and error bound, predicates_internal.hpp, with the per-
-// facet cross product cached) and, when the filter cannot decide, exactly by
-// support_compare().
+// facet cross product cached) and, when the filter cannot decide, by the
+// error-free certificates of det3_slow (exact double evaluations, axis-
+// parallel differences, a difference equal to ± an edge of the facet: the
+// kernel's same_difference) or exactly by support_compare().
 #include <minksum/predicates.hpp>
 #include <minksum/walk.hpp>
 
@@ -37,6 +39,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "kernel/difference.hpp"
 #include "kernel/predicates_internal.hpp"
 #include "mesh/builder.hpp"
 
@@ -227,6 +230,30 @@ inline int det3(const Operand& F, Index fi, const Operand& X, const Diff& d, Ind
   return s != 2 ? s : det3_slow(F, fi, X, xi, yi, st);
 }
 
+// Whether X(xi) − X(yi) is exactly ± the vector of an edge of facet fi of F
+// (the kernel's same_difference: error-free for doubles, equal points for
+// rationals).
+bool zero_by_facet_edge(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, bool nearest) {
+  const ConvexPolytope& PF = *F.P;
+  const ConvexPolytope& PX = *X.P;
+  const Index h0 = PF.facet_halfedge(fi);
+  Index h = h0;
+  if (F.doubles && X.doubles) {
+    const Vec3d &p = X.x[xi], &q = X.x[yi];
+    do {
+      if (detail::same_difference(F.x[PF.origin(h)], F.x[PF.target(h)], q, p, nearest) != 0) return true;
+      h = PF.next(h);
+    } while (h != h0);
+    return false;
+  }
+  const Point3 &p = PX.point(xi), &q = PX.point(yi);
+  do {
+    if (detail::same_difference(PF.point(PF.origin(h)), PF.point(PF.target(h)), q, p) != 0) return true;
+    h = PF.next(h);
+  } while (h != h0);
+  return false;
+}
+
 // When the filter cannot decide.
 int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, Stats& st) {
   const Operand::Facet& g = F.f[fi];
@@ -273,6 +300,12 @@ int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, 
       return e > 0 ? c : -c;
     }
   }
+  // A zero certificate without arithmetic on products: X(xi) − X(yi) equal
+  // to ± an edge vector of the facet lies in the facet's plane, so the sign
+  // is exactly 0.  Identical operands, translates and point reflections
+  // make most of their degenerate signs this way (an edge of one operand
+  // against the facet of the other that carries the same edge).
+  if (zero_by_facet_edge(F, fi, X, xi, yi, st.round_to_nearest)) return 0;
   ++st.exact;
   // Exact doubles: the kernel's Vec3d form (its dynamic filter, then GMP
   // integers in a reused workspace).  Rationals: the Point3 form.
@@ -345,18 +378,28 @@ class Walker {
   // (The walk of h sets hd_ = d_h once.)
   int side(Index g, Index h) { return det3(Q_, g, P_, hd_, p_.target(h), p_.origin(h), st_); }
 
-  // The face of Q maximising <x, n(f)>, given its vertex b (a maximiser):
-  // b and its neighbours as high as b.
-  Feature support_face_at(Index b, Index f) {
+  // b's neighbours along n(f): their half-edges in hbuf_ (ring(b)), tie_[i]
+  // = 1 where the neighbour is as high as b, `ties` of them.  Stops with
+  // false at the first neighbour higher than b (b does not support n(f));
+  // true: b supports n(f), and face_of_ties() gives the face — each sign
+  // evaluated once.
+  bool scan_neighbours(Index b, Index f, std::size_t& ties) {
     ring(b);
     const std::size_t k = hbuf_.size();
-    std::size_t ties = 0;
     tie_.assign(k, 0);
+    ties = 0;
     for (std::size_t i = 0; i < k; ++i) {
       const int c = higher(f, q_.target(hbuf_[i]), b);
-      if (c > 0) throw std::logic_error("walk: the support vertex is not a maximum");
+      if (c > 0) return false;
       if (c == 0) tie_[i] = 1, ++ties;
     }
+    return true;
+  }
+
+  // The face of Q maximising <x, n(f)> from a successful scan_neighbours(b,
+  // f): b and its neighbours as high as b.
+  Feature face_of_ties(Index b, std::size_t ties) const {
+    const std::size_t k = hbuf_.size();
     if (ties == 0) return {0, b};
     if (ties == 1)
       for (std::size_t i = 0; i < k; ++i)
@@ -364,6 +407,13 @@ class Walker {
     for (std::size_t i = 0; i < k; ++i)
       if (tie_[i] && tie_[(i + 1) % k]) return {2, q_.facet(hbuf_[i])};
     throw std::logic_error("walk: the support set is not a face");
+  }
+
+  // The face of Q maximising <x, n(f)>, given its vertex b (a maximiser).
+  Feature support_face_at(Index b, Index f) {
+    std::size_t ties;
+    if (!scan_neighbours(b, f, ties)) throw std::logic_error("walk: the support vertex is not a maximum");
+    return face_of_ties(b, ties);
   }
 
   // Hill climbing on Q's vertex graph to the support of n(f).
@@ -457,17 +507,8 @@ class Walker {
         // Along the arc of Q's edge hq: it ends at n(facet(twin hq)).  The
         // arc's end n(f2) lies on it iff origin(hq) supports n(f2).
         const Index hq = s.index, x = q_.origin(hq);
-        bool support = true;
-        const Index h0 = q_.vertex_halfedge(x);
-        Index h = h0;
-        do {
-          if (higher(f2, q_.target(h), x) > 0) {
-            support = false;
-            break;
-          }
-          h = q_.next_around_vertex(h);
-        } while (h != h0);
-        if (support) return need_end ? support_face_at(x, f2) : kUnknown;
+        std::size_t ties;
+        if (scan_neighbours(x, f2, ties)) return need_end ? face_of_ties(x, ties) : kUnknown;
         s = enter({2, q_.facet(ConvexPolytope::twin(hq))}, hp, f2);
         entry = kNoIndex;
         continue;
@@ -476,19 +517,9 @@ class Walker {
       // test the end first (one sign per neighbour of b, stopping at the
       // first neighbour higher along n(f2)).
       if (short_arcs_ && need_end && n == 0) {
-        const Index b = s.index, h0 = q_.vertex_halfedge(b);
-        Index h = h0;
-        bool support = true, tie = false;
-        do {
-          const int c = higher(f2, q_.target(h), b);
-          if (c > 0) {
-            support = false;
-            break;
-          }
-          tie = tie || c == 0;
-          h = q_.next_around_vertex(h);
-        } while (h != h0);
-        if (support) return tie ? support_face_at(b, f2) : Feature{0, b};
+        const Index b = s.index;
+        std::size_t ties;
+        if (scan_neighbours(b, f2, ties)) return face_of_ties(b, ties);
       }
       // Inside the region of vertex b: find where the arc's great circle
       // leaves it (side signs − then +, or −, 0, +), evaluating the signs
@@ -578,7 +609,14 @@ void facet_plus_facet(const ConvexPolytope& a, Index fa, const ConvexPolytope& b
   const std::size_t k = p.size(), m = q.size();
   const bool dbl = a.coordinates_are_doubles() && b.coordinates_are_doubles();
   // det(x1 − x0, y1 − y0, n(fa)), x from X, y from Y.
+  // Equal or opposite edge vectors (the kernel's same_difference: exact) are
+  // parallel, det = 0 — the sign of every pair of matching edges of
+  // identical or point-reflected facets, which the filter cannot certify.
+  const bool nearest = round_to_nearest();
   auto det = [&](const ConvexPolytope& X, Index x0, Index x1, const ConvexPolytope& Y, Index y0, Index y1) {
+    if (dbl ? detail::same_difference(X.approx(x0), X.approx(x1), Y.approx(y0), Y.approx(y1), nearest) != 0
+            : detail::same_difference(X.point(x0), X.point(x1), Y.point(y0), Y.point(y1)) != 0)
+      return 0;
     return dbl ? arc_side(X.approx(x0), X.approx(x1), Y.approx(y0), Y.approx(y1), a.approx(p[0]), a.approx(p[1]),
                           a.approx(p[2]))
                : arc_side(X.point(x0), X.point(x1), Y.point(y0), Y.point(y1), a.point(p[0]), a.point(p[1]),
@@ -628,8 +666,15 @@ void facet_plus_edge(const ConvexPolytope& F, Index fi, const ConvexPolytope& E,
   const std::size_t k = p.size();
   const bool dbl = F.coordinates_are_doubles() && E.coordinates_are_doubles();
   std::vector<int> side(k);
+  const bool nearest = round_to_nearest();
   for (std::size_t i = 0; i < k; ++i) {
     const Index p0 = p[i], p1 = p[(i + 1) % k];
+    // An edge of the facet equal or opposite to d (exactly) is parallel to it.
+    if (dbl ? detail::same_difference(F.approx(p0), F.approx(p1), E.approx(x), E.approx(y), nearest) != 0
+            : detail::same_difference(F.point(p0), F.point(p1), E.point(x), E.point(y)) != 0) {
+      side[i] = 0;
+      continue;
+    }
     side[i] = -(dbl ? arc_side(F.approx(p0), F.approx(p1), E.approx(x), E.approx(y), F.approx(p[0]), F.approx(p[1]),
                                F.approx(p[2]))
                     : arc_side(F.point(p0), F.point(p1), E.point(x), E.point(y), F.point(p[0]), F.point(p[1]),

@@ -181,7 +181,7 @@ struct Operand {
 // — the tree of kernel predicate 2, so its bounds apply:
 //  * exact double coordinates: |value − P| ≤ c_vec · M_e M_u M_v;
 //  * otherwise (rounded rationals): c_rat Π D + T (1 + 2^-20) Σ_k ρ_k Π_{h≠k} (D_h + ρ_h)
-// (derivations at the top of src/kernel/predicates.cpp).
+// (derivations in src/kernel/filter.hpp).
 // A difference of two vertices of one operand, rounded, with what the
 // filter needs: its largest coordinate and the operands' coordinates' bound.
 struct Diff {

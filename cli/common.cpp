@@ -99,7 +99,7 @@ void write_output(const std::string& path, const ConvexPolytope& p, bool exact, 
               << ": some coordinates are not doubles and are written rounded to the nearest double "
                  "(facets may no longer be exactly planar); use --exact to keep them exact\n";
   try {
-    write_mesh(path, p.to_mesh(), w);
+    write_polytope(path, p, w);
   } catch (const InputError& e) {
     throw OutputError(std::string("cannot write ") + e.what());
   }

@@ -12,6 +12,7 @@
 
 #include <cfenv>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -327,4 +328,26 @@ TEST(RoundingModes, ValidationAndSumsDoNotDependOnTheCallersMode) {
     EXPECT_EQ(s.polytope.volume(), ref.polytope.volume()) << mode;
     EXPECT_EQ(r.polytope.check_invariants(), "") << mode;
   }
+}
+
+// write_polytope's direct OFF path writes exactly what write_mesh writes for
+// the polytope's mesh, in every coordinate form.
+TEST(Writers, PolytopeOffEqualsMeshOff) {
+  const std::string dir = ::testing::TempDir();
+  const SumResult pairs = minkowski_sum(catalog_polytope("cube"), catalog_polytope("sphere:2@scale:1/1024"), Method::walk);
+  const ConvexPolytope rat = catalog_polytope("dodecahedron@rot:3");
+  const ConvexPolytope big = catalog_polytope("dioctagonal:1025");  // a facet of 1024 vertices
+  for (const ConvexPolytope* p : {&pairs.polytope, &rat, &big})
+    for (bool exact : {false, true}) {
+      WriteOptions w;
+      w.exact = exact;
+      write_polytope(dir + "direct.off", *p, w);
+      write_mesh(dir + "mesh.off", p->to_mesh(), w);
+      std::ifstream a(dir + "direct.off"), b(dir + "mesh.off");
+      std::stringstream sa, sb;
+      sa << a.rdbuf();
+      sb << b.rdbuf();
+      EXPECT_EQ(sa.str(), sb.str()) << "exact " << exact;
+      EXPECT_GT(sa.str().size(), 100u);
+    }
 }

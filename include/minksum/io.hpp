@@ -77,6 +77,9 @@ Mesh read_mesh(std::istream& in, Format format, const std::string& name);
 // double range when writing doubles) throw UsageError; the first two are
 // detected before the file system is touched.
 void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options = {});
+// Write a polytope: the same file as write_mesh(path, p.to_mesh(), options),
+// without building the intermediate mesh where the format allows (OFF).
+void write_polytope(const std::string& path, const ConvexPolytope& p, const WriteOptions& options = {});
 // Write to a stream in the given format.
 void write_mesh(std::ostream& out, const Mesh& mesh, Format format, const WriteOptions& options = {});
 

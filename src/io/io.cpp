@@ -284,11 +284,28 @@ void append_index(std::string& out, std::uint64_t v) {
 }
 
 void write_point_lines(std::ostream& out, const PointList& points, bool exact) {
-  std::string line;
+  if (exact || points.form() == PointList::Form::rationals) {
+    std::string line;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      line.clear();
+      append_point(line, points, i, exact);
+      out.write(line.data(), std::streamsize(line.size()));
+    }
+    return;
+  }
+  // Doubles and pairs printed as their nearest doubles: straight into a
+  // buffer (a line is at most 3 * 24 + 3 characters).
+  TextBuffer buf(out);
   for (std::size_t i = 0; i < points.size(); ++i) {
-    line.clear();
-    append_point(line, points, i, exact);
-    out.write(line.data(), std::streamsize(line.size()));
+    char* p = buf.reserve(80);
+    const Vec3d& a = points.approx(i);
+    p = std::to_chars(p, p + 24, a.x).ptr;
+    *p++ = ' ';
+    p = std::to_chars(p, p + 24, a.y).ptr;
+    *p++ = ' ';
+    p = std::to_chars(p, p + 24, a.z).ptr;
+    *p++ = '\n';
+    buf.commit(p);
   }
 }
 
@@ -520,6 +537,16 @@ void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& o
   // Refuse before touching the file system.
   check_writable(mesh, *format, options);
   write_file_atomically(path, [&](std::ostream& out) { write_mesh(out, mesh, *format, options); });
+}
+
+void write_polytope(const std::string& path, const ConvexPolytope& p, const WriteOptions& options) {
+  auto format = format_from_path(path);
+  if (!format) unknown_extension(path, "write");
+  if (*format != Format::off) {
+    write_mesh(path, p.to_mesh(), options);
+    return;
+  }
+  write_file_atomically(path, [&](std::ostream& out) { write_off(out, p, options); });
 }
 
 void write_file_atomically(const std::string& path,

@@ -12,6 +12,7 @@
 #include <minksum/kernel.hpp>
 #include <minksum/polytope.hpp>
 
+#include <charconv>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -37,6 +38,8 @@ void write_obj(std::ostream& out, const Mesh& mesh, const WriteOptions& options)
 void write_ply(std::ostream& out, const Mesh& mesh, const WriteOptions& options);
 void write_stl(std::ostream& out, const Mesh& mesh, const WriteOptions& options);
 void write_wrl(std::ostream& out, const Mesh& mesh, const WriteOptions& options);
+// OFF straight from a polytope (the same text as write_off of its to_mesh()).
+void write_off(std::ostream& out, const ConvexPolytope& p, const WriteOptions& options);
 
 // ---------------------------------------------------------------------------
 // Shared helpers.
@@ -80,6 +83,34 @@ void append_coordinate(std::string& out, const PointList& points, std::size_t i,
 // bodies of OFF and ascii PLY).
 void write_point_lines(std::ostream& out, const PointList& points, bool exact);
 void write_counted_face_lines(std::ostream& out, const std::vector<std::vector<Index>>& faces);
+// A buffer of text in front of an ostream: reserve(n) returns room for at
+// least n characters, commit(end) keeps what was written up to `end`; full
+// buffers and the rest at destruction go to the stream with one write.
+class TextBuffer {
+ public:
+  explicit TextBuffer(std::ostream& out) : out_(out) {}
+  ~TextBuffer() { flush(); }
+  TextBuffer(const TextBuffer&) = delete;
+  TextBuffer& operator=(const TextBuffer&) = delete;
+  char* reserve(std::size_t n) {
+    if (used_ + n > sizeof buf_) flush();
+    return buf_ + used_;
+  }
+  void commit(char* end) { used_ = std::size_t(end - buf_); }
+  void flush() {
+    if (used_) out_.write(buf_, std::streamsize(used_));
+    used_ = 0;
+  }
+
+ private:
+  std::ostream& out_;
+  std::size_t used_ = 0;
+  char buf_[1 << 15];
+};
+
+// A decimal index, written at p (at most 20 characters); returns the end.
+inline char* put_index(char* p, std::uint64_t v) { return std::to_chars(p, p + 20, v).ptr; }
+
 // A decimal index or count, appended.
 void append_index(std::string& out, std::uint64_t v);
 // The three coordinates of point i separated by `sep`, then `end`, appended.

@@ -89,20 +89,19 @@ Coordinate read_coordinate(std::string_view token, const std::string& name, cons
 }
 
 Coordinate read_coordinate(std::string_view token, const std::string& name, std::size_t line) {
-  if (!token.empty() && token.size() < 32) {
-    // The common plain decimal, without making the place text.
+  // The common case without making the place text: a token that from_chars
+  // reads whole as a finite double, starting like a number (so not "inf" or
+  // "nan"; "0x..." stops at the x).  A token with no '.', 'e' or 'E' is an
+  // integer, exact only up to 15 digits here: longer ones take the exact path.
+  if (!token.empty()) {
     const char c0 = token[0];
     if ((c0 >= '0' && c0 <= '9') || c0 == '-' || c0 == '.') {
-      bool plain = true;
-      for (char c : token)
-        if (!((c >= '0' && c <= '9') || c == '.' || c == '-' || c == 'e' || c == 'E')) plain = false;
-      if (plain) {
-        double d = 0;
-        auto r = std::from_chars(token.data(), token.data() + token.size(), d);
-        if (r.ec == std::errc() && r.ptr == token.data() + token.size() && std::isfinite(d) && d != 0 &&
-            token.find('.') != std::string_view::npos)
-          return {d, std::nullopt};
-      }
+      double d = 0;
+      const char* end = token.data() + token.size();
+      auto r = std::from_chars(token.data(), end, d);
+      if (r.ec == std::errc() && r.ptr == end && std::isfinite(d) &&
+          (token.size() - (c0 == '-') <= 15 || token.find_first_of(".eE") != std::string_view::npos))
+        return {d, std::nullopt};
     }
   }
   return read_coordinate(token, name, line_place(line));

@@ -253,11 +253,16 @@ inline int sign_any(const FastInterval& i) { return sign_of(i); }
 // check_fan on exact points (never uncertain) or on intervals (returns
 // kFanUncertain when an interval sign cannot be decided).
 constexpr long kFanUncertain = -2;
+//
+// `turn_normals`, when given, holds for each step i a vector that is a
+// positive multiple of d[i] x d[i+1] (around a vertex whose facets are
+// strictly convex: the outward normal of the facet between the two edges),
+// which saves computing the cross products.
 template <class V>
-long check_fan_t(const V& a, const std::vector<V>& d) {
+long check_fan_t(const V& a, const std::vector<V>& d, const std::vector<V>* turn_normals = nullptr) {
   const std::size_t k = d.size();
   for (std::size_t i = 0; i < k; ++i) {
-    int s = sign_any(dot(a, cross(d[i], d[(i + 1) % k])));
+    int s = sign_any(turn_normals ? dot(a, (*turn_normals)[i]) : dot(a, cross(d[i], d[(i + 1) % k])));
     if (s == kUncertain) return kFanUncertain;
     if (s <= 0) return long(i);
   }
@@ -547,9 +552,13 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   //    orientation merges, opposite orientation is a zero-thickness fold.
   UnionFind uf(nf);
   bool any_merge = false;
+  // n(f) x n(o) per edge, kept for the edge convexity test below when the
+  // structure stays unchanged.
+  std::vector<FastIPoint> edge_cross(g.num_halfedges() / 2);
   for (Index h = 0; h < g.num_halfedges(); h += 2) {
     Index f = g.facet[h], o = g.facet[h + 1];
     FastIPoint c = cross(inrm[f], inrm[o]);
+    edge_cross[h / 2] = c;
     auto certainly_nonzero = [](const FastInterval& x) { int s = sign_of(x); return s == 1 || s == -1; };
     if (certainly_nonzero(c.x) || certainly_nonzero(c.y) || certainly_nonzero(c.z)) continue;
     if (!is_zero(cross(exact_normal(f), exact_normal(o)))) continue;
@@ -679,7 +688,8 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   }
   for (Index h = 0; h < fg.num_halfedges(); h += 2) {
     Index f = fg.facet[h], o = fg.facet[h + 1];
-    int s = sign_of(dot(cross(finrm[f], finrm[o]), fip[fg.origin[h + 1]] - fip[fg.origin[h]]));
+    int s = sign_of(dot(unchanged ? edge_cross[h / 2] : cross(finrm[f], finrm[o]),
+                        fip[fg.origin[h + 1]] - fip[fg.origin[h]]));
     if (s == kUncertain)
       s = sgn(dot(cross(fnormal(f), fnormal(o)), fpoint(fg.origin[h + 1]) - fpoint(fg.origin[h])));
     if (s <= 0)
@@ -689,16 +699,22 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
                        "reflex edge between " + fct(merged_name[f]) + " and " + fct(merged_name[o]) +
                            " (the solid is not convex)");
   }
+  // Around a vertex, the facet between consecutive edges d_i, d_(i+1) (the
+  // facet of the outgoing half-edge h_i) has its outward normal along
+  // d_i x d_(i+1): every facet is a strictly convex polygon by now.
+  std::vector<FastIPoint> inormals;
   for (Index v = 0; v < fpts.size(); ++v) {
     idirs.clear();
+    inormals.clear();
     FastIPoint isum{FastInterval(0), FastInterval(0), FastInterval(0)};
     Index h = fg.vertex_he[v];
     do {
       idirs.push_back(fip[fg.origin[h ^ 1u]] - fip[v]);
+      inormals.push_back(finrm[fg.facet[h]]);
       isum = isum + idirs.back();
       h = fg.prev[h] ^ 1u;
     } while (h != fg.vertex_he[v]);
-    long r = check_fan_t(-isum, idirs);
+    long r = check_fan_t(-isum, idirs, &inormals);
     if (r == kFanUncertain) {
       dirs.clear();
       Point3 sum(Rational(0), Rational(0), Rational(0));

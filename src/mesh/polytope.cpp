@@ -403,11 +403,24 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   // After welding, a facet may repeat a vertex consecutively (a zero-length
   // edge): the repeat is dropped; a facet left with fewer than 3 distinct
   // corners (a collapsed sliver, common in exported STL) is dropped whole.
-  std::vector<std::vector<Index>> faces;
+  //    The usual valid input (every point used, none welded, no facet
+  //    visiting a vertex twice) keeps its facets as they are: no copy.
+  bool same_faces = pts.size() == n_in;  // then new_id[canon[v]] == v for every v
+  for (std::size_t f = 0; same_faces && f < mesh.faces.size(); ++f) {
+    const auto& poly = mesh.faces[f];
+    if (poly.size() > 16) same_faces = false;
+    for (std::size_t i = 0; same_faces && i < poly.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (poly[j] == poly[i]) same_faces = false;
+  }
+  std::vector<std::vector<Index>> faces_own;
   std::vector<Index> fname;
-  faces.reserve(mesh.faces.size());
   fname.reserve(mesh.faces.size());
-  for (Index f = 0; f < mesh.faces.size(); ++f) {
+  if (same_faces)
+    for (Index f = 0; f < mesh.faces.size(); ++f) fname.push_back(f);
+  else
+    faces_own.reserve(mesh.faces.size());
+  for (Index f = 0; !same_faces && f < mesh.faces.size(); ++f) {
     std::vector<Index> poly;
     poly.reserve(mesh.faces[f].size());
     for (Index v : mesh.faces[f]) {
@@ -437,9 +450,11 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
         seen.push_back(v);
       }
     }
-    faces.push_back(std::move(poly));
+    faces_own.push_back(std::move(poly));
     fname.push_back(f);
   }
+  std::vector<std::vector<Index>>& faces_edit = faces_own;  // (only when !same_faces)
+  const std::vector<std::vector<Index>>& faces = same_faces ? mesh.faces : faces_own;
   if (faces.empty()) throw InputError(source, "", "every facet collapses to a segment or a point");
   if (faces.size() != mesh.faces.size()) {
     // Dropped facets may leave vertices unused: number the used ones again.
@@ -454,7 +469,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
         kept_pts.push_from(pts, v);
         kept_names.push_back(vname[v]);
       }
-    for (auto& poly : faces)
+    for (auto& poly : faces_edit)
       for (Index& v : poly) v = renum[v];
     pts = std::move(kept_pts);
     vname = std::move(kept_names);
@@ -540,7 +555,16 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   if (vol_sign == 0)
     throw InputError(source, "", "zero volume: the solid is flat (all its points are coplanar)");
   if (vol_sign < 0) {
-    for (auto& poly : faces) std::reverse(poly.begin(), poly.end());
+    if (same_faces) {
+      // The facets are the caller's: validate the reversed mesh instead
+      // (the same numbering, so the same result and the same messages).
+      Mesh flipped;
+      flipped.points = mesh.points;
+      flipped.faces = mesh.faces;
+      for (auto& poly : flipped.faces) std::reverse(poly.begin(), poly.end());
+      return build(flipped, source);
+    }
+    for (auto& poly : faces_edit) std::reverse(poly.begin(), poly.end());
     for (auto& n : inrm) n = -n;
     for (Index f = 0; f < nf; ++f)
       if (xnrm[f]) *xnrm[f] = -*xnrm[f];

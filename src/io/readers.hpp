@@ -185,10 +185,19 @@ inline bool TextCursor::at_end() {
 }
 
 inline std::string_view TextCursor::take_token() {
-  const std::size_t n = data_.size();
-  std::size_t start = pos_;
-  while (pos_ < n && !is_space(data_[pos_]) && !(comment_ != 0 && data_[pos_] == comment_)) ++pos_;
-  return data_.substr(start, pos_ - start);
+  // Every blank is <= ' ', so one comparison usually settles a byte; the
+  // comment character (printable, or none) is the other way a token ends.
+  const char* p = data_.data() + pos_;
+  const char* const end = data_.data() + data_.size();
+  const char* const start = p;
+  const char stop = comment_ != 0 ? comment_ : ' ';
+  while (p != end) {
+    const char c = *p;
+    if (static_cast<unsigned char>(c) <= ' ' ? is_space(c) : c == stop) break;
+    ++p;
+  }
+  pos_ = std::size_t(p - data_.data());
+  return std::string_view(start, std::size_t(p - start));
 }
 
 inline bool TextCursor::next(std::string_view& token) {

@@ -52,10 +52,12 @@ class FlatMap64 {
     while (n < 2 * capacity + 2) n *= 2;
     slots_.assign(n, Slot{0, kNoIndex});
     mask_ = n - 1;
+    shift_ = 64 - __builtin_ctzll(n);
   }
   // (value, inserted)
   std::pair<Index, bool> find_or_insert(std::uint64_t key, Index value) {
-    for (std::size_t i = mix64(key) & mask_;; i = (i + 1) & mask_) {
+    // Fibonacci hashing: the high bits of key * 2^64/phi.
+    for (std::size_t i = std::size_t((key * 0x9e3779b97f4a7c15ULL) >> shift_);; i = (i + 1) & mask_) {
       Slot& s = slots_[i];
       if (s.value == kNoIndex) {
         s = {key, value};
@@ -72,6 +74,7 @@ class FlatMap64 {
   };
   std::vector<Slot> slots_;
   std::size_t mask_ = 0;
+  int shift_ = 64;
 };
 
 struct Graph {
@@ -95,6 +98,7 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   std::vector<EdgeUse> uses;
   uses.reserve(total / 2 + 1);
   std::vector<std::pair<Index, Index>> ends;  // (min, max) per edge
+  ends.reserve(total / 2 + 1);
   auto key = [](Index u, Index v) {
     return (std::uint64_t(std::min(u, v)) << 32) | std::uint64_t(std::max(u, v));
   };
@@ -102,8 +106,9 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   std::size_t corner = 0;
   for (Index f = 0; f < faces.size(); ++f) {
     const auto& poly = faces[f];
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-      Index u = poly[i], v = poly[(i + 1) % poly.size()];
+    const std::size_t k = poly.size();
+    for (std::size_t i = 0; i < k; ++i) {
+      Index u = poly[i], v = poly[i + 1 == k ? 0 : i + 1];
       auto [id, inserted] = edge_id.find_or_insert(key(u, v), Index(uses.size()));
       corner_edge[corner++] = id;
       if (inserted) {

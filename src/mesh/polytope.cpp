@@ -487,29 +487,28 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   //    interval arithmetic; exact Newell normals are computed only when a
   //    filter cannot decide (and for the final planes).
   const Index nf = Index(faces.size());
-  //    Intervals of the exact coordinates: point intervals for doubles,
-  //    hi + lo (rounded outward) for double pairs.
-  std::vector<IPoint> ip0(pts.size());
-  for (Index v = 0; v < pts.size(); ++v) {
-    const Vec3d& a = pts.approx(v);
-    switch (pts.form()) {
-      case PointList::Form::doubles: ip0[v] = {Interval(a.x), Interval(a.y), Interval(a.z)}; break;
-      case PointList::Form::double_pairs: {
-        const Vec3d& l = pts.low(v);
-        ip0[v] = {Interval(a.x) + Interval(l.x), Interval(a.y) + Interval(l.y), Interval(a.z) + Interval(l.z)};
-        break;
-      }
-      case PointList::Form::rationals: ip0[v] = to_interval(pts.exact_ref(v)); break;
-    }
-  }
   // From here on every interval operation runs with the FPU rounding upward,
   // set once (unprotected intervals); the guard restores the mode, also when
   // an InputError leaves.  Exact fallbacks use GMP integers and rationals,
   // which do not depend on the rounding mode.
-  CGAL::Protect_FPU_rounding<true> upward;
+  //    Intervals of the exact coordinates: point intervals for doubles,
+  //    hi + lo (rounded outward under the guard) for double pairs, the
+  //    enclosing doubles of each rational.
   std::vector<FastIPoint> ip(pts.size());
-  for (Index v = 0; v < pts.size(); ++v) ip[v] = to_fast(ip0[v]);
-  ip0 = {};
+  if (pts.form() == PointList::Form::rationals)  // (to_interval uses protected intervals)
+    for (Index v = 0; v < pts.size(); ++v) ip[v] = to_fast(to_interval(pts.exact_ref(v)));
+  CGAL::Protect_FPU_rounding<true> upward;
+  if (pts.form() != PointList::Form::rationals)
+    for (Index v = 0; v < pts.size(); ++v) {
+      const Vec3d& a = pts.approx(v);
+      if (pts.form() == PointList::Form::doubles) {
+        ip[v] = {FastInterval(a.x), FastInterval(a.y), FastInterval(a.z)};
+      } else {
+        const Vec3d& l = pts.low(v);
+        ip[v] = {FastInterval(a.x) + FastInterval(l.x), FastInterval(a.y) + FastInterval(l.y),
+                 FastInterval(a.z) + FastInterval(l.z)};
+      }
+    }
   std::vector<FastIPoint> inrm(nf);
   // Exact normals, made only where a filter cannot decide (a default Point3
   // would cost three GMP rationals per facet).
@@ -692,8 +691,12 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   // The outward normal of each facet, from its representative input facet:
   //    intervals for the filters, the exact Newell normal only when a filter
   //    cannot decide.  (The canonical planes are computed on demand later.)
-  std::vector<FastIPoint> finrm(final_faces.size());
-  for (Index f = 0; f < final_faces.size(); ++f) finrm[f] = inrm[merged_rep[f]];
+  std::vector<FastIPoint> finrm_own;
+  if (!unchanged) {
+    finrm_own.resize(final_faces.size());
+    for (Index f = 0; f < final_faces.size(); ++f) finrm_own[f] = inrm[merged_rep[f]];
+  }
+  const std::vector<FastIPoint>& finrm = unchanged ? inrm : finrm_own;  // (unchanged: merged_rep[f] == f)
   auto fnormal = [&](Index f) -> const Point3& { return exact_normal(merged_rep[f]); };
   auto fpoint = [&](Index v) { return fpts.exact(v); };
 

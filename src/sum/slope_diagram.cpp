@@ -21,32 +21,6 @@ Diagram::Diagram(const ConvexPolytope& poly) : p(poly), frame(poly.num_facets())
   }
 }
 
-namespace {
-
-// Interval vector algebra without rounding-mode switches: every function
-// here runs under a CGAL::Protect_FPU_rounding<true> guard.
-template <class V>
-V sub(const V& a, const V& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-template <class V>
-V cross3(const V& a, const V& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-template <class V>
-auto dot3(const V& a, const V& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-// -1, 0, +1 when the interval certifies the sign; kUncertain otherwise.
-int certified(const CGAL::Interval_nt<false>& i) {
-  if (i.inf() > 0) return 1;
-  if (i.sup() < 0) return -1;
-  if (i.inf() == 0 && i.sup() == 0) return 0;
-  return kUncertain;
-}
-
-}  // namespace
-
 Geometry::Geometry(const Diagram& a, const Diagram& b)
     : a_(a), b_(b), doubles_(a.p.coordinates_are_doubles() && b.p.coordinates_are_doubles()) {
   if (doubles_) return;
@@ -54,14 +28,13 @@ Geometry::Geometry(const Diagram& a, const Diagram& b)
     const Diagram& D = k == 0 ? a_ : b_;
     point_[k].reserve(D.p.num_vertices());
     for (Index v = 0; v < D.p.num_vertices(); ++v) {
-      const IPoint i = to_interval(D.p.point(v));  // smallest double enclosures
-      point_[k].push_back({{i.x.inf(), i.x.sup()}, {i.y.inf(), i.y.sup()}, {i.z.inf(), i.z.sup()}});
+      point_[k].push_back(to_fast(to_interval(D.p.point(v))));  // smallest double enclosures
     }
     normal_[k].reserve(D.p.num_facets());
     CGAL::Protect_FPU_rounding<true> upward;
     for (const Frame& x : D.frame) {
-      const FPoint& p0 = point_[k][x[0]];
-      normal_[k].push_back(cross3(sub(point_[k][x[1]], p0), sub(point_[k][x[2]], p0)));
+      const FastIPoint& p0 = point_[k][x[0]];
+      normal_[k].push_back(cross(point_[k][x[1]] - p0, point_[k][x[2]] - p0));
     }
   }
 }
@@ -76,10 +49,10 @@ bool Geometry::same_facet_point(const Diagram& P, Index f, const Diagram& Q, Ind
   int cx, cy, cz, d;
   {
     CGAL::Protect_FPU_rounding<true> upward;
-    const FPoint& n1 = normal_[side(P)][f];
-    const FPoint& n2 = normal_[side(Q)][g];
-    const FPoint c = cross3(n1, n2);
-    cx = certified(c.x), cy = certified(c.y), cz = certified(c.z), d = certified(dot3(n1, n2));
+    const FastIPoint& n1 = normal_[side(P)][f];
+    const FastIPoint& n2 = normal_[side(Q)][g];
+    const FastIPoint c = cross(n1, n2);
+    cx = sign_of(c.x), cy = sign_of(c.y), cz = sign_of(c.z), d = sign_of(dot(n1, n2));
   }
   if (cx == 1 || cx == -1 || cy == 1 || cy == -1 || cz == 1 || cz == -1 || d == -1 || d == 0) return false;
   if (cx == 0 && cy == 0 && cz == 0 && d == 1) return true;
@@ -95,8 +68,8 @@ int Geometry::edge_sign(const Diagram& Q, Index q0, Index q1, const Diagram& P, 
   int s;
   {
     CGAL::Protect_FPU_rounding<true> upward;
-    const std::vector<FPoint>& q = point_[side(Q)];
-    s = certified(dot3(sub(q[q1], q[q0]), normal_[side(P)][f]));
+    const std::vector<FastIPoint>& q = point_[side(Q)];
+    s = sign_of(dot(q[q1] - q[q0], normal_[side(P)][f]));
   }
   if (s != kUncertain) return s;
   ++fallbacks_;
@@ -110,8 +83,8 @@ int Geometry::support(const Diagram& P, Index f, const Diagram& Q, Index i, Inde
   int s;
   {
     CGAL::Protect_FPU_rounding<true> upward;
-    const std::vector<FPoint>& q = point_[side(Q)];
-    s = certified(dot3(sub(q[i], q[j]), normal_[side(P)][f]));
+    const std::vector<FastIPoint>& q = point_[side(Q)];
+    s = sign_of(dot(q[i] - q[j], normal_[side(P)][f]));
   }
   if (s != kUncertain) return s;
   ++fallbacks_;

@@ -132,12 +132,10 @@ class Geometry {
   const Diagram& a_;
   const Diagram& b_;
   bool doubles_;
-  // Unprotected intervals, used only under a CGAL::Protect_FPU_rounding
-  // guard (rounding upward), the pattern of CGAL's filtered predicates.
-  struct FPoint {
-    CGAL::Interval_nt<false> x, y, z;
-  };
-  std::vector<FPoint> point_[2], normal_[2];  // filled when !doubles_
+  // Unprotected intervals (kernel/interval.hpp), used only under a
+  // CGAL::Protect_FPU_rounding guard (rounding upward), the pattern of
+  // CGAL's filtered predicates.
+  std::vector<FastIPoint> point_[2], normal_[2];  // filled when !doubles_
   mutable long long fallbacks_ = 0;
 };
 

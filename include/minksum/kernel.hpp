@@ -1,9 +1,12 @@
 // minksum — exact numbers and the points built from them.
 //
-// Every coordinate minksum stores is an exact rational (GMP's mpq_class).  A
-// coordinate read as a decimal token or a binary double is the exact value of
-// that double (a dyadic rational); a coordinate read as `p/q` or as a long
-// integer is that rational.  Nothing is rounded on the way in.
+// Every coordinate minksum stores is an exact rational.  A coordinate read as
+// a decimal token or a binary double is the exact value of that double (a
+// dyadic rational); a coordinate read as `p/q` or as a long integer is that
+// rational.  Nothing is rounded on the way in.  Lists of points keep each
+// coordinate in its cheapest exact form — a double, an exact pair of doubles,
+// or a GMP rational (mpq_class, the Rational below) — see
+// <minksum/point_list.hpp>; Point3 is the general exact point.
 //
 // Geometric decisions are signs of exact polynomials; the predicates live in
 // <minksum/predicates.hpp>.  This header has the number type, the point type,

@@ -9,6 +9,7 @@
 #include <minksum/walk.hpp>
 
 #include <gtest/gtest.h>
+#include <mpfr.h>
 
 #include <cfenv>
 #include <cmath>
@@ -350,4 +351,67 @@ TEST(Writers, PolytopeOffEqualsMeshOff) {
       EXPECT_EQ(sa.str(), sb.str()) << "exact " << exact;
       EXPECT_GT(sa.str().size(), 100u);
     }
+}
+
+// to_double is the correctly rounded nearest double (ties to even, gradual
+// underflow, overflow to infinity) of any rational: checked against MPFR on
+// random rationals of every size, exact ties and the ends of the range.
+namespace {
+double mpfr_nearest(const Rational& q) {
+  const mpfr_exp_t emin = mpfr_get_emin(), emax = mpfr_get_emax();
+  mpfr_set_emin(-1073);
+  mpfr_set_emax(1024);
+  mpfr_t x;
+  mpfr_init2(x, 53);
+  int t = mpfr_set_q(x, q.get_mpq_t(), MPFR_RNDN);
+  t = mpfr_subnormalize(x, t, MPFR_RNDN);
+  (void)t;
+  const double d = mpfr_get_d(x, MPFR_RNDN);
+  mpfr_clear(x);
+  mpfr_set_emin(emin);
+  mpfr_set_emax(emax);
+  return d;
+}
+Integer random_integer(std::mt19937_64& rng, int bits) {
+  Integer z = 0;
+  for (int b = 0; b < bits; b += 32) {
+    z <<= 32;
+    z += static_cast<unsigned long>(rng() & 0xffffffffu);
+  }
+  if (bits % 32) z >>= (32 - bits % 32);
+  return z == 0 ? Integer(1) : z;
+}
+}  // namespace
+
+TEST(ToDouble, NearestAgainstMpfr) {
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    std::mt19937_64 rng(seed);
+    for (int i = 0; i < 2000; ++i) {
+      const int nb = 1 + int(rng() % 400), db = 1 + int(rng() % 400);
+      Rational q(random_integer(rng, nb), random_integer(rng, db));
+      q.canonicalize();
+      if (rng() & 1) q = -q;
+      const int shift = int(rng() % 2200) - 1100;  // reach subnormals and overflow too
+      if (shift > 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(shift));
+      else mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(-shift));
+      const double want = mpfr_nearest(q), got = to_double(q);
+      ASSERT_TRUE(got == want || (std::isinf(got) && std::isinf(want) && got == want))
+          << "seed " << seed << " case " << i << ": " << format_exact(q);
+    }
+  }
+  // Exact ties between two doubles (55- and 56-bit dyadic numerators), and
+  // ties broken by a tiny excess, at several exponents.
+  for (int e : {-1000, -60, -1, 0, 1, 52, 900}) {
+    for (std::uint64_t m : {(std::uint64_t(1) << 54) + 1, (std::uint64_t(1) << 54) + 3, (std::uint64_t(1) << 55) + 2,
+                            (std::uint64_t(1) << 55) + 6, (std::uint64_t(1) << 55) - 2}) {
+      Rational q{Integer(static_cast<unsigned long>(m))};
+      if (e > 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(e));
+      else mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(-e));
+      EXPECT_EQ(to_double(q), mpfr_nearest(q)) << m << " * 2^" << e;
+      Rational above = q + Rational(Integer(1), Integer(1) << 3000);
+      EXPECT_EQ(to_double(above), mpfr_nearest(above)) << m << " * 2^" << e << " + tiny";
+      Rational below = q - Rational(Integer(1), Integer(1) << 3000);
+      EXPECT_EQ(to_double(below), mpfr_nearest(below)) << m << " * 2^" << e << " - tiny";
+    }
+  }
 }

@@ -71,6 +71,7 @@ class PointList {
   // Append an exact point.
   void push_back(const Vec3d& p);   // doubles that ARE the coordinates (finite)
   void push_back(const Point3& p);  // any exact point; kept as doubles when it is one
+  void push_back(Point3&& p);
   // The exact point hi + lo; precondition: hi is the nearest double of
   // hi + lo in each coordinate (as TwoSum gives), all finite.
   void push_pair(const Vec3d& hi, const Vec3d& lo);

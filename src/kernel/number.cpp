@@ -39,10 +39,48 @@ bool dyadic_short(const Rational& q, double& out) {
 }
 }  // namespace
 
+namespace {
+// Nearest double of |n| / d for the usual magnitudes, with one division of
+// machine-free scratch integers: the quotient is taken with 55 or 56 bits,
+// then rounded to 53 with its low bits and the remainder as sticky bit.
+// Returns false (nothing decided) near or beyond the ends of the double
+// range, where the general code below handles subnormals and overflow.
+bool to_double_fast(mpz_srcptr n, mpz_srcptr d, double& out) {
+  thread_local mpz_t t, m, r;
+  thread_local bool init = [] {
+    mpz_inits(t, m, r, nullptr);
+    return true;
+  }();
+  (void)init;
+  const long bn = long(mpz_sizeinbase(n, 2)), bd = long(mpz_sizeinbase(d, 2));
+  const long e0 = bn - bd;                // floor(log2(|n|/d)) is e0 or e0 - 1
+  if (e0 > 1000 || e0 < -1000) return false;
+  const long k = 55 - e0;                 // |n| 2^k / d lies in [2^54, 2^56)
+  if (k >= 0) {
+    mpz_mul_2exp(t, n, mp_bitcnt_t(k));
+    mpz_abs(t, t);
+    mpz_tdiv_qr(m, r, t, d);
+  } else {
+    mpz_mul_2exp(t, d, mp_bitcnt_t(-k));
+    mpz_abs(m, n);
+    mpz_tdiv_qr(m, r, m, t);
+  }
+  const int bm = int(mpz_sizeinbase(m, 2));  // 55 or 56
+  const std::uint64_t q = mpz_get_ui(m);
+  const int drop = bm - 53;                  // 2 or 3 low bits to round away
+  std::uint64_t kept = q >> drop;
+  const std::uint64_t rest = q & ((std::uint64_t(1) << drop) - 1), half = std::uint64_t(1) << (drop - 1);
+  if (rest > half || (rest == half && (mpz_sgn(r) != 0 || (kept & 1)))) ++kept;  // kept <= 2^53
+  out = std::ldexp(double(kept), int(drop - k));  // exact: normal range, at most 54 bits
+  return true;
+}
+}  // namespace
+
 double to_double(const Rational& q) {
   int s = sgn(q);
   if (s == 0) return 0.0;
   if (double d; dyadic_short(q, d)) return d;
+  if (double d; to_double_fast(q.get_num_mpz_t(), q.get_den_mpz_t(), d)) return s < 0 ? -d : d;
   Integer n = abs(q.get_num());
   const Integer& d = q.get_den();
   // e = floor(log2(n/d)), from bit lengths, corrected by one comparison.

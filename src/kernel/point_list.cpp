@@ -97,6 +97,17 @@ void PointList::push_back(const Point3& p) {
   ++non_double_;
 }
 
+void PointList::push_back(Point3&& p) {
+  if (minksum::is_double(p)) {
+    push_back(to_double(p));
+    return;
+  }
+  promote(Form::rationals);
+  hi_.push_back(to_double(p));
+  exact_.push_back(std::move(p));
+  ++non_double_;
+}
+
 void PointList::push_pair(const Vec3d& hi, const Vec3d& lo) {
   if (is_zero_vec(lo)) {
     push_back(hi);

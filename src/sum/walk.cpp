@@ -885,7 +885,21 @@ PointList sum_coordinates(const std::vector<std::pair<Index, Index>>& pairs, con
     }
     return out;
   }
-  for (auto [i, j] : pairs) out.push_back(a.exact(i) + b.exact(j));
+  // Exact rationals: each operand's exact points once (its own storage when
+  // it holds rationals), each sum made in place and moved into the list.
+  std::vector<Point3> own_a, own_b;
+  auto points_of = [](const PointList& l, std::vector<Point3>& own) -> const Point3* {
+    if (l.form() == PointList::Form::rationals) return l.size() ? &l.exact_ref(0) : nullptr;
+    own = l.to_points();
+    return own.data();
+  };
+  const Point3* pa = points_of(a, own_a);
+  const Point3* pb = points_of(b, own_b);
+  for (auto [i, j] : pairs) {
+    Point3 s;
+    for (int k = 0; k < 3; ++k) mpq_add(s[k].get_mpq_t(), pa[i][k].get_mpq_t(), pb[j][k].get_mpq_t());
+    out.push_back(std::move(s));
+  }
   return out;
 }
 

@@ -179,7 +179,6 @@ double checked_double(const Rational& q) {
   return d;
 }
 
-std::string double_text(const Rational& q) { return format_double(checked_double(q)); }
 
 float rational_to_float(const Rational& q) {
   int s = sgn(q);

@@ -126,10 +126,9 @@ std::optional<std::int64_t> parse_signed(std::string_view token);
 // validate values that are skipped anyway (colours, normals, other properties).
 bool looks_numeric(std::string_view token);
 
-// Writing doubles: the nearest double of q, and its shortest round-trip text.
-// Both throw UsageError when q rounds beyond the double range.
+// Writing doubles: the nearest double of q; UsageError when q rounds beyond
+// the double range.
 double checked_double(const Rational& q);
-std::string double_text(const Rational& q);
 
 // Text cursor over a whole file: whitespace-separated tokens, optional
 // comments (from `comment` to the end of the line; 0 for none), 1-based line

@@ -91,9 +91,4 @@ Plane canonical_plane_of_dyadic_triangle(const Vec3d hi[3], const Vec3d lo[3]) {
   return pl;
 }
 
-Plane canonical_plane_of_double_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  const Vec3d hi[3] = {a, b, c};
-  return canonical_plane_of_dyadic_triangle(hi, nullptr);
-}
-
 }  // namespace minksum

@@ -10,15 +10,11 @@ namespace minksum {
 // The canonical plane with (unnormalised, nonzero) normal n through p.
 Plane canonical_plane(const Point3& n, const Point3& p);
 
-// The canonical plane through the triangle (a, b, c), normal (b-a) x (c-a),
-// for coordinates that are exactly doubles: computed in integers after
-// scaling every coordinate by one power of two (no rational arithmetic).
-// Precondition: the triangle has nonzero area; all coordinates finite.
-Plane canonical_plane_of_double_triangle(const Vec3d& a, const Vec3d& b, const Vec3d& c);
-
-// The same for coordinates that are exact sums of two doubles, hi[i] + lo[i]
-// (lo may be null: all low parts zero).  Integer arithmetic on the scaled
-// mantissas; no rational arithmetic.
+// The canonical plane through the triangle a, b, c with a = hi[0] + lo[0],
+// b = hi[1] + lo[1], c = hi[2] + lo[2] (coordinate-wise, exact sums of two
+// finite doubles; lo may be null: all low parts zero), normal (b - a) x
+// (c - a).  Integer arithmetic on the scaled mantissas; no rational
+// arithmetic.  Precondition: the triangle has nonzero area.
 Plane canonical_plane_of_dyadic_triangle(const Vec3d hi[3], const Vec3d lo[3]);
 
 // Finite doubles as integers with one common power of two: values[i] =

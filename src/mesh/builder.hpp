@@ -28,9 +28,6 @@ class PolytopeBuilder {
                                            std::vector<Index> he_next, std::vector<Index> he_facet,
                                            std::vector<Index> facet_he);
 
-  // The exact canonical plane through a planar polygon with (unnormalised)
-  // normal n passing through p.  Precondition: n != 0.
-  static Plane canonical_plane(const Point3& n, const Point3& p);
 };
 
 // Sign of det(a, b, c) = <a, b x c>, exact.

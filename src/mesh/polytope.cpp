@@ -304,7 +304,6 @@ long check_fan_t(const V& a, const std::vector<V>& d, const std::vector<V>* turn
 
 long check_fan(const Point3& a, const std::vector<Point3>& d) { return check_fan_t(a, d); }
 
-Plane PolytopeBuilder::canonical_plane(const Point3& n, const Point3& p) { return minksum::canonical_plane(n, p); }
 
 int Plane::side(const Point3& p) const {
   Rational s = Rational(a) * p.x + Rational(b) * p.y + Rational(c) * p.z - Rational(d);

@@ -19,6 +19,7 @@
 
 #include <minksum/catalog.hpp>
 #include <minksum/io.hpp>
+#include <minksum/operand.hpp>
 #include <minksum/minkowski.hpp>
 #include <minksum/walk.hpp>
 

@@ -24,6 +24,7 @@
 #include "timer.hpp"
 
 #include <minksum/io.hpp>
+#include <minksum/operand.hpp>
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>

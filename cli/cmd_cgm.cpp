@@ -2,6 +2,7 @@
 // the overlay), its per-map counts and its unfolded drawing.
 #include <minksum/cubical_gaussian_map.hpp>
 #include <minksum/io.hpp>
+#include <minksum/operand.hpp>
 
 #include <iostream>
 

@@ -11,7 +11,7 @@ namespace minksum::cli {
 namespace {
 const char* kGenHelpHead = R"(Usage: minksum gen NAME -o OUT [--exact] [--binary]
 
-Write a built-in polytope to OUT (.off .obj .ply .stl .wrl).  Use --exact for
+Write a built-in polytope to OUT ({formats}).  Use --exact for
 rational coordinates (rotated solids have them); without it coordinates are
 written as the nearest doubles.
 
@@ -23,7 +23,7 @@ Catalog (names are accepted anywhere a file path is):
 int run_gen(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "gen", {{"--output", "-o", true}, {"--exact"}, {"--binary"}});
   if (a.help) {
-    std::cout << kGenHelpHead;
+    std::cout << expand_help(kGenHelpHead);
     for (const auto& e : catalog_entries()) {
       std::string syn = e.syntax;
       if (syn.size() < 22) syn.resize(22, ' ');

@@ -1,6 +1,7 @@
 // minksum query collide|distance|depth|ddepth P Q: exact proximity queries
 // under translation (seed 001 §4), one pose or a trajectory of poses.
 #include <minksum/io.hpp>
+#include <minksum/operand.hpp>
 #include <minksum/proximity.hpp>
 
 #include <chrono>

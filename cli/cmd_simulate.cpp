@@ -3,6 +3,7 @@
 // penetrates it; the robot rotates every other frame (M is recomputed then).
 #include <minksum/catalog.hpp>
 #include <minksum/io.hpp>
+#include <minksum/operand.hpp>
 #include <minksum/proximity.hpp>
 
 #include <algorithm>

@@ -1,5 +1,6 @@
 // minksum stats P: validate a polytope and print its numbers.
 #include <minksum/io.hpp>
+#include <minksum/operand.hpp>
 
 #include <algorithm>
 #include <iostream>

@@ -1,5 +1,6 @@
 // minksum sum A B: the Minkowski sum.
 #include <minksum/io.hpp>
+#include <minksum/operand.hpp>
 
 #include <chrono>
 #include <iostream>
@@ -20,32 +21,15 @@ Compute the Minkowski sum A ⊕ B = { a + b : a in A, b in B } exactly and print
 a summary (or JSON).  A and B are files or catalog names.
 
 Options:
-  -o, --output OUT   write the sum to OUT (.off .obj .ply .stl .wrl); the file
+  -o, --output OUT   write the sum to OUT ({formats}); the file
                      is written to a temporary name and renamed when complete
-  --method M         auto (default), walk, chms, cvms, essdms, mssd, cgm.
-                     walk (what auto uses): output-sensitive — walks along
-                     the Gaussian arcs of each operand's edges over the
-                     other's Gaussian map, building the result directly; cost
-                     grows with input + output.  --json adds its counters
-                     (crossings, steps, predicates, microseconds of the walk
-                     and of the conversion to exact coordinates).
-                     chms: exact convex hull of all pairwise vertex sums, the
-                     reference oracle.  cvms: contributing vertices (Barki et
-                     al.), reports the facet types (translated, corner, edge,
-                     facet_edge, facet_facet) with --json.  essdms: slope
-                     diagrams merged without embedding, contributing vertices
-                     instead of point-in-polygon queries (Barki et al.).
-                     mssd: Wu et al.'s improved 3D-MSSD, the same merge with
-                     point-in-polygon queries and all edge-arc pairs; both
-                     report the intersection case per facet and operation
-                     counts with --json.  cgm: overlay of the six pairs of
-                     planar maps of the Cubical Gaussian Maps (Fogel &
-                     Halperin), reports the overlay cases met with --json.
+  --method M         {methods}.
+{method_summaries}
                      All are exact and give the same polytope.
   --exact            write coordinates as exact rationals (p/q or integers);
                      default: shortest text that reads back to the nearest
-                     double.  Only .off, .obj and .wrl can hold rationals.
-  --binary           binary .ply / .stl output
+                     double.  Only {exact_formats} can hold rationals.
+  --binary           binary {binary_formats} output
   --hull             take the convex hull of each input file's points instead
                      of requiring a valid convex mesh (point clouds)
   --json             print one JSON object: vertices, edges, facets, method,
@@ -105,7 +89,7 @@ int run_sum(const std::vector<std::string>& argv) {
                             {{"--output", "-o", true}, {"--method", "", true}, {"--exact"}, {"--binary"},
                              {"--json"}, {"--hull"}});
   if (a.help) {
-    std::cout << kSumHelp;
+    std::cout << expand_help(kSumHelp);
     return 0;
   }
   if (a.positional.size() != 2)
@@ -115,7 +99,7 @@ int run_sum(const std::vector<std::string>& argv) {
   const bool exact = a.flag("--exact"), json = a.flag("--json"), hull = a.flag("--hull");
   auto method = parse_method(method_text);
   if (!method)
-    throw UsageError("unknown method '" + method_text + "' (auto, walk, cvms, essdms, mssd, chms, cgm)");
+    throw UsageError("unknown method '" + method_text + "' (" + method_list() + ")");
   if (!method_available(*method))
     throw UsageError(std::string("method '") + method_name(*method) + "' is not implemented in this version of minksum");
   check_output_path(output, exact);

@@ -2,6 +2,7 @@
 #include "common.hpp"
 
 #include <minksum/io.hpp>
+#include <minksum/minkowski.hpp>
 
 #include <cctype>
 #include <cstdio>
@@ -83,11 +84,51 @@ std::string counts_json(const ConvexPolytope& p) {
 
 void check_output_path(const std::string& path, bool exact) {
   if (path.empty()) return;
-  auto f = format_from_path(path);
-  if (!f) throw UsageError("cannot tell the format of '" + path + "': use .off, .obj, .ply, .stl or .wrl");
-  if (exact && (*f == Format::ply || *f == Format::stl))
-    throw UsageError(std::string("--exact: ") + format_name(*f) +
-                     " cannot store exact rationals; use .off, .obj or .wrl");
+  WriteOptions w;
+  w.exact = exact;
+  output_format(path, w);
+}
+
+namespace {
+// `text` wrapped to `width` columns, every line indented by `indent` spaces.
+std::string wrap(const std::string& text, std::size_t indent, std::size_t width) {
+  std::string out, line;
+  std::istringstream words(text);
+  for (std::string w; words >> w;) {
+    if (!line.empty() && indent + line.size() + 1 + w.size() > width) {
+      out += std::string(indent, ' ') + line + "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + w;
+  }
+  if (!line.empty()) out += std::string(indent, ' ') + line + "\n";
+  return out;
+}
+}  // namespace
+
+std::string expand_help(std::string_view text) {
+  std::string methods_text;
+  for (const MethodInfo& m : methods()) {
+    if (!methods_text.empty()) methods_text += ", ";
+    methods_text += m.name;
+    if (m.method == Method::automatic) methods_text += " (default)";
+  }
+  std::string summaries;
+  for (const MethodInfo& m : methods())
+    if (m.method != Method::automatic) summaries += wrap(std::string(m.name) + ": " + m.summary, 21, 79);
+  if (!summaries.empty()) summaries.pop_back();  // the template's line break follows
+  const std::pair<std::string_view, std::string> fills[] = {
+      {"{formats}", extension_list(" ", " ")},
+      {"{exact_formats}", extension_list(", ", " and ", true)},
+      {"{binary_formats}", extension_list(" / ", " / ", false, true)},
+      {"{methods}", methods_text},
+      {"{method_summaries}", summaries},
+  };
+  std::string out(text);
+  for (const auto& [key, value] : fills)
+    for (std::size_t at = out.find(key); at != std::string::npos; at = out.find(key, at + value.size()))
+      out.replace(at, key.size(), value);
+  return out;
 }
 
 void write_output(const std::string& path, const ConvexPolytope& p, bool exact, bool binary) {

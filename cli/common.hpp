@@ -10,6 +10,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace minksum::cli {
@@ -18,7 +19,7 @@ namespace minksum::cli {
 // "-o"), with or without a value ("--name VALUE" or "--name=VALUE").
 struct OptionSpec {
   std::string name;
-  std::string alias;
+  std::string alias = {};
   bool takes_value = false;
 };
 
@@ -57,7 +58,16 @@ struct OutputError : std::runtime_error {
 
 // Check that `path` has a known format (and can hold exact rationals when
 // `exact`), before any long computation.  Throws UsageError.
+// UsageError when OUT's extension is unknown or cannot hold what is asked
+// (io's output_format), before anything is computed.
 void check_output_path(const std::string& path, bool exact);
+
+// A help text with its table-driven parts filled in from the tables of
+// formats (io.hpp) and methods (minkowski.hpp): {formats} ".off .obj .ply .stl
+// .wrl", {exact_formats} ".off, .obj and .wrl", {binary_formats} ".ply / .stl",
+// {methods} "auto (default), walk, ...", {method_summaries} one paragraph per
+// method ("walk: ...") wrapped to 79 columns under a 21-column option column.
+std::string expand_help(std::string_view text);
 // Write p atomically; a note on stderr when rounding loses exactness.
 void write_output(const std::string& path, const ConvexPolytope& p, bool exact, bool binary);
 

@@ -31,7 +31,7 @@ Usage:
   minksum COMMAND --help          help on one command
   minksum --version
 
-A, B, P are files (.off .obj .ply .stl .wrl, format by extension) or names of
+A, B, P are files ({formats}, format by extension) or names of
 built-in polytopes such as cube, sphere:4, dioctagonal:17, random:1000:7,
 box:1:2:3, sphere:3@rot:5 (see 'minksum gen --help' for the whole catalog).
 
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
   try {
     if (args.empty()) {
-      std::cerr << kMainHelp;
+      std::cerr << expand_help(kMainHelp);
       return 2;
     }
     const std::string command = args[0];
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
       if (!rest.empty())
         for (const auto& c : kCommands)
           if (rest[0] == c.name) return c.run({"--help"});
-      std::cout << kMainHelp;
+      std::cout << expand_help(kMainHelp);
       return 0;
     }
     if (command == "--version" || command == "version") {

@@ -318,7 +318,7 @@ TEST(CatalogBox, VolumeAndTinySides) {
 
 TEST(CatalogTransforms, RotationMatricesAreExactlyOrthogonal) {
   for (const auto& q : {std::array<long, 4>{1, 2, 3, 4}, {1, 1, 0, 0}, {-7, 3, 0, 11}, {0, 0, 0, 5}}) {
-    const cd::Matrix3 r = cd::quaternion_rotation(q[0], q[1], q[2], q[3]);
+    const Matrix3 r = quaternion_rotation({q[0], q[1], q[2], q[3]});
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
         Rational s = 0;
@@ -332,8 +332,8 @@ TEST(CatalogTransforms, RotationMatricesAreExactlyOrthogonal) {
     EXPECT_EQ(det, Rational(1));
   }
   // (1, 1, 0, 0) is the quarter turn about x: y -> z.
-  const cd::Matrix3 r = cd::quaternion_rotation(1, 1, 0, 0);
-  EXPECT_EQ(cd::apply(r, Point3(Rational(0), Rational(1), Rational(0))),
+  const Matrix3 r = quaternion_rotation({1, 1, 0, 0});
+  EXPECT_EQ(r * Point3(Rational(0), Rational(1), Rational(0)),
             Point3(Rational(0), Rational(0), Rational(1)));
 }
 

@@ -3,6 +3,7 @@
 // operand resolution.
 #include <minksum/error.hpp>
 #include <minksum/io.hpp>
+#include <minksum/operand.hpp>
 
 #include "io/readers.hpp"  // parse_coordinate, rational_to_float
 

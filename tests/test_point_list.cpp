@@ -357,12 +357,14 @@ TEST(Writers, PolytopeOffEqualsMeshOff) {
 // underflow, overflow to infinity) of any rational: checked against MPFR on
 // random rationals of every size, exact ties and the ends of the range.
 namespace {
-double mpfr_nearest(const Rational& q) {
+// The nearest value of q with `precision` bits and exponents of the IEEE
+// format (double: 53, -1073, 1024; float: 24, -148, 128), as a double.
+double mpfr_nearest(const Rational& q, int precision = 53, mpfr_exp_t lo = -1073, mpfr_exp_t hi = 1024) {
   const mpfr_exp_t emin = mpfr_get_emin(), emax = mpfr_get_emax();
-  mpfr_set_emin(-1073);
-  mpfr_set_emax(1024);
+  mpfr_set_emin(lo);
+  mpfr_set_emax(hi);
   mpfr_t x;
-  mpfr_init2(x, 53);
+  mpfr_init2(x, precision);
   int t = mpfr_set_q(x, q.get_mpq_t(), MPFR_RNDN);
   t = mpfr_subnormalize(x, t, MPFR_RNDN);
   (void)t;
@@ -412,6 +414,37 @@ TEST(ToDouble, NearestAgainstMpfr) {
       EXPECT_EQ(to_double(above), mpfr_nearest(above)) << m << " * 2^" << e << " + tiny";
       Rational below = q - Rational(Integer(1), Integer(1) << 3000);
       EXPECT_EQ(to_double(below), mpfr_nearest(below)) << m << " * 2^" << e << " - tiny";
+    }
+  }
+}
+
+// to_float likewise against MPFR with float's precision and range: random
+// rationals of every size (subnormal floats and overflow included), exact ties.
+TEST(ToFloat, NearestAgainstMpfr) {
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    std::mt19937_64 rng(seed);
+    for (int i = 0; i < 2000; ++i) {
+      const int nb = 1 + int(rng() % 200), db = 1 + int(rng() % 200);
+      Rational q(random_integer(rng, nb), random_integer(rng, db));
+      q.canonicalize();
+      if (rng() & 1) q = -q;
+      const int shift = int(rng() % 340) - 170;
+      if (shift > 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(shift));
+      else mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(-shift));
+      const double want = mpfr_nearest(q, 24, -148, 128);
+      const float got = to_float(q);
+      ASSERT_EQ(double(got), want) << "seed " << seed << " case " << i << ": " << format_exact(q);
+    }
+  }
+  for (int e : {-170, -149, -30, 0, 23, 100}) {
+    for (std::uint64_t m : {(std::uint64_t(1) << 25) + 1, (std::uint64_t(1) << 25) + 3, (std::uint64_t(1) << 26) + 2,
+                            (std::uint64_t(1) << 26) - 2}) {
+      Rational q{Integer(static_cast<unsigned long>(m))};
+      if (e > 0) mpq_mul_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(e));
+      else mpq_div_2exp(q.get_mpq_t(), q.get_mpq_t(), mp_bitcnt_t(-e));
+      for (const Rational& x : {q, Rational(q + Rational(Integer(1), Integer(1) << 600)),
+                                Rational(q - Rational(Integer(1), Integer(1) << 600))})
+        EXPECT_EQ(double(to_float(x)), mpfr_nearest(x, 24, -148, 128)) << format_exact(x);
     }
   }
 }

@@ -240,9 +240,9 @@ Transform parse_transform(const std::string& spec, const std::string& tr) {
     } else {
       fail(spec, "the transform rot needs rot:SEED or rot:A,B,C,D, got 'rot:" + arg + "'");
     }
-    const Matrix3 r = quaternion_rotation(q[0], q[1], q[2], q[3]);
+    const Matrix3 r = quaternion_rotation(q);
     return [r](Mesh& mesh) {
-      mesh.points.transform([&](const Point3& p) { return apply(r, p); });
+      mesh.points.transform([&](const Point3& p) { return r * p; });
     };
   }
   if (name == "scale") {

@@ -2,7 +2,6 @@
 // and the helpers the per-format readers and writers share.
 #include "io/readers.hpp"
 
-#include <minksum/catalog.hpp>
 #include <minksum/io.hpp>
 
 #include <cerrno>
@@ -174,54 +173,19 @@ double checked_double(const Rational& q) {
   if (!std::isfinite(d)) {
     long bits = long(mpz_sizeinbase(q.get_num_mpz_t(), 2)) - long(mpz_sizeinbase(q.get_den_mpz_t(), 2));
     throw UsageError("a coordinate of magnitude about 2^" + std::to_string(bits) +
-                     " does not fit in a double; write exact rationals to .off, .obj or .wrl");
+                     " does not fit in a double; write exact rationals to " + extension_list(", ", " or ", true));
   }
   return d;
 }
 
-
 float rational_to_float(const Rational& q) {
-  int s = sgn(q);
-  if (s == 0) return 0.0f;
-  {
-    // Fast path: q exactly a double (dyadic, at most 53 significant bits, in
-    // range).  Then one rounding, double -> float, is the correct one.
-    const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
-    const std::size_t den_bits = mpz_sizeinbase(den, 2);
-    if (mpz_sizeinbase(num, 2) <= 53 && den_bits <= 1000 && mpz_scan1(den, 0) == den_bits - 1) {
-      const double d = q.get_d();  // exact here
-      const float f = static_cast<float>(d);
-      if (std::isfinite(f)) return f;
-    }
-  }
-  Integer n = abs(q.get_num());
-  const Integer& d = q.get_den();
-  // e = floor(log2(n/d)).
-  long e = long(mpz_sizeinbase(n.get_mpz_t(), 2)) - long(mpz_sizeinbase(d.get_mpz_t(), 2));
-  {
-    Integer lhs = n, rhs = d;
-    if (e >= 0) rhs <<= e; else lhs <<= -e;
-    if (lhs < rhs) --e;
-  }
-  auto overflow = [&]() -> float {
+  const float f = to_float(q);
+  if (std::isinf(f)) {
+    const long e = long(mpz_sizeinbase(q.get_num_mpz_t(), 2)) - long(mpz_sizeinbase(q.get_den_mpz_t(), 2));
     throw UsageError("a coordinate of magnitude about 2^" + std::to_string(e) +
                      " does not fit in the 32-bit floats of binary STL; write ascii STL or another format");
-  };
-  if (e > 127) return overflow();
-  // Quantum of the last mantissa bit: 2^(e-23) for normal floats, 2^-149 below.
-  long quantum = std::max(e - 23, -149L);
-  Integer num = n, den = d;
-  if (quantum >= 0) den <<= quantum; else num <<= -quantum;
-  Integer m, r;
-  mpz_fdiv_qr(m.get_mpz_t(), r.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
-  Integer twice_r = r << 1;
-  int c = cmp(twice_r, den);
-  if (c > 0 || (c == 0 && mpz_odd_p(m.get_mpz_t()))) m += 1;
-  // m <= 2^24; the product is exact in double and then exactly a float.
-  double v = std::ldexp(m.get_d(), int(quantum));
-  if (v > double(std::numeric_limits<float>::max())) return overflow();
-  float f = static_cast<float>(v);
-  return s < 0 ? -f : f;
+  }
+  return f;
 }
 
 double coordinate_double(const PointList& points, std::size_t i, int k) {
@@ -356,29 +320,46 @@ using namespace io_detail;
 
 // ---------------------------------------------------------------------------
 
+namespace {
+constexpr FormatInfo kFormats[] = {
+    {Format::off, "off", "OFF", true, false},  {Format::obj, "obj", "OBJ", true, false},
+    {Format::ply, "ply", "PLY", false, true},  {Format::stl, "stl", "STL", false, true},
+    {Format::wrl, "wrl", "VRML", true, false},
+};
+}  // namespace
+
+std::span<const FormatInfo> formats() { return kFormats; }
+
+const FormatInfo& format_info(Format f) {
+  for (const FormatInfo& i : kFormats)
+    if (i.format == f) return i;
+  throw std::logic_error("format_info: not a Format");
+}
+
 std::optional<Format> format_from_path(const std::string& path) {
   std::size_t slash = path.find_last_of('/');
   std::size_t base = slash == std::string::npos ? 0 : slash + 1;
   std::size_t dot = path.find_last_of('.');
   if (dot == std::string::npos || dot < base || dot + 1 >= path.size()) return std::nullopt;
   std::string_view ext = std::string_view(path).substr(dot + 1);
-  if (iequals(ext, "off")) return Format::off;
-  if (iequals(ext, "obj")) return Format::obj;
-  if (iequals(ext, "ply")) return Format::ply;
-  if (iequals(ext, "stl")) return Format::stl;
-  if (iequals(ext, "wrl")) return Format::wrl;
+  for (const FormatInfo& i : kFormats)
+    if (iequals(ext, i.extension)) return i.format;
   return std::nullopt;
 }
 
-const char* format_name(Format f) {
-  switch (f) {
-    case Format::off: return "OFF";
-    case Format::obj: return "OBJ";
-    case Format::ply: return "PLY";
-    case Format::stl: return "STL";
-    case Format::wrl: return "VRML";
+const char* format_name(Format f) { return format_info(f).name; }
+
+std::string extension_list(std::string_view separator, std::string_view last_separator, bool exact, bool binary) {
+  std::vector<const char*> ext;
+  for (const FormatInfo& i : kFormats)
+    if ((!exact || i.exact) && (!binary || i.binary)) ext.push_back(i.extension);
+  std::string out;
+  for (std::size_t k = 0; k < ext.size(); ++k) {
+    if (k > 0) out += k + 1 == ext.size() ? last_separator : separator;
+    out += '.';
+    out += ext[k];
   }
-  return "?";
+  return out;
 }
 
 namespace {
@@ -390,8 +371,8 @@ std::string lower_strerror(int err) {
 }
 
 [[noreturn]] void unknown_extension(const std::string& path, const char* verb) {
-  throw UsageError("cannot " + std::string(verb) + " '" + path +
-                   "': unknown file extension (use .off, .obj, .ply, .stl or .wrl)");
+  throw UsageError("cannot " + std::string(verb) + " '" + path + "': unknown file extension (use " +
+                   extension_list(", ", " or ") + ")");
 }
 
 Mesh parse(std::string_view data, Format format, const std::string& name) {
@@ -436,10 +417,14 @@ std::string slurp(const std::string& path) {
   return data;
 }
 
+void check_exact_possible(Format format, const WriteOptions& options) {
+  if (options.exact && !format_info(format).exact)
+    throw UsageError(std::string(format_name(format)) + " cannot store exact rationals; use " +
+                     extension_list(", ", " or ", true));
+}
+
 void check_writable(const Mesh& mesh, Format format, const WriteOptions& options) {
-  if (options.exact && (format == Format::ply || format == Format::stl))
-    throw UsageError(std::string(format_name(format)) +
-                     " cannot store exact rationals; use .off, .obj or .wrl");
+  check_exact_possible(format, options);
   const std::size_t n = mesh.points.size();
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     for (Index v : mesh.faces[f])
@@ -504,6 +489,13 @@ std::string random_suffix() {
 }
 
 }  // namespace
+
+Format output_format(const std::string& path, const WriteOptions& options) {
+  auto format = format_from_path(path);
+  if (!format) unknown_extension(path, "write");
+  check_exact_possible(*format, options);
+  return *format;
+}
 
 Mesh read_mesh(const std::string& path) {
   auto format = format_from_path(path);
@@ -591,35 +583,6 @@ void write_file_atomically(const std::string& path,
   fd = -1;
   if (closed != 0) fail("write error: " + lower_strerror(errno));
   if (::rename(tmp.c_str(), path.c_str()) != 0) fail("cannot replace the file: " + lower_strerror(errno));
-}
-
-ConvexPolytope load_polytope(const std::string& spec, bool hull, LoadPhases* phases) {
-  using clock = std::chrono::steady_clock;
-  auto seconds = [](clock::time_point a, clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
-  auto format = format_from_path(spec);
-  struct stat st{};
-  bool exists = ::stat(spec.c_str(), &st) == 0;
-  // An existing file is read, unless its name has no known extension and is
-  // a catalog spec (a stray file called "cube" does not shadow the catalog).
-  if (exists && (format || !is_catalog_spec(spec))) {
-    if (!format) unknown_extension(spec, "read");
-    const auto t0 = clock::now();
-    Mesh mesh = read_mesh(spec);  // InputError for directories, unreadable files, bad data
-    const auto t1 = clock::now();
-    ConvexPolytope p = hull ? ConvexPolytope::hull(mesh.points, spec) : ConvexPolytope::from_mesh(mesh, spec);
-    if (phases) *phases = {seconds(t0, t1), seconds(t1, clock::now())};
-    return p;
-  }
-  if (is_catalog_spec(spec)) {
-    const auto t0 = clock::now();
-    ConvexPolytope p = catalog_polytope(spec);
-    const auto t1 = clock::now();
-    if (hull) p = ConvexPolytope::hull(p.coordinates(), spec);
-    if (phases) *phases = {seconds(t0, t1), seconds(t1, clock::now())};
-    return p;
-  }
-  if (format) throw InputError(spec, "", "no such file");
-  throw UsageError("'" + spec + "' is neither a file nor a catalog name (see 'minksum gen --help')");
 }
 
 }  // namespace minksum

@@ -76,13 +76,12 @@ bool to_double_fast(mpz_srcptr n, mpz_srcptr d, double& out) {
 }
 }  // namespace
 
-double to_double(const Rational& q) {
-  int s = sgn(q);
-  if (s == 0) return 0.0;
-  if (double d; dyadic_short(q, d)) return d;
-  if (double d; to_double_fast(q.get_num_mpz_t(), q.get_den_mpz_t(), d)) return s < 0 ? -d : d;
-  Integer n = abs(q.get_num());
-  const Integer& d = q.get_den();
+namespace {
+// Nearest binary floating-point value of n / d (n, d > 0) with `precision`
+// significant bits, exponents up to `max_exponent` and quanta down to
+// 2^min_quantum (subnormals), ties to even; +inf beyond the range.  The
+// result is exact in a double for the formats used (double, float).
+double round_to_binary(const Integer& n, const Integer& d, int precision, long min_quantum, long max_exponent) {
   // e = floor(log2(n/d)), from bit lengths, corrected by one comparison.
   long e = long(mpz_sizeinbase(n.get_mpz_t(), 2)) - long(mpz_sizeinbase(d.get_mpz_t(), 2));
   {
@@ -91,9 +90,10 @@ double to_double(const Rational& q) {
     if (e >= 0) rhs <<= e; else lhs <<= -e;
     if (lhs < rhs) --e;
   }
-  if (e > 1023) return s * HUGE_VAL;
-  // Quantum: the value of the last mantissa bit.  Normal: 2^(e-52); subnormal: 2^-1074.
-  long quantum = std::max(e - 52, -1074L);
+  if (e > max_exponent) return HUGE_VAL;
+  // Quantum: the value of the last mantissa bit; 2^(e - precision + 1) for
+  // normal numbers, 2^min_quantum below.
+  const long quantum = std::max(e - precision + 1, min_quantum);
   // m = round(n / (d * 2^quantum))
   Integer num = n, den = d;
   if (quantum >= 0) den <<= quantum; else num <<= -quantum;
@@ -102,9 +102,33 @@ double to_double(const Rational& q) {
   Integer twice_r = r << 1;
   int c = cmp(twice_r, den);
   if (c > 0 || (c == 0 && mpz_odd_p(m.get_mpz_t()))) m += 1;
-  // m < 2^54 here; ldexp is exact (m fits in 53 bits, or is 2^53 after a carry).
-  double mant = m.get_d();
-  double v = std::ldexp(mant, int(quantum));
+  // m <= 2^precision; ldexp is exact (a carry to 2^precision past the
+  // largest exponent gives +inf, as it must).
+  return std::ldexp(m.get_d(), int(quantum));
+}
+}  // namespace
+
+double to_double(const Rational& q) {
+  int s = sgn(q);
+  if (s == 0) return 0.0;
+  if (double d; dyadic_short(q, d)) return d;
+  if (double d; to_double_fast(q.get_num_mpz_t(), q.get_den_mpz_t(), d)) return s < 0 ? -d : d;
+  const double v = round_to_binary(abs(q.get_num()), q.get_den(), 53, -1074, 1023);
+  return s < 0 ? -v : v;
+}
+
+float to_float(const Rational& q) {
+  int s = sgn(q);
+  if (s == 0) return 0.0f;
+  {
+    // Fast path: q exactly a double (dyadic, at most 53 significant bits, in
+    // range).  Then one rounding, double -> float, is the correct one.
+    const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
+    const std::size_t den_bits = mpz_sizeinbase(den, 2);
+    if (mpz_sizeinbase(num, 2) <= 53 && den_bits <= 1000 && mpz_scan1(den, 0) == den_bits - 1)
+      return static_cast<float>(q.get_d());  // get_d exact here; +-inf beyond FLT_MAX
+  }
+  const float v = static_cast<float>(round_to_binary(abs(q.get_num()), q.get_den(), 24, -149, 127));
   return s < 0 ? -v : v;
 }
 

@@ -7,6 +7,19 @@
 
 namespace minksum {
 
+int Plane::side(const Point3& p) const {
+  Rational s = Rational(a) * p.x + Rational(b) * p.y + Rational(c) * p.z - Rational(d);
+  return sgn(s);
+}
+
+bool operator<(const Plane& p, const Plane& q) {
+  if (int c = cmp(p.a, q.a)) return c < 0;
+  if (int c = cmp(p.b, q.b)) return c < 0;
+  if (int c = cmp(p.c, q.c)) return c < 0;
+  return cmp(p.d, q.d) < 0;
+}
+
+
 namespace {
 void make_primitive(Plane& pl) {
   Integer g = 0;

@@ -8,7 +8,7 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
-#include <minksum/polytope.hpp>
+#include <minksum/kernel.hpp>
 
 #include "kernel/interval.hpp"
 #include "kernel/predicates_internal.hpp"

@@ -244,8 +244,6 @@ struct UnionFind {
   }
 };
 
-Plane negate(const Plane& p) { return Plane{-p.a, -p.b, -p.c, -p.d}; }
-
 }  // namespace
 
 int sign_det(const Point3& a, const Point3& b, const Point3& c) { return sgn(dot(a, cross(b, c))); }
@@ -304,18 +302,6 @@ long check_fan_t(const V& a, const std::vector<V>& d, const std::vector<V>* turn
 
 long check_fan(const Point3& a, const std::vector<Point3>& d) { return check_fan_t(a, d); }
 
-
-int Plane::side(const Point3& p) const {
-  Rational s = Rational(a) * p.x + Rational(b) * p.y + Rational(c) * p.z - Rational(d);
-  return sgn(s);
-}
-
-bool operator<(const Plane& p, const Plane& q) {
-  if (int c = cmp(p.a, q.a)) return c < 0;
-  if (int c = cmp(p.b, q.b)) return c < 0;
-  if (int c = cmp(p.c, q.c)) return c < 0;
-  return cmp(p.d, q.d) < 0;
-}
 
 ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& source) {
   const Index n_in = Index(mesh.points.size());

@@ -1,48 +1,8 @@
-// Method names and dispatch.
+// Dispatch to the methods (their table: sum/shared/methods.cpp).
 #include <minksum/error.hpp>
 #include <minksum/minkowski.hpp>
 
 namespace minksum {
-
-namespace {
-struct MethodInfo {
-  Method method;
-  const char* name;
-};
-constexpr MethodInfo kMethods[] = {
-    {Method::automatic, "auto"}, {Method::walk, "walk"}, {Method::cvms, "cvms"},
-    {Method::essdms, "essdms"},  {Method::mssd, "mssd"}, {Method::chms, "chms"},
-    {Method::cgm, "cgm"},
-};
-}  // namespace
-
-const char* method_name(Method m) {
-  for (const auto& i : kMethods)
-    if (i.method == m) return i.name;
-  return "?";
-}
-
-std::optional<Method> parse_method(const std::string& name) {
-  for (const auto& i : kMethods)
-    if (name == i.name) return i.method;
-  return std::nullopt;
-}
-
-bool method_available(Method m) {
-  return m == Method::walk || m == Method::chms || m == Method::cvms || m == Method::essdms || m == Method::mssd ||
-         m == Method::cgm || m == Method::automatic;
-}
-
-const char* facet_origin_name(FacetOrigin o) {
-  switch (o) {
-    case FacetOrigin::translated: return "translated";
-    case FacetOrigin::corner: return "corner";
-    case FacetOrigin::edge: return "edge";
-    case FacetOrigin::facet_edge: return "facet_edge";
-    case FacetOrigin::facet_facet: return "facet_facet";
-  }
-  return "?";
-}
 
 Method automatic_choice(const ConvexPolytope&, const ConvexPolytope&) {
   // walk is output-sensitive and exact on every input (docs/walk.md).
@@ -68,7 +28,7 @@ SumResult dispatch(const ConvexPolytope& a, const ConvexPolytope& b, Method meth
       return minkowski_sum_cgm(a, b);
     default:
       throw UsageError(std::string("method '") + method_name(method) +
-                       "' is not implemented in this version of minksum (available: auto, walk, chms, cvms, essdms, mssd, cgm)");
+                       "' is not implemented in this version of minksum (available: " + method_list() + ")");
   }
 }
 

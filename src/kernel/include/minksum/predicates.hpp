@@ -149,7 +149,6 @@ struct RoundedPoint3 {
 int orient3d(const RoundedPoint3& a, const RoundedPoint3& b, const RoundedPoint3& c,
              const RoundedPoint3& d);
 
-struct Plane;  // <minksum/polytope.hpp>
 // plane.side(s.exact) = sign(a·x + b·y + c·z − d), given `rounded`, faithful
 // roundings of the plane's integers (a, b, c, d).  Not counted in the
 // statistics.

@@ -1,7 +1,7 @@
-// Internal: exact canonical planes (see Plane in polytope.hpp).
+// Internal: exact canonical planes (see Plane in <minksum/kernel.hpp>).
 #pragma once
 
-#include <minksum/polytope.hpp>
+#include <minksum/kernel.hpp>
 
 #include <vector>
 

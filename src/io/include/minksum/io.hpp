@@ -52,20 +52,46 @@
 #include <functional>
 #include <iosfwd>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 
 namespace minksum {
 
 enum class Format { off, obj, ply, stl, wrl };
 
-// Format from a path's extension; nullopt if the extension is not known.
+// The formats, one row each: every name, extension and capability that
+// parsing, help texts and error messages mention comes from this table.
+struct FormatInfo {
+  Format format;
+  const char* extension;  // without the dot: "off"
+  const char* name;       // "OFF"
+  bool exact;             // can hold exact rationals (WriteOptions::exact)
+  bool binary;            // has a binary encoding (WriteOptions::binary)
+};
+// Every format, in the order help texts list them.
+std::span<const FormatInfo> formats();
+const FormatInfo& format_info(Format f);
+
+// Format from a path's extension (case-insensitive); nullopt if the
+// extension is not known.
 std::optional<Format> format_from_path(const std::string& path);
 const char* format_name(Format f);
+// The extensions (with their dots) of the formats that have every capability
+// asked for, joined: extension_list(", ", " or ") = ".off, .obj, .ply, .stl
+// or .wrl"; extension_list(", ", " or ", true) = ".off, .obj or .wrl".
+std::string extension_list(std::string_view separator, std::string_view last_separator, bool exact = false,
+                           bool binary = false);
 
 struct WriteOptions {
   bool exact = false;   // exact rationals instead of doubles
   bool binary = false;  // PLY / STL: binary instead of ascii
 };
+
+// The format of an output path, checked against the options before anything
+// is computed or written: UsageError for an unknown extension or for exact
+// coordinates in a format that cannot hold them.
+Format output_format(const std::string& path, const WriteOptions& options);
 
 // Read a mesh from a file (format from the extension).
 Mesh read_mesh(const std::string& path);
@@ -91,21 +117,5 @@ void write_mesh(std::ostream& out, const Mesh& mesh, Format format, const WriteO
 // an exception thrown by `fill` itself removes the temporary and propagates
 // unchanged.  Either way `path` keeps its previous content.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& fill);
-
-// Resolve an operand as the CLI does: a path to an existing file is read and
-// validated; otherwise a catalog name (see catalog.hpp).  An existing file
-// whose name has no known extension but is a catalog spec (a stray file
-// called "cube") does not shadow the catalog.  With `hull` the file's (or
-// catalog polytope's) points are taken as a point cloud and their exact hull
-// returned (faces, if any, ignored).  Throws InputError for bad data, a
-// directory, an unreadable file, or a missing file named with a known
-// extension ("no such file"); UsageError for a name that is neither a file
-// nor a catalog name.
-// `phases`, when given, receives the seconds spent reading the file (or
-// building the catalog polytope) and validating it (or taking its hull).
-struct LoadPhases {
-  double read = 0, validate = 0;
-};
-ConvexPolytope load_polytope(const std::string& spec, bool hull = false, LoadPhases* phases = nullptr);
 
 }  // namespace minksum

@@ -29,6 +29,7 @@
 
 #include <minksum/minkowski.hpp>
 #include <minksum/polytope.hpp>
+#include <minksum/transform.hpp>  // rotations of the operands
 
 #include <array>
 #include <cstdint>
@@ -100,16 +101,6 @@ struct ProximityStats {
   std::uint64_t rebuilds = 0;        // computations of M
 };
 
-// An exact rotation given by a non-zero integer quaternion a + b i + c j + d k
-// (the same matrix as the catalog's "@rot:A,B,C,D" transform):
-// R = (1/|q|²) [[a²+b²−c²−d², 2(bc−ad), 2(bd+ac)], [2(bc+ad), a²−b²+c²−d²,
-// 2(cd−ab)], [2(bd−ac), 2(cd+ab), a²−b²−c²+d²]].  Throws UsageError for the
-// zero quaternion.
-using Quaternion = std::array<Integer, 4>;
-Point3 rotate(const Quaternion& q, const Point3& p);
-ConvexPolytope rotated(const ConvexPolytope& p, const Quaternion& q);
-// Hamilton product a·b: rotating by b then by a equals rotating by a·b.
-Quaternion quaternion_product(const Quaternion& a, const Quaternion& b);
 
 class TranslationalObstacle {
  public:

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,12 +20,22 @@ namespace minksum {
 
 enum class Method { automatic, walk, cvms, essdms, mssd, chms, cgm };
 
-// "auto", "walk", "cvms", ...
+// The methods, one row each: parsing, --help and error messages are built
+// from this table.
+struct MethodInfo {
+  Method method;
+  const char* name;     // "auto", "walk", "cvms", ...
+  const char* summary;  // one paragraph for --help
+};
+// Every method, in the order help texts list them (automatic first).
+std::span<const MethodInfo> methods();
 const char* method_name(Method m);
 // Parse a method name; nullopt if unknown.
 std::optional<Method> parse_method(const std::string& name);
-// True when the method is implemented in this build.
+// True when the method is implemented in this build (every row of the table).
 bool method_available(Method m);
+// The names joined: "auto, walk, chms, cvms, essdms, mssd, cgm".
+std::string method_list();
 
 // Where an output facet comes from (seed 000 §4.3, seed 001 §3).  A facet of
 // S = A ⊕ B with outer normal n is face_A(n) ⊕ face_B(n), the faces of A and

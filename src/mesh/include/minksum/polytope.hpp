@@ -51,18 +51,6 @@ struct Mesh {
   std::vector<std::vector<Index>> faces;  // indices into points
 };
 
-// An oriented plane a*x + b*y + c*z = d with outward normal (a, b, c).
-// Canonical form: integers with gcd(a, b, c, d) = 1, so two facets lie in the
-// same oriented plane if and only if their Plane compares equal.
-struct Plane {
-  Integer a, b, c, d;
-  friend bool operator==(const Plane&, const Plane&) = default;
-  // Sign of a*x + b*y + c*z - d: > 0 outside (above), 0 on, < 0 inside.
-  int side(const Point3& p) const;
-  Point3 normal() const { return Point3(Rational(a), Rational(b), Rational(c)); }
-};
-bool operator<(const Plane& p, const Plane& q);  // lexicographic (a, b, c, d)
-
 class ConvexPolytope {
  public:
   ConvexPolytope() = default;

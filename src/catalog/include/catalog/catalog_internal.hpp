@@ -12,6 +12,7 @@
 #include <minksum/catalog.hpp>
 #include <minksum/error.hpp>
 #include <minksum/polytope.hpp>
+#include <minksum/transform.hpp>
 
 #include <array>
 #include <cstdint>
@@ -109,19 +110,9 @@ ConvexPolytope make_zonotope(const std::vector<Point3>& generators, const std::s
 std::array<double, 2> unit_circle_point(std::uint64_t k, std::uint64_t n);
 
 // ---------------------------------------------------------------------------
-// Exact rotations (rotation.cpp).
-struct Matrix3 {
-  std::array<std::array<Rational, 3>, 3> m;
-};
-// The rotation of the (non-zero) integer quaternion a + b i + c j + d k:
-// (1 / (a²+b²+c²+d²)) [[a²+b²−c²−d², 2(bc−ad), 2(bd+ac)],
-//                      [2(bc+ad), a²−b²+c²−d², 2(cd−ab)],
-//                      [2(bd−ac), 2(cd+ab), a²−b²−c²+d²]],
-// an exact rational orthogonal matrix of determinant 1.
-Matrix3 quaternion_rotation(const Integer& a, const Integer& b, const Integer& c, const Integer& d);
+// Rotations (rotation.cpp; the matrices are in <minksum/transform.hpp>).
 // The quaternion of rot:SEED: integers in [-100, 100] drawn until
 // 50 <= |q| <= 100 (so the rotation is close to uniformly distributed).
 std::array<Integer, 4> random_quaternion(std::uint64_t seed);
-Point3 apply(const Matrix3& r, const Point3& p);
 
 }  // namespace minksum::catalog_detail

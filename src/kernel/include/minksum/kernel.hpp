@@ -71,6 +71,9 @@ bool is_zero(const Point3& a);
 // Nearest double of a rational (round to nearest, ties to even), and of a point.
 double to_double(const Rational& q);
 Vec3d to_double(const Point3& p);
+// Nearest float (round to nearest, ties to even; +-inf beyond the float
+// range), as binary STL stores coordinates.
+float to_float(const Rational& q);
 // True when q is exactly a finite double.
 bool is_double(const Rational& q);
 bool is_double(const Point3& p);
@@ -80,6 +83,18 @@ std::size_t hash_value(const Point3& p);
 struct Point3Hash {
   std::size_t operator()(const Point3& p) const { return hash_value(p); }
 };
+
+// An oriented plane a*x + b*y + c*z = d with outward normal (a, b, c).
+// Canonical form: integers with gcd(a, b, c, d) = 1, so two facets lie in the
+// same oriented plane if and only if their Plane compares equal.
+struct Plane {
+  Integer a, b, c, d;
+  friend bool operator==(const Plane&, const Plane&) = default;
+  // Sign of a*x + b*y + c*z - d: > 0 outside (above), 0 on, < 0 inside.
+  int side(const Point3& p) const;
+  Point3 normal() const { return Point3(Rational(a), Rational(b), Rational(c)); }
+};
+bool operator<(const Plane& p, const Plane& q);  // lexicographic (a, b, c, d)
 
 // ---------------------------------------------------------------------------
 // Parsing.  `parse_number` accepts

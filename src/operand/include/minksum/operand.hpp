@@ -1,0 +1,28 @@
+// minksum — operands as the command line names them: a file (read by
+// <minksum/io.hpp>) or a catalog name (built by <minksum/catalog.hpp>).  The
+// one place that decides which a name is.
+#pragma once
+
+#include <minksum/polytope.hpp>
+
+#include <string>
+
+namespace minksum {
+
+// Resolve an operand as the CLI does: a path to an existing file is read and
+// validated; otherwise a catalog name (see catalog.hpp).  An existing file
+// whose name has no known extension but is a catalog spec (a stray file
+// called "cube") does not shadow the catalog.  With `hull` the file's (or
+// catalog polytope's) points are taken as a point cloud and their exact hull
+// returned (faces, if any, ignored).  Throws InputError for bad data, a
+// directory, an unreadable file, or a missing file named with a known
+// extension ("no such file"); UsageError for a name that is neither a file
+// nor a catalog name.
+// `phases`, when given, receives the seconds spent reading the file (or
+// building the catalog polytope) and validating it (or taking its hull).
+struct LoadPhases {
+  double read = 0, validate = 0;
+};
+ConvexPolytope load_polytope(const std::string& spec, bool hull = false, LoadPhases* phases = nullptr);
+
+}  // namespace minksum

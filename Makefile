@@ -58,14 +58,14 @@ asan:
 clean:
 	rm -rf $(BUILD) build-asan $(BENCH_BUILD)
 
-# The side-by-side benchmark (bench/, docs/benchmarks.md): a separate Release
+# The side-by-side benchmark (bench/, docs/generated/benchmarks.md): a separate Release
 # build with assertions off.  `make bench` runs the full suite and rewrites
-# docs/benchmarks.md, docs/benchmarks-plot.svg and docs/benchmarks-proximity.md
+# docs/generated/benchmarks.md, docs/generated/benchmarks-plot.svg and docs/generated/benchmarks-proximity.md
 # (minksum's proximity queries against libccd); `make bench-quick` runs the
 # short development suite and writes build-bench/quick/benchmarks.md;
 # `make bench-e2e` runs the end-to-end section alone (whole processes, file to
 # file: `minksum sum` against Qhull's `qconvex`) and rewrites that section of
-# docs/benchmarks.md.
+# docs/generated/benchmarks.md.
 BENCH_BUILD ?= build-bench
 BENCH_JOBS  ?= 2
 BENCH_CONFIGURE = cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DMINKSUM_BENCH=ON \
@@ -76,12 +76,12 @@ bench:
 	@$(MAKE) --no-print-directory setup
 	$(BENCH_CONFIGURE)
 	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target minksum_bench bench_proximity minksum_cli
-	$(BENCH_BUILD)/bin/minksum_bench --suite full --out docs --command "make bench"
+	$(BENCH_BUILD)/bin/minksum_bench --suite full --out docs/generated --command "make bench"
 	bash bench/proximity/run.sh $(BENCH_BUILD)
 	$(E2E) --command "make bench"
 
 E2E = /usr/bin/python3 bench/e2e.py --minksum $(BENCH_BUILD)/bin/minksum --work $(BENCH_BUILD)/e2e \
-      --page docs/benchmarks.md
+      --page docs/generated/benchmarks.md
 
 bench-e2e:
 	@$(MAKE) --no-print-directory setup

@@ -2,7 +2,7 @@
 """minksum bench, end to end: whole processes, file to file.
 
     python3 bench/e2e.py [--minksum build-bench/bin/minksum] [--work build-bench/e2e]
-                         [--rounds 7] [--memory-rounds 3] [--page docs/benchmarks.md]
+                         [--rounds 7] [--memory-rounds 3] [--page docs/generated/benchmarks.md]
                          [--command "make bench-e2e"]
 
 For each row the operands are written as double OFF files with `minksum gen`
@@ -126,7 +126,7 @@ def main():
     ap.add_argument("--work", default="build-bench/e2e")
     ap.add_argument("--rounds", type=int, default=7)
     ap.add_argument("--memory-rounds", type=int, default=3)
-    ap.add_argument("--page", default="docs/benchmarks.md")
+    ap.add_argument("--page", default="docs/generated/benchmarks.md")
     ap.add_argument("--command", default="make bench-e2e")
     ap.add_argument("--only", default="", help="comma-separated row keys (a,b,c1,c2,load)")
     args = ap.parse_args()

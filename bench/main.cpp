@@ -1,5 +1,5 @@
 // minksum bench — every minksum method against the tools users pick today,
-// on the same inputs, in the same run.  Writes docs/benchmarks.md and its plot.
+// on the same inputs, in the same run.  Writes docs/generated/benchmarks.md and its plot.
 //
 //   minksum_bench [--suite full|quick] [--out DIR] [--command TEXT] [--only GROUP]
 //                 [--contenders KEY,KEY,...] [--verbose]
@@ -49,7 +49,7 @@ namespace {
 
 struct Config {
   std::string suite = "full";
-  std::string out = "docs";
+  std::string out = "docs/generated";
   std::string command = "make bench";
   std::string only;
   std::string contenders;      // comma-separated contender keys to run (empty: all)

@@ -1,6 +1,6 @@
 // qhull_standalone — Qhull on the rounded pairwise sums of two catalog
 // polytopes, timed on its own, and the same call under the conditions of a
-// benchmark cell, so that anyone can check that a cell of docs/benchmarks.md
+// benchmark cell, so that anyone can check that a cell of docs/generated/benchmarks.md
 // costs what the call costs in a program of its own.
 //
 //   qhull_standalone [A B] [--runs N] [--fork] [--ballast MB] [--cell]

@@ -1,4 +1,4 @@
-// minksum bench — docs/benchmarks.md and the log-log plot (hand-written SVG).
+// minksum bench — docs/generated/benchmarks.md and the log-log plot (hand-written SVG).
 #include "report.hpp"
 
 #include <algorithm>

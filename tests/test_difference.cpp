@@ -1,4 +1,4 @@
-// Tests of the exact difference comparison (src/kernel/difference.hpp), the
+// Tests of the exact difference comparison (src/kernel/include/kernel/difference.hpp), the
 // walk's zero certificate: every answer is checked against exact rational
 // subtraction, including the cases the rounded differences alone would get
 // wrong (equal roundings of different exact values), overflow, and a

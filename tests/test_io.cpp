@@ -1,4 +1,4 @@
-// Readers and writers of include/minksum/io.hpp: round trips through every
+// Readers and writers of src/io/include/minksum/io.hpp: round trips through every
 // format, parsing details of each format, malformed input, atomic writes and
 // operand resolution.
 #include <minksum/error.hpp>

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Build and run the proximity benchmark (minksum vs libccd, and FCL when
 # libfcl-dev is installed) and write its
-# markdown section to docs/benchmarks-proximity.md.
+# markdown section to docs/generated/benchmarks-proximity.md.
 #   bench/proximity/run.sh [BUILD_DIR] [extra bench_proximity arguments]
 # BUILD_DIR defaults to build-bench-prox (Release, assertions off).
 set -euo pipefail
@@ -17,7 +17,7 @@ else
         -DMINKSUM_BENCH=ON >/dev/null
   cmake --build "$BUILD" -j 2 --target bench_proximity
 fi
-out=docs/benchmarks-proximity.md
+out=docs/generated/benchmarks-proximity.md
 tmp=$(mktemp "$out.XXXXXX")
 "$BUILD/bin/bench_proximity" --steps 100000 --reps 2000 "$@" > "$tmp"
 mv "$tmp" "$out"

@@ -1,5 +1,5 @@
 // The walk method (DESIGN.md §4): the output-sensitive exact Minkowski sum.
-// The algorithm and its output are described in include/minksum/walk.hpp;
+// The algorithm and its output are described in src/sum/include/minksum/walk.hpp;
 // docs/walk.md has the case analysis.  Conventions used below:
 //
 //  * Gaussian map.  For a half-edge h of a convex polytope with facet(h) on
@@ -181,7 +181,7 @@ struct Operand {
 // — the tree of kernel predicate 2, so its bounds apply:
 //  * exact double coordinates: |value − P| ≤ c_vec · M_e M_u M_v;
 //  * otherwise (rounded rationals): c_rat Π D + T (1 + 2^-20) Σ_k ρ_k Π_{h≠k} (D_h + ρ_h)
-// (derivations in src/kernel/filter.hpp).
+// (derivations in src/kernel/include/kernel/filter.hpp).
 // A difference of two vertices of one operand, rounded, with what the
 // filter needs: its largest coordinate and the operands' coordinates' bound.
 struct Diff {

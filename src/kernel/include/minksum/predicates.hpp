@@ -16,7 +16,7 @@
 // The answers never depend on the path: the filter only answers when its
 // bound proves the sign, and zero is always the exact zero.  The polynomials,
 // their degrees and the error-bound derivations are in docs/kernel.md and
-// in src/kernel/filter.hpp (shapes) and predicates_internal.hpp (descriptors).
+// in src/kernel/include/kernel/filter.hpp (shapes) and predicates_internal.hpp (descriptors).
 //
 // Notation: for three points a0, a1, a2, their normal is
 //   n(a0, a1, a2) = (a1 − a0) × (a2 − a0),

@@ -5,7 +5,7 @@
 // A slope diagram is never embedded on the sphere and never projected: every
 // facet point, edge arc and vertex region is read off the half-edge structure
 // of the polytope, and every intersection test is the sign of an exact
-// polynomial in the input coordinates (include/minksum/predicates.hpp).
+// polynomial in the input coordinates (src/kernel/include/minksum/predicates.hpp).
 //
 // Reading the diagram off the polytope P:
 //   * facet point of facet f: the outer normal n_f = n(frame(f)) (three

@@ -7,6 +7,7 @@
 // SumResult::vertex_origin.
 #pragma once
 
+#include <minksum/error.hpp>  // Cancelled, UsageError
 #include <minksum/polytope.hpp>
 
 #include <atomic>

@@ -10,7 +10,7 @@ CMAKE_ARGS ?=
 CONFIGURE = cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) \
             -DMINKSUM_SANITIZE=$(SANITIZE) $(CMAKE_ARGS)
 
-.PHONY: all setup configure build demo test test-long asan clean
+.PHONY: all setup configure build demo test test-long asan tsan clean
 
 all: build
 
@@ -55,8 +55,22 @@ test-long: build
 asan:
 	$(MAKE) --no-print-directory test BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON
 
+# Optimised build (with debug info and assertions) under ThreadSanitizer in
+# build-tsan/, then the tests that run threads: concurrent sums with progress
+# and cancellation, concurrent readers of lazily computed planes, per-thread
+# predicate counters, and the progress line's display thread in `minksum sum`.
+TSAN_BUILD   = build-tsan
+TSAN_TARGETS = test_progress test_point_list test_predicates test_cli minksum_cli
+TSAN_TESTS   = ^(ProgressReports|Cancellation|LazyCache|PredicateStatsTest\.CountersArePerThread|Cli\.SumProgress)
+tsan:
+	@$(MAKE) --no-print-directory setup
+	cmake -S . -B $(TSAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMINKSUM_TSAN=ON -DMINKSUM_SANITIZE=OFF $(CMAKE_ARGS)
+	cmake --build $(TSAN_BUILD) -j $(JOBS) --target $(TSAN_TARGETS)
+	cd $(TSAN_BUILD) && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
+	  ctest --output-on-failure -j $(JOBS) -L unit -R '$(TSAN_TESTS)' --no-tests=error
+
 clean:
-	rm -rf $(BUILD) build-asan $(BENCH_BUILD)
+	rm -rf $(BUILD) build-asan $(TSAN_BUILD) $(BENCH_BUILD)
 
 # The side-by-side benchmark (bench/, docs/generated/benchmarks.md): a separate Release
 # build with assertions off.  `make bench` runs the full suite and rewrites

@@ -108,7 +108,7 @@ int run_sum(const std::vector<std::string>& argv) {
   ConvexPolytope pb = load_polytope(a.positional[1], hull, &lb);
   SumResult r = [&] {
     ProgressTicker ticker("minksum sum");  // a progress line on a terminal after 1 s; erased when done
-    return minkowski_sum(pa, pb, *method);
+    return minkowski_sum(pa, pb, *method, ticker.sum_options());
   }();
   const auto w0 = std::chrono::steady_clock::now();
   if (!output.empty()) write_output(output, r.polytope, exact, a.flag("--binary"));

@@ -36,6 +36,15 @@ ProgressTicker::ProgressTicker(std::string label, std::chrono::milliseconds dela
 
 ProgressTicker::~ProgressTicker() { stop(); }
 
+SumOptions ProgressTicker::sum_options() {
+  SumOptions o;
+  o.progress = [this](const char* phase, double fraction) {
+    fraction_.store(fraction, std::memory_order_relaxed);
+    phase_.store(phase, std::memory_order_release);
+  };
+  return o;
+}
+
 void ProgressTicker::stop() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -50,10 +59,11 @@ void ProgressTicker::loop() {
   if (wake_.wait_until(lock, start_ + delay_, [this] { return stopping_; })) return;  // fast: nothing drawn
   do {
     lock.unlock();  // no lock held while writing: stop() never waits on the terminal
-    const SumProgress p = sum_progress();
+    const char* phase = phase_.load(std::memory_order_acquire);
+    const double fraction = fraction_.load(std::memory_order_relaxed);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     // "\r" back to column 0, the text, then clear what a longer previous line left.
-    const std::string text = "\r" + progress_line(label_, p.phase, p.fraction, seconds) + "\033[K";
+    const std::string text = "\r" + progress_line(label_, phase ? phase : "", fraction, seconds) + "\033[K";
     std::fputs(text.c_str(), stderr);
     std::fflush(stderr);
     lock.lock();

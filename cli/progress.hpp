@@ -1,6 +1,9 @@
 // A progress line on stderr for long computations (minksum sum).
 #pragma once
 
+#include <minksum/minkowski.hpp>
+
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -11,7 +14,7 @@ namespace minksum::cli {
 
 // RAII ticker: while alive, and only when stderr is a terminal, a background
 // thread waits until `delay` has passed, then rewrites one line on stderr
-// every `period` from sum_progress(), e.g.
+// every `period` from the last report of the sum given sum_options(), e.g.
 //   "minksum sum: walk 42% (2.3 s)"   (phase with a known fraction)
 //   "minksum sum: cgm (2.3 s)"        (fraction unknown)
 //   "minksum sum: computing (2.3 s)"  (no phase reported)
@@ -28,11 +31,22 @@ class ProgressTicker {
   ProgressTicker(const ProgressTicker&) = delete;
   ProgressTicker& operator=(const ProgressTicker&) = delete;
 
+  // Options for the sum this ticker shows: their progress callback stores
+  // the phase and fraction in the ticker's atomics, which its thread polls.
+  // The ticker must outlive the sum.
+  SumOptions sum_options();
+
   // Stop the thread and erase the line (idempotent; the destructor calls it).
   void stop();
 
  private:
   void loop();
+
+  // The last report (written by the computing thread, read by the ticker's):
+  // the phase (a string literal, nullptr before the first report) and its
+  // fraction.
+  std::atomic<const char*> phase_{nullptr};
+  std::atomic<double> fraction_{-1.0};
 
   std::string label_;
   std::chrono::milliseconds delay_, period_;

@@ -273,12 +273,16 @@ void overlay_map(int k, const Map& ma, const Map& mb, const ConvexPolytope& A, c
 }  // namespace
 
 SumResult minkowski_sum_cgm(const CubicalGaussianMap& a, const CubicalGaussianMap& b, const ConvexPolytope& pa,
-                            const ConvexPolytope& pb) {
+                            const ConvexPolytope& pb, const SumOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
   std::vector<FacetCandidate> candidates;
   Counters cnt;
   Index walk_a = 0, walk_b = 0;
-  for (int k = 0; k < 6; ++k) overlay_map(k, a.map(k), b.map(k), pa, pb, walk_a, walk_b, cnt, candidates);
+  for (int k = 0; k < 6; ++k) {
+    options.report("cgm", -1);
+    overlay_map(k, a.map(k), b.map(k), pa, pb, walk_a, walk_b, cnt, candidates);
+  }
+  options.report("cgm", -1);
   const long long overlay_vertices = static_cast<long long>(candidates.size());
   SumResult r = assemble_sum(pa, pb, std::move(candidates), Method::cgm);
   r.counters = {{"overlay_facet_vertices", overlay_vertices},
@@ -296,10 +300,11 @@ SumResult minkowski_sum_cgm(const CubicalGaussianMap& a, const CubicalGaussianMa
   return r;
 }
 
-SumResult minkowski_sum_cgm(const ConvexPolytope& a, const ConvexPolytope& b) {
+SumResult minkowski_sum_cgm(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
+  options.report("cgm", -1);
   CubicalGaussianMap ga = CubicalGaussianMap::from_polytope(a), gb = CubicalGaussianMap::from_polytope(b);
-  SumResult r = minkowski_sum_cgm(ga, gb, a, b);
+  SumResult r = minkowski_sum_cgm(ga, gb, a, b, options);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -9,13 +9,15 @@
 
 namespace minksum {
 
-SumResult minkowski_sum_chms(const ConvexPolytope& a, const ConvexPolytope& b) {
+SumResult minkowski_sum_chms(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
+  options.report("chms", -1);
   const Index na = a.num_vertices(), nb = b.num_vertices();
   std::vector<Point3> sums;
   sums.reserve(std::size_t(na) * nb);
   for (Index i = 0; i < na; ++i)
     for (Index j = 0; j < nb; ++j) sums.push_back(a.point(i) + b.point(j));
+  options.report("chms", -1);
   SumResult r;
   r.method = Method::chms;
   r.polytope = ConvexPolytope::hull(sums, "chms");

@@ -116,8 +116,9 @@ FacetCandidate facet_candidate(const ConvexPolytope& P, Index f, const ConvexPol
 
 }  // namespace
 
-SumResult minkowski_sum_cvms(const ConvexPolytope& A, const ConvexPolytope& B) {
+SumResult minkowski_sum_cvms(const ConvexPolytope& A, const ConvexPolytope& B, const SumOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
+  options.report("cvms", -1);
   const Geometry g{A, B, A.coordinates_are_doubles() && B.coordinates_are_doubles()};
   const std::vector<Frame> frA = frames(A), frB = frames(B);
   std::vector<std::vector<Index>> cvA(A.num_facets()), cvB(B.num_facets());
@@ -136,6 +137,7 @@ SumResult minkowski_sum_cvms(const ConvexPolytope& A, const ConvexPolytope& B) {
     }
     candidates.push_back(facet_candidate(A, f, B, cvA[f], true, face));
   }
+  options.report("cvms", -1);
   // (2) Corner facets.
   for (Index f = 0; f < B.num_facets(); ++f) {
     if (usedB[f]) continue;
@@ -143,6 +145,7 @@ SumResult minkowski_sum_cvms(const ConvexPolytope& A, const ConvexPolytope& B) {
     Point3 n = B.plane(f).normal();
     candidates.push_back(facet_candidate(B, f, A, cvB[f], false, face_of_vertices(A, cvB[f], n)));
   }
+  options.report("cvms", -1);
   // (3) Edge facets.  Property 1 for the edges of B first.
   std::vector<char> activeB(B.num_edges());
   for (Index e = 0; e < B.num_edges(); ++e)
@@ -170,6 +173,7 @@ SumResult minkowski_sum_cvms(const ConvexPolytope& A, const ConvexPolytope& B) {
     }
   }
 
+  options.report("cvms", -1);
   SumResult r = assemble_sum(A, B, std::move(candidates), Method::cvms);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

@@ -65,15 +65,17 @@ bool share_a_vertex(const std::vector<Index>& x, const std::vector<Index>& y) {
 
 }  // namespace
 
-SumResult minkowski_sum_essdms(const ConvexPolytope& A, const ConvexPolytope& B) {
+SumResult minkowski_sum_essdms(const ConvexPolytope& A, const ConvexPolytope& B, const SumOptions& options) {
   using namespace slope_diagram;
   auto t0 = std::chrono::steady_clock::now();
+  options.report("essdms", -1);
   const Diagram da(A), db(B);
   const Geometry g(da, db);
   Merge m(g);
 
   m.two_facet_points();           // case 1
   m.facet_points_on_edge_arcs();  // case 2
+  options.report("essdms", -1);
 
   // Case 4: the remaining facet points, each in the region of its single
   // contributing vertex.
@@ -90,6 +92,7 @@ SumResult minkowski_sum_essdms(const ConvexPolytope& A, const ConvexPolytope& B)
   };
   regions(da, true, db);
   regions(db, false, da);
+  options.report("essdms", -1);
 
   // Case 3, with Property 1 pruning the edge arcs.
   auto active = [&](const ConvexPolytope& P, const std::vector<std::vector<Index>>& cv) {
@@ -103,6 +106,7 @@ SumResult minkowski_sum_essdms(const ConvexPolytope& A, const ConvexPolytope& B)
   const std::vector<Index> arcs_a = active(A, m.cv_a), arcs_b = active(B, m.cv_b);
   for (Index ea : arcs_a)
     for (Index eb : arcs_b) m.edge_arc_pair(ea, eb);
+  options.report("essdms", -1);
 
   SumResult r = finish(m, Method::essdms);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -10,38 +10,32 @@ Method automatic_choice(const ConvexPolytope&, const ConvexPolytope&) {
 }
 
 namespace {
-SumResult dispatch(const ConvexPolytope& a, const ConvexPolytope& b, Method method) {
+SumResult dispatch(const ConvexPolytope& a, const ConvexPolytope& b, Method method, const SumOptions& options) {
   switch (method) {
     case Method::automatic:
-      return dispatch(a, b, automatic_choice(a, b));
+      return dispatch(a, b, automatic_choice(a, b), options);
     case Method::walk:
-      return minkowski_sum_walk(a, b);
+      return minkowski_sum_walk(a, b, options);
     case Method::chms:
-      return minkowski_sum_chms(a, b);
+      return minkowski_sum_chms(a, b, options);
     case Method::cvms:
-      return minkowski_sum_cvms(a, b);
+      return minkowski_sum_cvms(a, b, options);
     case Method::essdms:
-      return minkowski_sum_essdms(a, b);
+      return minkowski_sum_essdms(a, b, options);
     case Method::mssd:
-      return minkowski_sum_mssd(a, b);
+      return minkowski_sum_mssd(a, b, options);
     case Method::cgm:
-      return minkowski_sum_cgm(a, b);
+      return minkowski_sum_cgm(a, b, options);
     default:
       throw UsageError(std::string("method '") + method_name(method) +
                        "' is not implemented in this version of minksum (available: " + method_list() + ")");
   }
 }
-
-// Clears the progress report however the method ends.
-struct ProgressScope {
-  explicit ProgressScope(Method m) { report_sum_progress(method_name(m), -1); }
-  ~ProgressScope() { report_sum_progress(nullptr, -1); }
-};
 }  // namespace
 
-SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b, Method method) {
-  ProgressScope scope(method == Method::automatic ? automatic_choice(a, b) : method);
-  return dispatch(a, b, method);
+// Each method reports its own phases (and checks options.cancel) from its start.
+SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b, Method method, const SumOptions& options) {
+  return dispatch(a, b, method, options);
 }
 
 }  // namespace minksum

@@ -28,19 +28,22 @@
 
 namespace minksum {
 
-SumResult minkowski_sum_mssd(const ConvexPolytope& A, const ConvexPolytope& B) {
+SumResult minkowski_sum_mssd(const ConvexPolytope& A, const ConvexPolytope& B, const SumOptions& options) {
   using namespace slope_diagram;
   auto t0 = std::chrono::steady_clock::now();
+  options.report("mssd", -1);
   const Diagram da(A), db(B);
   const Geometry g(da, db);
   Merge m(g);
 
   m.two_facet_points();           // case 1
   m.facet_points_on_edge_arcs();  // case 2
+  options.report("mssd", -1);
 
   // Case 3: all pairs of edge arcs.
   for (Index ea = 0; ea < A.num_edges(); ++ea)
     for (Index eb = 0; eb < B.num_edges(); ++eb) m.edge_arc_pair(ea, eb);
+  options.report("mssd", -1);
 
   // Case 4: point-in-polygon queries for the remaining facet points.
   auto regions = [&](const Diagram& P, bool p_is_a, const Diagram& Q) {
@@ -59,6 +62,7 @@ SumResult minkowski_sum_mssd(const ConvexPolytope& A, const ConvexPolytope& B) {
   };
   regions(da, true, db);
   regions(db, false, da);
+  options.report("mssd", -1);
 
   SumResult r = finish(m, Method::mssd);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -327,7 +327,8 @@ class Walker {
   // face_Q(n(f)) for every facet f of P; with `crossings`, every proper
   // crossing of an arc of P with an arc of Q as (half-edge of P walked,
   // half-edge of Q crossed from the region of its origin into its target's).
-  std::vector<Feature> run(std::vector<std::pair<Index, Index>>* crossings, double progress0, double progress_span) {
+  std::vector<Feature> run(std::vector<std::pair<Index, Index>>* crossings, const SumOptions& options, double progress0,
+                           double progress_span) {
     crossings_ = crossings;
     const Index nf = p_.num_facets();
     std::vector<Feature> S(nf, kUnknown);
@@ -337,7 +338,7 @@ class Walker {
     S[0] = climb(0);
     queue.push_back(0);
     for (std::size_t qi = 0; qi < queue.size(); ++qi) {
-      if ((qi & 4095) == 0) report_sum_progress("walk", progress0 + progress_span * double(qi) / nf);
+      if ((qi & 4095) == 0) options.report("walk", progress0 + progress_span * double(qi) / nf);
       const Index f1 = queue[qi];
       const Index h0 = p_.facet_halfedge(f1);
       Index h = h0;
@@ -701,7 +702,8 @@ void facet_plus_edge(const ConvexPolytope& F, Index fi, const ConvexPolytope& E,
 
 }  // namespace
 
-WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
+WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options) {
+  options.report("walk", 0);
   Stats st;
   st.round_to_nearest = round_to_nearest();
   const Operand A(a), B(b);
@@ -712,13 +714,13 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
   const bool a_records = a.num_edges() <= b.num_edges();
   std::vector<Feature> SA, SB;
   if (a_records) {
-    SB = Walker(A, B, st).run(&crossings, 0, 0.8 * fa / (fa + fb));
-    SA = Walker(B, A, st).run(nullptr, 0.8 * fa / (fa + fb), 0.8 * fb / (fa + fb));
+    SB = Walker(A, B, st).run(&crossings, options, 0, 0.8 * fa / (fa + fb));
+    SA = Walker(B, A, st).run(nullptr, options, 0.8 * fa / (fa + fb), 0.8 * fb / (fa + fb));
   } else {
-    SA = Walker(B, A, st).run(&crossings, 0, 0.8 * fb / (fa + fb));
-    SB = Walker(A, B, st).run(nullptr, 0.8 * fb / (fa + fb), 0.8 * fa / (fa + fb));
+    SA = Walker(B, A, st).run(&crossings, options, 0, 0.8 * fb / (fa + fb));
+    SB = Walker(A, B, st).run(nullptr, options, 0.8 * fb / (fa + fb), 0.8 * fa / (fa + fb));
   }
-  report_sum_progress("walk", 0.8);
+  options.report("walk", 0.8);
 
   // Output facets: A's facets, B's facets not parallel to one of A's, and
   // the edge facets of the crossings.
@@ -908,12 +910,12 @@ ConvexPolytope to_polytope(const WalkSum& w, const ConvexPolytope& a, const Conv
                                              w.he_origin, w.he_next, w.he_facet, w.facet_he);
 }
 
-SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
+SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
-  WalkSum w = minkowski_walk(a, b);
+  WalkSum w = minkowski_walk(a, b, options);
   const auto t1 = clock::now();
-  report_sum_progress("convert", -1);
+  options.report("convert", -1);
   SumResult r;
   r.method = Method::walk;
   r.polytope = to_polytope(w, a, b);

@@ -163,8 +163,10 @@ class CubicalGaussianMap {
 };
 
 // The sum by overlaying the six pairs of planar maps of the two CGMs.
-// Counters name the overlay cases met (see docs/cgm.md).
+// Counters name the overlay cases met (see docs/cgm.md).  Reports phase
+// "cgm" to options before each pair of maps and before the assembly
+// (SumOptions, minkowski.hpp).
 SumResult minkowski_sum_cgm(const CubicalGaussianMap& a, const CubicalGaussianMap& b, const ConvexPolytope& pa,
-                            const ConvexPolytope& pb);
+                            const ConvexPolytope& pb, const SumOptions& options = {});
 
 }  // namespace minksum

@@ -6,6 +6,10 @@
 //
 // UsageError: the request is bad (unknown catalog name, unknown method, bad
 // option value).  The CLI exits with status 2.
+//
+// Cancelled: not a failure of the data or the request — the caller asked a
+// running computation to stop (SumOptions::cancel in minkowski.hpp), and it
+// did at its next report point.  Nothing it was computing is returned.
 #pragma once
 
 #include <stdexcept>
@@ -36,6 +40,11 @@ class InputError : public std::runtime_error {
 class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+class Cancelled : public std::runtime_error {
+ public:
+  Cancelled() : std::runtime_error("minksum: the computation was cancelled") {}
 };
 
 }  // namespace minksum

@@ -60,8 +60,11 @@ struct WalkSum {
 };
 
 // The exact sum A ⊕ B as a WalkSum.  Throws std::logic_error if an internal
-// consistency check fails (a bug, never an input condition).
-WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b);
+// consistency check fails (a bug, never an input condition).  Reports phase
+// "walk" to options (fractions 0 at the start, then every 4096 facets walked,
+// 0.8 when the walks are done) and throws Cancelled at one of these points
+// once options.cancel is set (SumOptions, minkowski.hpp).
+WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
 
 // The ConvexPolytope of a WalkSum: exact vertex coordinates (a + b, see
 // sum_coordinates), connectivity copied, planes computed on demand, no

@@ -7,9 +7,12 @@
 // SumResult::vertex_origin.
 #pragma once
 
+#include <minksum/error.hpp>  // Cancelled, UsageError
 #include <minksum/polytope.hpp>
 
+#include <atomic>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -93,10 +96,44 @@ struct SumResult {
 // The method Method::automatic uses for these operands (see minkowski.cpp).
 Method automatic_choice(const ConvexPolytope& a, const ConvexPolytope& b);
 
+// How a caller follows and stops one running sum: a progress callback and a
+// cancellation flag, passed with the call — no global state, so sums running
+// in several threads each report to their own options only.  Both are off
+// by default; then a report point costs two null tests.
+//
+// Report points: every method reports at its start (phase = its name, e.g.
+// "cvms", fraction unknown) and at the boundaries of its main stages (same
+// phase).  walk reports "walk" with fractions from 0 to 0.8 as the arcs are
+// walked (every 4096 facets of an operand; 0.8 once the walks are done, the
+// linking of the facet loops remaining), then "convert" (fraction unknown)
+// while minkowski_sum_walk makes the explicit polytope.  Reports are rare:
+// walk's one per 4096 facets walked is its most frequent.
+struct SumOptions {
+  // Called at each report point, on the thread computing the sum, with the
+  // phase (a string literal: valid for the whole program, comparable by
+  // content) and the fraction of the phase done in [0, 1], or a negative
+  // number when the phase does not measure it.  Within a phase the fractions
+  // never decrease.  Keep it short (it runs inside the sum); to show progress
+  // from another thread, store the values in atomics that thread polls (as
+  // the progress line of `minksum sum` does).  An exception it throws leaves
+  // the sum.
+  std::function<void(const char* phase, double fraction)> progress;
+  // When not null: once *cancel is true (set from any thread), the sum
+  // throws Cancelled (<minksum/error.hpp>) at its next report point, before
+  // calling progress.  Methods check it only there (walk: every 4096 facets
+  // walked; the other methods between their stages), so a stage under way
+  // finishes first.  The flag must outlive the call.
+  const std::atomic<bool>* cancel = nullptr;
+
+  // A report point, as the methods call it: throw Cancelled if the flag is
+  // set, then call progress if there is one.
+  void report(const char* phase, double fraction) const;
+};
+
 // Compute A ⊕ B with `method`; SumResult::method names the method used.  Throws UsageError if the method is not
-// available in this build.
+// available in this build, Cancelled if options.cancel is set during the sum.
 SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b,
-                        Method method = Method::automatic);
+                        Method method = Method::automatic, const SumOptions& options = {});
 
 // Output-sensitive exact sum (DESIGN.md §4): hill climbing to the first
 // support, then walks along the great arcs of A's edges over B's Gaussian
@@ -106,38 +143,24 @@ SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b,
 // a SumResult (explicit exact coordinates, planes on demand).  counters:
 // crossings, walk steps, and the microseconds of the walk and of the
 // conversion to the ConvexPolytope.
-SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b);
-
-// Progress of the Minkowski sum being computed (any thread), for progress
-// displays: the current phase ("walk", "convert", a method name...; empty
-// when none is running) and the fraction of it done in [0, 1], or a negative
-// number when the phase does not measure it.  Methods update it a few
-// hundred times per sum at most; reading is lock-free.
-struct SumProgress {
-  std::string phase;
-  double fraction = -1;
-};
-SumProgress sum_progress();
-// Set by the methods (and minkowski_sum, which clears it when done).  phase
-// must be a string with static storage duration (a literal); nullptr clears.
-void report_sum_progress(const char* phase, double fraction);
+SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
 
 // The CHMS method (oracle): exact convex hull of all pairwise vertex sums.
-SumResult minkowski_sum_chms(const ConvexPolytope& a, const ConvexPolytope& b);
+SumResult minkowski_sum_chms(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
 // CVMS (seed 000 §3-4): contributing vertices, translated / corner / edge facets.
-SumResult minkowski_sum_cvms(const ConvexPolytope& a, const ConvexPolytope& b);
+SumResult minkowski_sum_cvms(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
 // ESSDMS (seed 000 §5.2): slope diagrams merged without embedding, with
 // contributing vertices instead of point-in-polygon queries.  facet_case
 // holds the intersection case of each facet (two_facet_points,
 // facet_point_on_edge_arc, two_edge_arcs, facet_point_in_vertex_region);
 // counters hold the operation counts.
-SumResult minkowski_sum_essdms(const ConvexPolytope& a, const ConvexPolytope& b);
+SumResult minkowski_sum_essdms(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
 // Wu et al.'s improved 3D-MSSD as seed 000 re-implements it: the same merge
 // with point-in-spherical-polygon queries and every pair of edge arcs; the
 // same facet cases and counters as essdms.
-SumResult minkowski_sum_mssd(const ConvexPolytope& a, const ConvexPolytope& b);
+SumResult minkowski_sum_mssd(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
 // The Cubical Gaussian Map method (seed 001 §2-3): the overlay of the six
 // pairs of planar maps of the two CGMs (<minksum/cubical_gaussian_map.hpp>).
-SumResult minkowski_sum_cgm(const ConvexPolytope& a, const ConvexPolytope& b);
+SumResult minkowski_sum_cgm(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
 
 }  // namespace minksum

@@ -37,7 +37,7 @@ demo: build
 	$(BUILD)/bin/minksum stats $(BUILD)/demo/cube+sphere3.off
 	$(BUILD)/bin/minksum cgm dioctagonal:17 dioctagonal:17@rot:100,0,0,99 --svg $(BUILD)/demo/cgm.svg
 
-# Seed 001 Fig. 4: a robot grazing, then penetrating an obstacle, turning every
+# Fig. 4 of Fogel and Halperin (2006): a robot grazing, then penetrating an obstacle, turning every
 # other frame (M recomputed then); per-frame state and query time, and an SVG trail.
 .PHONY: demo-motion
 demo-motion: build

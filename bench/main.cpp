@@ -148,7 +148,7 @@ std::vector<Row> suite_rows(const std::string& suite) {
     r.large = large;
     rows.push_back(r);
   };
-  // Seed 000, Table 1: the cube against growing solids.
+  // Barki et al. 2009, Table 1: the cube against growing solids.
   for (const char* b : {"tetra", "octahedron", "truncated-cube"}) add("table1", "cube", b, "table1");
   for (int l = 1; l <= (full ? 6 : 3); ++l)
     add("table1", "cube", "sphere:" + std::to_string(l), "table1", l == 6);
@@ -175,7 +175,7 @@ std::vector<Row> suite_rows(const std::string& suite) {
   add("identical", "sphere:3", "sphere:3", "identical");
   if (full) add("identical", "random:1000:1", "random:1000:1", "identical");
   if (full) add("identical", "sphere:5", "sphere:5", "identical");
-  // Seed 001, Table 4-like catalog pairs (F / (F_A F_B) from 1/F_B down).
+  // Catalog pairs after Table 4 of Fogel and Halperin (2006) (F / (F_A F_B) from 1/F_B down).
   std::vector<std::pair<std::string, std::string>> cat = {
       {"icosahedron", "icosahedron@rot:1"},
       {"dodecahedron", "icosahedron"},
@@ -194,7 +194,7 @@ std::vector<Row> suite_rows(const std::string& suite) {
 // The term that dominates a contender's running time, used to predict a
 // cell from the previous (smaller) row of its series: all pairwise sums for
 // the hull methods (and Nef, whose convex case is a hull of pairwise sums),
-// the f_A v_B + f_B v_A + e_A e_B of seed 000's CVMS/ESSDMS/MSSD analysis,
+// the f_A v_B + f_B v_A + e_A e_B of Barki et al.'s CVMS/ESSDMS/MSSD analysis,
 // and input size (a lower bound for any method) for the others.  walk is
 // output-sensitive (input + output size), but a row's output is not known
 // before its first cell runs, so its prediction uses the input size too (the

@@ -1,5 +1,5 @@
 // minksum bench — CGAL::minkowski_sum_3 on Nef polyhedra (Hachenberger's
-// method, "NGM" in seed 000's Table 1).  Slow to compile and to run: its own
+// method, "NGM" in Barki et al.'s Table 1).  Slow to compile and to run: its own
 // translation unit, and the harness runs it under a time cap.
 #include "competitors.hpp"
 #include "timer.hpp"

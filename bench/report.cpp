@@ -13,7 +13,7 @@ namespace minksum::bench {
 
 namespace {
 
-// Seed 000 (Barki, Denis, Dupont 2009), Table 1: seconds on a 2.2 GHz Intel
+// Barki, Denis and Dupont (2009), Table 1: seconds on a 2.2 GHz Intel
 // Core 2 Duo with 2 GB RAM, cube ⊕ B.
 struct Published {
   const char* b;
@@ -344,8 +344,8 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
      << "exact hull of the *rounded* points, coplanar triangles merged exactly.\n"
      << "  * **Qhull (rounded)** — `qh_new_qhull` with options `qhull` (default pre-merge `C-0`) on the same "
      << "rounded sums, timed alone. Counts: Qhull's merged facets and vertices, E = V + F − 2.\n"
-     << "  * **CGAL Nef minkowski_sum_3** — Hachenberger's method on `Nef_polyhedron_3<Epeck>` (\"NGM\" in seed "
-     << "000); timed: `minkowski_sum_3` alone, not the conversion of the operands to Nef polyhedra.\n"
+     << "  * **CGAL Nef minkowski_sum_3** — Hachenberger's method on `Nef_polyhedron_3<Epeck>` (\"NGM\" in Barki et "
+     << "al. 2009); timed: `minkowski_sum_3` alone, not the conversion of the operands to Nef polyhedra.\n"
      << "  * **CGAL SGM (build + overlay)** — the undocumented `Arr_polyhedral_sgm` (spherical Gaussian map) "
      << "with Epeck: both maps built and overlaid; `(overlay s)` is the overlay alone. Counts are read off the "
      << "map.\n"
@@ -366,9 +366,9 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
   // --- Table 1.
   auto t1 = group("table1");
   if (!t1.empty()) {
-    md << "## Seed 000, Table 1: cube ⊕ growing solids\n\n";
+    md << "## Barki et al. 2009, Table 1: cube ⊕ growing solids\n\n";
     table(md, info, cs, t1, false);
-    md << "Seed 000's published seconds for the same pairs (2.2 GHz Intel Core 2 Duo, 2 GB RAM), beside this "
+    md << "Barki et al.'s published seconds for the same pairs (2.2 GHz Intel Core 2 Duo, 2 GB RAM), beside this "
           "run's. NGM is CGAL's Nef `minkowski_sum_3`; CGM is Fogel and Halperin's cubical Gaussian map (the "
           "closest thing here is CGAL's spherical Gaussian map, a different but related structure); Fuk. is "
           "Weibel's implementation of Fukuda's algorithm (not run here)."
@@ -415,7 +415,7 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
        "not doubles, so the floating-point competitors see rounded inputs."},
       {"random", "Random polytopes", "`random:N:SEED` is the exact hull of N pseudo-random unit vectors (all N "
                                      "are vertices)."},
-      {"dioctagonal", "Dioctagonal pyramids (seed 001's Θ(mn) example)",
+      {"dioctagonal", "Dioctagonal pyramids (Fogel and Halperin's Θ(mn) example)",
        "A squashed dioctagonal pyramid and a copy rotated by exactly 90° about the x axis."},
       {"identical", "Identical operands (A ⊕ A)",
        "Every facet of A meets its parallel twin: the sum's facets are facets of A scaled by 2, and the "
@@ -430,8 +430,8 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
   }
   auto cat = group("catalog");
   if (!cat.empty()) {
-    md << "## Catalog pairs (seed 001, Table 4-like)\n\n"
-       << "Seed 001's Table 4 compares its CGM with Nef, Fukuda and the convex-hull method on catalog pairs and "
+    md << "## Catalog pairs (after Table 4 of Fogel and Halperin, 2006)\n\n"
+       << "Fogel and Halperin's Table 4 compares their CGM with Nef, Fukuda and the convex-hull method on catalog pairs and "
           "reports F/(F_A·F_B): the higher it is, the more an output-sensitive method gains over the hull of all "
           "pairwise sums. The table's figures are not legible in our copy of the paper, so only the pairs' "
           "kind is reproduced (icosahedron pairs, dioctagonal pyramids, pentagonal hexecontahedron ⊕ truncated "

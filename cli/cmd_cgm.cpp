@@ -22,7 +22,7 @@ of P ⊕ Q, computed by overlaying the six pairs of planar maps.
 Options:
   --stats      print, per planar map, the numbers of vertices, halfedges and
                faces (the unbounded face included) and of real (non-artificial)
-               vertices and edges, like seed 001 Table 2
+               vertices and edges, like Table 2 of Fogel and Halperin (2006)
   --svg OUT    draw the unfolded map (six squares in a cross); real edges solid
                (for a sum: P's edges red, Q's blue, overlapping edges purple),
                artificial edges dashed; written atomically

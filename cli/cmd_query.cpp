@@ -1,5 +1,5 @@
 // minksum query collide|distance|depth|ddepth P Q: exact proximity queries
-// under translation (seed 001 §4), one pose or a trajectory of poses.
+// under translation (Fogel and Halperin 2006, §4), one pose or a trajectory of poses.
 #include <minksum/io.hpp>
 #include <minksum/operand.hpp>
 #include <minksum/proximity.hpp>

@@ -1,4 +1,4 @@
-// minksum simulate: seed 001 Fig. 4 — a static obstacle and a robot moving
+// minksum simulate: Fig. 4 of Fogel and Halperin (2006) — a static obstacle and a robot moving
 // along a path that first grazes the obstacle without penetrating it and then
 // penetrates it; the robot rotates every other frame (M is recomputed then).
 #include <minksum/catalog.hpp>
@@ -21,7 +21,7 @@ namespace {
 
 const char* kSimulateHelp = R"(Usage: minksum simulate [options]
 
-Seed 001 Fig. 4: a static obstacle Q at the origin and a robot P moving in
+Fig. 4 of Fogel and Halperin (2006): a static obstacle Q at the origin and a robot P moving in
 the x-y plane.  In the first pass the robot slides along a horizontal line
 whose height is computed exactly so that the robot grazes the obstacle
 (touching, never penetrating) at one frame; in the second pass it slides back

@@ -106,10 +106,10 @@ FacetCandidate facet_candidate(const ConvexPolytope& P, Index f, const ConvexPol
   FacetCandidate c;
   c.normal = P.plane(f).normal();
   std::vector<Index> qv = vs;
-  if (q_face.dim == 2) qv = Q.facet_vertices(q_face.index);
+  if (q_face.dim == FeatureDim::facet) qv = Q.facet_vertices(q_face.index);
   for (Index pv : P.facet_vertices(f))
     for (Index v : qv) c.points.push_back(p_is_a ? std::make_pair(pv, v) : std::make_pair(v, pv));
-  Feature pf{2, f};
+  const Feature pf = Feature::facet(f);
   c.provenance = p_is_a ? FacetProvenance{pf, q_face} : FacetProvenance{q_face, pf};
   return c;
 }
@@ -129,7 +129,7 @@ SumResult minkowski_sum_cvms(const ConvexPolytope& A, const ConvexPolytope& B) {
     cvA[f] = contributing(g, A, frA[f], B);
     Point3 n = A.plane(f).normal();
     Feature face = face_of_vertices(B, cvA[f], n);
-    if (face.dim == 2) {
+    if (face.dim == FeatureDim::facet) {
       usedB[face.index] = 1;  // Property 2: it contributes once
       cvB[face.index] = A.facet_vertices(f);
       std::sort(cvB[face.index].begin(), cvB[face.index].end());
@@ -165,7 +165,7 @@ SumResult minkowski_sum_cvms(const ConvexPolytope& A, const ConvexPolytope& B) {
       FacetCandidate c;
       c.normal = cross(A.point(p1) - A.point(p0), B.point(q1) - B.point(q0));
       c.points = {{p0, q0}, {p1, q0}, {p1, q1}, {p0, q1}};
-      c.provenance = {{1, e}, {1, k}};
+      c.provenance = {Feature::edge(e), Feature::edge(k)};
       candidates.push_back(std::move(c));
     }
   }

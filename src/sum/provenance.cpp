@@ -7,32 +7,33 @@
 namespace minksum {
 
 FacetOrigin FacetProvenance::origin() const {
-  if (a.dim == 2 && b.dim == 2) return FacetOrigin::facet_facet;
-  if (a.dim == 2 && b.dim == 0) return FacetOrigin::translated;
-  if (a.dim == 0 && b.dim == 2) return FacetOrigin::corner;
-  if (a.dim == 1 && b.dim == 1) return FacetOrigin::edge;
+  using enum FeatureDim;
+  if (a.dim == facet && b.dim == facet) return FacetOrigin::facet_facet;
+  if (a.dim == facet && b.dim == vertex) return FacetOrigin::translated;
+  if (a.dim == vertex && b.dim == facet) return FacetOrigin::corner;
+  if (a.dim == edge && b.dim == edge) return FacetOrigin::edge;
   return FacetOrigin::facet_edge;
 }
 
 Feature face_of_vertices(const ConvexPolytope& p, const std::vector<Index>& vs, const Point3& n) {
-  if (vs.size() == 1) return {0, vs[0]};
+  if (vs.size() == 1) return Feature::vertex(vs[0]);
   if (vs.size() == 2) {
     Index h = p.vertex_halfedge(vs[0]);
     do {
-      if (p.target(h) == vs[1]) return {1, ConvexPolytope::edge(h)};
+      if (p.target(h) == vs[1]) return Feature::edge(ConvexPolytope::edge(h));
       h = p.next_around_vertex(h);
     } while (h != p.vertex_halfedge(vs[0]));
-    return {1, kNoIndex};  // not adjacent: cannot happen for a supporting face
+    return Feature::edge(kNoIndex);  // not adjacent: cannot happen for a supporting face
   }
   // A facet: the one around vs[0] whose outward normal points along n.
   Index h = p.vertex_halfedge(vs[0]);
   do {
     Index f = p.facet(h);
     Point3 m = p.plane(f).normal();
-    if (is_zero(cross(m, n)) && sgn(dot(m, n)) > 0) return {2, f};
+    if (is_zero(cross(m, n)) && sgn(dot(m, n)) > 0) return Feature::facet(f);
     h = p.next_around_vertex(h);
   } while (h != p.vertex_halfedge(vs[0]));
-  return {2, kNoIndex};
+  return Feature::facet(kNoIndex);
 }
 
 std::vector<Index> support_vertices(const ConvexPolytope& p, const Point3& n) {

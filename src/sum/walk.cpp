@@ -36,6 +36,7 @@
 #include <cfenv>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -315,8 +316,6 @@ int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, 
   return support_compare(PF.point(gc.v0), PF.point(gc.v1), PF.point(gc.v2), PX.point(xi), PX.point(yi));
 }
 
-constexpr Feature kUnknown{-1, kNoIndex};
-
 // Walks the arcs of P's edges over Q's Gaussian map.
 class Walker {
  public:
@@ -330,7 +329,7 @@ class Walker {
   std::vector<Feature> run(std::vector<std::pair<Index, Index>>* crossings, double progress0, double progress_span) {
     crossings_ = crossings;
     const Index nf = p_.num_facets();
-    std::vector<Feature> S(nf, kUnknown);
+    std::vector<std::optional<Feature>> S(nf);
     std::vector<std::uint8_t> walked(p_.num_edges(), 0);
     std::vector<Index> queue;
     queue.reserve(nf);
@@ -346,14 +345,14 @@ class Walker {
         if (!walked[e]) {
           walked[e] = 1;
           const Index f2 = p_.facet(ConvexPolytope::twin(h));
-          const bool need = S[f2].dim < 0;
+          const bool need = !S[f2];
           // Without crossings to record, only the arcs of a spanning tree of
           // the facets are needed.
           if (!need && !crossings) {
             h = p_.next(h);
             continue;
           }
-          Feature s2 = walk(h, S[f1], need);
+          std::optional<Feature> s2 = walk(h, *S[f1], need);
           if (need) {
             S[f2] = s2;
             queue.push_back(f2);
@@ -363,7 +362,9 @@ class Walker {
       } while (h != h0);
     }
     if (queue.size() != nf) throw std::logic_error("walk: the facets of an operand are not connected");
-    return S;
+    std::vector<Feature> out(nf);
+    for (Index f = 0; f < nf; ++f) out[f] = *S[f];
+    return out;
   }
 
  private:
@@ -400,12 +401,12 @@ class Walker {
   // f): b and its neighbours as high as b.
   Feature face_of_ties(Index b, std::size_t ties) const {
     const std::size_t k = hbuf_.size();
-    if (ties == 0) return {0, b};
+    if (ties == 0) return Feature::vertex(b);
     if (ties == 1)
       for (std::size_t i = 0; i < k; ++i)
-        if (tie_[i]) return {1, ConvexPolytope::edge(hbuf_[i])};
+        if (tie_[i]) return Feature::edge(ConvexPolytope::edge(hbuf_[i]));
     for (std::size_t i = 0; i < k; ++i)
-      if (tie_[i] && tie_[(i + 1) % k]) return {2, q_.facet(hbuf_[i])};
+      if (tie_[i] && tie_[(i + 1) % k]) return Feature::facet(q_.facet(hbuf_[i]));
     throw std::logic_error("walk: the support set is not a face");
   }
 
@@ -453,9 +454,9 @@ class Walker {
   // vertices of S tie, the edge joining them (parallel to hp: the arc runs
   // along that edge's arc).
   State enter(Feature S, Index hp, Index f2) {
-    if (S.dim == 0) return {false, S.index};
+    if (S.dim == FeatureDim::vertex) return {false, S.index};
     verts_.clear();
-    if (S.dim == 1) {
+    if (S.dim == FeatureDim::edge) {
       verts_.push_back(q_.origin(2 * S.index));
       verts_.push_back(q_.target(2 * S.index));
     } else {
@@ -491,8 +492,9 @@ class Walker {
   }
 
   // Walk the arc of P's half-edge hp from n(facet(hp)) (support S1 in Q) to
-  // n(facet(twin hp)); returns the support there when `need_end`.
-  Feature walk(Index hp, Feature S1, bool need_end) {
+  // n(facet(twin hp)); returns the support there when `need_end`, else
+  // possibly nothing.
+  std::optional<Feature> walk(Index hp, Feature S1, bool need_end) {
     const Index f2 = p_.facet(ConvexPolytope::twin(hp));
     hd_ = make_diff(P_, p_.target(hp), p_.origin(hp));
     State s = enter(S1, hp, f2);
@@ -508,8 +510,8 @@ class Walker {
         // arc's end n(f2) lies on it iff origin(hq) supports n(f2).
         const Index hq = s.index, x = q_.origin(hq);
         std::size_t ties;
-        if (scan_neighbours(x, f2, ties)) return need_end ? face_of_ties(x, ties) : kUnknown;
-        s = enter({2, q_.facet(ConvexPolytope::twin(hq))}, hp, f2);
+        if (scan_neighbours(x, f2, ties)) return need_end ? std::optional(face_of_ties(x, ties)) : std::nullopt;
+        s = enter(Feature::facet(q_.facet(ConvexPolytope::twin(hq))), hp, f2);
         entry = kNoIndex;
         continue;
       }
@@ -557,10 +559,10 @@ class Walker {
       // side's great circle; strictly inside that side, n(f2) lies on the
       // open chord of the region cut by the arc's circle: b alone supports it.
       const int c = higher(f2, q_.target(he), b);
-      if (c < 0) return {0, b};
-      if (c == 0) return need_end ? support_face_at(b, f2) : kUnknown;
+      if (c < 0) return Feature::vertex(b);
+      if (c == 0) return need_end ? std::optional(support_face_at(b, f2)) : std::nullopt;
       if (through_vertex) {
-        s = enter({2, q_.facet(he)}, hp, f2);
+        s = enter(Feature::facet(q_.facet(he)), hp, f2);
         entry = kNoIndex;
       } else {
         if (crossings_) crossings_->emplace_back(hp, he);
@@ -651,7 +653,7 @@ void facet_plus_facet(const ConvexPolytope& a, Index fa, const ConvexPolytope& b
     if (c >= 0) ++i;
     if (c <= 0) ++j;
   }
-  out.close({{2, fa}, {2, fb}});
+  out.close({Feature::facet(fa), Feature::facet(fb)});
 }
 
 // Facet fi of F ⊕ edge ei of E, the edge parallel to the facet's plane
@@ -695,7 +697,7 @@ void facet_plus_edge(const ConvexPolytope& F, Index fi, const ConvexPolytope& E,
       throw std::logic_error("walk: two consecutive edges of a facet are parallel");
     }
   }
-  const Feature ff{2, fi}, fe{1, ei};
+  const Feature ff = Feature::facet(fi), fe = Feature::edge(ei);
   out.close(f_is_a ? FacetProvenance{ff, fe} : FacetProvenance{fe, ff});
 }
 
@@ -728,15 +730,15 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
   L.prov.reserve(a.num_facets() + b.num_facets() + crossings.size());
   for (Index f = 0; f < a.num_facets(); ++f) {
     const Feature s = SB[f];
-    if (s.dim == 0) {
+    if (s.dim == FeatureDim::vertex) {
       const Index h0 = a.facet_halfedge(f);
       Index h = h0;
       do {
         L.corners.emplace_back(a.origin(h), s.index);
         h = a.next(h);
       } while (h != h0);
-      L.close({{2, f}, s});
-    } else if (s.dim == 1) {
+      L.close({Feature::facet(f), s});
+    } else if (s.dim == FeatureDim::edge) {
       facet_plus_edge(a, f, b, s.index, true, L);
     } else {
       facet_plus_facet(a, f, b, s.index, L);
@@ -744,15 +746,15 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
   }
   for (Index g = 0; g < b.num_facets(); ++g) {
     const Feature s = SA[g];
-    if (s.dim == 2) continue;  // parallel to a facet of A: done above
-    if (s.dim == 0) {
+    if (s.dim == FeatureDim::facet) continue;  // parallel to a facet of A: done above
+    if (s.dim == FeatureDim::vertex) {
       const Index h0 = b.facet_halfedge(g);
       Index h = h0;
       do {
         L.corners.emplace_back(s.index, b.origin(h));
         h = b.next(h);
       } while (h != h0);
-      L.close({s, {2, g}});
+      L.close({s, Feature::facet(g)});
     } else {
       facet_plus_edge(b, g, a, s.index, false, L);
     }
@@ -766,7 +768,7 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b) {
   const ConvexPolytope &P = a_records ? a : b, &Q = a_records ? b : a;
   for (auto [hp, hq] : crossings) {
     const Index u = P.origin(hp), v = P.target(hp), x = Q.origin(hq), y = Q.target(hq);
-    const Feature ep{1, ConvexPolytope::edge(hp)}, eq{1, ConvexPolytope::edge(hq)};
+    const Feature ep = Feature::edge(ConvexPolytope::edge(hp)), eq = Feature::edge(ConvexPolytope::edge(hq));
     if (a_records) {
       L.corners.insert(L.corners.end(), {{v, x}, {u, x}, {u, y}, {v, y}});
       L.close({ep, eq});

@@ -2,6 +2,7 @@
 // A and B maximising <x, n>, found by scanning every vertex.
 #include <minksum/minkowski.hpp>
 
+#include "mesh/support.hpp"
 #include "sum/faces.hpp"
 
 namespace minksum {
@@ -34,22 +35,6 @@ Feature face_of_vertices(const ConvexPolytope& p, const std::vector<Index>& vs, 
     h = p.next_around_vertex(h);
   } while (h != p.vertex_halfedge(vs[0]));
   return Feature::facet(kNoIndex);
-}
-
-std::vector<Index> support_vertices(const ConvexPolytope& p, const Point3& n) {
-  std::vector<Index> best{0};
-  Rational top = dot(p.point(0), n);
-  for (Index v = 1; v < p.num_vertices(); ++v) {
-    Rational h = dot(p.point(v), n);
-    int c = cmp(h, top);
-    if (c > 0) {
-      best.assign(1, v);
-      top = h;
-    } else if (c == 0) {
-      best.push_back(v);
-    }
-  }
-  return best;
 }
 
 std::vector<FacetProvenance> facet_provenance(const ConvexPolytope& a, const ConvexPolytope& b,

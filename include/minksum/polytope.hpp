@@ -46,7 +46,7 @@ inline constexpr Index kNoIndex = 0xffffffffu;
 
 // A face of a convex polytope, by its dimension and its index among the
 // polytope's vertices, edges (ConvexPolytope::edge) or facets.
-enum class FeatureDim : std::int8_t { vertex = 0, edge = 1, facet = 2 };
+enum class FeatureDim : std::uint32_t { vertex = 0, edge = 1, facet = 2 };
 struct Feature {
   FeatureDim dim = FeatureDim::vertex;
   Index index = kNoIndex;

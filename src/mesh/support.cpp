@@ -31,15 +31,13 @@ std::vector<Index> support_vertices(const ConvexPolytope& p, const Point3& n) {
 Feature feature_of_vertices(const ConvexPolytope& p, const std::vector<Index>& vs) {
   if (vs.size() == 1) return Feature::vertex(vs[0]);
   if (vs.empty()) throw std::logic_error("feature_of_vertices: no vertex");
+  if (vs.size() == 2) {
+    const Index h = halfedge_between(p, vs[0], vs[1]);
+    if (h == kNoIndex) throw std::logic_error("feature_of_vertices: two vertices not joined by an edge");
+    return Feature::edge(ConvexPolytope::edge(h));
+  }
   const Index h0 = p.vertex_halfedge(vs[0]);
   Index h = h0;
-  if (vs.size() == 2) {
-    do {
-      if (p.target(h) == vs[1]) return Feature::edge(ConvexPolytope::edge(h));
-      h = p.next_around_vertex(h);
-    } while (h != h0);
-    throw std::logic_error("feature_of_vertices: two vertices not joined by an edge");
-  }
   // Two facets share at most an edge: the facet around vs[0] holding vs[1]
   // and vs[2] is the only one holding all three.
   do {
@@ -59,28 +57,6 @@ Feature feature_of_vertices(const ConvexPolytope& p, const std::vector<Index>& v
     h = p.next_around_vertex(h);
   } while (h != h0);
   throw std::logic_error("feature_of_vertices: the vertices are not those of a facet");
-}
-
-void feature_vertices(const ConvexPolytope& p, const Feature& f, std::vector<Index>& out) {
-  out.clear();
-  switch (f.dim) {
-    case FeatureDim::vertex:
-      out.push_back(f.index);
-      return;
-    case FeatureDim::edge:
-      out.push_back(p.origin(2 * f.index));
-      out.push_back(p.target(2 * f.index));
-      return;
-    case FeatureDim::facet: {
-      const Index h0 = p.facet_halfedge(f.index);
-      Index h = h0;
-      do {
-        out.push_back(p.origin(h));
-        h = p.next(h);
-      } while (h != h0);
-      return;
-    }
-  }
 }
 
 std::vector<Index> feature_vertices(const ConvexPolytope& p, const Feature& f) {

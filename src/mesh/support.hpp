@@ -125,9 +125,41 @@ std::vector<Index> support_vertices(const ConvexPolytope& p, const Point3& n);
 // std::logic_error when vs is not the vertex set of a face.  No geometry.
 Feature feature_of_vertices(const ConvexPolytope& p, const std::vector<Index>& vs);
 
+// The half-edge from vertex a to vertex b; kNoIndex when they are not
+// adjacent.
+inline Index halfedge_between(const ConvexPolytope& p, Index a, Index b) {
+  const Index h0 = p.vertex_halfedge(a);
+  Index h = h0;
+  do {
+    if (p.target(h) == b) return h;
+    h = p.next_around_vertex(h);
+  } while (h != h0);
+  return kNoIndex;
+}
+
 // The vertices of feature f, into `out`: the vertex; the edge's origin and
 // target (of its half-edge 2e); the facet's loop, counter-clockwise.
-void feature_vertices(const ConvexPolytope& p, const Feature& f, std::vector<Index>& out);
+inline void feature_vertices(const ConvexPolytope& p, const Feature& f, std::vector<Index>& out) {
+  out.clear();
+  switch (f.dim) {
+    case FeatureDim::vertex:
+      out.push_back(f.index);
+      return;
+    case FeatureDim::edge:
+      out.push_back(p.origin(2 * f.index));
+      out.push_back(p.target(2 * f.index));
+      return;
+    case FeatureDim::facet: {
+      const Index h0 = p.facet_halfedge(f.index);
+      Index h = h0;
+      do {
+        out.push_back(p.origin(h));
+        h = p.next(h);
+      } while (h != h0);
+      return;
+    }
+  }
+}
 std::vector<Index> feature_vertices(const ConvexPolytope& p, const Feature& f);
 
 // Whether two vertex lists sorted increasingly (support sets) share a vertex.

@@ -38,6 +38,7 @@
 #include <optional>
 
 #include "kernel/interval.hpp"
+#include "mesh/support.hpp"
 #include "sum/faces.hpp"
 
 namespace minksum {
@@ -63,44 +64,6 @@ bool strictly_inside(const Key2& p, const Key2& q, const Key2& x) {
 struct Located {
   std::optional<Feature> a, b;
 };
-
-// Support set of P in direction n by a monotone walk from `start`, then the
-// vertices of equal height next to it (exact).
-std::vector<Index> support_walk(const ConvexPolytope& P, const Point3& n, Index& start) {
-  Index v = start;
-  Rational best = dot(n, P.point(v));
-  for (bool moved = true; moved;) {
-    moved = false;
-    for (Index w : P.vertex_neighbours(v)) {
-      Rational d = dot(n, P.point(w));
-      if (cmp(d, best) > 0) {
-        best = d;
-        v = w;
-        moved = true;
-        break;
-      }
-    }
-  }
-  start = v;
-  std::vector<Index> set{v}, stack{v};
-  while (!stack.empty()) {
-    Index x = stack.back();
-    stack.pop_back();
-    for (Index w : P.vertex_neighbours(x))
-      if (std::find(set.begin(), set.end(), w) == set.end() && dot(n, P.point(w)) == best) {
-        set.push_back(w);
-        stack.push_back(w);
-      }
-  }
-  std::sort(set.begin(), set.end());
-  return set;
-}
-
-std::vector<Index> feature_vertices(const ConvexPolytope& P, const Feature& f) {
-  if (f.dim == FeatureDim::facet) return P.facet_vertices(f.index);
-  if (f.dim == FeatureDim::edge) return {P.origin(2 * f.index), P.target(2 * f.index)};
-  return {f.index};
-}
 
 // The feature behind a vertex of a planar map: a facet (real vertex), an
 // edge (an arc crossing a cube edge), nothing (a square corner).
@@ -251,12 +214,19 @@ void overlay_map(int k, const Map& ma, const Map& mb, const ConvexPolytope& A, c
 
   for (auto& [p, l] : pts) {
     const Point3 n = CubicalGaussianMap::lift(k, p.first, p.second);
+    // Vertex in a face: the face's primal vertex by hill climbing from the
+    // previous answer (mesh/support.hpp).
+    auto locate = [&](const ConvexPolytope& P, Index& start) {
+      const Support s = support(P, n, start);
+      start = s.vertex;
+      return s.face;
+    };
     if (!l.a) {
-      l.a = face_of_vertices(A, support_walk(A, n, walk_a), n);
+      l.a = locate(A, walk_a);
       if (l.b) ++cnt.b_in_face_a;
     }
     if (!l.b) {
-      l.b = face_of_vertices(B, support_walk(B, n, walk_b), n);
+      l.b = locate(B, walk_b);
       ++cnt.a_in_face_b;
     }
     const Feature fa = *l.a, fb = *l.b;

@@ -26,6 +26,8 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "mesh/support.hpp"
+
 namespace minksum {
 
 const char* contact_status_name(ContactStatus s) {
@@ -38,30 +40,6 @@ const char* contact_status_name(ContactStatus s) {
 }
 
 namespace {
-
-// Feature of `poly` whose vertex set is `vs` (sorted, unique, non-empty and
-// the vertex set of a face of poly).
-Feature feature_from_vertices(const ConvexPolytope& poly, const std::vector<Index>& vs) {
-  if (vs.size() == 1) return Feature::vertex(vs[0]);
-  const Index a = vs[0];
-  const Index h0 = poly.vertex_halfedge(a);
-  if (vs.size() == 2) {
-    Index h = h0;
-    do {
-      if (poly.target(h) == vs[1]) return Feature::edge(ConvexPolytope::edge(h));
-      h = poly.next_around_vertex(h);
-    } while (h != h0);
-  }
-  Index h = h0;
-  do {
-    const Index f = poly.facet(h);
-    std::vector<Index> fv = poly.facet_vertices(f);
-    std::sort(fv.begin(), fv.end());
-    if (std::includes(fv.begin(), fv.end(), vs.begin(), vs.end())) return Feature::facet(f);
-    h = poly.next_around_vertex(h);
-  } while (h != h0);
-  return Feature::facet(poly.facet(h0));  // unreachable for a face's vertex set
-}
 
 Rational squared_norm(const Point3& v) { return dot(v, v); }
 
@@ -151,16 +129,8 @@ void TranslationalObstacle::fill_operand_features(Witness& w) const {
     w.q = facet_features_[w.m.index][1];
     return;
   }
-  std::vector<Index> mv;
-  if (w.m.dim == FeatureDim::vertex) {
-    mv = {w.m.index};
-  } else if (w.m.dim == FeatureDim::edge) {
-    mv = {m.origin(2 * w.m.index), m.target(2 * w.m.index)};
-  } else {
-    mv = m.facet_vertices(w.m.index);
-  }
   std::vector<Index> pv, qv;
-  for (Index v : mv) {
+  for (Index v : feature_vertices(m, w.m)) {
     pv.push_back(sum_.vertex_origin[v].first);
     qv.push_back(neg_to_q_[sum_.vertex_origin[v].second]);
   }
@@ -168,8 +138,8 @@ void TranslationalObstacle::fill_operand_features(Witness& w) const {
   pv.erase(std::unique(pv.begin(), pv.end()), pv.end());
   std::sort(qv.begin(), qv.end());
   qv.erase(std::unique(qv.begin(), qv.end()), qv.end());
-  w.p = feature_from_vertices(p_, pv);
-  w.q = feature_from_vertices(q_, qv);
+  w.p = feature_of_vertices(p_, pv);
+  w.q = feature_of_vertices(q_, qv);
   if (w.m.dim == FeatureDim::facet) {
     facet_features_[w.m.index] = {w.p, w.q};
     facet_features_known_[w.m.index] = 1;

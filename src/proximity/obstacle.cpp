@@ -302,6 +302,33 @@ Closest segment_closest(const Point3& s, const Point3& a, const Point3& b, Index
   c.d2 = squared_norm(s - c.x);
   return c;
 }
+// Whether s lies strictly outside the prism over facet f of m (n its outer
+// normal): beyond the plane through one of its edges orthogonal to f.
+bool beyond_an_edge(const ConvexPolytope& m, Index f, const Point3& n, const Point3& s) {
+  const Index h0 = m.facet_halfedge(f);
+  Index h = h0;
+  do {
+    const Point3& a = m.point(m.origin(h));
+    if (sgn(dot(s - a, cross(m.point(m.target(h)) - a, n))) > 0) return true;
+    h = m.next(h);
+  } while (h != h0);
+  return false;
+}
+// The point of the boundary of facet f of m closest to s (the first of
+// equally close ones along the loop).
+Closest boundary_closest(const ConvexPolytope& m, Index f, const Point3& s) {
+  const Index h0 = m.facet_halfedge(f);
+  Closest best;
+  bool have = false;
+  Index h = h0;
+  do {
+    Closest c = segment_closest(s, m.point(m.origin(h)), m.point(m.target(h)), m.origin(h), m.target(h),
+                                ConvexPolytope::edge(h));
+    if (!have || c.d2 < best.d2) best = std::move(c), have = true;
+    h = m.next(h);
+  } while (h != h0);
+  return best;
+}
 }  // namespace
 
 Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const {
@@ -311,31 +338,14 @@ Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, 
   for (Index f = 0; f < m.num_facets(); ++f) {
     if (m.plane(f).side(s) <= 0) continue;  // the closest point lies on a facet s sees
     const Point3& n = normal_[f];
-    const Index h0 = m.facet_halfedge(f);
-    bool outside = false;
     Closest c;
-    bool have = false;
-    Index h = h0;
-    do {
-      const Point3& a = m.point(m.origin(h));
-      const Point3& b = m.point(m.target(h));
-      if (sgn(dot(s - a, cross(b - a, n))) > 0) outside = true;
-      h = m.next(h);
-    } while (h != h0);
-    if (!outside) {
+    if (!beyond_an_edge(m, f, n, s)) {
       const Rational t = (dot(n, s) - offset_[f]) / norm2_[f];
       c.x = s - t * n;
       c.d2 = t * t * norm2_[f];
       c.feat = Feature::facet(f);
-      have = true;
     } else {
-      h = h0;
-      do {
-        Closest e = segment_closest(s, m.point(m.origin(h)), m.point(m.target(h)), m.origin(h), m.target(h),
-                                    ConvexPolytope::edge(h));
-        if (!have || e.d2 < c.d2) c = std::move(e), have = true;
-        h = m.next(h);
-      } while (h != h0);
+      c = boundary_closest(m, f, s);
     }
     if (!found || c.d2 < d2) {
       d2 = c.d2, x = c.x, best = c.feat, facet = f;
@@ -417,28 +427,8 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
     } else {
       const Index f = cur.index;
       const Point3& n = normal_[f];
-      const Index h0 = m.facet_halfedge(f);
-      bool outside = false;
-      Index h = h0;
-      do {
-        const Point3& a = m.point(m.origin(h));
-        if (sgn(dot(s - a, cross(m.point(m.target(h)) - a, n))) > 0) {
-          outside = true;
-          break;
-        }
-        h = m.next(h);
-      } while (h != h0);
-      if (outside) {
-        Closest best;
-        bool have = false;
-        h = h0;
-        do {
-          Closest c = segment_closest(s, m.point(m.origin(h)), m.point(m.target(h)), m.origin(h), m.target(h),
-                                      ConvexPolytope::edge(h));
-          if (!have || c.d2 < best.d2) best = std::move(c), have = true;
-          h = m.next(h);
-        } while (h != h0);
-        cur = best.feat;
+      if (beyond_an_edge(m, f, n, s)) {
+        cur = boundary_closest(m, f, s).feat;
       } else {
         const Rational side = dot(n, s) - offset_[f];
         if (sgn(side) <= 0) break;  // local trap: scan

@@ -3,7 +3,6 @@
 #include <minksum/minkowski.hpp>
 
 #include "mesh/support.hpp"
-#include "sum/faces.hpp"
 
 namespace minksum {
 

@@ -6,7 +6,8 @@
 // so that each caller keeps its own exact predicate: the walk its cached
 // det3 filter on a facet normal of the other operand, CVMS and the slope
 // diagrams support_compare.  The overloads taking a rational direction n use
-// the kernel's compare_along (interval filter, exact fallback).
+// the kernel's compare_along (filtered on the roundings, exact when the
+// filter cannot decide).
 //
 // Facts they rely on (P convex, every edge strictly convex):
 //   * a vertex no neighbour of which is strictly higher maximises <x, n>

@@ -131,7 +131,9 @@ std::optional<Quaternion> rotation_option(const Args& a, const std::string& name
   return q;
 }
 
-const char* feature_type(int dim) { return dim == 0 ? "vertex" : dim == 1 ? "edge" : "facet"; }
+const char* feature_type(FeatureDim dim) {
+  return dim == FeatureDim::vertex ? "vertex" : dim == FeatureDim::edge ? "edge" : "facet";
+}
 
 std::string feature_json(const Feature& f) {
   return std::string("{\"type\": \"") + feature_type(f.dim) + "\", \"index\": " + std::to_string(f.index) + "}";

@@ -107,8 +107,8 @@ Rational brute_alpha(const ConvexPolytope& m, const Point3& s, const Point3& d) 
 // Vertex set of a feature.
 std::vector<Index> feature_vertices(const ConvexPolytope& p, const Feature& f) {
   std::vector<Index> v;
-  if (f.dim == 0) v = {f.index};
-  else if (f.dim == 1) v = {p.origin(2 * f.index), p.target(2 * f.index)};
+  if (f.dim == FeatureDim::vertex) v = {f.index};
+  else if (f.dim == FeatureDim::edge) v = {p.origin(2 * f.index), p.target(2 * f.index)};
   else v = p.facet_vertices(f.index);
   std::sort(v.begin(), v.end());
   return v;
@@ -127,8 +127,8 @@ std::vector<Index> support_set(const ConvexPolytope& p, const Point3& n) {
 }
 
 bool point_in_feature(const ConvexPolytope& m, const Feature& f, const Point3& x) {
-  if (f.dim == 0) return m.point(f.index) == x;
-  if (f.dim == 1) {
+  if (f.dim == FeatureDim::vertex) return m.point(f.index) == x;
+  if (f.dim == FeatureDim::edge) {
     const Point3& a = m.point(m.origin(2 * f.index));
     const Point3& b = m.point(m.target(2 * f.index));
     if (!is_zero(cross(b - a, x - a))) return false;
@@ -150,8 +150,8 @@ bool point_in_feature(const ConvexPolytope& m, const Feature& f, const Point3& x
 void check_operand_features(const TranslationalObstacle& ob, const Witness& w) {
   const ConvexPolytope& m = ob.obstacle();
   Point3 n = zero();
-  if (w.m.dim == 2) n = m.plane(w.m.index).normal();
-  else if (w.m.dim == 1)
+  if (w.m.dim == FeatureDim::facet) n = m.plane(w.m.index).normal();
+  else if (w.m.dim == FeatureDim::edge)
     n = m.plane(m.facet(2 * w.m.index)).normal() + m.plane(m.facet(2 * w.m.index + 1)).normal();
   else {
     const Index h0 = m.vertex_halfedge(w.m.index);
@@ -219,7 +219,7 @@ void check_all_queries(TranslationalObstacle& ob, const std::vector<Point3>& poi
       EXPECT_EQ(brute_status(m, y), ContactStatus::touching) << "stabbed facet does not hold the exit point";
     }
     if (want == ContactStatus::touching) {
-      EXPECT_TRUE(point_in_feature(m, c.witness.m, s)) << "touching feature dim " << c.witness.m.dim;
+      EXPECT_TRUE(point_in_feature(m, c.witness.m, s)) << "touching feature dim " << int(c.witness.m.dim);
     }
     check_operand_features(ob, c.witness);
 
@@ -302,7 +302,8 @@ TEST(Proximity, GrazingContactsAreExact) {
   TranslationalObstacle ob(catalog_polytope("cube"), catalog_polytope("cube"));
   const Rational tiny("1/10000000000000000000000000000000000000000");
   const Point3 contacts[] = {P(2, 0, 0), P(2, 2, 0), P(2, 2, 2), P(2, 1, -1), R("2", "3/2", "-2")};
-  const int want_dim[] = {2, 1, 0, 2, 1};
+  using enum FeatureDim;
+  const FeatureDim want_dim[] = {facet, edge, vertex, facet, edge};
   for (int i = 0; i < 5; ++i) {
     const Point3& w = contacts[i];
     CollisionResult c = ob.collide(zero(), w);

@@ -35,8 +35,10 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
 
 #include "kernel/interval.hpp"
+#include "mesh/support.hpp"
 #include "sum/faces.hpp"
 
 namespace minksum {
@@ -58,52 +60,17 @@ bool strictly_inside(const Key2& p, const Key2& q, const Key2& x) {
          sgn((x.first - q.first) * dx + (x.second - q.second) * dy) < 0;
 }
 
+// The features of A and B at an overlay vertex, as far as known.
 struct Located {
-  Feature a{-1, kNoIndex}, b{-1, kNoIndex};
+  std::optional<Feature> a, b;
 };
 
-// Support set of P in direction n by a monotone walk from `start`, then the
-// vertices of equal height next to it (exact).
-std::vector<Index> support_walk(const ConvexPolytope& P, const Point3& n, Index& start) {
-  Index v = start;
-  Rational best = dot(n, P.point(v));
-  for (bool moved = true; moved;) {
-    moved = false;
-    for (Index w : P.vertex_neighbours(v)) {
-      Rational d = dot(n, P.point(w));
-      if (cmp(d, best) > 0) {
-        best = d;
-        v = w;
-        moved = true;
-        break;
-      }
-    }
-  }
-  start = v;
-  std::vector<Index> set{v}, stack{v};
-  while (!stack.empty()) {
-    Index x = stack.back();
-    stack.pop_back();
-    for (Index w : P.vertex_neighbours(x))
-      if (std::find(set.begin(), set.end(), w) == set.end() && dot(n, P.point(w)) == best) {
-        set.push_back(w);
-        stack.push_back(w);
-      }
-  }
-  std::sort(set.begin(), set.end());
-  return set;
-}
-
-std::vector<Index> feature_vertices(const ConvexPolytope& P, const Feature& f) {
-  if (f.dim == 2) return P.facet_vertices(f.index);
-  if (f.dim == 1) return {P.origin(2 * f.index), P.target(2 * f.index)};
-  return {f.index};
-}
-
-Feature vertex_feature(const CubicalGaussianMap::Vertex& v) {
-  if (v.real) return {2, v.facet};
-  if (v.arc_edge != kNoIndex) return {1, v.arc_edge};
-  return {-1, kNoIndex};
+// The feature behind a vertex of a planar map: a facet (real vertex), an
+// edge (an arc crossing a cube edge), nothing (a square corner).
+std::optional<Feature> vertex_feature(const CubicalGaussianMap::Vertex& v) {
+  if (v.real) return Feature::facet(v.facet);
+  if (v.arc_edge != kNoIndex) return Feature::edge(v.arc_edge);
+  return std::nullopt;
 }
 
 struct Counters {
@@ -170,7 +137,7 @@ void overlay_map(int k, const Map& ma, const Map& mb, const ConvexPolytope& A, c
     const Map& m = *maps[c];
     return std::make_pair(VId(c, m.halfedges[h].origin), VId(c, m.halfedges[h + 1].origin));
   };
-  auto edge_of = [&](int c, Index h) { return Feature{1, maps[c]->halfedges[h].primal >> 1}; };
+  auto edge_of = [&](int c, Index h) { return Feature::edge(maps[c]->halfedges[h].primal >> 1); };
   for (std::size_t i = 0; i < items.size(); ++i) {
     const Item& it = items[i];
     auto& other = active[1 - it.color];
@@ -247,25 +214,34 @@ void overlay_map(int k, const Map& ma, const Map& mb, const ConvexPolytope& A, c
 
   for (auto& [p, l] : pts) {
     const Point3 n = CubicalGaussianMap::lift(k, p.first, p.second);
-    if (l.a.dim < 0) {
-      l.a = face_of_vertices(A, support_walk(A, n, walk_a), n);
-      if (l.b.dim >= 0) ++cnt.b_in_face_a;
+    // Vertex in a face: the face's primal vertex by hill climbing from the
+    // previous answer (mesh/support.hpp).
+    auto locate = [&](const ConvexPolytope& P, Index& start) {
+      const Support s = support(P, n, start);
+      start = s.vertex;
+      return s.face;
+    };
+    if (!l.a) {
+      l.a = locate(A, walk_a);
+      if (l.b) ++cnt.b_in_face_a;
     }
-    if (l.b.dim < 0) {
-      l.b = face_of_vertices(B, support_walk(B, n, walk_b), n);
+    if (!l.b) {
+      l.b = locate(B, walk_b);
       ++cnt.a_in_face_b;
     }
-    if (l.a.dim + l.b.dim < 2) continue;
-    if (l.a.dim == 1 && l.b.dim == 1) {
-      Point3 ea = A.point(A.target(2 * l.a.index)) - A.point(A.origin(2 * l.a.index));
-      Point3 eb = B.point(B.target(2 * l.b.index)) - B.point(B.origin(2 * l.b.index));
+    const Feature fa = *l.a, fb = *l.b;
+    // face_A(n) ⊕ face_B(n) is a facet when its dimensions add up to 2 or more.
+    if (int(fa.dim) + int(fb.dim) < 2) continue;
+    if (fa.dim == FeatureDim::edge && fb.dim == FeatureDim::edge) {
+      Point3 ea = A.point(A.target(2 * fa.index)) - A.point(A.origin(2 * fa.index));
+      Point3 eb = B.point(B.target(2 * fb.index)) - B.point(B.origin(2 * fb.index));
       if (is_zero(cross(ea, eb))) continue;  // inside an overlap of parallel edges
     }
     FacetCandidate c;
     c.normal = n;
-    for (Index i : feature_vertices(A, l.a))
-      for (Index j : feature_vertices(B, l.b)) c.points.emplace_back(i, j);
-    c.provenance = {l.a, l.b};
+    for (Index i : feature_vertices(A, fa))
+      for (Index j : feature_vertices(B, fb)) c.points.emplace_back(i, j);
+    c.provenance = {fa, fb};
     out.push_back(std::move(c));
   }
 }

@@ -26,6 +26,8 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "mesh/support.hpp"
+
 namespace minksum {
 
 const char* contact_status_name(ContactStatus s) {
@@ -38,30 +40,6 @@ const char* contact_status_name(ContactStatus s) {
 }
 
 namespace {
-
-// Feature of `poly` whose vertex set is `vs` (sorted, unique, non-empty and
-// the vertex set of a face of poly).
-Feature feature_from_vertices(const ConvexPolytope& poly, const std::vector<Index>& vs) {
-  if (vs.size() == 1) return {0, vs[0]};
-  const Index a = vs[0];
-  const Index h0 = poly.vertex_halfedge(a);
-  if (vs.size() == 2) {
-    Index h = h0;
-    do {
-      if (poly.target(h) == vs[1]) return {1, ConvexPolytope::edge(h)};
-      h = poly.next_around_vertex(h);
-    } while (h != h0);
-  }
-  Index h = h0;
-  do {
-    const Index f = poly.facet(h);
-    std::vector<Index> fv = poly.facet_vertices(f);
-    std::sort(fv.begin(), fv.end());
-    if (std::includes(fv.begin(), fv.end(), vs.begin(), vs.end())) return {2, f};
-    h = poly.next_around_vertex(h);
-  } while (h != h0);
-  return {2, poly.facet(h0)};  // unreachable for a face's vertex set
-}
 
 Rational squared_norm(const Point3& v) { return dot(v, v); }
 
@@ -119,7 +97,7 @@ void TranslationalObstacle::rebuild() {
   facet_features_.assign(nf, {});
   facet_features_known_.assign(nf, 0);
   last_stab_ = last_exit_ = last_depth_ = 0;
-  last_closest_ = {-1, kNoIndex};  // first distance walk starts at the stabbed facet
+  last_closest_.reset();  // the first distance walk starts at the stabbed facet
   ++stats_.rebuilds;
 }
 
@@ -131,36 +109,28 @@ Feature TranslationalObstacle::feature_on_facet(Index f, const Point3& x) const 
   const Index h0 = m.facet_halfedge(f);
   Index h = h0;
   do {
-    if (m.point(m.origin(h)) == x) return {0, m.origin(h)};
+    if (m.point(m.origin(h)) == x) return Feature::vertex(m.origin(h));
     h = m.next(h);
   } while (h != h0);
   h = h0;
   do {
     const Point3& a = m.point(m.origin(h));
     const Point3& b = m.point(m.target(h));
-    if (is_zero(cross(b - a, x - a))) return {1, ConvexPolytope::edge(h)};
+    if (is_zero(cross(b - a, x - a))) return Feature::edge(ConvexPolytope::edge(h));
     h = m.next(h);
   } while (h != h0);
-  return {2, f};
+  return Feature::facet(f);
 }
 
 void TranslationalObstacle::fill_operand_features(Witness& w) const {
   const ConvexPolytope& m = sum_.polytope;
-  if (w.m.dim == 2 && facet_features_known_[w.m.index]) {
+  if (w.m.dim == FeatureDim::facet && facet_features_known_[w.m.index]) {
     w.p = facet_features_[w.m.index][0];
     w.q = facet_features_[w.m.index][1];
     return;
   }
-  std::vector<Index> mv;
-  if (w.m.dim == 0) {
-    mv = {w.m.index};
-  } else if (w.m.dim == 1) {
-    mv = {m.origin(2 * w.m.index), m.target(2 * w.m.index)};
-  } else {
-    mv = m.facet_vertices(w.m.index);
-  }
   std::vector<Index> pv, qv;
-  for (Index v : mv) {
+  for (Index v : feature_vertices(m, w.m)) {
     pv.push_back(sum_.vertex_origin[v].first);
     qv.push_back(neg_to_q_[sum_.vertex_origin[v].second]);
   }
@@ -168,9 +138,9 @@ void TranslationalObstacle::fill_operand_features(Witness& w) const {
   pv.erase(std::unique(pv.begin(), pv.end()), pv.end());
   std::sort(qv.begin(), qv.end());
   qv.erase(std::unique(qv.begin(), qv.end()), qv.end());
-  w.p = feature_from_vertices(p_, pv);
-  w.q = feature_from_vertices(q_, qv);
-  if (w.m.dim == 2) {
+  w.p = feature_of_vertices(p_, pv);
+  w.q = feature_of_vertices(q_, qv);
+  if (w.m.dim == FeatureDim::facet) {
     facet_features_[w.m.index] = {w.p, w.q};
     facet_features_known_[w.m.index] = 1;
   }
@@ -181,8 +151,8 @@ std::pair<Point3, Point3> TranslationalObstacle::decompose(const Feature& feat, 
   auto pq = [&](Index v) -> std::pair<Point3, Point3> {
     return {p_.point(sum_.vertex_origin[v].first), q_.point(neg_to_q_[sum_.vertex_origin[v].second])};
   };
-  if (feat.dim == 0) return pq(feat.index);
-  if (feat.dim == 1) {
+  if (feat.dim == FeatureDim::vertex) return pq(feat.index);
+  if (feat.dim == FeatureDim::edge) {
     const Index a = m.origin(2 * feat.index), b = m.target(2 * feat.index);
     const Point3 e = m.point(b) - m.point(a);
     const Rational t = dot(x - m.point(a), e) / dot(e, e);
@@ -292,7 +262,7 @@ CollisionResult TranslationalObstacle::collide_point(const Point3& s) {
   if (s == center_) {
     r.status = ContactStatus::penetrating;
     r.witness.facet = last_stab_ < m.num_facets() ? last_stab_ : 0;
-    r.witness.m = {2, r.witness.facet};
+    r.witness.m = Feature::facet(r.witness.facet);
     fill_operand_features(r.witness);
     return r;
   }
@@ -301,7 +271,7 @@ CollisionResult TranslationalObstacle::collide_point(const Point3& s) {
   const int side = side_filtered(f, s);
   r.status = side > 0 ? ContactStatus::separate : side == 0 ? ContactStatus::touching : ContactStatus::penetrating;
   r.witness.facet = f;
-  r.witness.m = side == 0 ? feature_on_facet(f, s) : Feature{2, f};
+  r.witness.m = side == 0 ? feature_on_facet(f, s) : Feature::facet(f);
   fill_operand_features(r.witness);
   return r;
 }
@@ -323,49 +293,59 @@ Closest segment_closest(const Point3& s, const Point3& a, const Point3& b, Index
   const Rational t = dot(s - a, e) / dot(e, e);
   Closest c;
   if (sgn(t) <= 0) {
-    c.x = a, c.feat = {0, ia};
+    c.x = a, c.feat = Feature::vertex(ia);
   } else if (cmp(t, 1) >= 0) {
-    c.x = b, c.feat = {0, ib};
+    c.x = b, c.feat = Feature::vertex(ib);
   } else {
-    c.x = a + t * e, c.feat = {1, edge};
+    c.x = a + t * e, c.feat = Feature::edge(edge);
   }
   c.d2 = squared_norm(s - c.x);
   return c;
+}
+// Whether s lies strictly outside the prism over facet f of m (n its outer
+// normal): beyond the plane through one of its edges orthogonal to f.
+bool beyond_an_edge(const ConvexPolytope& m, Index f, const Point3& n, const Point3& s) {
+  const Index h0 = m.facet_halfedge(f);
+  Index h = h0;
+  do {
+    const Point3& a = m.point(m.origin(h));
+    if (sgn(dot(s - a, cross(m.point(m.target(h)) - a, n))) > 0) return true;
+    h = m.next(h);
+  } while (h != h0);
+  return false;
+}
+// The point of the boundary of facet f of m closest to s (the first of
+// equally close ones along the loop).
+Closest boundary_closest(const ConvexPolytope& m, Index f, const Point3& s) {
+  const Index h0 = m.facet_halfedge(f);
+  Closest best;
+  bool have = false;
+  Index h = h0;
+  do {
+    Closest c = segment_closest(s, m.point(m.origin(h)), m.point(m.target(h)), m.origin(h), m.target(h),
+                                ConvexPolytope::edge(h));
+    if (!have || c.d2 < best.d2) best = std::move(c), have = true;
+    h = m.next(h);
+  } while (h != h0);
+  return best;
 }
 }  // namespace
 
 Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const {
   const ConvexPolytope& m = sum_.polytope;
   bool found = false;
-  Feature best{2, 0};
+  Feature best = Feature::facet(0);
   for (Index f = 0; f < m.num_facets(); ++f) {
     if (m.plane(f).side(s) <= 0) continue;  // the closest point lies on a facet s sees
     const Point3& n = normal_[f];
-    const Index h0 = m.facet_halfedge(f);
-    bool outside = false;
     Closest c;
-    bool have = false;
-    Index h = h0;
-    do {
-      const Point3& a = m.point(m.origin(h));
-      const Point3& b = m.point(m.target(h));
-      if (sgn(dot(s - a, cross(b - a, n))) > 0) outside = true;
-      h = m.next(h);
-    } while (h != h0);
-    if (!outside) {
+    if (!beyond_an_edge(m, f, n, s)) {
       const Rational t = (dot(n, s) - offset_[f]) / norm2_[f];
       c.x = s - t * n;
       c.d2 = t * t * norm2_[f];
-      c.feat = {2, f};
-      have = true;
+      c.feat = Feature::facet(f);
     } else {
-      h = h0;
-      do {
-        Closest e = segment_closest(s, m.point(m.origin(h)), m.point(m.target(h)), m.origin(h), m.target(h),
-                                    ConvexPolytope::edge(h));
-        if (!have || e.d2 < c.d2) c = std::move(e), have = true;
-        h = m.next(h);
-      } while (h != h0);
+      c = boundary_closest(m, f, s);
     }
     if (!found || c.d2 < d2) {
       d2 = c.d2, x = c.x, best = c.feat, facet = f;
@@ -376,16 +356,21 @@ Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, 
   return best;
 }
 
-Feature TranslationalObstacle::closest_feature(const Point3& s, Feature cur, Point3& x, Rational& d2, Index& facet) {
+Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Feature> start, Point3& x, Rational& d2,
+                                              Index& facet) {
   const ConvexPolytope& m = sum_.polytope;
   const std::uint64_t limit = 2 * (std::uint64_t(m.num_vertices()) + m.num_edges() + m.num_facets()) + 16;
   auto valid = [&](const Feature& f) {
-    return (f.dim == 0 && f.index < m.num_vertices()) || (f.dim == 1 && f.index < m.num_edges()) ||
-           (f.dim == 2 && f.index < m.num_facets());
+    switch (f.dim) {
+      case FeatureDim::vertex: return f.index < m.num_vertices();
+      case FeatureDim::edge: return f.index < m.num_edges();
+      case FeatureDim::facet: return f.index < m.num_facets();
+    }
+    return false;
   };
-  if (!valid(cur)) cur = {2, last_stab_ < m.num_facets() ? last_stab_ : 0};
+  Feature cur = start && valid(*start) ? *start : Feature::facet(last_stab_ < m.num_facets() ? last_stab_ : 0);
   for (std::uint64_t steps = 0; steps < limit; ++steps) {
-    if (cur.dim == 0) {
+    if (cur.dim == FeatureDim::vertex) {
       const Index v = cur.index;
       const Point3& pv = m.point(v);
       const Point3 sv = s - pv;
@@ -412,8 +397,8 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, Feature cur, Poi
         } while (h != h0);
         return cur;
       }
-      cur = {1, ConvexPolytope::edge(move)};
-    } else if (cur.dim == 1) {
+      cur = Feature::edge(ConvexPolytope::edge(move));
+    } else if (cur.dim == FeatureDim::edge) {
       const Index h = 2 * cur.index;
       const Index ia = m.origin(h), ib = m.target(h);
       const Point3& a = m.point(ia);
@@ -421,17 +406,17 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, Feature cur, Poi
       const Point3 e = b - a;
       const Rational t = dot(s - a, e) / dot(e, e);
       if (sgn(t) <= 0) {
-        cur = {0, ia};
+        cur = Feature::vertex(ia);
       } else if (cmp(t, 1) >= 0) {
-        cur = {0, ib};
+        cur = Feature::vertex(ib);
       } else {
         const Point3 px = a + t * e;
         const Point3 sx = s - px;
         const Index f1 = m.facet(h), f2 = m.facet(ConvexPolytope::twin(h));
         if (sgn(dot(sx, cross(e, normal_[f1]))) < 0) {
-          cur = {2, f1};
+          cur = Feature::facet(f1);
         } else if (sgn(dot(sx, cross(-e, normal_[f2]))) < 0) {
-          cur = {2, f2};
+          cur = Feature::facet(f2);
         } else {
           x = px;
           d2 = squared_norm(sx);
@@ -442,28 +427,8 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, Feature cur, Poi
     } else {
       const Index f = cur.index;
       const Point3& n = normal_[f];
-      const Index h0 = m.facet_halfedge(f);
-      bool outside = false;
-      Index h = h0;
-      do {
-        const Point3& a = m.point(m.origin(h));
-        if (sgn(dot(s - a, cross(m.point(m.target(h)) - a, n))) > 0) {
-          outside = true;
-          break;
-        }
-        h = m.next(h);
-      } while (h != h0);
-      if (outside) {
-        Closest best;
-        bool have = false;
-        h = h0;
-        do {
-          Closest c = segment_closest(s, m.point(m.origin(h)), m.point(m.target(h)), m.origin(h), m.target(h),
-                                      ConvexPolytope::edge(h));
-          if (!have || c.d2 < best.d2) best = std::move(c), have = true;
-          h = m.next(h);
-        } while (h != h0);
-        cur = best.feat;
+      if (beyond_an_edge(m, f, n, s)) {
+        cur = boundary_closest(m, f, s).feat;
       } else {
         const Rational side = dot(n, s) - offset_[f];
         if (sgn(side) <= 0) break;  // local trap: scan

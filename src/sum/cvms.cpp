@@ -40,6 +40,7 @@
 #include <array>
 #include <chrono>
 
+#include "mesh/support.hpp"
 #include "sum/faces.hpp"
 
 namespace minksum {
@@ -78,25 +79,11 @@ struct Geometry {
   }
 };
 
-// Contributing vertices of facet f of P with respect to Q (eq. 3), by a scan
-// of all vertices of Q; sorted.
+// Contributing vertices of facet f of P with respect to Q (eq. 3): the
+// support set of Q along the facet's normal, by a scan of all vertices of Q;
+// sorted.
 std::vector<Index> contributing(const Geometry& g, const ConvexPolytope& P, const Frame& f, const ConvexPolytope& Q) {
-  std::vector<Index> best{0};
-  for (Index v = 1; v < Q.num_vertices(); ++v) {
-    int s = g.support(P, f, Q, v, best[0]);
-    if (s > 0) best.assign(1, v);
-    else if (s == 0) best.push_back(v);
-  }
-  return best;
-}
-
-bool share_a_vertex(const std::vector<Index>& x, const std::vector<Index>& y) {
-  std::size_t i = 0, j = 0;
-  while (i < x.size() && j < y.size()) {
-    if (x[i] == y[j]) return true;
-    if (x[i] < y[j]) ++i; else ++j;
-  }
-  return false;
+  return support_scan(Q, [&](Index x, Index y) { return g.support(P, f, Q, x, y); });
 }
 
 // Candidate facet (face of P) ⊕ (face of Q spanned by vs), with P's role given
@@ -106,10 +93,10 @@ FacetCandidate facet_candidate(const ConvexPolytope& P, Index f, const ConvexPol
   FacetCandidate c;
   c.normal = P.plane(f).normal();
   std::vector<Index> qv = vs;
-  if (q_face.dim == 2) qv = Q.facet_vertices(q_face.index);
+  if (q_face.dim == FeatureDim::facet) qv = Q.facet_vertices(q_face.index);
   for (Index pv : P.facet_vertices(f))
     for (Index v : qv) c.points.push_back(p_is_a ? std::make_pair(pv, v) : std::make_pair(v, pv));
-  Feature pf{2, f};
+  const Feature pf = Feature::facet(f);
   c.provenance = p_is_a ? FacetProvenance{pf, q_face} : FacetProvenance{q_face, pf};
   return c;
 }
@@ -128,9 +115,8 @@ SumResult minkowski_sum_cvms(const ConvexPolytope& A, const ConvexPolytope& B, c
   // (1) Translated facets.
   for (Index f = 0; f < A.num_facets(); ++f) {
     cvA[f] = contributing(g, A, frA[f], B);
-    Point3 n = A.plane(f).normal();
-    Feature face = face_of_vertices(B, cvA[f], n);
-    if (face.dim == 2) {
+    const Feature face = feature_of_vertices(B, cvA[f]);
+    if (face.dim == FeatureDim::facet) {
       usedB[face.index] = 1;  // Property 2: it contributes once
       cvB[face.index] = A.facet_vertices(f);
       std::sort(cvB[face.index].begin(), cvB[face.index].end());
@@ -142,8 +128,7 @@ SumResult minkowski_sum_cvms(const ConvexPolytope& A, const ConvexPolytope& B, c
   for (Index f = 0; f < B.num_facets(); ++f) {
     if (usedB[f]) continue;
     cvB[f] = contributing(g, B, frB[f], A);
-    Point3 n = B.plane(f).normal();
-    candidates.push_back(facet_candidate(B, f, A, cvB[f], false, face_of_vertices(A, cvB[f], n)));
+    candidates.push_back(facet_candidate(B, f, A, cvB[f], false, feature_of_vertices(A, cvB[f])));
   }
   options.report("cvms", -1);
   // (3) Edge facets.  Property 1 for the edges of B first.
@@ -168,7 +153,7 @@ SumResult minkowski_sum_cvms(const ConvexPolytope& A, const ConvexPolytope& B, c
       FacetCandidate c;
       c.normal = cross(A.point(p1) - A.point(p0), B.point(q1) - B.point(q0));
       c.points = {{p0, q0}, {p1, q0}, {p1, q1}, {p0, q1}};
-      c.provenance = {{1, e}, {1, k}};
+      c.provenance = {Feature::edge(e), Feature::edge(k)};
       candidates.push_back(std::move(c));
     }
   }

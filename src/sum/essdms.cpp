@@ -34,6 +34,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "mesh/support.hpp"
 #include "sum/slope_diagram.hpp"
 
 namespace minksum {
@@ -43,24 +44,10 @@ namespace {
 // Eq. 3 by a scan: the vertices of Q maximising <x, n_f> for facet f of P.
 std::vector<Index> contributing(slope_diagram::Merge& m, const slope_diagram::Diagram& P, Index f,
                                 const slope_diagram::Diagram& Q) {
-  std::vector<Index> best{0};
-  for (Index v = 1; v < Q.p.num_vertices(); ++v) {
+  return support_scan(Q.p, [&](Index x, Index y) {
     ++m.contributing_vertex_tests;
-    const int s = m.g.support(P, f, Q, v, best[0]);
-    if (s > 0) best.assign(1, v);
-    else if (s == 0) best.push_back(v);
-  }
-  return best;
-}
-
-bool share_a_vertex(const std::vector<Index>& x, const std::vector<Index>& y) {
-  std::size_t i = 0, j = 0;
-  while (i < x.size() && j < y.size()) {
-    if (x[i] == y[j]) return true;
-    if (x[i] < y[j]) ++i;
-    else ++j;
-  }
-  return false;
+    return m.g.support(P, f, Q, x, y);
+  });
 }
 
 }  // namespace
@@ -79,19 +66,13 @@ SumResult minkowski_sum_essdms(const ConvexPolytope& A, const ConvexPolytope& B,
 
   // Case 4: the remaining facet points, each in the region of its single
   // contributing vertex.
-  auto regions = [&](const Diagram& P, bool p_is_a, const Diagram& Q) {
-    const std::vector<char>& done = p_is_a ? m.done_a : m.done_b;
-    for (Index f = 0; f < P.p.num_facets(); ++f) {
-      if (done[f]) continue;
-      std::vector<Index> cv = contributing(m, P, f, Q);
-      if (cv.size() != 1)
-        throw std::logic_error("essdms: a facet left after the facet-point and edge-arc cases has " +
-                               std::to_string(cv.size()) + " contributing vertices");
-      m.facet_in_vertex_region(p_is_a, f, cv[0]);
-    }
-  };
-  regions(da, true, db);
-  regions(db, false, da);
+  m.facet_points_in_vertex_regions([&](const Diagram& P, Index f, const Diagram& Q) {
+    const std::vector<Index> cv = contributing(m, P, f, Q);
+    if (cv.size() != 1)
+      throw std::logic_error("essdms: a facet left after the facet-point and edge-arc cases has " +
+                             std::to_string(cv.size()) + " contributing vertices");
+    return cv[0];
+  });
   options.report("essdms", -1);
 
   // Case 3, with Property 1 pruning the edge arcs.

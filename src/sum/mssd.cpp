@@ -46,22 +46,13 @@ SumResult minkowski_sum_mssd(const ConvexPolytope& A, const ConvexPolytope& B, c
   options.report("mssd", -1);
 
   // Case 4: point-in-polygon queries for the remaining facet points.
-  auto regions = [&](const Diagram& P, bool p_is_a, const Diagram& Q) {
-    const std::vector<char>& done = p_is_a ? m.done_a : m.done_b;
-    for (Index f = 0; f < P.p.num_facets(); ++f) {
-      if (done[f]) continue;
-      Index found = kNoIndex;
-      for (Index v = 0; v < Q.p.num_vertices() && found == kNoIndex; ++v) {
-        ++m.point_in_polygon_queries;
-        if (g.facet_point_in_vertex_region(P, f, Q, v, m.polygon_side_tests)) found = v;
-      }
-      if (found == kNoIndex)
-        throw std::logic_error("mssd: a facet point left after the facet-point and edge-arc cases lies in no vertex region");
-      m.facet_in_vertex_region(p_is_a, f, found);
+  m.facet_points_in_vertex_regions([&](const Diagram& P, Index f, const Diagram& Q) {
+    for (Index v = 0; v < Q.p.num_vertices(); ++v) {
+      ++m.point_in_polygon_queries;
+      if (g.facet_point_in_vertex_region(P, f, Q, v, m.polygon_side_tests)) return v;
     }
-  };
-  regions(da, true, db);
-  regions(db, false, da);
+    throw std::logic_error("mssd: a facet point left after the facet-point and edge-arc cases lies in no vertex region");
+  });
   options.report("mssd", -1);
 
   SumResult r = finish(m, Method::mssd);

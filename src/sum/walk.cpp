@@ -36,12 +36,14 @@
 #include <cfenv>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "kernel/difference.hpp"
 #include "kernel/predicates_internal.hpp"
 #include "mesh/builder.hpp"
+#include "mesh/support.hpp"
 
 namespace minksum {
 
@@ -315,8 +317,6 @@ int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, 
   return support_compare(PF.point(gc.v0), PF.point(gc.v1), PF.point(gc.v2), PX.point(xi), PX.point(yi));
 }
 
-constexpr Feature kUnknown{-1, kNoIndex};
-
 // Walks the arcs of P's edges over Q's Gaussian map.
 class Walker {
  public:
@@ -331,11 +331,13 @@ class Walker {
                            double progress_span) {
     crossings_ = crossings;
     const Index nf = p_.num_facets();
-    std::vector<Feature> S(nf, kUnknown);
+    std::vector<Feature> S(nf);
+    std::vector<std::uint8_t> known(nf, 0);  // S[f] found
     std::vector<std::uint8_t> walked(p_.num_edges(), 0);
     std::vector<Index> queue;
     queue.reserve(nf);
     S[0] = climb(0);
+    known[0] = 1;
     queue.push_back(0);
     for (std::size_t qi = 0; qi < queue.size(); ++qi) {
       if ((qi & 4095) == 0) options.report("walk", progress0 + progress_span * double(qi) / nf);
@@ -347,16 +349,17 @@ class Walker {
         if (!walked[e]) {
           walked[e] = 1;
           const Index f2 = p_.facet(ConvexPolytope::twin(h));
-          const bool need = S[f2].dim < 0;
+          const bool need = !known[f2];
           // Without crossings to record, only the arcs of a spanning tree of
           // the facets are needed.
           if (!need && !crossings) {
             h = p_.next(h);
             continue;
           }
-          Feature s2 = walk(h, S[f1], need);
+          const std::optional<Feature> s2 = walk(h, S[f1], need);
           if (need) {
-            S[f2] = s2;
+            S[f2] = *s2;
+            known[f2] = 1;
             queue.push_back(f2);
           }
         }
@@ -379,62 +382,27 @@ class Walker {
   // (The walk of h sets hd_ = d_h once.)
   int side(Index g, Index h) { return det3(Q_, g, P_, hd_, p_.target(h), p_.origin(h), st_); }
 
-  // b's neighbours along n(f): their half-edges in hbuf_ (ring(b)), tie_[i]
-  // = 1 where the neighbour is as high as b, `ties` of them.  Stops with
-  // false at the first neighbour higher than b (b does not support n(f));
-  // true: b supports n(f), and face_of_ties() gives the face — each sign
-  // evaluated once.
-  bool scan_neighbours(Index b, Index f, std::size_t& ties) {
-    ring(b);
-    const std::size_t k = hbuf_.size();
-    tie_.assign(k, 0);
-    ties = 0;
-    for (std::size_t i = 0; i < k; ++i) {
-      const int c = higher(f, q_.target(hbuf_[i]), b);
-      if (c > 0) return false;
-      if (c == 0) tie_[i] = 1, ++ties;
-    }
-    return true;
-  }
-
-  // The face of Q maximising <x, n(f)> from a successful scan_neighbours(b,
-  // f): b and its neighbours as high as b.
-  Feature face_of_ties(Index b, std::size_t ties) const {
-    const std::size_t k = hbuf_.size();
-    if (ties == 0) return {0, b};
-    if (ties == 1)
-      for (std::size_t i = 0; i < k; ++i)
-        if (tie_[i]) return {1, ConvexPolytope::edge(hbuf_[i])};
-    for (std::size_t i = 0; i < k; ++i)
-      if (tie_[i] && tie_[(i + 1) % k]) return {2, q_.facet(hbuf_[i])};
-    throw std::logic_error("walk: the support set is not a face");
+  // The face of Q maximising <x, n(f)> when its vertex b is a maximiser,
+  // nothing when a neighbour of b is higher (mesh/support.hpp: each sign
+  // once, stopping at the first higher neighbour).
+  std::optional<Feature> face_at(Index b, Index f) {
+    return support_face_at(q_, b, [&](Index x, Index y) { return higher(f, x, y); });
   }
 
   // The face of Q maximising <x, n(f)>, given its vertex b (a maximiser).
-  Feature support_face_at(Index b, Index f) {
-    std::size_t ties;
-    if (!scan_neighbours(b, f, ties)) throw std::logic_error("walk: the support vertex is not a maximum");
-    return face_of_ties(b, ties);
+  Feature support_face(Index b, Index f) {
+    if (const std::optional<Feature> face = face_at(b, f)) return *face;
+    throw std::logic_error("walk: the support vertex is not a maximum");
   }
 
-  // Hill climbing on Q's vertex graph to the support of n(f).
+  // Hill climbing on Q's vertex graph to the support of n(f) (a walk step
+  // per sign).
   Feature climb(Index f) {
-    Index b = 0;
-    for (bool moved = true; moved;) {
-      moved = false;
-      const Index h0 = q_.vertex_halfedge(b);
-      Index h = h0;
-      do {
-        ++st_.steps;
-        if (higher(f, q_.target(h), b) > 0) {
-          b = q_.target(h);
-          moved = true;
-          break;
-        }
-        h = q_.next_around_vertex(h);
-      } while (h != h0);
-    }
-    return support_face_at(b, f);
+    const Index b = minksum::climb(q_, 0, [&](Index x, Index y) {
+      ++st_.steps;
+      return higher(f, x, y);
+    });
+    return support_face(b, f);
   }
 
   // Outgoing half-edges of b, counter-clockwise, into hbuf_, starting with
@@ -454,33 +422,14 @@ class Walker {
   // vertices of S tie, the edge joining them (parallel to hp: the arc runs
   // along that edge's arc).
   State enter(Feature S, Index hp, Index f2) {
-    if (S.dim == 0) return {false, S.index};
-    verts_.clear();
-    if (S.dim == 1) {
-      verts_.push_back(q_.origin(2 * S.index));
-      verts_.push_back(q_.target(2 * S.index));
-    } else {
-      const Index h0 = q_.facet_halfedge(S.index);
-      Index h = h0;
-      do {
-        verts_.push_back(q_.origin(h));
-        h = q_.next(h);
-      } while (h != h0);
-    }
-    Index best = verts_[0], tie = kNoIndex;
-    for (std::size_t i = 1; i < verts_.size(); ++i) {
-      const int c = higher(f2, verts_[i], best);
-      if (c > 0) best = verts_[i], tie = kNoIndex;
-      else if (c == 0) tie = verts_[i];
-    }
-    if (tie == kNoIndex) return {false, best};
-    // The edge best–tie, directed like hp.
-    const Index h0 = q_.vertex_halfedge(best);
-    Index h = h0;
-    while (q_.target(h) != tie) {
-      h = q_.next_around_vertex(h);
-      if (h == h0) throw std::logic_error("walk: tied support vertices are not adjacent");
-    }
+    if (S.dim == FeatureDim::vertex) return {false, S.index};
+    feature_vertices(q_, S, verts_);
+    support_among(verts_, [&](Index x, Index y) { return higher(f2, x, y); }, top_);
+    if (top_.size() == 1) return {false, top_[0]};
+    if (top_.size() != 2) throw std::logic_error("walk: more than two vertices of a face tie along an arc's end");
+    // The edge joining the two, directed like hp.
+    const Index h = halfedge_between(q_, top_[0], top_[1]);
+    if (h == kNoIndex) throw std::logic_error("walk: tied support vertices are not adjacent");
     ++st_.calls;
     const int d = q_.coordinates_are_doubles() && p_.coordinates_are_doubles()
                       ? dot_sign(q_.approx(q_.origin(h)), q_.approx(q_.target(h)), p_.approx(p_.origin(hp)),
@@ -492,8 +441,9 @@ class Walker {
   }
 
   // Walk the arc of P's half-edge hp from n(facet(hp)) (support S1 in Q) to
-  // n(facet(twin hp)); returns the support there when `need_end`.
-  Feature walk(Index hp, Feature S1, bool need_end) {
+  // n(facet(twin hp)); returns the support there when `need_end`, else
+  // possibly nothing.
+  std::optional<Feature> walk(Index hp, Feature S1, bool need_end) {
     const Index f2 = p_.facet(ConvexPolytope::twin(hp));
     hd_ = make_diff(P_, p_.target(hp), p_.origin(hp));
     State s = enter(S1, hp, f2);
@@ -508,9 +458,8 @@ class Walker {
         // Along the arc of Q's edge hq: it ends at n(facet(twin hq)).  The
         // arc's end n(f2) lies on it iff origin(hq) supports n(f2).
         const Index hq = s.index, x = q_.origin(hq);
-        std::size_t ties;
-        if (scan_neighbours(x, f2, ties)) return need_end ? face_of_ties(x, ties) : kUnknown;
-        s = enter({2, q_.facet(ConvexPolytope::twin(hq))}, hp, f2);
+        if (const std::optional<Feature> face = face_at(x, f2)) return need_end ? face : std::nullopt;
+        s = enter(Feature::facet(q_.facet(ConvexPolytope::twin(hq))), hp, f2);
         entry = kNoIndex;
         continue;
       }
@@ -519,8 +468,7 @@ class Walker {
       // first neighbour higher along n(f2)).
       if (short_arcs_ && need_end && n == 0) {
         const Index b = s.index;
-        std::size_t ties;
-        if (scan_neighbours(b, f2, ties)) return face_of_ties(b, ties);
+        if (const std::optional<Feature> face = face_at(b, f2)) return face;
       }
       // Inside the region of vertex b: find where the arc's great circle
       // leaves it (side signs − then +, or −, 0, +), evaluating the signs
@@ -558,10 +506,10 @@ class Walker {
       // side's great circle; strictly inside that side, n(f2) lies on the
       // open chord of the region cut by the arc's circle: b alone supports it.
       const int c = higher(f2, q_.target(he), b);
-      if (c < 0) return {0, b};
-      if (c == 0) return need_end ? support_face_at(b, f2) : kUnknown;
+      if (c < 0) return Feature::vertex(b);
+      if (c == 0) return need_end ? std::optional(support_face(b, f2)) : std::nullopt;
       if (through_vertex) {
-        s = enter({2, q_.facet(he)}, hp, f2);
+        s = enter(Feature::facet(q_.facet(he)), hp, f2);
         entry = kNoIndex;
       } else {
         if (crossings_) crossings_->emplace_back(hp, he);
@@ -579,9 +527,8 @@ class Walker {
   // Q has far fewer vertices than P (its regions are much larger than P's
   // arcs): the walks test whether they end in their first region first.
   bool short_arcs_ = false;
-  std::vector<Index> hbuf_, verts_;
+  std::vector<Index> hbuf_, verts_, top_;
   std::vector<std::int8_t> sbuf_;
-  std::vector<std::uint8_t> tie_;
 };
 
 // The loops of the output facets, before linking.
@@ -652,7 +599,7 @@ void facet_plus_facet(const ConvexPolytope& a, Index fa, const ConvexPolytope& b
     if (c >= 0) ++i;
     if (c <= 0) ++j;
   }
-  out.close({{2, fa}, {2, fb}});
+  out.close({Feature::facet(fa), Feature::facet(fb)});
 }
 
 // Facet fi of F ⊕ edge ei of E, the edge parallel to the facet's plane
@@ -696,7 +643,7 @@ void facet_plus_edge(const ConvexPolytope& F, Index fi, const ConvexPolytope& E,
       throw std::logic_error("walk: two consecutive edges of a facet are parallel");
     }
   }
-  const Feature ff{2, fi}, fe{1, ei};
+  const Feature ff = Feature::facet(fi), fe = Feature::edge(ei);
   out.close(f_is_a ? FacetProvenance{ff, fe} : FacetProvenance{fe, ff});
 }
 
@@ -730,15 +677,15 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const S
   L.prov.reserve(a.num_facets() + b.num_facets() + crossings.size());
   for (Index f = 0; f < a.num_facets(); ++f) {
     const Feature s = SB[f];
-    if (s.dim == 0) {
+    if (s.dim == FeatureDim::vertex) {
       const Index h0 = a.facet_halfedge(f);
       Index h = h0;
       do {
         L.corners.emplace_back(a.origin(h), s.index);
         h = a.next(h);
       } while (h != h0);
-      L.close({{2, f}, s});
-    } else if (s.dim == 1) {
+      L.close({Feature::facet(f), s});
+    } else if (s.dim == FeatureDim::edge) {
       facet_plus_edge(a, f, b, s.index, true, L);
     } else {
       facet_plus_facet(a, f, b, s.index, L);
@@ -746,15 +693,15 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const S
   }
   for (Index g = 0; g < b.num_facets(); ++g) {
     const Feature s = SA[g];
-    if (s.dim == 2) continue;  // parallel to a facet of A: done above
-    if (s.dim == 0) {
+    if (s.dim == FeatureDim::facet) continue;  // parallel to a facet of A: done above
+    if (s.dim == FeatureDim::vertex) {
       const Index h0 = b.facet_halfedge(g);
       Index h = h0;
       do {
         L.corners.emplace_back(s.index, b.origin(h));
         h = b.next(h);
       } while (h != h0);
-      L.close({s, {2, g}});
+      L.close({s, Feature::facet(g)});
     } else {
       facet_plus_edge(b, g, a, s.index, false, L);
     }
@@ -768,7 +715,7 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const S
   const ConvexPolytope &P = a_records ? a : b, &Q = a_records ? b : a;
   for (auto [hp, hq] : crossings) {
     const Index u = P.origin(hp), v = P.target(hp), x = Q.origin(hq), y = Q.target(hq);
-    const Feature ep{1, ConvexPolytope::edge(hp)}, eq{1, ConvexPolytope::edge(hq)};
+    const Feature ep = Feature::edge(ConvexPolytope::edge(hp)), eq = Feature::edge(ConvexPolytope::edge(hq));
     if (a_records) {
       L.corners.insert(L.corners.end(), {{v, x}, {u, x}, {u, y}, {v, y}});
       L.close({ep, eq});

@@ -2,53 +2,17 @@
 // A and B maximising <x, n>, found by scanning every vertex.
 #include <minksum/minkowski.hpp>
 
-#include "sum/faces.hpp"
+#include "mesh/support.hpp"
 
 namespace minksum {
 
 FacetOrigin FacetProvenance::origin() const {
-  if (a.dim == 2 && b.dim == 2) return FacetOrigin::facet_facet;
-  if (a.dim == 2 && b.dim == 0) return FacetOrigin::translated;
-  if (a.dim == 0 && b.dim == 2) return FacetOrigin::corner;
-  if (a.dim == 1 && b.dim == 1) return FacetOrigin::edge;
+  using enum FeatureDim;
+  if (a.dim == facet && b.dim == facet) return FacetOrigin::facet_facet;
+  if (a.dim == facet && b.dim == vertex) return FacetOrigin::translated;
+  if (a.dim == vertex && b.dim == facet) return FacetOrigin::corner;
+  if (a.dim == edge && b.dim == edge) return FacetOrigin::edge;
   return FacetOrigin::facet_edge;
-}
-
-Feature face_of_vertices(const ConvexPolytope& p, const std::vector<Index>& vs, const Point3& n) {
-  if (vs.size() == 1) return {0, vs[0]};
-  if (vs.size() == 2) {
-    Index h = p.vertex_halfedge(vs[0]);
-    do {
-      if (p.target(h) == vs[1]) return {1, ConvexPolytope::edge(h)};
-      h = p.next_around_vertex(h);
-    } while (h != p.vertex_halfedge(vs[0]));
-    return {1, kNoIndex};  // not adjacent: cannot happen for a supporting face
-  }
-  // A facet: the one around vs[0] whose outward normal points along n.
-  Index h = p.vertex_halfedge(vs[0]);
-  do {
-    Index f = p.facet(h);
-    Point3 m = p.plane(f).normal();
-    if (is_zero(cross(m, n)) && sgn(dot(m, n)) > 0) return {2, f};
-    h = p.next_around_vertex(h);
-  } while (h != p.vertex_halfedge(vs[0]));
-  return {2, kNoIndex};
-}
-
-std::vector<Index> support_vertices(const ConvexPolytope& p, const Point3& n) {
-  std::vector<Index> best{0};
-  Rational top = dot(p.point(0), n);
-  for (Index v = 1; v < p.num_vertices(); ++v) {
-    Rational h = dot(p.point(v), n);
-    int c = cmp(h, top);
-    if (c > 0) {
-      best.assign(1, v);
-      top = h;
-    } else if (c == 0) {
-      best.push_back(v);
-    }
-  }
-  return best;
 }
 
 std::vector<FacetProvenance> facet_provenance(const ConvexPolytope& a, const ConvexPolytope& b,
@@ -57,7 +21,7 @@ std::vector<FacetProvenance> facet_provenance(const ConvexPolytope& a, const Con
   out.reserve(s.num_facets());
   for (Index f = 0; f < s.num_facets(); ++f) {
     Point3 n = s.plane(f).normal();
-    out.push_back({face_of_vertices(a, support_vertices(a, n), n), face_of_vertices(b, support_vertices(b, n), n)});
+    out.push_back({feature_of_vertices(a, support_vertices(a, n)), feature_of_vertices(b, support_vertices(b, n))});
   }
   return out;
 }

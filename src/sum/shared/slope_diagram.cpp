@@ -163,7 +163,7 @@ FacetCandidate facet_plus(const ConvexPolytope& P, Index f, const std::vector<In
   cand.normal = P.plane(f).normal();
   for (Index pv : P.facet_vertices(f))
     for (Index v : qv) cand.points.push_back(p_is_a ? std::make_pair(pv, v) : std::make_pair(v, pv));
-  const Feature pf{2, f};
+  const Feature pf = Feature::facet(f);
   cand.provenance = p_is_a ? FacetProvenance{pf, q_face} : FacetProvenance{q_face, pf};
   cand.facet_case = int(c);
   return cand;
@@ -190,7 +190,7 @@ void Merge::two_facet_points() {
       if (!g.same_facet_point(g.a(), f, g.b(), j)) continue;
       // Eq. 7: f ⊕ j.  Each facet's contributing vertices are the other's.
       std::vector<Index> vj = B.facet_vertices(j);
-      candidates.push_back(facet_plus(A, f, vj, true, {2, j}, Case::two_facet_points));
+      candidates.push_back(facet_plus(A, f, vj, true, Feature::facet(j), Case::two_facet_points));
       cv_a[f] = sorted(vj);
       cv_b[j] = sorted(A.facet_vertices(f));
       done_a[f] = done_b[j] = 1;
@@ -212,7 +212,7 @@ void Merge::facet_points_on_edge_arcs() {
         if (!g.facet_point_on_arc(P, f, Q, e)) continue;
         // Eq. 10 / 11: f ⊕ e; the contributing vertices of f are e's ends.
         std::vector<Index> ends = sorted({Q.p.origin(2 * e), Q.p.target(2 * e)});
-        candidates.push_back(facet_plus(P.p, f, ends, p_is_a, {1, e}, Case::facet_point_on_edge_arc));
+        candidates.push_back(facet_plus(P.p, f, ends, p_is_a, Feature::edge(e), Case::facet_point_on_edge_arc));
         cv[f] = std::move(ends);
         done[f] = 1;
         break;
@@ -236,14 +236,14 @@ void Merge::edge_arc_pair(Index ea, Index eb) {
   c.normal = cross(A.point(p1) - A.point(p0), B.point(q1) - B.point(q0));
   if (side < 0) c.normal = -c.normal;
   c.points = {{p0, q0}, {p1, q0}, {p1, q1}, {p0, q1}};
-  c.provenance = {{1, ea}, {1, eb}};
+  c.provenance = {Feature::edge(ea), Feature::edge(eb)};
   c.facet_case = int(Case::two_edge_arcs);
   candidates.push_back(std::move(c));
 }
 
 void Merge::facet_in_vertex_region(bool f_of_a, Index f, Index v) {
   const ConvexPolytope& P = f_of_a ? g.a().p : g.b().p;
-  candidates.push_back(facet_plus(P, f, {v}, f_of_a, {0, v}, Case::facet_point_in_vertex_region));
+  candidates.push_back(facet_plus(P, f, {v}, f_of_a, Feature::vertex(v), Case::facet_point_in_vertex_region));
   (f_of_a ? cv_a : cv_b)[f] = {v};
   (f_of_a ? done_a : done_b)[f] = 1;
 }

@@ -44,6 +44,18 @@ namespace minksum {
 using Index = std::uint32_t;
 inline constexpr Index kNoIndex = 0xffffffffu;
 
+// A face of a convex polytope, by its dimension and its index among the
+// polytope's vertices, edges (ConvexPolytope::edge) or facets.
+enum class FeatureDim : std::uint32_t { vertex = 0, edge = 1, facet = 2 };
+struct Feature {
+  FeatureDim dim = FeatureDim::vertex;
+  Index index = kNoIndex;
+  static constexpr Feature vertex(Index v) { return {FeatureDim::vertex, v}; }
+  static constexpr Feature edge(Index e) { return {FeatureDim::edge, e}; }
+  static constexpr Feature facet(Index f) { return {FeatureDim::facet, f}; }
+  friend bool operator==(const Feature&, const Feature&) = default;
+};
+
 // Raw polygon soup, as read from a file or made by the catalog: no
 // guarantees at all until ConvexPolytope::from_mesh() validates it.
 struct Mesh {

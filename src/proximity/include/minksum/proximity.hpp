@@ -33,6 +33,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -157,8 +158,9 @@ class TranslationalObstacle {
   bool in_cone(Index f, const Point3& apex, const Point3& through, const RayApprox& ra, Index* exit_halfedge);
   int orient_filtered(const Point3& apex, Index a, Index b, const Point3& through, const RayApprox& ra) const;
   int side_filtered(Index f, const Point3& s) const;
-  // Closest feature of M to s (s outside M): walk from `start`.
-  Feature closest_feature(const Point3& s, Feature start, Point3& x, Rational& d2, Index& facet);
+  // Closest feature of M to s (s outside M): walk from `start` (none: from
+  // the last stabbed facet).
+  Feature closest_feature(const Point3& s, std::optional<Feature> start, Point3& x, Rational& d2, Index& facet);
   Feature closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const;
 
   ConvexPolytope p_, q_, neg_q_;
@@ -176,7 +178,7 @@ class TranslationalObstacle {
   mutable std::vector<std::array<Feature, 2>> facet_features_;
   mutable std::vector<char> facet_features_known_;
   Index last_stab_ = 0, last_exit_ = 0, last_depth_ = 0;
-  Feature last_closest_{-1, kNoIndex};
+  std::optional<Feature> last_closest_;  // none before the first distance query
   std::uint64_t rng_ = 0x9e3779b97f4a7c15ull;
   ProximityStats stats_;
 };

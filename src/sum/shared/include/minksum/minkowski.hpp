@@ -52,16 +52,8 @@ enum class FacetOrigin {
 };
 const char* facet_origin_name(FacetOrigin o);
 
-// A feature of an operand: dimension 0 (vertex index), 1 (edge index, see
-// ConvexPolytope::edge) or 2 (facet index).
-struct Feature {
-  int dim = 0;
-  Index index = kNoIndex;
-  friend bool operator==(const Feature&, const Feature&) = default;
-};
-
 struct FacetProvenance {
-  Feature a, b;  // face_A(n) and face_B(n)
+  Feature a, b;  // face_A(n) and face_B(n) (Feature: <minksum/polytope.hpp>)
   FacetOrigin origin() const;
   friend bool operator==(const FacetProvenance&, const FacetProvenance&) = default;
 };

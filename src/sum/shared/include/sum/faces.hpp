@@ -8,13 +8,6 @@
 
 namespace minksum {
 
-// The face of p spanned by the vertices vs (all maximising <x, n>): a vertex,
-// the edge joining two vertices, or the facet with outward normal along n.
-Feature face_of_vertices(const ConvexPolytope& p, const std::vector<Index>& vs, const Point3& n);
-
-// All vertices of p maximising <x, n>, by a scan (exact).
-std::vector<Index> support_vertices(const ConvexPolytope& p, const Point3& n);
-
 // One output facet before assembly: its outer normal and candidate points
 // (pairs of input vertices).  assemble_sum() groups candidates by normal
 // direction, takes the planar convex hull of each group's points (the facet

@@ -171,6 +171,19 @@ struct Merge {
   // Case 4: facet f of A (`f_of_a`) or of B translated by vertex v of the
   // other operand.
   void facet_in_vertex_region(bool f_of_a, Index f, Index v);
+  // Case 4 for every facet point left after cases 1 and 2, those of A then
+  // those of B: locate(P, f, Q) is the vertex of Q whose region holds the
+  // facet point of facet f of P.
+  template <class Locate>
+  void facet_points_in_vertex_regions(Locate&& locate) {
+    auto regions = [&](const Diagram& P, bool p_is_a, const Diagram& Q) {
+      const std::vector<char>& done = p_is_a ? done_a : done_b;
+      for (Index f = 0; f < P.p.num_facets(); ++f)
+        if (!done[f]) facet_in_vertex_region(p_is_a, f, locate(P, f, Q));
+    };
+    regions(g.a(), true, g.b());
+    regions(g.b(), false, g.a());
+  }
 
   // The operation counters, for SumResult::counters.
   std::vector<std::pair<std::string, long long>> counters() const;

@@ -1,7 +1,7 @@
 // The progress line of long commands (see progress.hpp).
 #include "progress.hpp"
 
-#include <minksum/minkowski.hpp>
+#include <minksum/sum_result.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // A progress line on stderr for long computations (minksum sum).
 #pragma once
 
-#include <minksum/minkowski.hpp>
+#include <minksum/sum_result.hpp>
 
 #include <atomic>
 #include <chrono>

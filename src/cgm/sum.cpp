@@ -1,5 +1,5 @@
 // The Minkowski sum by overlaying the six pairs of planar maps of two Cubical
-// Gaussian Maps (seed 001 §3).  See docs/cgm.md.
+// Gaussian Maps (Fogel and Halperin 2006, §3).  See docs/cgm.md.
 //
 // A facet of S = A ⊕ B with outer normal n exists exactly where the overlay
 // of the two Gaussian maps has a vertex at which the two operand features

@@ -1,4 +1,4 @@
-// The unfolded Cubical Gaussian Map as SVG (seed 001 Fig. 2(c), 6(c), 7(c)).
+// The unfolded Cubical Gaussian Map as SVG (Fogel and Halperin 2006, Figs. 2(c), 6(c), 7(c)).
 //
 // The cube is unfolded around the face z = +1 (map 5) in the middle: x = -1
 // (map 0) on its left, x = +1 (map 3) on its right, y = +1 (map 4) above,

@@ -1,5 +1,5 @@
 // TranslationalObstacle: exact collision, separation distance, penetration
-// depth and directional penetration depth on M = P ⊕ (−Q) (seed 001 §4).
+// depth and directional penetration depth on M = P ⊕ (−Q) (Fogel and Halperin 2006, §4).
 //
 // Walks (docs/proximity.md):
 //   * stab(): the facet of M hit by a ray from a point strictly inside M — a

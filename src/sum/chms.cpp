@@ -1,4 +1,4 @@
-// CHMS (seed 000 §6.1-6.2): the Minkowski sum as the convex hull of all
+// CHMS (Barki et al. 2009, §6.1-6.2): the Minkowski sum as the convex hull of all
 // pairwise vertex sums a_i + b_j.  The sums are exact (a sum of two doubles
 // is not always a double), the hull is CGAL's on exact points, and coplanar
 // hull triangles are merged exactly by the polytope builder.  O(vA vB log).

@@ -1,4 +1,4 @@
-// CVMS, the Contributing Vertices-based Minkowski Sum (seed 000 §3-4,
+// CVMS, the Contributing Vertices-based Minkowski Sum (Barki et al. 2009, §3-4,
 // Algorithm 1), with exact predicates.
 //
 // (1) Translated facets: for every facet f of A, its contributing vertices in

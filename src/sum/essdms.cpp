@@ -1,5 +1,5 @@
 // ESSDMS, the Enhanced and Simplified Slope Diagram-based Minkowski Sum
-// (seed 000 §5.2), with exact predicates and no position threshold.
+// (Barki et al. 2009, §5.2), with exact predicates and no position threshold.
 //
 // The slope diagrams of A and B are never embedded on the sphere nor
 // projected; facet points, edge arcs and vertex regions are read off the

@@ -1,4 +1,4 @@
-// The improved 3D-MSSD of Wu et al., as seed 000 re-implements it for its
+// The improved 3D-MSSD of Wu et al., as Barki et al. (2009) re-implement it for their
 // comparison (§2, §5.1, §6.1, Table 1), with exact predicates and no position
 // threshold.
 //

@@ -1,4 +1,4 @@
-// The walk method (DESIGN.md §4): the output-sensitive exact Minkowski sum.
+// The walk method (docs/walk.md): the output-sensitive exact Minkowski sum.
 // The algorithm and its output are described in src/sum/include/minksum/walk.hpp;
 // docs/walk.md has the case analysis.  Conventions used below:
 //

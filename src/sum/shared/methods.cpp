@@ -1,5 +1,5 @@
 // The table of methods: names, availability and the summaries --help prints.
-#include <minksum/minkowski.hpp>
+#include <minksum/sum_result.hpp>
 
 namespace minksum {
 

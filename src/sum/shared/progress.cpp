@@ -1,7 +1,7 @@
-// Report points of the Minkowski-sum methods (SumOptions, minkowski.hpp):
+// Report points of the Minkowski-sum methods (SumOptions, sum_result.hpp):
 // the caller's cancellation flag, then the caller's progress callback.
 #include <minksum/error.hpp>
-#include <minksum/minkowski.hpp>
+#include <minksum/sum_result.hpp>
 
 namespace minksum {
 

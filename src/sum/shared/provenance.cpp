@@ -1,6 +1,6 @@
 // Facet provenance by brute force: for each facet normal n of S, the faces of
 // A and B maximising <x, n>, found by scanning every vertex.
-#include <minksum/minkowski.hpp>
+#include <minksum/sum_result.hpp>
 
 #include "mesh/support.hpp"
 

@@ -1,5 +1,5 @@
 // The slope diagrams of two convex polytopes and the parts of their merge
-// that ESSDMS and the improved 3D-MSSD share (seed 000 §5).  The equations and
+// that ESSDMS and the improved 3D-MSSD share (Barki et al. 2009, §5).  The equations and
 // their exact degree-3/4 forms are derived in slope_diagram.hpp.
 #include "sum/slope_diagram.hpp"
 

@@ -1,5 +1,5 @@
-// minksum — the Cubical Gaussian Map (seed 001 §2) and the Minkowski sum as
-// an overlay of six pairs of planar maps (seed 001 §3).
+// minksum — the Cubical Gaussian Map (Fogel and Halperin 2006, §2) and the Minkowski sum as
+// an overlay of six pairs of planar maps (Fogel and Halperin 2006, §3).
 //
 // The Gaussian map of a convex polytope P sends every facet to its outer
 // normal, every edge to the great arc between the normals of its two facets
@@ -7,7 +7,7 @@
 // The CGM projects this map centrally onto the six faces of the cube
 // [-1,1]^3: six planar maps, each a DCEL of the unit square [-1,1]^2.
 //
-// Planar maps (seed 001 Table 1).  Map k lies in the cube face below, with
+// Planar maps (Fogel and Halperin 2006, Table 1).  Map k lies in the cube face below, with
 // the 2D axes X, Y taken from the 3D coordinates listed; in every map
 // X × Y is the outer normal of the cube face, so counter-clockwise in 2D is
 // counter-clockwise seen from outside the cube.
@@ -34,7 +34,7 @@
 // both maps); a polytope vertex becomes up to five faces.  Coordinates are
 // exact rationals; no decision uses a tolerance.
 //
-// Attributes (seed 001 §2):
+// Attributes (Fogel and Halperin 2006, §2):
 //   * vertex: 2D point; location (corner / edge / interior of the cube face);
 //     `real` (a facet maps to it) with the facet index and its plane
 //     coefficients; the polytope edge whose arc passes through it for the
@@ -60,7 +60,7 @@
 // (cube edge) or 3 (cube corner) through copies of the same 3D point.
 #pragma once
 
-#include <minksum/minkowski.hpp>
+#include <minksum/sum_result.hpp>
 #include <minksum/polytope.hpp>
 
 #include <array>
@@ -165,8 +165,11 @@ class CubicalGaussianMap {
 // The sum by overlaying the six pairs of planar maps of the two CGMs.
 // Counters name the overlay cases met (see docs/cgm.md).  Reports phase
 // "cgm" to options before each pair of maps and before the assembly
-// (SumOptions, minkowski.hpp).
+// (SumOptions, sum_result.hpp).
 SumResult minkowski_sum_cgm(const CubicalGaussianMap& a, const CubicalGaussianMap& b, const ConvexPolytope& pa,
                             const ConvexPolytope& pb, const SumOptions& options = {});
+// The Cubical Gaussian Map method (Fogel and Halperin 2006, §2-3): builds the two CGMs, then
+// the overlay above.  minkowski_sum(a, b, Method::cgm) calls it.
+SumResult minkowski_sum_cgm(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
 
 }  // namespace minksum

@@ -1,7 +1,7 @@
 // minksum — the sign predicates of the exact kernel.
 //
 // Every geometric decision minksum makes is the sign of one of the small
-// polynomials below, evaluated exactly (DESIGN.md §3).  Each predicate comes
+// polynomials below, evaluated exactly.  Each predicate comes
 // in two forms:
 //
 //   * on Vec3d: the doubles ARE the exact input coordinates (callers

@@ -1,5 +1,5 @@
 // minksum — exact proximity queries between two convex polytopes under
-// translation (seed 001 §4, DESIGN.md §5).
+// translation (Fogel and Halperin 2006, §4).
 //
 // P is translated by u and Q by w.  With s = w − u and the configuration-space
 // obstacle M = P ⊕ (−Q):

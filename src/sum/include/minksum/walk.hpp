@@ -1,5 +1,5 @@
 // minksum — the output-sensitive exact Minkowski sum (method `walk`,
-// DESIGN.md §4), as a half-edge structure with implicit coordinates.
+// docs/walk.md), as a half-edge structure with implicit coordinates.
 //
 // For convex polytopes A and B, every facet of S = A ⊕ B with outer normal n
 // is face_A(n) ⊕ face_B(n), and on the Gaussian sphere the normals n are the

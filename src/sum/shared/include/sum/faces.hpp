@@ -1,7 +1,7 @@
 // Internal helpers shared by the Minkowski-sum methods.
 #pragma once
 
-#include <minksum/minkowski.hpp>
+#include <minksum/sum_result.hpp>
 
 #include <array>
 #include <vector>

@@ -1,5 +1,5 @@
 // Internal: the slope diagrams of two convex polytopes and their merge
-// (seed 000 §5), shared by the ESSDMS (essdms.cpp) and improved 3D-MSSD
+// (Barki et al. 2009, §5), shared by the ESSDMS (essdms.cpp) and improved 3D-MSSD
 // (mssd.cpp) methods.
 //
 // A slope diagram is never embedded on the sphere and never projected: every
@@ -66,7 +66,7 @@
 // predicate (counted in Geometry::exact_fallbacks).
 #pragma once
 
-#include <minksum/minkowski.hpp>
+#include <minksum/sum_result.hpp>
 
 #include <array>
 #include <cstdint>
@@ -79,7 +79,7 @@
 
 namespace minksum::slope_diagram {
 
-// The four intersection cases of seed 000 §5.1, in the order of
+// The four intersection cases of Barki et al. 2009, §5.1, in the order of
 // SumResult::facet_case_names.
 enum class Case : std::uint8_t {
   two_facet_points = 0,              // eq. 6-7:  facet ⊕ facet

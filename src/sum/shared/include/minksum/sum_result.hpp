@@ -1,10 +1,7 @@
-// minksum — the Minkowski sum A ⊕ B = { a + b : a in A, b in B } of two
-// convex polytopes, exactly.
-//
-// Every method returns the same polytope for the same input (same vertex set,
-// same facets after merging coplanar ones); tests assert this exactly.  Each
-// result vertex is the sum of one vertex of A and one vertex of B, recorded in
-// SumResult::vertex_origin.
+// minksum — what a Minkowski-sum method returns (SumResult, with the
+// provenance of every facet), the table of methods and the options every
+// method takes (progress, cancellation).  The methods themselves are declared
+// in <minksum/minkowski.hpp>.
 #pragma once
 
 #include <minksum/error.hpp>  // Cancelled, UsageError
@@ -40,7 +37,7 @@ bool method_available(Method m);
 // The names joined: "auto, walk, chms, cvms, essdms, mssd, cgm".
 std::string method_list();
 
-// Where an output facet comes from (seed 000 §4.3, seed 001 §3).  A facet of
+// Where an output facet comes from (Barki et al. 2009, §4.3; Fogel and Halperin 2006, §3).  A facet of
 // S = A ⊕ B with outer normal n is face_A(n) ⊕ face_B(n), the faces of A and
 // B maximising <x, n>; their dimensions (2 facet, 1 edge, 0 vertex) give:
 enum class FacetOrigin {
@@ -121,38 +118,5 @@ struct SumOptions {
   // set, then call progress if there is one.
   void report(const char* phase, double fraction) const;
 };
-
-// Compute A ⊕ B with `method`; SumResult::method names the method used.  Throws UsageError if the method is not
-// available in this build, Cancelled if options.cancel is set during the sum.
-SumResult minkowski_sum(const ConvexPolytope& a, const ConvexPolytope& b,
-                        Method method = Method::automatic, const SumOptions& options = {});
-
-// Output-sensitive exact sum (DESIGN.md §4): hill climbing to the first
-// support, then walks along the great arcs of A's edges over B's Gaussian
-// map (and of B's edges over A's), each crossing one output edge facet; every
-// output facet is face_A(n) ⊕ face_B(n).  The structure alone, with implicit
-// coordinates, is minkowski_walk() in <minksum/walk.hpp>; this wraps it into
-// a SumResult (explicit exact coordinates, planes on demand).  counters:
-// crossings, walk steps, and the microseconds of the walk and of the
-// conversion to the ConvexPolytope.
-SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
-
-// The CHMS method (oracle): exact convex hull of all pairwise vertex sums.
-SumResult minkowski_sum_chms(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
-// CVMS (seed 000 §3-4): contributing vertices, translated / corner / edge facets.
-SumResult minkowski_sum_cvms(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
-// ESSDMS (seed 000 §5.2): slope diagrams merged without embedding, with
-// contributing vertices instead of point-in-polygon queries.  facet_case
-// holds the intersection case of each facet (two_facet_points,
-// facet_point_on_edge_arc, two_edge_arcs, facet_point_in_vertex_region);
-// counters hold the operation counts.
-SumResult minkowski_sum_essdms(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
-// Wu et al.'s improved 3D-MSSD as seed 000 re-implements it: the same merge
-// with point-in-spherical-polygon queries and every pair of edge arcs; the
-// same facet cases and counters as essdms.
-SumResult minkowski_sum_mssd(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
-// The Cubical Gaussian Map method (seed 001 §2-3): the overlay of the six
-// pairs of planar maps of the two CGMs (<minksum/cubical_gaussian_map.hpp>).
-SumResult minkowski_sum_cgm(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
 
 }  // namespace minksum

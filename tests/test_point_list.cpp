@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 #include <mpfr.h>
 
+#include <atomic>
 #include <cfenv>
+#include <cstdlib>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -416,6 +418,42 @@ TEST(ToDouble, NearestAgainstMpfr) {
       EXPECT_EQ(to_double(below), mpfr_nearest(below)) << m << " * 2^" << e << " - tiny";
     }
   }
+}
+
+// Regression (to_double leaked its per-thread scratch integers): the GMP
+// memory a thread's to_double takes is given back when the thread ends.
+namespace {
+std::atomic<long> g_gmp_live{0};
+void* counting_alloc(std::size_t n) {
+  ++g_gmp_live;
+  return std::malloc(n);
+}
+void* counting_realloc(void* p, std::size_t, std::size_t n) { return std::realloc(p, n); }
+void counting_free(void* p, std::size_t) {
+  --g_gmp_live;
+  std::free(p);
+}
+}  // namespace
+
+TEST(ToDouble, ThreadScratchFreedWhenTheThreadEnds) {
+  // The values exist before the allocator is swapped; the thread converts
+  // them (the one-division path: neither short dyadic nor extreme).
+  std::vector<Rational> values;
+  for (int i = 1; i <= 50; ++i) values.emplace_back(Integer(i) * 1000003, Integer(7) * 1000033 + i);
+  void* (*old_alloc)(std::size_t);
+  void* (*old_realloc)(void*, std::size_t, std::size_t);
+  void (*old_free)(void*, std::size_t);
+  mp_get_memory_functions(&old_alloc, &old_realloc, &old_free);
+  mp_set_memory_functions(counting_alloc, counting_realloc, counting_free);
+  double sum = 0;
+  std::thread worker([&] {
+    for (const Rational& q : values) sum += to_double(q);
+  });
+  worker.join();
+  const long live = g_gmp_live.load();
+  mp_set_memory_functions(old_alloc, old_realloc, old_free);
+  EXPECT_EQ(live, 0) << "GMP blocks still allocated after the thread ended";
+  EXPECT_GT(sum, 0);
 }
 
 // to_float likewise against MPFR with float's precision and range: random

@@ -113,7 +113,8 @@ TEST(RoundedPredicates, PlaneSideAgreesAndBoundHolds) {
     Gen g(seed);
     Plane pl;
     const int bits = int(g.integer(1, 80));
-    auto coef = [&] { return Integer(long(g.integer(-1000000, 1000000))) << (bits / 2); };
+    // -> Integer: a gmpxx shift expression would refer to a destroyed temporary.
+    auto coef = [&]() -> Integer { return Integer(long(g.integer(-1000000, 1000000))) << (bits / 2); };
     pl.a = coef(), pl.b = coef(), pl.c = coef();
     Rounded s(g.point());
     if (seed % 3 == 0) {  // s on the plane: d = n·s must be an integer, so scale the plane

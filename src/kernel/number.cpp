@@ -46,12 +46,16 @@ namespace {
 // Returns false (nothing decided) near or beyond the ends of the double
 // range, where the general code below handles subnormals and overflow.
 bool to_double_fast(mpz_srcptr n, mpz_srcptr d, double& out) {
-  thread_local mpz_t t, m, r;
-  thread_local bool init = [] {
-    mpz_inits(t, m, r, nullptr);
-    return true;
-  }();
-  (void)init;
+  // Scratch integers, one set per thread, freed when the thread ends.
+  struct Scratch {
+    mpz_t t, m, r;
+    Scratch() { mpz_inits(t, m, r, nullptr); }
+    ~Scratch() { mpz_clears(t, m, r, nullptr); }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+  };
+  thread_local Scratch scratch;
+  mpz_ptr t = scratch.t, m = scratch.m, r = scratch.r;
   const long bn = long(mpz_sizeinbase(n, 2)), bd = long(mpz_sizeinbase(d, 2));
   const long e0 = bn - bd;                // floor(log2(|n|/d)) is e0 or e0 - 1
   if (e0 > 1000 || e0 < -1000) return false;

@@ -2,9 +2,10 @@
 // the chms oracle itself) on the same families of operand pairs, each result
 // checked by the oracle contract of method_families.hpp — the vertex set and
 // facet planes of chms, every vertex a sum a_i + b_j as recorded, V - E + F
-// = 2 and the invariants of ConvexPolytope, the recorded facet provenance
-// equal to the brute-force one, B ⊕ A equal to A ⊕ B.  Where the sum is known
-// in closed form (boxes, A ⊕ A = 2A, homothets, T ⊕ −T, cube ⊕ octahedron),
+// = 2 (and every invariant of ConvexPolytope for the walk, whose structure
+// skips validation), the recorded facet provenance equal to the brute-force
+// one, B ⊕ A equal to A ⊕ B.  Where the sum is known
+// in closed form (boxes, A ⊕ A = 2A, T ⊕ −T, cube ⊕ octahedron and others),
 // the closed form is the reference of every method, the oracle included,
 // with its exact counts, coordinates, volume and provenance.  The oracle is
 // also checked against facts that need no hull: every facet plane supports
@@ -263,37 +264,6 @@ TEST_P(Conformance, PointReflections) {
   expect("dodecahedron@rot:3", "dodecahedron@rot:3@neg");
   expect("cuboctahedron@rot:17", "cuboctahedron@rot:17@neg");
   expect("sphere:2@rot:5", "sphere:2@rot:5@neg");
-}
-
-TEST_P(Conformance, CopiesTranslatedScaledReflected) {
-  // Copies whose edge vectors are equal (translates by exact doubles or by
-  // rationals), opposite (point reflections), scaled by a power of two, and
-  // scaled by 3.  A ⊕ (λA + t) = (1 + λ) A + t.
-  const ConvexPolytope sphere = cat("sphere:3"), icosahedron = cat("icosahedron@rot:3"), random = cat("random:60:5");
-  const Point3 t = Q("1/2", "-3", "1/4"), tiny(1e-20, 0, 0), r = Q("1/8", "1/16", "-2");
-  struct Copy {
-    const ConvexPolytope& a;
-    std::string b;
-    ConvexPolytope sum;
-    Checks checks;
-  };
-  const Copy copies[] = {
-      {sphere, "sphere:3@translate:1/2,-3,1/4", homothet(sphere, 2, t), {}},
-      {sphere, "sphere:3@translate:1e-20,0,0", homothet(sphere, 2, tiny), kNoBruteForce},
-      {sphere, "sphere:3@scale:2", homothet(sphere, 3), {}},
-      {sphere, "sphere:3@scale:3", homothet(sphere, 4), kNoBruteForce},
-      {icosahedron, "icosahedron@rot:3", homothet(icosahedron, 2), {}},
-      {random, "random:60:5@translate:1/8,1/16,-2", homothet(random, 2, r), {}},
-  };
-  for (const Copy& c : copies) sum(c.a, cat(c.b), "copy " + c.b, c.checks, &c.sum);
-  // Point reflections: no closed form, the oracle (once: a translate of the
-  // first operand shifts the sum).
-  const ConvexPolytope reflected = cat("sphere:3@neg");
-  SumResult difference_body = sum(sphere, reflected, "sphere:3 + sphere:3@neg");
-  const ConvexPolytope shifted = difference_body.polytope.translated(P(5, 0, 0));
-  sum(cat("sphere:3@translate:5,0,0"), reflected, "sphere:3@translate:5,0,0 + sphere:3@neg", {}, &shifted);
-  expect("sphere:2@rot:1", "sphere:2@rot:1@neg");
-  expect("random:60:5", "random:60:5@neg");
 }
 
 TEST_P(Conformance, NearlyIdenticalOperandsWithEqualRoundedDifferences) {

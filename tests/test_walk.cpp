@@ -1,11 +1,12 @@
 // walk, what only the walk has: its choice by auto, its half-edge structure
 // and work counters (arc crossings, region steps, predicates and the ones the
 // filter could not decide).  Its agreement with the chms oracle on every
-// shared family and degenerate case — including the regression cases of its
-// zero certificates (copies, reflections, zonotopes, equal rounded
-// differences, scales below the normal double range) — is checked by the
-// conformance suite (test_conformance.cpp), with every invariant of the
-// structure re-checked from scratch.
+// shared family and degenerate case — including the regression cases of
+// reflections, zonotopes, equal rounded differences and scales below the
+// normal double range — is checked by the conformance suite
+// (test_conformance.cpp), with every invariant of the structure re-checked
+// from scratch; here, by the same contract, the pairs only the walk is
+// checked on: copies (its zero certificates) and a large random pair.
 #include <minksum/catalog.hpp>
 #include <minksum/minkowski.hpp>
 #include <minksum/walk.hpp>
@@ -70,6 +71,43 @@ TEST(Walk, IdenticalOperandsNeedNoExactStage) {
   // The sum is 2A exactly.
   const ConvexPolytope twice = homothet(a, 2);
   conforming_sum(Method::walk, a, a, "sphere:4 + sphere:4", {false, true}, &twice);
+}
+
+TEST(Walk, CopiesTranslatedScaledReflected) {
+  // The zero certificates of the walk (an edge vector equal or opposite to an
+  // edge of the other operand's facet, decided without GMP) against copies
+  // whose edge vectors are equal (translates by exact doubles or by
+  // rationals), opposite (point reflections), scaled by a power of two (no
+  // equal difference), and scaled by 3 (rounded).  A ⊕ (λA + t) = (1 + λ) A + t.
+  // The other methods meet copies in the conformance suite's
+  // IdenticalOperands and PointReflections.
+  const ConvexPolytope sphere = cat("sphere:3"), icosahedron = cat("icosahedron@rot:3"), random = cat("random:60:5");
+  const Point3 t = Q("1/2", "-3", "1/4"), tiny(1e-20, 0, 0), r = Q("1/8", "1/16", "-2");
+  struct Copy {
+    const ConvexPolytope& a;
+    std::string b;
+    ConvexPolytope sum;
+    Checks checks;
+  };
+  const Copy copies[] = {
+      {sphere, "sphere:3@translate:1/2,-3,1/4", homothet(sphere, 2, t), {}},
+      {sphere, "sphere:3@translate:1e-20,0,0", homothet(sphere, 2, tiny), Checks{false, true}},
+      {sphere, "sphere:3@scale:2", homothet(sphere, 3), {}},
+      {sphere, "sphere:3@scale:3", homothet(sphere, 4), Checks{false, true}},
+      {icosahedron, "icosahedron@rot:3", homothet(icosahedron, 2), {}},
+      {random, "random:60:5@translate:1/8,1/16,-2", homothet(random, 2, r), {}},
+  };
+  for (const Copy& c : copies) conforming_sum(Method::walk, c.a, cat(c.b), "copy " + c.b, c.checks, &c.sum);
+  // Point reflections: no closed form, the oracle (once: a translate of the
+  // first operand shifts the sum).
+  const ConvexPolytope reflected = cat("sphere:3@neg");
+  const SumResult oracle = minkowski_sum(sphere, reflected, Method::chms);
+  const ConvexPolytope shifted = oracle.polytope.translated(P(5, 0, 0));
+  conforming_sum(Method::walk, sphere, reflected, "sphere:3 + sphere:3@neg", {}, &oracle.polytope);
+  conforming_sum(Method::walk, cat("sphere:3@translate:5,0,0"), reflected, "sphere:3@translate:5,0,0 + sphere:3@neg",
+                 {}, &shifted);
+  expect_conforms(Method::walk, "sphere:2@rot:1", "sphere:2@rot:1@neg");
+  expect_conforms(Method::walk, "random:60:5", "random:60:5@neg");
 }
 
 TEST(Walk, LargeRandomHulls) {

@@ -190,7 +190,8 @@ TEST_P(Conformance, IdenticalOperands) {
 
 TEST_P(Conformance, RandomIntegerPolytopesSatisfyTheFacts) {
   // Hulls of random lattice points (many coplanar and collinear points),
-  // checked against the facts that need no hull as well as the oracle.
+  // checked against the facts that need no hull as well as by the contract;
+  // B ⊕ A compared for the oracle too.
   for (unsigned seed = 1; seed <= 12; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);

@@ -115,6 +115,10 @@ class Cli : public ::testing::Test {
   fs::path dir_;
 };
 
+// The command line of the cubical Gaussian map: minksum cgm P [Q] [--svg OUT]
+// [--stats] [--json].
+class CgmCli : public Cli {};
+
 }  // namespace
 
 TEST_F(Cli, HelpAndVersion) {
@@ -312,4 +316,62 @@ TEST_F(Cli, SumProgressNotPrintedForAFastSum) {
   EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
   EXPECT_EQ(r.out.rfind("cube (8 V, 6 F)", 0), 0u) << r.out;  // the summary, from the first byte
   EXPECT_NE(r.out.find("= 8 vertices, 12 edges, 6 facets"), std::string::npos) << r.out;
+}
+
+TEST_F(CgmCli, StatsOfTheOctahedron) {
+  CmdResult r = run("cgm octahedron --stats");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("octahedron: 6 vertices, 12 edges, 8 facets"), std::string::npos) << r.out;
+  // Every map: 4 vertices (all real, on the corners), 8 halfedges, 2 faces.
+  for (const char* plane : {"x=-1", "y=-1", "z=-1", "x=+1", "y=+1", "z=+1"})
+    EXPECT_NE(r.out.find(std::string(plane) + "      4     8     2       4       4"), std::string::npos) << plane;
+  EXPECT_NE(r.out.find("total         24    48    12"), std::string::npos) << r.out;
+  CmdResult j = run("cgm tetra --json");
+  ASSERT_EQ(j.status, 0);
+  EXPECT_NE(j.out.find("{\"id\": 5, \"vertices\": 4, \"halfedges\": 10, \"faces\": 3"), std::string::npos) << j.out;
+}
+
+TEST_F(CgmCli, SvgIsWellFormedAndWrittenAtomically) {
+  const fs::path dir = dir_ / "svg";
+  fs::create_directories(dir);
+  fs::path out = dir / "sum.svg";
+  CmdResult r = run("cgm cube octahedron --svg " + out.string());
+  ASSERT_EQ(r.status, 0);
+  const std::string svg = slurp(out);
+  EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+  EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
+  std::size_t groups = 0, open_g = 0, close_g = 0;
+  for (std::size_t at = 0; (at = svg.find("<g id=\"map", at)) != std::string::npos; ++at) ++groups;
+  for (std::size_t at = 0; (at = svg.find("<g ", at)) != std::string::npos; ++at) ++open_g;
+  for (std::size_t at = 0; (at = svg.find("</g>", at)) != std::string::npos; ++at) ++close_g;
+  EXPECT_EQ(groups, 6u);
+  EXPECT_EQ(open_g, close_g);
+  EXPECT_NE(svg.find("#d62728"), std::string::npos);            // first operand's edges
+  EXPECT_NE(svg.find("#1f77b4"), std::string::npos);            // second operand's edges
+  // Only the finished file is left (no temporary).
+  std::size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);
+  // The tetrahedron's maps keep their artificial square sides: dashed.
+  ASSERT_EQ(run("cgm tetra --svg " + out.string()).status, 0);
+  EXPECT_NE(slurp(out).find("stroke-dasharray"), std::string::npos);
+  // An unwritable destination: status 1, nothing left behind.
+  CmdResult bad = run("cgm cube --svg " + (dir / "no" / "such" / "x.svg").string());
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_FALSE(fs::exists(dir / "no"));
+}
+
+TEST_F(CgmCli, UsageAndInputErrors) {
+  EXPECT_EQ(run("cgm").status, 2);
+  EXPECT_EQ(run("cgm cube cube cube").status, 2);
+  EXPECT_EQ(run("cgm cube --bogus").status, 2);
+  EXPECT_EQ(run("cgm /nonexistent/missing.off").status, 3);
+  EXPECT_EQ(run("cgm --help").status, 0);
+}
+
+TEST_F(CgmCli, SumMethodCgm) {
+  CmdResult r = run("sum cube octahedron --method cgm --json");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("\"method\": \"cgm\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"facets\": 26"), std::string::npos) << r.out;
 }

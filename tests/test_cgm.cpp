@@ -79,7 +79,7 @@ TEST(Cgm, InvariantsAndRoundTripForEveryCatalogSolid) {
 }
 
 TEST(Cgm, CornerChainsFollowTable1) {
-  // Seed 001 Table 1: for map k and corner c, the (map, corner) next in the
+  // Table 1 of Fogel and Halperin (2006): for map k and corner c, the (map, corner) next in the
   // clockwise cyclic chain of the three copies of that cube corner.
   const int next[6][4][2] = {
       {{1, 0}, {2, 2}, {5, 0}, {4, 2}}, {{2, 0}, {0, 2}, {3, 0}, {5, 2}}, {{0, 0}, {1, 2}, {4, 0}, {3, 2}},
@@ -197,7 +197,7 @@ TEST(Cgm, Table2CountsDioctagonalPyramid) {
 }
 
 TEST(Cgm, OctahedronNormalsOnTheEightCubeCorners) {
-  // Seed 001 Fig. 8: every normal on a cube corner, every arc on a cube edge.
+  // Fig. 8 of Fogel and Halperin (2006): every normal on a cube corner, every arc on a cube edge.
   auto g = CubicalGaussianMap::from_polytope(cat("octahedron"));
   for (int k = 0; k < 6; ++k) {
     const auto& m = g.map(k);
@@ -218,7 +218,7 @@ TEST(CgmSum, NormalsOnCubeEdgesAndOverlappingSegments) {
 }
 
 TEST(CgmSum, EveryOverlayCaseOccurs) {
-  // Over a few pairs, each overlay case of seed 001 §3 is met at least once.
+  // Over a few pairs, each overlay case of Fogel and Halperin 2006, §3 is met at least once.
   std::map<std::string, long long> total;
   for (auto [x, y] : std::vector<std::pair<const char*, const char*>>{{"cube", "octahedron"},
                                                                       {"rhombicuboctahedron", "truncated-cuboctahedron"},

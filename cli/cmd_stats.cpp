@@ -31,7 +31,7 @@ int run_stats(const std::vector<std::string>& argv) {
   }
   if (a.positional.size() != 1) throw UsageError("'stats' needs one operand (see 'minksum stats --help')");
   LoadPhases phases;
-  ConvexPolytope p = load_polytope(a.positional[0], a.flag("--hull"), &phases);
+  ConvexPolytope p = load_operand(a.positional[0], a.flag("--hull"), &phases);
   Rational vol = p.volume();
   Index max_fdeg = 0, max_vdeg = 0;
   for (Index f = 0; f < p.num_facets(); ++f) max_fdeg = std::max(max_fdeg, p.facet_degree(f));

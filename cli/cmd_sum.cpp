@@ -104,8 +104,8 @@ int run_sum(const std::vector<std::string>& argv) {
     throw UsageError(std::string("method '") + method_name(*method) + "' is not implemented in this version of minksum");
   check_output_path(output, exact);
   LoadPhases la, lb;
-  ConvexPolytope pa = load_polytope(a.positional[0], hull, &la);
-  ConvexPolytope pb = load_polytope(a.positional[1], hull, &lb);
+  ConvexPolytope pa = load_operand(a.positional[0], hull, &la);
+  ConvexPolytope pb = load_operand(a.positional[1], hull, &lb);
   SumResult r = [&] {
     ProgressTicker ticker("minksum sum");  // a progress line on a terminal after 1 s; erased when done
     return minkowski_sum(pa, pb, *method, ticker.sum_options());

@@ -82,6 +82,14 @@ std::string counts_json(const ConvexPolytope& p) {
   return o.str();
 }
 
+ConvexPolytope load_operand(const std::string& spec, bool hull, LoadPhases* phases) {
+  try {
+    return load_polytope(spec, hull, phases);
+  } catch (const NotConvexError& e) {
+    throw InputError(e.file(), e.place(), e.problem() + "; --hull takes the convex hull of its points instead");
+  }
+}
+
 void check_output_path(const std::string& path, bool exact) {
   if (path.empty()) return;
   WriteOptions w;

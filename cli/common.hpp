@@ -3,6 +3,7 @@
 
 #include <minksum/error.hpp>
 #include <minksum/minkowski.hpp>
+#include <minksum/operand.hpp>
 #include <minksum/polytope.hpp>
 
 #include <map>
@@ -58,6 +59,11 @@ struct OutputError : std::runtime_error {
 
 // Check that `path` has a known format (and can hold exact rationals when
 // `exact`), before any long computation.  Throws UsageError.
+// load_polytope for a command that has --hull: a closed surface that is not
+// exactly convex (NotConvexError: what a mesh rounded by another tool gives)
+// is refused with a hint that --hull accepts it.
+ConvexPolytope load_operand(const std::string& spec, bool hull, LoadPhases* phases);
+
 // UsageError when OUT's extension is unknown or cannot hold what is asked
 // (io's output_format), before anything is computed.
 void check_output_path(const std::string& path, bool exact);

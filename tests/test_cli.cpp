@@ -246,6 +246,27 @@ TEST_F(Cli, BadInputExitsThreeWithOneLine) {
   }
 }
 
+// A closed surface that is not exactly convex (what a CAD tool's rounded
+// export gives) is refused with a hint that --hull accepts it; with --hull it
+// is accepted.  Malformed files get no such hint.
+TEST_F(Cli, NotConvexInputSuggestsHull) {
+  for (const char* c : {"nonplanar_facet.off", "nonconvex_lprism.off"}) {
+    SCOPED_TRACE(c);
+    const std::string in = data(std::string("bad/") + c);
+    for (const std::string& cmd : {"stats " + in, "sum " + in + " cube"}) {
+      CmdResult r = run(cmd);
+      EXPECT_EQ(r.status, 3) << r.err;
+      EXPECT_NE(r.err.find("; --hull takes the convex hull of its points instead"), std::string::npos) << r.err;
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+      CmdResult h = run(cmd + " --hull");
+      EXPECT_EQ(h.status, 0) << h.err;
+    }
+  }
+  CmdResult open = run("stats " + data("bad/open_mesh.off"));
+  EXPECT_EQ(open.status, 3);
+  EXPECT_EQ(open.err.find("--hull"), std::string::npos) << open.err;
+}
+
 TEST_F(Cli, RepairableInputsAreAccepted) {
   CmdResult inward = run("stats " + data("bad/inward_cube.off") + " --json");
   ASSERT_EQ(inward.status, 0) << inward.err;

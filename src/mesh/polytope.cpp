@@ -522,7 +522,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
         int s = sign_of(dot(n, ip[v] - o));
         if (s == kUncertain) s = sgn(dot(exact_normal(f), pts.exact(v) - pts.exact(poly[0])));
         if (s != 0)
-          throw InputError(source, fct(fname[f]),
+          throw NotConvexError(source, fct(fname[f]),
                            "is not planar (" + vtx(vname[v]) + " is off the plane of the others)");
       }
     }
@@ -610,7 +610,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
       if (gr == group_of[g.facet[h ^ 1u]]) continue;
       auto [it, ok] = out.try_emplace((std::uint64_t(gr) << 32) | g.origin[h], h);
       if (!ok)
-        throw InputError(source, fct(merged_name[gr]),
+        throw NotConvexError(source, fct(merged_name[gr]),
                          "coplanar facets around " + vtx(vname[g.origin[h]]) +
                              " do not form one convex polygon (the solid is not convex)");
       ++boundary_count[gr];
@@ -625,7 +625,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
         h = out.find((std::uint64_t(gr) << 32) | g.origin[h ^ 1u])->second;
       } while (h != start[gr] && merged[gr].size() <= boundary_count[gr]);
       if (merged[gr].size() != boundary_count[gr])
-        throw InputError(source, fct(merged_name[gr]),
+        throw NotConvexError(source, fct(merged_name[gr]),
                          "coplanar facets form a polygon with a hole (the solid is not convex)");
     }
   }
@@ -701,7 +701,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
       r = check_fan_t(fnormal(f), dirs);
     }
     if (r >= 0)
-      throw InputError(source, fct(merged_name[f]), "is not a convex polygon (the solid is not convex)");
+      throw NotConvexError(source, fct(merged_name[f]), "is not a convex polygon (the solid is not convex)");
   }
   for (Index h = 0; h < fg.num_halfedges(); h += 2) {
     Index f = fg.facet[h], o = fg.facet[h + 1];
@@ -710,7 +710,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     if (s == kUncertain)
       s = sgn(dot(cross(fnormal(f), fnormal(o)), fpoint(fg.origin[h + 1]) - fpoint(fg.origin[h])));
     if (s <= 0)
-      throw InputError(source,
+      throw NotConvexError(source,
                        "edge " + std::to_string(fname_v[fg.origin[h]]) + "-" +
                            std::to_string(fname_v[fg.origin[h + 1]]),
                        "reflex edge between " + fct(merged_name[f]) + " and " + fct(merged_name[o]) +
@@ -743,7 +743,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
       } while (h != fg.vertex_he[v]);
       r = is_zero(sum) ? 0 : check_fan_t(-sum, dirs);
     }
-    if (r >= 0) throw InputError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
+    if (r >= 0) throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
   }
 
   // 9. The polytope.

@@ -4,6 +4,9 @@
 // solid, degenerate point set...).  The CLI prints what() on one line and
 // exits with status 3.  what() is "FILE: PLACE: PROBLEM" (PLACE may be empty).
 //
+// NotConvexError: an InputError for a closed surface that is not exactly
+// convex (the CLI suggests --hull for it).
+//
 // UsageError: the request is bad (unknown catalog name, unknown method, bad
 // option value).  The CLI exits with status 2.
 //
@@ -35,6 +38,15 @@ class InputError : public std::runtime_error {
     return s;
   }
   std::string file_, place_, problem_;
+};
+
+// The data describes a closed surface that is not exactly convex (a reflex
+// edge, a non-planar facet, a vertex the solid folds around): what a mesh
+// rounded by another tool gives.  Taking the convex hull of the points
+// (ConvexPolytope::hull, the command line's --hull) accepts such data.
+class NotConvexError : public InputError {
+ public:
+  using InputError::InputError;
 };
 
 class UsageError : public std::runtime_error {

@@ -19,18 +19,32 @@ ConvexPolytope poly(const Mesh& m) { return ConvexPolytope::from_mesh(m); }
 
 }  // namespace
 
-TEST(Chms, DispatchRefusesMethodsNotBuilt) {
-  ConvexPolytope c = poly(cube_mesh(1));
-  EXPECT_NO_THROW(minkowski_sum(c, c, Method::chms));
-  EXPECT_NO_THROW(minkowski_sum(c, c, Method::automatic));
-  for (Method m : {Method::walk, Method::cvms, Method::essdms, Method::mssd, Method::cgm}) {
-    if (method_available(m)) continue;
-    try {
-      minkowski_sum(c, c, m);
-      ADD_FAILURE() << method_name(m) << " should be refused";
-    } catch (const UsageError& e) {
-      EXPECT_NE(std::string(e.what()).find(method_name(m)), std::string::npos);
-    }
+// The method table: every method has one row, its name parses back to it,
+// and every row is available and dispatched (the result says which method
+// ran); anything else is refused with the list of names.
+TEST(Chms, MethodTableAndDispatch) {
+  const ConvexPolytope c = poly(cube_mesh(1));
+  const Method all[] = {Method::automatic, Method::walk, Method::cvms, Method::essdms,
+                        Method::mssd,      Method::chms, Method::cgm};
+  EXPECT_EQ(methods().size(), std::size(all));
+  EXPECT_EQ(method_list(), "auto, walk, chms, cvms, essdms, mssd, cgm");
+  for (Method m : all) {
+    SCOPED_TRACE(method_name(m));
+    ASSERT_EQ(parse_method(method_name(m)), m);
+    EXPECT_TRUE(method_available(m));
+    const SumResult r = minkowski_sum(c, c, m);
+    EXPECT_EQ(r.method, m == Method::automatic ? Method::walk : m);
+    EXPECT_EQ(r.polytope.num_vertices(), 8u);
+  }
+  EXPECT_EQ(parse_method("hull"), std::nullopt);
+  EXPECT_EQ(parse_method("Walk"), std::nullopt);
+  const Method bogus = static_cast<Method>(99);
+  EXPECT_FALSE(method_available(bogus));
+  try {
+    minkowski_sum(c, c, bogus);
+    ADD_FAILURE() << "an unknown method was accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find(method_list()), std::string::npos) << e.what();
   }
 }
 

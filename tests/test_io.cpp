@@ -5,7 +5,7 @@
 #include <minksum/io.hpp>
 #include <minksum/operand.hpp>
 
-#include "io/readers.hpp"  // parse_coordinate, rational_to_float
+#include "io/readers.hpp"  // parse_coordinate, checked_float
 
 #include <gtest/gtest.h>
 
@@ -544,16 +544,16 @@ TEST(IoWrite, RationalToFloatIsCorrectlyRounded) {
   // Ties and near-ties that a double rounding (rational -> double -> float) gets wrong.
   const Rational one(1);
   const Rational tie = one + pow2(-24);                   // halfway between 1 and 1 + 2^-23
-  EXPECT_EQ(io_detail::rational_to_float(tie), 1.0f);     // ties to even
-  EXPECT_EQ(io_detail::rational_to_float(tie + pow2(-80)), 1.0f + 0x1p-23f);  // just above: up
-  EXPECT_EQ(io_detail::rational_to_float(q("1/3")), 1.0f / 3.0f);
-  EXPECT_EQ(io_detail::rational_to_float(-pow2(-149)), -0x1p-149f);  // smallest subnormal
-  EXPECT_EQ(io_detail::rational_to_float(pow2(-151)), 0.0f);         // below half of it
-  EXPECT_THROW(io_detail::rational_to_float(pow2(128)), UsageError);
+  EXPECT_EQ(io_detail::checked_float(tie), 1.0f);     // ties to even
+  EXPECT_EQ(io_detail::checked_float(tie + pow2(-80)), 1.0f + 0x1p-23f);  // just above: up
+  EXPECT_EQ(io_detail::checked_float(q("1/3")), 1.0f / 3.0f);
+  EXPECT_EQ(io_detail::checked_float(-pow2(-149)), -0x1p-149f);  // smallest subnormal
+  EXPECT_EQ(io_detail::checked_float(pow2(-151)), 0.0f);         // below half of it
+  EXPECT_THROW(io_detail::checked_float(pow2(128)), UsageError);
   std::mt19937_64 rng(3);
   for (int i = 0; i < 2000; ++i) {
     double d = std::ldexp(double(rng() >> 11), int(rng() % 200) - 220);
-    EXPECT_EQ(io_detail::rational_to_float(Rational(d)), static_cast<float>(d)) << d;
+    EXPECT_EQ(io_detail::checked_float(Rational(d)), static_cast<float>(d)) << d;
   }
 }
 

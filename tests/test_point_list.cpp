@@ -142,7 +142,7 @@ TEST(ExactText, NearestFloatOfPairsAtFloatMidpoints) {
       PointList l;
       l.push_pair(Vec3d{mid, 1.0, 1.0}, Vec3d{lo, 0.0, 0.0});
       const Rational exact = Rational(mid) + Rational(lo);
-      EXPECT_EQ(io_detail::coordinate_float(l, 0, 0), io_detail::rational_to_float(exact)) << f << " lo " << lo;
+      EXPECT_EQ(io_detail::coordinate_float(l, 0, 0), io_detail::checked_float(exact)) << f << " lo " << lo;
     }
   }
   std::mt19937_64 rng(7);
@@ -153,7 +153,7 @@ TEST(ExactText, NearestFloatOfPairsAtFloatMidpoints) {
     two_sum(x, y, hi, lo);
     PointList l;
     l.push_pair(Vec3d{hi, 0.0, 0.0}, Vec3d{lo, 0.0, 0.0});
-    ASSERT_EQ(io_detail::coordinate_float(l, 0, 0), io_detail::rational_to_float(Rational(x) + Rational(y)))
+    ASSERT_EQ(io_detail::coordinate_float(l, 0, 0), io_detail::checked_float(Rational(x) + Rational(y)))
         << "seed 7, case " << i;
   }
 }

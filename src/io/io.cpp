@@ -178,7 +178,7 @@ double checked_double(const Rational& q) {
   return d;
 }
 
-float rational_to_float(const Rational& q) {
+float checked_float(const Rational& q) {
   const float f = to_float(q);
   if (std::isinf(f)) {
     const long e = long(mpz_sizeinbase(q.get_num_mpz_t(), 2)) - long(mpz_sizeinbase(q.get_den_mpz_t(), 2));
@@ -197,16 +197,16 @@ double coordinate_double(const PointList& points, std::size_t i, int k) {
 
 namespace {
 // Nearest float of a finite double (one correctly rounded conversion in the
-// default rounding mode); the range error of rational_to_float beyond it.
+// default rounding mode); the range error of checked_float beyond it.
 float double_to_float(double d) {
   const float f = static_cast<float>(d);
-  return std::isfinite(f) ? f : rational_to_float(Rational(d));
+  return std::isfinite(f) ? f : checked_float(Rational(d));
 }
 }  // namespace
 
 float coordinate_float(const PointList& points, std::size_t i, int k) {
   switch (points.form()) {
-    case PointList::Form::rationals: return rational_to_float(points.exact_ref(i)[k]);
+    case PointList::Form::rationals: return checked_float(points.exact_ref(i)[k]);
     case PointList::Form::doubles: return double_to_float(points.approx(i)[k]);
     case PointList::Form::double_pairs: break;
   }

@@ -232,6 +232,6 @@ void put_le_float(std::ostream& out, float value);
 
 // Nearest float (round to nearest, ties to even, gradual underflow) of an
 // exact rational; throws UsageError when |q| rounds beyond FLT_MAX.
-float rational_to_float(const Rational& q);
+float checked_float(const Rational& q);
 
 }  // namespace minksum::io_detail

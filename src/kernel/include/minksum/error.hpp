@@ -11,7 +11,7 @@
 // option value).  The CLI exits with status 2.
 //
 // Cancelled: not a failure of the data or the request — the caller asked a
-// running computation to stop (SumOptions::cancel in minkowski.hpp), and it
+// running computation to stop (SumOptions::cancel in sum_result.hpp), and it
 // did at its next report point.  Nothing it was computing is returned.
 #pragma once
 

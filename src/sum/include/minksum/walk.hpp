@@ -63,7 +63,7 @@ struct WalkSum {
 // consistency check fails (a bug, never an input condition).  Reports phase
 // "walk" to options (fractions 0 at the start, then every 4096 facets walked,
 // 0.8 when the walks are done) and throws Cancelled at one of these points
-// once options.cancel is set (SumOptions, minkowski.hpp).
+// once options.cancel is set (SumOptions, sum_result.hpp).
 WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options = {});
 
 // The ConvexPolytope of a WalkSum: exact vertex coordinates (a + b, see

@@ -28,6 +28,7 @@ Usage:
                 [--trajectory FILE] [--json]
   minksum simulate [--obstacle Q] [--robot P] [--frames N] [-o OUT.svg|.html]
   minksum cgm P [Q] [--svg OUT.svg] [--stats] [--json]
+  minksum batch [FILE] [--threads N] [--method M] [--hull]
   minksum COMMAND --help          help on one command
   minksum --version
 
@@ -54,6 +55,7 @@ constexpr Command kCommands[] = {
     {"query", run_query},
     {"simulate", run_simulate},
     {"cgm", run_cgm},
+    {"batch", run_batch},
 };
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -272,9 +273,9 @@ py::array vertices_view(const ConvexPolytope& p, py::handle owner) {
   return a;
 }
 
-ConvexPolytope polytope_from(py::handle vertices, py::handle faces) {
+ConvexPolytope polytope_from(PointList points, py::handle faces) {
   Mesh mesh;
-  mesh.points = to_points(vertices, "vertices");
+  mesh.points = std::move(points);
   if (faces.is_none()) {
     py::gil_scoped_release nogil;
     return ConvexPolytope::hull(mesh.points);
@@ -299,14 +300,34 @@ ConvexPolytope polytope_from(py::handle vertices, py::handle faces) {
   return ConvexPolytope::from_mesh(mesh);
 }
 
-// Pickling: the coordinates (doubles as bytes, others as exact text) and the facet loops.
+ConvexPolytope polytope_from(py::handle vertices, py::handle faces) {
+  return polytope_from(to_points(vertices, "vertices"), faces);
+}
+
+py::bytes vec_bytes(const std::vector<Vec3d>& v) {
+  return py::bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(Vec3d));
+}
+
+std::vector<Vec3d> bytes_vec(py::handle b) {
+  const std::string s = py::cast<std::string>(py::reinterpret_borrow<py::bytes>(b));
+  if (s.size() % sizeof(Vec3d) != 0) throw py::value_error("Polytope: bad pickled state");
+  std::vector<Vec3d> v(s.size() / sizeof(Vec3d));
+  std::memcpy(v.data(), s.data(), s.size());
+  return v;
+}
+
+// Pickling: the facet loops and the coordinates in their own exact form
+// (doubles, or the sum hi + lo of two doubles, as bytes; rationals as text),
+// so that the copy keeps the form and validates as fast as the original.
 py::tuple polytope_state(const ConvexPolytope& p) {
   py::list faces;
   for (Index f = 0; f < p.num_facets(); ++f) faces.append(py::cast(p.facet_vertices(f)));
-  if (p.coordinates_are_doubles()) {
-    const auto& approx = p.coordinates().approx();
-    return py::make_tuple(
-        "doubles", py::bytes(reinterpret_cast<const char*>(approx.data()), approx.size() * sizeof(Vec3d)), faces);
+  const PointList& c = p.coordinates();
+  if (p.coordinates_are_doubles()) return py::make_tuple("doubles", vec_bytes(c.approx()), faces);
+  if (c.form() == PointList::Form::double_pairs) {
+    std::vector<Vec3d> lo(c.size());
+    for (std::size_t i = 0; i < c.size(); ++i) lo[i] = c.low(i);
+    return py::make_tuple("pairs", py::make_tuple(vec_bytes(c.approx()), vec_bytes(lo)), faces);
   }
   py::list coords;
   for (std::size_t i = 0; i < p.num_vertices(); ++i) {
@@ -319,13 +340,19 @@ py::tuple polytope_state(const ConvexPolytope& p) {
 ConvexPolytope polytope_from_state(const py::tuple& t) {
   if (t.size() != 3) throw py::value_error("Polytope: bad pickled state");
   const std::string kind = py::cast<std::string>(t[0]);
-  py::object vertices = t[1];
+  if (kind == "exact") return polytope_from(t[1], t[2]);
+  PointList points;
   if (kind == "doubles") {
-    vertices = py::module_::import("numpy").attr("frombuffer")(t[1], "float64").attr("reshape")(-1, 3);
-  } else if (kind != "exact") {
+    for (const Vec3d& v : bytes_vec(t[1])) points.push_back(v);
+  } else if (kind == "pairs") {
+    const auto parts = py::cast<py::tuple>(t[1]);
+    const std::vector<Vec3d> hi = bytes_vec(parts[0]), lo = bytes_vec(parts[1]);
+    if (hi.size() != lo.size()) throw py::value_error("Polytope: bad pickled state");
+    for (std::size_t i = 0; i < hi.size(); ++i) points.push_pair(hi[i], lo[i]);
+  } else {
     throw py::value_error("Polytope: bad pickled state");
   }
-  return polytope_from(vertices, t[2]);
+  return polytope_from(std::move(points), t[2]);
 }
 
 py::list provenance_list(Sum& s) {

@@ -143,3 +143,12 @@ def test_translated_and_negated():
     assert [v[0] - Fraction(1, 3) for v in t.exact_vertices()] == [v[0] for v in p.exact_vertices()]
     n = p.negated()
     assert sorted(n.exact_vertices()) == sorted(tuple(-c for c in v) for v in p.exact_vertices())
+
+
+def test_pickle_of_a_sum_of_doubles_keeps_every_bit():
+    # Vertices that are exact sums hi + lo of two doubles travel as both doubles.
+    s = minksum.minkowski_sum("random:50:1", "random:50:2")
+    assert not s.coordinates_are_doubles
+    t = pickle.loads(pickle.dumps(s))
+    assert t.exact_vertices() == s.exact_vertices()
+    assert np.array_equal(t.vertices, s.vertices)

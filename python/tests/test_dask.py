@@ -36,3 +36,15 @@ def test_chunks():
     assert minksum.dask.chunks(list(range(7)), 3) == [[0, 1, 2], [3, 4, 5], [6]]
     with pytest.raises(ValueError):
         minksum.dask.chunks([1], 0)
+
+
+def test_docs_dask_example():
+    # The Dask block of docs/python.md, run as a script (its LocalCluster under `if __name__ == "__main__"`).
+    from test_docs import python_blocks
+
+    (code,) = [b for b in python_blocks("docs/python.md") if "LocalCluster" in b]
+    namespace = {"__name__": "__main__"}
+    exec(compile(code, "docs/python.md", "exec"), namespace)
+    sums = namespace["sums"]
+    assert len(sums) == 100
+    assert [s.volume() for s in sums[:3]] == [minksum.minkowski_sum(f"random:200:{i}", "sphere:3").volume() for i in range(3)]

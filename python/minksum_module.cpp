@@ -371,6 +371,18 @@ struct Obstacle {
   std::mutex m;  // a TranslationalObstacle answers one query at a time
 };
 
+// A query of Obstacle on t (the translation of Q relative to P): t converted
+// with the GIL held, then answered with it released, one query at a time.
+template <class Result>
+auto query(Result (TranslationalObstacle::*answer)(const Point3&)) {
+  return [answer](Obstacle& o, py::object t) {
+    const Point3 s = to_point(t, "t");
+    py::gil_scoped_release nogil;
+    std::lock_guard<std::mutex> lock(o.m);
+    return ((*o.o).*answer)(s);
+  };
+}
+
 struct WitnessPy {
   Witness w;
 };
@@ -837,33 +849,12 @@ threads; its queries run one at a time, with the GIL released.)")
       .def_property_readonly(
           "obstacle", [](const Obstacle& o) { return std::make_shared<ConvexPolytope>(o.o->obstacle()); },
           "M = P ⊕ (−Q), as a Polytope.")
-      .def(
-          "collide",
-          [](Obstacle& o, py::object t) {
-            const Point3 s = to_point(t, "t");
-            py::gil_scoped_release nogil;
-            std::lock_guard<std::mutex> lock(o.m);
-            return o.o->collide_point(s);
-          },
-          py::arg("t"), "Whether P and Q translated by t are separate, touching or penetrating.")
-      .def(
-          "distance",
-          [](Obstacle& o, py::object t) {
-            const Point3 s = to_point(t, "t");
-            py::gil_scoped_release nogil;
-            std::lock_guard<std::mutex> lock(o.m);
-            return o.o->distance_point(s);
-          },
-          py::arg("t"), "The exact separation distance between P and Q translated by t.")
-      .def(
-          "depth",
-          [](Obstacle& o, py::object t) {
-            const Point3 s = to_point(t, "t");
-            py::gil_scoped_release nogil;
-            std::lock_guard<std::mutex> lock(o.m);
-            return o.o->penetration_depth_point(s);
-          },
-          py::arg("t"), "The exact penetration depth of P and Q translated by t.")
+      .def("collide", query(&TranslationalObstacle::collide_point), py::arg("t"),
+           "Whether P and Q translated by t are separate, touching or penetrating.")
+      .def("distance", query(&TranslationalObstacle::distance_point), py::arg("t"),
+           "The exact separation distance between P and Q translated by t.")
+      .def("depth", query(&TranslationalObstacle::penetration_depth_point), py::arg("t"),
+           "The exact penetration depth of P and Q translated by t.")
       .def(
           "directional_depth",
           [](Obstacle& o, py::object t, py::object d) {

@@ -57,3 +57,18 @@ def test_readme_python_shell_lines(tmp_path):
 
 def test_docs_python_page_examples():
     run_blocks(python_blocks("docs/python.md"), "docs/python.md")
+
+
+def test_stubs_declare_every_public_name():
+    import minksum._minksum as m
+
+    stub = (ROOT / "python" / "minksum" / "_minksum.pyi").read_text(encoding="utf-8")
+    for name in (n for n in dir(m) if not n.startswith("_")):
+        assert f"class {name}" in stub or f"def {name}(" in stub or f"{name}:" in stub, name
+        obj = getattr(m, name)
+        if isinstance(obj, type):
+            for member in (a for a in dir(obj) if not a.startswith("_")):
+                assert f"def {member}(" in stub, f"{name}.{member}"
+            assert obj.__doc__, name
+        elif callable(obj):
+            assert obj.__doc__ and len(obj.__doc__) > 80, name

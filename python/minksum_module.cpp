@@ -27,6 +27,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <variant>
 #include <vector>
@@ -396,9 +397,7 @@ fractions.Fraction; float64 arrays (Polytope.vertices) are the nearest
 doubles, for plotting and numpy work.
 )";
 
-const char* kMinkowskiSumDoc = R"(minkowski_sum(a, b, method="auto") -> Sum
-
-The Minkowski sum a ⊕ b = {x + y : x in a, y in b}, exactly.
+const char* kMinkowskiSumDoc = R"(The Minkowski sum a ⊕ b = {x + y : x in a, y in b}, exactly.
 
 a and b are Polytope objects, file paths or catalog names ("cube",
 "sphere:4@rot:5", see load()).  The result is a Sum: a Polytope that also
@@ -407,7 +406,8 @@ vertex_origin[v, 0] of a and vertex vertex_origin[v, 1] of b) and
 facet_provenance (the faces of a and b behind each facet).
 
 Every method gives the same polytope (the same vertices and facets); they
-differ in speed:
+differ in speed (what a summary says --json reports is Sum.counters and
+Sum.facet_provenance here):
 {methods}
 "auto" picks walk, the output-sensitive method, for every pair.  Use
 another method to compare or to cross-check; "chms" (the hull of all
@@ -417,9 +417,22 @@ Raises ValueError for an unknown method, InputError when a file named as an
 operand is bad, KeyboardInterrupt when interrupted (Ctrl-C).  The GIL is
 released while the sum is computed.)";
 
+// The methods' summaries (the table the command's help uses), each wrapped
+// to 76 columns under a two-space indent.
 std::string method_docs() {
   std::string out;
-  for (const MethodInfo& m : methods()) out += std::string("  ") + m.name + ": " + m.summary + "\n";
+  for (const MethodInfo& m : methods()) {
+    std::istringstream words(std::string(m.name) + ": " + m.summary);
+    std::string line = " ";
+    for (std::string w; words >> w;) {
+      if (line.size() + 1 + w.size() > 76 && line.size() > 1) {
+        out += line + "\n";
+        line = "   ";
+      }
+      line += " " + w;
+    }
+    out += line + "\n";
+  }
   return out;
 }
 

@@ -103,6 +103,15 @@ bench-e2e:
 	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target minksum_cli
 	$(E2E) --command "make bench-e2e"
 
+# The Python package against its C++ calls and against scipy.spatial.ConvexHull
+# (bench/python_bench.py); rewrites the benchmark section of docs/python.md.
+.PHONY: bench-python
+bench-python:
+	@$(MAKE) --no-print-directory setup
+	$(BENCH_CONFIGURE)
+	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target minksum_python
+	PYTHONPATH=$(BENCH_BUILD)/python /usr/bin/python3 bench/python_bench.py --page docs/python.md --command "make bench-python"
+
 bench-quick:
 	@$(MAKE) --no-print-directory setup
 	$(BENCH_CONFIGURE)

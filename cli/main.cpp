@@ -29,6 +29,7 @@ Usage:
   minksum simulate [--obstacle Q] [--robot P] [--frames N] [--turn A,B,C,D]
                 [-o OUT.svg|.html] [--json]
   minksum cgm P [Q] [--svg OUT.svg] [--stats] [--json]
+  minksum batch [FILE] [--threads N] [--method M] [--hull]
   minksum COMMAND --help          help on one command
   minksum --version
 
@@ -55,6 +56,7 @@ constexpr Command kCommands[] = {
     {"query", run_query},
     {"simulate", run_simulate},
     {"cgm", run_cgm},
+    {"batch", run_batch},
 };
 
 }  // namespace

@@ -1,0 +1,47 @@
+"""minksum: exact Minkowski sums of convex polyhedra in 3D, and exact proximity queries.
+
+    >>> import minksum
+    >>> s = minksum.minkowski_sum(minksum.load("cube"), minksum.load("tetra"))
+    >>> s.num_vertices, s.num_facets, s.volume()
+
+Every computation is exact: coordinates are rationals (a float64 input is the
+exact value of each double), every geometric decision is the sign of an exact
+polynomial.  Exact results are Python ints and fractions.Fraction; the float64
+array ``Polytope.vertices`` holds the nearest doubles, without a copy.
+
+Many sums: ``minkowski_sum_many`` runs them on a pool of C++ threads;
+``minksum.dask`` spreads them over a Dask cluster.
+"""
+
+from ._errors import InputError, NotConvexError
+from ._minksum import (
+    METHODS,
+    CollisionResult,
+    DepthResult,
+    DirectionalDepthResult,
+    DistanceResult,
+    Obstacle,
+    Polytope,
+    Sum,
+    Witness,
+    load,
+    minkowski_sum,
+    minkowski_sum_many,
+)
+
+__all__ = [
+    "METHODS",
+    "CollisionResult",
+    "DepthResult",
+    "DirectionalDepthResult",
+    "DistanceResult",
+    "InputError",
+    "NotConvexError",
+    "Obstacle",
+    "Polytope",
+    "Sum",
+    "Witness",
+    "load",
+    "minkowski_sum",
+    "minkowski_sum_many",
+]

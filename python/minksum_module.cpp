@@ -1,0 +1,891 @@
+// minksum for Python: the extension module minksum._minksum (pybind11).
+//
+// The package minksum (python/minksum/__init__.py) re-exports what is defined
+// here; python/minksum/_minksum.pyi declares it for type checkers.  Only the
+// library's public headers are used.
+//
+// Exact numbers cross the boundary as Python ints and fractions.Fraction,
+// converted through GMP's integers (machine words when they fit, else
+// hexadecimal text), never through doubles.  Every computation runs with
+// the GIL released.  Library errors become Python exceptions: InputError
+// (bad data: file, place, problem), NotConvexError (an InputError), and
+// ValueError for bad requests (UsageError).
+#include <minksum/error.hpp>
+#include <minksum/io.hpp>
+#include <minksum/minkowski.hpp>
+#include <minksum/operand.hpp>
+#include <minksum/parallel.hpp>
+#include <minksum/polytope.hpp>
+#include <minksum/proximity.hpp>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace py = pybind11;
+using namespace minksum;
+
+namespace {
+
+using PolytopePtr = std::shared_ptr<const ConvexPolytope>;
+
+// ---------------------------------------------------------------------------
+// Numbers.
+
+// Interned for the module's lifetime (never destroyed: the interpreter may be
+// gone when static destructors run).
+py::object& fraction_type() {
+  static auto* t = new py::object(py::module_::import("fractions").attr("Fraction"));
+  return *t;
+}
+
+py::int_ to_int(const Integer& z) {
+  if (mpz_fits_slong_p(z.get_mpz_t())) return py::reinterpret_steal<py::int_>(PyLong_FromLong(mpz_get_si(z.get_mpz_t())));
+  std::string text(mpz_sizeinbase(z.get_mpz_t(), 16) + 2, '\0');
+  mpz_get_str(text.data(), 16, z.get_mpz_t());
+  PyObject* r = PyLong_FromString(text.c_str(), nullptr, 16);
+  if (!r) throw py::error_already_set();
+  return py::reinterpret_steal<py::int_>(r);
+}
+
+py::object to_fraction(const Rational& q) {
+  return fraction_type()(to_int(q.get_num()), to_int(q.get_den()));
+}
+
+py::tuple to_fractions(const Point3& p) { return py::make_tuple(to_fraction(p.x), to_fraction(p.y), to_fraction(p.z)); }
+
+Integer from_int(py::handle h) {
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(h.ptr(), &overflow);
+  if (v == -1 && PyErr_Occurred()) throw py::error_already_set();
+  if (!overflow) {
+    Integer z;
+    mpz_set_si(z.get_mpz_t(), static_cast<long>(v));
+    return z;
+  }
+  py::str hex = py::reinterpret_steal<py::str>(PyNumber_ToBase(h.ptr(), 16));
+  if (!hex) throw py::error_already_set();
+  std::string s = hex;  // "0x1f" or "-0x1f"
+  const bool negative = s[0] == '-';
+  Integer z(s.substr(negative ? 3 : 2), 16);
+  return negative ? Integer(-z) : z;
+}
+
+// An exact coordinate from a Python number: int, float, Fraction (any
+// numbers.Rational), numpy scalar, or text such as "1/3" (parse_number).
+Rational to_rational(py::handle h, const char* what) {
+  if (PyLong_Check(h.ptr())) return Rational(from_int(h));
+  if (PyFloat_Check(h.ptr())) {
+    const double d = PyFloat_AS_DOUBLE(h.ptr());
+    if (!std::isfinite(d)) throw py::value_error(std::string(what) + ": " + (std::isnan(d) ? "NaN" : "infinite"));
+    return Rational(d);
+  }
+  if (PyUnicode_Check(h.ptr())) {
+    const std::string text = py::cast<std::string>(h);
+    std::string why;
+    if (auto q = parse_number(text, &why)) return *q;
+    throw py::value_error(std::string(what) + ": '" + text + "': " + why);
+  }
+  if (PyIndex_Check(h.ptr())) return Rational(from_int(py::reinterpret_steal<py::object>(PyNumber_Index(h.ptr()))));
+  if (py::hasattr(h, "numerator") && py::hasattr(h, "denominator")) {
+    Rational q(from_int(py::int_(h.attr("numerator"))), from_int(py::int_(h.attr("denominator"))));
+    if (q.get_den() == 0) throw py::value_error(std::string(what) + ": zero denominator");
+    q.canonicalize();
+    return q;
+  }
+  if (PyNumber_Check(h.ptr())) return to_rational(py::float_(py::reinterpret_borrow<py::object>(h)), what);
+  throw py::type_error(std::string(what) + ": expected a number (int, float, Fraction or text such as '1/3'), got " +
+                       std::string(py::str(py::type::handle_of(h).attr("__name__"))));
+}
+
+bool is_float_array(py::handle h) {
+  return py::isinstance<py::array>(h) && py::reinterpret_borrow<py::array>(h).dtype().kind() == 'f';
+}
+
+std::string item(const char* name, std::size_t i) { return std::string(name) + "[" + std::to_string(i) + "]"; }
+
+// Points from an (n, 3) float array (exact: each double is a rational) or a
+// sequence of triples of exact numbers.
+PointList to_points(py::handle h, const char* name) {
+  PointList pts;
+  if (is_float_array(h)) {
+    auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(h);
+    if (!a || a.ndim() != 2 || a.shape(1) != 3)
+      throw py::value_error(std::string(name) + ": expected an (n, 3) array");
+    auto r = a.unchecked<2>();
+    pts.reserve(static_cast<std::size_t>(r.shape(0)));
+    for (py::ssize_t i = 0; i < r.shape(0); ++i) {
+      const Vec3d v{r(i, 0), r(i, 1), r(i, 2)};
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+        throw py::value_error(item(name, static_cast<std::size_t>(i)) + ": not finite");
+      pts.push_back(v);
+    }
+    return pts;
+  }
+  if (!py::isinstance<py::sequence>(h) || py::isinstance<py::str>(h))
+    throw py::type_error(std::string(name) + ": expected an (n, 3) array or a sequence of (x, y, z) triples");
+  auto seq = py::reinterpret_borrow<py::sequence>(h);
+  pts.reserve(seq.size());
+  for (std::size_t i = 0; i < seq.size(); ++i) {
+    py::object row = seq[i];
+    const std::string where = item(name, i);
+    if (!py::isinstance<py::sequence>(row) || py::isinstance<py::str>(row) || py::len(row) != 3)
+      throw py::value_error(where + ": expected a triple (x, y, z)");
+    auto r = py::reinterpret_borrow<py::sequence>(row);
+    pts.push_back(Point3(to_rational(r[0], where.c_str()), to_rational(r[1], where.c_str()),
+                         to_rational(r[2], where.c_str())));
+  }
+  return pts;
+}
+
+Point3 to_point(py::handle h, const char* name) {
+  PointList p = to_points(py::make_tuple(py::reinterpret_borrow<py::object>(h)), name);
+  return p.exact(0);
+}
+
+// ---------------------------------------------------------------------------
+// Errors.
+
+py::object& errors_module() {
+  static auto* m = new py::object(py::module_::import("minksum._errors"));
+  return *m;
+}
+
+void raise_input_error(const char* type_name, const InputError& e) {
+  py::object type = errors_module().attr(type_name);
+  py::object value = type(e.file(), e.place(), e.problem());
+  PyErr_SetObject(type.ptr(), value.ptr());
+}
+
+// The Python exception for a C++ one, as an object (for on_error="return").
+py::object exception_object(std::exception_ptr p) {
+  try {
+    std::rethrow_exception(p);
+  } catch (const NotConvexError& e) {
+    return errors_module().attr("NotConvexError")(e.file(), e.place(), e.problem());
+  } catch (const InputError& e) {
+    return errors_module().attr("InputError")(e.file(), e.place(), e.problem());
+  } catch (const UsageError& e) {
+    return py::reinterpret_borrow<py::object>(PyExc_ValueError)(e.what());
+  } catch (const std::bad_alloc&) {
+    return py::reinterpret_borrow<py::object>(PyExc_MemoryError)();
+  } catch (const std::exception& e) {
+    return py::reinterpret_borrow<py::object>(PyExc_RuntimeError)(e.what());
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Operands and methods.
+
+Method to_method(const std::string& name) {
+  auto m = parse_method(name);
+  if (!m) throw py::value_error("unknown method '" + name + "' (" + method_list() + ")");
+  if (!method_available(*m)) throw py::value_error("method '" + name + "' is not implemented in this build");
+  return *m;
+}
+
+// A polytope, or a name to load (a file path or catalog spec) later, with the GIL released.
+using Operand = std::variant<PolytopePtr, std::string>;
+
+Operand to_operand(py::handle h, const char* name) {
+  if (py::isinstance<ConvexPolytope>(h)) return PolytopePtr(py::cast<std::shared_ptr<ConvexPolytope>>(h));
+  if (py::isinstance<py::str>(h)) return py::cast<std::string>(h);
+  if (PyObject_HasAttrString(h.ptr(), "__fspath__")) return py::cast<std::string>(py::str(h.attr("__fspath__")()));
+  throw py::type_error(std::string(name) + ": expected a Polytope, a file path or a catalog name");
+}
+
+PolytopePtr resolve(const Operand& o, bool hull = false) {
+  if (auto* p = std::get_if<PolytopePtr>(&o)) return *p;
+  return std::make_shared<const ConvexPolytope>(load_polytope(std::get<std::string>(o), hull));
+}
+
+// ---------------------------------------------------------------------------
+// The result of a sum: the polytope (the base class, so a Sum is a Polytope
+// in Python), how it was computed, and where its vertices and facets come from.
+struct Sum : ConvexPolytope {
+  Method method = Method::automatic;
+  std::vector<std::pair<Index, Index>> vertex_origin;
+  std::vector<FacetProvenance> provenance;  // computed on first use when the method does not record it
+  std::vector<std::pair<std::string, long long>> counters;
+  double seconds = 0;
+  PolytopePtr a, b;  // the operands, until the provenance is known
+  std::mutex provenance_mutex;
+
+  Sum() = default;
+  Sum(SumResult&& r, PolytopePtr a_, PolytopePtr b_)
+      : ConvexPolytope(std::move(r.polytope)), method(r.method), vertex_origin(std::move(r.vertex_origin)),
+        provenance(std::move(r.facet_provenance)), counters(std::move(r.counters)), seconds(r.seconds) {
+    if (provenance.empty()) a = std::move(a_), b = std::move(b_);
+  }
+
+  const std::vector<FacetProvenance>& facet_provenance_list() {
+    std::lock_guard<std::mutex> lock(provenance_mutex);
+    if (provenance.empty() && num_facets() > 0 && a) {
+      provenance = facet_provenance(*a, *b, *this);
+      a.reset();
+      b.reset();
+    }
+    return provenance;
+  }
+};
+
+std::shared_ptr<Sum> sum_of(const PolytopePtr& a, const PolytopePtr& b, Method method, const SumOptions& options = {}) {
+  return std::make_shared<Sum>(minkowski_sum(*a, *b, method, options), a, b);
+}
+
+// Ctrl-C during a long sum: the progress callback (run at the method's report
+// points, on the thread computing) checks for signals with the GIL held.
+struct Interrupted {};
+
+// ---------------------------------------------------------------------------
+// Conversions to Python.
+
+const char* feature_kind(FeatureDim d) {
+  return d == FeatureDim::vertex ? "vertex" : d == FeatureDim::edge ? "edge" : "facet";
+}
+py::tuple feature(const Feature& f) { return py::make_tuple(feature_kind(f.dim), f.index); }
+
+py::array_t<std::int64_t> index_array(const std::vector<Index>& v) {
+  py::array_t<std::int64_t> a(static_cast<py::ssize_t>(v.size()));
+  auto r = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < v.size(); ++i) r(static_cast<py::ssize_t>(i)) = v[i];
+  return a;
+}
+
+// The nearest doubles of the coordinates, as a read-only (n, 3) view of the
+// polytope's own storage (no copy); `owner` keeps the polytope alive.
+py::array vertices_view(const ConvexPolytope& p, py::handle owner) {
+  static_assert(sizeof(Vec3d) == 3 * sizeof(double), "Vec3d is three packed doubles");
+  const auto& approx = p.coordinates().approx();
+  py::array_t<double> a({static_cast<py::ssize_t>(approx.size()), py::ssize_t{3}},
+                        {static_cast<py::ssize_t>(sizeof(Vec3d)), static_cast<py::ssize_t>(sizeof(double))},
+                        approx.empty() ? nullptr : &approx[0].x, owner);
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+ConvexPolytope polytope_from(PointList points, py::handle faces) {
+  Mesh mesh;
+  mesh.points = std::move(points);
+  if (faces.is_none()) {
+    py::gil_scoped_release nogil;
+    return ConvexPolytope::hull(mesh.points);
+  }
+  if (!py::isinstance<py::sequence>(faces) && !py::isinstance<py::array>(faces))
+    throw py::type_error("faces: expected a sequence of index sequences");
+  const std::size_t n = mesh.points.size();
+  for (py::handle f : faces) {
+    const std::size_t k = mesh.faces.size();
+    std::vector<Index> loop;
+    for (py::handle i : f) {
+      if (!PyIndex_Check(i.ptr())) throw py::type_error(item("faces", k) + ": expected integer vertex indices");
+      const long long v = py::cast<long long>(py::reinterpret_steal<py::object>(PyNumber_Index(i.ptr())));
+      if (v < 0 || static_cast<unsigned long long>(v) >= n)
+        throw py::value_error(item("faces", k) + ": " + std::to_string(v) + " is not a vertex index (0.." +
+                              std::to_string(n ? n - 1 : 0) + ")");
+      loop.push_back(static_cast<Index>(v));
+    }
+    mesh.faces.push_back(std::move(loop));
+  }
+  py::gil_scoped_release nogil;
+  return ConvexPolytope::from_mesh(mesh);
+}
+
+ConvexPolytope polytope_from(py::handle vertices, py::handle faces) {
+  return polytope_from(to_points(vertices, "vertices"), faces);
+}
+
+py::bytes vec_bytes(const std::vector<Vec3d>& v) {
+  return py::bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(Vec3d));
+}
+
+std::vector<Vec3d> bytes_vec(py::handle b) {
+  const std::string s = py::cast<std::string>(py::reinterpret_borrow<py::bytes>(b));
+  if (s.size() % sizeof(Vec3d) != 0) throw py::value_error("Polytope: bad pickled state");
+  std::vector<Vec3d> v(s.size() / sizeof(Vec3d));
+  std::memcpy(v.data(), s.data(), s.size());
+  return v;
+}
+
+// Pickling: the facet loops and the coordinates in their own exact form
+// (doubles, or the sum hi + lo of two doubles, as bytes; rationals as text),
+// so that the copy keeps the form and validates as fast as the original.
+py::tuple polytope_state(const ConvexPolytope& p) {
+  py::list faces;
+  for (Index f = 0; f < p.num_facets(); ++f) faces.append(py::cast(p.facet_vertices(f)));
+  const PointList& c = p.coordinates();
+  if (p.coordinates_are_doubles()) return py::make_tuple("doubles", vec_bytes(c.approx()), faces);
+  if (c.form() == PointList::Form::double_pairs) {
+    std::vector<Vec3d> lo(c.size());
+    for (std::size_t i = 0; i < c.size(); ++i) lo[i] = c.low(i);
+    return py::make_tuple("pairs", py::make_tuple(vec_bytes(c.approx()), vec_bytes(lo)), faces);
+  }
+  py::list coords;
+  for (std::size_t i = 0; i < p.num_vertices(); ++i) {
+    const Point3 q = p.coordinates().exact(i);
+    coords.append(py::make_tuple(format_exact(q.x), format_exact(q.y), format_exact(q.z)));
+  }
+  return py::make_tuple("exact", coords, faces);
+}
+
+ConvexPolytope polytope_from_state(const py::tuple& t) {
+  if (t.size() != 3) throw py::value_error("Polytope: bad pickled state");
+  const std::string kind = py::cast<std::string>(t[0]);
+  if (kind == "exact") return polytope_from(t[1], t[2]);
+  PointList points;
+  if (kind == "doubles") {
+    for (const Vec3d& v : bytes_vec(t[1])) points.push_back(v);
+  } else if (kind == "pairs") {
+    const auto parts = py::cast<py::tuple>(t[1]);
+    const std::vector<Vec3d> hi = bytes_vec(parts[0]), lo = bytes_vec(parts[1]);
+    if (hi.size() != lo.size()) throw py::value_error("Polytope: bad pickled state");
+    for (std::size_t i = 0; i < hi.size(); ++i) points.push_pair(hi[i], lo[i]);
+  } else {
+    throw py::value_error("Polytope: bad pickled state");
+  }
+  return polytope_from(std::move(points), t[2]);
+}
+
+py::list provenance_list(Sum& s) {
+  py::list out;
+  for (const FacetProvenance& p : s.facet_provenance_list())
+    out.append(py::make_tuple(facet_origin_name(p.origin()), feature(p.a), feature(p.b)));
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// Proximity.
+
+struct Obstacle {
+  PolytopePtr p, q;
+  std::unique_ptr<TranslationalObstacle> o;
+  std::mutex m;  // a TranslationalObstacle answers one query at a time
+};
+
+// A query of Obstacle on t (the translation of Q relative to P): t converted
+// with the GIL held, then answered with it released, one query at a time.
+template <class Result>
+auto query(Result (TranslationalObstacle::*answer)(const Point3&)) {
+  return [answer](Obstacle& o, py::object t) {
+    const Point3 s = to_point(t, "t");
+    py::gil_scoped_release nogil;
+    std::lock_guard<std::mutex> lock(o.m);
+    return ((*o.o).*answer)(s);
+  };
+}
+
+struct WitnessPy {
+  Witness w;
+};
+
+const char* kModuleDoc = R"(Exact Minkowski sums of convex polyhedra in 3D, and exact proximity queries.
+
+Every computation is exact: coordinates are rationals (float64 inputs are
+taken as the exact values of the doubles), every geometric decision is the
+sign of an exact polynomial.  Exact results are Python ints and
+fractions.Fraction; float64 arrays (Polytope.vertices) are the nearest
+doubles, for plotting and numpy work.
+)";
+
+const char* kMinkowskiSumDoc = R"(The Minkowski sum a ⊕ b = {x + y : x in a, y in b}, exactly.
+
+a and b are Polytope objects, file paths or catalog names ("cube",
+"sphere:4@rot:5", see load()).  The result is a Sum: a Polytope that also
+records the method used, vertex_origin (each vertex is the sum of vertex
+vertex_origin[v, 0] of a and vertex vertex_origin[v, 1] of b) and
+facet_provenance (the faces of a and b behind each facet).
+
+Every method gives the same polytope (the same vertices and facets); they
+differ in speed (what a summary says --json reports is Sum.counters and
+Sum.facet_provenance here):
+{methods}
+"auto" picks walk, the output-sensitive method, for every pair.  Use
+another method to compare or to cross-check; "chms" (the hull of all
+pairwise vertex sums) is the slow, simple reference.
+
+Raises ValueError for an unknown method, InputError when a file named as an
+operand is bad, KeyboardInterrupt when interrupted (Ctrl-C).  The GIL is
+released while the sum is computed.)";
+
+// The methods' summaries (the table the command's help uses), each wrapped
+// to 76 columns under a two-space indent.
+std::string method_docs() {
+  std::string out;
+  for (const MethodInfo& m : methods()) {
+    std::istringstream words(std::string(m.name) + ": " + m.summary);
+    std::string line = " ";
+    for (std::string w; words >> w;) {
+      if (line.size() + 1 + w.size() > 76 && line.size() > 1) {
+        out += line + "\n";
+        line = "   ";
+      }
+      line += " " + w;
+    }
+    out += line + "\n";
+  }
+  return out;
+}
+
+std::string with_methods(std::string text) {
+  const std::string key = "{methods}\n";
+  text.replace(text.find(key), key.size(), method_docs());
+  return text;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_minksum, m) {
+  m.doc() = kModuleDoc;
+
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const NotConvexError& e) {
+      raise_input_error("NotConvexError", e);
+    } catch (const InputError& e) {
+      raise_input_error("InputError", e);
+    } catch (const UsageError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const Interrupted&) {
+      PyErr_SetString(PyExc_KeyboardInterrupt, "minksum: the sum was interrupted");
+    }
+  });
+
+  py::class_<ConvexPolytope, std::shared_ptr<ConvexPolytope>> polytope(m, "Polytope", R"(A convex polytope with exact rational vertex coordinates.
+
+Polytope(vertices, faces=None)
+
+vertices: an (n, 3) float array (each double taken exactly) or a sequence of
+(x, y, z) triples of exact numbers (int, fractions.Fraction, float, or text
+such as "1/3").  faces: polygons as sequences of vertex indices; without
+faces, the polytope is the exact convex hull of the vertices.  With faces,
+the mesh must be a closed, exactly convex surface: coplanar facets are
+merged, equal vertices welded, unused vertices dropped, and an inward-facing
+mesh is turned outward.
+
+Raises InputError (NotConvexError for a surface that is not exactly convex)
+when the data is not a convex polytope, ValueError for malformed arguments.
+Polytopes are immutable, safe to share between threads, and picklable.)");
+  polytope
+      .def(py::init([](py::object vertices, py::object faces) {
+             return std::make_shared<ConvexPolytope>(polytope_from(vertices, faces));
+           }),
+           py::arg("vertices"), py::arg("faces") = py::none())
+      .def_static(
+          "hull",
+          [](py::object points) { return std::make_shared<ConvexPolytope>(polytope_from(points, py::none())); },
+          py::arg("points"), "The exact convex hull of an (n, 3) array or a sequence of exact triples.")
+      .def_property_readonly(
+          "vertices", [](py::object self) { return vertices_view(py::cast<const ConvexPolytope&>(self), self); },
+          "The vertices as a read-only float64 (n, 3) array: a view of the polytope's own storage (no copy).\n"
+          "Each entry is the nearest double of the exact coordinate (exact when coordinates_are_doubles).")
+      .def_property_readonly("coordinates_are_doubles", &ConvexPolytope::coordinates_are_doubles,
+                             "True when every coordinate is exactly a double (then vertices is exact).")
+      .def(
+          "exact_vertices",
+          [](const ConvexPolytope& p) {
+            py::list out;
+            for (std::size_t i = 0; i < p.num_vertices(); ++i) out.append(to_fractions(p.coordinates().exact(i)));
+            return out;
+          },
+          "The exact vertices: a list of (x, y, z) tuples of fractions.Fraction.")
+      .def_property_readonly(
+          "faces",
+          [](const ConvexPolytope& p) {
+            py::list out;
+            for (Index f = 0; f < p.num_facets(); ++f) out.append(index_array(p.facet_vertices(f)));
+            return out;
+          },
+          "The facets: one int64 array of vertex indices per facet, counter-clockwise seen from outside.")
+      .def(
+          "triangles",
+          [](const ConvexPolytope& p) {
+            std::size_t count = 0;
+            for (Index f = 0; f < p.num_facets(); ++f) count += p.facet_degree(f) - 2;
+            py::array_t<std::int64_t> a({static_cast<py::ssize_t>(count), py::ssize_t{3}});
+            auto r = a.mutable_unchecked<2>();
+            py::ssize_t k = 0;
+            for (Index f = 0; f < p.num_facets(); ++f) {
+              const auto loop = p.facet_vertices(f);
+              for (std::size_t i = 1; i + 1 < loop.size(); ++i, ++k) {
+                r(k, 0) = loop[0];
+                r(k, 1) = loop[i];
+                r(k, 2) = loop[i + 1];
+              }
+            }
+            return a;
+          },
+          "The facets fan-triangulated, as an int64 (m, 3) array of vertex indices, counter-clockwise\n"
+          "seen from outside (for renderers: trimesh.Trimesh(p.vertices, p.triangles())).")
+      .def(
+          "planes",
+          [](const ConvexPolytope& p) {
+            py::list out;
+            for (Index f = 0; f < p.num_facets(); ++f) {
+              const Plane& pl = p.plane(f);
+              out.append(py::make_tuple(to_int(pl.a), to_int(pl.b), to_int(pl.c), to_int(pl.d)));
+            }
+            return out;
+          },
+          "The facet planes a*x + b*y + c*z = d, one (a, b, c, d) tuple of Python ints per facet, with\n"
+          "outward normal (a, b, c) and gcd(a, b, c, d) = 1: equal planes compare equal.")
+      .def_property_readonly("num_vertices", &ConvexPolytope::num_vertices)
+      .def_property_readonly("num_edges", &ConvexPolytope::num_edges)
+      .def_property_readonly("num_facets", &ConvexPolytope::num_facets)
+      .def(
+          "volume",
+          [](const ConvexPolytope& p) {
+            Rational v;
+            {
+              py::gil_scoped_release nogil;
+              v = p.volume();
+            }
+            return to_fraction(v);
+          },
+          "The exact volume, a fractions.Fraction.")
+      .def(
+          "translated",
+          [](const ConvexPolytope& p, py::object t) {
+            const Point3 v = to_point(t, "t");
+            py::gil_scoped_release nogil;
+            return std::make_shared<ConvexPolytope>(p.translated(v));
+          },
+          py::arg("t"), "The polytope translated by t (exact).")
+      .def(
+          "negated",
+          [](const ConvexPolytope& p) {
+            py::gil_scoped_release nogil;
+            return std::make_shared<ConvexPolytope>(p.negated());
+          },
+          "-P, the point reflection.")
+      .def(
+          "save",
+          [](const ConvexPolytope& p, py::object path, bool exact, bool binary) {
+            const std::string file = py::cast<std::string>(py::str(py::module_::import("os").attr("fspath")(path)));
+            WriteOptions w;
+            w.exact = exact;
+            w.binary = binary;
+            try {
+              py::gil_scoped_release nogil;
+              write_polytope(file, p, w);
+            } catch (const InputError& e) {  // the file system refused: not bad data
+              PyErr_SetString(PyExc_OSError, e.what());
+              throw py::error_already_set();
+            }
+          },
+          py::arg("path"), py::arg("exact") = false, py::arg("binary") = false,
+          "Write the polytope to path (.off, .obj, .ply, .stl or .wrl, by extension), atomically.\n"
+          "exact=True writes exact rationals (.off, .obj and .wrl only); otherwise each coordinate is\n"
+          "the shortest text that reads back to its nearest double.  binary=True: binary .ply/.stl.\n"
+          "Raises ValueError for an unknown extension or a request the format cannot honour, OSError\n"
+          "when the file cannot be written.")
+      .def("__repr__",
+           [](const ConvexPolytope& p) {
+             return "<minksum.Polytope: " + std::to_string(p.num_vertices()) + " vertices, " +
+                    std::to_string(p.num_edges()) + " edges, " + std::to_string(p.num_facets()) + " facets>";
+           })
+      .def(py::pickle([](const ConvexPolytope& p) { return polytope_state(p); },
+                      [](const py::tuple& t) { return std::make_shared<ConvexPolytope>(polytope_from_state(t)); }));
+
+  py::class_<Sum, std::shared_ptr<Sum>, ConvexPolytope>(m, "Sum", R"(The result of minkowski_sum: a Polytope with its history.
+
+method: the method that computed it.  vertex_origin: int64 (n, 2) array, the
+vertex of a and the vertex of b whose sum is each vertex.  facet_provenance:
+for each facet, (kind, feature of a, feature of b) with kind one of
+"translated" (facet of a + vertex of b), "corner" (vertex of a + facet of b),
+"edge" (edge + edge), "facet_edge", "facet_facet", and features as
+("vertex" | "edge" | "facet", index).  seconds: the computation alone.
+counters: operation counts some methods record.)")
+      .def_property_readonly("method", [](const Sum& s) { return method_name(s.method); })
+      .def_property_readonly("vertex_origin",
+                             [](const Sum& s) {
+                               py::array_t<std::int64_t> a({static_cast<py::ssize_t>(s.vertex_origin.size()),
+                                                            py::ssize_t{2}});
+                               auto r = a.mutable_unchecked<2>();
+                               for (std::size_t i = 0; i < s.vertex_origin.size(); ++i) {
+                                 r(static_cast<py::ssize_t>(i), 0) = s.vertex_origin[i].first;
+                                 r(static_cast<py::ssize_t>(i), 1) = s.vertex_origin[i].second;
+                               }
+                               return a;
+                             })
+      .def_property_readonly("facet_provenance", [](Sum& s) {
+        {
+          py::gil_scoped_release nogil;
+          s.facet_provenance_list();
+        }
+        return provenance_list(s);
+      })
+      .def_readonly("seconds", &Sum::seconds)
+      .def_property_readonly("counters",
+                             [](const Sum& s) {
+                               py::dict d;
+                               for (const auto& [k, v] : s.counters) d[py::str(k)] = v;
+                               return d;
+                             })
+      .def("__repr__",
+           [](const Sum& s) {
+             return "<minksum.Sum (" + std::string(method_name(s.method)) + "): " + std::to_string(s.num_vertices()) +
+                    " vertices, " + std::to_string(s.num_edges()) + " edges, " + std::to_string(s.num_facets()) +
+                    " facets>";
+           })
+      .def(py::pickle(
+          [](Sum& s) {
+            {
+              py::gil_scoped_release nogil;
+              s.facet_provenance_list();
+            }
+            py::list origin, prov;
+            for (const auto& [i, j] : s.vertex_origin) origin.append(py::make_tuple(i, j));
+            for (const auto& p : s.provenance)
+              prov.append(py::make_tuple(int(p.a.dim), p.a.index, int(p.b.dim), p.b.index));
+            return py::make_tuple(polytope_state(s), method_name(s.method), origin, prov, s.seconds,
+                                  py::cast(s.counters));
+          },
+          [](const py::tuple& t) {
+            if (t.size() != 6) throw py::value_error("Sum: bad pickled state");
+            auto s = std::make_shared<Sum>();
+            static_cast<ConvexPolytope&>(*s) = polytope_from_state(t[0]);
+            s->method = to_method(py::cast<std::string>(t[1]));
+            for (py::handle o : t[2]) {
+              auto p = py::cast<std::pair<Index, Index>>(o);
+              s->vertex_origin.push_back(p);
+            }
+            for (py::handle o : t[3]) {
+              auto v = py::cast<std::array<Index, 4>>(o);
+              s->provenance.push_back({Feature{FeatureDim(v[0]), v[1]}, Feature{FeatureDim(v[2]), v[3]}});
+            }
+            s->seconds = py::cast<double>(t[4]);
+            s->counters = py::cast<std::vector<std::pair<std::string, long long>>>(t[5]);
+            return s;
+          }));
+
+  m.def(
+      "load",
+      [](py::object spec, bool hull) {
+        const Operand o = to_operand(spec, "path_or_name");
+        if (std::holds_alternative<PolytopePtr>(o)) throw py::type_error("load: expected a file path or a catalog name");
+        py::gil_scoped_release nogil;
+        return std::const_pointer_cast<ConvexPolytope>(resolve(o, hull));
+      },
+      py::arg("path_or_name"), py::arg("hull") = false,
+      R"(Load a polytope from a file (.off, .obj, .ply, .stl, .wrl) or build a catalog polytope.
+
+A path to an existing file is read; otherwise the text is a catalog spec such
+as "cube", "sphere:4", "dioctagonal:17", "random:1000:7", "box:1:2:3" or
+"sphere:3@rot:5" (the command 'minksum gen --help' lists the catalog).
+hull=True takes the exact convex hull of the file's points instead of
+requiring a valid convex mesh.
+
+Raises InputError (file, place, problem) for bad data or an unreadable file,
+NotConvexError when the surface is not exactly convex (hull=True accepts it),
+ValueError for a name that is neither a file nor a catalog spec.)");
+
+  m.def(
+      "minkowski_sum",
+      [](py::object a, py::object b, const std::string& method) {
+        const Operand oa = to_operand(a, "a"), ob = to_operand(b, "b");
+        const Method mt = to_method(method);
+        SumOptions options;
+        options.progress = [](const char*, double) {
+          py::gil_scoped_acquire gil;
+          if (PyErr_CheckSignals() != 0) {
+            PyErr_Clear();
+            throw Interrupted{};
+          }
+        };
+        py::gil_scoped_release nogil;
+        return sum_of(resolve(oa), resolve(ob), mt, options);
+      },
+      py::arg("a"), py::arg("b"), py::arg("method") = "auto", with_methods(kMinkowskiSumDoc).c_str());
+
+  m.def(
+      "minkowski_sum_many",
+      [](py::iterable pairs, std::optional<long long> threads, const std::string& method,
+         const std::string& on_error) {
+        if (threads && *threads < 1) throw py::value_error("threads must be at least 1 (or None: one per core)");
+        if (on_error != "raise" && on_error != "return")
+          throw py::value_error("on_error must be 'raise' or 'return', not '" + on_error + "'");
+        const Method default_method = to_method(method);
+        struct Job {
+          Operand a, b;
+          Method method;
+        };
+        std::vector<Job> jobs;
+        for (py::handle pair : pairs) {
+          const std::string where = item("pairs", jobs.size());
+          if (!py::isinstance<py::sequence>(pair) || py::isinstance<py::str>(pair) ||
+              (py::len(pair) != 2 && py::len(pair) != 3))
+            throw py::value_error(where + ": expected (a, b) or (a, b, method)");
+          auto t = py::reinterpret_borrow<py::sequence>(pair);
+          Job j{to_operand(t[0], (where + "[0]").c_str()), to_operand(t[1], (where + "[1]").c_str()),
+                default_method};
+          if (t.size() == 3) j.method = to_method(py::cast<std::string>(t[2]));
+          jobs.push_back(std::move(j));
+        }
+        std::vector<std::shared_ptr<Sum>> results(jobs.size());
+        std::vector<std::exception_ptr> errors(jobs.size());
+        {
+          py::gil_scoped_release nogil;
+          parallel_for(jobs.size(), threads ? static_cast<unsigned>(*threads) : 0u, [&](std::size_t i) {
+            try {
+              results[i] = sum_of(resolve(jobs[i].a), resolve(jobs[i].b), jobs[i].method);
+            } catch (...) {
+              errors[i] = std::current_exception();
+            }
+          });
+        }
+        py::list out;
+        for (std::size_t i = 0; i < jobs.size(); ++i) {
+          if (!errors[i]) {
+            out.append(results[i]);
+            continue;
+          }
+          py::object e = exception_object(errors[i]);
+          e.attr("add_note")("minksum.minkowski_sum_many: pairs[" + std::to_string(i) + "]");
+          if (on_error == "return") {
+            out.append(e);
+          } else {
+            PyErr_SetObject(reinterpret_cast<PyObject*>(Py_TYPE(e.ptr())), e.ptr());
+            throw py::error_already_set();
+          }
+        }
+        return out;
+      },
+      py::arg("pairs"), py::arg("threads") = py::none(), py::arg("method") = "auto", py::arg("on_error") = "raise",
+      R"(Many independent Minkowski sums on a pool of C++ threads; the results in input order.
+
+pairs: an iterable of (a, b) or (a, b, method) with a and b Polytope objects,
+file paths or catalog names (names are loaded on the worker threads).
+threads: the number of threads (None: one per hardware thread).  method: the
+method of the pairs that do not name one (see minkowski_sum).  Each result is
+exactly what minkowski_sum(a, b, method) returns, whatever the number of
+threads.
+
+A pair that fails (a bad file, an unknown name): with on_error="raise" the
+exception of the first failing pair is raised once every pair is done, with
+a note naming the pair ("pairs[7]"); with on_error="return" the exception
+object takes the pair's place in the list.  Arguments that are malformed
+(not a pair, an unknown method) raise ValueError before anything is computed.
+The GIL is released during the whole batch.)");
+
+  py::class_<WitnessPy>(m, "Witness", R"(Where a proximity query was decided.
+
+facet: the facet of M = P ⊕ (−Q) the query ended on; m: the smallest
+feature of M containing the point the answer refers to; p, q: the features
+of P and Q behind it (m = p ⊕ −q).  Features are (kind, index) with kind
+"vertex", "edge" or "facet" and indices of P and Q as given.)")
+      .def_property_readonly("facet", [](const WitnessPy& w) { return w.w.facet; })
+      .def_property_readonly("m", [](const WitnessPy& w) { return feature(w.w.m); })
+      .def_property_readonly("p", [](const WitnessPy& w) { return feature(w.w.p); })
+      .def_property_readonly("q", [](const WitnessPy& w) { return feature(w.w.q); })
+      .def("__repr__", [](const WitnessPy& w) {
+        return "<minksum.Witness facet " + std::to_string(w.w.facet) + ": m = " + feature_kind(w.w.m.dim) + " " +
+               std::to_string(w.w.m.index) + ", p = " + feature_kind(w.w.p.dim) + " " + std::to_string(w.w.p.index) +
+               ", q = " + feature_kind(w.w.q.dim) + " " + std::to_string(w.w.q.index) + ">";
+      });
+
+  auto status = [](ContactStatus s) { return contact_status_name(s); };
+  py::class_<CollisionResult>(m, "CollisionResult", "collide(): status and witness.")
+      .def_property_readonly("status", [=](const CollisionResult& r) { return status(r.status); })
+      .def_property_readonly("witness", [](const CollisionResult& r) { return WitnessPy{r.witness}; });
+  py::class_<DistanceResult>(m, "DistanceResult", R"(distance(): the separation distance.
+
+squared_distance: exact Fraction (0 unless separate); distance: the nearest
+double of its square root; point_p, point_q: closest points of P and of the
+translated Q (exact Fraction triples; a common point when they touch or
+overlap); direction: point_q − point_p.)")
+      .def_property_readonly("status", [=](const DistanceResult& r) { return status(r.status); })
+      .def_property_readonly("squared_distance", [](const DistanceResult& r) { return to_fraction(r.squared_distance); })
+      .def_readonly("distance", &DistanceResult::distance)
+      .def_property_readonly("point_p", [](const DistanceResult& r) { return to_fractions(r.point_p); })
+      .def_property_readonly("point_q", [](const DistanceResult& r) { return to_fractions(r.point_q); })
+      .def_property_readonly("direction", [](const DistanceResult& r) { return to_fractions(r.direction); })
+      .def_property_readonly("witness", [](const DistanceResult& r) { return WitnessPy{r.witness}; });
+  py::class_<DepthResult>(m, "DepthResult", R"(depth(): the penetration depth.
+
+squared_depth: exact Fraction (0 unless penetrating); depth: the nearest
+double of its square root; direction: a minimal translation of P that makes
+the bodies touch (exact Fraction triple, zero unless penetrating).)")
+      .def_property_readonly("status", [=](const DepthResult& r) { return status(r.status); })
+      .def_property_readonly("squared_depth", [](const DepthResult& r) { return to_fraction(r.squared_depth); })
+      .def_readonly("depth", &DepthResult::depth)
+      .def_property_readonly("direction", [](const DepthResult& r) { return to_fractions(r.direction); })
+      .def_property_readonly("witness", [](const DepthResult& r) { return WitnessPy{r.witness}; });
+  py::class_<DirectionalDepthResult>(m, "DirectionalDepthResult", R"(directional_depth(): depth along d.
+
+t: the exact Fraction α ≥ 0, the smallest with P translated by α·d no longer
+overlapping the interior of Q (0 unless penetrating); depth: α·|d| (nearest
+double); translation: α·d (exact Fraction triple).)")
+      .def_property_readonly("status", [=](const DirectionalDepthResult& r) { return status(r.status); })
+      .def_property_readonly("t", [](const DirectionalDepthResult& r) { return to_fraction(r.t); })
+      .def_readonly("depth", &DirectionalDepthResult::depth)
+      .def_property_readonly("translation", [](const DirectionalDepthResult& r) { return to_fractions(r.translation); })
+      .def_property_readonly("witness", [](const DirectionalDepthResult& r) { return WitnessPy{r.witness}; });
+
+  py::class_<Obstacle>(m, "Obstacle", R"(Exact proximity queries between P and Q under translation.
+
+Obstacle(p, q, method="auto") computes the configuration-space obstacle
+M = P ⊕ (−Q) once (p and q: Polytope objects, file paths or catalog names).
+Each query takes t, the translation of Q relative to P (Q moved by t, P
+fixed; for P moved by u and Q by w, t = w − u), as an array or a triple of
+exact numbers, and answers exactly:
+  collide(t)               "separate", "touching" or "penetrating"
+  distance(t)              separation distance, closest points
+  depth(t)                 penetration depth and a minimal separating move
+  directional_depth(t, d)  how far P must move along d to stop overlapping
+Successive queries start from the previous answer's witness, so a moving
+query point costs little.  An Obstacle may be used from several Python
+threads; its queries run one at a time, with the GIL released.)")
+      .def(py::init([](py::object p, py::object q, const std::string& method) {
+             const Operand op = to_operand(p, "p"), oq = to_operand(q, "q");
+             const Method mt = to_method(method);
+             auto o = std::make_unique<Obstacle>();
+             py::gil_scoped_release nogil;
+             o->p = resolve(op);
+             o->q = resolve(oq);
+             o->o = std::make_unique<TranslationalObstacle>(*o->p, *o->q, mt);
+             return o;
+           }),
+           py::arg("p"), py::arg("q"), py::arg("method") = "auto")
+      .def_property_readonly("p", [](const Obstacle& o) { return std::const_pointer_cast<ConvexPolytope>(o.p); })
+      .def_property_readonly("q", [](const Obstacle& o) { return std::const_pointer_cast<ConvexPolytope>(o.q); })
+      .def_property_readonly(
+          "obstacle", [](const Obstacle& o) { return std::make_shared<ConvexPolytope>(o.o->obstacle()); },
+          "M = P ⊕ (−Q), as a Polytope.")
+      .def("collide", query(&TranslationalObstacle::collide_point), py::arg("t"),
+           "Whether P and Q translated by t are separate, touching or penetrating.")
+      .def("distance", query(&TranslationalObstacle::distance_point), py::arg("t"),
+           "The exact separation distance between P and Q translated by t.")
+      .def("depth", query(&TranslationalObstacle::penetration_depth_point), py::arg("t"),
+           "The exact penetration depth of P and Q translated by t.")
+      .def(
+          "directional_depth",
+          [](Obstacle& o, py::object t, py::object d) {
+            const Point3 s = to_point(t, "t"), dir = to_point(d, "d");
+            if (is_zero(dir)) throw py::value_error("d: the direction must not be the zero vector");
+            py::gil_scoped_release nogil;
+            std::lock_guard<std::mutex> lock(o.m);
+            return o.o->directional_depth_point(s, dir);
+          },
+          py::arg("t"), py::arg("d"),
+          "How far P must move along d (not normalised) to stop overlapping Q translated by t.")
+      .def("__repr__", [](const Obstacle& o) {
+        const ConvexPolytope& mm = o.o->obstacle();
+        return "<minksum.Obstacle: M has " + std::to_string(mm.num_vertices()) + " vertices, " +
+               std::to_string(mm.num_facets()) + " facets>";
+      });
+
+  py::list names;
+  for (const MethodInfo& mi : methods()) names.append(mi.name);
+  m.attr("METHODS") = py::tuple(names);
+}

@@ -1,0 +1,50 @@
+"""minksum.dask: a batch mapped over a LocalCluster of two worker processes equals the single-process batch exactly."""
+
+import pytest
+
+import minksum
+
+pytestmark = pytest.mark.dask
+
+
+def summary(s):
+    return (s.method, s.exact_vertices(), s.planes(), s.vertex_origin.tolist(), s.facet_provenance)
+
+
+def test_local_cluster_two_workers_equals_one_process(data):
+    distributed = pytest.importorskip("distributed")
+    import minksum.dask
+
+    specs = ["cube", "tetra", "sphere:2@rot:4", "random:40:5", "dodecahedron"]
+    pairs = [(a, b) for a in specs for b in specs]
+    pairs += [(minksum.load("box:1:1/3:1/7"), minksum.load("sphere:1@rot:2"))]  # pickled polytopes
+    expected = [summary(s) for s in minksum.minkowski_sum_many(pairs, threads=1)]
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                  silence_logs=40) as cluster, distributed.Client(cluster) as client:
+        assert len(client.scheduler_info()["workers"]) == 2
+        got = minksum.dask.minkowski_sum_many(client, pairs, chunk_size=4, threads=1)
+        assert [summary(s) for s in got] == expected
+        bad = str(data / "bad" / "nan.off")
+        with pytest.raises(minksum.InputError) as e:
+            minksum.dask.minkowski_sum_many(client, [("cube", "tetra"), ("cube", bad)], chunk_size=1)
+        assert e.value.file == bad and any("pairs[1]" in n for n in e.value.__notes__)
+
+
+def test_chunks():
+    import minksum.dask
+
+    assert minksum.dask.chunks(list(range(7)), 3) == [[0, 1, 2], [3, 4, 5], [6]]
+    with pytest.raises(ValueError):
+        minksum.dask.chunks([1], 0)
+
+
+def test_docs_dask_example():
+    # The Dask block of docs/python.md, run as a script (its LocalCluster under `if __name__ == "__main__"`).
+    from test_docs import python_blocks
+
+    (code,) = [b for b in python_blocks("docs/python.md") if "LocalCluster" in b]
+    namespace = {"__name__": "__main__"}
+    exec(compile(code, "docs/python.md", "exec"), namespace)
+    sums = namespace["sums"]
+    assert len(sums) == 100
+    assert [s.volume() for s in sums[:3]] == [minksum.minkowski_sum(f"random:200:{i}", "sphere:3").volume() for i in range(3)]

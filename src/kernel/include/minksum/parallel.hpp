@@ -1,0 +1,28 @@
+// minksum — independent jobs on a pool of threads (batches of sums).
+//
+// parallel_for(n, threads, job) calls job(i) once for every i in [0, n), on
+// `threads` threads (0: one per hardware thread; never more threads than
+// jobs; 1: on the calling thread, no thread started).  The jobs are handed
+// out one at a time in index order, so a long job does not hold up the
+// others behind a fixed share.  Every computation of minksum is independent
+// of the others (no global state), so jobs may compute sums, hulls and loads
+// concurrently; they must not write shared data without their own
+// synchronisation (writing slot i of a pre-sized vector is fine).
+//
+// An exception thrown by a job is not lost: the first one (in index order)
+// is rethrown by parallel_for once every thread has stopped; after a job has
+// thrown, no job with a larger index starts.  Callers that want one outcome
+// per job catch inside the job (minksum batch and the Python binding do).
+#pragma once
+
+#include <cstddef>
+#include <functional>
+
+namespace minksum {
+
+// The number of threads parallel_for runs for `threads` (0: hardware) and n jobs.
+unsigned parallel_threads(unsigned threads, std::size_t n);
+
+void parallel_for(std::size_t n, unsigned threads, const std::function<void(std::size_t)>& job);
+
+}  // namespace minksum

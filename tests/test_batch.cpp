@@ -1,0 +1,197 @@
+// `minksum batch`: JSON lines and name pairs in, one JSON line per pair out in
+// input order, the same answers as `minksum sum --json` for any --threads,
+// failed pairs reported in place, malformed input refused before any work.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <sys/wait.h>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CmdResult {
+  int status = -1;
+  std::string out, err;
+};
+
+class Batch : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("minksum_batch_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path write(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p;
+  }
+
+  // Run `minksum ARGS`, stdin from `input` (a file of that text).
+  CmdResult run(const std::string& args, const std::string& input = "") {
+    const fs::path in = write("stdin.txt", input), err = dir_ / "stderr.txt";
+    const std::string cmd = std::string(MINKSUM_BIN) + " " + args + " <" + in.string() + " 2>" + err.string();
+    CmdResult r;
+    FILE* p = ::popen(cmd.c_str(), "r");
+    if (!p) return r;
+    std::array<char, 4096> buf;
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+    const int st = ::pclose(p);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    std::ifstream e(err);
+    std::stringstream s;
+    s << e.rdbuf();
+    r.err = s.str();
+    return r;
+  }
+
+  static std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);) out.push_back(l);
+    return out;
+  }
+
+  // The value of "key" in a JSON line: a number or a string's content.
+  static std::string field(const std::string& json, const std::string& key) {
+    std::smatch m;
+    if (std::regex_search(json, m, std::regex("\"" + key + "\": \"([^\"]*)\""))) return m[1];
+    if (std::regex_search(json, m, std::regex("\"" + key + "\": (-?[0-9.e+-]+)"))) return m[1];
+    return "<none>";
+  }
+
+  fs::path dir_;
+};
+
+const char* kPairs[][2] = {{"cube", "tetra"},          {"dodecahedron", "truncated-cube"},
+                           {"sphere:3", "sphere:3@rot:5"}, {"box:1:2:3", "octahedron"},
+                           {"random:200:1", "random:200:2"}};
+
+TEST_F(Batch, AgreesWithSumForOneAndTwoThreads) {
+  std::string input = "# pairs\n\n";
+  for (const auto& p : kPairs) input += std::string("{\"a\": \"") + p[0] + "\", \"b\": \"" + p[1] + "\"}\n";
+  const CmdResult one = run("batch --threads 1", input), two = run("batch - --threads 2", input);
+  ASSERT_EQ(one.status, 0) << one.err;
+  ASSERT_EQ(two.status, 0) << two.err;
+  const auto l1 = lines(one.out), l2 = lines(two.out);
+  ASSERT_EQ(l1.size(), std::size(kPairs));
+  ASSERT_EQ(l2.size(), std::size(kPairs));
+  for (std::size_t i = 0; i < l1.size(); ++i) {
+    SCOPED_TRACE(l1[i]);
+    const CmdResult sum = run(std::string("sum ") + kPairs[i][0] + " " + kPairs[i][1] + " --json");
+    ASSERT_EQ(sum.status, 0);
+    EXPECT_EQ(field(l1[i], "line"), std::to_string(i + 3));
+    EXPECT_EQ(field(l1[i], "a"), kPairs[i][0]);
+    EXPECT_EQ(field(l1[i], "b"), kPairs[i][1]);
+    for (const char* key : {"method", "vertices", "edges", "facets", "volume", "volume_double"}) {
+      EXPECT_EQ(field(l1[i], key), field(sum.out, key)) << key;
+      EXPECT_EQ(field(l2[i], key), field(sum.out, key)) << key;
+    }
+  }
+}
+
+TEST_F(Batch, NamePairsFileAndMethods) {
+  const fs::path file = write("pairs.txt", "cube tetra\n  sphere:2   cube  \n{\"a\": \"cube\", \"b\": \"tetra\", \"method\": \"chms\"}\n");
+  const CmdResult r = run("batch " + file.string() + " --method cvms --threads 2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto l = lines(r.out);
+  ASSERT_EQ(l.size(), 3u);
+  EXPECT_EQ(field(l[0], "method"), "cvms");
+  EXPECT_EQ(field(l[1], "a"), "sphere:2");
+  EXPECT_EQ(field(l[1], "line"), "2");
+  EXPECT_EQ(field(l[2], "method"), "chms");
+  EXPECT_EQ(field(l[0], "volume"), field(l[2], "volume"));
+  EXPECT_EQ(r.err, "");
+}
+
+TEST_F(Batch, FailedPairsReportedInPlaceAndExitStatus) {
+  const std::string bad = std::string(MINKSUM_TEST_DATA) + "/bad/nan.off";
+  const CmdResult r = run("batch --threads 2", "cube tetra\ncube " + bad + "\nnosuchsolid cube\ncube octahedron\n");
+  EXPECT_EQ(r.status, 3);
+  const auto l = lines(r.out);
+  ASSERT_EQ(l.size(), 4u);
+  EXPECT_EQ(field(l[0], "vertices"), field(run("sum cube tetra --json").out, "vertices"));
+  EXPECT_EQ(field(l[1], "status"), "3");
+  EXPECT_NE(field(l[1], "error").find(bad + ": line 4: "), std::string::npos) << l[1];
+  EXPECT_EQ(field(l[2], "status"), "2");
+  EXPECT_NE(field(l[2], "error").find("nosuchsolid"), std::string::npos) << l[2];
+  EXPECT_NE(field(l[3], "facets"), "<none>");
+  // One stderr line: how many failed, and the first.
+  EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("2 of 4 pairs failed; the first, <stdin> line 2: " + bad), std::string::npos) << r.err;
+  // Only usage failures: status 2.
+  EXPECT_EQ(run("batch", "cube nosuchsolid\n").status, 2);
+}
+
+TEST_F(Batch, MalformedLinesAreBadInputBeforeAnyWork) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"cube tetra\n{\"a\": \"cube\"\n", "<stdin>: line 2: expected '}'"},
+      {"{\"a\": \"cube\"}\n", "<stdin>: line 1: missing \"b\""},
+      {"{\"a\": \"cube\", \"b\": \"tetra\", \"x\": \"1\"}\n", "unknown key \"x\""},
+      {"{\"a\": \"cube\", \"b\": \"tetra\", \"method\": \"fast\"}\n", "unknown method 'fast'"},
+      {"{\"a\": \"cube\", \"b\": true}\n", "\"b\" must be a non-empty string"},
+      {"{\"a\": \"cube\", \"a\": \"tetra\"}\n", "\"a\" given twice"},
+      {"{\"a\": \"cube\", \"b\": \"tetra\"} x\n", "text after the JSON object"},
+      {"{\"a\": \"cu\\qbe\", \"b\": \"tetra\"}\n", "bad escape"},
+      {"cube\n", "line 1: expected two names"},
+      {"cube tetra octahedron\n", "more than two names"},
+  };
+  for (const auto& [input, message] : cases) {
+    SCOPED_TRACE(input);
+    const CmdResult r = run("batch", input);
+    EXPECT_EQ(r.status, 3);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  }
+}
+
+TEST_F(Batch, JsonEscapesInNames) {
+  const CmdResult r = run("batch", "{\"a\": \"\\u0063ube\", \"b\": \"tet\\u0072a\"}\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(field(r.out, "a"), "cube");
+  EXPECT_EQ(field(r.out, "b"), "tetra");
+}
+
+TEST_F(Batch, UsageErrors) {
+  EXPECT_EQ(run("batch --threads 0").status, 2);
+  EXPECT_EQ(run("batch --threads two").status, 2);
+  EXPECT_EQ(run("batch --method fast").status, 2);
+  EXPECT_EQ(run("batch a.txt b.txt").status, 2);
+  const CmdResult missing = run("batch " + (dir_ / "none.txt").string());
+  EXPECT_EQ(missing.status, 3);
+  EXPECT_NE(missing.err.find("none.txt"), std::string::npos);
+}
+
+TEST_F(Batch, HelpAndEmptyInput) {
+  const CmdResult h = run("batch --help");
+  EXPECT_EQ(h.status, 0);
+  EXPECT_NE(h.out.find("--threads N"), std::string::npos);
+  EXPECT_NE(h.out.find("walk"), std::string::npos);  // the method list filled in
+  EXPECT_NE(run("--help").out.find("minksum batch"), std::string::npos);
+  const CmdResult empty = run("batch", "# nothing\n\n");
+  EXPECT_EQ(empty.status, 0);
+  EXPECT_EQ(empty.out, "");
+}
+
+TEST_F(Batch, OutputNotWritableExitsOne) {
+  const CmdResult r = run("batch >/dev/full", "cube tetra\n");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("cannot write"), std::string::npos) << r.err;
+}
+
+}  // namespace

@@ -1,0 +1,78 @@
+// parallel_for (<minksum/parallel.hpp>): every job once, the thread count as
+// documented, the first failure in index order rethrown, and sums on several
+// threads equal to the same sums on one.
+#include <gtest/gtest.h>
+
+#include <minksum/catalog.hpp>
+#include <minksum/minkowski.hpp>
+#include <minksum/parallel.hpp>
+
+#include <atomic>
+#include <mutex>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace minksum;
+
+TEST(Parallel, EveryJobExactlyOnce) {
+  for (unsigned threads : {1u, 2u, 3u, 8u}) {
+    std::vector<std::atomic<int>> count(1000);
+    parallel_for(count.size(), threads, [&](std::size_t i) { ++count[i]; });
+    for (std::size_t i = 0; i < count.size(); ++i) ASSERT_EQ(count[i].load(), 1) << "threads " << threads << " job " << i;
+  }
+  parallel_for(0, 4, [](std::size_t) { FAIL() << "no job to run"; });
+}
+
+TEST(Parallel, ThreadCount) {
+  EXPECT_EQ(parallel_threads(4, 2), 2u);  // never more threads than jobs
+  EXPECT_EQ(parallel_threads(4, 0), 1u);
+  EXPECT_EQ(parallel_threads(3, 100), 3u);
+  EXPECT_EQ(parallel_threads(0, 1000), std::max(1u, std::thread::hardware_concurrency()));
+  // One thread: the jobs run on the calling thread.
+  const auto self = std::this_thread::get_id();
+  parallel_for(5, 1, [&](std::size_t) { EXPECT_EQ(std::this_thread::get_id(), self); });
+  // Several: on that many distinct threads (each job waits until all have started one).
+  std::mutex m;
+  std::set<std::thread::id> ids;
+  std::atomic<int> started{0};
+  parallel_for(3, 3, [&](std::size_t) {
+    {
+      std::lock_guard<std::mutex> lock(m);
+      ids.insert(std::this_thread::get_id());
+    }
+    ++started;
+    while (started.load() < 3) std::this_thread::yield();
+  });
+  EXPECT_EQ(ids.size(), 3u);
+}
+
+TEST(Parallel, FirstFailureInIndexOrderIsRethrown) {
+  for (unsigned threads : {1u, 2u, 4u}) {
+    try {
+      parallel_for(200, threads, [](std::size_t i) {
+        if (i == 37 || i == 150) throw std::runtime_error("job " + std::to_string(i));
+      });
+      FAIL() << "no exception";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "job 37") << "threads " << threads;
+    }
+  }
+}
+
+TEST(Parallel, SumsOnTwoThreadsEqualSumsOnOne) {
+  const char* specs[] = {"cube", "sphere:2@rot:3", "random:80:4", "truncated-cube"};
+  std::vector<std::pair<ConvexPolytope, ConvexPolytope>> pairs;
+  for (const char* a : specs)
+    for (const char* b : specs) pairs.emplace_back(catalog_polytope(a), catalog_polytope(b));
+  auto run = [&](unsigned threads) {
+    std::vector<std::vector<Point3>> out(pairs.size());
+    parallel_for(pairs.size(), threads, [&](std::size_t i) {
+      out[i] = minkowski_sum(pairs[i].first, pairs[i].second).polytope.coordinates().to_points();
+    });
+    return out;
+  };
+  EXPECT_EQ(run(1), run(2));
+}

@@ -60,6 +60,30 @@ class Cli : public ::testing::Test {
     return r;
   }
 
+  // Run a shell command line in which every "minksum" is the command under
+  // test (pipes, redirections); stderr of the whole line is collected.
+  CmdResult run_sh(const std::string& line) {
+    std::string cmd;
+    for (std::size_t at = 0;;) {
+      const std::size_t next = line.find("minksum", at);
+      cmd += line.substr(at, next - at);
+      if (next == std::string::npos) break;
+      cmd += MINKSUM_BIN;
+      at = next + 7;
+    }
+    fs::path err = dir_ / "stderr.txt";
+    CmdResult r;
+    FILE* p = ::popen(("{ " + cmd + " ; } 2>" + err.string()).c_str(), "r");
+    if (!p) return r;
+    std::array<char, 4096> buf;
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+    int st = ::pclose(p);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    r.err = slurp(err);
+    return r;
+  }
+
   // Integer value of "key": N in a JSON line.
   static long json_int(const std::string& json, const std::string& key) {
     std::smatch m;
@@ -395,4 +419,277 @@ TEST_F(CgmCli, SumMethodCgm) {
   ASSERT_EQ(r.status, 0);
   EXPECT_NE(r.out.find("\"method\": \"cgm\""), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"facets\": 26"), std::string::npos) << r.out;
+}
+
+// --- output that reads back, chaining, pipes -------------------------
+
+namespace {
+// Every output a command can ask for: extension and --binary.
+const std::vector<std::pair<std::string, bool>> kEveryOutput = {
+    {"off", false}, {"obj", false}, {"ply", false}, {"ply", true}, {"stl", false}, {"stl", true}, {"wrl", false}};
+std::string output_flags(const std::pair<std::string, bool>& o) { return o.second ? " --binary" : ""; }
+std::size_t lines(const std::string& s) { return std::size_t(std::count(s.begin(), s.end(), '\n')); }
+}  // namespace
+
+// minksum sum sphere:4 sphere:4@rot:5 -o s.off used to write doubles whose
+// facets were not exactly planar ('stats s.off': "facet 2560: is not
+// planar"; as .stl, a reflex edge).  Every format now reads back; the note
+// says how far the vertices moved, on one line.
+TEST_F(Cli, RoundedSphereSumReadsBack) {
+  for (const auto& o : kEveryOutput) {
+    SCOPED_TRACE(o.first + output_flags(o));
+    const std::string out = path("s." + o.first);
+    CmdResult r = run("sum sphere:4 sphere:4@rot:5 --json -o " + out + output_flags(o));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("minksum: note: " + out + ": "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("largest vertex displacement"), std::string::npos) << r.err;
+    EXPECT_NE(r.out.find("\"rounding\": {\"coordinates\": "), std::string::npos) << r.out;
+    EXPECT_GT(json_double(r.out, "max_displacement"), 0) << r.out;
+    EXPECT_LT(json_double(r.out, "max_displacement"), o.second && o.first == "stl" ? 1e-6 : 1e-15) << r.out;
+    CmdResult s = run("stats " + out + " --json");
+    ASSERT_EQ(s.status, 0) << s.err;
+    EXPECT_EQ(s.err, "");
+    EXPECT_EQ(json_int(s.out, "vertices") - json_int(s.out, "edges") + json_int(s.out, "facets"), 2);
+  }
+  // --exact keeps every coordinate: read back, the same polytope exactly.
+  CmdResult e = run("sum sphere:4 sphere:4@rot:5 --json --exact -o " + path("e.off"));
+  ASSERT_EQ(e.status, 0) << e.err;
+  EXPECT_EQ(e.err, "");
+  EXPECT_NE(e.out.find("\"rounding\": null"), std::string::npos) << e.out;
+  CmdResult s = run("stats " + path("e.off") + " --json");
+  ASSERT_EQ(s.status, 0) << s.err;
+  for (const char* key : {"vertices", "edges", "facets"}) EXPECT_EQ(json_int(s.out, key), json_int(e.out, key)) << key;
+  const std::regex volume("\"volume\": \"[0-9/]+\"");
+  std::smatch a, b;
+  ASSERT_TRUE(std::regex_search(e.out, a, volume));
+  ASSERT_TRUE(std::regex_search(s.out, b, volume));
+  EXPECT_EQ(a.str(), b.str());
+}
+
+// Every writer, every catalog family, rounded and exact, through the command.
+TEST_F(Cli, EveryWriterEveryFamilyReadsBack) {
+  for (const char* spec : {"dodecahedron@rot:3", "snub-cube", "pentagonal-hexecontahedron@rot:1", "sphere:3@rot:5",
+                           "dioctagonal:17@rot:2", "random:100:3@rot:4", "zonotope:6:1@rot:5", "box:1/3:1/7:2@rot:9"}) {
+    for (const auto& o : kEveryOutput) {
+      SCOPED_TRACE(std::string(spec) + " ." + o.first + output_flags(o));
+      const std::string out = path("g." + o.first);
+      CmdResult g = run(std::string("gen ") + spec + " -o " + out + output_flags(o));
+      ASSERT_EQ(g.status, 0) << g.err;
+      EXPECT_LE(lines(g.err), 1u) << g.err;
+      CmdResult s = run("stats " + out);
+      EXPECT_EQ(s.status, 0) << s.err;
+      if (o.first == "ply" || o.first == "stl") continue;
+      ASSERT_EQ(run(std::string("gen ") + spec + " --exact -o " + out).status, 0);
+      CmdResult x = run("stats " + out + " --json"), c = run(std::string("stats ") + spec + " --json");
+      ASSERT_EQ(x.status, 0) << x.err;
+      auto facts = [](const std::string& json) {  // counts, exact volume, degrees: not the times
+        const std::size_t from = json.find("\"vertices\""), to = json.find("\"phases\"");
+        return json.substr(from, to - from);
+      };
+      EXPECT_EQ(facts(x.out), facts(c.out)) << "exact output differs from the catalog polytope";
+    }
+  }
+}
+
+// The note suggests --exact only where --exact works.
+TEST_F(Cli, RoundingNoteSuggestsExactOnlyWhereItWorks) {
+  for (const auto& o : kEveryOutput) {
+    SCOPED_TRACE(o.first + output_flags(o));
+    CmdResult g = run("gen cube@rot:1,2,3,4 -o " + path("c." + o.first) + output_flags(o));
+    ASSERT_EQ(g.status, 0) << g.err;
+    ASSERT_EQ(lines(g.err), 1u) << g.err;
+    if (o.first == "off" || o.first == "obj" || o.first == "wrl")
+      EXPECT_NE(g.err.find("; --exact keeps them exact"), std::string::npos) << g.err;
+    else
+      EXPECT_NE(g.err.find("--exact with .off, .obj or .wrl"), std::string::npos) << g.err;
+  }
+  EXPECT_EQ(run("gen cube -o " + path("c.off")).err, "");  // nothing rounded: no note
+}
+
+// Coordinates that do not survive the format: exit 1, one line naming the
+// fix, no file (issue: a subnormal cube written to binary STL as zeros with
+// exit 0; 1/7^1000 written as zeros to .off).
+TEST_F(Cli, SubnormalCubeToBinaryStlIsRefused) {
+  ASSERT_EQ(run("gen cube@scale:1e-310 -o " + path("sub.off")).status, 0);
+  CmdResult r = run("sum " + path("sub.off") + " " + path("sub.off") + " --binary -o " + path("x.stl"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("write ascii STL (without --binary)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("x.stl")));
+  CmdResult ascii = run("sum " + path("sub.off") + " " + path("sub.off") + " -o " + path("x.stl"));
+  ASSERT_EQ(ascii.status, 0) << ascii.err;
+  EXPECT_EQ(run("stats " + path("x.stl")).status, 0);
+}
+
+TEST_F(Cli, TinyRationalCubeToOffIsRefusedWithoutExact) {
+  std::string n = "1";  // 7^1000 in decimal, by schoolbook multiplication
+  for (int i = 0; i < 1000; ++i) {
+    int carry = 0;
+    for (auto it = n.rbegin(); it != n.rend(); ++it) {
+      const int d = (*it - '0') * 7 + carry;
+      *it = char('0' + d % 10);
+      carry = d / 10;
+    }
+    while (carry) n.insert(n.begin(), char('0' + carry % 10)), carry /= 10;
+  }
+  {
+    std::ofstream o(path("tiny.off"));
+    o << "OFF\n8 6 12\n";
+    for (int i = 0; i < 8; ++i)
+      o << ((i & 1) ? "" : "-") << "1/" << n << " " << ((i & 2) ? "" : "-") << "1/" << n << " "
+        << ((i & 4) ? "" : "-") << "1/" << n << "\n";
+    o << "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n";
+  }
+  for (const char* ext : {"off", "ply"}) {
+    CmdResult r = run("sum " + path("tiny.off") + " " + path("tiny.off") + " -o " + path(std::string("t.") + ext));
+    EXPECT_EQ(r.status, 1) << ext;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("no longer make a solid"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(std::string(ext) == "off" ? "use --exact to write" : "use --exact with .off, .obj or .wrl"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(path(std::string("t.") + ext)));
+  }
+  CmdResult e = run("sum " + path("tiny.off") + " " + path("tiny.off") + " --exact -o " + path("t.off"));
+  ASSERT_EQ(e.status, 0) << e.err;
+  EXPECT_EQ(run("stats " + path("t.off")).status, 0);
+}
+
+// Overflow used to exit 2 (usage) with two lines (the note, then the error).
+TEST_F(Cli, CoordinateBeyondDoubleRangeExitsOneWithOneLine) {
+  {
+    std::ofstream o(path("big.off"));
+    o << "OFF\n8 6 12\n";
+    const std::string big = "1" + std::string(330, '0');  // 10^330 > DBL_MAX
+    for (int i = 0; i < 8; ++i)
+      o << ((i & 1) ? "" : "-") << big << " " << ((i & 2) ? 1 : -1) << " " << ((i & 4) ? 1 : -1) << "\n";
+    o << "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n";
+  }
+  for (const char* ext : {"off", "stl"}) {
+    CmdResult r = run("sum " + path("big.off") + " cube -o " + path(std::string("b.") + ext));
+    EXPECT_EQ(r.status, 1) << ext;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("does not fit in a double"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--exact"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(path(std::string("b.") + ext)));
+  }
+  EXPECT_EQ(run("sum " + path("big.off") + " cube --exact -o " + path("b.off")).status, 0);
+}
+
+// minksum sum A B C ...: A ⊕ B ⊕ C, the same as chaining through exact files.
+TEST_F(Cli, SumOfThreeOrMoreOperands) {
+  CmdResult r = run("sum cube tetra octahedron@rot:3 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"operands\": [{\"name\": \"cube\", \"vertices\": 8, \"edges\": 12, \"facets\": 6}, "
+                       "{\"name\": \"tetra\", \"vertices\": 4, \"edges\": 6, \"facets\": 4}, "
+                       "{\"name\": \"octahedron@rot:3\""),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("\"a\": "), std::string::npos) << r.out;
+  ASSERT_EQ(run("sum cube tetra --exact -o " + path("ab.off")).status, 0);
+  CmdResult c = run("sum " + path("ab.off") + " octahedron@rot:3 --json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  for (const char* key : {"vertices", "edges", "facets"}) EXPECT_EQ(json_int(r.out, key), json_int(c.out, key)) << key;
+  const std::regex volume("\"volume\": \"[0-9/]+\"");
+  std::smatch a, b;
+  ASSERT_TRUE(std::regex_search(r.out, a, volume));
+  ASSERT_TRUE(std::regex_search(c.out, b, volume));
+  EXPECT_EQ(a.str(), b.str());
+  CmdResult text = run("sum cube tetra octahedron dodecahedron --method chms");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_EQ(text.out.rfind("cube (8 V, 6 F) ⊕ tetra (4 V, 4 F) ⊕ octahedron (6 V, 8 F) ⊕ dodecahedron (20 V, 12 F)\n", 0), 0u)
+      << text.out;
+  EXPECT_EQ(run("sum cube").status, 2);
+}
+
+// minksum sum A B -o s.EXT && minksum sum s.EXT C, for every format.
+TEST_F(Cli, ChainingThroughEveryFormat) {
+  for (const auto& o : kEveryOutput) {
+    SCOPED_TRACE(o.first + output_flags(o));
+    const std::string s = path("s." + o.first);
+    ASSERT_EQ(run("sum sphere:3 dodecahedron@rot:5 -o " + s + output_flags(o)).status, 0);
+    CmdResult c = run("sum " + s + " cube@rot:2 -o " + path("t." + o.first) + output_flags(o));
+    ASSERT_EQ(c.status, 0) << c.err;
+    EXPECT_EQ(run("stats " + path("t." + o.first)).status, 0);
+  }
+}
+
+// -: a mesh on standard input or standard output, with --format.
+TEST_F(Cli, GenPipesIntoStats) {
+  CmdResult r = run_sh("minksum gen sphere:3 -o - --format off | minksum stats - --format off --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json_int(r.out, "vertices"), 162);
+  EXPECT_EQ(json_int(r.out, "facets"), 320);
+  EXPECT_NE(r.err.find("sphere:3: 162 vertices, 480 edges, 320 facets, written to standard output"), std::string::npos)
+      << r.err;
+  for (const auto& o : kEveryOutput) {
+    SCOPED_TRACE(o.first + output_flags(o));
+    CmdResult p = run_sh("minksum gen truncated-octahedron -o - --format " + o.first + output_flags(o) +
+                         " | minksum stats - --json --format " + o.first);
+    ASSERT_EQ(p.status, 0) << p.err;
+    EXPECT_EQ(json_int(p.out, "vertices"), 24);
+    EXPECT_EQ(json_int(p.out, "edges"), 36);
+    EXPECT_EQ(json_int(p.out, "facets"), 14);
+  }
+}
+
+TEST_F(Cli, MeshOnStdoutKeepsTheSummaryOffIt) {
+  CmdResult g = run("gen cube -o - --format off");
+  ASSERT_EQ(g.status, 0) << g.err;
+  EXPECT_EQ(g.out.rfind("OFF\n8 6 12\n", 0), 0u) << g.out;
+  EXPECT_NE(g.err.find("written to standard output"), std::string::npos) << g.err;
+  CmdResult s = run("sum cube tetra -o - --format stl --binary --json");
+  ASSERT_EQ(s.status, 0) << s.err;
+  // A binary STL of the 16 vertices (2V - 4 = 28 triangles), nothing else.
+  EXPECT_EQ(s.out.size(), 84u + 50u * 28u);
+  EXPECT_EQ(s.err.rfind("{\"vertices\": 16", 0), 0u) << s.err;
+  EXPECT_NE(s.err.find("\"output\": \"-\""), std::string::npos) << s.err;
+  CmdResult c = run_sh("minksum sum cube tetra -o - --format obj | minksum sum - octahedron --format obj --json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  EXPECT_NE(c.out.find("{\"name\": \"-\", \"vertices\": 16"), std::string::npos) << c.out;
+}
+
+TEST_F(Cli, StandardStreamsNeedAFormat) {
+  CmdResult in = run("stats -");
+  EXPECT_EQ(in.status, 2);
+  EXPECT_EQ(in.err, "minksum: reading a mesh from standard input ('-') needs --format off|obj|ply|stl|wrl\n");
+  CmdResult out = run("gen cube -o -");
+  EXPECT_EQ(out.status, 2);
+  EXPECT_EQ(out.err, "minksum: writing a mesh to standard output (-o -) needs --format off|obj|ply|stl|wrl\n");
+  EXPECT_EQ(out.out, "");
+  CmdResult bad = run("gen cube -o - --format xyz");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(bad.err, "minksum: unknown format 'xyz' for --format (off|obj|ply|stl|wrl)\n");
+  CmdResult twice = run_sh("minksum gen cube -o - --format off | minksum sum - - --format off");
+  EXPECT_EQ(twice.status, 2);
+  EXPECT_NE(twice.err.find("standard input ('-') can be read only once"), std::string::npos) << twice.err;
+  CmdResult exact = run("gen cube -o - --format stl --exact");
+  EXPECT_EQ(exact.status, 2);
+  EXPECT_NE(exact.err.find("cannot store exact rationals"), std::string::npos) << exact.err;
+  // Bad data on standard input: exit 3, one line naming <stdin>.
+  CmdResult data = run_sh("printf 'OFF\\n3 1 0\\n0 0 0\\n1 0 0\\n0 1 0\\n3 0 1 2\\n' | minksum stats - --format off");
+  EXPECT_EQ(data.status, 3);
+  EXPECT_EQ(lines(data.err), 1u) << data.err;
+  EXPECT_EQ(data.err.rfind("minksum: <stdin>: ", 0), 0u) << data.err;
+  // --format for a file whose name does not tell; a known extension keeps its own.
+  ASSERT_EQ(run("gen cube -o " + path("c.off")).status, 0);
+  fs::rename(path("c.off"), path("c.dat"));
+  EXPECT_EQ(run("stats " + path("c.dat")).status, 2);
+  EXPECT_EQ(run("stats " + path("c.dat") + " --format off").status, 0);
+  ASSERT_EQ(run("gen cube -o " + path("d.dat") + " --format ply").status, 0);
+  EXPECT_EQ(run("stats " + path("d.dat") + " --format ply").status, 0);
+}
+
+TEST_F(Cli, QueryAndCgmReadStandardInput) {
+  CmdResult q = run_sh("minksum gen cube -o - --format ply | minksum query distance - cube --translate-q 3,0,0 --format ply");
+  ASSERT_EQ(q.status, 0) << q.err;
+  CmdResult d = run("query distance cube cube --translate-q 3,0,0");
+  EXPECT_EQ(q.out, d.out);
+  CmdResult c = run_sh("minksum gen octahedron -o - --format wrl | minksum cgm - --stats --format wrl");
+  ASSERT_EQ(c.status, 0) << c.err;
+  EXPECT_NE(c.out.find("6 vertices, 12 edges, 8 facets"), std::string::npos) << c.out;
+  CmdResult t = run_sh("echo '0,0,0' | minksum query collide - cube --trajectory - --format off");
+  EXPECT_EQ(t.status, 2);
+  EXPECT_NE(t.err.find("already the trajectory"), std::string::npos) << t.err;
 }

@@ -24,6 +24,8 @@ Usage:
                 [--hull] [--format F]
   minksum stats P [--json] [--hull] [--format F]
   minksum gen NAME -o OUT [--exact] [--binary] [--format F]
+  minksum convert IN -o OUT [--hull] [--exact] [--binary] [--format F]
+                [--from F] [--json]
   minksum query collide|distance|depth|ddepth P Q [--translate-p X,Y,Z]
                 [--translate-q X,Y,Z] [--rotate-q A,B,C,D] [--direction X,Y,Z]
                 [--trajectory FILE] [--json]
@@ -58,6 +60,7 @@ constexpr Command kCommands[] = {
     {"query", run_query},
     {"simulate", run_simulate},
     {"cgm", run_cgm},
+    {"convert", run_convert},
 };
 
 }  // namespace

@@ -421,7 +421,7 @@ TEST_F(CgmCli, SumMethodCgm) {
   EXPECT_NE(r.out.find("\"facets\": 26"), std::string::npos) << r.out;
 }
 
-// --- output that reads back, chaining, pipes -------------------------
+// --- output that reads back, chaining, pipes, convert -------------------------
 
 namespace {
 // Every output a command can ask for: extension and --binary.
@@ -692,4 +692,43 @@ TEST_F(Cli, QueryAndCgmReadStandardInput) {
   CmdResult t = run_sh("echo '0,0,0' | minksum query collide - cube --trajectory - --format off");
   EXPECT_EQ(t.status, 2);
   EXPECT_NE(t.err.find("already the trajectory"), std::string::npos) << t.err;
+}
+
+// minksum convert IN -o OUT: every format to every format, cleaned.
+TEST_F(Cli, ConvertEveryFormatToEveryFormat) {
+  for (const auto& from : kEveryOutput) {
+    const std::string in = path("in." + from.first);
+    ASSERT_EQ(run("gen truncated-cube -o " + in + output_flags(from)).status, 0);
+    for (const auto& to : kEveryOutput) {
+      SCOPED_TRACE(from.first + output_flags(from) + " -> " + to.first + output_flags(to));
+      const std::string out = path("out." + to.first);
+      CmdResult c = run("convert " + in + " -o " + out + output_flags(to) + " --json");
+      ASSERT_EQ(c.status, 0) << c.err;
+      EXPECT_EQ(json_int(c.out, "vertices"), 24) << c.out;
+      EXPECT_EQ(json_int(c.out, "facets"), 14) << c.out;
+      CmdResult s = run("stats " + out + " --json");
+      ASSERT_EQ(s.status, 0) << s.err;
+      EXPECT_EQ(json_int(s.out, "facets"), 14);
+    }
+  }
+  // A triangulated STL becomes one polygon per facet.
+  CmdResult t = run("convert " + data("bad/triangulated_cube.stl") + " -o " + path("cube.off"));
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_EQ(slurp(path("cube.off")).rfind("OFF\n8 6 12\n", 0), 0u);
+  // Through pipes, with a format on each side.
+  CmdResult p = run_sh("minksum gen cube -o - --format stl | minksum convert - --from stl -o - --format off");
+  ASSERT_EQ(p.status, 0) << p.err;
+  EXPECT_EQ(p.out.rfind("OFF\n8 6 12\n", 0), 0u) << p.out;
+  // Not convex: refused naming --hull; with --hull its hull.
+  CmdResult n = run("convert " + data("bad/nonconvex_lprism.off") + " -o " + path("h.off"));
+  EXPECT_EQ(n.status, 3);
+  EXPECT_NE(n.err.find("--hull"), std::string::npos) << n.err;
+  EXPECT_FALSE(fs::exists(path("h.off")));
+  EXPECT_EQ(run("convert " + data("bad/nonconvex_lprism.off") + " -o " + path("h.off") + " --hull").status, 0);
+  EXPECT_EQ(run("stats " + path("h.off")).status, 0);
+  // Usage.
+  EXPECT_EQ(run("convert cube").status, 2);
+  EXPECT_EQ(run("convert -o " + path("x.off")).status, 2);
+  EXPECT_EQ(run("convert cube -o " + path("x.stl") + " --exact").status, 2);
+  EXPECT_EQ(run("convert --help").status, 0);
 }

@@ -9,6 +9,7 @@
 #include <minksum/error.hpp>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
 
@@ -99,8 +100,72 @@ ConvexPolytope ConvexPolytope::hull(const std::vector<Point3>& points, const std
   return result;
 }
 
+// Points that are all doubles: CGAL's Epick kernel, whose predicates are
+// exact (filtered, with exact fallbacks) and whose convex hull traits use no
+// constructions (Convex_hull_traits_3: a plane is a triple of points), so the
+// hull is the exact one, without a rational per coordinate.
 ConvexPolytope ConvexPolytope::hull(const PointList& points, const std::string& source) {
-  return hull(points.to_points(), source);
+  if (!points.all_doubles()) return hull(points.to_points(), source);
+  using E = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::vector<E::Point_3> ep;
+  ep.reserve(points.size());
+  for (const Vec3d& v : points.approx()) ep.emplace_back(v.x, v.y, v.z);
+  // The degenerate cases, decided by the same exact predicates, with the
+  // messages of check_dimension.
+  const std::string n = std::to_string(ep.size());
+  if (ep.empty()) throw InputError(source, "", "no points");
+  std::size_t i1 = 1;
+  while (i1 < ep.size() && ep[i1] == ep[0]) ++i1;
+  if (i1 == ep.size())
+    throw InputError(source, "", "degenerate: all " + n + " points coincide (a single point, not a solid)");
+  std::size_t i2 = i1 + 1;
+  while (i2 < ep.size() && CGAL::collinear(ep[0], ep[i1], ep[i2])) ++i2;
+  if (i2 >= ep.size())
+    throw InputError(source, "", "degenerate: all " + n + " points are collinear (a segment, not a solid)");
+  std::size_t i3 = i2 + 1;
+  while (i3 < ep.size() && CGAL::coplanar(ep[0], ep[i1], ep[i2], ep[i3])) ++i3;
+  if (i3 >= ep.size())
+    throw InputError(source, "", "degenerate: all " + n + " points are coplanar (a polygon, not a solid)");
+
+  CGAL::Surface_mesh<E::Point_3> sm;
+  CGAL::convex_hull_3(ep.begin(), ep.end(), sm);
+  // Hull vertices back to input points (first occurrence), as above.
+  struct Hash {
+    std::size_t operator()(const E::Point_3& p) const {
+      std::size_t h = 0;
+      for (int k = 0; k < 3; ++k) h = (h ^ std::hash<double>()(p[k])) * 0x9e3779b97f4a7c15ULL;
+      return h;
+    }
+  };
+  std::unordered_map<E::Point_3, Index, Hash> index_of;
+  index_of.reserve(ep.size());
+  for (Index i = 0; i < ep.size(); ++i) index_of.try_emplace(ep[i], i);
+  std::vector<std::pair<Index, std::size_t>> order;
+  for (auto v : sm.vertices()) {
+    auto it = index_of.find(sm.point(v));
+    if (it == index_of.end()) throw std::logic_error("convex hull produced a point that is not an input point");
+    order.emplace_back(it->second, std::size_t(v));
+  }
+  std::sort(order.begin(), order.end());
+  Mesh m;
+  std::vector<Index> input_index;
+  std::unordered_map<std::size_t, Index> local;
+  for (auto [input, v] : order) {
+    local[v] = Index(m.points.size());
+    m.points.push_back(points.approx(input));
+    input_index.push_back(input);
+  }
+  for (auto f : sm.faces()) {
+    std::vector<Index> poly;
+    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) poly.push_back(local[std::size_t(v)]);
+    std::rotate(poly.begin(), std::min_element(poly.begin(), poly.end()), poly.end());
+    m.faces.push_back(std::move(poly));
+  }
+  std::sort(m.faces.begin(), m.faces.end());
+  ConvexPolytope result = PolytopeBuilder::build(m, source);
+  PolytopeBuilder::canonicalize_facets(result);
+  for (auto& s : result.source_vertex_) s = input_index[s];
+  return result;
 }
 
 }  // namespace minksum

@@ -58,13 +58,12 @@ int run_convert(const std::vector<std::string>& argv) {
   }
   const std::string& in = a.positional[0];
   const ConvexPolytope p = load_operand(in, a.flag("--hull"), nullptr, from);
-  const RoundingReport r = write_mesh_output(*output, p);
+  ConvexPolytope written;
+  const RoundingReport r = write_mesh_output(*output, p, &written);
   std::ostream& report = output->report_stream();
   const std::string out_name = output->to_stdout() ? "-" : output->path;
   if (a.flag("--json")) {
-    // The counts of what was written: the rounded polytope when rounding
-    // changed it (the same counts stats gives for OUT).
-    const ConvexPolytope written = r.rounded() ? writable_polytope(p, output->format, output->options) : p;
+    // The counts of what was written (what stats gives for OUT).
     report << "{\"name\": \"" << json_escape(in) << "\", " << counts_json(written) << ", \"output\": \""
            << json_escape(out_name) << "\", \"format\": \"" << format_info(output->format).extension
            << "\", \"rounding\": " << rounding_json(r) << "}\n";

@@ -71,20 +71,24 @@ std::string rounding_json(const RoundingReport& r) {
   return o.str();
 }
 
-RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p) {
+RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p, ConvexPolytope* written) {
   const std::string name = out.to_stdout() ? "<stdout>" : out.path;
   const bool floats = out.format == Format::stl && out.options.binary;
   const bool exact_format = format_info(out.format).exact;
   const std::string exact_formats = extension_list(", ", " or ", true);
   RoundingReport r;
   try {
+    // Rounded once here, so the caller can have what was written; the
+    // writer then finds every coordinate representable.
+    const ConvexPolytope q = writable_polytope(p, out.format, out.options, &r);
     if (out.to_stdout()) {
-      write_polytope(std::cout, p, out.format, out.options, &r);
+      write_polytope(std::cout, q, out.format, out.options);
       std::cout.flush();
       if (!std::cout) throw OutputError("cannot write the mesh to standard output: write error");
     } else {
-      write_polytope(out.path, p, out.options, &r, out.format);
+      write_polytope(out.path, q, out.options, nullptr, out.format);
     }
+    if (written) *written = q;
   } catch (const UnrepresentableError& e) {
     std::string fix = e.floats_only() ? "write ascii STL (without --binary) or another format"
                       : exact_format  ? "use --exact to write exact rationals"

@@ -51,8 +51,9 @@ std::optional<MeshOutput> output_option(const Args& a);
 // when coordinates had to be rounded, one note on stderr says how far they
 // moved.  Coordinates the format cannot hold at all (overflow, a solid
 // collapsing when rounded) and failed writes: OutputError (exit 1), one line
-// naming the fix.
-RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p);
+// naming the fix.  `written`, when given, receives the polytope written (p,
+// or what rounding made of it).
+RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p, ConvexPolytope* written = nullptr);
 // The report as JSON: null when nothing was rounded, else {"coordinates": N,
 // "max_displacement": D, "hull": B, "merged": M, "dropped": K}.
 std::string rounding_json(const RoundingReport& r);

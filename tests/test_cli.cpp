@@ -45,20 +45,7 @@ class Cli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  CmdResult run(const std::string& args) {
-    fs::path err = dir_ / "stderr.txt";
-    std::string cmd = std::string(MINKSUM_BIN) + " " + args + " 2>" + err.string() + " </dev/null";
-    CmdResult r;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-    int st = ::pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-    r.err = slurp(err);
-    return r;
-  }
+  CmdResult run(const std::string& args) { return run_line(std::string(MINKSUM_BIN) + " " + args + " </dev/null"); }
 
   // Run a shell command line in which every "minksum" is the command under
   // test (pipes, redirections); stderr of the whole line is collected.
@@ -71,6 +58,11 @@ class Cli : public ::testing::Test {
       cmd += MINKSUM_BIN;
       at = next + 7;
     }
+    return run_line(cmd);
+  }
+
+  // A shell command line: out is its stdout, err its stderr (through a file).
+  CmdResult run_line(const std::string& cmd) {
     fs::path err = dir_ / "stderr.txt";
     CmdResult r;
     FILE* p = ::popen(("{ " + cmd + " ; } 2>" + err.string()).c_str(), "r");
@@ -123,6 +115,16 @@ class Cli : public ::testing::Test {
     ::waitpid(pid, &st, 0);
     r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
     return r;
+  }
+
+  // Two JSON outputs describe the same solid: counts and exact volume.
+  static void expect_same_solid(const std::string& a, const std::string& b) {
+    for (const char* key : {"vertices", "edges", "facets"}) EXPECT_EQ(json_int(a, key), json_int(b, key)) << key;
+    const std::regex volume("\"volume\": \"[0-9/]+\"");
+    std::smatch va, vb;
+    ASSERT_TRUE(std::regex_search(a, va, volume)) << a;
+    ASSERT_TRUE(std::regex_search(b, vb, volume)) << b;
+    EXPECT_EQ(va.str(), vb.str());
   }
 
   // Value of "key": X.Y in a JSON line (-1 when absent).
@@ -459,12 +461,7 @@ TEST_F(Cli, RoundedSphereSumReadsBack) {
   EXPECT_NE(e.out.find("\"rounding\": null"), std::string::npos) << e.out;
   CmdResult s = run("stats " + path("e.off") + " --json");
   ASSERT_EQ(s.status, 0) << s.err;
-  for (const char* key : {"vertices", "edges", "facets"}) EXPECT_EQ(json_int(s.out, key), json_int(e.out, key)) << key;
-  const std::regex volume("\"volume\": \"[0-9/]+\"");
-  std::smatch a, b;
-  ASSERT_TRUE(std::regex_search(e.out, a, volume));
-  ASSERT_TRUE(std::regex_search(s.out, b, volume));
-  EXPECT_EQ(a.str(), b.str());
+  expect_same_solid(s.out, e.out);
 }
 
 // Every writer, every catalog family, rounded and exact, through the command.
@@ -590,12 +587,7 @@ TEST_F(Cli, SumOfThreeOrMoreOperands) {
   ASSERT_EQ(run("sum cube tetra --exact -o " + path("ab.off")).status, 0);
   CmdResult c = run("sum " + path("ab.off") + " octahedron@rot:3 --json");
   ASSERT_EQ(c.status, 0) << c.err;
-  for (const char* key : {"vertices", "edges", "facets"}) EXPECT_EQ(json_int(r.out, key), json_int(c.out, key)) << key;
-  const std::regex volume("\"volume\": \"[0-9/]+\"");
-  std::smatch a, b;
-  ASSERT_TRUE(std::regex_search(r.out, a, volume));
-  ASSERT_TRUE(std::regex_search(c.out, b, volume));
-  EXPECT_EQ(a.str(), b.str());
+  expect_same_solid(r.out, c.out);
   CmdResult text = run("sum cube tetra octahedron dodecahedron --method chms");
   ASSERT_EQ(text.status, 0) << text.err;
   EXPECT_EQ(text.out.rfind("cube (8 V, 6 F) ⊕ tetra (4 V, 4 F) ⊕ octahedron (6 V, 8 F) ⊕ dodecahedron (20 V, 12 F)\n", 0), 0u)
@@ -773,11 +765,6 @@ TEST_F(Cli, CadMeshesAreRefusedNamingHullAndAcceptedWithIt) {
     CmdResult chms = run("sum " + in + " dodecahedron --hull --method chms --json");
     ASSERT_EQ(walk.status, 0) << walk.err;
     ASSERT_EQ(chms.status, 0) << chms.err;
-    for (const char* key : {"vertices", "edges", "facets"}) EXPECT_EQ(json_int(walk.out, key), json_int(chms.out, key)) << key;
-    const std::regex volume("\"volume\": \"[0-9/]+\"");
-    std::smatch a, b;
-    ASSERT_TRUE(std::regex_search(walk.out, a, volume));
-    ASSERT_TRUE(std::regex_search(chms.out, b, volume));
-    EXPECT_EQ(a.str(), b.str());
+    expect_same_solid(walk.out, chms.out);
   }
 }

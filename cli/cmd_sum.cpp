@@ -49,12 +49,13 @@ Options:
 
 Rounding: the file written always reads back as a valid convex polytope.
 Without --exact, coordinates that are not doubles (binary STL: 32-bit floats)
-are rounded to the nearest ones; when the rounded facets are no longer exactly
-planar and convex, the exact convex hull of the rounded vertices is written.
-A note on stderr (and "rounding" in --json: coordinates rounded, largest
-vertex displacement, hull taken, vertices merged and dropped) says so.  A
-coordinate beyond the format's range, or a solid that rounding collapses, is
-refused with exit status 1 and one line naming the fix.
+are rounded to the nearest ones; facets no longer planar are split along
+convex folds, and when that is not enough the exact convex hull of the
+rounded vertices is written.  A note on stderr (and "rounding" in --json:
+coordinates rounded, largest vertex displacement, facets split, hull taken,
+vertices merged and dropped) says so.  A coordinate beyond the format's range,
+or a solid that rounding collapses, is refused with exit status 1 and one line
+naming the fix.
 
 Progress: when stderr is a terminal and the sum takes more than a second, one
 line is rewritten in place on stderr every 0.2 s and erased when the sum is

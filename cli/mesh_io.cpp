@@ -66,7 +66,7 @@ std::string rounding_json(const RoundingReport& r) {
   if (!r.rounded()) return "null";
   std::ostringstream o;
   o << "{\"coordinates\": " << r.coordinates << ", \"max_displacement\": " << format_double(r.max_displacement)
-    << ", \"hull\": " << (r.hull ? "true" : "false") << ", \"merged\": " << r.merged
+    << ", \"split\": " << r.split << ", \"hull\": " << (r.hull ? "true" : "false") << ", \"merged\": " << r.merged
     << ", \"dropped\": " << r.dropped << "}";
   return o.str();
 }
@@ -103,7 +103,9 @@ RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p,
          << (floats ? "32-bit floats" : "doubles") << ", written rounded to the nearest ones"
          << (r.hull ? " as the exact convex hull of the rounded vertices (their facets were no longer exactly "
                       "planar and convex)"
-                    : "")
+                    : "");
+    if (r.split) note << " (" << r.split << " facets no longer planar, split along convex folds)";
+    note
          << "; largest vertex displacement " << format_double(r.max_displacement);
     if (r.merged) note << ", " << r.merged << " vertices merged";
     if (r.dropped) note << ", " << r.dropped << " vertices dropped";

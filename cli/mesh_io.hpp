@@ -55,7 +55,7 @@ std::optional<MeshOutput> output_option(const Args& a);
 // or what rounding made of it).
 RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p, ConvexPolytope* written = nullptr);
 // The report as JSON: null when nothing was rounded, else {"coordinates": N,
-// "max_displacement": D, "hull": B, "merged": M, "dropped": K}.
+// "max_displacement": D, "split": S, "hull": B, "merged": M, "dropped": K}.
 std::string rounding_json(const RoundingReport& r);
 
 }  // namespace minksum::cli

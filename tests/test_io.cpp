@@ -902,13 +902,45 @@ TEST(IoRounding, RoundedSphereSumReadsBack) {
   RoundingReport r;
   const ConvexPolytope w = writable_polytope(s, Format::off, {}, &r);
   EXPECT_TRUE(r.rounded());
-  EXPECT_TRUE(r.hull);
+  EXPECT_GT(r.split, 0u);  // quadrilaterals no longer planar, split along their convex diagonal
+  EXPECT_FALSE(r.hull);
   EXPECT_GT(r.max_displacement, 0);
   EXPECT_LT(r.max_displacement, 1e-15);  // half an ulp of coordinates below 2
   for (const WriteMode& m : every_write_mode()) expect_reads_back(s, m, "sphere:4 + sphere:4@rot:5");
   // A sum of double polytopes: exact double pairs.
   expect_reads_back(minkowski_sum(catalog_polytope("random:300:4"), catalog_polytope("sphere:3")).polytope,
                     {Format::off, {}}, "random:300:4 + sphere:3");
+}
+
+// When splitting the facets is not enough, the hull of the rounded points:
+// a prism over a pentagon whose vertex P3 lies 2^-80 outside the line of its
+// neighbours, at a height (1 + 2^-54) that is not a double; rounded, P3
+// falls inside the quadrilateral of the others, so both its copies are
+// dropped: a prism over that quadrilateral, 8 vertices and 6 facets.
+TEST(IoRounding, VertexRoundedInsideItsFacetIsDropped) {
+  const Rational y3 = Rational(1) + pow2(-54) + pow2(-80);
+  Mesh m;
+  for (int z = 0; z < 2; ++z) {
+    m.points.emplace_back(Rational(0), Rational(0), Rational(z));
+    m.points.emplace_back(Rational(2), Rational(0), Rational(z));
+    m.points.emplace_back(Rational(2), Rational(1) + pow2(-52), Rational(z));
+    m.points.emplace_back(q("1/2"), y3, Rational(z));
+    m.points.emplace_back(Rational(0), Rational(1), Rational(z));
+  }
+  m.faces = {{4, 3, 2, 1, 0}, {5, 6, 7, 8, 9}, {0, 1, 6, 5}, {1, 2, 7, 6}, {2, 3, 8, 7}, {3, 4, 9, 8}, {4, 0, 5, 9}};
+  const ConvexPolytope prism = ConvexPolytope::from_mesh(m);
+  ASSERT_EQ(prism.num_vertices(), 10u);
+  RoundingReport r;
+  const ConvexPolytope w = writable_polytope(prism, Format::off, {}, &r);
+  EXPECT_EQ(r.coordinates, 2u);
+  EXPECT_TRUE(r.hull);
+  EXPECT_EQ(r.merged, 0u);
+  EXPECT_EQ(r.dropped, 2u);
+  EXPECT_EQ(w.num_vertices(), 8u);
+  EXPECT_EQ(w.num_facets(), 6u);
+  EXPECT_EQ(w.volume(), Rational(2) + pow2(-52));  // the quadrilateral's area times 1
+  EXPECT_DOUBLE_EQ(r.max_displacement, to_double(y3 - 1));
+  for (const WriteMode& mode : every_write_mode()) expect_reads_back(prism, mode, "prism");
 }
 
 // Nothing to round: the same polytope, no report.

@@ -13,6 +13,7 @@
 #include "io/readers.hpp"
 
 #include <minksum/io.hpp>
+#include <minksum/predicates.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -58,6 +59,53 @@ struct BitsEqual {
   bool operator()(const Vec3d& a, const Vec3d& b) const { return a.x == b.x && a.y == b.y && a.z == b.z; }
 };
 
+// Append facet `poly` (rounded points, counter-clockwise from outside) to
+// m: as it is when its rounded points are still exactly coplanar, else split
+// into the triangles (polygons) of the upper side of their own hull, whose
+// folds are convex by construction: a quadrilateral along the diagonal that
+// folds outwards, a larger polygon by the facets of its points' exact hull
+// facing the way it faces.  Whether the result is a convex polytope is
+// decided afterwards, exactly, by validation.
+void split_if_not_planar(Mesh& m, std::vector<Index> poly, std::size_t& split) {
+  const auto& v = m.points.approx();
+  const std::size_t k = poly.size();
+  bool planar = true;
+  for (std::size_t i = 3; i < k && planar; ++i) planar = orient3d(v[poly[0]], v[poly[1]], v[poly[2]], v[poly[i]]) == 0;
+  if (planar) {
+    m.faces.push_back(std::move(poly));
+    return;
+  }
+  ++split;
+  if (k == 4) {
+    const Index a = poly[0], b = poly[1], c = poly[2], d = poly[3];
+    if (orient3d(v[a], v[b], v[c], v[d]) < 0) {  // d below the plane of a, b, c: fold along a-c
+      m.faces.push_back({a, b, c});
+      m.faces.push_back({a, c, d});
+    } else {
+      m.faces.push_back({b, c, d});
+      m.faces.push_back({b, d, a});
+    }
+    return;
+  }
+  PointList points;
+  for (Index i : poly) points.push_back(v[i]);
+  ConvexPolytope h;
+  try {
+    h = ConvexPolytope::hull(points);
+  } catch (const InputError&) {
+    m.faces.push_back(std::move(poly));  // validation will refuse it: the hull of everything follows
+    return;
+  }
+  for (Index g = 0; g < h.num_facets(); ++g) {
+    std::vector<Index> loop = h.facet_vertices(g);
+    if (normals_dot_sign(h.approx(loop[0]), h.approx(loop[1]), h.approx(loop[2]), v[poly[0]], v[poly[1]],
+                         v[poly[2]]) <= 0)
+      continue;
+    for (Index& i : loop) i = poly[h.source_vertex(i)];
+    m.faces.push_back(std::move(loop));
+  }
+}
+
 }  // namespace
 
 ConvexPolytope writable_polytope(const ConvexPolytope& p, Format format, const WriteOptions& options,
@@ -93,12 +141,13 @@ ConvexPolytope writable_polytope(const ConvexPolytope& p, Format format, const W
     for (const Vec3d& v : m.points.approx()) r.merged += !seen.insert(v).second;
   }
   m.faces.reserve(p.num_facets());
-  for (Index f = 0; f < p.num_facets(); ++f) m.faces.push_back(p.facet_vertices(f));
+  for (Index f = 0; f < p.num_facets(); ++f) split_if_not_planar(m, p.facet_vertices(f), r.split);
 
   ConvexPolytope q;
   try {
     q = ConvexPolytope::from_mesh(m);
   } catch (const InputError&) {
+    r.split = 0;
     r.hull = true;
     try {
       q = ConvexPolytope::hull(m.points);

@@ -115,7 +115,8 @@ class UnrepresentableError : public UsageError {
 struct RoundingReport {
   std::size_t coordinates = 0;  // coordinates not representable in the format, rounded
   double max_displacement = 0;  // largest distance from an exact vertex to its rounded point (about)
-  bool hull = false;            // the rounded facets were not exactly planar and convex: hull taken
+  std::size_t split = 0;        // facets no longer planar, split along convex folds
+  bool hull = false;            // splitting did not make a convex polytope: the hull was taken
   std::size_t merged = 0;       // vertices rounded onto the point of another vertex
   std::size_t dropped = 0;      // other rounded points that are not vertices of what is written
   bool rounded() const { return coordinates != 0; }
@@ -126,8 +127,10 @@ struct RoundingReport {
 //   * p itself when the format holds every coordinate (exact rationals with
 //     options.exact; doubles; the 32-bit floats of binary STL);
 //   * else p with each vertex rounded to the nearest representable point,
-//     when those points still make exactly planar, convex facets with the
-//     same connectivity (coplanar facets merged, as always);
+//     each facet whose rounded points are no longer coplanar split into the
+//     facets of the upper side of their own exact hull (a quadrilateral along
+//     the diagonal that folds outwards), when the result is exactly a convex
+//     polytope (validated as a file being read; coplanar facets merged);
 //   * else the exact convex hull of the rounded points.
 // Every rounded point lies in the result and every vertex of the result is a
 // rounded point, so the result is within max_displacement of p (Hausdorff

@@ -12,11 +12,12 @@ namespace minksum::cli {
 namespace {
 const char* kGenHelpHead = R"(Usage: minksum gen NAME -o OUT [--exact] [--binary] [--format F]
 
-Write a built-in polytope to OUT ({formats}), or to standard output
-for '-o -' (with --format {format_names}; the summary then goes to
-stderr).  Use --exact for rational coordinates (rotated solids have them);
-without it coordinates are written as the nearest doubles, and the file still
-reads back as a valid convex polytope (see 'minksum sum --help', Rounding).
+Write a built-in polytope to OUT ({formats}), or to standard
+output for '-o -' (with --format {format_names}; the summary then
+goes to stderr).  Use --exact for rational coordinates (rotated solids have
+them); without it coordinates are written as the nearest doubles, and the file
+still reads back as a valid convex polytope (see 'minksum sum --help',
+Rounding).
 
 Catalog (names are accepted anywhere a file path is):
 )";

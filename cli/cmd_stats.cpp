@@ -16,8 +16,8 @@ const char* kStatsHelp = R"(Usage: minksum stats P [--json] [--hull] [--format F
 
 Validate P (file, catalog name, or '-' for a mesh on standard input in the
 format --format names: {format_names}; --format also gives the format of a
-file whose name has no known extension) and print its numbers of vertices, edges and
-facets (coplanar facets merged), its exact volume, and whether every
+file whose name has no known extension) and print its numbers of vertices,
+edges and facets (coplanar facets merged), its exact volume, and whether every
 coordinate is exactly a double.  With --hull, P's points are a point cloud and
 the statistics are those of its exact convex hull.  --json adds "phases": the
 seconds spent reading P (or building the catalog polytope) and validating it

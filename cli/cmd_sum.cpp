@@ -24,10 +24,10 @@ on standard input (with --format).  With more than two operands the sum is
 A ⊕ B ⊕ C ⊕ ..., taken left to right with the same options.
 
 Options:
-  -o, --output OUT   write the sum to OUT ({formats}), or to standard
-                     output for '-' (the summary or JSON then goes to stderr);
-                     a file is written to a temporary name and renamed when
-                     complete
+  -o, --output OUT   write the sum to OUT ({formats}), or
+                     to standard output for '-' (the summary or JSON then
+                     goes to stderr); a file is written to a temporary name
+                     and renamed when complete
   --format F         {format_names}: the format of '-' and of names
                      without a known extension
   --method M         {methods}.

@@ -642,6 +642,18 @@ TEST_F(Cli, MeshOnStdoutKeepsTheSummaryOffIt) {
   EXPECT_NE(c.out.find("{\"name\": \"-\", \"vertices\": 16"), std::string::npos) << c.out;
 }
 
+// A mesh that cannot be written to standard output (a full device): exit 1,
+// one line, not success.
+TEST_F(Cli, MeshToAFullStandardOutputExitsOne) {
+  for (const std::string& cmd : {"minksum gen cube -o - --format off", "minksum gen sphere:6 -o - --format stl --binary",
+                                 "minksum sum cube tetra -o - --format obj --json"}) {
+    SCOPED_TRACE(cmd);
+    CmdResult r = run_sh(cmd + " >/dev/full");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.err, "minksum: cannot write the mesh to standard output: write error\n");
+  }
+}
+
 TEST_F(Cli, StandardStreamsNeedAFormat) {
   CmdResult in = run("stats -");
   EXPECT_EQ(in.status, 2);

@@ -66,7 +66,6 @@ def sphere(r, fn):
 def hull_mesh(pts):
     h = ConvexHull(pts)
     faces = []
-    centre = pts.mean(axis=0)
     for tri, eq in zip(h.simplices, h.equations):
         a, b, c = pts[tri]
         if np.dot(np.cross(b - a, c - a), eq[:3]) < 0:

@@ -8,11 +8,12 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "mesh_io.hpp"
 
 namespace minksum::cli {
 
 namespace {
-const char* kCgmHelp = R"(Usage: minksum cgm P [Q] [--svg OUT.svg] [--stats] [--json]
+const char* kCgmHelp = R"(Usage: minksum cgm P [Q] [--svg OUT.svg] [--stats] [--json] [--format F]
 
 Build the Cubical Gaussian Map (Fogel & Halperin) of P: the Gaussian map
 centrally projected on the six faces of the cube [-1,1]^3, six planar maps
@@ -27,26 +28,29 @@ Options:
                (for a sum: P's edges red, Q's blue, overlapping edges purple),
                artificial edges dashed; written atomically
   --json       print the counts as one JSON object
+  --format F   {format_names}: the format of an operand '-' (a mesh
+               on standard input) or named without a known extension
 )";
 }  // namespace
 
 int run_cgm(const std::vector<std::string>& argv) {
-  const Args a = parse_args(argv, "cgm", {{"--svg", "", true}, {"--stats", "", false}, {"--json", "", false}});
+  const Args a = parse_args(argv, "cgm", {{"--svg", "", true}, {"--stats", "", false}, {"--json", "", false}, kFormatOption});
   if (a.help) {
-    std::cout << kCgmHelp;
+    std::cout << expand_help(kCgmHelp);
     return 0;
   }
   if (a.positional.empty() || a.positional.size() > 2)
     throw UsageError("'cgm' needs one or two operands (see 'minksum cgm --help')");
   const auto svg = a.value("--svg");
   if (svg && svg->empty()) throw UsageError("--svg needs a file name");
-  ConvexPolytope p = load_polytope(a.positional[0]);
+  const auto format = format_option(a);
+  ConvexPolytope p = load_operand_from(a.positional[0], false, nullptr, format);
   CubicalGaussianMap g;
   std::string label = a.positional[0];
   double seconds = 0;
   ConvexPolytope shown = p;
   if (a.positional.size() == 2) {
-    ConvexPolytope q = load_polytope(a.positional[1]);
+    ConvexPolytope q = load_operand_from(a.positional[1], false, nullptr, format);
     label += " + " + a.positional[1];
     SumResult r = minkowski_sum(p, q, Method::cgm);
     seconds = r.seconds;

@@ -5,15 +5,19 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "mesh_io.hpp"
 
 namespace minksum::cli {
 
 namespace {
-const char* kGenHelpHead = R"(Usage: minksum gen NAME -o OUT [--exact] [--binary]
+const char* kGenHelpHead = R"(Usage: minksum gen NAME -o OUT [--exact] [--binary] [--format F]
 
-Write a built-in polytope to OUT ({formats}).  Use --exact for
-rational coordinates (rotated solids have them); without it coordinates are
-written as the nearest doubles.
+Write a built-in polytope to OUT ({formats}), or to standard
+output for '-o -' (with --format {format_names}; the summary then
+goes to stderr).  Use --exact for rational coordinates (rotated solids have
+them); without it coordinates are written as the nearest doubles, and the file
+still reads back as a valid convex polytope (see 'minksum sum --help',
+Rounding).
 
 Catalog (names are accepted anywhere a file path is):
 )";
@@ -21,7 +25,7 @@ Catalog (names are accepted anywhere a file path is):
 }  // namespace
 
 int run_gen(const std::vector<std::string>& argv) {
-  const Args a = parse_args(argv, "gen", {{"--output", "-o", true}, {"--exact"}, {"--binary"}});
+  const Args a = parse_args(argv, "gen", {{"--output", "-o", true}, {"--exact"}, {"--binary"}, kFormatOption});
   if (a.help) {
     std::cout << expand_help(kGenHelpHead);
     for (const auto& e : catalog_entries()) {
@@ -32,14 +36,14 @@ int run_gen(const std::vector<std::string>& argv) {
     return 0;
   }
   if (a.positional.size() != 1) throw UsageError("'gen' needs one catalog name (see 'minksum gen --help')");
-  const std::string output = a.value_or("--output", "");
-  if (output.empty()) throw UsageError("'gen' needs -o OUT");
-  check_output_path(output, a.flag("--exact"));
+  const std::optional<MeshOutput> output = output_option(a);
+  if (!output) throw UsageError("'gen' needs -o OUT");
   // catalog_polytope names the closest catalog name when the name is unknown.
   ConvexPolytope p = catalog_polytope(a.positional[0]);
-  write_output(output, p, a.flag("--exact"), a.flag("--binary"));
-  std::cout << a.positional[0] << ": " << p.num_vertices() << " vertices, " << p.num_edges() << " edges, "
-            << p.num_facets() << " facets, written to " << output << "\n";
+  write_mesh_output(*output, p);
+  output->report_stream() << a.positional[0] << ": " << p.num_vertices() << " vertices, " << p.num_edges()
+                          << " edges, " << p.num_facets() << " facets, written to "
+                          << (output->to_stdout() ? "standard output" : output->path) << "\n";
   return 0;
 }
 

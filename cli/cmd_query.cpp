@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "mesh_io.hpp"
 
 namespace minksum::cli {
 
@@ -62,6 +63,11 @@ Options:
 
 Coordinates accept integers, exact rationals (1/3,0,-2/7) and decimals (the
 nearest double, then exact).
+
+P or Q may be '-': a mesh read from standard input, in the format that
+--format F names ({format_names}; --format also gives the format of a
+file whose name has no known extension).  Standard input is read once: not
+with --trajectory -.
 )";
 
 enum class Kind { collide, distance, depth, ddepth };
@@ -237,9 +243,9 @@ int run_query(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "query",
                             {{"--translate-p", "", true}, {"--translate-q", "", true}, {"--rotate-p", "", true},
                              {"--rotate-q", "", true}, {"--direction", "", true}, {"--method", "", true},
-                             {"--trajectory", "", true}, {"--json", "", false}});
+                             {"--trajectory", "", true}, {"--json", "", false}, kFormatOption});
   if (a.help) {
-    std::cout << kQueryHelp;
+    std::cout << expand_help(kQueryHelp);
     return 0;
   }
   if (a.positional.size() != 3)
@@ -267,8 +273,10 @@ int run_query(const std::vector<std::string>& argv) {
     throw UsageError(std::string("method '") + method_name(*method) + "' is not implemented in this version of minksum");
   const bool json = a.flag("--json");
 
-  const ConvexPolytope p0 = load_polytope(a.positional[1]);
-  const ConvexPolytope q0 = load_polytope(a.positional[2]);
+  if (a.value("--trajectory") == "-") claim_stdin("the trajectory");
+  const auto format = format_option(a);
+  const ConvexPolytope p0 = load_operand_from(a.positional[1], false, nullptr, format);
+  const ConvexPolytope q0 = load_operand_from(a.positional[2], false, nullptr, format);
   TranslationalObstacle ob(rp ? rotated(p0, *rp) : p0, rq ? rotated(q0, *rq) : q0, *method);
 
   const auto trajectory = a.value("--trajectory");

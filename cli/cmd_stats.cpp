@@ -7,14 +7,17 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "mesh_io.hpp"
 
 namespace minksum::cli {
 
 namespace {
-const char* kStatsHelp = R"(Usage: minksum stats P [--json] [--hull]
+const char* kStatsHelp = R"(Usage: minksum stats P [--json] [--hull] [--format F]
 
-Validate P (file or catalog name) and print its numbers of vertices, edges and
-facets (coplanar facets merged), its exact volume, and whether every
+Validate P (file, catalog name, or '-' for a mesh on standard input in the
+format --format names: {format_names}; --format also gives the format of a
+file whose name has no known extension) and print its numbers of vertices,
+edges and facets (coplanar facets merged), its exact volume, and whether every
 coordinate is exactly a double.  With --hull, P's points are a point cloud and
 the statistics are those of its exact convex hull.  --json adds "phases": the
 seconds spent reading P (or building the catalog polytope) and validating it
@@ -24,14 +27,14 @@ seconds spent reading P (or building the catalog polytope) and validating it
 }  // namespace
 
 int run_stats(const std::vector<std::string>& argv) {
-  const Args a = parse_args(argv, "stats", {{"--json"}, {"--hull"}});
+  const Args a = parse_args(argv, "stats", {{"--json"}, {"--hull"}, kFormatOption});
   if (a.help) {
-    std::cout << kStatsHelp;
+    std::cout << expand_help(kStatsHelp);
     return 0;
   }
   if (a.positional.size() != 1) throw UsageError("'stats' needs one operand (see 'minksum stats --help')");
   LoadPhases phases;
-  ConvexPolytope p = load_operand(a.positional[0], a.flag("--hull"), &phases);
+  ConvexPolytope p = load_operand(a.positional[0], a.flag("--hull"), &phases, format_option(a));
   Rational vol = p.volume();
   Index max_fdeg = 0, max_vdeg = 0;
   for (Index f = 0; f < p.num_facets(); ++f) max_fdeg = std::max(max_fdeg, p.facet_degree(f));

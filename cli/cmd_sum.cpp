@@ -9,20 +9,27 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "mesh_io.hpp"
 #include "progress.hpp"
 
 namespace minksum::cli {
 
 namespace {
 
-const char* kSumHelp = R"(Usage: minksum sum A B [options]
+const char* kSumHelp = R"(Usage: minksum sum A B [C ...] [options]
 
 Compute the Minkowski sum A ⊕ B = { a + b : a in A, b in B } exactly and print
-a summary (or JSON).  A and B are files or catalog names.
+a summary (or JSON).  The operands are files, catalog names, or '-' for a mesh
+on standard input (with --format).  With more than two operands the sum is
+A ⊕ B ⊕ C ⊕ ..., taken left to right with the same options.
 
 Options:
-  -o, --output OUT   write the sum to OUT ({formats}); the file
-                     is written to a temporary name and renamed when complete
+  -o, --output OUT   write the sum to OUT ({formats}), or
+                     to standard output for '-' (the summary or JSON then
+                     goes to stderr); a file is written to a temporary name
+                     and renamed when complete
+  --format F         {format_names}: the format of '-' and of names
+                     without a known extension
   --method M         {methods}.
 {method_summaries}
                      All are exact and give the same polytope.
@@ -34,10 +41,21 @@ Options:
                      of requiring a valid convex mesh (point clouds)
   --json             print one JSON object: vertices, edges, facets, method,
                      seconds (the computation alone, not the I/O), phases
-                     (seconds spent reading both operands, validating them,
+                     (seconds spent reading the operands, validating them,
                      computing the sum, making its explicit polytope, and
-                     writing OUT), volume (exact rational as a string), and
-                     the operands' counts
+                     writing OUT), volume (exact rational as a string), the
+                     operands' names and counts ("operands"; also "a" and "b"
+                     for two), and "rounding" (below)
+
+Rounding: the file written always reads back as a valid convex polytope.
+Without --exact, coordinates that are not doubles (binary STL: 32-bit floats)
+are rounded to the nearest ones; facets no longer planar are split along
+convex folds, and when that is not enough the exact convex hull of the
+rounded vertices is written.  A note on stderr (and "rounding" in --json:
+coordinates rounded, largest vertex displacement, facets split, hull taken,
+vertices merged and dropped) says so.  A coordinate beyond the format's range,
+or a solid that rounding collapses, is refused with exit status 1 and one line
+naming the fix.
 
 Progress: when stderr is a terminal and the sum takes more than a second, one
 line is rewritten in place on stderr every 0.2 s and erased when the sum is
@@ -87,54 +105,77 @@ std::string method_detail_json(const SumResult& r) {
 int run_sum(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "sum",
                             {{"--output", "-o", true}, {"--method", "", true}, {"--exact"}, {"--binary"},
-                             {"--json"}, {"--hull"}});
+                             {"--json"}, {"--hull"}, kFormatOption});
   if (a.help) {
     std::cout << expand_help(kSumHelp);
     return 0;
   }
-  if (a.positional.size() != 2)
-    throw UsageError("'sum' needs two operands A B (see 'minksum sum --help')");
+  if (a.positional.size() < 2)
+    throw UsageError("'sum' needs two or more operands A B [C ...] (see 'minksum sum --help')");
   const std::string method_text = a.value_or("--method", "auto");
-  const std::string output = a.value_or("--output", "");
-  const bool exact = a.flag("--exact"), json = a.flag("--json"), hull = a.flag("--hull");
+  const bool json = a.flag("--json"), hull = a.flag("--hull");
   auto method = parse_method(method_text);
   if (!method)
     throw UsageError("unknown method '" + method_text + "' (" + method_list() + ")");
   if (!method_available(*method))
     throw UsageError(std::string("method '") + method_name(*method) + "' is not implemented in this version of minksum");
-  check_output_path(output, exact);
-  LoadPhases la, lb;
-  ConvexPolytope pa = load_operand(a.positional[0], hull, &la);
-  ConvexPolytope pb = load_operand(a.positional[1], hull, &lb);
-  SumResult r = [&] {
+  const auto format = format_option(a);
+  const std::optional<MeshOutput> output = output_option(a);
+  const std::vector<std::string>& names = a.positional;
+  std::vector<ConvexPolytope> operands;
+  LoadPhases load;
+  for (const std::string& name : names) {
+    LoadPhases l;
+    operands.push_back(load_operand(name, hull, &l, format));
+    load.read += l.read;
+    load.validate += l.validate;
+  }
+  // A ⊕ B ⊕ C ... left to right; the times add up, the method's details are
+  // those of the last step.
+  SumResult r;
+  double seconds = 0, explicit_seconds = 0;
+  {
     ProgressTicker ticker("minksum sum");  // a progress line on a terminal after 1 s; erased when done
-    return minkowski_sum(pa, pb, *method, ticker.sum_options());
-  }();
+    for (std::size_t i = 1; i < operands.size(); ++i) {
+      r = minkowski_sum(i == 1 ? operands[0] : r.polytope, operands[i], *method, ticker.sum_options());
+      seconds += r.seconds;
+      explicit_seconds += r.explicit_seconds;
+    }
+  }
   const auto w0 = std::chrono::steady_clock::now();
-  if (!output.empty()) write_output(output, r.polytope, exact, a.flag("--binary"));
+  RoundingReport rounding;
+  if (output) rounding = write_mesh_output(*output, r.polytope);
   const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   const ConvexPolytope& s = r.polytope;
+  std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
     Rational vol = s.volume();
-    std::cout << "{" << counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
-              << ", \"seconds\": " << format_double(r.seconds) << ", \"phases\": {\"read\": "
-              << format_double(la.read + lb.read) << ", \"validate\": " << format_double(la.validate + lb.validate)
-              << ", \"sum\": " << format_double(r.seconds - r.explicit_seconds)
-              << ", \"explicit\": " << format_double(r.explicit_seconds) << ", \"write\": " << format_double(write_seconds)
-              << "}, \"volume\": \"" << format_exact(vol)
-              << "\", \"volume_double\": " << format_double(to_double(vol)) << facet_types_json(r) << method_detail_json(r)
-              << ", \"a\": {\"name\": \"" << json_escape(a.positional[0]) << "\", " << counts_json(pa)
-              << "}, \"b\": {\"name\": \"" << json_escape(a.positional[1]) << "\", " << counts_json(pb)
-              << "}, \"output\": ";
-    if (output.empty()) std::cout << "null"; else std::cout << "\"" << json_escape(output) << "\"";
-    std::cout << "}\n";
+    report << "{" << counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
+           << ", \"seconds\": " << format_double(seconds) << ", \"phases\": {\"read\": " << format_double(load.read)
+           << ", \"validate\": " << format_double(load.validate)
+           << ", \"sum\": " << format_double(seconds - explicit_seconds)
+           << ", \"explicit\": " << format_double(explicit_seconds) << ", \"write\": " << format_double(write_seconds)
+           << "}, \"volume\": \"" << format_exact(vol) << "\", \"volume_double\": " << format_double(to_double(vol));
+    if (names.size() == 2) {
+      report << facet_types_json(r) << method_detail_json(r) << ", \"a\": {\"name\": \"" << json_escape(names[0])
+             << "\", " << counts_json(operands[0]) << "}, \"b\": {\"name\": \"" << json_escape(names[1]) << "\", "
+             << counts_json(operands[1]) << "}";
+    }
+    report << ", \"operands\": [";
+    for (std::size_t i = 0; i < names.size(); ++i)
+      report << (i ? ", " : "") << "{\"name\": \"" << json_escape(names[i]) << "\", " << counts_json(operands[i]) << "}";
+    report << "], \"output\": ";
+    if (!output) report << "null";
+    else report << "\"" << json_escape(output->to_stdout() ? "-" : output->path) << "\"";
+    report << ", \"rounding\": " << rounding_json(rounding) << "}\n";
   } else {
-    std::cout << a.positional[0] << " (" << pa.num_vertices() << " V, " << pa.num_facets() << " F) ⊕ "
-              << a.positional[1] << " (" << pb.num_vertices() << " V, " << pb.num_facets() << " F)\n"
-              << "  = " << s.num_vertices() << " vertices, " << s.num_edges() << " edges, "
-              << s.num_facets() << " facets\n"
-              << "  method " << method_name(r.method) << ", " << format_double(r.seconds) << " s\n";
-    if (!output.empty()) std::cout << "  written to " << output << "\n";
+    for (std::size_t i = 0; i < names.size(); ++i)
+      report << (i ? " ⊕ " : "") << names[i] << " (" << operands[i].num_vertices() << " V, "
+             << operands[i].num_facets() << " F)";
+    report << "\n  = " << s.num_vertices() << " vertices, " << s.num_edges() << " edges, " << s.num_facets()
+           << " facets\n"
+           << "  method " << method_name(r.method) << ", " << format_double(seconds) << " s\n";
+    if (output) report << "  written to " << (output->to_stdout() ? "standard output" : output->path) << "\n";
   }
   return 0;
 }

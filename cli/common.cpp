@@ -1,6 +1,8 @@
 // The minksum command line: argument parsing, JSON and output helpers.
 #include "common.hpp"
 
+#include "mesh_io.hpp"
+
 #include <minksum/io.hpp>
 #include <minksum/minkowski.hpp>
 
@@ -82,19 +84,12 @@ std::string counts_json(const ConvexPolytope& p) {
   return o.str();
 }
 
-ConvexPolytope load_operand(const std::string& spec, bool hull, LoadPhases* phases) {
+ConvexPolytope load_operand(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> format) {
   try {
-    return load_polytope(spec, hull, phases);
+    return load_operand_from(spec, hull, phases, format);
   } catch (const NotConvexError& e) {
     throw InputError(e.file(), e.place(), e.problem() + "; --hull takes the convex hull of its points instead");
   }
-}
-
-void check_output_path(const std::string& path, bool exact) {
-  if (path.empty()) return;
-  WriteOptions w;
-  w.exact = exact;
-  output_format(path, w);
 }
 
 namespace {
@@ -129,6 +124,7 @@ std::string expand_help(std::string_view text) {
       {"{formats}", extension_list(" ", " ")},
       {"{exact_formats}", extension_list(", ", " and ", true)},
       {"{binary_formats}", extension_list(" / ", " / ", false, true)},
+      {"{format_names}", format_choices()},
       {"{methods}", methods_text},
       {"{method_summaries}", summaries},
   };
@@ -137,21 +133,6 @@ std::string expand_help(std::string_view text) {
     for (std::size_t at = out.find(key); at != std::string::npos; at = out.find(key, at + value.size()))
       out.replace(at, key.size(), value);
   return out;
-}
-
-void write_output(const std::string& path, const ConvexPolytope& p, bool exact, bool binary) {
-  WriteOptions w;
-  w.exact = exact;
-  w.binary = binary;
-  if (!exact && !p.coordinates_are_doubles())
-    std::cerr << "minksum: note: " << path
-              << ": some coordinates are not doubles and are written rounded to the nearest double "
-                 "(facets may no longer be exactly planar); use --exact to keep them exact\n";
-  try {
-    write_polytope(path, p, w);
-  } catch (const InputError& e) {
-    throw OutputError(std::string("cannot write ") + e.what());
-  }
 }
 
 }  // namespace minksum::cli

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <minksum/error.hpp>
+#include <minksum/io.hpp>
 #include <minksum/minkowski.hpp>
 #include <minksum/operand.hpp>
 #include <minksum/polytope.hpp>
@@ -62,19 +63,17 @@ struct OutputError : std::runtime_error {
 // load_polytope for a command that has --hull: a closed surface that is not
 // exactly convex (NotConvexError: what a mesh rounded by another tool gives)
 // is refused with a hint that --hull accepts it.
-ConvexPolytope load_operand(const std::string& spec, bool hull, LoadPhases* phases);
-
-// UsageError when OUT's extension is unknown or cannot hold what is asked
-// (io's output_format), before anything is computed.
-void check_output_path(const std::string& path, bool exact);
+// `format` (--format) applies to '-' (standard input) and to files whose
+// names have no known extension (mesh_io.hpp).
+ConvexPolytope load_operand(const std::string& spec, bool hull, LoadPhases* phases,
+                            std::optional<Format> format = std::nullopt);
 
 // A help text with its table-driven parts filled in from the tables of
 // formats (io.hpp) and methods (minkowski.hpp): {formats} ".off .obj .ply .stl
 // .wrl", {exact_formats} ".off, .obj and .wrl", {binary_formats} ".ply / .stl",
+// {format_names} "off|obj|ply|stl|wrl",
 // {methods} "auto (default), walk, ...", {method_summaries} one paragraph per
 // method ("walk: ...") wrapped to 79 columns under a 21-column option column.
 std::string expand_help(std::string_view text);
-// Write p atomically; a note on stderr when rounding loses exactness.
-void write_output(const std::string& path, const ConvexPolytope& p, bool exact, bool binary);
 
 }  // namespace minksum::cli

@@ -20,9 +20,12 @@ constexpr const char* kVersion = "0.1.0";
 const char* kMainHelp = R"(minksum — exact Minkowski sums of convex polyhedra in 3D
 
 Usage:
-  minksum sum A B [-o OUT] [--method M] [--exact] [--binary] [--json] [--hull]
-  minksum stats P [--json] [--hull]
-  minksum gen NAME -o OUT [--exact] [--binary]
+  minksum sum A B [C ...] [-o OUT] [--method M] [--exact] [--binary] [--json]
+                [--hull] [--format F]
+  minksum stats P [--json] [--hull] [--format F]
+  minksum gen NAME -o OUT [--exact] [--binary] [--format F]
+  minksum convert IN -o OUT [--hull] [--exact] [--binary] [--format F]
+                [--from F] [--json]
   minksum query collide|distance|depth|ddepth P Q [--translate-p X,Y,Z]
                 [--translate-q X,Y,Z] [--rotate-p A,B,C,D] [--rotate-q A,B,C,D]
                 [--direction X,Y,Z] [--method M] [--trajectory FILE] [--json]
@@ -33,9 +36,12 @@ Usage:
   minksum COMMAND --help          help on one command
   minksum --version
 
-A, B, P are files ({formats}, format by extension) or names of
+A, B, P are files ({formats}, format by extension or --format
+{format_names}), '-' for a mesh on standard input, or names of
 built-in polytopes such as cube, sphere:4, dioctagonal:17, random:1000:7,
 box:1:2:3, sphere:3@rot:5 (see 'minksum gen --help' for the whole catalog).
+-o - writes the mesh to standard output (with --format; the summary then goes
+to stderr).  What minksum writes reads back as a valid convex polytope.
 
 Every computation is exact: coordinates are rationals, every geometric
 decision is the sign of an exact polynomial.
@@ -57,6 +63,7 @@ constexpr Command kCommands[] = {
     {"simulate", run_simulate},
     {"cgm", run_cgm},
     {"batch", run_batch},
+    {"convert", run_convert},
 };
 
 }  // namespace

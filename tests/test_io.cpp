@@ -1,8 +1,10 @@
 // Readers and writers of src/io/include/minksum/io.hpp: round trips through every
 // format, parsing details of each format, malformed input, atomic writes and
 // operand resolution.
+#include <minksum/catalog.hpp>
 #include <minksum/error.hpp>
 #include <minksum/io.hpp>
+#include <minksum/minkowski.hpp>
 #include <minksum/operand.hpp>
 
 #include "io/readers.hpp"  // parse_coordinate, checked_float
@@ -779,4 +781,263 @@ TEST(IoFiles, LoadPolytopeFromCatalog) {
   ConvexPolytope hull = load_polytope("cube", true);
   EXPECT_EQ(hull.num_facets(), 6u);
   EXPECT_EQ(hull.volume(), cube.volume());
+}
+
+// --- output that reads back (writable_polytope, write_polytope) ---------------
+
+namespace {
+
+// Every way a polytope can be written: format, binary, exact.
+struct WriteMode {
+  Format format;
+  WriteOptions options;
+};
+std::vector<WriteMode> every_write_mode() {
+  std::vector<WriteMode> modes;
+  for (const FormatInfo& f : formats()) {
+    modes.push_back({f.format, {}});
+    if (f.binary) modes.push_back({f.format, {.binary = true}});
+    if (f.exact) modes.push_back({f.format, {.exact = true}});
+  }
+  return modes;
+}
+std::string mode_name(const WriteMode& m) {
+  return std::string(format_name(m.format)) + (m.options.binary ? " binary" : "") + (m.options.exact ? " exact" : "");
+}
+
+// The sorted vertex set of a polytope, exactly.
+std::vector<Point3> vertex_set(const ConvexPolytope& p) {
+  std::vector<Point3> v = p.points();
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+// Is every coordinate of p exactly a number of the format (doubles; binary
+// STL: floats)?
+bool representable(const ConvexPolytope& p, const WriteMode& m) {
+  const bool floats = m.format == Format::stl && m.options.binary;
+  for (const Point3& v : p.points())
+    for (int k = 0; k < 3; ++k) {
+      if (!is_double(v[k])) return false;
+      if (floats && Rational(double(static_cast<float>(to_double(v[k])))) != v[k]) return false;
+    }
+  return true;
+}
+
+// Write p in the mode, read it back with minksum's reader and validate it:
+// a valid convex polytope, equal to writable_polytope's result; exactly p
+// when exact or when nothing had to be rounded; else every vertex within the
+// reported displacement of p's rounded points.
+void expect_reads_back(const ConvexPolytope& p, const WriteMode& m, const std::string& what) {
+  SCOPED_TRACE(what + " as " + mode_name(m));
+  std::ostringstream out;
+  RoundingReport report;
+  try {
+    write_polytope(out, p, m.format, m.options, &report);
+  } catch (const UnrepresentableError& e) {
+    ADD_FAILURE() << "refused: " << e.what();
+    return;
+  }
+  ConvexPolytope back;
+  try {
+    back = ConvexPolytope::from_mesh(read_from_string(out.str(), m.format, "written"), "written");
+  } catch (const InputError& e) {
+    ADD_FAILURE() << "does not read back: " << e.what();
+    return;
+  }
+  EXPECT_EQ(back.check_invariants(), "");
+  const ConvexPolytope expected = writable_polytope(p, m.format, m.options);
+  EXPECT_EQ(vertex_set(back), vertex_set(expected));
+  EXPECT_EQ(back.num_facets(), expected.num_facets());
+  EXPECT_TRUE(representable(back, m) || (m.options.exact && format_info(m.format).exact));
+  if (!report.rounded()) {
+    EXPECT_EQ(vertex_set(back), vertex_set(p));
+    EXPECT_EQ(back.volume(), p.volume());
+    EXPECT_EQ(back.num_facets(), p.num_facets());
+  } else {
+    EXPECT_FALSE(m.options.exact) << "exact output is never rounded";
+    EXPECT_GT(report.max_displacement, 0);
+    EXPECT_EQ(back.num_vertices() + report.merged + report.dropped, p.num_vertices());
+    // Close to the exact solid: the volume within the displacement times
+    // the surface (bounded by 4π R² for R the largest coordinate, here ~ 10).
+    const double dv = std::abs(to_double(back.volume() - p.volume()));
+    EXPECT_LE(dv, report.max_displacement * 4 * 3.15 * 400 * 1.01) << dv;
+  }
+}
+
+// One polytope of every family of the catalog (src/catalog), plain (mostly
+// doubles) and transformed (exact rationals), and a sum (exact double pairs).
+std::vector<std::string> every_catalog_family() {
+  std::vector<std::string> specs;
+  for (const CatalogEntry& e : catalog_entries()) {
+    const std::string name = e.syntax.substr(0, e.syntax.find(' '));
+    if (name.find(':') != std::string::npos || name[0] == '@') continue;
+    specs.push_back(name);
+    specs.push_back(name + "@rot:7");
+  }
+  for (const char* s : {"sphere:1", "sphere:3", "sphere:3@rot:5", "dioctagonal:17", "dioctagonal:17@rot:3",
+                        "random:200:1", "random:200:1@rot:2", "zonotope:8:3", "zonotope:8:3@rot:1",
+                        "zonotope:1,0,0:0,1,0:0,0,1:1,1,1", "box:1:2:3", "box:1/3:1/7:2@rot:9",
+                        "cube@scale:1/3", "cube@translate:1/3,1/5,1/7", "tetra@rot:4@neg"})
+    specs.push_back(s);
+  return specs;
+}
+
+}  // namespace
+
+TEST(IoRounding, EveryWriterEveryCatalogFamilyReadsBack) {
+  const std::vector<WriteMode> modes = every_write_mode();
+  ASSERT_EQ(modes.size(), 10u);  // OFF, OBJ, VRML: rounded and exact; PLY, STL: ascii and binary
+  for (const std::string& spec : every_catalog_family()) {
+    const ConvexPolytope p = catalog_polytope(spec);
+    for (const WriteMode& m : modes) expect_reads_back(p, m, spec);
+  }
+}
+
+// The case that made minksum unable to read its own output: a sum with
+// coordinates that are not doubles, whose facets rounded to doubles are no
+// longer planar (OFF) or whose edges turn reflex (STL).
+TEST(IoRounding, RoundedSphereSumReadsBack) {
+  const ConvexPolytope s = minkowski_sum(catalog_polytope("sphere:4"), catalog_polytope("sphere:4@rot:5")).polytope;
+  RoundingReport r;
+  const ConvexPolytope w = writable_polytope(s, Format::off, {}, &r);
+  EXPECT_TRUE(r.rounded());
+  EXPECT_GT(r.split, 0u);  // quadrilaterals no longer planar, split along their convex diagonal
+  EXPECT_FALSE(r.hull);
+  EXPECT_GT(r.max_displacement, 0);
+  EXPECT_LT(r.max_displacement, 1e-15);  // half an ulp of coordinates below 2
+  for (const WriteMode& m : every_write_mode()) expect_reads_back(s, m, "sphere:4 + sphere:4@rot:5");
+  // A sum of double polytopes: exact double pairs.
+  expect_reads_back(minkowski_sum(catalog_polytope("random:300:4"), catalog_polytope("sphere:3")).polytope,
+                    {Format::off, {}}, "random:300:4 + sphere:3");
+}
+
+// When splitting the facets is not enough, the hull of the rounded points:
+// a prism over a pentagon whose vertex P3 lies 2^-80 outside the line of its
+// neighbours, at a height (1 + 2^-54) that is not a double; rounded, P3
+// falls inside the quadrilateral of the others, so both its copies are
+// dropped: a prism over that quadrilateral, 8 vertices and 6 facets.
+TEST(IoRounding, VertexRoundedInsideItsFacetIsDropped) {
+  const Rational y3 = Rational(1) + pow2(-54) + pow2(-80);
+  Mesh m;
+  for (int z = 0; z < 2; ++z) {
+    m.points.emplace_back(Rational(0), Rational(0), Rational(z));
+    m.points.emplace_back(Rational(2), Rational(0), Rational(z));
+    m.points.emplace_back(Rational(2), Rational(1) + pow2(-52), Rational(z));
+    m.points.emplace_back(q("1/2"), y3, Rational(z));
+    m.points.emplace_back(Rational(0), Rational(1), Rational(z));
+  }
+  m.faces = {{4, 3, 2, 1, 0}, {5, 6, 7, 8, 9}, {0, 1, 6, 5}, {1, 2, 7, 6}, {2, 3, 8, 7}, {3, 4, 9, 8}, {4, 0, 5, 9}};
+  const ConvexPolytope prism = ConvexPolytope::from_mesh(m);
+  ASSERT_EQ(prism.num_vertices(), 10u);
+  RoundingReport r;
+  const ConvexPolytope w = writable_polytope(prism, Format::off, {}, &r);
+  EXPECT_EQ(r.coordinates, 2u);
+  EXPECT_TRUE(r.hull);
+  EXPECT_EQ(r.merged, 0u);
+  EXPECT_EQ(r.dropped, 2u);
+  EXPECT_EQ(w.num_vertices(), 8u);
+  EXPECT_EQ(w.num_facets(), 6u);
+  EXPECT_EQ(w.volume(), Rational(2) + pow2(-52));  // the quadrilateral's area times 1
+  EXPECT_DOUBLE_EQ(r.max_displacement, to_double(y3 - 1));
+  for (const WriteMode& mode : every_write_mode()) expect_reads_back(prism, mode, "prism");
+}
+
+// Nothing to round: the same polytope, no report.
+TEST(IoRounding, RepresentablePolytopesAreWrittenAsTheyAre) {
+  RoundingReport r;
+  const ConvexPolytope cube = catalog_polytope("cube");
+  EXPECT_EQ(vertex_set(writable_polytope(cube, Format::stl, {.binary = true}, &r)), vertex_set(cube));
+  EXPECT_FALSE(r.rounded());
+  const ConvexPolytope rot = catalog_polytope("cube@rot:1,2,3,4");
+  EXPECT_EQ(vertex_set(writable_polytope(rot, Format::off, {.exact = true}, &r)), vertex_set(rot));
+  EXPECT_FALSE(r.rounded());
+  writable_polytope(rot, Format::off, {}, &r);
+  std::size_t not_doubles = 0;
+  for (const Point3& v : rot.points())
+    for (int k = 0; k < 3; ++k) not_doubles += !is_double(v[k]);
+  EXPECT_GT(not_doubles, 0u);
+  EXPECT_EQ(r.coordinates, not_doubles);
+}
+
+// Underflow: a cube at ±1e-310 (subnormal doubles) becomes a point in the
+// floats of binary STL; a cube at ±1/7^1000 becomes a point in any double
+// format.  Refused, never written as a degenerate file.
+TEST(IoRounding, SubnormalCubeToBinaryStlIsRefused) {
+  const ConvexPolytope tiny = catalog_polytope("cube@scale:1e-310");
+  ASSERT_TRUE(tiny.coordinates_are_doubles());
+  try {
+    writable_polytope(tiny, Format::stl, {.binary = true});
+    ADD_FAILURE() << "no UnrepresentableError";
+  } catch (const UnrepresentableError& e) {
+    EXPECT_TRUE(e.floats_only());
+    EXPECT_NE(e.problem().find("32-bit floats"), std::string::npos) << e.problem();
+    EXPECT_NE(e.problem().find("no longer make a solid: all 8 points coincide"), std::string::npos) << e.problem();
+  }
+  for (const WriteMode& m : every_write_mode())
+    if (!(m.format == Format::stl && m.options.binary)) expect_reads_back(tiny, m, "cube at 1e-310");
+}
+
+TEST(IoRounding, TinyRationalCubeIsRefusedWithoutExact) {
+  Rational s(1);
+  for (int i = 0; i < 1000; ++i) s /= 7;
+  Mesh m = catalog_polytope("cube").to_mesh();
+  m.points.transform([&](Point3 p) { return Point3(p.x * s, p.y * s, p.z * s); });
+  const ConvexPolytope t = ConvexPolytope::from_mesh(m);
+  for (const WriteMode& mode : every_write_mode()) {
+    SCOPED_TRACE(mode_name(mode));
+    if (mode.options.exact) {
+      expect_reads_back(t, mode, "cube at 1/7^1000");
+      continue;
+    }
+    try {
+      writable_polytope(t, mode.format, mode.options);
+      ADD_FAILURE() << "no UnrepresentableError";
+    } catch (const UnrepresentableError& e) {
+      EXPECT_FALSE(e.floats_only());
+      EXPECT_NE(std::string(e.what()).find("exact rationals"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Overflow: refused with the fix; the file keeps its previous content.
+TEST(IoRounding, CoordinateBeyondTheRangeIsRefusedBeforeWriting) {
+  Mesh m = cube_mesh();
+  m.points.transform([](Point3 p) { return Point3(p.x * pow2(1100), p.y, p.z); });
+  const ConvexPolytope big = ConvexPolytope::from_mesh(m);
+  TempDir dir;
+  for (const char* name : {"b.off", "b.ply", "b.stl"}) {
+    const std::string path = dir.path(name);
+    EXPECT_THROW(write_polytope(path, big), UnrepresentableError) << name;
+    EXPECT_FALSE(fs::exists(path)) << name;
+  }
+  write_polytope(dir.path("b.off"), big, {.exact = true});
+  EXPECT_EQ(vertex_set(load_polytope(dir.path("b.off"))), vertex_set(big));
+  // Beyond the floats only: ascii STL would do.
+  Mesh f = cube_mesh();
+  f.points.transform([](Point3 p) { return Point3(p.x * pow2(200), p.y, p.z); });
+  try {
+    writable_polytope(ConvexPolytope::from_mesh(f), Format::stl, {.binary = true});
+    ADD_FAILURE() << "no UnrepresentableError";
+  } catch (const UnrepresentableError& e) {
+    EXPECT_TRUE(e.floats_only());
+    EXPECT_NE(std::string(e.what()).find("ascii STL"), std::string::npos) << e.what();
+  }
+}
+
+// Reading with a format the name does not tell, and from a stream.
+TEST(IoFiles, FormatGivenForANameWithoutExtension) {
+  TempDir dir;
+  const std::string path = dir.path("mesh.dat");
+  write_mesh(dir.path("m.off"), cube_mesh());
+  fs::rename(dir.path("m.off"), path);
+  EXPECT_THROW(load_polytope(path), UsageError);
+  EXPECT_EQ(load_polytope(path, false, nullptr, Format::off).num_facets(), 6u);
+  // A known extension keeps its own format.
+  write_mesh(dir.path("c.stl"), cube_mesh());
+  EXPECT_EQ(load_polytope(dir.path("c.stl"), false, nullptr, Format::off).num_facets(), 6u);
+  std::istringstream in(write_to_string(cube_mesh(), Format::ply, {.binary = true}));
+  EXPECT_EQ(load_polytope(in, Format::ply, "<stdin>").num_vertices(), 8u);
+  std::istringstream bad("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_input_error([&] { load_polytope(bad, Format::off, "<stdin>"); }, "<stdin>", "");
 }

@@ -350,3 +350,66 @@ TEST(Hull, OutputIsCanonicalWhateverTheTriangulation) {
     EXPECT_EQ(loop.front(), *std::min_element(loop.begin(), loop.end()));
   }
 }
+
+// The hull of points that are all doubles (Epick: exact predicates, no
+// constructions) is the same polytope, vertex for vertex and facet for
+// facet, as the hull of the same points as rationals; degenerate sets get the
+// same messages.  Fixed seeds; sets with many coplanar and duplicate points,
+// extreme magnitudes and points one ulp off a plane.
+TEST(Hull, DoublesAgreeWithRationals) {
+  auto same = [](const std::vector<Point3>& pts, const std::string& what) {
+    SCOPED_TRACE(what);
+    const PointList list(pts);
+    ASSERT_TRUE(list.all_doubles());
+    std::string rational_error, double_error;
+    ConvexPolytope a, b;
+    try {
+      a = ConvexPolytope::hull(pts, "cloud");
+    } catch (const InputError& e) {
+      rational_error = e.what();
+    }
+    try {
+      b = ConvexPolytope::hull(list, "cloud");
+    } catch (const InputError& e) {
+      double_error = e.what();
+    }
+    ASSERT_EQ(double_error, rational_error);
+    if (!rational_error.empty()) return;
+    ASSERT_EQ(b.num_vertices(), a.num_vertices());
+    ASSERT_EQ(b.num_facets(), a.num_facets());
+    EXPECT_EQ(b.check_invariants(), "");
+    for (Index v = 0; v < a.num_vertices(); ++v) {
+      EXPECT_EQ(b.point(v), a.point(v));
+      EXPECT_EQ(b.source_vertex(v), a.source_vertex(v));
+    }
+    for (Index f = 0; f < a.num_facets(); ++f) EXPECT_EQ(b.facet_vertices(f), a.facet_vertices(f));
+  };
+  for (std::uint64_t seed = 1; seed <= 30; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::vector<Point3> pts;
+    const int n = 4 + int(rng() % 300);
+    const double scale = std::ldexp(1.0, int(rng() % 2000) - 1000);
+    for (int i = 0; i < n; ++i) {
+      switch (rng() % 4) {
+        case 0:  // on a small lattice: many coplanar and duplicate points
+          pts.push_back(Point3(double(long(rng() % 5) - 2) * scale, double(long(rng() % 5) - 2) * scale,
+                               double(long(rng() % 5) - 2) * scale));
+          break;
+        case 1:  // one ulp off a lattice plane
+          pts.push_back(Point3(std::nextafter(2.0 * scale, 3.0 * scale), double(long(rng() % 5) - 2) * scale,
+                               double(long(rng() % 5) - 2) * scale));
+          break;
+        default: {
+          std::normal_distribution<double> g;
+          pts.push_back(Point3(g(rng) * scale, g(rng) * scale, g(rng) * scale));
+        }
+      }
+    }
+    same(pts, "seed " + std::to_string(seed));
+  }
+  same({}, "empty");
+  same({P(1, 2, 3), P(1, 2, 3)}, "coincide");
+  same({P(0, 0, 0), P(1, 1, 1), P(2, 2, 2), P(-5, -5, -5)}, "collinear");
+  same({P(0, 0, 0), P(1, 0, 0), P(0, 1, 0), P(3, 7, 0), P(1, 1, 0)}, "coplanar");
+  same({P(0, 0, 0), P(1, 0, 0), P(0, 1, 0), Point3(0.5, 0.5, 4.9406564584124654e-324)}, "one ulp thick");
+}

@@ -168,22 +168,29 @@ bool iequals(std::string_view a, std::string_view b) {
   return true;
 }
 
+namespace {
+long binary_magnitude(const Rational& q) {
+  return long(mpz_sizeinbase(q.get_num_mpz_t(), 2)) - long(mpz_sizeinbase(q.get_den_mpz_t(), 2));
+}
+}  // namespace
+
 double checked_double(const Rational& q) {
   double d = to_double(q);
-  if (!std::isfinite(d)) {
-    long bits = long(mpz_sizeinbase(q.get_num_mpz_t(), 2)) - long(mpz_sizeinbase(q.get_den_mpz_t(), 2));
-    throw UsageError("a coordinate of magnitude about 2^" + std::to_string(bits) +
-                     " does not fit in a double; write exact rationals to " + extension_list(", ", " or ", true));
-  }
+  if (!std::isfinite(d))
+    throw UnrepresentableError(
+        "a coordinate of magnitude about 2^" + std::to_string(binary_magnitude(q)) + " does not fit in a double",
+        false);
   return d;
 }
 
 float checked_float(const Rational& q) {
   const float f = to_float(q);
   if (std::isinf(f)) {
-    const long e = long(mpz_sizeinbase(q.get_num_mpz_t(), 2)) - long(mpz_sizeinbase(q.get_den_mpz_t(), 2));
-    throw UsageError("a coordinate of magnitude about 2^" + std::to_string(e) +
-                     " does not fit in the 32-bit floats of binary STL; write ascii STL or another format");
+    // Beyond the doubles too: the double's error, whose remedy is exact output.
+    if (!std::isfinite(to_double(q))) checked_double(q);
+    throw UnrepresentableError("a coordinate of magnitude about 2^" + std::to_string(binary_magnitude(q)) +
+                                   " does not fit in the 32-bit floats of binary STL",
+                               true);
   }
   return f;
 }
@@ -319,6 +326,11 @@ void put_le_float(std::ostream& out, float value) {
 using namespace io_detail;
 
 // ---------------------------------------------------------------------------
+
+UnrepresentableError::UnrepresentableError(const std::string& problem, bool floats_only)
+    : UsageError(problem + (floats_only ? "; write ascii STL or another format"
+                                        : "; write exact rationals to " + extension_list(", ", " or ", true))),
+      problem_(problem), floats_only_(floats_only) {}
 
 namespace {
 constexpr FormatInfo kFormats[] = {
@@ -490,8 +502,9 @@ std::string random_suffix() {
 
 }  // namespace
 
-Format output_format(const std::string& path, const WriteOptions& options) {
+Format output_format(const std::string& path, const WriteOptions& options, std::optional<Format> given) {
   auto format = format_from_path(path);
+  if (!format) format = given;
   if (!format) unknown_extension(path, "write");
   check_exact_possible(*format, options);
   return *format;
@@ -504,11 +517,24 @@ Mesh read_mesh(const std::string& path) {
   return parse(data, *format, path);
 }
 
+Mesh read_mesh(const std::string& path, Format format) {
+  std::string data = slurp(path);
+  return parse(data, format, path);
+}
+
 Mesh read_mesh(std::istream& in, Format format, const std::string& name) {
   std::string data{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   if (in.bad()) throw InputError(name, "", "read error");
   return parse(data, format, name);
 }
+
+namespace {
+// p's coordinates, which the format holds (writable_polytope's result).
+void write_polytope_exactly(std::ostream& out, const ConvexPolytope& p, Format format, const WriteOptions& options) {
+  if (format == Format::off) write_off(out, p, options);
+  else write_mesh(out, p.to_mesh(), format, options);
+}
+}  // namespace
 
 void write_mesh(std::ostream& out, const Mesh& mesh, Format format, const WriteOptions& options) {
   check_writable(mesh, format, options);
@@ -529,14 +555,20 @@ void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& o
   write_file_atomically(path, [&](std::ostream& out) { write_mesh(out, mesh, *format, options); });
 }
 
-void write_polytope(const std::string& path, const ConvexPolytope& p, const WriteOptions& options) {
-  auto format = format_from_path(path);
+void write_polytope(const std::string& path, const ConvexPolytope& p, const WriteOptions& options,
+                    RoundingReport* report, std::optional<Format> format) {
+  if (!format) format = format_from_path(path);
   if (!format) unknown_extension(path, "write");
-  if (*format != Format::off) {
-    write_mesh(path, p.to_mesh(), options);
-    return;
-  }
-  write_file_atomically(path, [&](std::ostream& out) { write_off(out, p, options); });
+  check_exact_possible(*format, options);
+  // Rounded (and refused) before the file system is touched.
+  const ConvexPolytope q = writable_polytope(p, *format, options, report);
+  write_file_atomically(path, [&](std::ostream& out) { write_polytope_exactly(out, q, *format, options); });
+}
+
+void write_polytope(std::ostream& out, const ConvexPolytope& p, Format format, const WriteOptions& options,
+                    RoundingReport* report) {
+  check_exact_possible(format, options);
+  write_polytope_exactly(out, writable_polytope(p, format, options, report), format, options);
 }
 
 void write_file_atomically(const std::string& path,

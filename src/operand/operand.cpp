@@ -9,28 +9,45 @@
 
 namespace minksum {
 
-ConvexPolytope load_polytope(const std::string& spec, bool hull, LoadPhases* phases) {
-  using clock = std::chrono::steady_clock;
-  auto seconds = [](clock::time_point a, clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
-  auto format = format_from_path(spec);
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+// The mesh read (from t0 on) validated, or its hull taken; phases timed.
+ConvexPolytope validate(const Mesh& mesh, const std::string& name, bool hull, LoadPhases* phases,
+                        Clock::time_point t0) {
+  const auto t1 = Clock::now();
+  ConvexPolytope p = hull ? ConvexPolytope::hull(mesh.points, name) : ConvexPolytope::from_mesh(mesh, name);
+  if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
+  return p;
+}
+}  // namespace
+
+ConvexPolytope load_polytope(std::istream& in, Format format, const std::string& name, bool hull,
+                             LoadPhases* phases) {
+  const auto t0 = Clock::now();
+  return validate(read_mesh(in, format, name), name, hull, phases, t0);
+}
+
+ConvexPolytope load_polytope(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> given) {
+  const auto format = format_from_path(spec);
   struct stat st{};
   bool exists = ::stat(spec.c_str(), &st) == 0;
   // An existing file is read, unless its name has no known extension and is
   // a catalog spec (a stray file called "cube" does not shadow the catalog).
   if (exists && (format || !is_catalog_spec(spec))) {
-    const auto t0 = clock::now();
-    Mesh mesh = read_mesh(spec);  // UsageError for an unknown extension; InputError for directories, unreadable files, bad data
-    const auto t1 = clock::now();
-    ConvexPolytope p = hull ? ConvexPolytope::hull(mesh.points, spec) : ConvexPolytope::from_mesh(mesh, spec);
-    if (phases) *phases = {seconds(t0, t1), seconds(t1, clock::now())};
-    return p;
+    const auto t0 = Clock::now();
+    // UsageError for an unknown extension (and no format given); InputError
+    // for directories, unreadable files, bad data.
+    Mesh mesh = format || !given ? read_mesh(spec) : read_mesh(spec, *given);
+    return validate(mesh, spec, hull, phases, t0);
   }
   if (is_catalog_spec(spec)) {
-    const auto t0 = clock::now();
+    const auto t0 = Clock::now();
     ConvexPolytope p = catalog_polytope(spec);
-    const auto t1 = clock::now();
+    const auto t1 = Clock::now();
     if (hull) p = ConvexPolytope::hull(p.coordinates(), spec);
-    if (phases) *phases = {seconds(t0, t1), seconds(t1, clock::now())};
+    if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
     return p;
   }
   if (format) throw InputError(spec, "", "no such file");

@@ -70,9 +70,9 @@ Coordinate read_coordinate(std::string_view token, const std::string& name, std:
 void push_point(PointList& points, Coordinate (&c)[3]);
 
 // Writing one coordinate (k = 0, 1, 2) of point i:
-//  * its nearest double; UsageError when it rounds beyond the double range
+//  * its nearest double; UnrepresentableError when it rounds beyond the double range
 //    (only rational coordinates can);
-//  * its nearest float (binary STL); UsageError beyond the float range;
+//  * its nearest float (binary STL); UnrepresentableError beyond the float range;
 //  * appended to `out` as text: the shortest round-trip text of the nearest
 //    double, or with `exact` the exact value (an integer or p/q), printed
 //    from the doubles' mantissas when the coordinate is a double or a pair.
@@ -126,7 +126,7 @@ std::optional<std::int64_t> parse_signed(std::string_view token);
 // validate values that are skipped anyway (colours, normals, other properties).
 bool looks_numeric(std::string_view token);
 
-// Writing doubles: the nearest double of q; UsageError when q rounds beyond
+// Writing doubles: the nearest double of q; UnrepresentableError when q rounds beyond
 // the double range.
 double checked_double(const Rational& q);
 
@@ -231,7 +231,7 @@ void put_le_double(std::ostream& out, double value);
 void put_le_float(std::ostream& out, float value);
 
 // Nearest float (round to nearest, ties to even, gradual underflow) of an
-// exact rational; throws UsageError when |q| rounds beyond FLT_MAX.
+// exact rational; throws UnrepresentableError when |q| rounds beyond FLT_MAX.
 float checked_float(const Rational& q);
 
 }  // namespace minksum::io_detail

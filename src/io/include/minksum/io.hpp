@@ -36,17 +36,20 @@
 // Writers print each coordinate as the shortest text that reads back to the
 // same double (a coordinate that is not a double, e.g. 1/3, is rounded to the
 // nearest one) or, with exact = true, as exact rationals (integers or p/q).
+// write_polytope goes further: what it writes always reads back as a valid
+// convex polytope (see writable_polytope below).
 // OFF, OBJ and VRML carry exact rationals natively (VRML through
 // ExactCoordinate); PLY and STL are written with doubles only (exact is
 // refused with a UsageError for them), and binary STL with 32-bit floats
 // (each coordinate rounded to the nearest float).  A coordinate beyond the
-// double (binary STL: float) range is refused with a UsageError rather than
-// written as infinity.  STL is triangles only: polygons are fan-triangulated.
+// double (binary STL: float) range is refused with an UnrepresentableError (a
+// UsageError) rather than written as infinity.  STL is triangles only: polygons are fan-triangulated.
 // write_mesh(path, ...) writes to a temporary file in the same directory and
 // renames it over `path`, so a failed write never leaves a half-written file.
 // An unknown extension is a UsageError, for reading and for writing.
 #pragma once
 
+#include <minksum/error.hpp>
 #include <minksum/polytope.hpp>
 
 #include <functional>
@@ -88,24 +91,85 @@ struct WriteOptions {
   bool binary = false;  // PLY / STL: binary instead of ascii
 };
 
+// Coordinates that cannot be written in the format asked for: a coordinate
+// beyond its range (overflow), or a solid whose vertices, rounded to the
+// format's numbers, no longer span a solid (underflow to zero, denormals
+// collapsing).  A UsageError (the request cannot be honoured), detected
+// before anything is written.  problem() says what happened without a
+// remedy; what() adds one (exact rationals in .off, .obj or .wrl; for binary
+// STL, ascii STL when the doubles would do).
+class UnrepresentableError : public UsageError {
+ public:
+  UnrepresentableError(const std::string& problem, bool floats_only);
+  const std::string& problem() const { return problem_; }
+  // True when only the 32-bit floats of binary STL are too small: every
+  // double-based format (ascii STL included) could hold the solid.
+  bool floats_only() const { return floats_only_; }
+
+ private:
+  std::string problem_;
+  bool floats_only_;
+};
+
+// What writing a polytope did to its coordinates (writable_polytope).
+struct RoundingReport {
+  std::size_t coordinates = 0;  // coordinates not representable in the format, rounded
+  double max_displacement = 0;  // largest distance from an exact vertex to its rounded point (about)
+  std::size_t split = 0;        // facets no longer planar, split along convex folds
+  bool hull = false;            // splitting did not make a convex polytope: the hull was taken
+  std::size_t merged = 0;       // vertices rounded onto the point of another vertex
+  std::size_t dropped = 0;      // other rounded points that are not vertices of what is written
+  bool rounded() const { return coordinates != 0; }
+};
+
+// The polytope that `format` (with `options`) writes exactly, so that the
+// file reads back as a valid closed convex polytope:
+//   * p itself when the format holds every coordinate (exact rationals with
+//     options.exact; doubles; the 32-bit floats of binary STL);
+//   * else p with each vertex rounded to the nearest representable point,
+//     each facet whose rounded points are no longer coplanar split into the
+//     facets of the upper side of their own exact hull (a quadrilateral along
+//     the diagonal that folds outwards), when the result is exactly a convex
+//     polytope (validated as a file being read; coplanar facets merged);
+//   * else the exact convex hull of the rounded points.
+// Every rounded point lies in the result and every vertex of the result is a
+// rounded point, so the result is within max_displacement of p (Hausdorff
+// distance).  Throws UnrepresentableError when a coordinate is beyond the
+// format's range or the rounded points no longer span a solid.  `report`,
+// when given, says what was rounded.
+ConvexPolytope writable_polytope(const ConvexPolytope& p, Format format, const WriteOptions& options,
+                                 RoundingReport* report = nullptr);
+
 // The format of an output path, checked against the options before anything
 // is computed or written: UsageError for an unknown extension or for exact
-// coordinates in a format that cannot hold them.
-Format output_format(const std::string& path, const WriteOptions& options);
+// coordinates in a format that cannot hold them.  `format`, when given, is
+// the format of a path whose extension is not a known one.
+Format output_format(const std::string& path, const WriteOptions& options,
+                     std::optional<Format> format = std::nullopt);
 
 // Read a mesh from a file (format from the extension).
 Mesh read_mesh(const std::string& path);
 // Read a mesh from a stream; `name` is used in error messages.
 Mesh read_mesh(std::istream& in, Format format, const std::string& name);
+// Read a file in the given format, whatever its name says.
+Mesh read_mesh(const std::string& path, Format format);
 
 // Write atomically (temporary file + rename).  Requests the format cannot
 // honour (exact PLY/STL, a face index out of range, a coordinate beyond the
 // double range when writing doubles) throw UsageError; the first two are
 // detected before the file system is touched.
 void write_mesh(const std::string& path, const Mesh& mesh, const WriteOptions& options = {});
-// Write a polytope: the same file as write_mesh(path, p.to_mesh(), options),
-// without building the intermediate mesh where the format allows (OFF).
-void write_polytope(const std::string& path, const ConvexPolytope& p, const WriteOptions& options = {});
+// Write a polytope: writable_polytope(p, ...) written as write_mesh(path,
+// q.to_mesh(), options) would, without building the intermediate mesh where
+// the format allows (OFF); the file always reads back as a valid polytope
+// (exactly p when nothing was rounded).  `format` overrides the path's
+// extension.  `report`, when given, says what was rounded.
+void write_polytope(const std::string& path, const ConvexPolytope& p, const WriteOptions& options = {},
+                    RoundingReport* report = nullptr, std::optional<Format> format = std::nullopt);
+// The same to a stream (standard output): nothing is written when
+// writable_polytope throws.
+void write_polytope(std::ostream& out, const ConvexPolytope& p, Format format, const WriteOptions& options = {},
+                    RoundingReport* report = nullptr);
 // Write to a stream in the given format.
 void write_mesh(std::ostream& out, const Mesh& mesh, Format format, const WriteOptions& options = {});
 

@@ -3,7 +3,11 @@
 // one place that decides which a name is.
 #pragma once
 
+#include <minksum/io.hpp>
 #include <minksum/polytope.hpp>
+
+#include <iosfwd>
+#include <optional>
 
 #include <string>
 
@@ -23,6 +27,13 @@ namespace minksum {
 struct LoadPhases {
   double read = 0, validate = 0;
 };
-ConvexPolytope load_polytope(const std::string& spec, bool hull = false, LoadPhases* phases = nullptr);
+// `format`, when given, is the format of an existing file whose name has no
+// known extension (a name with one keeps its own format).
+ConvexPolytope load_polytope(const std::string& spec, bool hull = false, LoadPhases* phases = nullptr,
+                             std::optional<Format> format = std::nullopt);
+// An operand read whole from a stream (standard input) in the given format,
+// validated (or its hull taken) as above; `name` names it in error messages.
+ConvexPolytope load_polytope(std::istream& in, Format format, const std::string& name, bool hull = false,
+                             LoadPhases* phases = nullptr);
 
 }  // namespace minksum

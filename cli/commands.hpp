@@ -14,5 +14,6 @@ int run_gen(const std::vector<std::string>& args);
 int run_query(const std::vector<std::string>& args);
 int run_simulate(const std::vector<std::string>& args);
 int run_cgm(const std::vector<std::string>& args);
+int run_view(const std::vector<std::string>& args);
 
 }  // namespace minksum::cli

@@ -27,7 +27,8 @@ Usage:
                 [--translate-q X,Y,Z] [--rotate-q A,B,C,D] [--direction X,Y,Z]
                 [--trajectory FILE] [--json]
   minksum simulate [--obstacle Q] [--robot P] [--frames N] [-o OUT.svg|.html]
-  minksum cgm P [Q] [--svg OUT.svg] [--stats] [--json]
+  minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [--stats] [--json]
+  minksum view A [B] -o OUT.html [--method M]   a 3D page, offline
   minksum COMMAND --help          help on one command
   minksum --version
 
@@ -54,6 +55,7 @@ constexpr Command kCommands[] = {
     {"query", run_query},
     {"simulate", run_simulate},
     {"cgm", run_cgm},
+    {"view", run_view},
 };
 
 }  // namespace

@@ -1,0 +1,129 @@
+// The viewer pages (page.hpp).
+#include "page.hpp"
+
+#include <minksum/io.hpp>
+
+#include <ostream>
+#include <string_view>
+
+#include "common.hpp"
+
+// The viewer's script bundled with three.js (web/src/viewer.js, bundled by
+// esbuild at build time) and three.js's licence, linked into the command by
+// the generated viewer_assets.cpp (CMakeLists.txt).
+extern "C" const char minksum_viewer_js[], minksum_viewer_js_end[];
+extern "C" const char minksum_three_licence[], minksum_three_licence_end[];
+
+namespace minksum::cli {
+
+namespace {
+
+std::string_view asset(const char* begin, const char* end) { return {begin, std::size_t(end - begin)}; }
+
+void append_exact(std::string& out, const Rational& q) { out += format_exact(q); }
+
+const char* feature_dim_code(FeatureDim d) { return d == FeatureDim::vertex ? "0" : d == FeatureDim::edge ? "1" : "2"; }
+
+}  // namespace
+
+void check_html_path(const std::string& path, const std::string& option) {
+  if (path.size() < 6 || path.compare(path.size() - 5, 5, ".html") != 0)
+    throw UsageError(option + ": the page is an .html file, got '" + path + "'");
+}
+
+std::string json_string(const std::string& s) {
+  // "</" would end the <script> element holding the data.
+  std::string e = json_escape(s), out = "\"";
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    if (e[i] == '<' && i + 1 < e.size() && e[i + 1] == '/') out += "<\\";
+    else out += e[i];
+  }
+  return out + "\"";
+}
+
+std::string origin_names_json() {
+  std::string out = "[";
+  constexpr FacetOrigin kinds[] = {FacetOrigin::translated, FacetOrigin::corner, FacetOrigin::edge,
+                                   FacetOrigin::facet_edge, FacetOrigin::facet_facet};
+  for (std::size_t i = 0; i < std::size(kinds); ++i) out += (i ? ", \"" : "\"") + std::string(facet_origin_name(kinds[i])) + "\"";
+  return out + "]";
+}
+
+void append_solid_json(std::string& out, const ConvexPolytope& p, const std::string& name, const std::string& role,
+                       const std::vector<FacetProvenance>* provenance) {
+  out += "{\"name\": " + json_string(name) + ", \"role\": " + json_string(role) + ", \"counts\": {" + counts_json(p) +
+         "}, \"volume\": \"" + format_exact(p.volume()) + "\", \"xyz\": [";
+  for (Index v = 0; v < p.num_vertices(); ++v) {
+    const Vec3d& a = p.approx(v);
+    out += (v ? "," : "") + format_double(a.x) + "," + format_double(a.y) + "," + format_double(a.z);
+  }
+  out += "], \"exact\": [";
+  for (Index v = 0; v < p.num_vertices(); ++v) {
+    const Point3& q = p.point(v);
+    out += v ? ",\"" : "\"";
+    append_exact(out, q.x), out += ' ', append_exact(out, q.y), out += ' ', append_exact(out, q.z);
+    out += '"';
+  }
+  out += "], \"facets\": [";
+  for (Index f = 0; f < p.num_facets(); ++f) {
+    out += f ? ",[" : "[";
+    const Index h0 = p.facet_halfedge(f);
+    Index h = h0;
+    bool first = true;
+    do {
+      out += (first ? "" : ",") + std::to_string(p.origin(h));
+      first = false;
+      h = p.next(h);
+    } while (h != h0);
+    out += ']';
+  }
+  out += "], \"planes\": [";
+  for (Index f = 0; f < p.num_facets(); ++f) {
+    const Plane& pl = p.plane(f);
+    out += (f ? ",\"" : "\"") + pl.a.get_str() + " " + pl.b.get_str() + " " + pl.c.get_str() + " " + pl.d.get_str() + "\"";
+  }
+  out += "]";
+  if (provenance && provenance->size() == p.num_facets()) {
+    out += ", \"origin\": [";
+    for (Index f = 0; f < p.num_facets(); ++f) out += (f ? "," : "") + std::to_string(int((*provenance)[f].origin()));
+    out += "], \"from\": [";
+    for (Index f = 0; f < p.num_facets(); ++f) {
+      const FacetProvenance& fp = (*provenance)[f];
+      out += f ? "," : "";
+      out += feature_dim_code(fp.a.dim), out += ",", out += std::to_string(fp.a.index), out += ",";
+      out += feature_dim_code(fp.b.dim), out += ",", out += std::to_string(fp.b.index);
+    }
+    out += "]";
+  }
+  out += "}";
+}
+
+void write_page(const std::string& path, const std::string& title, const std::string& data) {
+  const std::string_view script = asset(minksum_viewer_js, minksum_viewer_js_end);
+  const std::string_view licence = asset(minksum_three_licence, minksum_three_licence_end);
+  std::string escaped_title;
+  for (char c : title) {
+    if (c == '<') escaped_title += "&lt;";
+    else if (c == '>') escaped_title += "&gt;";
+    else if (c == '&') escaped_title += "&amp;";
+    else escaped_title += c;
+  }
+  try {
+    write_file_atomically(path, [&](std::ostream& o) {
+      // The Content-Security-Policy forbids every request: the page works offline or not at all.
+      o << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
+        << "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; script-src 'unsafe-inline'; "
+           "style-src 'unsafe-inline'; img-src data: blob:\">\n"
+        << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+        << "<meta name=\"generator\" content=\"minksum\">\n<title>" << escaped_title << "</title></head>\n<body>\n"
+        << "<noscript>This page draws with JavaScript and WebGL.</noscript>\n"
+        << "<script type=\"application/json\" id=\"minksum-data\">" << data << "</script>\n"
+        << "<script>\n/* The viewer of minksum, bundled with three.js (https://threejs.org), whose licence follows.\n\n"
+        << licence << "*/\n" << script << "\n</script>\n</body></html>\n";
+    });
+  } catch (const InputError& e) {
+    throw OutputError(std::string("cannot write ") + e.what());
+  }
+}
+
+}  // namespace minksum::cli

@@ -1,0 +1,39 @@
+// The pages 'minksum view', 'minksum cgm --html' and 'minksum simulate --html'
+// write: one self-contained HTML file each (the viewer's script, three.js
+// inlined with its licence, the data as JSON), opening offline in a browser.
+// The viewer itself is web/src/viewer.js; docs/viewer.md describes the page.
+#pragma once
+
+#include <minksum/polytope.hpp>
+#include <minksum/sum_result.hpp>
+
+#include <string>
+#include <vector>
+
+namespace minksum::cli {
+
+// UsageError unless `path` ends in ".html" (`option` names the option in the message).
+void check_html_path(const std::string& path, const std::string& option);
+
+// Appends the JSON object of one solid as the page draws it: "name", "role",
+// "counts" (vertices, edges, facets), "volume" (exact), "xyz" (the vertices' nearest doubles, flat, for
+// drawing), "exact" (each vertex "x y z" in exact rationals), "facets" (vertex
+// loops, counter-clockwise seen from outside), "planes" (each facet's
+// canonical integer plane "a b c d": a x + b y + c z = d), and with
+// `provenance` "origin" (per facet, the index of its FacetOrigin in
+// "origins" of the page) and "from" (per facet: dim and index of face_A(n),
+// then of face_B(n); dims 0 vertex, 1 edge, 2 facet).
+void append_solid_json(std::string& out, const ConvexPolytope& p, const std::string& name, const std::string& role,
+                       const std::vector<FacetProvenance>* provenance = nullptr);
+
+// "[\"translated\", \"corner\", ...]": FacetOrigin names in enum order.
+std::string origin_names_json();
+
+// A JSON string literal of s (quotes included).
+std::string json_string(const std::string& s);
+
+// Writes the page atomically: `data` is one JSON object (it holds "kind":
+// "sum", "polytope", "cgm" or "motion"); OutputError when the file cannot be written.
+void write_page(const std::string& path, const std::string& title, const std::string& data);
+
+}  // namespace minksum::cli

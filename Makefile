@@ -16,6 +16,7 @@ all: build
 
 setup:
 	@bash scripts/setup.sh
+	@bash scripts/setup-web.sh
 
 $(BUILD)/CMakeCache.txt:
 	@$(MAKE) --no-print-directory setup

@@ -62,12 +62,12 @@ export async function launch() {
 // blocked requests.
 export async function open(context, file, timeoutMs = 120000) {
   const page = await context.newPage();
-  const log = { errors: [], blocked: [] };
+  const log = { errors: [], blocked: [], files: [] };
   page.on('console', (m) => { if (m.type() === 'error') log.errors.push(m.text()); });
   page.on('pageerror', (e) => log.errors.push(String(e)));
   await page.route('**/*', (route) => {
     const url = route.request().url();
-    if (url.startsWith('file:')) return route.continue();
+    if (url.startsWith('file:')) { log.files.push(url); return route.continue(); }
     log.blocked.push(url);
     return route.abort();
   });
@@ -78,11 +78,13 @@ export async function open(context, file, timeoutMs = 120000) {
   return { page, log };
 }
 
-// The checks every page gets: no console error, no request off the file,
+// The checks every page gets: no console error, no request but the page's own
+// file,
 // a canvas that is not blank (variance of its pixels' grey levels).
 export async function checkPage(page, log, name) {
   check(log.errors.length === 0, `${name}: console errors: ${log.errors.join(' | ')}`);
   check(log.blocked.length === 0, `${name}: the page asked for ${log.blocked.join(', ')}`);
+  check(log.files.length === 1, `${name}: the page is not one file: it loaded ${log.files.join(', ')}`);
   const variance = await page.evaluate(() => {
     const src = document.querySelector('#view canvas');
     const c = document.createElement('canvas');

@@ -8,11 +8,12 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "page.hpp"
 
 namespace minksum::cli {
 
 namespace {
-const char* kCgmHelp = R"(Usage: minksum cgm P [Q] [--svg OUT.svg] [--stats] [--json]
+const char* kCgmHelp = R"(Usage: minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [--stats] [--json]
 
 Build the Cubical Gaussian Map (Fogel & Halperin) of P: the Gaussian map
 centrally projected on the six faces of the cube [-1,1]^3, six planar maps
@@ -26,12 +27,17 @@ Options:
   --svg OUT    draw the unfolded map (six squares in a cross); real edges solid
                (for a sum: P's edges red, Q's blue, overlapping edges purple),
                artificial edges dashed; written atomically
+  --html OUT   a self-contained 3D page (offline; docs/viewer.md): the six
+               planar maps on the faces of the cube, artificial edges dashed,
+               arcs of P and Q in two named colours, the facet normals (the
+               overlay's vertices) as dots, beside the polytope it encodes;
+               click a facet of the polytope for its exact plane
   --json       print the counts as one JSON object
 )";
 }  // namespace
 
 int run_cgm(const std::vector<std::string>& argv) {
-  const Args a = parse_args(argv, "cgm", {{"--svg", "", true}, {"--stats", "", false}, {"--json", "", false}});
+  const Args a = parse_args(argv, "cgm", {{"--svg", "", true}, {"--html", "", true}, {"--stats", "", false}, {"--json", "", false}});
   if (a.help) {
     std::cout << kCgmHelp;
     return 0;
@@ -40,11 +46,14 @@ int run_cgm(const std::vector<std::string>& argv) {
     throw UsageError("'cgm' needs one or two operands (see 'minksum cgm --help')");
   const auto svg = a.value("--svg");
   if (svg && svg->empty()) throw UsageError("--svg needs a file name");
+  const auto html = a.value("--html");
+  if (html) check_html_path(*html, "--html");
   ConvexPolytope p = load_polytope(a.positional[0]);
   CubicalGaussianMap g;
   std::string label = a.positional[0];
   double seconds = 0;
   ConvexPolytope shown = p;
+  std::vector<FacetProvenance> provenance;
   if (a.positional.size() == 2) {
     ConvexPolytope q = load_polytope(a.positional[1]);
     label += " + " + a.positional[1];
@@ -53,6 +62,7 @@ int run_cgm(const std::vector<std::string>& argv) {
     g = CubicalGaussianMap::from_polytope(r.polytope);
     g.set_operands(r.vertex_origin, r.polytope);
     shown = r.polytope;
+    if (html) provenance = r.facet_provenance.empty() ? facet_provenance(p, q, r.polytope) : r.facet_provenance;
   } else {
     g = CubicalGaussianMap::from_polytope(p);
   }
@@ -63,6 +73,11 @@ int run_cgm(const std::vector<std::string>& argv) {
     } catch (const InputError& e) {
       throw OutputError(std::string("cannot write ") + e.what());
     }
+  }
+  if (html) {
+    std::vector<std::string> operands;
+    if (a.positional.size() == 2) operands = a.positional;
+    write_cgm_page(*html, label, g, shown, operands, provenance);
   }
   if (a.flag("--json")) {
     std::cout << "{\"name\": \"" << json_escape(label) << "\", " << counts_json(shown) << ", \"maps\": [";
@@ -80,7 +95,7 @@ int run_cgm(const std::vector<std::string>& argv) {
   }
   std::cout << label << ": " << shown.num_vertices() << " vertices, " << shown.num_edges() << " edges, "
             << shown.num_facets() << " facets\n";
-  if (a.flag("--stats") || !svg) {
+  if (a.flag("--stats") || (!svg && !html)) {
     static const char* plane[6] = {"x=-1", "y=-1", "z=-1", "x=+1", "y=+1", "z=+1"};
     std::cout << "  map  plane     V    HE     F  real V  real E\n";
     Index tv = 0, th = 0, tf = 0;
@@ -97,6 +112,7 @@ int run_cgm(const std::vector<std::string>& argv) {
     std::cout << line;
   }
   if (svg) std::cout << "  wrote " << *svg << "\n";
+  if (html) std::cout << "  wrote " << *html << "\n";
   return 0;
 }
 

@@ -126,4 +126,54 @@ void write_page(const std::string& path, const std::string& title, const std::st
   }
 }
 
+void write_cgm_page(const std::string& path, const std::string& title, const CubicalGaussianMap& g,
+                    const ConvexPolytope& shown, const std::vector<std::string>& operands,
+                    const std::vector<FacetProvenance>& provenance) {
+  const bool sum = operands.size() == 2;
+  const bool with_origin = sum && provenance.size() == shown.num_facets();
+  std::string data = "{\"kind\": \"cgm\", \"title\": " + json_string(title) + ", \"origins\": " + origin_names_json();
+  if (sum) data += ", \"operands\": [" + json_string(operands[0]) + ", " + json_string(operands[1]) + "]";
+  data += ", \"maps\": [";
+  for (int k = 0; k < 6; ++k) {
+    const CubicalGaussianMap::PlanarMap& m = g.map(k);
+    const auto c = g.counts(k);
+    data += (k ? ", {" : "{") + std::string("\"id\": ") + std::to_string(k) + ", \"counts\": {\"vertices\": " +
+            std::to_string(c.vertices) + ", \"halfedges\": " + std::to_string(c.halfedges) + ", \"faces\": " +
+            std::to_string(c.faces) + ", \"real_vertices\": " + std::to_string(m.num_real_vertices()) +
+            ", \"real_edges\": " + std::to_string(m.num_real_edges()) + "}, \"xyz\": [";
+    for (Index v = 0; v < m.vertices.size(); ++v) {
+      const Point3 p = g.lift(k, v);
+      data += (v ? "," : "") + format_double(to_double(p.x)) + "," + format_double(to_double(p.y)) + "," +
+              format_double(to_double(p.z));
+    }
+    data += "], \"exact\": [";
+    for (Index v = 0; v < m.vertices.size(); ++v)
+      data += (v ? ",\"" : "\"") + format_exact(m.vertices[v].x) + " " + format_exact(m.vertices[v].y) + "\"";
+    data += "], \"facet\": [";
+    for (Index v = 0; v < m.vertices.size(); ++v)
+      data += (v ? "," : "") + (m.vertices[v].real ? std::to_string(m.vertices[v].facet) : std::string("-1"));
+    if (with_origin) {
+      data += "], \"origin\": [";
+      for (Index v = 0; v < m.vertices.size(); ++v)
+        data += (v ? "," : "") + (m.vertices[v].real ? std::to_string(int(provenance[m.vertices[v].facet].origin()))
+                                                     : std::string("-1"));
+    }
+    data += "], \"edges\": [";
+    bool first = true;
+    for (Index h = 0; h < m.halfedges.size(); ++h) {
+      const auto& e = m.halfedges[h];
+      if (e.twin < h) continue;  // each edge once
+      const int kind = !e.real ? 0 : e.operands == 0 ? 1 : e.operands == 1 ? 2 : e.operands == 2 ? 3 : 4;
+      data += (first ? "" : ",") + std::to_string(e.origin) + "," + std::to_string(m.halfedges[e.twin].origin) + "," +
+              std::to_string(kind);
+      first = false;
+    }
+    data += "]}";
+  }
+  data += "], \"solids\": [";
+  append_solid_json(data, shown, title, sum ? "sum" : "polytope", with_origin ? &provenance : nullptr);
+  data += "]}";
+  write_page(path, title, data);
+}
+
 }  // namespace minksum::cli

@@ -4,6 +4,7 @@
 // The viewer itself is web/src/viewer.js; docs/viewer.md describes the page.
 #pragma once
 
+#include <minksum/cubical_gaussian_map.hpp>
 #include <minksum/polytope.hpp>
 #include <minksum/sum_result.hpp>
 
@@ -35,5 +36,16 @@ std::string json_string(const std::string& s);
 // Writes the page atomically: `data` is one JSON object (it holds "kind":
 // "sum", "polytope", "cgm" or "motion"); OutputError when the file cannot be written.
 void write_page(const std::string& path, const std::string& title, const std::string& data);
+
+// The page of 'minksum cgm --html': the map g of `shown` (P, or P ⊕ Q when
+// `operands` names P and Q; then `provenance` gives each facet's origin, or
+// is empty) on the unit cube, beside the polytope.  Per map: "xyz" (each
+// vertex lifted to the cube, doubles), "exact" (its exact 2D coordinates in
+// the map's axes), "facet" (the facet mapped to it, -1 for an artificial
+// vertex), "origin" (that facet's provenance, with operands), "edges" (u, v,
+// kind per edge: 0 artificial, 1 real, 2 of P, 3 of Q, 4 of both), "counts".
+void write_cgm_page(const std::string& path, const std::string& title, const CubicalGaussianMap& g,
+                    const ConvexPolytope& shown, const std::vector<std::string>& operands,
+                    const std::vector<FacetProvenance>& provenance);
 
 }  // namespace minksum::cli

@@ -14,6 +14,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "page.hpp"
 
 namespace minksum::cli {
 
@@ -36,8 +37,13 @@ Options:
   --frames N        number of frames, 4 <= N <= 10000 (default 40)
   --turn A,B,C,D    the rotation applied every other frame, an integer
                     quaternion (default 10,0,0,1: about z by ≈ 11.4°)
-  -o, --output OUT  write a picture of the trail: .svg, or .html (the SVG in a
-                    page); written to a temporary file and renamed
+  -o, --output OUT  write a picture of the trail (.svg), or the 3D player
+                    (.html, as --html); written to a temporary file and renamed
+  --html OUT        write the motion as a self-contained 3D page (offline;
+                    docs/viewer.md): play/pause, a timeline slider with the
+                    frames where the state changes marked, speed; the robot
+                    coloured by its state, each frame's exact translation and
+                    squared distance or depth
   --json            one JSON object per frame instead of text
 )";
 
@@ -97,7 +103,8 @@ const char* status_colour(ContactStatus s) {
 int run_simulate(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "simulate",
                             {{"--obstacle", "", true}, {"--robot", "", true}, {"--frames", "", true},
-                             {"--turn", "", true}, {"--output", "-o", true}, {"--json", "", false}});
+                             {"--turn", "", true}, {"--output", "-o", true}, {"--html", "", true},
+                             {"--json", "", false}});
   if (a.help) {
     std::cout << kSimulateHelp;
     return 0;
@@ -108,13 +115,17 @@ int run_simulate(const std::vector<std::string>& argv) {
   if (!frames_num || frames_num->get_den() != 1 || *frames_num < 4 || *frames_num > 10000)
     throw UsageError("--frames needs an integer 4 <= N <= 10000, got '" + frames_text + "'");
   const long frames = frames_num->get_num().get_si();
-  const std::string output = a.value_or("--output", "");
-  bool html = false;
+  std::string output = a.value_or("--output", "");
+  std::string html_output = a.value_or("--html", "");
+  if (a.value("--html")) check_html_path(html_output, "--html");
   if (!output.empty()) {
     const std::string ext = output.size() >= 5 ? output.substr(output.size() - 5) : "";
-    html = ext == ".html";
-    if (!html && (output.size() < 4 || output.substr(output.size() - 4) != ".svg"))
+    if (ext == ".html") {
+      if (!html_output.empty()) throw UsageError("-o OUT.html and --html both ask for the page; give one");
+      html_output = output, output.clear();
+    } else if (output.size() < 4 || output.substr(output.size() - 4) != ".svg") {
       throw UsageError("--output: the picture is .svg or .html, got '" + output + "'");
+    }
   }
   Quaternion turn = {Integer(10), Integer(0), Integer(0), Integer(1)};
   if (auto t = a.value("--turn")) {
@@ -137,9 +148,11 @@ int run_simulate(const std::vector<std::string>& argv) {
   // Orientation k (frames 2k, 2k+1): the robot turned k times.
   const std::size_t orientations = std::size_t((frames + 1) / 2);
   std::vector<ConvexPolytope> robots;
+  std::vector<Quaternion> turns;  // orientation k: robot rotated by turns[k]
   Quaternion q = {Integer(1), Integer(0), Integer(0), Integer(0)};
   for (std::size_t k = 0; k < orientations; ++k) {
     robots.push_back(k == 0 ? robot : rotated(robot, q));
+    turns.push_back(q);
     q = quaternion_product(turn, q);
   }
 
@@ -259,17 +272,20 @@ int run_simulate(const std::vector<std::string>& argv) {
         << "green: separate, orange: touching, red: penetrating</text>\n</svg>\n";
     const std::string body = svg.str();
     try {
-      write_file_atomically(output, [&](std::ostream& out) {
-        if (html)
-          out << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>minksum simulate</title></head><body>\n"
-              << body << "</body></html>\n";
-        else
-          out << body;
-      });
+      write_file_atomically(output, [&](std::ostream& out) { out << body; });
     } catch (const InputError& e) {
       throw OutputError(e.what());
     }
     if (!json) std::cout << "picture written to " << output << "\n";
+  }
+  if (!html_output.empty()) {
+    std::vector<MotionFrame> frames_shown;
+    for (std::size_t i = 0; i < trail.size(); ++i)
+      frames_shown.push_back({trail[i].u, trail[i].orientation, int(trail[i].status), trail[i].value,
+                              long(i) < pass1 ? 1 : 2});
+    write_motion_page(html_output, "minksum simulate: a robot passing an obstacle", obstacle, robot, turns,
+                      frames_shown, 8);
+    if (!json) std::cout << "player written to " << html_output << "\n";
   }
   return 0;
 }

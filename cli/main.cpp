@@ -26,7 +26,7 @@ Usage:
   minksum query collide|distance|depth|ddepth P Q [--translate-p X,Y,Z]
                 [--translate-q X,Y,Z] [--rotate-q A,B,C,D] [--direction X,Y,Z]
                 [--trajectory FILE] [--json]
-  minksum simulate [--obstacle Q] [--robot P] [--frames N] [-o OUT.svg|.html]
+  minksum simulate [--obstacle Q] [--robot P] [--frames N] [-o OUT.svg] [--html OUT.html]
   minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [--stats] [--json]
   minksum view A [B] -o OUT.html [--method M]   a 3D page, offline
   minksum COMMAND --help          help on one command

@@ -176,4 +176,38 @@ void write_cgm_page(const std::string& path, const std::string& title, const Cub
   write_page(path, title, data);
 }
 
+void write_motion_page(const std::string& path, const std::string& title, const ConvexPolytope& obstacle,
+                       const ConvexPolytope& robot, const std::vector<Quaternion>& turns,
+                       const std::vector<MotionFrame>& frames, int fps) {
+  std::string data = "{\"kind\": \"motion\", \"title\": " + json_string(title) + ", \"fps\": " + std::to_string(fps) +
+                     ", \"obstacle\": ";
+  append_solid_json(data, obstacle, "obstacle Q", "obstacle");
+  data += ", \"robot\": ";
+  append_solid_json(data, robot, "robot P", "robot");
+  data += ", \"shapes\": [";
+  for (std::size_t k = 0; k < turns.size(); ++k) {
+    data += k ? ",[" : "[";
+    for (Index v = 0; v < robot.num_vertices(); ++v) {
+      const Point3 p = rotate(turns[k], robot.point(v));
+      data += (v ? "," : "") + format_double(to_double(p.x)) + "," + format_double(to_double(p.y)) + "," +
+              format_double(to_double(p.z));
+    }
+    data += "]";
+  }
+  data += "], \"frames\": [";
+  std::string events;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const MotionFrame& f = frames[i];
+    const Point3& t = f.translation;
+    data += (i ? ",{" : "{") + std::string("\"t\": [") + format_double(to_double(t.x)) + "," +
+            format_double(to_double(t.y)) + "," + format_double(to_double(t.z)) + "], \"exact\": [\"" +
+            format_exact(t.x) + "\", \"" + format_exact(t.y) + "\", \"" + format_exact(t.z) + "\"], \"o\": " +
+            std::to_string(f.orientation) + ", \"status\": " + std::to_string(f.status) + ", \"value\": \"" +
+            format_exact(f.value) + "\", \"pass\": " + std::to_string(f.pass) + "}";
+    if (i > 0 && f.status != frames[i - 1].status) events += (events.empty() ? "" : ",") + std::to_string(i);
+  }
+  data += "], \"events\": [" + events + "]}";
+  write_page(path, title, data);
+}
+
 }  // namespace minksum::cli

@@ -7,6 +7,7 @@
 #include <minksum/cubical_gaussian_map.hpp>
 #include <minksum/polytope.hpp>
 #include <minksum/sum_result.hpp>
+#include <minksum/transform.hpp>
 
 #include <string>
 #include <vector>
@@ -47,5 +48,24 @@ void write_page(const std::string& path, const std::string& title, const std::st
 void write_cgm_page(const std::string& path, const std::string& title, const CubicalGaussianMap& g,
                     const ConvexPolytope& shown, const std::vector<std::string>& operands,
                     const std::vector<FacetProvenance>& provenance);
+
+// One frame of 'minksum simulate': the robot's translation and orientation
+// (index into the quaternions), its state (0 separate, 1 touching, 2
+// penetrating) and the exact squared distance or depth.
+struct MotionFrame {
+  Point3 translation;
+  std::size_t orientation = 0;
+  int status = 0;
+  Rational value;
+  int pass = 1;
+};
+
+// The page of 'minksum simulate --html': the obstacle, the robot in every
+// frame (orientation k is `robot` rotated by turns[k]; the drawing rotates
+// the exact vertices, then rounds), "events" (the frames where the state
+// changes), played back at `fps` frames per second.
+void write_motion_page(const std::string& path, const std::string& title, const ConvexPolytope& obstacle,
+                       const ConvexPolytope& robot, const std::vector<Quaternion>& turns,
+                       const std::vector<MotionFrame>& frames, int fps);
 
 }  // namespace minksum::cli

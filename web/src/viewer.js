@@ -227,14 +227,16 @@ function layout(sideBySide) {
   requestRender();
 }
 
-function fitCamera(objects) {
+// Looks at the objects (or at a Box3) from the front-right, above.
+function fitCamera(objects, from = new THREE.Vector3(0.55, -1.0, 0.65)) {
   const box = new THREE.Box3();
-  for (const o of objects) box.expandByObject(o);
+  if (objects.isBox3) box.copy(objects);
+  else for (const o of objects) box.expandByObject(o);
   if (box.isEmpty()) return;
   const sphere = box.getBoundingSphere(new THREE.Sphere());
   const r = sphere.radius || 1;
   const dist = r / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05;
-  const dir = new THREE.Vector3(0.55, -1.0, 0.65).normalize();
+  const dir = from.clone().normalize();
   camera.position.copy(sphere.center).addScaledVector(dir, dist);
   camera.near = dist / 100;
   camera.far = dist * 100;
@@ -633,13 +635,8 @@ function initMotion() {
     box.expandByPoint(new THREE.Vector3(f.t[0] + rb.min.x, f.t[1] + rb.min.y, f.t[2] + rb.min.z));
     box.expandByPoint(new THREE.Vector3(f.t[0] + rb.max.x, f.t[1] + rb.max.y, f.t[2] + rb.max.z));
   }
-  const helper = new THREE.Box3Helper(box, 0xccd3dd);
-  helper.visible = false;
-  scene.add(helper);
   setFrame(0);
-  fitCamera([helper]);
-  camera.position.set(controls.target.x, controls.target.y - (camera.position.distanceTo(controls.target)), controls.target.z + 0.6 * camera.position.distanceTo(controls.target));
-  controls.update();
+  fitCamera(box, new THREE.Vector3(0.1, -0.45, 1));  // the x-y plane of the motion, seen from above, tilted
 }
 
 // ---------------------------------------------------------------------------

@@ -86,6 +86,7 @@ export async function checkPage(page, log, name) {
   check(log.blocked.length === 0, `${name}: the page asked for ${log.blocked.join(', ')}`);
   check(log.files.length === 1, `${name}: the page is not one file: it loaded ${log.files.join(', ')}`);
   const variance = await page.evaluate(() => {
+    window.minksum.render();  // the drawing buffer is kept only until the task ends
     const src = document.querySelector('#view canvas');
     const c = document.createElement('canvas');
     c.width = src.width; c.height = src.height;

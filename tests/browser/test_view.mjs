@@ -25,7 +25,7 @@ const browser = await launch();
 try {
   const { page, log } = await open(browser.context, html);
   const variance = await checkPage(page, log, kind);
-  const drawn = await page.evaluate(() => ({ facets: window.minksum.drawnFacets, edges: window.minksum.drawnEdges, loadMs: window.minksum.loadMs }));
+  const drawn = await page.evaluate(() => ({ facets: window.minksum.drawnFacets, edges: window.minksum.drawnEdges, loadMs: window.minksum.loadMs, timing: window.minksum.timing }));
   let target, off;
   if (kind === 'polytope') {
     const st = minksumJson(o.minksum, ['stats', c.operands[0], '--json']);
@@ -68,7 +68,9 @@ try {
   await page.waitForTimeout(50);
   await checkPage(page, log, `${kind} (transparent)`);
   const frames = await page.evaluate(() => window.minksum.measureFrames(30));
-  console.log(`${kind}: page ready in ${Math.round(drawn.loadMs)} ms (navigation to first frame; ${log.wallMs} ms wall), ` +
+  const t = drawn.timing;
+  console.log(`${kind}: page ready in ${Math.round(drawn.loadMs)} ms (navigation to first frame; ${log.wallMs} ms wall; ` +
+              `script start ${Math.round(t.scriptMs)}, data parsed ${Math.round(t.parsedMs)}, scene built ${Math.round(t.builtMs)}), ` +
               `${frames.meanMs.toFixed(1)} ms per frame (median ${frames.medianMs.toFixed(1)}, max ${frames.maxMs.toFixed(1)}, ${frames.frames} frames), ` +
               `canvas variance ${variance.toFixed(0)}; picked facet ${picked.facet}: ${picked.plane}`);
 } finally {

@@ -13,7 +13,7 @@ namespace minksum::cli {
 
 namespace {
 
-const char* kViewHelp = R"(Usage: minksum view A [B] -o OUT.html [--method M] [--hull] [--title T]
+const char* kViewHelp = R"(Usage: minksum view A [B] -o OUT.html [--method M] [--hull] [--title T] [--json]
 
 Write one self-contained HTML page that shows, in 3D, the polytope A, or the
 operands A, B and their Minkowski sum A ⊕ B.  The page needs no network and

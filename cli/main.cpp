@@ -28,7 +28,7 @@ Usage:
                 [--trajectory FILE] [--json]
   minksum simulate [--obstacle Q] [--robot P] [--frames N] [-o OUT.svg] [--html OUT.html]
   minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [--stats] [--json]
-  minksum view A [B] -o OUT.html [--method M]   a 3D page, offline
+  minksum view A [B] -o OUT.html [--method M] [--hull] [--json]
   minksum COMMAND --help          help on one command
   minksum --version
 

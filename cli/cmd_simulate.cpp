@@ -44,6 +44,10 @@ Options:
                     frames where the state changes marked, speed; the robot
                     coloured by its state, each frame's exact translation and
                     squared distance or depth
+  --show-m          in the --html page, also the configuration-space obstacle
+                    of the frame's orientation, Q ⊕ (−P) = −M (the robot
+                    meets Q exactly when its reference point is in it), and
+                    that point
   --json            one JSON object per frame instead of text
 )";
 
@@ -104,7 +108,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "simulate",
                             {{"--obstacle", "", true}, {"--robot", "", true}, {"--frames", "", true},
                              {"--turn", "", true}, {"--output", "-o", true}, {"--html", "", true},
-                             {"--json", "", false}});
+                             {"--show-m", "", false}, {"--json", "", false}});
   if (a.help) {
     std::cout << kSimulateHelp;
     return 0;
@@ -118,6 +122,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   std::string output = a.value_or("--output", "");
   std::string html_output = a.value_or("--html", "");
   if (a.value("--html")) check_html_path(html_output, "--html");
+  const bool show_m = a.flag("--show-m");
   if (!output.empty()) {
     const std::string ext = output.size() >= 5 ? output.substr(output.size() - 5) : "";
     if (ext == ".html") {
@@ -127,6 +132,7 @@ int run_simulate(const std::vector<std::string>& argv) {
       throw UsageError("--output: the picture is .svg or .html, got '" + output + "'");
     }
   }
+  if (show_m && html_output.empty()) throw UsageError("--show-m needs the page: --html OUT.html");
   Quaternion turn = {Integer(10), Integer(0), Integer(0), Integer(1)};
   if (auto t = a.value("--turn")) {
     std::vector<std::string> parts;
@@ -207,6 +213,8 @@ int run_simulate(const std::vector<std::string>& argv) {
   }
 
   TranslationalObstacle ob(robots[0], obstacle);
+  std::vector<ConvexPolytope> c_obstacles;  // −M_k per orientation, for --show-m
+  if (show_m) c_obstacles.push_back(ob.obstacle().negated());
   std::vector<Frame> trail;
   std::size_t current = 0;
   for (long i = 0; i < frames; ++i) {
@@ -218,6 +226,7 @@ int run_simulate(const std::vector<std::string>& argv) {
       fr.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       fr.rebuilt = true;
       current = fr.orientation;
+      if (show_m) c_obstacles.push_back(ob.obstacle().negated());
     }
     const Rational y = i < pass1 ? height : Rational(0);
     fr.u = Point3(xpos(i), y, Rational(0));
@@ -284,7 +293,7 @@ int run_simulate(const std::vector<std::string>& argv) {
       frames_shown.push_back({trail[i].u, trail[i].orientation, int(trail[i].status), trail[i].value,
                               long(i) < pass1 ? 1 : 2});
     write_motion_page(html_output, "minksum simulate: a robot passing an obstacle", obstacle, robot, turns,
-                      frames_shown, 8);
+                      frames_shown, 8, c_obstacles);
     if (!json) std::cout << "player written to " << html_output << "\n";
   }
   return 0;

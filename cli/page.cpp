@@ -178,7 +178,8 @@ void write_cgm_page(const std::string& path, const std::string& title, const Cub
 
 void write_motion_page(const std::string& path, const std::string& title, const ConvexPolytope& obstacle,
                        const ConvexPolytope& robot, const std::vector<Quaternion>& turns,
-                       const std::vector<MotionFrame>& frames, int fps) {
+                       const std::vector<MotionFrame>& frames, int fps,
+                       const std::vector<ConvexPolytope>& c_obstacles) {
   std::string data = "{\"kind\": \"motion\", \"title\": " + json_string(title) + ", \"fps\": " + std::to_string(fps) +
                      ", \"obstacle\": ";
   append_solid_json(data, obstacle, "obstacle Q", "obstacle");
@@ -206,7 +207,16 @@ void write_motion_page(const std::string& path, const std::string& title, const 
             format_exact(f.value) + "\", \"pass\": " + std::to_string(f.pass) + "}";
     if (i > 0 && f.status != frames[i - 1].status) events += (events.empty() ? "" : ",") + std::to_string(i);
   }
-  data += "], \"events\": [" + events + "]}";
+  data += "], \"events\": [" + events + "]";
+  if (!c_obstacles.empty()) {
+    data += ", \"cobstacles\": [";
+    for (std::size_t k = 0; k < c_obstacles.size(); ++k) {
+      if (k) data += ", ";
+      append_solid_json(data, c_obstacles[k], "Q ⊕ (−P), orientation " + std::to_string(k), "cobstacle");
+    }
+    data += "]";
+  }
+  data += "}";
   write_page(path, title, data);
 }
 

@@ -64,8 +64,12 @@ struct MotionFrame {
 // frame (orientation k is `robot` rotated by turns[k]; the drawing rotates
 // the exact vertices, then rounds), "events" (the frames where the state
 // changes), played back at `fps` frames per second.
+// With `c_obstacles` (one per orientation: Q ⊕ (−P_k) = −M_k, the set of
+// translations u where P_k + u meets Q), the page shows the one of the
+// current frame and the robot's reference point u.
 void write_motion_page(const std::string& path, const std::string& title, const ConvexPolytope& obstacle,
                        const ConvexPolytope& robot, const std::vector<Quaternion>& turns,
-                       const std::vector<MotionFrame>& frames, int fps);
+                       const std::vector<MotionFrame>& frames, int fps,
+                       const std::vector<ConvexPolytope>& c_obstacles = {});
 
 }  // namespace minksum::cli

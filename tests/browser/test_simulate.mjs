@@ -6,7 +6,7 @@
 // changes, play/pause and the slider; the solids' drawn facets against
 // 'minksum stats --json', a facet of the obstacle clicked against
 // 'minksum gen --exact'.
-import { check, checkPage, checkPickedFacet, clickFacet, launch, minksum, minksumJson, open, options, readOff, visibleFacet } from './lib.mjs';
+import { check, checkPage, checkPickedFacet, clickFacet, launch, minksum, minksumJson, open, options, planeValue, readOff, visibleFacet } from './lib.mjs';
 import { join } from 'node:path';
 
 const o = options();
@@ -63,6 +63,29 @@ try {
   const picked = await clickFacet(page, 'obstacle', f, 'simulate');
   checkPickedFacet(picked, readOff(obstacleOff), 'simulate');
   console.log(`simulate: ${frames.length} frames, state changes at ${events}; picked obstacle facet ${picked.facet}: ${picked.plane}`);
+  // --show-m: the C-obstacle Q ⊕ (−P_k) of each frame's orientation.  The
+  // robot's state is exactly where its reference point u lies against it
+  // (outside, on the boundary, inside): checked with the page's exact planes
+  // and translations against minksum simulate's own state, frame by frame.
+  const htmlM = join(o.out, 'simulate-m.html');
+  minksum(o.minksum, ['simulate', '--frames', FRAMES, '--show-m', '--html', htmlM]);
+  const m = await open(browser.context, htmlM);
+  await checkPage(m.page, m.log, 'simulate --show-m');
+  const data = await m.page.evaluate(() => ({ cob: window.minksum.data.cobstacles.map((c) => ({ planes: c.planes, facets: c.counts.facets })),
+                                              drawn: window.minksum.drawnFacets, frames: window.minksum.data.frames.map((f) => ({ o: f.o, exact: f.exact })) }));
+  check(data.cob.length === Math.ceil(frames.length / 2), `simulate --show-m: ${data.cob.length} C-obstacles for ${frames.length} frames`);
+  data.cob.forEach((c, k) => check(data.drawn[`cobstacle${k}`] === c.facets, `simulate --show-m: C-obstacle ${k}: ${data.drawn[`cobstacle${k}`]} facets drawn of ${c.facets}`));
+  data.frames.forEach((f, i) => {
+    let worst = -1;  // the largest sign of a x + b y + c z - d over the facets
+    for (const plane of data.cob[f.o].planes) {
+      const [num] = planeValue(plane, f.exact);
+      worst = Math.max(worst, num > 0n ? 1 : num === 0n ? 0 : -1);
+    }
+    const state = worst > 0 ? 'separate' : worst === 0 ? 'touching' : 'penetrating';
+    check(state === frames[i].status, `simulate --show-m: frame ${i}: the reference point is ${state} against Q ⊕ (−P), minksum simulate says ${frames[i].status}`);
+  });
+  await m.page.evaluate((k) => window.minksum.setFrame(k), events[0]);
+  await m.page.screenshot({ path: join(o.out, 'simulate-m.png') });
 } finally {
   await browser.close();
 }

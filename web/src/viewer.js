@@ -110,7 +110,7 @@ const COLOURS = {
   a: 0x3b7dd8, b: 0xe8862a, polytope: 0x5b8fd0, obstacle: 0x8fa9cf,
   translated: 0x3b7dd8, corner: 0xe8862a, edge: 0x3aa655, facet_edge: 0x9b59b6, facet_facet: 0x8a8f99,
   separate: 0x2a8f3a, touching: 0xe08a00, penetrating: 0xd02020,
-  p: 0xd0312d, q: 0x2563c9, both: 0x8e44ad, real: 0x1d2430, artificial: 0x7a8594,
+  p: 0xd0312d, q: 0x2563c9, both: 0x8e44ad, real: 0x1d2430, artificial: 0x7a8594, cobstacle: 0x9b59b6,
 };
 const ORIGIN_TEXT = {
   translated: 'facet of A ⊕ vertex of B (translated facet of A)',
@@ -543,11 +543,20 @@ function initCgm() {
 function initMotion() {
   const obstacle = buildSolid(data.obstacle, 'obstacle');
   const robot = buildSolid(data.robot, 'robot');
-  const m = data.mink ? buildSolid(data.mink, 'mink') : null;
-  if (m) {
-    m.group.visible = false;
-    m.mesh.material.transparent = true; m.mesh.material.opacity = 0.3; m.mesh.material.depthWrite = false;
-  }
+  // With --show-m: the C-obstacle Q ⊕ (−P_k) of each orientation k (the
+  // robot meets Q exactly when its reference point, drawn as a dot, is in it).
+  const cob = (data.cobstacles || []).map((c, k) => {
+    const s = buildSolid(c, `cobstacle${k}`);
+    s.group.visible = false;
+    s.mesh.material.transparent = true; s.mesh.material.opacity = 0.28; s.mesh.material.depthWrite = false;
+    s.edges.material.opacity = 0.3;
+    return s;
+  });
+  let showCob = cob.length > 0;
+  const rsize = robot.mesh.geometry.boundingSphere.radius;
+  const refPoint = new THREE.Mesh(new THREE.SphereGeometry(0.12 * rsize, 16, 8), new THREE.MeshBasicMaterial({ color: 0x1d2430 }));
+  refPoint.visible = showCob;
+  scene.add(refPoint);
   const statuses = ['separate', 'touching', 'penetrating'];
   const frames = data.frames;
   let frame = 0, playing = false, speed = 1, last = 0, acc = 0;
@@ -589,6 +598,8 @@ function initMotion() {
       }
     ep.needsUpdate = true;
     robot.group.position.set(f.t[0], f.t[1], f.t[2]);
+    cob.forEach((c, k) => { c.group.visible = showCob && k === f.o; });
+    refPoint.position.set(f.t[0], f.t[1], f.t[2]);
     robot.mesh.material.vertexColors = false;
     robot.mesh.material.color.setHex(COLOURS[statuses[f.status]], THREE.SRGBColorSpace);
     robot.mesh.material.needsUpdate = true;
@@ -630,8 +641,11 @@ function initMotion() {
   legend.append(el('div', { text: 'timeline marks: the frames where the state changes' }));
   side.append(el('h2', { text: 'Legend' }), legend);
   side.append(el('h2', { text: 'Solids' }), solidControls(obstacle, COLOURS.obstacle), solidControls(robot, COLOURS.separate));
-  if (m) side.append(solidControls(m, COLOURS.edge));
-  side.append(countsTable([data.obstacle, data.robot, ...(m ? [data.mink] : [])]));
+  if (cob.length) {
+    side.append(checkbox('show-cobstacle', 'C-obstacle Q ⊕ (−P) of the orientation, and the robot\'s reference point', true,
+                         (on) => { showCob = on; refPoint.visible = on; setFrame(frame); }));
+  }
+  side.append(countsTable([data.obstacle, data.robot]));
   side.append(el('h2', { text: 'Display' }), displayControls([obstacle, robot]));
   side.append(el('h2', { text: 'Picked facet' }), pickPanel);
   // Frame bounds: the obstacle and every position of the robot.

@@ -68,7 +68,10 @@ int run_cgm(const std::vector<std::string>& argv) {
   }
   if (svg) {
     try {
-      const std::string text = g.to_svg();
+      const bool sum = a.positional.size() == 2;
+      const std::string text =
+          sum ? g.to_svg("Cubical Gaussian Map of P ⊕ Q", "P = " + a.positional[0] + ", Q = " + a.positional[1])
+              : g.to_svg("Cubical Gaussian Map of " + a.positional[0]);
       write_file_atomically(*svg, [&](std::ostream& o) { o << text; });
     } catch (const InputError& e) {
       throw OutputError(std::string("cannot write ") + e.what());

@@ -263,22 +263,46 @@ int run_simulate(const std::vector<std::string>& argv) {
   }
 
   if (!output.empty()) {
-    std::ostringstream svg;
-    const double lim = double(X) + rreach + 0.5;
-    const double w = 2 * lim, h = 2 * (to_double(height) + reach + 2 * rreach + 1);
-    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" << format_double(-lim) << " "
-        << format_double(-h / 2 - 1) << " " << format_double(w) << " " << format_double(h + 2)
-        << "\" width=\"900\" height=\"" << int(900 * (h + 2) / w) << "\">\n"
-        << "<title>minksum simulate: obstacle and robot trail (side view, x right, y up)</title>\n"
-        << "<rect x=\"" << format_double(-lim) << "\" y=\"" << format_double(-h / 2 - 1) << "\" width=\""
-        << format_double(w) << "\" height=\"" << format_double(h + 2) << "\" fill=\"white\"/>\n"
-        << svg_polygon(outline(obstacle, Point3(Rational(0), Rational(0), Rational(0))),
-                       "fill:#9db4d6;stroke:#2b4a7a;stroke-width:0.04");
+    // The x-y plane seen from above (+z), x right, y up: the picture is cut
+    // to the outlines drawn, with a title above and a legend below.
+    std::vector<std::pair<std::vector<P2>, std::string>> shapes;
+    shapes.push_back({outline(obstacle, Point3(Rational(0), Rational(0), Rational(0))),
+                      "fill:#9db4d6;stroke:#2b4a7a;stroke-width:0.04"});
     for (const Frame& fr : trail)
-      svg << svg_polygon(outline(robots[fr.orientation], fr.u),
-                         std::string("fill:none;stroke-width:0.03;stroke:") + status_colour(fr.status));
-    svg << "<text x=\"" << format_double(-lim + 0.2) << "\" y=\"" << format_double(-h / 2) << "\" font-size=\"0.5\">"
-        << "green: separate, orange: touching, red: penetrating</text>\n</svg>\n";
+      shapes.push_back({outline(robots[fr.orientation], fr.u),
+                        std::string("fill:none;stroke-width:0.03;stroke:") + status_colour(fr.status)});
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+    for (const auto& [poly, style] : shapes)
+      for (const P2& p : poly) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+    const double margin = 0.5, head = 1.1, foot = 1.3;
+    const double left = x0 - margin, top = -y1 - margin - head;  // SVG y is −y
+    const double w = std::max(x1 - x0 + 2 * margin, 15.0), h = y1 - y0 + 2 * margin + head + foot;
+    std::ostringstream svg;
+    auto text = [&](double x, double y, const std::string& t, const char* extra = "") {
+      svg << "<text x=\"" << format_double(x) << "\" y=\"" << format_double(y) << "\" font-size=\"0.36\" "
+          << "font-family=\"sans-serif\"" << extra << ">" << t << "</text>\n";
+    };
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" << format_double(left) << " " << format_double(top)
+        << " " << format_double(w) << " " << format_double(h) << "\" width=\"900\" height=\"" << int(900 * h / w)
+        << "\">\n<title>minksum simulate: the robot's trail past the obstacle, top view (x right, y up)</title>\n"
+        << "<rect x=\"" << format_double(left) << "\" y=\"" << format_double(top) << "\" width=\"" << format_double(w)
+        << "\" height=\"" << format_double(h) << "\" fill=\"white\"/>\n";
+    text(left + 0.3, top + 0.7, "Top view (x right, y up): pass 1 grazes Q, pass 2 goes through it",
+         " font-weight=\"bold\"");
+    for (const auto& [poly, style] : shapes) svg << svg_polygon(poly, style);
+    const double ly = -y0 + margin + 0.75;
+    double lx = left + 0.3;
+    const std::pair<const char*, const char*> legend[] = {{"#9db4d6", "obstacle Q"},
+                                                          {status_colour(ContactStatus::separate), "robot P separate"},
+                                                          {status_colour(ContactStatus::touching), "touching"},
+                                                          {status_colour(ContactStatus::penetrating), "penetrating"}};
+    for (const auto& [colour, label] : legend) {
+      svg << "<rect x=\"" << format_double(lx) << "\" y=\"" << format_double(ly - 0.35) << "\" width=\"0.4\" "
+          << "height=\"0.4\" fill=\"" << colour << "\" stroke=\"#333\" stroke-width=\"0.02\"/>\n";
+      text(lx + 0.55, ly, label);
+      lx += 0.55 + 0.21 * double(std::string(label).size()) + 0.4;
+    }
+    svg << "</svg>\n";
     const std::string body = svg.str();
     try {
       write_file_atomically(output, [&](std::ostream& out) { out << body; });

@@ -24,9 +24,11 @@ Options:
   --stats      print, per planar map, the numbers of vertices, halfedges and
                faces (the unbounded face included) and of real (non-artificial)
                vertices and edges, like Table 2 of Fogel and Halperin (2006)
-  --svg OUT    draw the unfolded map (six squares in a cross); real edges solid
-               (for a sum: P's edges red, Q's blue, overlapping edges purple),
-               artificial edges dashed; written atomically
+  --svg OUT    draw the unfolded map (six squares in a cross, each named by
+               its id and plane); real edges solid (for a sum: P's edges red,
+               Q's blue, overlapping edges purple), artificial edges dashed,
+               facet normals as dots (with a zoom inset where they crowd),
+               a title and a legend; written atomically
   --html OUT   a self-contained 3D page (offline; docs/viewer.md): the six
                planar maps on the faces of the cube, artificial edges dashed,
                arcs of P and Q in two named colours, the facet normals (the

@@ -38,8 +38,9 @@ KIND:
 Options:
   --translate-p X,Y,Z   translation u of P (default 0,0,0)
   --translate-q X,Y,Z   translation w of Q (default 0,0,0)
-  --rotate-p A,B,C,D    rotate P by the integer quaternion A+Bi+Cj+Dk (exact,
-  --rotate-q A,B,C,D    the same matrix as the catalog's @rot:A,B,C,D)
+  --rotate-p A,B,C,D    rotate P by the integer quaternion A+Bi+Cj+Dk (exact:
+                        the same matrix as the catalog's @rot:A,B,C,D)
+  --rotate-q A,B,C,D    rotate Q likewise
   --direction X,Y,Z     the direction d of ddepth (non-zero)
   --method M            how M = P ⊕ (−Q) is computed: any method of `minksum sum`
                         (default auto, i.e. walk)
@@ -55,7 +56,9 @@ Options:
   --json                print JSON: query, status, squared_distance /
                         squared_depth / t as exact rationals in strings
                         ("p/q" or an integer), distance / depth (double),
-                        direction (exact strings), witness, seconds
+                        direction and the closest points point_p, point_q
+                        (exact strings; point_p_double, point_q_double as
+                        doubles), witness, seconds
 
 Coordinates accept integers, exact rationals (1/3,0,-2/7) and decimals (the
 nearest double, then exact).
@@ -187,7 +190,9 @@ std::string answer(TranslationalObstacle& ob, Kind kind, const Point3& u, const 
         o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status)
           << "\", \"squared_distance\": \"" << format_exact(r.squared_distance)
           << "\", \"distance\": " << format_double(r.distance) << ", \"direction\": " << exact_vector_json(r.direction)
-          << ", \"point_p\": " << double_vector_json(r.point_p) << ", \"point_q\": " << double_vector_json(r.point_q)
+          << ", \"point_p\": " << exact_vector_json(r.point_p) << ", \"point_q\": " << exact_vector_json(r.point_q)
+          << ", \"point_p_double\": " << double_vector_json(r.point_p)
+          << ", \"point_q_double\": " << double_vector_json(r.point_q)
           << ", \"witness\": " << witness_json(r.witness) << ", \"seconds\": " << format_double(sec) << "}";
       else
         o << contact_status_name(r.status) << "  distance² = " << format_exact(r.squared_distance)

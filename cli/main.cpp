@@ -24,11 +24,12 @@ Usage:
   minksum stats P [--json] [--hull]
   minksum gen NAME -o OUT [--exact] [--binary]
   minksum query collide|distance|depth|ddepth P Q [--translate-p X,Y,Z]
-                [--translate-q X,Y,Z] [--rotate-q A,B,C,D] [--direction X,Y,Z]
-                [--trajectory FILE] [--json]
-  minksum simulate [--obstacle Q] [--robot P] [--frames N] [-o OUT.svg] [--html OUT.html]
+                [--translate-q X,Y,Z] [--rotate-p A,B,C,D] [--rotate-q A,B,C,D]
+                [--direction X,Y,Z] [--method M] [--trajectory FILE] [--json]
+  minksum simulate [--obstacle Q] [--robot P] [--frames N] [--turn A,B,C,D]
+                [-o OUT.svg] [--html OUT.html] [--show-m] [--json]
   minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [--stats] [--json]
-  minksum view A [B] -o OUT.html [--method M] [--hull] [--json]
+  minksum view A [B] -o OUT.html [--method M] [--hull] [--title T] [--json]
   minksum COMMAND --help          help on one command
   minksum --version
 

@@ -3,7 +3,10 @@
 // the problem, no output file written).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
+#include <map>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -435,4 +438,74 @@ TEST_F(CgmCli, SumMethodCgm) {
   ASSERT_EQ(r.status, 0);
   EXPECT_NE(r.out.find("\"method\": \"cgm\""), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"facets\": 26"), std::string::npos) << r.out;
+}
+
+// Every option a command's --help lists is in that command's lines of the
+// top-level usage (--output as -o); the commands are read from the usage itself.
+TEST_F(Cli, TopLevelUsageNamesEveryOption) {
+  const std::string usage = run("--help").out;
+  std::istringstream lines(usage.substr(0, usage.find("\n\n", usage.find("Usage:"))));
+  std::map<std::string, std::string> block;  // command -> its usage lines
+  std::string line, current;
+  const std::regex head(R"(^  minksum ([a-z]+) )");
+  while (std::getline(lines, line)) {
+    std::smatch m;
+    if (std::regex_search(line, m, head)) current = m[1];
+    else if (line.rfind("  minksum ", 0) == 0) current.clear();
+    if (!current.empty()) block[current] += line + "\n";
+  }
+  ASSERT_GE(block.size(), 6u) << usage;
+  for (const auto& [command, text] : block) {
+    const CmdResult h = run(command + " --help");
+    ASSERT_EQ(h.status, 0) << command;
+    const std::regex option(R"((^|[\s\[,])(--[a-z][a-z-]*))");
+    int seen = 0;
+    for (auto it = std::sregex_iterator(h.out.begin(), h.out.end(), option); it != std::sregex_iterator(); ++it) {
+      const std::string o = (*it)[2];
+      if (o == "--help") continue;
+      ++seen;
+      const bool named = text.find(o) != std::string::npos || (o == "--output" && text.find("-o ") != std::string::npos);
+      EXPECT_TRUE(named) << "'minksum " << command << " --help' lists " << o << ", the usage does not:\n" << text;
+    }
+    EXPECT_GT(seen, 0) << command;
+  }
+}
+
+// Each option of 'query --help' starts its own sentence (two options once
+// shared one sentence split across their lines).
+TEST_F(Cli, QueryHelpRotateOptionsEachExplained) {
+  const std::string h = run("query --help").out;
+  const std::regex rotate_q(R"(--rotate-q A,B,C,D +([^\n]*))");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(h, m, rotate_q)) << h;
+  EXPECT_TRUE(std::isupper(static_cast<unsigned char>(m[1].str()[0])) || m[1].str().rfind("rotate", 0) == 0)
+      << m[1];
+  EXPECT_EQ(m[1].str().find(')'), std::string::npos) << "continues the sentence of --rotate-p: " << m[1];
+}
+
+// query --json gives the closest points exactly, as the text output does,
+// and their doubles beside.
+TEST_F(Cli, QueryJsonClosestPointsExact) {
+  const CmdResult r = run("query distance cube cube --translate-q 3,1/3,0 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find(R"("point_p": ["1", "1/6", "0"])"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(R"("point_q": ["2", "1/6", "0"])"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(R"("point_p_double": [1, 0.16666666666666666, 0])"), std::string::npos) << r.out;
+  const CmdResult t = run("query distance cube cube --translate-q 3,1/3,0");
+  EXPECT_NE(t.out.find("closest points (1, 1/6, 0) on P, (2, 1/6, 0) on Q"), std::string::npos) << t.out;
+}
+
+// A misspelt catalog name as an operand or for gen gets the catalog's
+// suggestion (docs/catalog.md shows it).
+TEST_F(Cli, MisspeltCatalogNameSuggestsClosest) {
+  for (const std::string& cmd : std::vector<std::string>{"stats tetrahedra", "sum tetrahedra cube", "gen tetrahedra -o " + path("t.off")}) {
+    const CmdResult r = run(cmd);
+    EXPECT_EQ(r.status, 2) << cmd;
+    EXPECT_NE(r.err.find("(did you mean 'tetrahedron'?)"), std::string::npos) << cmd << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(path("t.off")));
+  const CmdResult far = run("stats zzzzzzzzzz");
+  EXPECT_EQ(far.status, 2);
+  EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;
 }

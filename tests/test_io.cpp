@@ -752,7 +752,7 @@ TEST(IoFiles, MissingDirectoryAndUnknownNames) {
     ADD_FAILURE() << "no UsageError";
   } catch (const UsageError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "'definitely-not-a-catalog-name' is neither a file nor a catalog name (see 'minksum gen --help')");
+              "'definitely-not-a-catalog-name' is neither a file nor a catalog name; see 'minksum gen --help'");
   }
 }
 

@@ -94,23 +94,8 @@ std::vector<std::string> all_base_names() {
 }
 
 [[noreturn]] void unknown_name(const std::string& spec, const std::string& name) {
-  // Suggest the closest name within two edits, else one the text begins.
-  std::string best;
-  std::size_t best_d = 3;
-  for (const std::string& n : all_base_names()) {
-    const std::size_t d = edit_distance(name, n);
-    if (d < best_d) {
-      best_d = d;
-      best = n;
-    }
-  }
-  if (best.empty() && name.size() >= 3)
-    for (const std::string& n : all_base_names())
-      if (n.rfind(name, 0) == 0) {
-        best = n;
-        break;
-      }
   std::string msg = "unknown catalog name '" + name + "'";
+  const std::string best = closest_catalog_name(name);
   if (!best.empty()) msg += " (did you mean '" + best + "'?)";
   msg += "; see 'minksum gen --help' for the names";
   fail(spec, msg);
@@ -302,6 +287,24 @@ const std::vector<CatalogEntry>& catalog_entries() {
     return e;
   }();
   return entries;
+}
+
+std::string closest_catalog_name(const std::string& spec) {
+  // The closest name within two edits, else one the text begins.
+  const std::string name = base_name(spec);
+  std::string best;
+  std::size_t best_d = 3;
+  for (const std::string& n : all_base_names()) {
+    const std::size_t d = edit_distance(name, n);
+    if (d < best_d) {
+      best_d = d;
+      best = n;
+    }
+  }
+  if (best.empty() && name.size() >= 3)
+    for (const std::string& n : all_base_names())
+      if (n.rfind(name, 0) == 0) return n;
+  return best;
 }
 
 bool is_catalog_spec(const std::string& spec) {

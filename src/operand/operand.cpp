@@ -34,7 +34,9 @@ ConvexPolytope load_polytope(const std::string& spec, bool hull, LoadPhases* pha
     return p;
   }
   if (format) throw InputError(spec, "", "no such file");
-  throw UsageError("'" + spec + "' is neither a file nor a catalog name (see 'minksum gen --help')");
+  const std::string best = closest_catalog_name(spec);
+  throw UsageError("'" + spec + "' is neither a file nor a catalog name" +
+                   (best.empty() ? std::string() : " (did you mean '" + best + "'?)") + "; see 'minksum gen --help'");
 }
 
 }  // namespace minksum

@@ -45,6 +45,11 @@ const std::vector<CatalogEntry>& catalog_entries();
 // "foo.off" or "./cube" are never catalog specs.
 bool is_catalog_spec(const std::string& spec);
 
+// The catalog name closest to the base name of `spec` (within two edits, else
+// a name that the text begins), or "" when none is close: the "did you mean"
+// of error messages.
+std::string closest_catalog_name(const std::string& spec);
+
 // Build the polytope named by `spec`.  Throws UsageError for an unknown name
 // or a bad/out-of-range parameter (message says which and the allowed range).
 ConvexPolytope catalog_polytope(const std::string& spec);

@@ -16,6 +16,7 @@ all: build
 
 setup:
 	@bash scripts/setup.sh
+	@bash scripts/setup-web.sh
 
 $(BUILD)/CMakeCache.txt:
 	@$(MAKE) --no-print-directory setup
@@ -36,6 +37,8 @@ demo: build
 	$(BUILD)/bin/minksum sum sphere:3 sphere:3@rot:5 --method cgm --exact -o $(BUILD)/demo/sphere3+rotated.off
 	$(BUILD)/bin/minksum stats $(BUILD)/demo/cube+sphere3.off
 	$(BUILD)/bin/minksum cgm dioctagonal:17 dioctagonal:17@rot:100,0,0,99 --svg $(BUILD)/demo/cgm.svg
+	$(BUILD)/bin/minksum view truncated-cube sphere:3@rot:1 -o $(BUILD)/demo/scene.html
+	@echo "demo: open $(abspath $(BUILD))/demo/scene.html in a browser (one file, works offline): A, B and A ⊕ B in 3D"
 
 # Fig. 4 of Fogel and Halperin (2006): a robot grazing, then penetrating an obstacle, turning every
 # other frame (M recomputed then); per-frame state and query time, and an SVG trail.
@@ -68,6 +71,12 @@ tsan:
 	cmake --build $(TSAN_BUILD) -j $(JOBS) --target $(TSAN_TARGETS)
 	cd $(TSAN_BUILD) && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
 	  ctest --output-on-failure -j $(JOBS) -L unit -R '$(TSAN_TESTS)' --no-tests=error
+
+# The README's screenshots (docs/images/*.png): pages written by minksum,
+# photographed in Debian's headless chromium (web/screenshots.mjs).
+.PHONY: screenshots
+screenshots: build
+	node web/screenshots.mjs --minksum $(BUILD)/bin/minksum --out docs/images
 
 clean:
 	rm -rf $(BUILD) build-asan $(TSAN_BUILD) $(BENCH_BUILD)

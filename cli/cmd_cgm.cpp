@@ -9,11 +9,13 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "mesh_io.hpp"
+#include "page.hpp"
 
 namespace minksum::cli {
 
 namespace {
-const char* kCgmHelp = R"(Usage: minksum cgm P [Q] [--svg OUT.svg] [--stats] [--json] [--format F]
+const char* kCgmHelp = R"(Usage: minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [--stats] [--json]
+                  [--format F]
 
 Build the Cubical Gaussian Map (Fogel & Halperin) of P: the Gaussian map
 centrally projected on the six faces of the cube [-1,1]^3, six planar maps
@@ -24,9 +26,16 @@ Options:
   --stats      print, per planar map, the numbers of vertices, halfedges and
                faces (the unbounded face included) and of real (non-artificial)
                vertices and edges, like Table 2 of Fogel and Halperin (2006)
-  --svg OUT    draw the unfolded map (six squares in a cross); real edges solid
-               (for a sum: P's edges red, Q's blue, overlapping edges purple),
-               artificial edges dashed; written atomically
+  --svg OUT    draw the unfolded map (six squares in a cross, each named by
+               its id and plane); real edges solid (for a sum: P's edges red,
+               Q's blue, overlapping edges purple), artificial edges dashed,
+               facet normals as dots (with a zoom inset where they crowd),
+               a title and a legend; written atomically
+  --html OUT   a self-contained 3D page (offline; docs/viewer.md): the six
+               planar maps on the faces of the cube, artificial edges dashed,
+               arcs of P and Q in two named colours, the facet normals (the
+               overlay's vertices) as dots, beside the polytope it encodes;
+               click a facet of the polytope for its exact plane
   --json       print the counts as one JSON object
   --format F   {format_names}: the format of an operand '-' (a mesh
                on standard input) or named without a known extension
@@ -34,7 +43,7 @@ Options:
 }  // namespace
 
 int run_cgm(const std::vector<std::string>& argv) {
-  const Args a = parse_args(argv, "cgm", {{"--svg", "", true}, {"--stats", "", false}, {"--json", "", false}, kFormatOption});
+  const Args a = parse_args(argv, "cgm", {{"--svg", "", true}, {"--html", "", true}, {"--stats", "", false}, {"--json", "", false}, kFormatOption});
   if (a.help) {
     std::cout << expand_help(kCgmHelp);
     return 0;
@@ -43,12 +52,15 @@ int run_cgm(const std::vector<std::string>& argv) {
     throw UsageError("'cgm' needs one or two operands (see 'minksum cgm --help')");
   const auto svg = a.value("--svg");
   if (svg && svg->empty()) throw UsageError("--svg needs a file name");
+  const auto html = a.value("--html");
+  if (html) check_html_path(*html, "--html");
   const auto format = format_option(a);
   ConvexPolytope p = load_operand_from(a.positional[0], false, nullptr, format);
   CubicalGaussianMap g;
   std::string label = a.positional[0];
   double seconds = 0;
   ConvexPolytope shown = p;
+  std::vector<FacetProvenance> provenance;
   if (a.positional.size() == 2) {
     ConvexPolytope q = load_operand_from(a.positional[1], false, nullptr, format);
     label += " + " + a.positional[1];
@@ -57,16 +69,25 @@ int run_cgm(const std::vector<std::string>& argv) {
     g = CubicalGaussianMap::from_polytope(r.polytope);
     g.set_operands(r.vertex_origin, r.polytope);
     shown = r.polytope;
+    if (html) provenance = r.facet_provenance.empty() ? facet_provenance(p, q, r.polytope) : r.facet_provenance;
   } else {
     g = CubicalGaussianMap::from_polytope(p);
   }
   if (svg) {
     try {
-      const std::string text = g.to_svg();
+      const bool sum = a.positional.size() == 2;
+      const std::string text =
+          sum ? g.to_svg("Cubical Gaussian Map of P ⊕ Q", "P = " + a.positional[0] + ", Q = " + a.positional[1])
+              : g.to_svg("Cubical Gaussian Map of " + a.positional[0]);
       write_file_atomically(*svg, [&](std::ostream& o) { o << text; });
     } catch (const InputError& e) {
       throw OutputError(std::string("cannot write ") + e.what());
     }
+  }
+  if (html) {
+    std::vector<std::string> operands;
+    if (a.positional.size() == 2) operands = a.positional;
+    write_cgm_page(*html, label, g, shown, operands, provenance);
   }
   if (a.flag("--json")) {
     std::cout << "{\"name\": \"" << json_escape(label) << "\", " << counts_json(shown) << ", \"maps\": [";
@@ -84,7 +105,7 @@ int run_cgm(const std::vector<std::string>& argv) {
   }
   std::cout << label << ": " << shown.num_vertices() << " vertices, " << shown.num_edges() << " edges, "
             << shown.num_facets() << " facets\n";
-  if (a.flag("--stats") || !svg) {
+  if (a.flag("--stats") || (!svg && !html)) {
     static const char* plane[6] = {"x=-1", "y=-1", "z=-1", "x=+1", "y=+1", "z=+1"};
     std::cout << "  map  plane     V    HE     F  real V  real E\n";
     Index tv = 0, th = 0, tf = 0;
@@ -101,6 +122,7 @@ int run_cgm(const std::vector<std::string>& argv) {
     std::cout << line;
   }
   if (svg) std::cout << "  wrote " << *svg << "\n";
+  if (html) std::cout << "  wrote " << *html << "\n";
   return 0;
 }
 

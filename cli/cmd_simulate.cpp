@@ -14,6 +14,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "page.hpp"
 
 namespace minksum::cli {
 
@@ -36,8 +37,17 @@ Options:
   --frames N        number of frames, 4 <= N <= 10000 (default 40)
   --turn A,B,C,D    the rotation applied every other frame, an integer
                     quaternion (default 10,0,0,1: about z by ≈ 11.4°)
-  -o, --output OUT  write a picture of the trail: .svg, or .html (the SVG in a
-                    page); written to a temporary file and renamed
+  -o, --output OUT  write a picture of the trail (.svg), or the 3D player
+                    (.html, as --html); written to a temporary file and renamed
+  --html OUT        write the motion as a self-contained 3D page (offline;
+                    docs/viewer.md): play/pause, a timeline slider with the
+                    frames where the state changes marked, speed; the robot
+                    coloured by its state, each frame's exact translation and
+                    squared distance or depth
+  --show-m          in the --html page, also the configuration-space obstacle
+                    of the frame's orientation, Q ⊕ (−P) = −M (the robot
+                    meets Q exactly when its reference point is in it), and
+                    that point
   --json            one JSON object per frame instead of text
 )";
 
@@ -97,7 +107,8 @@ const char* status_colour(ContactStatus s) {
 int run_simulate(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "simulate",
                             {{"--obstacle", "", true}, {"--robot", "", true}, {"--frames", "", true},
-                             {"--turn", "", true}, {"--output", "-o", true}, {"--json", "", false}});
+                             {"--turn", "", true}, {"--output", "-o", true}, {"--html", "", true},
+                             {"--show-m", "", false}, {"--json", "", false}});
   if (a.help) {
     std::cout << kSimulateHelp;
     return 0;
@@ -108,14 +119,20 @@ int run_simulate(const std::vector<std::string>& argv) {
   if (!frames_num || frames_num->get_den() != 1 || *frames_num < 4 || *frames_num > 10000)
     throw UsageError("--frames needs an integer 4 <= N <= 10000, got '" + frames_text + "'");
   const long frames = frames_num->get_num().get_si();
-  const std::string output = a.value_or("--output", "");
-  bool html = false;
+  std::string output = a.value_or("--output", "");
+  std::string html_output = a.value_or("--html", "");
+  if (a.value("--html")) check_html_path(html_output, "--html");
+  const bool show_m = a.flag("--show-m");
   if (!output.empty()) {
     const std::string ext = output.size() >= 5 ? output.substr(output.size() - 5) : "";
-    html = ext == ".html";
-    if (!html && (output.size() < 4 || output.substr(output.size() - 4) != ".svg"))
+    if (ext == ".html") {
+      if (!html_output.empty()) throw UsageError("-o OUT.html and --html both ask for the page; give one");
+      html_output = output, output.clear();
+    } else if (output.size() < 4 || output.substr(output.size() - 4) != ".svg") {
       throw UsageError("--output: the picture is .svg or .html, got '" + output + "'");
+    }
   }
+  if (show_m && html_output.empty()) throw UsageError("--show-m needs the page: --html OUT.html");
   Quaternion turn = {Integer(10), Integer(0), Integer(0), Integer(1)};
   if (auto t = a.value("--turn")) {
     std::vector<std::string> parts;
@@ -137,9 +154,11 @@ int run_simulate(const std::vector<std::string>& argv) {
   // Orientation k (frames 2k, 2k+1): the robot turned k times.
   const std::size_t orientations = std::size_t((frames + 1) / 2);
   std::vector<ConvexPolytope> robots;
+  std::vector<Quaternion> turns;  // orientation k: robot rotated by turns[k]
   Quaternion q = {Integer(1), Integer(0), Integer(0), Integer(0)};
   for (std::size_t k = 0; k < orientations; ++k) {
     robots.push_back(k == 0 ? robot : rotated(robot, q));
+    turns.push_back(q);
     q = quaternion_product(turn, q);
   }
 
@@ -194,6 +213,8 @@ int run_simulate(const std::vector<std::string>& argv) {
   }
 
   TranslationalObstacle ob(robots[0], obstacle);
+  std::vector<ConvexPolytope> c_obstacles;  // −M_k per orientation, for --show-m
+  if (show_m) c_obstacles.push_back(ob.obstacle().negated());
   std::vector<Frame> trail;
   std::size_t current = 0;
   for (long i = 0; i < frames; ++i) {
@@ -205,6 +226,7 @@ int run_simulate(const std::vector<std::string>& argv) {
       fr.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       fr.rebuilt = true;
       current = fr.orientation;
+      if (show_m) c_obstacles.push_back(ob.obstacle().negated());
     }
     const Rational y = i < pass1 ? height : Rational(0);
     fr.u = Point3(xpos(i), y, Rational(0));
@@ -241,35 +263,62 @@ int run_simulate(const std::vector<std::string>& argv) {
   }
 
   if (!output.empty()) {
-    std::ostringstream svg;
-    const double lim = double(X) + rreach + 0.5;
-    const double w = 2 * lim, h = 2 * (to_double(height) + reach + 2 * rreach + 1);
-    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" << format_double(-lim) << " "
-        << format_double(-h / 2 - 1) << " " << format_double(w) << " " << format_double(h + 2)
-        << "\" width=\"900\" height=\"" << int(900 * (h + 2) / w) << "\">\n"
-        << "<title>minksum simulate: obstacle and robot trail (side view, x right, y up)</title>\n"
-        << "<rect x=\"" << format_double(-lim) << "\" y=\"" << format_double(-h / 2 - 1) << "\" width=\""
-        << format_double(w) << "\" height=\"" << format_double(h + 2) << "\" fill=\"white\"/>\n"
-        << svg_polygon(outline(obstacle, Point3(Rational(0), Rational(0), Rational(0))),
-                       "fill:#9db4d6;stroke:#2b4a7a;stroke-width:0.04");
+    // The x-y plane seen from above (+z), x right, y up: the picture is cut
+    // to the outlines drawn, with a title above and a legend below.
+    std::vector<std::pair<std::vector<P2>, std::string>> shapes;
+    shapes.push_back({outline(obstacle, Point3(Rational(0), Rational(0), Rational(0))),
+                      "fill:#9db4d6;stroke:#2b4a7a;stroke-width:0.04"});
     for (const Frame& fr : trail)
-      svg << svg_polygon(outline(robots[fr.orientation], fr.u),
-                         std::string("fill:none;stroke-width:0.03;stroke:") + status_colour(fr.status));
-    svg << "<text x=\"" << format_double(-lim + 0.2) << "\" y=\"" << format_double(-h / 2) << "\" font-size=\"0.5\">"
-        << "green: separate, orange: touching, red: penetrating</text>\n</svg>\n";
+      shapes.push_back({outline(robots[fr.orientation], fr.u),
+                        std::string("fill:none;stroke-width:0.03;stroke:") + status_colour(fr.status)});
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+    for (const auto& [poly, style] : shapes)
+      for (const P2& p : poly) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+    const double margin = 0.5, head = 1.1, foot = 1.3;
+    const double left = x0 - margin, top = -y1 - margin - head;  // SVG y is −y
+    const double w = std::max(x1 - x0 + 2 * margin, 15.0), h = y1 - y0 + 2 * margin + head + foot;
+    std::ostringstream svg;
+    auto text = [&](double x, double y, const std::string& t, const char* extra = "") {
+      svg << "<text x=\"" << format_double(x) << "\" y=\"" << format_double(y) << "\" font-size=\"0.36\" "
+          << "font-family=\"sans-serif\"" << extra << ">" << t << "</text>\n";
+    };
+    svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" << format_double(left) << " " << format_double(top)
+        << " " << format_double(w) << " " << format_double(h) << "\" width=\"900\" height=\"" << int(900 * h / w)
+        << "\">\n<title>minksum simulate: the robot's trail past the obstacle, top view (x right, y up)</title>\n"
+        << "<rect x=\"" << format_double(left) << "\" y=\"" << format_double(top) << "\" width=\"" << format_double(w)
+        << "\" height=\"" << format_double(h) << "\" fill=\"white\"/>\n";
+    text(left + 0.3, top + 0.7, "Top view (x right, y up): pass 1 grazes Q, pass 2 goes through it",
+         " font-weight=\"bold\"");
+    for (const auto& [poly, style] : shapes) svg << svg_polygon(poly, style);
+    const double ly = -y0 + margin + 0.75;
+    double lx = left + 0.3;
+    const std::pair<const char*, const char*> legend[] = {{"#9db4d6", "obstacle Q"},
+                                                          {status_colour(ContactStatus::separate), "robot P separate"},
+                                                          {status_colour(ContactStatus::touching), "touching"},
+                                                          {status_colour(ContactStatus::penetrating), "penetrating"}};
+    for (const auto& [colour, label] : legend) {
+      svg << "<rect x=\"" << format_double(lx) << "\" y=\"" << format_double(ly - 0.35) << "\" width=\"0.4\" "
+          << "height=\"0.4\" fill=\"" << colour << "\" stroke=\"#333\" stroke-width=\"0.02\"/>\n";
+      text(lx + 0.55, ly, label);
+      lx += 0.55 + 0.21 * double(std::string(label).size()) + 0.4;
+    }
+    svg << "</svg>\n";
     const std::string body = svg.str();
     try {
-      write_file_atomically(output, [&](std::ostream& out) {
-        if (html)
-          out << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>minksum simulate</title></head><body>\n"
-              << body << "</body></html>\n";
-        else
-          out << body;
-      });
+      write_file_atomically(output, [&](std::ostream& out) { out << body; });
     } catch (const InputError& e) {
       throw OutputError(e.what());
     }
     if (!json) std::cout << "picture written to " << output << "\n";
+  }
+  if (!html_output.empty()) {
+    std::vector<MotionFrame> frames_shown;
+    for (std::size_t i = 0; i < trail.size(); ++i)
+      frames_shown.push_back({trail[i].u, trail[i].orientation, int(trail[i].status), trail[i].value,
+                              long(i) < pass1 ? 1 : 2});
+    write_motion_page(html_output, "minksum simulate: a robot passing an obstacle", obstacle, robot, turns,
+                      frames_shown, 8, c_obstacles);
+    if (!json) std::cout << "player written to " << html_output << "\n";
   }
   return 0;
 }

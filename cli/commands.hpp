@@ -16,5 +16,6 @@ int run_simulate(const std::vector<std::string>& args);
 int run_cgm(const std::vector<std::string>& args);
 int run_batch(const std::vector<std::string>& args);
 int run_convert(const std::vector<std::string>& args);
+int run_view(const std::vector<std::string>& args);
 
 }  // namespace minksum::cli

@@ -30,8 +30,10 @@ Usage:
                 [--translate-q X,Y,Z] [--rotate-p A,B,C,D] [--rotate-q A,B,C,D]
                 [--direction X,Y,Z] [--method M] [--trajectory FILE] [--json]
   minksum simulate [--obstacle Q] [--robot P] [--frames N] [--turn A,B,C,D]
-                [-o OUT.svg|.html] [--json]
-  minksum cgm P [Q] [--svg OUT.svg] [--stats] [--json]
+                [-o OUT.svg] [--html OUT.html] [--show-m] [--json]
+  minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [--stats] [--json]
+                [--format F]
+  minksum view A [B] -o OUT.html [--method M] [--hull] [--title T] [--json]
   minksum batch [FILE] [--threads N] [--method M] [--hull]
   minksum COMMAND --help          help on one command
   minksum --version
@@ -64,6 +66,7 @@ constexpr Command kCommands[] = {
     {"cgm", run_cgm},
     {"batch", run_batch},
     {"convert", run_convert},
+    {"view", run_view},
 };
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <array>
 #include <cctype>
 #include <map>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,7 @@
 #include <pty.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -409,6 +411,44 @@ TEST_F(CgmCli, SvgIsWellFormedAndWrittenAtomically) {
   CmdResult bad = run("cgm cube --svg " + (dir / "no" / "such" / "x.svg").string());
   EXPECT_EQ(bad.status, 1);
   EXPECT_FALSE(fs::exists(dir / "no"));
+}
+
+// The README's CGM picture of dioctagonal:17 ⊕ dioctagonal:17@rot:100,0,0,99
+// had no title, no legend and no face names, and its 64 dots of radius 2.5
+// around the pole of map 5 merged into a black ring: now a title naming the
+// operands, a legend (P's, Q's and both's arcs, artificial edges, facet
+// normals), each square named by its map id and plane, and a zoom inset
+// where the dots crowd, in which no two dots overlap.
+TEST_F(CgmCli, SvgHasTitleLegendFaceNamesAndDotsThatDoNotMerge) {
+  const fs::path out = dir_ / "cgm.svg";
+  ASSERT_EQ(run("cgm dioctagonal:17 dioctagonal:17@rot:100,0,0,99 --svg " + out.string()).status, 0);
+  const std::string svg = slurp(out);
+  EXPECT_NE(svg.find("<title>Cubical Gaussian Map of P ⊕ Q</title>"), std::string::npos);
+  EXPECT_NE(svg.find(">P = dioctagonal:17, Q = dioctagonal:17@rot:100,0,0,99<"), std::string::npos);
+  for (const char* name : {"0: x = −1", "1: y = −1", "2: z = −1", "3: x = +1", "4: y = +1", "5: z = +1"})
+    EXPECT_NE(svg.find(std::string(">") + name + "<"), std::string::npos) << name;
+  for (const char* row : {"arc of P (first operand)", "arc of Q (second operand)", "arc of both", "artificial edge", "facet normal"})
+    EXPECT_NE(svg.find(std::string(">") + row + "<"), std::string::npos) << row;
+  // The inset: at least two dots (the closest pair), no two of them overlapping.
+  const std::size_t g = svg.find("<g clip-path=\"url(#inset-clip)\">"), end = svg.find("</g>", g);
+  ASSERT_NE(g, std::string::npos);
+  EXPECT_NE(svg.find("map 5 magnified"), std::string::npos);
+  const std::string inset = svg.substr(g, end - g);
+  std::vector<std::array<double, 3>> dots;
+  const std::regex circle("<circle cx=\"([-0-9.]+)\" cy=\"([-0-9.]+)\" r=\"([0-9.]+)\"");
+  for (auto it = std::sregex_iterator(inset.begin(), inset.end(), circle); it != std::sregex_iterator(); ++it)
+    dots.push_back({std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3])});
+  ASSERT_GE(dots.size(), 2u);
+  for (std::size_t i = 0; i < dots.size(); ++i)
+    for (std::size_t j = i + 1; j < dots.size(); ++j)
+      EXPECT_GT(std::hypot(dots[i][0] - dots[j][0], dots[i][1] - dots[j][1]), dots[i][2] + dots[j][2]) << i << " " << j;
+  // One polytope: its name as the title, and no operand colours in the legend.
+  ASSERT_EQ(run("cgm cube --svg " + out.string()).status, 0);
+  const std::string one = slurp(out);
+  EXPECT_NE(one.find("<title>Cubical Gaussian Map of cube</title>"), std::string::npos);
+  EXPECT_EQ(one.find("arc of P"), std::string::npos);
+  EXPECT_NE(one.find(">arc (an edge)<"), std::string::npos);
+  EXPECT_EQ(one.find("inset"), std::string::npos);  // the cube's six dots are far apart
 }
 
 TEST_F(CgmCli, UsageAndInputErrors) {

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <regex>
 #include <string>
 
 #include "test_support.hpp"
@@ -507,6 +508,38 @@ TEST(ProximityCli, SimulateWritesItsPictureAtomically) {
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
   EXPECT_EQ(run("simulate --frames 12 -o " + (dir / "x.txt").string()).status, 2);
+  fs::remove_all(dir);
+}
+
+// The trail picture was titled "side view" but showed the x-y plane, had no
+// legend but a line of text, and its lower part was an empty band: now a top
+// view, a legend with the four colours, and the picture cut to what is drawn
+// (every side of the view box within 3 units of a drawn point).
+TEST(ProximityCli, SimulatePictureIsATopViewWithALegendAndNoEmptyBand) {
+  const fs::path dir = fs::temp_directory_path() / ("minksum_sim_view_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string out = (dir / "trail.svg").string();
+  ASSERT_EQ(run("simulate --frames 12 -o " + out).status, 0);
+  std::ifstream f(out);
+  std::string svg((std::istreambuf_iterator<char>(f)), {});
+  EXPECT_FALSE(has(svg, "side view"));
+  EXPECT_TRUE(has(svg, "top view"));
+  for (const char* label : {"obstacle Q", "robot P separate", "touching", "penetrating"})
+    EXPECT_TRUE(has(svg, std::string(">") + label + "<")) << label;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(svg, m, std::regex("viewBox=\"([-0-9.e]+) ([-0-9.e]+) ([0-9.e]+) ([0-9.e]+)\"")));
+  const double left = std::stod(m[1]), top = std::stod(m[2]), right = left + std::stod(m[3]), bottom = top + std::stod(m[4]);
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  const std::regex point("(-?[0-9.e]+),(-?[0-9.e]+) ");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), point); it != std::sregex_iterator(); ++it) {
+    const double x = std::stod((*it)[1]), y = std::stod((*it)[2]);
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  }
+  ASSERT_LT(x0, x1);
+  EXPECT_LE(x0 - left, 3.0);
+  EXPECT_LE(right - x1, 3.0);
+  EXPECT_LE(y0 - top, 3.0);
+  EXPECT_LE(bottom - y1, 3.0);
   fs::remove_all(dir);
 }
 

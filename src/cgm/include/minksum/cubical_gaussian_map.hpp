@@ -150,9 +150,15 @@ class CubicalGaussianMap {
   };
   Counts counts(int k) const;
 
-  // The unfolded CGM as SVG: the six squares in a cross, real edges solid
-  // (coloured by operand when set), artificial edges dashed, real vertices dotted.
-  std::string to_svg() const;
+  // The unfolded CGM as SVG: the six squares in a cross, each named by its
+  // map id and plane, real edges solid (coloured by operand when set: the
+  // first operand P red, the second Q blue, both purple), artificial edges
+  // dashed, real vertices dotted (the dots shrink where they crowd: at most
+  // a third of the distance between the two closest on a map; where they
+  // are closer than 7.5 units, a zoom inset magnifies the map around its
+  // closest pair); `title` and `subtitle` above, a legend of the colours
+  // below the left arm of the cross.
+  std::string to_svg(const std::string& title = "Cubical Gaussian Map", const std::string& subtitle = "") const;
 
  private:
   friend struct CgmBuilder;

@@ -1,0 +1,223 @@
+// The viewer pages (page.hpp).
+#include "page.hpp"
+
+#include <minksum/io.hpp>
+
+#include <ostream>
+#include <string_view>
+
+#include "common.hpp"
+
+// The viewer's script bundled with three.js (web/src/viewer.js, bundled by
+// esbuild at build time) and three.js's licence, linked into the command by
+// the generated viewer_assets.cpp (CMakeLists.txt).
+extern "C" const char minksum_viewer_js[], minksum_viewer_js_end[];
+extern "C" const char minksum_three_licence[], minksum_three_licence_end[];
+
+namespace minksum::cli {
+
+namespace {
+
+std::string_view asset(const char* begin, const char* end) { return {begin, std::size_t(end - begin)}; }
+
+void append_exact(std::string& out, const Rational& q) { out += format_exact(q); }
+
+const char* feature_dim_code(FeatureDim d) { return d == FeatureDim::vertex ? "0" : d == FeatureDim::edge ? "1" : "2"; }
+
+}  // namespace
+
+void check_html_path(const std::string& path, const std::string& option) {
+  if (path.size() < 6 || path.compare(path.size() - 5, 5, ".html") != 0)
+    throw UsageError(option + ": the page is an .html file, got '" + path + "'");
+}
+
+std::string json_string(const std::string& s) {
+  // "</" would end the <script> element holding the data.
+  std::string e = json_escape(s), out = "\"";
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    if (e[i] == '<' && i + 1 < e.size() && e[i + 1] == '/') out += "<\\";
+    else out += e[i];
+  }
+  return out + "\"";
+}
+
+std::string origin_names_json() {
+  std::string out = "[";
+  constexpr FacetOrigin kinds[] = {FacetOrigin::translated, FacetOrigin::corner, FacetOrigin::edge,
+                                   FacetOrigin::facet_edge, FacetOrigin::facet_facet};
+  for (std::size_t i = 0; i < std::size(kinds); ++i) out += (i ? ", \"" : "\"") + std::string(facet_origin_name(kinds[i])) + "\"";
+  return out + "]";
+}
+
+void append_solid_json(std::string& out, const ConvexPolytope& p, const std::string& name, const std::string& role,
+                       const std::vector<FacetProvenance>* provenance) {
+  out += "{\"name\": " + json_string(name) + ", \"role\": " + json_string(role) + ", \"counts\": {" + counts_json(p) +
+         "}, \"volume\": \"" + format_exact(p.volume()) + "\", \"xyz\": [";
+  for (Index v = 0; v < p.num_vertices(); ++v) {
+    const Vec3d& a = p.approx(v);
+    out += (v ? "," : "") + format_double(a.x) + "," + format_double(a.y) + "," + format_double(a.z);
+  }
+  out += "], \"exact\": [";
+  for (Index v = 0; v < p.num_vertices(); ++v) {
+    const Point3& q = p.point(v);
+    out += v ? ",\"" : "\"";
+    append_exact(out, q.x), out += ' ', append_exact(out, q.y), out += ' ', append_exact(out, q.z);
+    out += '"';
+  }
+  out += "], \"facets\": [";
+  for (Index f = 0; f < p.num_facets(); ++f) {
+    out += f ? ",[" : "[";
+    const Index h0 = p.facet_halfedge(f);
+    Index h = h0;
+    bool first = true;
+    do {
+      out += (first ? "" : ",") + std::to_string(p.origin(h));
+      first = false;
+      h = p.next(h);
+    } while (h != h0);
+    out += ']';
+  }
+  out += "], \"planes\": [";
+  for (Index f = 0; f < p.num_facets(); ++f) {
+    const Plane& pl = p.plane(f);
+    out += (f ? ",\"" : "\"") + pl.a.get_str() + " " + pl.b.get_str() + " " + pl.c.get_str() + " " + pl.d.get_str() + "\"";
+  }
+  out += "]";
+  if (provenance && provenance->size() == p.num_facets()) {
+    out += ", \"origin\": [";
+    for (Index f = 0; f < p.num_facets(); ++f) out += (f ? "," : "") + std::to_string(int((*provenance)[f].origin()));
+    out += "], \"from\": [";
+    for (Index f = 0; f < p.num_facets(); ++f) {
+      const FacetProvenance& fp = (*provenance)[f];
+      out += f ? "," : "";
+      out += feature_dim_code(fp.a.dim), out += ",", out += std::to_string(fp.a.index), out += ",";
+      out += feature_dim_code(fp.b.dim), out += ",", out += std::to_string(fp.b.index);
+    }
+    out += "]";
+  }
+  out += "}";
+}
+
+void write_page(const std::string& path, const std::string& title, const std::string& data) {
+  const std::string_view script = asset(minksum_viewer_js, minksum_viewer_js_end);
+  const std::string_view licence = asset(minksum_three_licence, minksum_three_licence_end);
+  std::string escaped_title;
+  for (char c : title) {
+    if (c == '<') escaped_title += "&lt;";
+    else if (c == '>') escaped_title += "&gt;";
+    else if (c == '&') escaped_title += "&amp;";
+    else escaped_title += c;
+  }
+  try {
+    write_file_atomically(path, [&](std::ostream& o) {
+      // The Content-Security-Policy forbids every request: the page works offline or not at all.
+      o << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
+        << "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; script-src 'unsafe-inline'; "
+           "style-src 'unsafe-inline'; img-src data: blob:\">\n"
+        << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+        << "<meta name=\"generator\" content=\"minksum\">\n<title>" << escaped_title << "</title></head>\n<body>\n"
+        << "<noscript>This page draws with JavaScript and WebGL.</noscript>\n"
+        << "<script type=\"application/json\" id=\"minksum-data\">" << data << "</script>\n"
+        << "<script>\n/* The viewer of minksum, bundled with three.js (https://threejs.org), whose licence follows.\n\n"
+        << licence << "*/\n" << script << "\n</script>\n</body></html>\n";
+    });
+  } catch (const InputError& e) {
+    throw OutputError(std::string("cannot write ") + e.what());
+  }
+}
+
+void write_cgm_page(const std::string& path, const std::string& title, const CubicalGaussianMap& g,
+                    const ConvexPolytope& shown, const std::vector<std::string>& operands,
+                    const std::vector<FacetProvenance>& provenance) {
+  const bool sum = operands.size() == 2;
+  const bool with_origin = sum && provenance.size() == shown.num_facets();
+  std::string data = "{\"kind\": \"cgm\", \"title\": " + json_string(title) + ", \"origins\": " + origin_names_json();
+  if (sum) data += ", \"operands\": [" + json_string(operands[0]) + ", " + json_string(operands[1]) + "]";
+  data += ", \"maps\": [";
+  for (int k = 0; k < 6; ++k) {
+    const CubicalGaussianMap::PlanarMap& m = g.map(k);
+    const auto c = g.counts(k);
+    data += (k ? ", {" : "{") + std::string("\"id\": ") + std::to_string(k) + ", \"counts\": {\"vertices\": " +
+            std::to_string(c.vertices) + ", \"halfedges\": " + std::to_string(c.halfedges) + ", \"faces\": " +
+            std::to_string(c.faces) + ", \"real_vertices\": " + std::to_string(m.num_real_vertices()) +
+            ", \"real_edges\": " + std::to_string(m.num_real_edges()) + "}, \"xyz\": [";
+    for (Index v = 0; v < m.vertices.size(); ++v) {
+      const Point3 p = g.lift(k, v);
+      data += (v ? "," : "") + format_double(to_double(p.x)) + "," + format_double(to_double(p.y)) + "," +
+              format_double(to_double(p.z));
+    }
+    data += "], \"exact\": [";
+    for (Index v = 0; v < m.vertices.size(); ++v)
+      data += (v ? ",\"" : "\"") + format_exact(m.vertices[v].x) + " " + format_exact(m.vertices[v].y) + "\"";
+    data += "], \"facet\": [";
+    for (Index v = 0; v < m.vertices.size(); ++v)
+      data += (v ? "," : "") + (m.vertices[v].real ? std::to_string(m.vertices[v].facet) : std::string("-1"));
+    if (with_origin) {
+      data += "], \"origin\": [";
+      for (Index v = 0; v < m.vertices.size(); ++v)
+        data += (v ? "," : "") + (m.vertices[v].real ? std::to_string(int(provenance[m.vertices[v].facet].origin()))
+                                                     : std::string("-1"));
+    }
+    data += "], \"edges\": [";
+    bool first = true;
+    for (Index h = 0; h < m.halfedges.size(); ++h) {
+      const auto& e = m.halfedges[h];
+      if (e.twin < h) continue;  // each edge once
+      const int kind = !e.real ? 0 : e.operands == 0 ? 1 : e.operands == 1 ? 2 : e.operands == 2 ? 3 : 4;
+      data += (first ? "" : ",") + std::to_string(e.origin) + "," + std::to_string(m.halfedges[e.twin].origin) + "," +
+              std::to_string(kind);
+      first = false;
+    }
+    data += "]}";
+  }
+  data += "], \"solids\": [";
+  append_solid_json(data, shown, title, sum ? "sum" : "polytope", with_origin ? &provenance : nullptr);
+  data += "]}";
+  write_page(path, title, data);
+}
+
+void write_motion_page(const std::string& path, const std::string& title, const ConvexPolytope& obstacle,
+                       const ConvexPolytope& robot, const std::vector<Quaternion>& turns,
+                       const std::vector<MotionFrame>& frames, int fps,
+                       const std::vector<ConvexPolytope>& c_obstacles) {
+  std::string data = "{\"kind\": \"motion\", \"title\": " + json_string(title) + ", \"fps\": " + std::to_string(fps) +
+                     ", \"obstacle\": ";
+  append_solid_json(data, obstacle, "obstacle Q", "obstacle");
+  data += ", \"robot\": ";
+  append_solid_json(data, robot, "robot P", "robot");
+  data += ", \"shapes\": [";
+  for (std::size_t k = 0; k < turns.size(); ++k) {
+    data += k ? ",[" : "[";
+    for (Index v = 0; v < robot.num_vertices(); ++v) {
+      const Point3 p = rotate(turns[k], robot.point(v));
+      data += (v ? "," : "") + format_double(to_double(p.x)) + "," + format_double(to_double(p.y)) + "," +
+              format_double(to_double(p.z));
+    }
+    data += "]";
+  }
+  data += "], \"frames\": [";
+  std::string events;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const MotionFrame& f = frames[i];
+    const Point3& t = f.translation;
+    data += (i ? ",{" : "{") + std::string("\"t\": [") + format_double(to_double(t.x)) + "," +
+            format_double(to_double(t.y)) + "," + format_double(to_double(t.z)) + "], \"exact\": [\"" +
+            format_exact(t.x) + "\", \"" + format_exact(t.y) + "\", \"" + format_exact(t.z) + "\"], \"o\": " +
+            std::to_string(f.orientation) + ", \"status\": " + std::to_string(f.status) + ", \"value\": \"" +
+            format_exact(f.value) + "\", \"pass\": " + std::to_string(f.pass) + "}";
+    if (i > 0 && f.status != frames[i - 1].status) events += (events.empty() ? "" : ",") + std::to_string(i);
+  }
+  data += "], \"events\": [" + events + "]";
+  if (!c_obstacles.empty()) {
+    data += ", \"cobstacles\": [";
+    for (std::size_t k = 0; k < c_obstacles.size(); ++k) {
+      if (k) data += ", ";
+      append_solid_json(data, c_obstacles[k], "Q ⊕ (−P), orientation " + std::to_string(k), "cobstacle");
+    }
+    data += "]";
+  }
+  data += "}";
+  write_page(path, title, data);
+}
+
+}  // namespace minksum::cli

@@ -1,0 +1,188 @@
+// What the browser tests share: minksum run as a child process, Debian's
+// chromium driven by playwright-core (web/node_modules) with the network
+// off, a page loaded from a file:// URL and the checks every page gets,
+// and exact rational arithmetic on the strings the pages and the CLI print.
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { tmpdir } from 'node:os';
+import { join, resolve } from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+export const CHROMIUM = process.env.MINKSUM_CHROMIUM || '/usr/bin/chromium';
+const here = fileURLToPath(new URL('.', import.meta.url));
+const require = createRequire(join(here, '../../web/package.json'));
+
+export function fail(message) {
+  console.error(`FAIL: ${message}`);
+  process.exit(1);
+}
+export function check(condition, message) {
+  if (!condition) fail(message);
+}
+
+// argv: --minksum BIN --out DIR
+export function options() {
+  const o = {};
+  const a = process.argv.slice(2);
+  for (let i = 0; i + 1 < a.length; i += 2) o[a[i].replace(/^--/, '')] = a[i + 1];
+  if (!o.minksum || !o.out) fail('usage: node TEST.mjs --minksum BIN --out DIR');
+  mkdirSync(o.out, { recursive: true });
+  return o;
+}
+
+export function minksum(bin, args) {
+  return execFileSync(bin, args, { encoding: 'utf8', maxBuffer: 1 << 28 });
+}
+export function minksumJson(bin, args) {
+  return JSON.parse(minksum(bin, args));
+}
+
+// Exit 77 (ctest: skipped) when the browser is missing.
+export async function launch() {
+  if (!existsSync(CHROMIUM)) {
+    console.log(`SKIP: ${CHROMIUM} is missing (Debian package chromium; 'make setup' installs it)`);
+    process.exit(77);
+  }
+  const { chromium } = require('playwright-core');
+  const profile = mkdtempSync(join(tmpdir(), 'minksum-chromium-'));
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: CHROMIUM,
+    headless: true,
+    offline: true,
+    viewport: { width: 1280, height: 800 },
+    args: ['--headless', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+           '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'],
+  });
+  return { context, close: async () => { await context.close(); rmSync(profile, { recursive: true, force: true }); } };
+}
+
+// Opens the page file in a new tab with every request but file:// aborted,
+// waits for window.minksumReady; returns the page and its log of errors and
+// blocked requests.
+export async function open(context, file, timeoutMs = 120000) {
+  const page = await context.newPage();
+  const log = { errors: [], blocked: [], files: [] };
+  page.on('console', (m) => { if (m.type() === 'error') log.errors.push(m.text()); });
+  page.on('pageerror', (e) => log.errors.push(String(e)));
+  await page.route('**/*', (route) => {
+    const url = route.request().url();
+    if (url.startsWith('file:')) { log.files.push(url); return route.continue(); }
+    log.blocked.push(url);
+    return route.abort();
+  });
+  const t0 = Date.now();
+  await page.goto(pathToFileURL(resolve(file)).href);
+  await page.waitForFunction(() => window.minksumReady === true, null, { timeout: timeoutMs, polling: 50 });
+  log.wallMs = Date.now() - t0;
+  return { page, log };
+}
+
+// The checks every page gets: no console error, no request but the page's own
+// file,
+// a canvas that is not blank (variance of its pixels' grey levels).
+export async function checkPage(page, log, name) {
+  check(log.errors.length === 0, `${name}: console errors: ${log.errors.join(' | ')}`);
+  check(log.blocked.length === 0, `${name}: the page asked for ${log.blocked.join(', ')}`);
+  check(log.files.length === 1, `${name}: the page is not one file: it loaded ${log.files.join(', ')}`);
+  const variance = await page.evaluate(() => {
+    window.minksum.render();  // the drawing buffer is kept only until the task ends
+    const src = document.querySelector('#view canvas');
+    const c = document.createElement('canvas');
+    c.width = src.width; c.height = src.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(src, 0, 0);
+    const d = ctx.getImageData(0, 0, c.width, c.height).data;
+    let s = 0, s2 = 0, n = 0;
+    for (let i = 0; i < d.length; i += 16) {
+      const g = 0.299 * d[i] + 0.587 * d[i + 1] + 0.114 * d[i + 2];
+      s += g; s2 += g * g; ++n;
+    }
+    return s2 / n - (s / n) * (s / n);
+  });
+  check(variance > 20, `${name}: the canvas looks blank (grey-level variance ${variance.toFixed(2)})`);
+  return variance;
+}
+
+// ---------------------------------------------------------------------------
+// Exact rationals as [numerator, denominator] BigInts (denominator > 0).
+
+export function rat(text) {
+  const [p, q] = text.split('/');
+  const n = BigInt(p), d = q === undefined ? 1n : BigInt(q);
+  return d < 0n ? [-n, -d] : [n, d];
+}
+export function ratCompare(a, b) {  // sign of a - b
+  const x = a[0] * b[1] - b[0] * a[1];
+  return x > 0n ? 1 : x < 0n ? -1 : 0;
+}
+function gcd(a, b) {
+  a = a < 0n ? -a : a; b = b < 0n ? -b : b;
+  while (b) [a, b] = [b, a % b];
+  return a;
+}
+// a x + b y + c z - d for the plane "a b c d" at the point ["x","y","z"], as a rational.
+export function planeValue(plane, point) {
+  const [a, b, c, d] = plane.split(' ').map(BigInt);
+  const [x, y, z] = point.map(rat);
+  const den = x[1] * y[1] * z[1];
+  const num = a * x[0] * y[1] * z[1] + b * y[0] * x[1] * z[1] + c * z[0] * x[1] * y[1] - d * den;
+  return [num, den];
+}
+export function planeIsPrimitive(plane) {
+  return plane.split(' ').map(BigInt).reduce((g, v) => gcd(g, v), 0n) === 1n;
+}
+
+// An OFF file as minksum writes it with --exact: the vertices' exact
+// coordinate strings and the faces (vertex index loops).
+export function readOff(file) {
+  const tokens = readFileSync(file, 'utf8').split('\n').filter((l) => l.trim() && !l.startsWith('#'));
+  check(tokens[0].trim() === 'OFF', `${file}: not an OFF file`);
+  const [nv, nf] = tokens[1].trim().split(/\s+/).map(Number);
+  const vertices = [], faces = [];
+  for (let i = 0; i < nv; ++i) vertices.push(tokens[2 + i].trim().split(/\s+/));
+  for (let i = 0; i < nf; ++i) faces.push(tokens[2 + nv + i].trim().split(/\s+/).slice(1).map(Number));
+  return { vertices, faces };
+}
+
+// The facet the page shows, checked against a polytope minksum wrote (OFF,
+// exact): the shown vertices are exactly the vertices of one face of the
+// file, every one of them on the shown plane, every vertex of the file on
+// its inner side, and the plane's integers primitive (the canonical plane).
+export function checkPickedFacet(picked, off, name) {
+  check(picked && picked.plane, `${name}: no facet was picked`);
+  const key = (p) => p.map((t) => { const r = rat(t); return `${r[0]}/${r[1]}`; }).join(' ');
+  const shown = new Set(picked.exact.map((s) => key(s.split(' '))));
+  const match = off.faces.find((f) => f.length === shown.size && f.every((v) => shown.has(key(off.vertices[v]))));
+  check(match, `${name}: facet ${picked.facet} (${[...shown].join('; ')}) is not a face of the polytope minksum wrote`);
+  for (const s of picked.exact)
+    check(planeValue(picked.plane, s.split(' '))[0] === 0n, `${name}: vertex ${s} is not on the shown plane ${picked.plane}`);
+  for (const v of off.vertices)
+    check(planeValue(picked.plane, v)[0] <= 0n, `${name}: vertex ${v.join(' ')} lies outside the shown plane ${picked.plane}`);
+  check(planeIsPrimitive(picked.plane), `${name}: the shown plane ${picked.plane} is not primitive`);
+}
+
+// Clicks the canvas where facet f of solid `key` shows, checks the page
+// picked that facet and shows its plane; returns what the page picked.
+export async function clickFacet(page, key, f, name) {
+  const at = await page.evaluate(([k, i]) => window.minksum.facetScreenPoint(k, i), [key, f]);
+  check(at, `${name}: facet ${f} of ${key} is not visible`);
+  await page.mouse.click(at.x, at.y);
+  const picked = await page.evaluate(() => window.minksum.picked);
+  check(picked && picked.solid === key && picked.facet === f, `${name}: clicking facet ${f} of ${key} picked ${JSON.stringify(picked && [picked.solid, picked.facet])}`);
+  const shownPlane = await page.getAttribute('#pick-plane', 'data-plane');
+  check(shownPlane === picked.plane, `${name}: the panel shows plane ${shownPlane}, the page's data ${picked.plane}`);
+  return picked;
+}
+
+// A facet of solid `key` the camera sees (the one under the pointer at the
+// centre of the solid's image, found by the page's own picking).
+export async function visibleFacet(page, key) {
+  return page.evaluate((k) => {
+    const m = window.minksum;
+    const solid = (m.data.solids || [m.data.obstacle, m.data.robot]).find((s) => s.role === k);
+    const n = solid ? solid.facets.length : 0;
+    for (let f = 0; f < n; ++f) if (m.facetScreenPoint(k, f)) return f;
+    return -1;
+  }, key);
+}

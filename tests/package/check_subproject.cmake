@@ -1,6 +1,6 @@
 # Configure tests/package/subproject, which adds minksum with add_subdirectory:
 # without a build type the parent's cache must keep none, and minksum must not
-# configure its test suites; then build the parent's program (with the build
+# configure its test suites, its command (which needs node) or its Python module; then build the parent's program (with the build
 # type minksum's own build uses, so that its objects come from the compiler
 # cache) and run it.
 # Usage: cmake -DSOURCE_DIR=... -DWORK=... -P check_subproject.cmake
@@ -15,9 +15,9 @@ file(STRINGS ${WORK}/CMakeCache.txt build_type REGEX "^CMAKE_BUILD_TYPE:")
 if(NOT build_type STREQUAL "CMAKE_BUILD_TYPE:STRING=")
   message(FATAL_ERROR "minksum wrote the parent's build type: ${build_type}")
 endif()
-file(STRINGS ${WORK}/CMakeCache.txt tests REGEX "^MINKSUM_(TESTS|STATIC_CLI):")
+file(STRINGS ${WORK}/CMakeCache.txt tests REGEX "^MINKSUM_(TESTS|STATIC_CLI|CLI|PYTHON):")
 list(SORT tests)
-if(NOT tests STREQUAL "MINKSUM_STATIC_CLI:BOOL=OFF;MINKSUM_TESTS:BOOL=OFF")
+if(NOT tests STREQUAL "MINKSUM_CLI:BOOL=OFF;MINKSUM_PYTHON:BOOL=OFF;MINKSUM_STATIC_CLI:BOOL=OFF;MINKSUM_TESTS:BOOL=OFF")
   message(FATAL_ERROR "minksum as a subproject defaults to: ${tests}")
 endif()
 if(EXISTS ${WORK}/minksum/tests)

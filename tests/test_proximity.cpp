@@ -394,6 +394,7 @@ TEST(Proximity, FilteredDistanceWalkMatchesBruteForceOnRandomPoses) {
     const DistanceResult d = ob.distance_point(s);
     ASSERT_EQ(d.status, brute_status(m, s));
     ASSERT_EQ(d.squared_distance, brute_distance2(m, s));
+    ASSERT_EQ(ob.squared_distance_by_scan(s), d.squared_distance);
     if (d.status != ContactStatus::separate) continue;
     ++separate;
     EXPECT_EQ(dot(d.direction, d.direction), d.squared_distance);

@@ -64,26 +64,40 @@ UnitPlane unit_plane(const Plane& p) {
 
 namespace detail {
 
-std::optional<GapEnclosure> unit_gap_enclosure(const UnitPlane& p, const RoundedPoint3& s) {
-  if (!p.usable || !rounded_usable(s)) return std::nullopt;
-  const double px = p.u[0] * s.approx.x, py = p.u[1] * s.approx.y, pz = p.u[2] * s.approx.z;
+namespace {
+// The enclosure for a usable plane and a usable rounding of s (derivation
+// above); nothing when the magnitudes are out of range.
+inline std::optional<GapEnclosure> enclose(const UnitPlane& p, const Vec3d& s) {
+  const double px = p.u[0] * s.x, py = p.u[1] * s.y, pz = p.u[2] * s.z;
   const double mag = std::fabs(p.e) + ((std::fabs(px) + std::fabs(py)) + std::fabs(pz));
   if (!(mag < 0x1p1000)) return std::nullopt;
   const double g = std::fabs(p.e - ((px + py) + pz));
   const double delta = 0x1p-47 * mag + 0x1p-1000;
   return GapEnclosure{g - delta, g + delta};
 }
+}  // namespace
+
+std::optional<GapEnclosure> unit_gap_enclosure(const UnitPlane& p, const RoundedPoint3& s) {
+  if (!p.usable || !rounded_usable(s)) return std::nullopt;
+  return enclose(p, s.approx);
+}
 
 std::vector<std::size_t> nearest_unit_plane_candidates(const UnitPlane* unit, std::size_t n,
                                                        const RoundedPoint3& s) {
   constexpr double inf = std::numeric_limits<double>::infinity();
-  std::vector<GapEnclosure> enc(n);
+  std::vector<std::size_t> out;
+  if (!rounded_usable(s)) {
+    for (std::size_t i = 0; i < n; ++i) out.push_back(i);
+    return out;
+  }
+  thread_local std::vector<GapEnclosure> enc;  // reused from query to query
+  enc.resize(n);
   double best = inf;
   for (std::size_t i = 0; i < n; ++i) {
-    enc[i] = unit_gap_enclosure(unit[i], s).value_or(GapEnclosure{0, inf});
+    const std::optional<GapEnclosure> e = unit[i].usable ? enclose(unit[i], s.approx) : std::nullopt;
+    enc[i] = e ? *e : GapEnclosure{0, inf};
     best = std::min(best, enc[i].up);
   }
-  std::vector<std::size_t> out;
   for (std::size_t i = 0; i < n; ++i)
     if (!(enc[i].lo > best)) out.push_back(i);
   return out;

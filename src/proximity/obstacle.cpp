@@ -341,6 +341,19 @@ Closest boundary_closest(const ConvexPolytope& m, Index f, const Point3& s) {
 }
 }  // namespace
 
+Rational TranslationalObstacle::squared_distance_by_scan(const Point3& s) const {
+  const ConvexPolytope& m = sum_.polytope;
+  for (Index f = 0; f < m.num_facets(); ++f)
+    if (m.plane(f).side(s) > 0) {
+      Point3 x;
+      Rational d2;
+      Index facet;
+      closest_feature_scan(s, x, d2, facet);
+      return d2;
+    }
+  return 0;
+}
+
 Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const {
   const ConvexPolytope& m = sum_.polytope;
   bool found = false;
@@ -389,7 +402,7 @@ Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, 
 // A certified feature contains the closest point x (for a facet, x lies on
 // the edges whose test is exactly 0, on their common vertex for two).  The
 // walk is bounded; beyond the bound it scans all facets exactly.
-Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Feature> start, Point3& x, Rational& d2,
+Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Feature> start, Point3& dir, Rational& d2,
                                               Index& facet) {
   const ConvexPolytope& m = sum_.polytope;
   const std::uint64_t limit = 2 * (std::uint64_t(m.num_vertices()) + m.num_edges() + m.num_facets()) + 16;
@@ -422,8 +435,8 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
         h = m.next_around_vertex(h);
       } while (h != h0);
       if (move == kNoIndex) {
-        x = m.point(v);
-        d2 = squared_norm(s - x);
+        dir = s - m.point(v);
+        d2 = squared_norm(dir);
         h = h0;
         facet = m.facet(h0);
         do {  // a facet through v that s sees
@@ -452,8 +465,9 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
       } else {
         const Point3& a = m.point(ia);
         const Point3 e = m.point(ib) - a;
-        x = a + (dot(s - a, e) / dot(e, e)) * e;
-        d2 = squared_norm(s - x);
+        const Point3 sa = s - a;
+        dir = sa - (dot(sa, e) / dot(e, e)) * e;
+        d2 = squared_norm(dir);
         facet = sees(f1) ? f1 : f2;
         ++stats_.certified;
         return cur;
@@ -495,7 +509,7 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
         }
         const Rational side = dot(normal_[f], s) - offset_[f];
         const Rational t = side / norm2_[f];
-        x = s - t * normal_[f];
+        dir = t * normal_[f];
         d2 = t * side;
         facet = f;
         ++stats_.certified;
@@ -508,7 +522,9 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
     ++stats_.walk_steps;
   }
   ++stats_.full_scans;
+  Point3 x;
   const Feature scanned = closest_feature_scan(s, x, d2, facet);
+  dir = s - x;
   return scanned.dim == FeatureDim::facet ? feature_on_facet(facet, x) : scanned;
 }
 
@@ -550,31 +566,29 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
     r.direction.x = 0, r.direction.y = 0, r.direction.z = 0;
     return;
   }
-  Point3 x;
   Index facet = c.witness.facet;
-  const Feature feat = closest_feature(s, last_closest_, x, r.squared_distance, facet);
+  const Feature feat = closest_feature(s, last_closest_, r.direction, r.squared_distance, facet);
   r.distance = std::sqrt(to_double(r.squared_distance));
   r.witness = Witness{};
   r.witness.facet = facet;
   r.witness.m = feat;
   last_closest_ = r.witness.m;
   fill_operand_features(r.witness);
-  // x = p − q with p in the feature of P and q in that of Q: when one of them
-  // is a vertex the other point is a translate of x (no barycentric
-  // coordinates needed).
+  // x = s − direction = p − q with p in the feature of P and q in that of Q:
+  // when one of them is a vertex, the closest point on the other body is
+  // that vertex (translated by s for Q) plus or minus the direction; no
+  // barycentric coordinates needed.
   if (r.witness.q.dim == FeatureDim::vertex) {
-    r.point_q = q_.point(r.witness.q.index);
-    r.point_p = x + r.point_q;
-    r.point_q = r.point_q + s;
+    r.point_q = q_.point(r.witness.q.index) + s;
+    r.point_p = r.point_q - r.direction;
   } else if (r.witness.p.dim == FeatureDim::vertex) {
     r.point_p = p_.point(r.witness.p.index);
-    r.point_q = r.point_p - x + s;
+    r.point_q = r.point_p + r.direction;
   } else {
-    auto [p, q] = decompose(r.witness.m, x);
+    auto [p, q] = decompose(r.witness.m, s - r.direction);
     r.point_p = p;
     r.point_q = q + s;
   }
-  r.direction = r.point_q - r.point_p;
 }
 
 void TranslationalObstacle::collide_points(std::span<const Point3> s, std::vector<CollisionResult>& out) {

@@ -149,6 +149,11 @@ class TranslationalObstacle {
   void distance_points(std::span<const Point3> s, std::vector<DistanceResult>& out);
   void penetration_depth_points(std::span<const Point3> s, std::vector<DepthResult>& out);
 
+  // The exact squared distance from s to M by a scan of every facet s sees
+  // (no walk, no filter; 0 when s is in M): an independent check of
+  // distance_point, O(F·deg) rational operations.
+  Rational squared_distance_by_scan(const Point3& s) const;
+
   const ProximityStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }
 
@@ -174,10 +179,10 @@ class TranslationalObstacle {
   int orient_filtered(const Point3& apex, Index a, Index b, const Point3& through, const RayApprox& ra) const;
   int side_filtered(Index f, const Point3& s) const;
   // The smallest feature of M holding the point x of M closest to s (s
-  // outside M), x and d2 = |s − x|², and in `facet` a facet holding x that s
-  // sees.  On entry `facet` is a facet s sees (the stabbed one); the filtered
+  // outside M), dir = s − x and d2 = |s − x|², and in `facet` a facet
+  // holding x that s sees.  On entry `facet` is a facet s sees (the stabbed one); the filtered
   // walk starts from `start` (none: from that facet).
-  Feature closest_feature(const Point3& s, std::optional<Feature> start, Point3& x, Rational& d2, Index& facet);
+  Feature closest_feature(const Point3& s, std::optional<Feature> start, Point3& dir, Rational& d2, Index& facet);
   Feature closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const;
 
   ConvexPolytope p_, q_, neg_q_;

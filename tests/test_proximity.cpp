@@ -388,6 +388,7 @@ TEST(Proximity, FilteredDistanceWalkMatchesBruteForceOnRandomPoses) {
   reset_predicate_stats();
   ob.reset_stats();
   int separate = 0;
+  int dims[3][3] = {};  // closest pairs by the dimensions of P's and Q's features
   for (int i = 0; i < 300; ++i) {
     const Point3 s(coordinate(), coordinate(), coordinate());
     SCOPED_TRACE("seed " + std::to_string(seed) + ", query " + std::to_string(i));
@@ -400,8 +401,17 @@ TEST(Proximity, FilteredDistanceWalkMatchesBruteForceOnRandomPoses) {
     EXPECT_EQ(dot(d.direction, d.direction), d.squared_distance);
     EXPECT_TRUE(point_in_feature(m, d.witness.m, d.point_p - (d.point_q - s)));
     EXPECT_GT(m.plane(d.witness.facet).side(s), 0);
+    EXPECT_TRUE(point_in_feature(ob.p(), d.witness.p, d.point_p) ||
+                (d.witness.p.dim == FeatureDim::vertex && ob.p().point(d.witness.p.index) == d.point_p));
+    EXPECT_TRUE(point_in_feature(ob.q().translated(s), d.witness.q, d.point_q) ||
+                (d.witness.q.dim == FeatureDim::vertex && ob.q().point(d.witness.q.index) + s == d.point_q));
+    ++dims[int(d.witness.p.dim)][int(d.witness.q.dim)];
   }
   ASSERT_GT(separate, 200);
+  // The generic closest pairs all occur: vertex–facet, facet–vertex, edge–edge.
+  EXPECT_GT(dims[0][2], 0);
+  EXPECT_GT(dims[2][0], 0);
+  EXPECT_GT(dims[1][1], 0);
   EXPECT_EQ(ob.stats().full_scans, 0u);
   EXPECT_EQ(ob.stats().certified, std::uint64_t(separate));
   const PredicateStats ps = predicate_stats();

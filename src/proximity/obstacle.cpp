@@ -584,11 +584,32 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
   } else if (r.witness.p.dim == FeatureDim::vertex) {
     r.point_p = p_.point(r.witness.p.index);
     r.point_q = r.point_p + r.direction;
-  } else {
+  } else if (!closest_on_skew_edges(r, s)) {
     auto [p, q] = decompose(r.witness.m, s - r.direction);
     r.point_p = p;
     r.point_q = q + s;
   }
+}
+
+// Two non-parallel edges p0 + α·u of P and q0 + β·v of Q behind the feature
+// of M holding x = s − direction (the generic facet of M): x − (p0 − q0) =
+// α·u − β·v, so by Cramer's rule on the normal equations
+// α = (⟨u,v⟩⟨w,v⟩ − ⟨v,v⟩⟨w,u⟩) / (⟨u,v⟩² − ⟨u,u⟩⟨v,v⟩) with w = x − p0 + q0.
+// False (nothing written) unless both features are edges, not parallel.
+bool TranslationalObstacle::closest_on_skew_edges(DistanceResult& r, const Point3& s) const {
+  if (r.witness.p.dim != FeatureDim::edge || r.witness.q.dim != FeatureDim::edge) return false;
+  const Index hp = 2 * r.witness.p.index, hq = 2 * r.witness.q.index;
+  const Point3& p0 = p_.point(p_.origin(hp));
+  const Point3& q0 = q_.point(q_.origin(hq));
+  const Point3 u = p_.point(p_.target(hp)) - p0, v = q_.point(q_.target(hq)) - q0;
+  const Rational uv = dot(u, v);
+  const Rational det = uv * uv - dot(u, u) * dot(v, v);  // −|u × v|²
+  if (sgn(det) == 0) return false;
+  const Point3 w = s - r.direction - p0 + q0;
+  const Rational alpha = (uv * dot(w, v) - dot(v, v) * dot(w, u)) / det;
+  r.point_p = p0 + alpha * u;
+  r.point_q = r.point_p + r.direction;
+  return true;
 }
 
 void TranslationalObstacle::collide_points(std::span<const Point3> s, std::vector<CollisionResult>& out) {

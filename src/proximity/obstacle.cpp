@@ -122,11 +122,16 @@ Feature TranslationalObstacle::feature_on_facet(Index f, const Point3& x) const 
     if (m.point(m.origin(h)) == x) return Feature::vertex(m.origin(h));
     h = m.next(h);
   } while (h != h0);
+  // x lies in the facet: it is on the edge a→b exactly when it is on the
+  // edge's line, ⟨x − a, (b − a) × n⟩ = 0 (kernel: edge_normal_side, filtered
+  // on the roundings; only a zero is decided exactly).
+  const Vec3d xd = to_double(x);
+  const RoundedPoint3 rx{x, xd}, rn{normal_[f], normal_approx_[f]};
   h = h0;
   do {
-    const Point3& a = m.point(m.origin(h));
-    const Point3& b = m.point(m.target(h));
-    if (is_zero(cross(b - a, x - a))) return Feature::edge(ConvexPolytope::edge(h));
+    const Index a = m.origin(h), b = m.target(h);
+    if (edge_normal_side(RoundedPoint3{m.point(a), m.approx(a)}, RoundedPoint3{m.point(b), m.approx(b)}, rn, rx) == 0)
+      return Feature::edge(ConvexPolytope::edge(h));
     h = m.next(h);
   } while (h != h0);
   return Feature::facet(f);

@@ -6,6 +6,14 @@
 // Prints a markdown section on stdout (docs/generated/benchmarks-proximity.md).
 //
 // Usage: bench_proximity [--steps N] [--reps R]
+//        bench_proximity --count P Q F N   (FCL builds only) one pose of the table
+//            (s = c + F·α*·dir), N distance and N depth queries, N FCL distances,
+//            each loop in its own function, for instruction counts:
+//            valgrind --tool=callgrind bench_proximity --count cube cube@rot:3 1.5 20
+//            then callgrind_annotate --inclusive=yes: count_ours_distance,
+//            count_ours_depth, count_fcl_distance (divide by N).
+//        bench_proximity --count-trajectory P Q N   the coherent trajectory of N
+//            steps: count_ours_trajectory (distance_points), count_fcl_trajectory.
 #include <ccd/ccd.h>
 #include <ccd/quat.h>
 
@@ -164,7 +172,97 @@ bool rel_off(double a, double b) { return std::fabs(a - b) > 1e-6 * std::max(std
 
 }  // namespace
 
+namespace {
+#ifdef MINKSUM_HAVE_FCL
+// Instruction counts (see the usage): the loops, each in a function of its own.
+__attribute__((noinline)) void count_ours_distance(TranslationalObstacle& ob, const Point3& s, int n) {
+  for (int i = 0; i < n; ++i) ob.distance_point(s);
+}
+__attribute__((noinline)) void count_ours_depth(TranslationalObstacle& ob, const Point3& s, int n) {
+  for (int i = 0; i < n; ++i) ob.penetration_depth_point(s);
+}
+__attribute__((noinline)) double count_fcl_distance(Fcl& f, int n) {
+  double d = 0;
+  for (int i = 0; i < n; ++i) d = f.distance();
+  return d;
+}
+__attribute__((noinline)) void count_ours_trajectory(TranslationalObstacle& ob, const std::vector<Point3>& t,
+                                                     std::vector<DistanceResult>& out) {
+  ob.distance_points(t, out);
+}
+__attribute__((noinline)) double count_fcl_trajectory(Fcl& f, const std::vector<Vec3d>& t) {
+  double d = 0;
+  for (const Vec3d& v : t) {
+    f.at(v.x, v.y, v.z);
+    d += f.distance();
+  }
+  return d;
+}
+// The coherent trajectory of the benchmark: s(i) = c + α*·(1.1 cos θ, 0.9 sin θ, 0.2 sin 3θ).
+void trajectory(TranslationalObstacle& ob, long steps, std::vector<Point3>& traj, std::vector<Vec3d>& trajd);
+int count_main(int argc, char** argv) {
+  const std::string mode = argv[1];
+  if ((mode == "--count" && argc != 6) || (mode == "--count-trajectory" && argc != 5)) {
+    std::fprintf(stderr, "usage: bench_proximity --count P Q F N | --count-trajectory P Q N\n");
+    return 2;
+  }
+  const ConvexPolytope p = catalog_polytope(argv[2]), q = catalog_polytope(argv[3]);
+  TranslationalObstacle ob(p, q);
+  Fcl fc(p, q);
+  if (mode == "--count-trajectory") {
+    std::vector<Point3> traj;
+    std::vector<Vec3d> trajd;
+    trajectory(ob, std::atol(argv[4]), traj, trajd);
+    std::vector<DistanceResult> out;
+    count_ours_trajectory(ob, traj, out);
+    const double fd = count_fcl_trajectory(fc, trajd);
+    long separate = 0;
+    for (const DistanceResult& r : out) separate += r.status == ContactStatus::separate;
+    std::printf("%s / %s: %zu steps, %ld separate, %llu certified, %llu scans (FCL sum %g)\n", argv[2], argv[3],
+                out.size(), separate, (unsigned long long)ob.stats().certified,
+                (unsigned long long)ob.stats().full_scans, fd);
+    return 0;
+  }
+  const double factor = std::atof(argv[4]);
+  const int n = std::atoi(argv[5]);
+  const Point3 dir = dpoint(1, 0.375, 0.1875);
+  const Point3 c = ob.interior_point();
+  const double alpha = to_double(ob.directional_depth_point(c, -dir).t);
+  const Vec3d cd = to_double(c);
+  const Point3 s = dpoint(cd.x + factor * alpha * 1.0, cd.y + factor * alpha * 0.375, cd.z + factor * alpha * 0.1875);
+  const Vec3d sd = to_double(s);
+  fc.at(sd.x, sd.y, sd.z);
+  const DistanceResult d = ob.distance_point(s);  // the witnesses, as in the table
+  ob.penetration_depth_point(s);
+  count_ours_distance(ob, s, n);
+  count_ours_depth(ob, s, n);
+  const double fd = count_fcl_distance(fc, n);
+  std::printf("%s / %s, f = %g: %s, distance %.17g (FCL %.17g)\n", argv[2], argv[3], factor,
+              contact_status_name(d.status), d.distance, fd);
+  return 0;
+}
+#endif
+
+void trajectory(TranslationalObstacle& ob, long steps, std::vector<Point3>& traj, std::vector<Vec3d>& trajd) {
+  const Point3 c = ob.interior_point();
+  const double alpha = to_double(ob.directional_depth_point(c, dpoint(-1, 0, 0)).t);
+  const Vec3d cd = to_double(c);
+  traj.reserve(std::size_t(steps));
+  for (long i = 0; i < steps; ++i) {
+    const double th = 2 * M_PI * 3.0 * double(i) / double(steps);
+    const Vec3d v{cd.x + alpha * 1.1 * std::cos(th), cd.y + alpha * 0.9 * std::sin(th),
+                  cd.z + alpha * 0.2 * std::sin(3 * th)};
+    trajd.push_back(v);
+    traj.push_back(dpoint(v.x, v.y, v.z));
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+#ifdef MINKSUM_HAVE_FCL
+  if (argc > 1 && std::string(argv[1]).rfind("--count", 0) == 0) return count_main(argc, argv);
+#endif
   long steps = 100000, reps = 2000;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::string(argv[i]) == "--steps") steps = std::atol(argv[i + 1]);
@@ -334,19 +432,9 @@ int main(int argc, char** argv) {
     TranslationalObstacle ob(p, q);
     Body bp = body(p), bq = body(q);
     ccd_t ccd = make_ccd();
-    const Point3 c = ob.interior_point();
-    const double alpha = to_double(ob.directional_depth_point(c, dpoint(-1, 0, 0)).t);
-    const Vec3d cd = to_double(c);
     std::vector<Point3> traj;
     std::vector<Vec3d> trajd;
-    traj.reserve(std::size_t(steps));
-    for (long i = 0; i < steps; ++i) {
-      const double th = 2 * M_PI * 3.0 * double(i) / double(steps);
-      const Vec3d v{cd.x + alpha * 1.1 * std::cos(th), cd.y + alpha * 0.9 * std::sin(th),
-                    cd.z + alpha * 0.2 * std::sin(3 * th)};
-      trajd.push_back(v);
-      traj.push_back(dpoint(v.x, v.y, v.z));
-    }
+    trajectory(ob, steps, traj, trajd);
     std::vector<ContactStatus> ours(static_cast<std::size_t>(steps));
     ob.reset_stats();
     auto t0 = Clock::now();

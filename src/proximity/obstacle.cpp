@@ -549,7 +549,7 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
     r.witness = c.witness;
     Point3 p, q;
     if (c.status == ContactStatus::touching) {
-      std::tie(p, q) = decompose(c.witness.m, s);
+      std::tie(p, q) = split(c.witness, s);
     } else {
       // s = (1 − λ) c + λ y with y the exit point of the ray from c through s.
       const Index f = c.witness.facet;
@@ -560,7 +560,7 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
       } else {
         const Rational mu = (offset_[f] - dot(normal_[f], center_)) / along;  // >= 1
         const Point3 y = center_ + mu * dir;
-        auto [py, qy] = decompose(feature_on_facet(f, y), y);
+        auto [py, qy] = split(c.witness, y);  // y lies in the stabbed facet f = c.witness.m
         const Rational lambda = 1 / mu;
         p = (1 - lambda) * p_center_ + lambda * py;
         q = (1 - lambda) * q_center_ + lambda * qy;
@@ -579,42 +579,42 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
   r.witness.m = feat;
   last_closest_ = r.witness.m;
   fill_operand_features(r.witness);
-  // x = s − direction = p − q with p in the feature of P and q in that of Q:
-  // when one of them is a vertex, the closest point on the other body is
-  // that vertex (translated by s for Q) plus or minus the direction; no
-  // barycentric coordinates needed.
-  if (r.witness.q.dim == FeatureDim::vertex) {
-    r.point_q = q_.point(r.witness.q.index) + s;
-    r.point_p = r.point_q - r.direction;
-  } else if (r.witness.p.dim == FeatureDim::vertex) {
-    r.point_p = p_.point(r.witness.p.index);
-    r.point_q = r.point_p + r.direction;
-  } else if (!closest_on_skew_edges(r, s)) {
-    auto [p, q] = decompose(r.witness.m, s - r.direction);
-    r.point_p = p;
-    r.point_q = q + s;
-  }
+  auto [p, q] = split(r.witness, s - r.direction);
+  r.point_p = std::move(p);
+  r.point_q = q + s;
 }
 
-// Two non-parallel edges p0 + α·u of P and q0 + β·v of Q behind the feature
-// of M holding x = s − direction (the generic facet of M): x − (p0 − q0) =
-// α·u − β·v, so by Cramer's rule on the normal equations
-// α = (⟨u,v⟩⟨w,v⟩ − ⟨v,v⟩⟨w,u⟩) / (⟨u,v⟩² − ⟨u,u⟩⟨v,v⟩) with w = x − p0 + q0.
-// False (nothing written) unless both features are edges, not parallel.
-bool TranslationalObstacle::closest_on_skew_edges(DistanceResult& r, const Point3& s) const {
-  if (r.witness.p.dim != FeatureDim::edge || r.witness.q.dim != FeatureDim::edge) return false;
-  const Index hp = 2 * r.witness.p.index, hq = 2 * r.witness.q.index;
-  const Point3& p0 = p_.point(p_.origin(hp));
-  const Point3& q0 = q_.point(q_.origin(hq));
-  const Point3 u = p_.point(p_.target(hp)) - p0, v = q_.point(q_.target(hq)) - q0;
-  const Rational uv = dot(u, v);
-  const Rational det = uv * uv - dot(u, u) * dot(v, v);  // −|u × v|²
-  if (sgn(det) == 0) return false;
-  const Point3 w = s - r.direction - p0 + q0;
-  const Rational alpha = (uv * dot(w, v) - dot(v, v) * dot(w, u)) / det;
-  r.point_p = p0 + alpha * u;
-  r.point_q = r.point_p + r.direction;
-  return true;
+// x = p − q with p in the face w.p of P and q in the face w.q of Q, for a
+// point x of the face w.m = w.p ⊕ (−w.q) of M (or of any face of M whose
+// faces of P and Q are w.p and w.q).  When one of them is a vertex the other
+// point is x translated by it; for two non-parallel edges p0 + α·u and
+// q0 + β·v (the generic facet of M), x − (p0 − q0) = α·u − β·v and Cramer's
+// rule on the normal equations gives
+//   α = (⟨u,v⟩⟨w,v⟩ − ⟨v,v⟩⟨w,u⟩) / (⟨u,v⟩² − ⟨u,u⟩⟨v,v⟩),  w = x − p0 + q0;
+// otherwise x's barycentric coordinates in w.m (decompose).
+std::pair<Point3, Point3> TranslationalObstacle::split(const Witness& w, const Point3& x) const {
+  if (w.q.dim == FeatureDim::vertex) {
+    const Point3& q = q_.point(w.q.index);
+    return {x + q, q};
+  }
+  if (w.p.dim == FeatureDim::vertex) {
+    const Point3& p = p_.point(w.p.index);
+    return {p, p - x};
+  }
+  if (w.p.dim == FeatureDim::edge && w.q.dim == FeatureDim::edge) {
+    const Index hp = 2 * w.p.index, hq = 2 * w.q.index;
+    const Point3& p0 = p_.point(p_.origin(hp));
+    const Point3& q0 = q_.point(q_.origin(hq));
+    const Point3 u = p_.point(p_.target(hp)) - p0, v = q_.point(q_.target(hq)) - q0;
+    const Rational uv = dot(u, v);
+    const Rational det = uv * uv - dot(u, u) * dot(v, v);  // −|u × v|²
+    if (sgn(det) != 0) {
+      const Point3 wv = x - p0 + q0;
+      const Point3 p = p0 + ((uv * dot(wv, v) - dot(v, v) * dot(wv, u)) / det) * u;
+      return {p, p - x};
+    }
+  }
+  return decompose(w.m, x);
 }
 
 void TranslationalObstacle::collide_points(std::span<const Point3> s, std::vector<CollisionResult>& out) {

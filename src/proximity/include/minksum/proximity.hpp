@@ -170,7 +170,7 @@ class TranslationalObstacle {
  private:
   void rebuild();
   void distance_into(const Point3& s, DistanceResult& r);
-  bool closest_on_skew_edges(DistanceResult& r, const Point3& s) const;
+  std::pair<Point3, Point3> split(const Witness& w, const Point3& x) const;
   // Facet of M whose cone from `apex` (strictly inside M) contains the ray
   // through `through` (≠ apex); walks from `start`.
   Index stab(const Point3& apex, const Point3& through, Index start);

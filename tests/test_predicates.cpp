@@ -363,6 +363,27 @@ struct CompareAlong {
   static constexpr bool translate[N] = {false, true, true};  // d is a vector
 };
 
+struct EdgeNormalSide {
+  static constexpr bool scalar = true;
+  static constexpr const char* name = "edge_normal_side";
+  static constexpr PredicateId id = PredicateId::edge_normal_side;
+  static constexpr std::size_t N = 4;
+  static constexpr auto pub = LIFT(edge_normal_side);
+  static constexpr auto filter = LIFT(detail::edge_normal_side_filter);
+  static constexpr auto exact = LIFT(detail::edge_normal_side_exact);
+  static constexpr auto approx = LIFT(detail::edge_normal_side_approx);
+  static std::vector<Rational> polys(const std::array<Point3, N>& p) {
+    return {qdet(qsub(p[3], p[0]), qsub(p[1], p[0]), qvec(p[2]))};
+  }
+  static int answer(const std::vector<Rational>& v) { return sgnq(v[0]); }
+  // d in the plane through a and b parallel to n.
+  static std::array<IV, N> degenerate(Gen& g) {
+    IV a = g.ivec(), b = g.ivec(), n = g.ivec();
+    return {a, b, n, a + g.integer(-3, 3) * (b - a) + g.integer(-3, 3) * n};
+  }
+  static constexpr bool translate[N] = {true, true, false, true};  // n is a vector
+};
+
 std::vector<Entry> as_entries(const Approx& a) { return entries(a); }
 std::vector<Entry> as_entries(const detail::Approx3& a) { return entries(a); }
 std::vector<Entry> as_entries(const std::vector<Entry>& e) { return e; }
@@ -553,7 +574,7 @@ class PredicateTest : public ::testing::Test {};
 
 using AllPredicates =
     ::testing::Types<Orient3d, SupportCompare, EdgeFacet, ArcSide, NormalsDot, NormalsParallel,
-                     NormalsSameDirection, DotSign, CompareAlong>;
+                     NormalsSameDirection, DotSign, CompareAlong, EdgeNormalSide>;
 class PredicateNames {
  public:
   template <class P>

@@ -10,12 +10,14 @@
 
 #include <minksum/catalog.hpp>
 #include <minksum/error.hpp>
+#include <minksum/predicates.hpp>
 #include <minksum/proximity.hpp>
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <regex>
 #include <string>
@@ -367,6 +369,147 @@ TEST(Proximity, CoherentTrajectoryWalksLocally) {
   }
   EXPECT_EQ(ob.stats().full_scans, 0u);
   EXPECT_LT(ob.stats().walk_steps, std::uint64_t(20 * n));
+  EXPECT_GT(ob.stats().certified, 0u);
+}
+
+// The distance walk decides with the kernel's filters on the cached
+// roundings: on random separate poses (rational s, fixed seed) every query is
+// certified by the filtered Voronoi walk (no scan) with exact squared
+// distances equal to brute force over all features of M, and the filters
+// leave (almost) nothing to GMP.
+TEST(Proximity, FilteredDistanceWalkMatchesBruteForceOnRandomPoses) {
+  const std::uint64_t seed = 20261123;
+  std::mt19937_64 rng(seed);
+  TranslationalObstacle ob(catalog_polytope("random:40:11"), catalog_polytope("random:25:12@rot:1,2,3,4"));
+  const ConvexPolytope& m = ob.obstacle();
+  auto coordinate = [&] {
+    return frac(long(std::uniform_int_distribution<int>(-4000, 4000)(rng)),
+                long(std::uniform_int_distribution<int>(1, 997)(rng)));
+  };
+  reset_predicate_stats();
+  ob.reset_stats();
+  int separate = 0;
+  int dims[3][3] = {};  // closest pairs by the dimensions of P's and Q's features
+  for (int i = 0; i < 300; ++i) {
+    const Point3 s(coordinate(), coordinate(), coordinate());
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", query " + std::to_string(i));
+    const DistanceResult d = ob.distance_point(s);
+    ASSERT_EQ(d.status, brute_status(m, s));
+    ASSERT_EQ(d.squared_distance, brute_distance2(m, s));
+    ASSERT_EQ(ob.squared_distance_by_scan(s), d.squared_distance);
+    if (d.status != ContactStatus::separate) continue;
+    ++separate;
+    EXPECT_EQ(dot(d.direction, d.direction), d.squared_distance);
+    EXPECT_TRUE(point_in_feature(m, d.witness.m, d.point_p - (d.point_q - s)));
+    EXPECT_GT(m.plane(d.witness.facet).side(s), 0);
+    EXPECT_TRUE(point_in_feature(ob.p(), d.witness.p, d.point_p) ||
+                (d.witness.p.dim == FeatureDim::vertex && ob.p().point(d.witness.p.index) == d.point_p));
+    EXPECT_TRUE(point_in_feature(ob.q().translated(s), d.witness.q, d.point_q) ||
+                (d.witness.q.dim == FeatureDim::vertex && ob.q().point(d.witness.q.index) + s == d.point_q));
+    ++dims[int(d.witness.p.dim)][int(d.witness.q.dim)];
+  }
+  ASSERT_GT(separate, 200);
+  // The generic closest pairs all occur: vertex–facet, facet–vertex, edge–edge.
+  EXPECT_GT(dims[0][2], 0);
+  EXPECT_GT(dims[2][0], 0);
+  EXPECT_GT(dims[1][1], 0);
+  EXPECT_EQ(ob.stats().full_scans, 0u);
+  EXPECT_EQ(ob.stats().certified, std::uint64_t(separate));
+  const PredicateStats ps = predicate_stats();
+  const std::uint64_t calls = ps[PredicateId::dot_sign].calls + ps[PredicateId::edge_normal_side].calls;
+  const std::uint64_t fallbacks =
+      ps[PredicateId::dot_sign].fallbacks + ps[PredicateId::edge_normal_side].fallbacks;
+  EXPECT_GT(calls, std::uint64_t(separate));
+  EXPECT_EQ(fallbacks, 0u) << "of " << calls << " filtered Voronoi tests";
+}
+
+// Degenerate poses: s = x + n with x a vertex, an edge midpoint or a facet
+// centroid of M and n a normal on the boundary of x's normal cone, so that s
+// is exactly equidistant from two or more features (the tests are exactly 0,
+// decided by the exact stage); the witness is the smallest feature holding
+// the closest point, and the distance is |n|².
+TEST(Proximity, DistanceOnVoronoiRegionBoundaries) {
+  for (const char* spec : {"cube@rot:1,2,3,4", "random:30:5", "dodecahedron"}) {
+    SCOPED_TRACE(spec);
+    TranslationalObstacle ob(catalog_polytope(spec), catalog_polytope("tetra@rot:2"));
+    const ConvexPolytope& m = ob.obstacle();
+    ob.reset_stats();
+    for (Index e = 0; e < m.num_edges(); ++e) {
+      const Index h = 2 * e;
+      const Point3 x = Rational(1, 2) * (m.point(m.origin(h)) + m.point(m.target(h)));
+      for (Index f : {m.facet(h), m.facet(h + 1)}) {
+        // s − x along one facet's normal: on the boundary between the edge's
+        // region and the facet's region.
+        const Point3 n = m.plane(f).normal();
+        const Point3 s = x + n;
+        const DistanceResult d = ob.distance_point(s);
+        ASSERT_EQ(d.status, ContactStatus::separate);
+        EXPECT_EQ(d.squared_distance, dot(n, n));
+        EXPECT_EQ(d.witness.m.dim, FeatureDim::edge);
+        EXPECT_EQ(d.witness.m.index, e);
+        EXPECT_EQ(d.squared_distance, brute_distance2(m, s));
+      }
+      // s − x along the edge's outer facet-normal sum, pushed to the edge's
+      // end: s projects exactly onto the vertex (edge and vertex regions meet).
+      const Point3& a = m.point(m.origin(h));
+      const Point3 n = m.plane(m.facet(h)).normal() + m.plane(m.facet(h + 1)).normal();
+      const DistanceResult d = ob.distance_point(a + n);
+      EXPECT_EQ(d.squared_distance, brute_distance2(m, a + n));
+      EXPECT_TRUE(point_in_feature(m, d.witness.m, d.point_p - (d.point_q - (a + n))));
+    }
+    for (Index v = 0; v < m.num_vertices(); ++v) {
+      // Along a facet normal at the vertex: the facet's, its edges' and the
+      // vertex's regions all contain s.
+      const Index h = m.vertex_halfedge(v);
+      const Point3 n = m.plane(m.facet(h)).normal();
+      const DistanceResult d = ob.distance_point(m.point(v) + n);
+      EXPECT_EQ(d.squared_distance, dot(n, n));
+      EXPECT_EQ(d.witness.m.dim, FeatureDim::vertex);
+      EXPECT_EQ(d.witness.m.index, v);
+    }
+    EXPECT_EQ(ob.stats().full_scans, 0u);
+  }
+}
+
+// The batch API answers a trajectory as the single queries do (a second
+// batch into the same result vector included), and on a coherent trajectory
+// certifies every separate pose with a few filtered moves, never scanning.
+TEST(Proximity, TrajectoryBatchEqualsSingleQueries) {
+  TranslationalObstacle batch(catalog_polytope("random:30:7"), catalog_polytope("icosahedron@rot:1,1,0,2"));
+  TranslationalObstacle single(batch.p(), batch.q());
+  std::vector<Point3> traj;
+  for (int i = 0; i < 160; ++i) {
+    const Rational t = frac(i - 80, 16);
+    traj.emplace_back(t, frac(1, 3) - t / 7, frac(i % 9 - 4, 5));
+  }
+  std::vector<DistanceResult> dist;
+  std::vector<CollisionResult> col;
+  std::vector<DepthResult> depth;
+  for (int round = 0; round < 2; ++round) {
+    batch.distance_points(traj, dist);
+    batch.collide_points(traj, col);
+    batch.penetration_depth_points(traj, depth);
+    ASSERT_EQ(dist.size(), traj.size());
+    for (std::size_t i = 0; i < traj.size(); ++i) {
+      SCOPED_TRACE("round " + std::to_string(round) + ", pose " + std::to_string(i));
+      const DistanceResult d = single.distance_point(traj[i]);
+      EXPECT_EQ(dist[i].status, d.status);
+      EXPECT_EQ(dist[i].squared_distance, d.squared_distance);
+      EXPECT_EQ(dist[i].squared_distance, brute_distance2(batch.obstacle(), traj[i]));
+      EXPECT_EQ(dist[i].distance, d.distance);
+      EXPECT_EQ(dist[i].point_p, d.point_p);
+      EXPECT_EQ(dist[i].point_q, d.point_q);
+      EXPECT_EQ(dist[i].direction, d.direction);
+      EXPECT_EQ(dist[i].witness.m.dim, d.witness.m.dim);
+      EXPECT_EQ(dist[i].witness.m.index, d.witness.m.index);
+      EXPECT_EQ(dist[i].witness.p.index, d.witness.p.index);
+      EXPECT_EQ(dist[i].witness.q.index, d.witness.q.index);
+      EXPECT_EQ(col[i].status, d.status);
+      EXPECT_EQ(depth[i].squared_depth, single.penetration_depth_point(traj[i]).squared_depth);
+    }
+  }
+  EXPECT_EQ(batch.stats().full_scans, 0u);
+  EXPECT_GT(batch.stats().certified, 100u);
 }
 
 TEST(Proximity, RotationRebuildsM) {

@@ -14,6 +14,7 @@
 #include <minksum/kernel.hpp>
 #include <minksum/polytope.hpp>
 #include <minksum/predicates.hpp>
+#include <minksum/unit_plane.hpp>
 #include <random>
 #include <vector>
 
@@ -197,11 +198,78 @@ TEST(RoundedPredicates, NearestPlaneIsTheFirstExactMinimiser) {
       if (d2(planes[i]) < d2(planes[best])) best = i;
     in_all_modes([&](int mode) {
       const auto cand = detail::nearest_plane_candidates(r.data(), n, s.ref());
+      std::vector<UnitPlane> unit;
+      for (const Plane& p : planes) unit.push_back(unit_plane(p));  // precomputed in this mode too
+      const auto ucand = detail::nearest_unit_plane_candidates(unit.data(), n, s.ref());
       for (std::size_t i = 0; i < n; ++i)
-        if (d2(planes[i]) == d2(planes[best]))
+        if (d2(planes[i]) == d2(planes[best])) {
           ASSERT_TRUE(std::find(cand.begin(), cand.end(), i) != cand.end())
               << "seed " << seed << ": minimiser " << i << " filtered out";
+          ASSERT_TRUE(std::find(ucand.begin(), ucand.end(), i) != ucand.end())
+              << "seed " << seed << " mode " << mode << ": minimiser " << i << " filtered out (unit planes)";
+        }
       ASSERT_EQ(nearest_plane(ptr.data(), r.data(), n, s.ref()), best) << "seed " << seed << " mode " << mode;
+      ASSERT_EQ(nearest_plane(ptr.data(), unit.data(), n, s.ref()), best) << "seed " << seed << " mode " << mode;
     });
   }
+}
+
+// The unit-plane filter's enclosure lo ≤ |d − n·s| / |n| ≤ up, checked
+// exactly (squared, in rationals) in all four rounding modes (the unit
+// planes precomputed in the same mode), on random planes of varied sizes and
+// on points exactly on the plane (distance 0) or one unit of the last
+// coefficient off it.
+TEST(UnitPlanes, EnclosureHoldsInAllRoundingModes) {
+  int decided = 0, cases = 0;
+  for (std::uint64_t seed = 1; seed <= 400; ++seed) {
+    Gen g(seed);
+    Plane p;
+    do {
+      p.a = Integer(long(g.integer(-1000000, 1000000))) << int(g.integer(0, 80));
+      p.b = Integer(long(g.integer(-1000, 1000)));
+      p.c = Integer(long(g.integer(-1000000, 1000000))) << int(g.integer(0, 40));
+    } while (p.a == 0 && p.b == 0 && p.c == 0);
+    const Rounded s(g.point());
+    const Rational ns = Rational(p.a) * s.exact.x + Rational(p.b) * s.exact.y + Rational(p.c) * s.exact.z;
+    Rational d;
+    switch (seed % 3) {
+      case 0: d = g.rational(); break;  // generic (d rounded below to an integer)
+      case 1: d = ns; break;            // s on the plane, when n·s is an integer
+      default: d = ns + 1; break;
+    }
+    mpz_fdiv_q(p.d.get_mpz_t(), d.get_num_mpz_t(), d.get_den_mpz_t());
+    const Rational gap = Rational(p.d) - ns;
+    const Rational n2 = Rational(p.a * p.a + p.b * p.b + p.c * p.c);
+    in_all_modes([&](int mode) {
+      const UnitPlane u = unit_plane(p);
+      ASSERT_TRUE(u.usable) << "seed " << seed;
+      const auto enc = detail::unit_gap_enclosure(u, s.ref());
+      ++cases;
+      if (!enc) return;
+      ++decided;
+      // lo ≤ |gap|/|n| ≤ up, i.e. lo² n2 ≤ gap² when lo > 0 and gap² ≤ up² n2.
+      ASSERT_GE(enc->up, 0) << "seed " << seed << " mode " << mode;
+      ASSERT_LE(gap * gap, Rational(enc->up) * Rational(enc->up) * n2) << "seed " << seed << " mode " << mode;
+      if (enc->lo > 0)
+        ASSERT_LE(Rational(enc->lo) * Rational(enc->lo) * n2, gap * gap) << "seed " << seed << " mode " << mode;
+    });
+  }
+  EXPECT_GT(decided, cases * 3 / 4);  // the filter declines only on unusable roundings of s
+}
+
+// A plane whose unit normal would underflow, or |n|² beyond 2^1000, is not
+// usable: it stays a candidate and is compared exactly.
+TEST(UnitPlanes, UnusablePlanesStayCandidates) {
+  Plane tiny_component{Integer(1) << 400, Integer(1), Integer(0), Integer(5)};  // b/|n| ≈ 2^-400: normal, usable
+  EXPECT_TRUE(unit_plane(tiny_component).usable);
+  Plane huge{Integer(1) << 520, Integer(0), Integer(0), Integer(0)};  // |n|² = 2^1040
+  EXPECT_FALSE(unit_plane(huge).usable);
+  const Point3 s0(Rational(0), Rational(0), Rational(0));
+  const Vec3d s0d{0, 0, 0};
+  const RoundedPoint3 s{s0, s0d};
+  Plane near{Integer(0), Integer(0), Integer(1), Integer(3)};  // distance 3
+  const Plane* planes[] = {&near, &huge};                      // huge passes through s: distance 0
+  const UnitPlane unit[] = {unit_plane(near), unit_plane(huge)};
+  EXPECT_EQ(detail::nearest_unit_plane_candidates(unit, 2, s).size(), 2u);
+  EXPECT_EQ(nearest_plane(planes, unit, 2, s), 1u);
 }

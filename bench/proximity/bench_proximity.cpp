@@ -6,6 +6,14 @@
 // Prints a markdown section on stdout (docs/generated/benchmarks-proximity.md).
 //
 // Usage: bench_proximity [--steps N] [--reps R]
+//        bench_proximity --count P Q F N   (FCL builds only) one pose of the table
+//            (s = c + F·α*·dir), N distance and N depth queries, N FCL distances,
+//            each loop in its own function, for instruction counts:
+//            valgrind --tool=callgrind bench_proximity --count cube cube@rot:3 1.5 20
+//            then callgrind_annotate --inclusive=yes: count_ours_distance,
+//            count_ours_depth, count_fcl_distance (divide by N).
+//        bench_proximity --count-trajectory P Q N   the coherent trajectory of N
+//            steps: count_ours_trajectory (distance_points), count_fcl_trajectory.
 #include <ccd/ccd.h>
 #include <ccd/quat.h>
 
@@ -16,6 +24,12 @@
 #include <fcl/narrowphase/distance.h>
 #endif
 
+#ifdef MINKSUM_HAVE_CGAL_DISTANCE
+#include <CGAL/Gmpz.h>
+#include <CGAL/Homogeneous.h>
+#include <CGAL/Polytope_distance_d.h>
+#include <CGAL/Polytope_distance_d_traits_3.h>
+#endif
 #include <minksum/catalog.hpp>
 #include <minksum/proximity.hpp>
 
@@ -129,17 +143,136 @@ struct Fcl {
 };
 #endif
 
+#ifdef MINKSUM_HAVE_CGAL_DISTANCE
+// CGAL's Polytope_distance_d (Gärtner's QP solver) with exact integers: the
+// vertices of P and of Q + s as homogeneous integer points (exact, one
+// denominator per point).
+using PdKernel = CGAL::Homogeneous<CGAL::Gmpz>;
+using PdPoint = PdKernel::Point_3;
+using PdDistance = CGAL::Polytope_distance_d<CGAL::Polytope_distance_d_traits_3<PdKernel>>;
+PdPoint pd_point(const Point3& x) {
+  Integer l;
+  mpz_lcm(l.get_mpz_t(), x.x.get_den_mpz_t(), x.y.get_den_mpz_t());
+  mpz_lcm(l.get_mpz_t(), l.get_mpz_t(), x.z.get_den_mpz_t());
+  auto h = [&](const Rational& c) { return CGAL::Gmpz(Integer(c.get_num() * (l / c.get_den())).get_mpz_t()); };
+  return PdPoint(h(x.x), h(x.y), h(x.z), CGAL::Gmpz(l.get_mpz_t()));
+}
+// The exact squared distance between P and Q + s (0 when they intersect).
+Rational cgal_squared_distance(const ConvexPolytope& p, const ConvexPolytope& q, const Point3& s) {
+  std::vector<PdPoint> a, b;
+  for (Index v = 0; v < p.num_vertices(); ++v) a.push_back(pd_point(p.point(v)));
+  for (Index v = 0; v < q.num_vertices(); ++v) b.push_back(pd_point(q.point(v) + s));
+  PdDistance pd(a.begin(), a.end(), b.begin(), b.end());
+  Rational r(Integer(pd.squared_distance_numerator().mpz()), Integer(pd.squared_distance_denominator().mpz()));
+  r.canonicalize();
+  return r;
+}
+#endif
 bool rel_off(double a, double b) { return std::fabs(a - b) > 1e-6 * std::max(std::fabs(b), 1e-300); }
 
 }  // namespace
 
+namespace {
+#ifdef MINKSUM_HAVE_FCL
+// Instruction counts (see the usage): the loops, each in a function of its own.
+__attribute__((noinline)) void count_ours_distance(TranslationalObstacle& ob, const Point3& s, int n) {
+  for (int i = 0; i < n; ++i) ob.distance_point(s);
+}
+__attribute__((noinline)) void count_ours_depth(TranslationalObstacle& ob, const Point3& s, int n) {
+  for (int i = 0; i < n; ++i) ob.penetration_depth_point(s);
+}
+__attribute__((noinline)) double count_fcl_distance(Fcl& f, int n) {
+  double d = 0;
+  for (int i = 0; i < n; ++i) d = f.distance();
+  return d;
+}
+__attribute__((noinline)) void count_ours_trajectory(TranslationalObstacle& ob, const std::vector<Point3>& t,
+                                                     std::vector<DistanceResult>& out) {
+  ob.distance_points(t, out);
+}
+__attribute__((noinline)) double count_fcl_trajectory(Fcl& f, const std::vector<Vec3d>& t) {
+  double d = 0;
+  for (const Vec3d& v : t) {
+    f.at(v.x, v.y, v.z);
+    d += f.distance();
+  }
+  return d;
+}
+// The coherent trajectory of the benchmark: s(i) = c + α*·(1.1 cos θ, 0.9 sin θ, 0.2 sin 3θ).
+void trajectory(TranslationalObstacle& ob, long steps, std::vector<Point3>& traj, std::vector<Vec3d>& trajd);
+int count_main(int argc, char** argv) {
+  const std::string mode = argv[1];
+  if ((mode == "--count" && argc != 6) || (mode == "--count-trajectory" && argc != 5)) {
+    std::fprintf(stderr, "usage: bench_proximity --count P Q F N | --count-trajectory P Q N\n");
+    return 2;
+  }
+  const ConvexPolytope p = catalog_polytope(argv[2]), q = catalog_polytope(argv[3]);
+  TranslationalObstacle ob(p, q);
+  Fcl fc(p, q);
+  if (mode == "--count-trajectory") {
+    std::vector<Point3> traj;
+    std::vector<Vec3d> trajd;
+    trajectory(ob, std::atol(argv[4]), traj, trajd);
+    std::vector<DistanceResult> out;
+    count_ours_trajectory(ob, traj, out);
+    const double fd = count_fcl_trajectory(fc, trajd);
+    long separate = 0;
+    for (const DistanceResult& r : out) separate += r.status == ContactStatus::separate;
+    std::printf("%s / %s: %zu steps, %ld separate, %llu certified, %llu scans (FCL sum %g)\n", argv[2], argv[3],
+                out.size(), separate, (unsigned long long)ob.stats().certified,
+                (unsigned long long)ob.stats().full_scans, fd);
+    return 0;
+  }
+  const double factor = std::atof(argv[4]);
+  const int n = std::atoi(argv[5]);
+  const Point3 dir = dpoint(1, 0.375, 0.1875);
+  const Point3 c = ob.interior_point();
+  const double alpha = to_double(ob.directional_depth_point(c, -dir).t);
+  const Vec3d cd = to_double(c);
+  const Point3 s = dpoint(cd.x + factor * alpha * 1.0, cd.y + factor * alpha * 0.375, cd.z + factor * alpha * 0.1875);
+  const Vec3d sd = to_double(s);
+  fc.at(sd.x, sd.y, sd.z);
+  const DistanceResult d = ob.distance_point(s);  // the witnesses, as in the table
+  ob.penetration_depth_point(s);
+  count_ours_distance(ob, s, n);
+  count_ours_depth(ob, s, n);
+  const double fd = count_fcl_distance(fc, n);
+  std::printf("%s / %s, f = %g: %s, distance %.17g (FCL %.17g)\n", argv[2], argv[3], factor,
+              contact_status_name(d.status), d.distance, fd);
+  return 0;
+}
+#endif
+
+void trajectory(TranslationalObstacle& ob, long steps, std::vector<Point3>& traj, std::vector<Vec3d>& trajd) {
+  const Point3 c = ob.interior_point();
+  const double alpha = to_double(ob.directional_depth_point(c, dpoint(-1, 0, 0)).t);
+  const Vec3d cd = to_double(c);
+  traj.reserve(std::size_t(steps));
+  for (long i = 0; i < steps; ++i) {
+    const double th = 2 * M_PI * 3.0 * double(i) / double(steps);
+    const Vec3d v{cd.x + alpha * 1.1 * std::cos(th), cd.y + alpha * 0.9 * std::sin(th),
+                  cd.z + alpha * 0.2 * std::sin(3 * th)};
+    trajd.push_back(v);
+    traj.push_back(dpoint(v.x, v.y, v.z));
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+#ifdef MINKSUM_HAVE_FCL
+  if (argc > 1 && std::string(argv[1]).rfind("--count", 0) == 0) return count_main(argc, argv);
+#endif
   long steps = 100000, reps = 2000;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::string(argv[i]) == "--steps") steps = std::atol(argv[i + 1]);
     else if (std::string(argv[i]) == "--reps") reps = std::atol(argv[i + 1]);
   }
-  const char* pairs[][2] = {{"cube", "cube@rot:3"}, {"sphere:2", "sphere:2@rot:1"}, {"random:50:1", "random:50:2"}};
+  const char* pairs[][2] = {{"cube", "cube@rot:3"},
+                            {"sphere:2", "sphere:2@rot:1"},
+                            {"random:50:1", "random:50:2"},
+                            {"random:500:1", "random:350:2"},
+                            {"sphere:4", "sphere:4@rot:1"}};
   struct Config {
     const char* name;
     double factor;  // s = c + factor · α* · dir, α*: the exact exit parameter
@@ -161,7 +294,10 @@ int main(int argc, char** argv) {
               "Configurations: s = c + f·α*·dir with c inside M and α* the exact exit parameter of the ray,\n"
               "f = 1.5 (separated), 1 (touching), 1 ± 1e-9 (near-touching), 0.5 (penetrating); s is then\n"
               "rounded to doubles, so the 'touching' point's exact status is whatever the rounding gives.\n"
-              "Distance is exact rational arithmetic throughout (closest points, features): the slow column.\n",
+              "Distance: a walk on M whose every move and final Voronoi-region certificate are filtered exact\n"
+              "predicates on doubles, then the exact squared distance and closest points (rationals) from the\n"
+              "one certified feature.  Depth: a scan of M's unit facet planes with a derived error bound, exact\n"
+              "comparisons among the planes it cannot rule out.\n",
               steps, reps, reps);
 #ifdef MINKSUM_HAVE_FCL
   std::printf("FCL %s: fcl::Convexd pairs (same vertices and facets), fcl::collide and fcl::distance with\n"
@@ -170,10 +306,15 @@ int main(int argc, char** argv) {
               "penetrating) or, for separate/penetrating, |distance| is off from the exact distance/depth\n"
               "by more than 1e-6 relative.\n\n",
               FCL_VERSION);
+#ifdef MINKSUM_HAVE_CGAL_DISTANCE
+  std::printf("CGAL %s: Polytope_distance_d (exact integers, homogeneous points) on the vertex sets, in the\n"
+              "separated configurations; 'CGAL agrees' compares its exact squared distance with ours.\n\n",
+              CGAL_VERSION_STR);
+#endif
   std::printf("| pair | configuration | exact status | ours collide µs | ours depth µs | ours distance µs | "
-              "GJK µs | GJK+EPA µs | MPR µs | FCL collide µs | FCL distance µs | GJK/ours collide | "
-              "libccd wrong (GJK, EPA, MPR) | FCL wrong (collide, distance) |\n");
-  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
+              "GJK µs | GJK+EPA µs | MPR µs | FCL collide µs | FCL distance µs | CGAL distance µs (agrees) | "
+              "GJK/ours collide | libccd wrong (GJK, EPA, MPR) | FCL wrong (collide, distance) |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---|---|\n");
 #else
   std::printf("\n");
   std::printf("| pair | configuration | exact status | ours collide µs | ours depth µs | ours distance µs | "
@@ -244,10 +385,22 @@ int main(int argc, char** argv) {
       int wrong_fdist = (fdist <= 0) != inter;
       if (!wrong_fdist && exact == ContactStatus::separate) wrong_fdist = rel_off(fdist, sr.distance);
       if (!wrong_fdist && exact == ContactStatus::penetrating) wrong_fdist = rel_off(-fdist, dr.depth);
-      std::printf("| %s / %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %d, %d, %d | %d, %d |\n",
+      std::string cgal = "–";
+#ifdef MINKSUM_HAVE_CGAL_DISTANCE
+      if (exact == ContactStatus::separate) {
+        const long n = reps / 200 + 1;
+        Rational d2;
+        t0 = Clock::now();
+        for (long r = 0; r < n; ++r) d2 = cgal_squared_distance(p, q, s);
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.2f (%s)", now_us(t0, n), d2 == sr.squared_distance ? "yes" : "NO");
+        cgal = buf;
+      }
+#endif
+      std::printf("| %s / %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %s | %.2f | %d, %d, %d | %d, %d |\n",
                   pr[0], pr[1], cf.name, contact_status_name(exact), us_collide, us_depth, us_dist, us_gjk, us_epa,
-                  us_mpr, us_fcol, us_fdist, us_gjk / us_collide, wrong_gjk, wrong_epa, wrong_mpr, wrong_fcol,
-                  wrong_fdist);
+                  us_mpr, us_fcol, us_fdist, cgal.c_str(), us_gjk / us_collide, wrong_gjk, wrong_epa, wrong_mpr,
+                  wrong_fcol, wrong_fdist);
 #else
       (void)sr;
       std::printf("| %s / %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %d, %d, %d |\n", pr[0], pr[1],
@@ -260,11 +413,16 @@ int main(int argc, char** argv) {
   // Coherent trajectory: s follows a smooth closed curve that crosses ∂M.
   std::printf("\n### Coherent trajectory (%ld steps)\n\n", steps);
   std::printf("s(i) = c + α*·(1.1 cos θ, 0.9 sin θ, 0.2 sin 3θ) with θ = 2π·3i/N (three laps, crossing the boundary\n"
-              "of M twice per lap).  Our statuses are checked against a scan of all facet planes on every step.\n\n");
+              "of M twice per lap).  Our statuses are checked against a scan of all facet planes on every step.\n"
+              "Distance along the same trajectory: TranslationalObstacle::distance_points (one batch, witnesses\n"
+              "carried along); its statuses are checked on every step and its exact squared distance every\n"
+              "1000th step against an exact scan of all the facets of M the pose sees ('ours wrong' counts\n"
+              "both); an FCL distance is wrong when its sign differs or it is off by more than 1e-6 relative.\n\n");
 #ifdef MINKSUM_HAVE_FCL
   std::printf("| pair | ours collide µs | GJK µs | MPR µs | FCL collide µs | GJK / ours | ours wrong | GJK wrong | "
-              "MPR wrong | FCL wrong | walk moves / query | full scans |\n"
-              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+              "MPR wrong | FCL wrong | walk moves / query | full scans | ours distance µs | FCL distance µs | "
+              "distance certified / separate | FCL distance wrong |\n"
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
 #else
   std::printf("| pair | ours collide µs | GJK µs | MPR µs | GJK / ours | ours wrong | GJK wrong | MPR wrong | "
               "walk moves / query | full scans |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -274,19 +432,9 @@ int main(int argc, char** argv) {
     TranslationalObstacle ob(p, q);
     Body bp = body(p), bq = body(q);
     ccd_t ccd = make_ccd();
-    const Point3 c = ob.interior_point();
-    const double alpha = to_double(ob.directional_depth_point(c, dpoint(-1, 0, 0)).t);
-    const Vec3d cd = to_double(c);
     std::vector<Point3> traj;
     std::vector<Vec3d> trajd;
-    traj.reserve(std::size_t(steps));
-    for (long i = 0; i < steps; ++i) {
-      const double th = 2 * M_PI * 3.0 * double(i) / double(steps);
-      const Vec3d v{cd.x + alpha * 1.1 * std::cos(th), cd.y + alpha * 0.9 * std::sin(th),
-                    cd.z + alpha * 0.2 * std::sin(3 * th)};
-      trajd.push_back(v);
-      traj.push_back(dpoint(v.x, v.y, v.z));
-    }
+    trajectory(ob, steps, traj, trajd);
     std::vector<ContactStatus> ours(static_cast<std::size_t>(steps));
     ob.reset_stats();
     auto t0 = Clock::now();
@@ -333,9 +481,40 @@ int main(int argc, char** argv) {
 #endif
     }
 #ifdef MINKSUM_HAVE_FCL
-    std::printf("| %s / %s | %.2f | %.2f | %.2f | %.2f | %.2f | %ld | %ld | %ld | %ld | %.4f | %llu |\n", pr[0], pr[1],
-                us_ours, us_gjk, us_mpr, us_fcl, us_gjk / us_ours, wrong_ours, wrong_gjk, wrong_mpr, wrong_fcl, walk,
-                (unsigned long long)scans);
+    // Distance along the same trajectory: the batch API (witnesses carried
+    // along), then FCL's signed distance at the same poses.
+    std::vector<DistanceResult> dist;
+    ob.reset_stats();
+    t0 = Clock::now();
+    ob.distance_points(traj, dist);
+    const double us_dist = now_us(t0, steps);
+    const auto certified = ob.stats().certified;
+    std::vector<double> fdist(static_cast<std::size_t>(steps));
+    t0 = Clock::now();
+    for (long i = 0; i < steps; ++i) {
+      fc.at(trajd[std::size_t(i)].x, trajd[std::size_t(i)].y, trajd[std::size_t(i)].z);
+      fdist[std::size_t(i)] = fc.distance();
+    }
+    const double us_fdist = now_us(t0, steps);
+    long separate = 0, wrong_fdist = 0;
+    for (long i = 0; i < steps; ++i) {
+      const DistanceResult& d = dist[std::size_t(i)];
+      const bool sep = d.status == ContactStatus::separate;
+      separate += sep;
+      wrong_ours += d.status != ours[std::size_t(i)];
+      const double f = fdist[std::size_t(i)];
+      wrong_fdist += (f > 0) != sep || (sep && rel_off(f, d.distance));
+    }
+    // Every 1000th separate pose: the exact squared distance against an exact
+    // scan of all the facets of M the pose sees (no walk, no filter).
+    for (long i = 0; i < steps; i += 1000)
+      if (dist[std::size_t(i)].status == ContactStatus::separate)
+        wrong_ours += dist[std::size_t(i)].squared_distance != ob.squared_distance_by_scan(traj[std::size_t(i)]);
+    std::printf("| %s / %s | %.2f | %.2f | %.2f | %.2f | %.2f | %ld | %ld | %ld | %ld | %.4f | %llu | %.2f | %.2f | "
+                "%llu / %ld | %ld |\n",
+                pr[0], pr[1], us_ours, us_gjk, us_mpr, us_fcl, us_gjk / us_ours, wrong_ours, wrong_gjk, wrong_mpr,
+                wrong_fcl, walk, (unsigned long long)scans, us_dist, us_fdist, (unsigned long long)certified, separate,
+                wrong_fdist);
 #else
     (void)wrong_fcl;
     std::printf("| %s / %s | %.2f | %.2f | %.2f | %.2f | %ld | %ld | %ld | %.4f | %llu |\n", pr[0], pr[1], us_ours, us_gjk,

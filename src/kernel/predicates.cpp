@@ -36,6 +36,8 @@ const char* predicate_name(PredicateId id) {
       return "dot_sign";
     case PredicateId::compare_along:
       return "compare_along";
+    case PredicateId::edge_normal_side:
+      return "edge_normal_side";
   }
   return "?";
 }
@@ -140,6 +142,20 @@ int compare_along(const Vec3d& d, const Vec3d& p, const Vec3d& q) {
 }
 int compare_along(const Point3& d, const Point3& p, const Point3& q) {
   return filtered<CompareAlongPred>(d, p, q);
+}
+int dot_sign(const RoundedPoint3& p0, const RoundedPoint3& p1, const RoundedPoint3& q0,
+             const RoundedPoint3& q1) {
+  return filtered<DotSignPred>(p0, p1, q0, q1);
+}
+int edge_normal_side(const Vec3d& a, const Vec3d& b, const Vec3d& n, const Vec3d& d) {
+  return filtered<EdgeNormalSidePred>(a, b, n, d);
+}
+int edge_normal_side(const Point3& a, const Point3& b, const Point3& n, const Point3& d) {
+  return filtered<EdgeNormalSidePred>(a, b, n, d);
+}
+int edge_normal_side(const RoundedPoint3& a, const RoundedPoint3& b, const RoundedPoint3& n,
+                     const RoundedPoint3& d) {
+  return filtered<EdgeNormalSidePred>(a, b, n, d);
 }
 
 }  // namespace minksum

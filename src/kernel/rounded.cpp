@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <minksum/kernel.hpp>
+#include <minksum/unit_plane.hpp>
 
 #include "kernel/interval.hpp"
 #include "kernel/predicates_internal.hpp"
@@ -99,22 +100,7 @@ int plane_side(const Plane& plane, const std::array<double, 4>& rounded, const R
 
 std::size_t nearest_plane(const Plane* const* planes, const std::array<double, 4>* rounded,
                           std::size_t n, const RoundedPoint3& s) {
-  std::size_t arg = n;
-  Rational arg_gap, gap;
-  Integer arg_norm2, norm2;
-  for (std::size_t i : detail::nearest_plane_candidates(rounded, n, s)) {
-    const Plane& p = *planes[i];
-    gap = Rational(p.d) - (Rational(p.a) * s.exact.x + Rational(p.b) * s.exact.y +
-                           Rational(p.c) * s.exact.z);
-    norm2 = p.a * p.a + p.b * p.b + p.c * p.c;
-    // gap² / norm2 < arg_gap² / arg_norm2, strictly: the first index wins ties.
-    if (arg == n || gap * gap * Rational(arg_norm2) < arg_gap * arg_gap * Rational(norm2)) {
-      arg = i;
-      arg_gap = gap;
-      arg_norm2 = norm2;
-    }
-  }
-  return arg;
+  return detail::nearest_plane_among(planes, detail::nearest_plane_candidates(rounded, n, s), s);
 }
 
 }  // namespace minksum

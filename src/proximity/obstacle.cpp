@@ -15,11 +15,13 @@
 //     global optimum (s − x lies in the normal cone).  The only local trap is a
 //     facet whose plane does not have s strictly above it while s projects
 //     into it; there the walk falls back to a scan of the facets s sees.
-//   * penetration depth: the kernel's nearest_plane over all facet planes (an
-//     interval filter, then exact comparisons among the candidates).
+//   * penetration depth: the kernel's nearest_plane over all facet planes
+//     (unit normals in doubles with a derived error bound, then exact
+//     comparisons among the candidates).
 #include <minksum/error.hpp>
 #include <minksum/predicates.hpp>
 #include <minksum/proximity.hpp>
+#include <minksum/unit_plane.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -83,6 +85,9 @@ void TranslationalObstacle::rebuild() {
   offset_.resize(nf);
   norm2_.resize(nf);
   plane_approx_.resize(nf);
+  normal_approx_.resize(nf);
+  unit_plane_.resize(nf);
+  plane_ptr_.resize(nf);
   for (Index f = 0; f < nf; ++f) {
     const Plane& pl = m.plane(f);
     normal_[f] = pl.normal();
@@ -90,9 +95,14 @@ void TranslationalObstacle::rebuild() {
     norm2_[f] = squared_norm(normal_[f]);
     plane_approx_[f] = {to_double(Rational(pl.a)), to_double(Rational(pl.b)), to_double(Rational(pl.c)),
                         to_double(offset_[f])};
+    normal_approx_[f] = Vec3d{plane_approx_[f][0], plane_approx_[f][1], plane_approx_[f][2]};
+    unit_plane_[f] = unit_plane(pl);
+    plane_ptr_[f] = &pl;
   }
   // avg(P) − avg(Q) is strictly inside M and has the obvious decomposition.
-  center_ = average(p_.points()) - average(q_.points());
+  p_center_ = average(p_.points());
+  q_center_ = average(q_.points());
+  center_ = p_center_ - q_center_;
   center_approx_ = to_double(center_);
   facet_features_.assign(nf, {});
   facet_features_known_.assign(nf, 0);
@@ -112,11 +122,16 @@ Feature TranslationalObstacle::feature_on_facet(Index f, const Point3& x) const 
     if (m.point(m.origin(h)) == x) return Feature::vertex(m.origin(h));
     h = m.next(h);
   } while (h != h0);
+  // x lies in the facet: it is on the edge a→b exactly when it is on the
+  // edge's line, ⟨x − a, (b − a) × n⟩ = 0 (kernel: edge_normal_side, filtered
+  // on the roundings; only a zero is decided exactly).
+  const Vec3d xd = to_double(x);
+  const RoundedPoint3 rx{x, xd}, rn{normal_[f], normal_approx_[f]};
   h = h0;
   do {
-    const Point3& a = m.point(m.origin(h));
-    const Point3& b = m.point(m.target(h));
-    if (is_zero(cross(b - a, x - a))) return Feature::edge(ConvexPolytope::edge(h));
+    const Index a = m.origin(h), b = m.target(h);
+    if (edge_normal_side(RoundedPoint3{m.point(a), m.approx(a)}, RoundedPoint3{m.point(b), m.approx(b)}, rn, rx) == 0)
+      return Feature::edge(ConvexPolytope::edge(h));
     h = m.next(h);
   } while (h != h0);
   return Feature::facet(f);
@@ -331,6 +346,19 @@ Closest boundary_closest(const ConvexPolytope& m, Index f, const Point3& s) {
 }
 }  // namespace
 
+Rational TranslationalObstacle::squared_distance_by_scan(const Point3& s) const {
+  const ConvexPolytope& m = sum_.polytope;
+  for (Index f = 0; f < m.num_facets(); ++f)
+    if (m.plane(f).side(s) > 0) {
+      Point3 x;
+      Rational d2;
+      Index facet;
+      closest_feature_scan(s, x, d2, facet);
+      return d2;
+    }
+  return 0;
+}
+
 Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const {
   const ConvexPolytope& m = sum_.polytope;
   bool found = false;
@@ -356,7 +384,30 @@ Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, 
   return best;
 }
 
-Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Feature> start, Point3& x, Rational& d2,
+// The Voronoi walk on M with the kernel's filtered predicates.  Every move
+// and the final certificate are signs of exact polynomials in s and M's
+// rational vertices and facet normals, filtered on their cached roundings
+// (RoundedPoint3: no rational arithmetic unless a filter cannot decide):
+//   vertex v: s − v in v's normal cone ⇔ ⟨s − v, w − v⟩ ≤ 0 for every
+//             neighbour w (dot_sign); else move to the first edge v→w with
+//             ⟨s − v, w − v⟩ > 0;
+//   edge a→b (facets f1 left, f2 right): ⟨s − a, b − a⟩ > 0 and
+//             ⟨s − b, a − b⟩ > 0 (the projection x lies inside the edge),
+//             ⟨s − a, (b − a) × n1⟩ ≥ 0 and ⟨s − b, (a − b) × n2⟩ ≥ 0
+//             (edge_normal_side: s − x in the cone of n1 and n2); else move
+//             to the vertex or facet whose test failed;
+//   facet f:  ⟨s − a, (b − a) × n⟩ ≤ 0 for every edge a→b of f (the
+//             projection lies in the closed polygon) and n·s > d
+//             (plane_side); else move to an edge s lies strictly beyond
+//             (the one whose segment is nearest to s in double precision:
+//             a choice, not a decision).  Below the plane (a local trap of
+//             the descent: s projects into f from inside M) the walk
+//             restarts once from `facet` on entry, a facet s sees (the
+//             stabbed one), then scans.
+// A certified feature contains the closest point x (for a facet, x lies on
+// the edges whose test is exactly 0, on their common vertex for two).  The
+// walk is bounded; beyond the bound it scans all facets exactly.
+Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Feature> start, Point3& dir, Rational& d2,
                                               Index& facet) {
   const ConvexPolytope& m = sum_.polytope;
   const std::uint64_t limit = 2 * (std::uint64_t(m.num_vertices()) + m.num_edges() + m.num_facets()) + 16;
@@ -368,130 +419,217 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
     }
     return false;
   };
-  Feature cur = start && valid(*start) ? *start : Feature::facet(last_stab_ < m.num_facets() ? last_stab_ : 0);
+  const Vec3d sd = to_double(s);
+  const RoundedPoint3 rs{s, sd};
+  auto rv = [&](Index v) { return RoundedPoint3{m.point(v), m.approx(v)}; };
+  auto rn = [&](Index f) { return RoundedPoint3{normal_[f], normal_approx_[f]}; };
+  auto sees = [&](Index f) { return plane_side(m.plane(f), plane_approx_[f], rs) > 0; };
+  const Index stabbed = facet < m.num_facets() ? facet : 0;
+  bool restarted = false;
+  Feature cur = start && valid(*start) ? *start : Feature::facet(stabbed);
   for (std::uint64_t steps = 0; steps < limit; ++steps) {
     if (cur.dim == FeatureDim::vertex) {
       const Index v = cur.index;
-      const Point3& pv = m.point(v);
-      const Point3 sv = s - pv;
       const Index h0 = m.vertex_halfedge(v);
       Index h = h0, move = kNoIndex;
       do {
-        if (sgn(dot(sv, m.point(m.target(h)) - pv)) > 0) {
+        if (dot_sign(rv(v), rs, rv(v), rv(m.target(h))) > 0) {
           move = h;
           break;
         }
         h = m.next_around_vertex(h);
       } while (h != h0);
       if (move == kNoIndex) {
-        x = pv;
-        d2 = squared_norm(sv);
+        dir = s - m.point(v);
+        d2 = squared_norm(dir);
         h = h0;
         facet = m.facet(h0);
         do {  // a facet through v that s sees
-          if (m.plane(m.facet(h)).side(s) > 0) {
+          if (sees(m.facet(h))) {
             facet = m.facet(h);
             break;
           }
           h = m.next_around_vertex(h);
         } while (h != h0);
+        ++stats_.certified;
         return cur;
       }
       cur = Feature::edge(ConvexPolytope::edge(move));
     } else if (cur.dim == FeatureDim::edge) {
       const Index h = 2 * cur.index;
       const Index ia = m.origin(h), ib = m.target(h);
-      const Point3& a = m.point(ia);
-      const Point3& b = m.point(ib);
-      const Point3 e = b - a;
-      const Rational t = dot(s - a, e) / dot(e, e);
-      if (sgn(t) <= 0) {
+      const Index f1 = m.facet(h), f2 = m.facet(ConvexPolytope::twin(h));
+      if (dot_sign(rv(ia), rs, rv(ia), rv(ib)) <= 0) {
         cur = Feature::vertex(ia);
-      } else if (cmp(t, 1) >= 0) {
+      } else if (dot_sign(rv(ib), rs, rv(ib), rv(ia)) <= 0) {
         cur = Feature::vertex(ib);
+      } else if (edge_normal_side(rv(ia), rv(ib), rn(f1), rs) < 0) {
+        cur = Feature::facet(f1);
+      } else if (edge_normal_side(rv(ib), rv(ia), rn(f2), rs) < 0) {
+        cur = Feature::facet(f2);
       } else {
-        const Point3 px = a + t * e;
-        const Point3 sx = s - px;
-        const Index f1 = m.facet(h), f2 = m.facet(ConvexPolytope::twin(h));
-        if (sgn(dot(sx, cross(e, normal_[f1]))) < 0) {
-          cur = Feature::facet(f1);
-        } else if (sgn(dot(sx, cross(-e, normal_[f2]))) < 0) {
-          cur = Feature::facet(f2);
-        } else {
-          x = px;
-          d2 = squared_norm(sx);
-          facet = m.plane(f1).side(s) > 0 ? f1 : f2;
-          return cur;
-        }
+        const Point3& a = m.point(ia);
+        const Point3 e = m.point(ib) - a;
+        const Point3 sa = s - a;
+        dir = sa - (dot(sa, e) / dot(e, e)) * e;
+        d2 = squared_norm(dir);
+        facet = sees(f1) ? f1 : f2;
+        ++stats_.certified;
+        return cur;
       }
     } else {
       const Index f = cur.index;
-      const Point3& n = normal_[f];
-      if (beyond_an_edge(m, f, n, s)) {
-        cur = boundary_closest(m, f, s).feat;
+      const Index h0 = m.facet_halfedge(f);
+      Index h = h0, beyond = kNoIndex, on_first = kNoIndex, on_second = kNoIndex;
+      double beyond_d2 = 0;
+      do {
+        const int side = edge_normal_side(rv(m.origin(h)), rv(m.target(h)), rn(f), rs);
+        if (side > 0) {
+          // Choose the edge nearest to s (in doubles; any edge s lies beyond
+          // is a valid move).
+          const Vec3d& a = m.approx(m.origin(h));
+          const Vec3d& b = m.approx(m.target(h));
+          const double ex = b.x - a.x, ey = b.y - a.y, ez = b.z - a.z;
+          const double px = sd.x - a.x, py = sd.y - a.y, pz = sd.z - a.z;
+          const double ee = ex * ex + ey * ey + ez * ez;
+          double t = ee > 0 ? (px * ex + py * ey + pz * ez) / ee : 0;
+          t = t < 0 ? 0 : t > 1 ? 1 : t;
+          const double dx = px - t * ex, dy = py - t * ey, dz = pz - t * ez;
+          const double dd = dx * dx + dy * dy + dz * dz;
+          if (beyond == kNoIndex || dd < beyond_d2) beyond = h, beyond_d2 = dd;
+        } else if (side == 0) {
+          (on_first == kNoIndex ? on_first : on_second) = h;
+        }
+        h = m.next(h);
+      } while (h != h0);
+      if (beyond != kNoIndex) {
+        cur = Feature::edge(ConvexPolytope::edge(beyond));
       } else {
-        const Rational side = dot(n, s) - offset_[f];
-        if (sgn(side) <= 0) break;  // local trap: scan
+        if (!sees(f)) {  // local trap: restart once from the stabbed facet (s sees it), then scan
+          if (restarted) break;
+          restarted = true;
+          cur = Feature::facet(stabbed);
+          ++stats_.walk_steps;
+          continue;
+        }
+        const Rational side = dot(normal_[f], s) - offset_[f];
         const Rational t = side / norm2_[f];
-        x = s - t * n;
+        dir = t * normal_[f];
         d2 = t * side;
         facet = f;
+        ++stats_.certified;
+        if (on_second != kNoIndex)  // x on two edges of f: their common vertex
+          return Feature::vertex(m.next(on_first) == on_second ? m.origin(on_second) : m.origin(on_first));
+        if (on_first != kNoIndex) return Feature::edge(ConvexPolytope::edge(on_first));
         return cur;
       }
     }
     ++stats_.walk_steps;
   }
   ++stats_.full_scans;
-  return closest_feature_scan(s, x, d2, facet);
+  Point3 x;
+  const Feature scanned = closest_feature_scan(s, x, d2, facet);
+  dir = s - x;
+  return scanned.dim == FeatureDim::facet ? feature_on_facet(facet, x) : scanned;
 }
 
 DistanceResult TranslationalObstacle::distance_point(const Point3& s) {
-  CollisionResult c = collide_point(s);
   DistanceResult r;
+  distance_into(s, r);
+  return r;
+}
+
+// The distance query written into r (its rationals assigned, not rebuilt).
+void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
+  CollisionResult c = collide_point(s);
   r.status = c.status;
+  r.distance = 0;
   r.squared_distance = 0;
   if (c.status != ContactStatus::separate) {
     r.witness = c.witness;
     Point3 p, q;
     if (c.status == ContactStatus::touching) {
-      std::tie(p, q) = decompose(c.witness.m, s);
+      std::tie(p, q) = split(c.witness, s);
     } else {
       // s = (1 − λ) c + λ y with y the exit point of the ray from c through s.
       const Index f = c.witness.facet;
       const Point3 dir = s - center_;
       const Rational along = dot(normal_[f], dir);
       if (sgn(along) <= 0) {  // s == center_
-        p = average(p_.points()), q = average(q_.points());
+        p = p_center_, q = q_center_;
       } else {
         const Rational mu = (offset_[f] - dot(normal_[f], center_)) / along;  // >= 1
         const Point3 y = center_ + mu * dir;
-        auto [py, qy] = decompose(feature_on_facet(f, y), y);
+        auto [py, qy] = split(c.witness, y);  // y lies in the stabbed facet f = c.witness.m
         const Rational lambda = 1 / mu;
-        const Point3 pc = average(p_.points()), qc = average(q_.points());
-        p = (1 - lambda) * pc + lambda * py;
-        q = (1 - lambda) * qc + lambda * qy;
+        p = (1 - lambda) * p_center_ + lambda * py;
+        q = (1 - lambda) * q_center_ + lambda * qy;
       }
     }
     r.point_p = p;
     r.point_q = q + s;
-    r.direction = Point3(Rational(0), Rational(0), Rational(0));
-    return r;
+    r.direction.x = 0, r.direction.y = 0, r.direction.z = 0;
+    return;
   }
-  Point3 x;
-  Rational d2;
   Index facet = c.witness.facet;
-  closest_feature(s, last_closest_, x, d2, facet);
-  r.squared_distance = d2;
-  r.distance = std::sqrt(to_double(d2));
+  const Feature feat = closest_feature(s, last_closest_, r.direction, r.squared_distance, facet);
+  r.distance = std::sqrt(to_double(r.squared_distance));
+  r.witness = Witness{};
   r.witness.facet = facet;
-  r.witness.m = feature_on_facet(facet, x);
+  r.witness.m = feat;
   last_closest_ = r.witness.m;
   fill_operand_features(r.witness);
-  auto [p, q] = decompose(r.witness.m, x);
-  r.point_p = p;
+  auto [p, q] = split(r.witness, s - r.direction);
+  r.point_p = std::move(p);
   r.point_q = q + s;
-  r.direction = r.point_q - r.point_p;
-  return r;
+}
+
+// x = p − q with p in the face w.p of P and q in the face w.q of Q, for a
+// point x of the face w.m = w.p ⊕ (−w.q) of M (or of any face of M whose
+// faces of P and Q are w.p and w.q).  When one of them is a vertex the other
+// point is x translated by it; for two non-parallel edges p0 + α·u and
+// q0 + β·v (the generic facet of M), x − (p0 − q0) = α·u − β·v and Cramer's
+// rule on the normal equations gives
+//   α = (⟨u,v⟩⟨w,v⟩ − ⟨v,v⟩⟨w,u⟩) / (⟨u,v⟩² − ⟨u,u⟩⟨v,v⟩),  w = x − p0 + q0;
+// otherwise x's barycentric coordinates in w.m (decompose).
+std::pair<Point3, Point3> TranslationalObstacle::split(const Witness& w, const Point3& x) const {
+  if (w.q.dim == FeatureDim::vertex) {
+    const Point3& q = q_.point(w.q.index);
+    return {x + q, q};
+  }
+  if (w.p.dim == FeatureDim::vertex) {
+    const Point3& p = p_.point(w.p.index);
+    return {p, p - x};
+  }
+  if (w.p.dim == FeatureDim::edge && w.q.dim == FeatureDim::edge) {
+    const Index hp = 2 * w.p.index, hq = 2 * w.q.index;
+    const Point3& p0 = p_.point(p_.origin(hp));
+    const Point3& q0 = q_.point(q_.origin(hq));
+    const Point3 u = p_.point(p_.target(hp)) - p0, v = q_.point(q_.target(hq)) - q0;
+    const Rational uv = dot(u, v);
+    const Rational det = uv * uv - dot(u, u) * dot(v, v);  // −|u × v|²
+    if (sgn(det) != 0) {
+      const Point3 wv = x - p0 + q0;
+      const Point3 p = p0 + ((uv * dot(wv, v) - dot(v, v) * dot(wv, u)) / det) * u;
+      return {p, p - x};
+    }
+  }
+  return decompose(w.m, x);
+}
+
+void TranslationalObstacle::collide_points(std::span<const Point3> s, std::vector<CollisionResult>& out) {
+  out.resize(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i) out[i] = collide_point(s[i]);
+}
+
+void TranslationalObstacle::distance_points(std::span<const Point3> s, std::vector<DistanceResult>& out) {
+  out.resize(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i) distance_into(s[i], out[i]);
+}
+
+void TranslationalObstacle::penetration_depth_points(std::span<const Point3> s, std::vector<DepthResult>& out) {
+  out.resize(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i) out[i] = penetration_depth_point(s[i]);
 }
 
 DistanceResult TranslationalObstacle::distance(const Point3& u, const Point3& w) {
@@ -514,12 +652,11 @@ DepthResult TranslationalObstacle::penetration_depth_point(const Point3& s) {
   if (c.status != ContactStatus::penetrating) return r;
   const ConvexPolytope& m = sum_.polytope;
   const Index nf = m.num_facets();
-  // The facet nearest to s, the first on ties (kernel: nearest_plane, an
-  // interval filter on the planes' roundings, then exact comparisons).
+  // The facet nearest to s, the first on ties (kernel: nearest_plane on unit
+  // planes, a filter with a derived bound, then exact comparisons among the
+  // facets it cannot rule out).
   const Vec3d sd = to_double(s);
-  std::vector<const Plane*> planes(nf);
-  for (Index f = 0; f < nf; ++f) planes[f] = &m.plane(f);
-  const Index arg = Index(nearest_plane(planes.data(), plane_approx_.data(), nf, RoundedPoint3{s, sd}));
+  const Index arg = Index(nearest_plane(plane_ptr_.data(), unit_plane_.data(), nf, RoundedPoint3{s, sd}));
   const Rational arg_gap = offset_[arg] - dot(normal_[arg], s);  // d − n·s (> 0 for s inside)
   last_depth_ = arg;
   const Rational t = arg_gap / norm2_[arg];  // s + t n lies on the facet plane

@@ -238,6 +238,18 @@ struct CompareAlongPred : SignPredicate {
   static int exact(Workspace& w) { return exact_dot(w); }
 };
 
+// 7. edge_normal_side = sign ⟨d − a, (b − a) × n⟩, n exact (a facet normal):
+//    orient3d(a, b, a + n, d) without forming a + n.  Shape det3 with one
+//    exact group (one rounding fewer than orient3d: the det3 constants cover
+//    it; the rational filter takes ρ = κ D for the vector, as compare_along).
+struct EdgeNormalSidePred : SignPredicate {
+  static constexpr PredicateId id = PredicateId::edge_normal_side;
+  static constexpr std::size_t arity = 4;  // a, b, n, d
+  using Shape = Det3;
+  static constexpr std::array<GroupIndex, 3> groups{{{3, 0}, {1, 0}, {2, kVector}}};
+  static int exact(Workspace& w) { return exact_det3(w); }
+};
+
 // ===========================================================================
 // Each predicate's stages, callable on its points (all Vec3d or all Point3)
 // as in the public function: orient3d_approx(a, b, c, d), ...
@@ -290,6 +302,9 @@ inline constexpr StageFunction<DotSignPred, Stage::exact> dot_sign_exact;
 inline constexpr StageFunction<CompareAlongPred, Stage::approx> compare_along_approx;
 inline constexpr StageFunction<CompareAlongPred, Stage::filter> compare_along_filter;
 inline constexpr StageFunction<CompareAlongPred, Stage::exact> compare_along_exact;
+inline constexpr StageFunction<EdgeNormalSidePred, Stage::approx> edge_normal_side_approx;
+inline constexpr StageFunction<EdgeNormalSidePred, Stage::filter> edge_normal_side_filter;
+inline constexpr StageFunction<EdgeNormalSidePred, Stage::exact> edge_normal_side_exact;
 
 // ===========================================================================
 // Rounded rational inputs (RoundedPoint3, kernel/rounded.cpp).

@@ -130,6 +130,17 @@ int dot_sign(const Point3& p0, const Point3& p1, const Point3& q0, const Point3&
 int compare_along(const Vec3d& d, const Vec3d& p, const Vec3d& q);
 int compare_along(const Point3& d, const Point3& p, const Point3& q);
 
+//   edge_normal_side(a, b, n, d) = sign ⟨d − a, (b − a) × n⟩, n an exact
+//                              vector: orient3d(a, b, a + n, d), the side of d
+//                              with respect to the plane through a and b
+//                              parallel to n.  With n the outer normal of a
+//                              facet and a → b one of its edges (counter-
+//                              clockwise seen from outside), +1 when d lies
+//                              strictly beyond that edge (the Voronoi
+//                              region tests of proximity queries).  Degree 3.
+int edge_normal_side(const Vec3d& a, const Vec3d& b, const Vec3d& n, const Vec3d& d);
+int edge_normal_side(const Point3& a, const Point3& b, const Point3& n, const Point3& d);
+
 // ---------------------------------------------------------------------------
 // 7. Rational inputs with cached roundings (kernel/rounded.cpp).
 //
@@ -148,6 +159,11 @@ struct RoundedPoint3 {
 // orient3d(a.exact, b.exact, c.exact, d.exact); counted as orient3d.
 int orient3d(const RoundedPoint3& a, const RoundedPoint3& b, const RoundedPoint3& c,
              const RoundedPoint3& d);
+// dot_sign and edge_normal_side on rounded points; counted as those.
+int dot_sign(const RoundedPoint3& p0, const RoundedPoint3& p1, const RoundedPoint3& q0,
+             const RoundedPoint3& q1);
+int edge_normal_side(const RoundedPoint3& a, const RoundedPoint3& b, const RoundedPoint3& n,
+                     const RoundedPoint3& d);
 
 // plane.side(s.exact) = sign(a·x + b·y + c·z − d), given `rounded`, faithful
 // roundings of the plane's integers (a, b, c, d).  Not counted in the
@@ -180,8 +196,9 @@ enum class PredicateId : int {
   normals_same_direction,
   dot_sign,
   compare_along,
+  edge_normal_side,
 };
-inline constexpr int kPredicateCount = 9;
+inline constexpr int kPredicateCount = 10;
 
 // "orient3d", "support_compare", ... (the function names).
 const char* predicate_name(PredicateId id);

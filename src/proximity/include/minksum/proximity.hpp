@@ -30,10 +30,12 @@
 #include <minksum/minkowski.hpp>
 #include <minksum/polytope.hpp>
 #include <minksum/transform.hpp>  // rotations of the operands
+#include <minksum/unit_plane.hpp>
 
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -99,6 +101,7 @@ struct ProximityStats {
   std::uint64_t queries = 0;
   std::uint64_t walk_steps = 0;      // facet / feature moves of the coherent walks
   std::uint64_t full_scans = 0;      // walks abandoned for a scan of all features
+  std::uint64_t certified = 0;       // distance walks ended by a filtered Voronoi-region certificate
   std::uint64_t rebuilds = 0;        // computations of M
 };
 
@@ -135,6 +138,22 @@ class TranslationalObstacle {
   DepthResult penetration_depth_point(const Point3& s);
   DirectionalDepthResult directional_depth_point(const Point3& s, const Point3& d);
 
+  // Trajectory (batch) queries: the answers for the configuration-space
+  // points s[0], s[1], … in order, written into `out` (resized to s.size()).
+  // Each walk starts from the previous query's witness, so a coherent
+  // trajectory costs a few filtered moves per query; the answers are those of
+  // the single queries.  distance_points assigns into the existing results,
+  // so a caller that keeps `out` from one batch to the next reuses its
+  // rationals' storage instead of allocating new ones.
+  void collide_points(std::span<const Point3> s, std::vector<CollisionResult>& out);
+  void distance_points(std::span<const Point3> s, std::vector<DistanceResult>& out);
+  void penetration_depth_points(std::span<const Point3> s, std::vector<DepthResult>& out);
+
+  // The exact squared distance from s to M by a scan of every facet s sees
+  // (no walk, no filter; 0 when s is in M): an independent check of
+  // distance_point, O(F·deg) rational operations.
+  Rational squared_distance_by_scan(const Point3& s) const;
+
   const ProximityStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }
 
@@ -150,6 +169,8 @@ class TranslationalObstacle {
 
  private:
   void rebuild();
+  void distance_into(const Point3& s, DistanceResult& r);
+  std::pair<Point3, Point3> split(const Witness& w, const Point3& x) const;
   // Facet of M whose cone from `apex` (strictly inside M) contains the ray
   // through `through` (≠ apex); walks from `start`.
   Index stab(const Point3& apex, const Point3& through, Index start);
@@ -158,9 +179,11 @@ class TranslationalObstacle {
   bool in_cone(Index f, const Point3& apex, const Point3& through, const RayApprox& ra, Index* exit_halfedge);
   int orient_filtered(const Point3& apex, Index a, Index b, const Point3& through, const RayApprox& ra) const;
   int side_filtered(Index f, const Point3& s) const;
-  // Closest feature of M to s (s outside M): walk from `start` (none: from
-  // the last stabbed facet).
-  Feature closest_feature(const Point3& s, std::optional<Feature> start, Point3& x, Rational& d2, Index& facet);
+  // The smallest feature of M holding the point x of M closest to s (s
+  // outside M), dir = s − x and d2 = |s − x|², and in `facet` a facet
+  // holding x that s sees.  On entry `facet` is a facet s sees (the stabbed one); the filtered
+  // walk starts from `start` (none: from that facet).
+  Feature closest_feature(const Point3& s, std::optional<Feature> start, Point3& dir, Rational& d2, Index& facet);
   Feature closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const;
 
   ConvexPolytope p_, q_, neg_q_;
@@ -170,9 +193,11 @@ class TranslationalObstacle {
   std::vector<Point3> normal_;        // facet normals (a, b, c) as rationals
   std::vector<Rational> offset_;      // d
   std::vector<Rational> norm2_;       // a² + b² + c²
-  std::vector<std::array<double, 4>> unit_plane_;  // approximate unit normal and offset
   std::vector<std::array<double, 4>> plane_approx_;  // a, b, c, d rounded to doubles
-  Point3 center_;
+  std::vector<Vec3d> normal_approx_;                 // (a, b, c) rounded to doubles
+  std::vector<UnitPlane> unit_plane_;                // unit normals and offsets (penetration depth)
+  std::vector<const Plane*> plane_ptr_;              // &obstacle().plane(f)
+  Point3 center_, p_center_, q_center_;  // center_ = p_center_ − q_center_ (the vertex averages)
   Vec3d center_approx_;
   // Features of P and Q behind each facet of M, filled on first use.
   mutable std::vector<std::array<Feature, 2>> facet_features_;

@@ -29,6 +29,7 @@ Usage:
   minksum query collide|distance|depth|ddepth P Q [--translate-p X,Y,Z]
                 [--translate-q X,Y,Z] [--rotate-p A,B,C,D] [--rotate-q A,B,C,D]
                 [--direction X,Y,Z] [--method M] [--trajectory FILE] [--json]
+                [--format F]
   minksum simulate [--obstacle Q] [--robot P] [--frames N] [--turn A,B,C,D]
                 [-o OUT.svg] [--html OUT.html] [--show-m] [--json]
   minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [--stats] [--json]

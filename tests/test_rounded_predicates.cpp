@@ -91,7 +91,9 @@ TEST(RoundedPredicates, Orient3dAgreesAndBoundHolds) {
       const RoundedPoint3 ra = a.ref(), rb = b.ref(), rc = c.ref(), rd = d.ref();
       const auto approx = detail::approx_rounded<detail::Orient3dPred>({&ra, &rb, &rc, &rd});
       check_bound(approx, P, seed, mode);
-      if (auto s = detail::certified_sign(approx)) ASSERT_EQ(*s, sgn(P)) << "seed " << seed;
+      if (auto s = detail::certified_sign(approx)) {
+        ASSERT_EQ(*s, sgn(P)) << "seed " << seed;
+      }
       ASSERT_EQ(orient3d(ra, rb, rc, rd), sgn(P)) << "seed " << seed << " mode " << mode;
     });
   }
@@ -133,7 +135,9 @@ TEST(RoundedPredicates, PlaneSideAgreesAndBoundHolds) {
     in_all_modes([&](int mode) {
       const auto approx = detail::plane_side_approx(r, s.ref());
       check_bound(approx, P, seed, mode);
-      if (auto f = detail::plane_side_filter(r, s.ref())) ASSERT_EQ(*f, sgn(P)) << "seed " << seed;
+      if (auto f = detail::plane_side_filter(r, s.ref())) {
+        ASSERT_EQ(*f, sgn(P)) << "seed " << seed;
+      }
       ASSERT_EQ(plane_side(pl, r, s.ref()), sgn(P)) << "seed " << seed << " mode " << mode;
       ASSERT_EQ(detail::plane_side_exact(pl, s.exact), sgn(P)) << "seed " << seed;
     });
@@ -250,8 +254,9 @@ TEST(UnitPlanes, EnclosureHoldsInAllRoundingModes) {
       // lo ≤ |gap|/|n| ≤ up, i.e. lo² n2 ≤ gap² when lo > 0 and gap² ≤ up² n2.
       ASSERT_GE(enc->up, 0) << "seed " << seed << " mode " << mode;
       ASSERT_LE(gap * gap, Rational(enc->up) * Rational(enc->up) * n2) << "seed " << seed << " mode " << mode;
-      if (enc->lo > 0)
+      if (enc->lo > 0) {
         ASSERT_LE(Rational(enc->lo) * Rational(enc->lo) * n2, gap * gap) << "seed " << seed << " mode " << mode;
+      }
     });
   }
   EXPECT_GT(decided, cases * 3 / 4);  // the filter declines only on unusable roundings of s

@@ -39,8 +39,8 @@ int run_gen(const std::vector<std::string>& argv) {
     throw UsageError("'" + a.positional[0] + "' is not a catalog name (see 'minksum gen --help')");
   ConvexPolytope p = catalog_polytope(a.positional[0]);
   write_output(output, p, a.flag("--exact"), a.flag("--binary"));
-  std::cout << a.positional[0] << ": " << p.num_vertices() << " vertices, " << p.num_edges() << " edges, "
-            << p.num_facets() << " facets, written to " << output << "\n";
+  std::cout << printable(a.positional[0]) << ": " << p.num_vertices() << " vertices, " << p.num_edges() << " edges, "
+            << p.num_facets() << " facets, written to " << printable(output) << "\n";
   return 0;
 }
 

@@ -117,24 +117,24 @@ int run_sum(const std::vector<std::string>& argv) {
   if (json) {
     Rational vol = s.volume();
     std::cout << "{" << counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
-              << ", \"seconds\": " << format_double(r.seconds) << ", \"phases\": {\"read\": "
-              << format_double(la.read + lb.read) << ", \"validate\": " << format_double(la.validate + lb.validate)
-              << ", \"sum\": " << format_double(r.seconds - r.explicit_seconds)
-              << ", \"explicit\": " << format_double(r.explicit_seconds) << ", \"write\": " << format_double(write_seconds)
+              << ", \"seconds\": " << json_number(r.seconds) << ", \"phases\": {\"read\": "
+              << json_number(la.read + lb.read) << ", \"validate\": " << json_number(la.validate + lb.validate)
+              << ", \"sum\": " << json_number(r.seconds - r.explicit_seconds)
+              << ", \"explicit\": " << json_number(r.explicit_seconds) << ", \"write\": " << json_number(write_seconds)
               << "}, \"volume\": \"" << format_exact(vol)
-              << "\", \"volume_double\": " << format_double(to_double(vol)) << facet_types_json(r) << method_detail_json(r)
+              << "\", \"volume_double\": " << json_number(to_double(vol)) << facet_types_json(r) << method_detail_json(r)
               << ", \"a\": {\"name\": \"" << json_escape(a.positional[0]) << "\", " << counts_json(pa)
               << "}, \"b\": {\"name\": \"" << json_escape(a.positional[1]) << "\", " << counts_json(pb)
               << "}, \"output\": ";
     if (output.empty()) std::cout << "null"; else std::cout << "\"" << json_escape(output) << "\"";
     std::cout << "}\n";
   } else {
-    std::cout << a.positional[0] << " (" << pa.num_vertices() << " V, " << pa.num_facets() << " F) ⊕ "
-              << a.positional[1] << " (" << pb.num_vertices() << " V, " << pb.num_facets() << " F)\n"
+    std::cout << printable(a.positional[0]) << " (" << pa.num_vertices() << " V, " << pa.num_facets() << " F) ⊕ "
+              << printable(a.positional[1]) << " (" << pb.num_vertices() << " V, " << pb.num_facets() << " F)\n"
               << "  = " << s.num_vertices() << " vertices, " << s.num_edges() << " edges, "
               << s.num_facets() << " facets\n"
               << "  method " << method_name(r.method) << ", " << format_double(r.seconds) << " s\n";
-    if (!output.empty()) std::cout << "  written to " << output << "\n";
+    if (!output.empty()) std::cout << "  written to " << printable(output) << "\n";
   }
   return 0;
 }

@@ -78,3 +78,25 @@ std::string expand_help(std::string_view text);
 void write_output(const std::string& path, const ConvexPolytope& p, bool exact, bool binary);
 
 }  // namespace minksum::cli
+
+namespace minksum::cli {
+
+// Text safe to print on one line of a terminal: valid UTF-8 is kept, a
+// newline, tab or carriage return becomes \n, \t, \r, any other control
+// character (C0, DEL, C1) and every byte that is not part of valid UTF-8
+// becomes \xNN.  Every message and every echoed name goes through it, so one
+// error is one line and no terminal escape sequence reaches the terminal.
+std::string printable(std::string_view s);
+
+// A double as a JSON number; JSON has no infinity or NaN, so a non-finite
+// value (a double that overflowed: the exact value is beyond the double
+// range) is `null`, and the command prints the exact value beside it as a
+// string field.  Every double in minksum's JSON goes through it.
+std::string json_number(double x);
+
+// Flush standard output and throw OutputError ("cannot write to standard
+// output: REASON") if any write to it failed.  Called after each line of
+// streamed output (trajectories) and once at the end of main.
+void check_stdout();
+
+}  // namespace minksum::cli

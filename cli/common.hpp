@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "text.hpp"
+
 namespace minksum::cli {
 
 // An option a command accepts: "--name" (and an optional short alias such as
@@ -80,13 +82,6 @@ void write_output(const std::string& path, const ConvexPolytope& p, bool exact, 
 }  // namespace minksum::cli
 
 namespace minksum::cli {
-
-// Text safe to print on one line of a terminal: valid UTF-8 is kept, a
-// newline, tab or carriage return becomes \n, \t, \r, any other control
-// character (C0, DEL, C1) and every byte that is not part of valid UTF-8
-// becomes \xNN.  Every message and every echoed name goes through it, so one
-// error is one line and no terminal escape sequence reaches the terminal.
-std::string printable(std::string_view s);
 
 // A double as a JSON number; JSON has no infinity or NaN, so a non-finite
 // value (a double that overflowed: the exact value is beyond the double

@@ -3,7 +3,7 @@
 
 #include <minksum/error.hpp>
 
-#include "common.hpp"
+#include "text.hpp"
 
 #include <vector>
 

@@ -8,12 +8,14 @@
 #include <minksum/error.hpp>
 #include <minksum/io.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -327,5 +329,77 @@ TEST_F(Reliability, ByteOrderMarkOnTheCommandLine) {
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("8 vertices, 12 edges, 6 facets"), std::string::npos) << r.out;
 }
+
+// ---------------------------------------------------------------------------
+// 5. The fuzz targets' seed corpus and the inputs they found
+// (tests/fuzz/corpus/NAME/, tests/fuzz/regressions/NAME/), in the normal suite:
+// every file is read or refused with an InputError, nothing else.
+
+namespace fuzz_inputs {
+
+const fs::path kFuzz = fs::path(MINKSUM_TEST_DATA) / ".." / "fuzz";
+
+std::vector<fs::path> inputs(const std::string& target) {
+  std::vector<fs::path> files;
+  for (const char* kind : {"corpus", "regressions"}) {
+    const fs::path dir = kFuzz / kind / target;
+    if (!fs::is_directory(dir)) continue;
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.is_regular_file()) files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+TEST(FuzzInputs, EveryReaderInputIsReadOrRefused) {
+  const std::pair<const char*, minksum::Format> readers[] = {{"off", minksum::Format::off},
+                                                              {"obj", minksum::Format::obj},
+                                                              {"ply", minksum::Format::ply},
+                                                              {"stl", minksum::Format::stl},
+                                                              {"wrl", minksum::Format::wrl}};
+  for (const auto& [name, format] : readers) {
+    const auto files = inputs(name);
+    EXPECT_GE(files.size(), 3u) << name << ": the seed corpus is missing";
+    for (const fs::path& f : files) {
+      SCOPED_TRACE(f.string());
+      std::istringstream in(read_file(f));
+      try {
+        const minksum::Mesh m = minksum::read_mesh(in, format, f.string());
+        try {
+          (void)minksum::ConvexPolytope::from_mesh(m, f.string());
+        } catch (const minksum::InputError&) {
+        }
+      } catch (const minksum::InputError& e) {
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << "neither a mesh nor an InputError: " << e.what();
+      }
+    }
+  }
+}
+
+TEST_F(Reliability, EveryTrajectoryInputIsAnsweredOrRefusedOnOneLine) {
+  const auto files = inputs("trajectory");
+  EXPECT_GE(files.size(), 2u);
+  for (const fs::path& f : files) {
+    SCOPED_TRACE(f.string());
+    const Outcome r = run("query collide cube cube --json --trajectory " + sh(f.string()));
+    if (r.status == 0) {
+      EXPECT_EQ(r.err, "");
+      if (!r.out.empty()) EXPECT_TRUE(strict_json_lines(r.out));
+    } else {
+      EXPECT_EQ(r.status, 3);
+      EXPECT_EQ(lines(r.err), 1u) << r.err;
+    }
+  }
+  for (const fs::path& f : inputs("vector")) {
+    SCOPED_TRACE(f.string());
+    const Outcome r = run("query collide cube cube --translate-p " + sh(read_file(f)));
+    EXPECT_TRUE(r.status == 0 || r.status == 2) << r.status;
+    EXPECT_EQ(lines(r.err), r.status == 0 ? 0u : 1u) << r.err;
+  }
+}
+
+}  // namespace fuzz_inputs
 
 }  // namespace

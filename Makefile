@@ -58,6 +58,24 @@ test-long: build
 asan:
 	$(MAKE) --no-print-directory test BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON
 
+# The same build, with only the fast suites (what .ci/run runs): every unit
+# suite except the conformance matrix, the slope-diagram methods, CVMS and the
+# CGM sums (minutes each under the sanitizers; the same code paths run in the
+# optimised suite), the predicates' bulk random agreement tests (their
+# degenerate, extreme-magnitude and rounding-mode cases stay), the layer
+# probes and the package test.  About 50 minutes (build 40, tests 12) on 2
+# loaded cores.
+ASAN_FAST_TARGETS = minksum_cli test_catalog test_cgm test_chms test_cli test_difference test_io \
+                    test_mesh_support test_point_list test_polytope test_predicates test_progress \
+                    test_proximity test_reliability test_rounded_predicates test_roundtrip test_walk
+ASAN_FAST_EXCLUDE = ^((CgmSum|layers|package)[.]|PredicateTest[.](RandomUniform|Rationals|RandomSmallIntegers|RandomWideExponents)<)
+.PHONY: asan-fast
+asan-fast:
+	@$(MAKE) --no-print-directory setup
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DMINKSUM_SANITIZE=ON $(CMAKE_ARGS)
+	cmake --build build-asan -j $(JOBS) --target $(ASAN_FAST_TARGETS)
+	cd build-asan && ctest --output-on-failure -j $(JOBS) -L unit -E '$(ASAN_FAST_EXCLUDE)' --no-tests=error
+
 # Optimised build (with debug info and assertions) under ThreadSanitizer in
 # build-tsan/, then the tests that run threads: concurrent sums with progress
 # and cancellation, concurrent readers of lazily computed planes, per-thread
@@ -79,7 +97,7 @@ screenshots: build
 	node web/screenshots.mjs --minksum $(BUILD)/bin/minksum --out docs/images
 
 clean:
-	rm -rf $(BUILD) build-asan $(TSAN_BUILD) $(BENCH_BUILD)
+	rm -rf $(BUILD) build-asan $(TSAN_BUILD) $(BENCH_BUILD) $(FUZZ_BUILD)
 
 # The side-by-side benchmark (bench/, docs/generated/benchmarks.md): a separate Release
 # build with assertions off.  `make bench` runs the full suite and rewrites
@@ -127,3 +145,25 @@ bench-quick:
 	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target minksum_bench
 	@mkdir -p $(BENCH_BUILD)/quick
 	$(BENCH_BUILD)/bin/minksum_bench --suite quick --out $(BENCH_BUILD)/quick --command "make bench-quick"
+
+# libFuzzer targets (tests/fuzz/): each reader (off obj ply stl wrl) through
+# the public io API, and the trajectory-line and query-vector parsers, built
+# with clang, ASan and UBSan in build-fuzz/ (MINKSUM_FUZZ=ON; only the layers
+# they use).  `make fuzz` runs each for FUZZ_SECONDS from its seed corpus
+# (tests/fuzz/corpus/); `make fuzz-smoke` for 20 s each (what .ci/run does).
+# A finding is saved in build-fuzz/fuzz-artifacts/TARGET/ and fails the run.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS ?= off obj ply stl wrl trajectory vector
+.PHONY: fuzz fuzz-smoke fuzz-build
+fuzz-build:
+	@$(MAKE) --no-print-directory setup
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMINKSUM_FUZZ=ON \
+	  -DMINKSUM_TESTS=OFF -DMINKSUM_STATIC_CLI=OFF $(CMAKE_ARGS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
+
+fuzz: fuzz-build
+	bash scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+fuzz-smoke:
+	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=20

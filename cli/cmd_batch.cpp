@@ -254,8 +254,8 @@ Outcome compute(const Pair& p) {
     const SumResult r = minkowski_sum(a, b, p.method);
     const Rational volume = r.polytope.volume();
     o.json = ", \"method\": \"" + std::string(method_name(r.method)) + "\", " + counts_json(r.polytope) +
-             ", \"volume\": \"" + format_exact(volume) + "\", \"volume_double\": " + format_double(to_double(volume)) +
-             ", \"seconds\": " + format_double(r.seconds);
+             ", \"volume\": \"" + format_exact(volume) + "\", \"volume_double\": " + json_number(to_double(volume)) +
+             ", \"seconds\": " + json_number(r.seconds);
   } catch (const InputError& e) {
     o.status = 3;
     o.error = e.what();

@@ -99,11 +99,11 @@ int run_cgm(const std::vector<std::string>& argv) {
                 << ", \"real_edges\": " << g.map(k).num_real_edges() << "}";
     }
     std::cout << "]";
-    if (a.positional.size() == 2) std::cout << ", \"seconds\": " << format_double(seconds);
+    if (a.positional.size() == 2) std::cout << ", \"seconds\": " << json_number(seconds);
     std::cout << "}\n";
     return 0;
   }
-  std::cout << label << ": " << shown.num_vertices() << " vertices, " << shown.num_edges() << " edges, "
+  std::cout << printable(label) << ": " << shown.num_vertices() << " vertices, " << shown.num_edges() << " edges, "
             << shown.num_facets() << " facets\n";
   if (a.flag("--stats") || (!svg && !html)) {
     static const char* plane[6] = {"x=-1", "y=-1", "z=-1", "x=+1", "y=+1", "z=+1"};
@@ -121,8 +121,8 @@ int run_cgm(const std::vector<std::string>& argv) {
     std::snprintf(line, sizeof line, "  total      %5u %5u %5u\n", tv, th, tf);
     std::cout << line;
   }
-  if (svg) std::cout << "  wrote " << *svg << "\n";
-  if (html) std::cout << "  wrote " << *html << "\n";
+  if (svg) std::cout << "  wrote " << printable(*svg) << "\n";
+  if (html) std::cout << "  wrote " << printable(*html) << "\n";
   return 0;
 }
 

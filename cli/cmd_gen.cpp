@@ -41,9 +41,9 @@ int run_gen(const std::vector<std::string>& argv) {
   // catalog_polytope names the closest catalog name when the name is unknown.
   ConvexPolytope p = catalog_polytope(a.positional[0]);
   write_mesh_output(*output, p);
-  output->report_stream() << a.positional[0] << ": " << p.num_vertices() << " vertices, " << p.num_edges()
+  output->report_stream() << printable(a.positional[0]) << ": " << p.num_vertices() << " vertices, " << p.num_edges()
                           << " edges, " << p.num_facets() << " facets, written to "
-                          << (output->to_stdout() ? "standard output" : output->path) << "\n";
+                          << (output->to_stdout() ? std::string("standard output") : printable(output->path)) << "\n";
   return 0;
 }
 

@@ -5,7 +5,10 @@
 #include <minksum/proximity.hpp>
 
 #include <chrono>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -13,6 +16,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "mesh_io.hpp"
+#include "pose.hpp"
 
 namespace minksum::cli {
 
@@ -56,10 +60,11 @@ Options:
                         skipped.  Output: one line (or JSON object) per pose.
   --json                print JSON: query, status, squared_distance /
                         squared_depth / t as exact rationals in strings
-                        ("p/q" or an integer), distance / depth (double),
-                        direction and the closest points point_p, point_q
-                        (exact strings; point_p_double, point_q_double as
-                        doubles), witness, seconds
+                        ("p/q" or an integer), distance / depth (double;
+                        null when beyond the double range: JSON has no
+                        infinity), direction (exact strings), point_p /
+                        point_q (doubles) and point_p_exact / point_q_exact
+                        (exact strings) for distance, witness, seconds
 
 Coordinates accept integers, exact rationals (1/3,0,-2/7) and decimals (the
 nearest double, then exact).
@@ -71,56 +76,6 @@ with --trajectory -.
 )";
 
 enum class Kind { collide, distance, depth, ddepth };
-
-// "X,Y,Z" -> exact point; nullopt with a reason.
-std::optional<Point3> parse_vector(const std::string& text, std::string* why) {
-  Point3 p;
-  std::size_t start = 0;
-  for (int i = 0; i < 3; ++i) {
-    const std::size_t comma = text.find(',', start);
-    if ((i < 2) != (comma != std::string::npos)) {
-      *why = "expected three comma-separated numbers X,Y,Z, got '" + text + "'";
-      return std::nullopt;
-    }
-    const std::string tok = text.substr(start, i < 2 ? comma - start : std::string::npos);
-    std::string reason;
-    auto v = parse_number(tok, &reason);
-    if (!v) {
-      *why = "bad coordinate '" + tok + "' in '" + text + "' (" + reason + ")";
-      return std::nullopt;
-    }
-    p[i] = *v;
-    start = comma + 1;
-  }
-  return p;
-}
-
-std::optional<Quaternion> parse_quaternion(const std::string& text, std::string* why) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', start);
-    parts.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  Quaternion q;
-  bool ok = parts.size() == 4;
-  for (std::size_t i = 0; ok && i < 4; ++i) {
-    auto v = parse_number(parts[i]);
-    ok = v && v->get_den() == 1 && parts[i].find_first_of(".eEpx") == std::string::npos;
-    if (ok) q[i] = v->get_num();
-  }
-  if (!ok) {
-    *why = "a rotation is four integers A,B,C,D, got '" + text + "'";
-    return std::nullopt;
-  }
-  if (sgn(q[0]) == 0 && sgn(q[1]) == 0 && sgn(q[2]) == 0 && sgn(q[3]) == 0) {
-    *why = "a rotation needs a non-zero quaternion, got '" + text + "'";
-    return std::nullopt;
-  }
-  return q;
-}
 
 Point3 vector_option(const Args& a, const std::string& name, const Point3& fallback) {
   auto v = a.value(name);
@@ -163,8 +118,8 @@ std::string exact_vector_json(const Point3& p) {
   return "[\"" + format_exact(p.x) + "\", \"" + format_exact(p.y) + "\", \"" + format_exact(p.z) + "\"]";
 }
 std::string double_vector_json(const Point3& p) {
-  return "[" + format_double(to_double(p.x)) + ", " + format_double(to_double(p.y)) + ", " +
-         format_double(to_double(p.z)) + "]";
+  return "[" + json_number(to_double(p.x)) + ", " + json_number(to_double(p.y)) + ", " +
+         json_number(to_double(p.z)) + "]";
 }
 std::string vector_text(const Point3& p) {
   return "(" + format_exact(p.x) + ", " + format_exact(p.y) + ", " + format_exact(p.z) + ")";
@@ -184,7 +139,7 @@ std::string answer(TranslationalObstacle& ob, Kind kind, const Point3& u, const 
       const double sec = seconds();
       if (json)
         o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status)
-          << "\", \"witness\": " << witness_json(r.witness) << ", \"seconds\": " << format_double(sec) << "}";
+          << "\", \"witness\": " << witness_json(r.witness) << ", \"seconds\": " << json_number(sec) << "}";
       else
         o << contact_status_name(r.status) << "  [" << witness_text(r.witness) << "]";
       break;
@@ -195,11 +150,10 @@ std::string answer(TranslationalObstacle& ob, Kind kind, const Point3& u, const 
       if (json)
         o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status)
           << "\", \"squared_distance\": \"" << format_exact(r.squared_distance)
-          << "\", \"distance\": " << format_double(r.distance) << ", \"direction\": " << exact_vector_json(r.direction)
-          << ", \"point_p\": " << exact_vector_json(r.point_p) << ", \"point_q\": " << exact_vector_json(r.point_q)
-          << ", \"point_p_double\": " << double_vector_json(r.point_p)
-          << ", \"point_q_double\": " << double_vector_json(r.point_q)
-          << ", \"witness\": " << witness_json(r.witness) << ", \"seconds\": " << format_double(sec) << "}";
+          << "\", \"distance\": " << json_number(r.distance) << ", \"direction\": " << exact_vector_json(r.direction)
+          << ", \"point_p\": " << double_vector_json(r.point_p) << ", \"point_p_exact\": " << exact_vector_json(r.point_p)
+          << ", \"point_q\": " << double_vector_json(r.point_q) << ", \"point_q_exact\": " << exact_vector_json(r.point_q)
+          << ", \"witness\": " << witness_json(r.witness) << ", \"seconds\": " << json_number(sec) << "}";
       else
         o << contact_status_name(r.status) << "  distance² = " << format_exact(r.squared_distance)
           << "  distance ≈ " << format_double(r.distance) << "  closest points " << vector_text(r.point_p) << " on P, "
@@ -211,9 +165,9 @@ std::string answer(TranslationalObstacle& ob, Kind kind, const Point3& u, const 
       const double sec = seconds();
       if (json)
         o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status)
-          << "\", \"squared_depth\": \"" << format_exact(r.squared_depth) << "\", \"depth\": " << format_double(r.depth)
+          << "\", \"squared_depth\": \"" << format_exact(r.squared_depth) << "\", \"depth\": " << json_number(r.depth)
           << ", \"direction\": " << exact_vector_json(r.direction) << ", \"witness\": " << witness_json(r.witness)
-          << ", \"seconds\": " << format_double(sec) << "}";
+          << ", \"seconds\": " << json_number(sec) << "}";
       else
         o << contact_status_name(r.status) << "  depth² = " << format_exact(r.squared_depth) << "  depth ≈ "
           << format_double(r.depth) << "  translate P by " << vector_text(r.direction) << "  ["
@@ -225,9 +179,9 @@ std::string answer(TranslationalObstacle& ob, Kind kind, const Point3& u, const 
       const double sec = seconds();
       if (json)
         o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status) << "\", \"t\": \""
-          << format_exact(r.t) << "\", \"depth\": " << format_double(r.depth)
+          << format_exact(r.t) << "\", \"depth\": " << json_number(r.depth)
           << ", \"direction\": " << exact_vector_json(r.translation) << ", \"witness\": " << witness_json(r.witness)
-          << ", \"seconds\": " << format_double(sec) << "}";
+          << ", \"seconds\": " << json_number(sec) << "}";
       else
         o << contact_status_name(r.status) << "  t = " << format_exact(r.t) << "  depth ≈ " << format_double(r.depth)
           << "  translate P by " << vector_text(r.translation) << "  [" << witness_text(r.witness) << "]";
@@ -289,8 +243,11 @@ int run_query(const std::vector<std::string>& argv) {
   std::istream* in = &std::cin;
   const std::string source = *trajectory == "-" ? std::string("<stdin>") : *trajectory;
   if (*trajectory != "-") {
+    std::error_code ec;
+    if (std::filesystem::is_directory(*trajectory, ec))
+      throw InputError(*trajectory, "", "is a directory, not a trajectory file");
     file.open(*trajectory);
-    if (!file) throw InputError(*trajectory, "", "cannot open the trajectory file");
+    if (!file) throw InputError(*trajectory, "", "cannot open the trajectory file: " + std::string(std::strerror(errno)));
     in = &file;
   }
   std::optional<Quaternion> cur_rp = rp, cur_rq = rq;
@@ -299,41 +256,23 @@ int run_query(const std::vector<std::string>& argv) {
   double total = 0;
   while (std::getline(*in, line)) {
     ++line_no;
-    std::istringstream tokens(line);
-    std::vector<std::string> tok;
-    for (std::string t; tokens >> t;) tok.push_back(t);
-    if (tok.empty() || tok[0][0] == '#') continue;
-    const std::string place = "line " + std::to_string(line_no);
-    Point3 pu, pw = w;
-    int vectors = 0;
-    std::optional<Quaternion> nrp = cur_rp, nrq = cur_rq;
-    for (const std::string& t : tok) {
-      std::string why;
-      if (t.rfind("rp=", 0) == 0 || t.rfind("rq=", 0) == 0) {
-        auto q = parse_quaternion(t.substr(3), &why);
-        if (!q) throw InputError(source, place, why);
-        (t[1] == 'p' ? nrp : nrq) = *q;
-        continue;
-      }
-      auto v = parse_vector(t, &why);
-      if (!v) throw InputError(source, place, why);
-      if (vectors == 0) pu = *v;
-      else if (vectors == 1) pw = *v;
-      else throw InputError(source, place, "more than two translations on one line");
-      ++vectors;
-    }
-    if (vectors == 0) throw InputError(source, place, "no translation of P on the line");
+    const auto pose = parse_pose_line(line, source, line_no);
+    if (!pose) continue;
+    const std::optional<Quaternion> nrp = pose->rp ? pose->rp : cur_rp, nrq = pose->rq ? pose->rq : cur_rq;
     if (nrp != cur_rp || nrq != cur_rq) {
       ob.set_operands(nrp ? rotated(p0, *nrp) : p0, nrq ? rotated(q0, *nrq) : q0);
       cur_rp = nrp, cur_rq = nrq;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    std::string out = answer(ob, kind, pu, pw, d, json, kind_name.c_str());
+    std::string out = answer(ob, kind, pose->p, pose->q.value_or(w), d, json, kind_name.c_str());
     total += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ++poses;
     if (json) std::cout << out << "\n";
     else std::cout << "pose " << poses << " (line " << line_no << "): " << out << "\n";
+    // A failed write stops the run at once (exit 1), not after the whole trajectory.
+    if (!std::cout) check_stdout();
   }
+  if (in->bad()) throw InputError(source, "line " + std::to_string(line_no + 1), "read error");
   if (!json && poses > 0) {
     char us[32];
     std::snprintf(us, sizeof us, "%.2f", total / double(poses) * 1e6);

@@ -243,8 +243,8 @@ int run_simulate(const std::vector<std::string>& argv) {
                 << format_exact(fr.u.y) << "\", \"" << format_exact(fr.u.z) << "\"], \"status\": \""
                 << contact_status_name(fr.status) << "\", \""
                 << (fr.status == ContactStatus::penetrating ? "squared_depth" : "squared_distance") << "\": \""
-                << format_exact(fr.value) << "\", \"query_seconds\": " << format_double(fr.query_seconds)
-                << ", \"build_seconds\": " << format_double(fr.build_seconds) << "}\n";
+                << format_exact(fr.value) << "\", \"query_seconds\": " << json_number(fr.query_seconds)
+                << ", \"build_seconds\": " << json_number(fr.build_seconds) << "}\n";
     } else {
       std::cout << "frame " << i << (i < pass1 ? " (pass 1)" : " (pass 2)") << "  x = "
                 << format_double(to_double(fr.u.x)) << "  y = " << format_double(to_double(fr.u.y)) << "  "
@@ -309,7 +309,7 @@ int run_simulate(const std::vector<std::string>& argv) {
     } catch (const InputError& e) {
       throw OutputError(e.what());
     }
-    if (!json) std::cout << "picture written to " << output << "\n";
+    if (!json) std::cout << "picture written to " << printable(output) << "\n";
   }
   if (!html_output.empty()) {
     std::vector<MotionFrame> frames_shown;

@@ -19,7 +19,9 @@ format --format names: {format_names}; --format also gives the format of a
 file whose name has no known extension) and print its numbers of vertices,
 edges and facets (coplanar facets merged), its exact volume, and whether every
 coordinate is exactly a double.  With --hull, P's points are a point cloud and
-the statistics are those of its exact convex hull.  --json adds "phases": the
+the statistics are those of its exact convex hull.  --json gives the volume
+exactly ("volume", a string) and as the nearest double ("volume_double"; null
+when beyond the double range, as JSON has no infinity), and "phases": the
 seconds spent reading P (or building the catalog polytope) and validating it
 (or taking its hull).
 )";
@@ -42,12 +44,12 @@ int run_stats(const std::vector<std::string>& argv) {
   if (a.flag("--json")) {
     std::cout << "{\"name\": \"" << json_escape(a.positional[0]) << "\", " << counts_json(p)
               << ", \"volume\": \"" << format_exact(vol) << "\", \"volume_double\": "
-              << format_double(to_double(vol)) << ", \"max_facet_degree\": " << max_fdeg
+              << json_number(to_double(vol)) << ", \"max_facet_degree\": " << max_fdeg
               << ", \"max_vertex_degree\": " << max_vdeg << ", \"coordinates_are_doubles\": "
               << (p.coordinates_are_doubles() ? "true" : "false") << ", \"phases\": {\"read\": "
-              << format_double(phases.read) << ", \"validate\": " << format_double(phases.validate) << "}}\n";
+              << json_number(phases.read) << ", \"validate\": " << json_number(phases.validate) << "}}\n";
   } else {
-    std::cout << a.positional[0] << ": " << p.num_vertices() << " vertices, " << p.num_edges() << " edges, "
+    std::cout << printable(a.positional[0]) << ": " << p.num_vertices() << " vertices, " << p.num_edges() << " edges, "
               << p.num_facets() << " facets\n"
               << "  volume " << format_double(to_double(vol));
     if (!is_double(vol)) std::cout << " (exactly " << format_exact(vol) << ")";

@@ -151,11 +151,11 @@ int run_sum(const std::vector<std::string>& argv) {
   if (json) {
     Rational vol = s.volume();
     report << "{" << counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
-           << ", \"seconds\": " << format_double(seconds) << ", \"phases\": {\"read\": " << format_double(load.read)
-           << ", \"validate\": " << format_double(load.validate)
-           << ", \"sum\": " << format_double(seconds - explicit_seconds)
-           << ", \"explicit\": " << format_double(explicit_seconds) << ", \"write\": " << format_double(write_seconds)
-           << "}, \"volume\": \"" << format_exact(vol) << "\", \"volume_double\": " << format_double(to_double(vol));
+           << ", \"seconds\": " << json_number(seconds) << ", \"phases\": {\"read\": " << json_number(load.read)
+           << ", \"validate\": " << json_number(load.validate)
+           << ", \"sum\": " << json_number(seconds - explicit_seconds)
+           << ", \"explicit\": " << json_number(explicit_seconds) << ", \"write\": " << json_number(write_seconds)
+           << "}, \"volume\": \"" << format_exact(vol) << "\", \"volume_double\": " << json_number(to_double(vol));
     if (names.size() == 2) {
       report << facet_types_json(r) << method_detail_json(r) << ", \"a\": {\"name\": \"" << json_escape(names[0])
              << "\", " << counts_json(operands[0]) << "}, \"b\": {\"name\": \"" << json_escape(names[1]) << "\", "
@@ -170,12 +170,12 @@ int run_sum(const std::vector<std::string>& argv) {
     report << ", \"rounding\": " << rounding_json(rounding) << "}\n";
   } else {
     for (std::size_t i = 0; i < names.size(); ++i)
-      report << (i ? " ⊕ " : "") << names[i] << " (" << operands[i].num_vertices() << " V, "
+      report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << operands[i].num_vertices() << " V, "
              << operands[i].num_facets() << " F)";
     report << "\n  = " << s.num_vertices() << " vertices, " << s.num_edges() << " edges, " << s.num_facets()
            << " facets\n"
            << "  method " << method_name(r.method) << ", " << format_double(seconds) << " s\n";
-    if (output) report << "  written to " << (output->to_stdout() ? "standard output" : output->path) << "\n";
+    if (output) report << "  written to " << (output->to_stdout() ? std::string("standard output") : printable(output->path)) << "\n";
   }
   return 0;
 }

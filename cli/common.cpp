@@ -6,7 +6,11 @@
 #include <minksum/io.hpp>
 #include <minksum/minkowski.hpp>
 
+#include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -56,25 +60,48 @@ Args parse_args(const std::vector<std::string>& argv, const std::string& command
   return a;
 }
 
+
 std::string json_escape(const std::string& s) {
   std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
+  for (std::size_t i = 0; i < s.size();) {
+    char32_t cp = 0;
+    const std::size_t n = utf8_length(s, i, &cp);
+    if (n == 0) {  // JSON text is UTF-8: a byte that is not becomes U+FFFD
+      out += "\\ufffd";
+      ++i;
+      continue;
     }
+    if (cp == '"') out += "\\\"";
+    else if (cp == '\\') out += "\\\\";
+    else if (cp == '\n') out += "\\n";
+    else if (cp == '\t') out += "\\t";
+    else if (cp < 0x20 || cp == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(cp));
+      out += buf;
+    } else {
+      out.append(s, i, n);
+    }
+    i += n;
   }
   return out;
+}
+
+std::string json_number(double x) { return std::isfinite(x) ? format_double(x) : std::string("null"); }
+
+void check_stdout() {
+  // errno is that of the failed write: it is reset before flushing, and an
+  // earlier failure is seen by the caller right after the write (or, at the
+  // end of main, with no system call in between).
+  if (std::cout) {
+    errno = 0;
+    std::cout.flush();
+  }
+  if (!std::cout) {
+    const int err = errno;
+    throw OutputError(std::string("cannot write to standard output") +
+                      (err ? std::string(": ") + std::strerror(err) : std::string()));
+  }
 }
 
 std::string counts_json(const ConvexPolytope& p) {

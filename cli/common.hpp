@@ -15,6 +15,8 @@
 #include <string_view>
 #include <vector>
 
+#include "text.hpp"
+
 namespace minksum::cli {
 
 // An option a command accepts: "--name" (and an optional short alias such as
@@ -75,5 +77,20 @@ ConvexPolytope load_operand(const std::string& spec, bool hull, LoadPhases* phas
 // {methods} "auto (default), walk, ...", {method_summaries} one paragraph per
 // method ("walk: ...") wrapped to 79 columns under a 21-column option column.
 std::string expand_help(std::string_view text);
+
+}  // namespace minksum::cli
+
+namespace minksum::cli {
+
+// A double as a JSON number; JSON has no infinity or NaN, so a non-finite
+// value (a double that overflowed: the exact value is beyond the double
+// range) is `null`, and the command prints the exact value beside it as a
+// string field.  Every double in minksum's JSON goes through it.
+std::string json_number(double x);
+
+// Flush standard output and throw OutputError ("cannot write to standard
+// output: REASON") if any write to it failed.  Called after each line of
+// streamed output (trajectories) and once at the end of main.
+void check_stdout();
 
 }  // namespace minksum::cli

@@ -72,10 +72,9 @@ constexpr Command kCommands[] = {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  tune_memory();
-  std::vector<std::string> args(argv + 1, argv + argc);
-  std::ios::sync_with_stdio(false);
+namespace {
+
+int run_command(const std::vector<std::string>& args) {
   try {
     if (args.empty()) {
       std::cerr << expand_help(kMainHelp);
@@ -98,19 +97,42 @@ int main(int argc, char** argv) {
       if (command == c.name) return c.run(rest);
     throw UsageError("unknown command '" + command + "' (see 'minksum --help')");
   } catch (const UsageError& e) {
-    std::cerr << "minksum: " << e.what() << "\n";
+    std::cerr << "minksum: " << printable(e.what()) << "\n";
     return 2;
   } catch (const InputError& e) {
-    std::cerr << "minksum: " << e.what() << "\n";
+    std::cerr << "minksum: " << printable(e.what()) << "\n";
     return 3;
   } catch (const OutputError& e) {
-    std::cerr << "minksum: " << e.what() << "\n";
+    std::cerr << "minksum: " << printable(e.what()) << "\n";
     return 1;
   } catch (const std::bad_alloc&) {
     std::cerr << "minksum: out of memory\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "minksum: internal error: " << e.what() << "\n";
+    std::cerr << "minksum: internal error: " << printable(e.what()) << "\n";
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  tune_memory();
+  std::vector<std::string> args(argv + 1, argv + argc);
+  std::ios::sync_with_stdio(false);
+  int status = run_command(args);
+  // Nothing is reported as success that was not written: standard output is
+  // flushed and checked here (a full disk, /dev/full, a closed pipe), and a
+  // failed write to standard error (where nothing more can be said) fails too.
+  // (After a failure, whose one line is already printed, nothing more is said.)
+  if (status == 0) {
+    try {
+      check_stdout();
+    } catch (const OutputError& e) {
+      std::cerr << "minksum: " << e.what() << "\n";
+      status = 1;
+    }
+  }
+  if (!std::cerr && status == 0) status = 1;
+  return status;
 }

@@ -65,7 +65,7 @@ std::optional<MeshOutput> output_option(const Args& a) {
 std::string rounding_json(const RoundingReport& r) {
   if (!r.rounded()) return "null";
   std::ostringstream o;
-  o << "{\"coordinates\": " << r.coordinates << ", \"max_displacement\": " << format_double(r.max_displacement)
+  o << "{\"coordinates\": " << r.coordinates << ", \"max_displacement\": " << json_number(r.max_displacement)
     << ", \"split\": " << r.split << ", \"hull\": " << (r.hull ? "true" : "false") << ", \"merged\": " << r.merged
     << ", \"dropped\": " << r.dropped << "}";
   return o.str();

@@ -55,7 +55,7 @@ void append_solid_json(std::string& out, const ConvexPolytope& p, const std::str
          "}, \"volume\": \"" + format_exact(p.volume()) + "\", \"xyz\": [";
   for (Index v = 0; v < p.num_vertices(); ++v) {
     const Vec3d& a = p.approx(v);
-    out += (v ? "," : "") + format_double(a.x) + "," + format_double(a.y) + "," + format_double(a.z);
+    out += (v ? "," : "") + json_number(a.x) + "," + json_number(a.y) + "," + json_number(a.z);
   }
   out += "], \"exact\": [";
   for (Index v = 0; v < p.num_vertices(); ++v) {
@@ -143,8 +143,8 @@ void write_cgm_page(const std::string& path, const std::string& title, const Cub
             ", \"real_edges\": " + std::to_string(m.num_real_edges()) + "}, \"xyz\": [";
     for (Index v = 0; v < m.vertices.size(); ++v) {
       const Point3 p = g.lift(k, v);
-      data += (v ? "," : "") + format_double(to_double(p.x)) + "," + format_double(to_double(p.y)) + "," +
-              format_double(to_double(p.z));
+      data += (v ? "," : "") + json_number(to_double(p.x)) + "," + json_number(to_double(p.y)) + "," +
+              json_number(to_double(p.z));
     }
     data += "], \"exact\": [";
     for (Index v = 0; v < m.vertices.size(); ++v)
@@ -190,8 +190,8 @@ void write_motion_page(const std::string& path, const std::string& title, const 
     data += k ? ",[" : "[";
     for (Index v = 0; v < robot.num_vertices(); ++v) {
       const Point3 p = rotate(turns[k], robot.point(v));
-      data += (v ? "," : "") + format_double(to_double(p.x)) + "," + format_double(to_double(p.y)) + "," +
-              format_double(to_double(p.z));
+      data += (v ? "," : "") + json_number(to_double(p.x)) + "," + json_number(to_double(p.y)) + "," +
+              json_number(to_double(p.z));
     }
     data += "]";
   }
@@ -200,8 +200,8 @@ void write_motion_page(const std::string& path, const std::string& title, const 
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const MotionFrame& f = frames[i];
     const Point3& t = f.translation;
-    data += (i ? ",{" : "{") + std::string("\"t\": [") + format_double(to_double(t.x)) + "," +
-            format_double(to_double(t.y)) + "," + format_double(to_double(t.z)) + "], \"exact\": [\"" +
+    data += (i ? ",{" : "{") + std::string("\"t\": [") + json_number(to_double(t.x)) + "," +
+            json_number(to_double(t.y)) + "," + json_number(to_double(t.z)) + "], \"exact\": [\"" +
             format_exact(t.x) + "\", \"" + format_exact(t.y) + "\", \"" + format_exact(t.z) + "\"], \"o\": " +
             std::to_string(f.orientation) + ", \"status\": " + std::to_string(f.status) + ", \"value\": \"" +
             format_exact(f.value) + "\", \"pass\": " + std::to_string(f.pass) + "}";

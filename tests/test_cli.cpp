@@ -515,9 +515,9 @@ TEST_F(Cli, QueryHelpRotateOptionsEachExplained) {
 TEST_F(Cli, QueryJsonClosestPointsExact) {
   const CmdResult r = run("query distance cube cube --translate-q 3,1/3,0 --json");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find(R"("point_p": ["1", "1/6", "0"])"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find(R"("point_q": ["2", "1/6", "0"])"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find(R"("point_p_double": [1, 0.16666666666666666, 0])"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(R"("point_p_exact": ["1", "1/6", "0"])"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(R"("point_q_exact": ["2", "1/6", "0"])"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(R"("point_p": [1, 0.16666666666666666, 0])"), std::string::npos) << r.out;
   const CmdResult t = run("query distance cube cube --translate-q 3,1/3,0");
   EXPECT_NE(t.out.find("closest points (1, 1/6, 0) on P, (2, 1/6, 0) on Q"), std::string::npos) << t.out;
 }

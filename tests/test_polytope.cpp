@@ -413,3 +413,31 @@ TEST(Hull, DoublesAgreeWithRationals) {
   same({P(0, 0, 0), P(1, 0, 0), P(0, 1, 0), P(3, 7, 0), P(1, 1, 0)}, "coplanar");
   same({P(0, 0, 0), P(1, 0, 0), P(0, 1, 0), Point3(0.5, 0.5, 4.9406564584124654e-324)}, "one ulp thick");
 }
+
+TEST(Hull, DoublePointsOneUlpFromAFacetAreDecidedExactly) {
+  // All coordinates doubles: the hull runs on doubles with exact orientation
+  // signs.  A point one ulp above the top facet's centre is a vertex, one on
+  // it is not, one ulp below is inside; the same points scaled by 1/3 (not
+  // doubles: the exact-kernel path) give the same counts.
+  const double one = 1.0, above = std::nextafter(one, 2.0), below = std::nextafter(one, 0.0);
+  for (const double top : {above, one, below}) {
+    std::vector<Point3> pts;
+    for (long x = 0; x <= 1; ++x)
+      for (long y = 0; y <= 1; ++y)
+        for (long z = 0; z <= 1; ++z) pts.push_back(P(x, y, z));
+    pts.push_back(Point3(Rational(0.5), Rational(0.5), Rational(top)));
+    std::vector<Point3> thirds;
+    for (const Point3& p : pts) thirds.push_back(Point3(p.x / 3, p.y / 3, p.z / 3));
+    for (const auto* set : {&pts, &thirds}) {
+      SCOPED_TRACE(set == &pts ? "doubles" : "thirds");
+      const ConvexPolytope h = ConvexPolytope::hull(*set);
+      EXPECT_EQ(h.num_vertices(), top == above ? 9u : 8u);
+      EXPECT_EQ(h.num_facets(), top == above ? 9u : 6u);
+      EXPECT_EQ(h.coordinates_are_doubles(), set == &pts);
+      EXPECT_EQ(h.check_invariants(), "");
+      const Rational apex = Rational(top) - 1;  // the pyramid on the top facet
+      const Rational volume = top == above ? 1 + apex / 3 : Rational(1);
+      EXPECT_EQ(h.volume(), set == &pts ? volume : volume / 27);
+    }
+  }
+}

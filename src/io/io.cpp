@@ -388,6 +388,9 @@ std::string lower_strerror(int err) {
 }
 
 Mesh parse(std::string_view data, Format format, const std::string& name) {
+  // STL decides between binary (whose 80-byte header may begin with any
+  // bytes) and ascii itself.
+  if (format != Format::stl) data = without_utf8_bom(data);
   if (data.empty()) throw InputError(name, "", "file is empty");
   switch (format) {
     case Format::off: return read_off(data, name);

@@ -282,7 +282,7 @@ Mesh read_stl(std::string_view data, const std::string& name) {
     const std::uint64_t count = le32(data.data() + 80);
     if (84 + 50 * count == data.size()) return read_binary(data, name);
   }
-  if (begins_with_solid(data)) return read_ascii(data, name);
+  if (const std::string_view text = without_utf8_bom(data); begins_with_solid(text)) return read_ascii(text, name);
   if (data.size() < 84)
     throw InputError(name, "",
                      "not an STL file: shorter than a binary STL header (" + std::to_string(data.size()) +

@@ -44,6 +44,13 @@ void write_off(std::ostream& out, const ConvexPolytope& p, const WriteOptions& o
 // ---------------------------------------------------------------------------
 // Shared helpers.
 
+// The text after a UTF-8 byte-order mark (EF BB BF), if `data` begins with
+// one, else `data`: the text formats accept a BOM, as editors on some systems
+// write one (line numbers are unchanged; byte offsets count from after it).
+inline std::string_view without_utf8_bom(std::string_view data) {
+  return data.starts_with("\xEF\xBB\xBF") ? data.substr(3) : data;
+}
+
 // "line N" (1-based).
 std::string line_place(std::size_t line);
 

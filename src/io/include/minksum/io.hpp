@@ -22,6 +22,9 @@
 //         Transform with a non-identity translation, rotation or scale is
 //         rejected with an InputError
 //
+// A UTF-8 byte-order mark at the start of a file is skipped in every text
+// format (OFF, OBJ, PLY's header, ascii STL, VRML).
+//
 // Readers return a raw Mesh (no topology checks: that is
 // ConvexPolytope::from_mesh's job; a mesh with no faces is a valid point
 // cloud) and throw InputError(FILE, PLACE, PROBLEM) on any malformed input:

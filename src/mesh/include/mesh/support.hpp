@@ -87,26 +87,31 @@ std::optional<Feature> support_face_at(const ConvexPolytope& p, Index b, Higher&
 // The maximisers of <x, n> among `candidates` (a range of vertex indices),
 // in their order, into `out`: one call higher(candidate, first maximiser so
 // far) per candidate after the first.
+// One candidate v after those already in `out` (the maximisers so far).
+template <class Higher>
+void support_candidate(Index v, Higher& higher, std::vector<Index>& out) {
+  if (out.empty()) {
+    out.push_back(v);
+    return;
+  }
+  const int c = higher(v, out[0]);
+  if (c > 0) out.assign(1, v);
+  else if (c == 0) out.push_back(v);
+}
+
 template <std::ranges::input_range Range, class Higher>
 void support_among(Range&& candidates, Higher&& higher, std::vector<Index>& out) {
   out.clear();
-  for (const Index v : candidates) {
-    if (out.empty()) {
-      out.push_back(v);
-      continue;
-    }
-    const int c = higher(v, out[0]);
-    if (c > 0) out.assign(1, v);
-    else if (c == 0) out.push_back(v);
-  }
+  for (const Index v : candidates) support_candidate(v, higher, out);
 }
 
 // Every vertex of p maximising <x, n>, in increasing order, by a scan of all
-// vertices (V − 1 calls of higher).
+// vertices (V − 1 calls of higher).  (A plain loop: std::views::iota does not
+// compile with clang 14 and libstdc++ 12, which the fuzz build uses.)
 template <class Higher>
 std::vector<Index> support_scan(const ConvexPolytope& p, Higher&& higher) {
   std::vector<Index> out;
-  support_among(std::views::iota(Index{0}, p.num_vertices()), higher, out);
+  for (Index v = 0; v < p.num_vertices(); ++v) support_candidate(v, higher, out);
   return out;
 }
 

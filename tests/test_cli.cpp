@@ -759,8 +759,8 @@ TEST_F(Cli, MeshOnStdoutKeepsTheSummaryOffIt) {
 // A mesh that cannot be written to standard output (a full device): exit 1,
 // one line, not success.
 TEST_F(Cli, MeshToAFullStandardOutputExitsOne) {
-  for (const std::string& cmd : {"minksum gen cube -o - --format off", "minksum gen sphere:6 -o - --format stl --binary",
-                                 "minksum sum cube tetra -o - --format obj --json"}) {
+  for (const std::string cmd : {"minksum gen cube -o - --format off", "minksum gen sphere:6 -o - --format stl --binary",
+                                   "minksum sum cube tetra -o - --format obj --json"}) {
     SCOPED_TRACE(cmd);
     CmdResult r = run_sh(cmd + " >/dev/full");
     EXPECT_EQ(r.status, 1);
@@ -877,8 +877,12 @@ TEST_F(Cli, CadMeshesAreRefusedNamingHullAndAcceptedWithIt) {
     ASSERT_EQ(h.status, 0) << h.err;
     const long v = json_int(h.out, "vertices"), e = json_int(h.out, "edges"), f = json_int(h.out, "facets");
     EXPECT_EQ(v, c.vertices);
-    if (c.edges >= 0) EXPECT_EQ(e, c.edges);
-    if (c.facets >= 0) EXPECT_EQ(f, c.facets);
+    if (c.edges >= 0) {
+      EXPECT_EQ(e, c.edges);
+    }
+    if (c.facets >= 0) {
+      EXPECT_EQ(f, c.facets);
+    }
     EXPECT_EQ(v - e + f, 2);
     // The hull written exactly reads back, without --hull, as the same solid.
     ASSERT_EQ(run("convert " + in + " --hull -o " + path("h.off")).status, 0);

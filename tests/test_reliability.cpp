@@ -386,7 +386,9 @@ TEST_F(Reliability, EveryTrajectoryInputIsAnsweredOrRefusedOnOneLine) {
     const Outcome r = run("query collide cube cube --json --trajectory " + sh(f.string()));
     if (r.status == 0) {
       EXPECT_EQ(r.err, "");
-      if (!r.out.empty()) EXPECT_TRUE(strict_json_lines(r.out));
+      if (!r.out.empty()) {
+        EXPECT_TRUE(strict_json_lines(r.out));
+      }
     } else {
       EXPECT_EQ(r.status, 3);
       EXPECT_EQ(lines(r.err), 1u) << r.err;

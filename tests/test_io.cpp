@@ -1041,3 +1041,57 @@ TEST(IoFiles, FormatGivenForANameWithoutExtension) {
   std::istringstream bad("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
   expect_input_error([&] { load_polytope(bad, Format::off, "<stdin>"); }, "<stdin>", "");
 }
+
+// Validation decides the folds between two triangles of double coordinates
+// with one orient3d sign (no exact facet normals).  Rounded sums of rotated
+// solids have thousands of nearly flat folds, convex and reflex: each mesh
+// must get exactly the verdict of the same mesh scaled by 1/3, whose rational
+// coordinates take the exact-normal path (a positive scaling keeps every sign).
+TEST(IoRounding, TriangleFoldsOfDoublesDecidedLikeRationals) {
+  auto verdict = [](const Mesh& m) -> std::string {
+    try {
+      const ConvexPolytope p = ConvexPolytope::from_mesh(m, "m");
+      return std::to_string(p.num_vertices()) + " " + std::to_string(p.num_edges()) + " " +
+             std::to_string(p.num_facets());
+    } catch (const InputError& e) {
+      return e.what();
+    }
+  };
+  auto scaled_by_a_third = [](const Mesh& m) {
+    Mesh t;
+    for (std::size_t i = 0; i < m.points.size(); ++i) {
+      const Point3 q = m.points.exact(i);
+      t.points.push_back(Point3(q.x / 3, q.y / 3, q.z / 3));
+    }
+    t.faces = m.faces;
+    return t;
+  };
+  int accepted = 0, refused = 0;
+  for (const auto& [a, b] : std::vector<std::pair<std::string, std::string>>{
+           {"sphere:3", "sphere:3@rot:5"}, {"dodecahedron", "truncated-cube@rot:2"}, {"cube", "cube"}}) {
+    const ConvexPolytope s = minkowski_sum(catalog_polytope(a), catalog_polytope(b)).polytope;
+    const ConvexPolytope w = writable_polytope(s, Format::off, {}, nullptr);  // a valid rounded mesh
+    for (int start = 0; start < 3; ++start) {  // every facet fanned from its vertex `start` (mod its size)
+      Mesh m;
+      for (Index v = 0; v < s.num_vertices(); ++v) {
+        const Point3& q = s.point(v);
+        m.points.push_back(Vec3d{to_double(q.x), to_double(q.y), to_double(q.z)});
+      }
+      for (Index f = 0; f < s.num_facets(); ++f) {
+        const auto loop = s.facet_vertices(f);
+        const std::size_t k = loop.size(), o = std::size_t(start) % k;
+        for (std::size_t i = 1; i + 1 < k; ++i)
+          m.faces.push_back({loop[o], loop[(o + i) % k], loop[(o + i + 1) % k]});
+      }
+      const std::string v = verdict(m);
+      EXPECT_EQ(v, verdict(scaled_by_a_third(m))) << a << " + " << b << ", fans from vertex " << start;
+      (v.find("reflex") != std::string::npos ? refused : accepted)++;
+    }
+    const Mesh m = w.to_mesh();  // its facets: triangles, and polygons that are exactly planar
+    EXPECT_EQ(verdict(m), verdict(scaled_by_a_third(m))) << a << " + " << b << ", written";
+    EXPECT_EQ(verdict(m), std::to_string(w.num_vertices()) + " " + std::to_string(w.num_edges()) + " " +
+                              std::to_string(w.num_facets()));
+  }
+  EXPECT_GT(accepted, 0);  // cube + cube: exact doubles, coplanar triangles merged into 6 squares
+  EXPECT_GT(refused, 0);   // a non-planar rounded quad fanned across its reflex diagonal
+}

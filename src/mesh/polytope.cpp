@@ -17,6 +17,7 @@
 #include "kernel/plane.hpp"
 
 #include <minksum/error.hpp>
+#include <minksum/predicates.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -24,6 +25,7 @@
 #include <memory>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <unordered_map>
 
 namespace minksum {
@@ -243,6 +245,31 @@ struct UnionFind {
     if (a != b) parent[std::max(a, b)] = std::min(a, b);
   }
 };
+
+}  // namespace
+
+namespace {
+
+// The vertex of triangle `tri` that is neither a nor b.
+Index third_vertex(const std::vector<Index>& tri, Index a, Index b) {
+  for (Index v : tri)
+    if (v != a && v != b) return v;
+  return tri[0];
+}
+
+// For two triangles sharing the edge p-q, f = (p, q, c) and o = (q, p, d) in
+// either order around their outward normals: orient3d(p, q, c, d), decided by
+// the kernel's filtered predicate on the double coordinates (exact when the
+// filter cannot decide), without the facets' exact normals.  It is 0 exactly
+// when the triangles are coplanar, and sign <n_f x n_o, q - p> =
+// -orient3d(p, q, c, d) (n_o = -(q - p) x (d - p) up to a positive factor, and
+// <n_f, q - p> = 0), so the edge is convex exactly when it is negative.
+// Only for lists of doubles: nullopt otherwise.
+std::optional<int> triangle_pair_orient(const PointList& pts, const std::vector<Index>& f,
+                                        const std::vector<Index>& o, Index p, Index q) {
+  if (pts.form() != PointList::Form::doubles || f.size() != 3 || o.size() != 3) return std::nullopt;
+  return orient3d(pts.approx(p), pts.approx(q), pts.approx(third_vertex(f, p, q)), pts.approx(third_vertex(o, p, q)));
+}
 
 }  // namespace
 
@@ -574,6 +601,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     edge_cross[h / 2] = c;
     auto certainly_nonzero = [](const FastInterval& x) { int s = sign_of(x); return s == 1 || s == -1; };
     if (certainly_nonzero(c.x) || certainly_nonzero(c.y) || certainly_nonzero(c.z)) continue;
+    if (auto t = triangle_pair_orient(pts, faces[f], faces[o], g.origin[h], g.origin[h + 1]); t && *t != 0) continue;
     if (!is_zero(cross(exact_normal(f), exact_normal(o)))) continue;
     if (sgn(dot(exact_normal(f), exact_normal(o))) > 0) {
       uf.unite(f, o);
@@ -707,8 +735,12 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     Index f = fg.facet[h], o = fg.facet[h + 1];
     int s = sign_of(dot(unchanged ? edge_cross[h / 2] : cross(finrm[f], finrm[o]),
                         fip[fg.origin[h + 1]] - fip[fg.origin[h]]));
-    if (s == kUncertain)
-      s = sgn(dot(cross(fnormal(f), fnormal(o)), fpoint(fg.origin[h + 1]) - fpoint(fg.origin[h])));
+    if (s == kUncertain) {
+      if (auto t = triangle_pair_orient(fpts, final_faces[f], final_faces[o], fg.origin[h], fg.origin[h + 1]))
+        s = -*t;
+      else
+        s = sgn(dot(cross(fnormal(f), fnormal(o)), fpoint(fg.origin[h + 1]) - fpoint(fg.origin[h])));
+    }
     if (s <= 0)
       throw NotConvexError(source,
                        "edge " + std::to_string(fname_v[fg.origin[h]]) + "-" +

@@ -2,12 +2,15 @@
 // format, parsing details of each format, malformed input, atomic writes and
 // operand resolution.
 #include <minksum/catalog.hpp>
+#include <minksum/cubical_gaussian_map.hpp>
 #include <minksum/error.hpp>
 #include <minksum/io.hpp>
 #include <minksum/minkowski.hpp>
 #include <minksum/operand.hpp>
+#include <minksum/scene.hpp>
 
 #include "io/readers.hpp"  // parse_coordinate, checked_float
+#include "test_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -1094,4 +1097,163 @@ TEST(IoRounding, TriangleFoldsOfDoublesDecidedLikeRationals) {
   }
   EXPECT_GT(accepted, 0);  // cube + cube: exact doubles, coplanar triangles merged into 6 squares
   EXPECT_GT(refused, 0);   // a non-planar rounded quad fanned across its reflex diagonal
+}
+
+// ---------------------------------------------------------------------------
+// VRML scenes: ExactPolyhedron and CubicalGaussianMap nodes (<minksum/scene.hpp>, docs/vrml.md).
+
+namespace {
+
+const char* kTwoShapeScene =
+    "#VRML V2.0 utf8\n"
+    "Shape { geometry DEF T ExactPolyhedron {\n"
+    "  coord ExactCoordinate { ratPoint [ 0 0 0, 1/3 0 0, 0 1/3 0, 0 0 1/3 ] }\n"
+    "  coordIndex [ 0 2 1 -1 0 1 3 -1 0 3 2 -1 1 2 3 -1 ]\n"
+    "} }\n"
+    "Transform { children Shape { geometry DEF G CubicalGaussianMap {\n"
+    "  polytope USE T\n"
+    "  mapCounts [ 7 18 4  7 18 4  7 18 4  4 8 2  4 8 2  4 8 2 ]\n"
+    "} } }\n";
+
+// The scene of a polytope and of the sum with its CGM nodes, as 'cgm P Q -o' writes it.
+Scene sum_scene(const ConvexPolytope& p, const ConvexPolytope& q, const ConvexPolytope& s) {
+  Scene scene;
+  for (const auto& [poly, name] : {std::pair{&p, "P"}, std::pair{&q, "Q"}, std::pair{&s, "S"}})
+    scene.polytopes.push_back({name, poly->to_mesh(), 0, true});
+  const CubicalGaussianMap g = CubicalGaussianMap::from_polytope(s);
+  SceneCgm c;
+  c.name = "CGM_S";
+  c.polytope = 2;
+  c.operands = {0, 1};
+  std::array<Index, 18> counts{};
+  std::vector<SceneMapPoint> points;
+  for (int k = 0; k < 6; ++k) {
+    counts[std::size_t(3 * k)] = g.counts(k).vertices;
+    counts[std::size_t(3 * k + 1)] = g.counts(k).halfedges;
+    counts[std::size_t(3 * k + 2)] = g.counts(k).faces;
+    for (const auto& v : g.map(k).vertices)
+      if (v.real) points.push_back({k, v.x, v.y});
+  }
+  c.map_counts = counts;
+  c.map_points = points;
+  scene.cgms.push_back(c);
+  return scene;
+}
+
+std::string scene_text(const Scene& s, bool exact) {
+  std::ostringstream out;
+  write_scene(out, s, exact);
+  return out.str();
+}
+
+}  // namespace
+
+TEST(VrmlScene, ReadsExactPolyhedronAndCubicalGaussianMapNodes) {
+  const Scene s = read_scene(std::string_view(kTwoShapeScene), "mem");
+  ASSERT_EQ(s.shapes.size(), 2u);
+  EXPECT_EQ(s.shapes[0].kind, SceneShape::Kind::polytope);
+  EXPECT_EQ(s.shapes[1].kind, SceneShape::Kind::cgm);
+  ASSERT_EQ(s.polytopes.size(), 1u);
+  EXPECT_EQ(s.polytopes[0].name, "T");
+  EXPECT_EQ(s.polytopes[0].line, 2u);
+  EXPECT_TRUE(s.polytopes[0].exact_node);
+  ASSERT_EQ(s.polytopes[0].mesh.points.size(), 4u);
+  EXPECT_TRUE(s.polytopes[0].mesh.points[1] == Point3(Rational(1, 3), 0, 0));
+  EXPECT_EQ(s.polytopes[0].mesh.faces.size(), 4u);
+  ASSERT_EQ(s.cgms.size(), 1u);
+  EXPECT_EQ(s.cgms[0].name, "G");
+  EXPECT_EQ(s.cgms[0].polytope, 0u);
+  EXPECT_TRUE(s.cgms[0].operands.empty());
+  ASSERT_TRUE(s.cgms[0].map_counts.has_value());
+  EXPECT_EQ((*s.cgms[0].map_counts)[4], 18u);
+  EXPECT_EQ(s.cgms[0].map_counts_line, 8u);
+  EXPECT_FALSE(s.cgms[0].map_points.has_value());
+  // read_mesh: the scene's one polytope (the map refers to it).
+  const Mesh m = read_from_string(kTwoShapeScene, Format::wrl);
+  expect_same(m, s.polytopes[0].mesh);
+  EXPECT_EQ(ConvexPolytope::from_mesh(m).volume(), Rational(1, 162));
+}
+
+TEST(VrmlScene, SumSceneRoundTripsExactly) {
+  const ConvexPolytope p = catalog_polytope("truncated-cube@rot:2"), q = catalog_polytope("octahedron@rot:1,2,3,7");
+  const ConvexPolytope s = minkowski_sum(p, q).polytope;
+  const Scene scene = sum_scene(p, q, s);
+  const std::string text = scene_text(scene, true);
+  EXPECT_NE(text.find("geometry DEF S ExactPolyhedron"), std::string::npos);
+  EXPECT_NE(text.find("polytope USE S"), std::string::npos);
+  EXPECT_NE(text.find("operands [ USE P, USE Q ]"), std::string::npos);
+  const Scene back = read_scene(std::string_view(text), "mem");
+  ASSERT_EQ(back.polytopes.size(), 3u);
+  ASSERT_EQ(back.shapes.size(), 4u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(back.polytopes[i].name, scene.polytopes[i].name);
+    expect_same(back.polytopes[i].mesh, scene.polytopes[i].mesh);
+  }
+  EXPECT_TRUE(minksum::testing::same_polytope(ConvexPolytope::from_mesh(back.polytopes[2].mesh), s));
+  ASSERT_EQ(back.cgms.size(), 1u);
+  const SceneCgm& c = back.cgms[0];
+  EXPECT_EQ(c.polytope, 2u);
+  EXPECT_EQ(c.operands, (std::vector<std::size_t>{0, 1}));
+  EXPECT_EQ(c.map_counts, scene.cgms[0].map_counts);
+  ASSERT_TRUE(c.map_points.has_value());
+  ASSERT_EQ(c.map_points->size(), scene.cgms[0].map_points->size());
+  for (std::size_t i = 0; i < c.map_points->size(); ++i) {
+    EXPECT_EQ((*c.map_points)[i].map, (*scene.cgms[0].map_points)[i].map);
+    EXPECT_EQ((*c.map_points)[i].x, (*scene.cgms[0].map_points)[i].x);
+    EXPECT_EQ((*c.map_points)[i].y, (*scene.cgms[0].map_points)[i].y);
+  }
+  // Without exact coordinates the points are the nearest doubles, as write_mesh writes them.
+  const Scene doubles = read_scene(std::string_view(scene_text(scene, false)), "mem");
+  EXPECT_EQ(doubles.polytopes[0].mesh.points.size(), p.num_vertices());
+  EXPECT_NE(scene_text(scene, false).find("coord Coordinate {"), std::string::npos);
+}
+
+TEST(VrmlScene, ReadMeshRefusesASceneOfSeveralPolytopesNamingTheCount) {
+  const ConvexPolytope p = catalog_polytope("cube"), q = catalog_polytope("tetrahedron");
+  const std::string text = scene_text(sum_scene(p, q, minkowski_sum(p, q).polytope), true);
+  const std::size_t second = std::size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(text.find("DEF Q")), '\n')) + 1;
+  expect_input_error([&] { read_from_string(text, Format::wrl); }, "mem",
+                     "more than one IndexedFaceSet or ExactPolyhedron: the scene holds 3 polytopes",
+                     "line " + std::to_string(second));
+}
+
+TEST(VrmlScene, MalformedNodesNameTheLine) {
+  const std::string head = "#VRML V2.0 utf8\nDEF T ExactPolyhedron { coord ExactCoordinate { ratPoint [ 0 0 0 1 0 0 0 1 0 0 0 1 ] }"
+                           " coordIndex [ 0 2 1 -1 0 1 3 -1 0 3 2 -1 1 2 3 -1 ] }\n";
+  struct Case {
+    std::string body, problem, place;
+  };
+  const std::vector<Case> cases = {
+      {"CubicalGaussianMap { }", "has neither 'polytope' nor 'operands'", "line 3"},
+      {"CubicalGaussianMap {\n operands [ USE T ] }", "'operands' lists 1 polytopes; two are needed", "line 4"},
+      {"CubicalGaussianMap { polytope USE T\n mapCounts [ 1 2 3 ] }", "'mapCounts' has 3 integers; 18 are needed",
+       "line 4"},
+      {"CubicalGaussianMap { polytope USE T mapCounts [ 4 8 3 4 8 3 4 8 3 5 12 4 5 12 4 5 12 -4 ] }",
+       "'mapCounts' needs non-negative integers, got '-4'", "line 3"},
+      {"CubicalGaussianMap { polytope USE T mapPoint [ 7 0 0 ] }", "'mapPoint' names map 7", "line 3"},
+      {"CubicalGaussianMap { polytope USE T mapPoint [ 0 0 ] }", "not a multiple of 3", "line 3"},
+      {"CubicalGaussianMap { polytope USE T mapPoint [ 0 3/2 0 ] }", "lies outside the square", "line 3"},
+      {"CubicalGaussianMap { polytope USE T mapPoint [ 0 x 0 ] }", "expected a number, got 'x'", "line 3"},
+      {"CubicalGaussianMap { polytope USE T\n colour 1 }", "unknown field 'colour' in the CubicalGaussianMap", "line 4"},
+      {"CubicalGaussianMap { polytope USE U }", "'polytope' USE 'U' names no earlier ExactPolyhedron", "line 3"},
+      {"CubicalGaussianMap { polytope Coordinate { } }", "'polytope' needs an ExactPolyhedron", "line 3"},
+      {"CubicalGaussianMap { polytope USE T\n polytope USE T }", "two 'polytope' fields", "line 4"},
+      {"CubicalGaussianMap { polytope USE T", "file ends inside the CubicalGaussianMap", "line 4"},
+      {"\nExactPolyhedron { coordIndex [ 0 1 2 ] }", "the ExactPolyhedron has no 'coord' field", "line 4"},
+      {"ExactPolyhedron { coord ExactCoordinate { ratPoint [ 0 0 0 1 0 ] } }", "ratPoint list has 5 numbers", "line 3"},
+      {"ExactPolyhedron { coord ExactCoordinate { ratPoint [ 0 0 1/0 ] } }", "zero denominator", "line 3"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.body);
+    expect_input_error([&] { read_scene(std::string_view(head + c.body + "\n"), "scene.wrl"); }, "scene.wrl",
+                       c.problem, c.place);
+  }
+  // A polytope inside a CubicalGaussianMap under a moved Transform is refused like an IndexedFaceSet.
+  expect_input_error(
+      [&] {
+        read_scene(std::string_view(head + "Transform { translation 1 0 0\n children Shape { geometry "
+                                           "CubicalGaussianMap { polytope USE T } } }\n"),
+                   "scene.wrl");
+      },
+      "scene.wrl", "the CubicalGaussianMap is inside a Transform with a non-identity 'translation'", "line 3");
 }

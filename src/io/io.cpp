@@ -3,6 +3,7 @@
 #include "io/readers.hpp"
 
 #include <minksum/io.hpp>
+#include <minksum/scene.hpp>
 
 #include <cerrno>
 #include <charconv>
@@ -518,6 +519,21 @@ Mesh read_mesh(const std::string& path) {
   if (!format) unknown_extension(path, "read");
   std::string data = slurp(path);
   return parse(data, *format, path);
+}
+
+Scene read_scene(std::string_view data, const std::string& name) {
+  data = without_utf8_bom(data);
+  if (data.empty()) throw InputError(name, "", "file is empty");
+  return read_wrl_scene(data, name);
+}
+
+Scene read_scene(const std::string& path) {
+  const std::string data = slurp(path);
+  return read_scene(std::string_view(data), path);
+}
+
+void write_scene(const std::string& path, const Scene& scene, bool exact, const std::vector<std::string>& comments) {
+  write_file_atomically(path, [&](std::ostream& out) { write_scene(out, scene, exact, comments); });
 }
 
 Mesh read_mesh(const std::string& path, Format format) {

@@ -11,6 +11,7 @@
 #include <minksum/io.hpp>
 #include <minksum/kernel.hpp>
 #include <minksum/polytope.hpp>
+#include <minksum/scene.hpp>
 
 #include <charconv>
 #include <cstddef>
@@ -30,6 +31,9 @@ Mesh read_obj(std::string_view data, const std::string& name);
 Mesh read_ply(std::string_view data, const std::string& name);
 Mesh read_stl(std::string_view data, const std::string& name);
 Mesh read_wrl(std::string_view data, const std::string& name);
+// The VRML file as a scene of polytope and CubicalGaussianMap nodes
+// (<minksum/scene.hpp>); read_wrl takes its one polytope.
+Scene read_wrl_scene(std::string_view data, const std::string& name);
 
 // Writers.  Precondition: every face index is < mesh.points.size() (checked
 // by write_mesh, which calls these).

@@ -20,7 +20,9 @@
 //         of Fogel and Halperin, one token per coordinate; coordIndex with -1
 //         separators).  Transforms are not applied: an IndexedFaceSet under a
 //         Transform with a non-identity translation, rotation or scale is
-//         rejected with an InputError
+//         rejected with an InputError.  A scene of Fogel and Halperin's
+//         ExactPolyhedron / CubicalGaussianMap nodes (<minksum/scene.hpp>)
+//         reads as its one polytope; a scene of several is an InputError
 //
 // A UTF-8 byte-order mark at the start of a file is skipped in every text
 // format (OFF, OBJ, PLY's header, ascii STL, VRML).

@@ -10,12 +10,14 @@
 #include "common.hpp"
 #include "mesh_io.hpp"
 #include "page.hpp"
+#include "scene.hpp"
+#include "text.hpp"
 
 namespace minksum::cli {
 
 namespace {
-const char* kCgmHelp = R"(Usage: minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [--stats] [--json]
-                  [--format F]
+const char* kCgmHelp = R"(Usage: minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [-o OUT.wrl] [--stats]
+                  [--json] [--format F]
 
 Build the Cubical Gaussian Map (Fogel & Halperin) of P: the Gaussian map
 centrally projected on the six faces of the cube [-1,1]^3, six planar maps
@@ -36,6 +38,13 @@ Options:
                arcs of P and Q in two named colours, the facet normals (the
                overlay's vertices) as dots, beside the polytope it encodes;
                click a facet of the polytope for its exact plane
+  -o, --output OUT.wrl
+               a VRML scene (docs/vrml.md) in the extended VRML of Fogel and
+               Halperin: P (and Q and the sum S = P ⊕ Q) as ExactPolyhedron
+               nodes with exact coordinates, and a CubicalGaussianMap node
+               for each, the sum's naming P and Q as its operands, with the
+               counts and facet normals of its six planar maps; 'minksum
+               view OUT.wrl -o page.html' shows it; written atomically
   --json       print the counts as one JSON object
   --format F   {format_names}: the format of an operand '-' (a mesh
                on standard input) or named without a known extension
@@ -43,7 +52,7 @@ Options:
 }  // namespace
 
 int run_cgm(const std::vector<std::string>& argv) {
-  const Args a = parse_args(argv, "cgm", {{"--svg", "", true}, {"--html", "", true}, {"--stats", "", false}, {"--json", "", false}, kFormatOption});
+  const Args a = parse_args(argv, "cgm", {{"--svg", "", true}, {"--html", "", true}, {"--output", "-o", true}, {"--stats", "", false}, {"--json", "", false}, kFormatOption});
   if (a.help) {
     std::cout << expand_help(kCgmHelp);
     return 0;
@@ -54,6 +63,10 @@ int run_cgm(const std::vector<std::string>& argv) {
   if (svg && svg->empty()) throw UsageError("--svg needs a file name");
   const auto html = a.value("--html");
   if (html) check_html_path(*html, "--html");
+  const auto scene_path = a.value("--output");
+  if (scene_path && format_from_path(*scene_path) != Format::wrl)
+    throw UsageError("-o: the Cubical Gaussian Map is written as a VRML scene, a .wrl file; got '" + *scene_path +
+                     "' (--svg and --html write pictures)");
   const auto format = format_option(a);
   ConvexPolytope p = load_operand_from(a.positional[0], false, nullptr, format);
   CubicalGaussianMap g;
@@ -61,18 +74,37 @@ int run_cgm(const std::vector<std::string>& argv) {
   double seconds = 0;
   ConvexPolytope shown = p;
   std::vector<FacetProvenance> provenance;
+  Scene scene;  // for -o: P [Q S], then their maps
+  std::vector<std::string> comments;
+  if (scene_path) {
+    scene.polytopes.push_back(polytope_node(p, "P"));
+    comments.push_back("P = " + printable(a.positional[0]));
+  }
   if (a.positional.size() == 2) {
     ConvexPolytope q = load_operand_from(a.positional[1], false, nullptr, format);
+    if (scene_path) {
+      scene.polytopes.push_back(polytope_node(q, "Q"));
+      comments.push_back("Q = " + printable(a.positional[1]));
+      scene.cgms.push_back(cgm_node(CubicalGaussianMap::from_polytope(p), "CGM_P", 0));
+      scene.cgms.push_back(cgm_node(CubicalGaussianMap::from_polytope(q), "CGM_Q", 1));
+    }
     label += " + " + a.positional[1];
     SumResult r = minkowski_sum(p, q, Method::cgm);
     seconds = r.seconds;
     g = CubicalGaussianMap::from_polytope(r.polytope);
     g.set_operands(r.vertex_origin, r.polytope);
     shown = r.polytope;
-    if (html) provenance = r.facet_provenance.empty() ? facet_provenance(p, q, r.polytope) : r.facet_provenance;
+    if (scene_path) {
+      scene.polytopes.push_back(polytope_node(r.polytope, "S"));
+      comments.push_back("S = P ⊕ Q");
+      scene.cgms.push_back(cgm_node(g, "CGM_S", 2, {0, 1}));
+    }
+    if (html || scene_path) provenance = r.facet_provenance.empty() ? facet_provenance(p, q, r.polytope) : r.facet_provenance;
   } else {
     g = CubicalGaussianMap::from_polytope(p);
+    if (scene_path) scene.cgms.push_back(cgm_node(g, "CGM_P", 0));
   }
+  if (scene_path) write_scene_output(*scene_path, scene, true, comments);
   if (svg) {
     try {
       const bool sum = a.positional.size() == 2;
@@ -105,7 +137,7 @@ int run_cgm(const std::vector<std::string>& argv) {
   }
   std::cout << printable(label) << ": " << shown.num_vertices() << " vertices, " << shown.num_edges() << " edges, "
             << shown.num_facets() << " facets\n";
-  if (a.flag("--stats") || (!svg && !html)) {
+  if (a.flag("--stats") || (!svg && !html && !scene_path)) {
     static const char* plane[6] = {"x=-1", "y=-1", "z=-1", "x=+1", "y=+1", "z=+1"};
     std::cout << "  map  plane     V    HE     F  real V  real E\n";
     Index tv = 0, th = 0, tf = 0;
@@ -123,6 +155,7 @@ int run_cgm(const std::vector<std::string>& argv) {
   }
   if (svg) std::cout << "  wrote " << printable(*svg) << "\n";
   if (html) std::cout << "  wrote " << printable(*html) << "\n";
+  if (scene_path) std::cout << "  wrote " << printable(*scene_path) << "\n";
   return 0;
 }
 

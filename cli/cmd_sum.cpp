@@ -11,6 +11,8 @@
 #include "common.hpp"
 #include "mesh_io.hpp"
 #include "progress.hpp"
+#include "scene.hpp"
+#include "text.hpp"
 
 namespace minksum::cli {
 
@@ -37,6 +39,12 @@ Options:
                      default: shortest text that reads back to the nearest
                      double.  Only {exact_formats} can hold rationals.
   --binary           binary {binary_formats} output
+  --scene            with -o OUT.wrl: write a VRML scene (docs/vrml.md) that
+                     holds the operands and the sum, each an ExactPolyhedron
+                     node (DEF A, B, C, ... and S), instead of the sum alone;
+                     exact coordinates with --exact, else the nearest doubles
+                     as for a .wrl file ('minksum view OUT.wrl -o page.html'
+                     shows it)
   --hull             take the convex hull of each input file's points instead
                      of requiring a valid convex mesh (point clouds)
   --json             print one JSON object: vertices, edges, facets, method,
@@ -100,12 +108,54 @@ std::string method_detail_json(const SumResult& r) {
   return o.str();
 }
 
+// --scene: the operands and the sum as ExactPolyhedron nodes A, B, ... and S,
+// each rounded as write_mesh_output would round it alone; the report adds up
+// what was rounded.
+RoundingReport write_scene_of_sum(const MeshOutput& out, const std::vector<std::string>& names,
+                                  const std::vector<ConvexPolytope>& operands, const ConvexPolytope& sum) {
+  const std::string name = out.to_stdout() ? "<stdout>" : out.path;
+  Scene scene;
+  std::vector<std::string> comments;
+  RoundingReport total;
+  auto add = [&](const ConvexPolytope& p, const std::string& node, const std::string& comment) {
+    RoundingReport r;
+    try {
+      scene.polytopes.push_back(polytope_node(writable_polytope(p, Format::wrl, out.options, &r), node));
+    } catch (const UnrepresentableError& e) {
+      throw OutputError("cannot write " + name + ": " + e.problem() + "; use --exact to write exact rationals");
+    }
+    comments.push_back(comment);
+    total.coordinates += r.coordinates;
+    total.max_displacement = std::max(total.max_displacement, r.max_displacement);
+    total.split += r.split;
+    total.hull = total.hull || r.hull;
+    total.merged += r.merged;
+    total.dropped += r.dropped;
+  };
+  std::string sum_text;
+  for (std::size_t i = 0; i < operands.size(); ++i) {
+    const std::string node = i < 26 ? std::string(1, char('A' + i)) : "P" + std::to_string(i + 1);
+    add(operands[i], node, node + " = " + printable(names[i]));
+    sum_text += (i ? " ⊕ " : "") + node;
+  }
+  add(sum, "S", "S = " + sum_text);
+  if (out.to_stdout()) {
+    write_scene(std::cout, scene, out.options.exact, comments);
+    std::cout.flush();
+    if (!std::cout) throw OutputError("cannot write the scene to standard output: write error");
+  } else {
+    write_scene_output(out.path, scene, out.options.exact, comments);
+  }
+  print_rounding_note(name, total, false, true);
+  return total;
+}
+
 }  // namespace
 
 int run_sum(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "sum",
                             {{"--output", "-o", true}, {"--method", "", true}, {"--exact"}, {"--binary"},
-                             {"--json"}, {"--hull"}, kFormatOption});
+                             {"--json"}, {"--hull"}, {"--scene"}, kFormatOption});
   if (a.help) {
     std::cout << expand_help(kSumHelp);
     return 0;
@@ -121,6 +171,9 @@ int run_sum(const std::vector<std::string>& argv) {
     throw UsageError(std::string("method '") + method_name(*method) + "' is not implemented in this version of minksum");
   const auto format = format_option(a);
   const std::optional<MeshOutput> output = output_option(a);
+  const bool scene = a.flag("--scene");
+  if (scene && (!output || output->format != Format::wrl))
+    throw UsageError("--scene writes a VRML scene: it needs -o OUT.wrl (or -o - --format wrl)");
   const std::vector<std::string>& names = a.positional;
   std::vector<ConvexPolytope> operands;
   LoadPhases load;
@@ -144,7 +197,8 @@ int run_sum(const std::vector<std::string>& argv) {
   }
   const auto w0 = std::chrono::steady_clock::now();
   RoundingReport rounding;
-  if (output) rounding = write_mesh_output(*output, r.polytope);
+  if (output && scene) rounding = write_scene_of_sum(*output, names, operands, r.polytope);
+  else if (output) rounding = write_mesh_output(*output, r.polytope);
   const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   const ConvexPolytope& s = r.polytope;
   std::ostream& report = output ? output->report_stream() : std::cout;

@@ -97,6 +97,12 @@ RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p,
   } catch (const InputError& e) {
     throw OutputError(std::string("cannot write ") + e.what());
   }
+  print_rounding_note(name, r, floats, exact_format);
+  return r;
+}
+
+void print_rounding_note(const std::string& name, const RoundingReport& r, bool floats, bool exact_format) {
+  const std::string exact_formats = extension_list(", ", " or ", true);
   if (r.rounded()) {
     std::ostringstream note;
     note << "minksum: note: " << name << ": " << r.coordinates << " coordinates are not "
@@ -117,7 +123,6 @@ RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p,
       note << "; --exact with " << exact_formats << " keeps them exact";
     std::cerr << note.str() << "\n";
   }
-  return r;
 }
 
 }  // namespace minksum::cli

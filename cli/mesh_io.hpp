@@ -54,6 +54,10 @@ std::optional<MeshOutput> output_option(const Args& a);
 // naming the fix.  `written`, when given, receives the polytope written (p,
 // or what rounding made of it).
 RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p, ConvexPolytope* written = nullptr);
+// The note write_mesh_output prints on stderr when coordinates of `name`
+// were rounded (nothing otherwise); `floats`: binary STL, `exact_format`: the
+// format could have held them exactly (with --exact).
+void print_rounding_note(const std::string& name, const RoundingReport& r, bool floats, bool exact_format);
 // The report as JSON: null when nothing was rounded, else {"coordinates": N,
 // "max_displacement": D, "split": S, "hull": B, "merged": M, "dropped": K}.
 std::string rounding_json(const RoundingReport& r);

@@ -898,3 +898,136 @@ TEST_F(Cli, CadMeshesAreRefusedNamingHullAndAcceptedWithIt) {
     expect_same_solid(walk.out, chms.out);
   }
 }
+
+// VRML scenes (docs/vrml.md): 'cgm P Q -o cgm.wrl' and 'sum A B -o s.wrl
+// --scene' write them, 'view scene.wrl' shows them, every node is checked.
+class SceneCli : public Cli {
+ protected:
+  // `text` with the first occurrence of `from` replaced by `to`, written to `name`.
+  std::string edited(const std::string& text, const std::string& from, const std::string& to, const std::string& name) {
+    std::string t = text;
+    const std::size_t at = t.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) t.replace(at, from.size(), to);
+    std::ofstream(path(name)) << t;
+    return path(name);
+  }
+  // Exit status 3 and one line naming the file, `place` and `problem`.
+  void expect_bad_scene(const std::string& file, const std::string& place, const std::string& problem) {
+    CmdResult r = run("view " + file + " -o " + path("bad.html"));
+    EXPECT_EQ(r.status, 3) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(file + ": " + place + ": "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(problem), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(path("bad.html")));
+  }
+  static std::size_t line_of(const std::string& text, const std::string& what) {
+    return std::size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(text.find(what)), '\n')) + 1;
+  }
+};
+
+TEST_F(SceneCli, CgmSceneHoldsThePolytopesTheirMapsAndTheSum) {
+  const std::string scene = path("cgm.wrl");
+  CmdResult w = run("cgm truncated-cube@rot:2 octahedron@rot:1,2,3,7 -o " + scene);
+  ASSERT_EQ(w.status, 0) << w.err;
+  EXPECT_NE(w.out.find("wrote " + scene), std::string::npos) << w.out;
+  const std::string text = slurp(scene);
+  for (const char* node : {"DEF P ExactPolyhedron", "DEF Q ExactPolyhedron", "DEF S ExactPolyhedron",
+                           "DEF CGM_P CubicalGaussianMap", "DEF CGM_Q CubicalGaussianMap",
+                           "DEF CGM_S CubicalGaussianMap", "operands [ USE P, USE Q ]", "ratPoint ["})
+    EXPECT_NE(text.find(node), std::string::npos) << node;
+  EXPECT_EQ(text.find(" Coordinate {"), std::string::npos);  // exact coordinates only
+  EXPECT_EQ(text.find(" point ["), std::string::npos);
+  // Read back and checked: the sum's counts are those of 'sum', each map's those of 'cgm --json'.
+  CmdResult v = run("view " + scene + " -o " + path("scene.html") + " --json");
+  ASSERT_EQ(v.status, 0) << v.err;
+  CmdResult s = run("sum truncated-cube@rot:2 octahedron@rot:1,2,3,7 --json");
+  ASSERT_EQ(s.status, 0) << s.err;
+  const std::string sum_shape = v.out.substr(v.out.find("{\"kind\": \"polytope\", \"name\": \"S\""));
+  for (const char* key : {"vertices", "edges", "facets"}) EXPECT_EQ(json_int(sum_shape, key), json_int(s.out, key)) << key;
+  EXPECT_EQ(std::count(v.out.begin(), v.out.end(), '{') - 1, 6) << v.out;  // 6 shapes
+  EXPECT_NE(v.out.find("{\"kind\": \"cgm\", \"name\": \"CGM_S\""), std::string::npos) << v.out;
+  EXPECT_TRUE(fs::exists(path("scene.html")));
+  // The file holds three polytopes: commands that read one say so.
+  CmdResult st = run("stats " + scene);
+  EXPECT_EQ(st.status, 3) << st.err;
+  EXPECT_NE(st.err.find("the scene holds 3 polytopes"), std::string::npos) << st.err;
+  // One polytope and its map: reads as that polytope anywhere.
+  ASSERT_EQ(run("cgm dodecahedron -o " + path("one.wrl")).status, 0);
+  CmdResult one = run("stats " + path("one.wrl") + " --json");
+  ASSERT_EQ(one.status, 0) << one.err;
+  EXPECT_EQ(json_int(one.out, "facets"), 12);
+}
+
+TEST_F(SceneCli, SumSceneWritesOperandsAndSumThatReadBackExactly) {
+  const std::string scene = path("s.wrl");
+  CmdResult w = run("sum cube@rot:1 tetrahedron@rot:3 -o " + scene + " --scene --exact --json");
+  ASSERT_EQ(w.status, 0) << w.err;
+  const std::string text = slurp(scene);
+  EXPECT_NE(text.find("# A = cube@rot:1"), std::string::npos);
+  EXPECT_NE(text.find("# S = A ⊕ B"), std::string::npos);
+  // The sum node, cut out as a file of its own, is the sum 'sum --exact' writes.
+  const std::size_t s_at = text.find("# S = ");
+  ASSERT_NE(s_at, std::string::npos);
+  std::ofstream(path("s_only.wrl")) << "#VRML V2.0 utf8\n" << text.substr(s_at);
+  ASSERT_EQ(run("sum cube@rot:1 tetrahedron@rot:3 -o " + path("s.off") + " --exact").status, 0);
+  CmdResult a = run("stats " + path("s_only.wrl") + " --json"), b = run("stats " + path("s.off") + " --json");
+  ASSERT_EQ(a.status, 0) << a.err;
+  expect_same_solid(a.out, b.out);
+  CmdResult v = run("view " + scene + " -o " + path("s.html") + " --json");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_EQ(json_int(v.out.substr(v.out.find("\"name\": \"S\"")), "facets"), json_int(w.out, "facets")) << v.out;
+  // Without --exact: the nearest doubles, rounded so that each reads back as a convex polytope.
+  CmdResult d = run("sum cube@rot:1 tetrahedron@rot:3 -o " + path("d.wrl") + " --scene");
+  ASSERT_EQ(d.status, 0) << d.err;
+  EXPECT_NE(d.err.find("coordinates are not doubles"), std::string::npos) << d.err;
+  EXPECT_EQ(slurp(path("d.wrl")).find("ratPoint"), std::string::npos);
+  EXPECT_EQ(run("view " + path("d.wrl") + " -o " + path("d.html")).status, 0);
+  // To standard output with --format wrl.
+  CmdResult o = run("sum cube tetrahedron -o - --format wrl --scene");
+  ASSERT_EQ(o.status, 0) << o.err;
+  EXPECT_NE(o.out.find("DEF S ExactPolyhedron"), std::string::npos);
+}
+
+TEST_F(SceneCli, UsageErrors) {
+  EXPECT_EQ(run("sum cube cube --scene").status, 2);
+  EXPECT_EQ(run("sum cube cube --scene -o " + path("s.off")).status, 2);
+  EXPECT_FALSE(fs::exists(path("s.off")));
+  EXPECT_EQ(run("cgm cube -o " + path("c.off")).status, 2);
+  ASSERT_EQ(run("cgm cube octahedron -o " + path("c.wrl")).status, 0);
+  EXPECT_EQ(run("view " + path("c.wrl") + " --method walk -o " + path("c.html")).status, 2);
+  EXPECT_EQ(run("cgm cube -o /nonexistent-dir/c.wrl").status, 1);
+}
+
+// A scene whose nodes disagree with what they claim: exit 3, one line, the node's line.
+TEST_F(SceneCli, MalformedSceneNodesExitThreeNamingTheLine) {
+  ASSERT_EQ(run("cgm cube octahedron -o " + path("c.wrl")).status, 0);
+  const std::string text = slurp(path("c.wrl"));
+  // A mapCounts entry changed.
+  const std::size_t counts_line = line_of(text, "mapCounts");
+  const std::size_t c0 = text.find("mapCounts [ ") + 12;
+  const std::string counts = text.substr(c0, text.find(' ', c0) - c0);
+  expect_bad_scene(edited(text, "mapCounts [ " + counts + " ", "mapCounts [ 99 ", "counts.wrl"), "line " + std::to_string(counts_line),
+                   "'mapCounts' gives map 0 99 vertices, the map of its polytope has");
+  // A facet normal moved.
+  const std::size_t point_line = line_of(text, "mapPoint");
+  const std::size_t first = text.find("mapPoint [\n") + 11;
+  const std::string entry = text.substr(first, text.find(',', first) - first);  // "      k x y"
+  std::string moved = entry;
+  moved.replace(moved.find_last_of(' ') + 1, std::string::npos, "1/7");
+  expect_bad_scene(edited(text, entry + ",", moved + ",", "point.wrl"), "line " + std::to_string(point_line),
+                   "is not a facet normal on map");
+  // The sum's polytope replaced by another: not the sum of its operands.
+  const std::size_t cgm_s = line_of(text, "DEF CGM_S");
+  expect_bad_scene(edited(text, "polytope USE S", "polytope USE P", "notsum.wrl"), "line " + std::to_string(cgm_s),
+                   "is not the Minkowski sum of its operands P and Q");
+  // A polytope that is not convex: the node's line, then the polytope's own place.
+  const std::size_t p_line = line_of(text, "DEF P ");
+  const std::size_t coords = text.find("ratPoint [\n") + 11;
+  const std::string p0 = text.substr(coords, text.find(',', coords) - coords);
+  expect_bad_scene(edited(text, p0 + ",", "        0 0 0,", "concave.wrl"), "line " + std::to_string(p_line),
+                   "ExactPolyhedron 'P': ");
+  // Syntax: an unknown field.
+  expect_bad_scene(edited(text, "polytope USE S", "polytope USE S colour 1", "field.wrl"), "line " + std::to_string(cgm_s + 1),
+                   "unknown field 'colour'");
+}

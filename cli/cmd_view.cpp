@@ -8,12 +8,15 @@
 #include "common.hpp"
 #include "page.hpp"
 #include "progress.hpp"
+#include "scene.hpp"
+#include "text.hpp"
 
 namespace minksum::cli {
 
 namespace {
 
 const char* kViewHelp = R"(Usage: minksum view A [B] -o OUT.html [--method M] [--hull] [--title T] [--json]
+       minksum view SCENE.wrl -o OUT.html [--title T] [--json]
 
 Write one self-contained HTML page that shows, in 3D, the polytope A, or the
 operands A, B and their Minkowski sum A ⊕ B.  The page needs no network and
@@ -31,6 +34,13 @@ exact plane a x + b y + c z = d, its provenance and its vertices' exact
 coordinates.  With one operand the page shows its counts and exact volume.
 docs/viewer.md describes the page.
 
+A VRML scene (docs/vrml.md) with several shapes or with CubicalGaussianMap
+nodes, such as 'minksum cgm P Q -o cgm.wrl' and 'minksum sum A B -o s.wrl
+--scene' write, is shown whole: every ExactPolyhedron (or IndexedFaceSet) as
+a solid, every CubicalGaussianMap as its cube with the six planar maps and
+the polytope it encodes beside it.  Every node is checked first (exit
+status 3 and one line naming the file, the line and the problem).
+
 Options:
   -o, --output OUT   the page to write (.html); written to a temporary file
                      and renamed when complete
@@ -45,6 +55,65 @@ Options:
 // Above this many vertex-against-facet tests the provenance of a method that
 // does not record it is not computed (facet_provenance is O(F (V_A + V_B))).
 constexpr double kProvenanceBudget = 2e8;
+
+// The page of a VRML scene: data "kind": "scene", "solids" (the polytope
+// shapes), "cgms" (per CubicalGaussianMap: "name", "operands" for a sum,
+// "maps" as on the page of 'cgm --html', "solid" its polytope).
+int view_scene(const Args& a, const LoadedScene& scene, const std::string& output) {
+  if (a.value("--method") || a.flag("--hull"))
+    throw UsageError(std::string(a.value("--method") ? "--method" : "--hull") + " does not apply to a VRML scene");
+  const std::string& file = a.positional[0];
+  const std::string title = a.value_or("--title", file);
+  std::string data = "{\"kind\": \"scene\", \"title\": " + json_string(title) +
+                     ", \"origins\": " + origin_names_json() + ", \"solids\": [";
+  std::string shapes_json;
+  bool first = true;
+  for (const SceneShape& sh : scene.shapes) {
+    if (sh.kind != SceneShape::Kind::polytope) continue;
+    if (!first) data += ", ";
+    append_solid_json(data, scene.polytopes[sh.index], scene.names[sh.index], "polytope");
+    first = false;
+  }
+  data += "], \"cgms\": [";
+  for (std::size_t i = 0; i < scene.cgms.size(); ++i) {
+    const LoadedCgm& c = scene.cgms[i];
+    const bool sum = c.operands.size() == 2;
+    data += (i ? ", {" : "{") + std::string("\"name\": ") + json_string(c.name);
+    if (sum) data += ", \"operands\": [" + json_string(c.operands[0]) + ", " + json_string(c.operands[1]) + "]";
+    data += ", \"maps\": ";
+    const bool with_origin = sum && c.provenance.size() == c.polytope.num_facets();
+    append_cgm_maps_json(data, c.map, with_origin ? &c.provenance : nullptr);
+    data += ", \"solid\": ";
+    append_solid_json(data, c.polytope, sum ? c.operands[0] + " ⊕ " + c.operands[1] : c.name, sum ? "sum" : "polytope",
+                      with_origin ? &c.provenance : nullptr);
+    data += "}";
+  }
+  data += "]}";
+  write_page(output, title, data);
+  for (const SceneShape& sh : scene.shapes) {
+    const bool poly = sh.kind == SceneShape::Kind::polytope;
+    const ConvexPolytope& p = poly ? scene.polytopes[sh.index] : scene.cgms[sh.index].polytope;
+    const std::string& name = poly ? scene.names[sh.index] : scene.cgms[sh.index].name;
+    if (!shapes_json.empty()) shapes_json += ", ";
+    shapes_json += "{\"kind\": \"" + std::string(poly ? "polytope" : "cgm") + "\", \"name\": \"" + json_escape(name) +
+                   "\", " + counts_json(p) + "}";
+  }
+  if (a.flag("--json")) {
+    std::cout << "{\"kind\": \"scene\", \"name\": \"" << json_escape(file) << "\", \"shapes\": [" << shapes_json
+              << "], \"output\": \"" << json_escape(output) << "\"}\n";
+  } else {
+    std::cout << printable(file) << ": a scene of " << scene.shapes.size() << " shapes\n";
+    for (const SceneShape& sh : scene.shapes) {
+      const bool poly = sh.kind == SceneShape::Kind::polytope;
+      const ConvexPolytope& p = poly ? scene.polytopes[sh.index] : scene.cgms[sh.index].polytope;
+      std::cout << "  " << (poly ? "polytope " : "CubicalGaussianMap ")
+                << printable(poly ? scene.names[sh.index] : scene.cgms[sh.index].name) << ": " << p.num_vertices()
+                << " vertices, " << p.num_edges() << " edges, " << p.num_facets() << " facets\n";
+    }
+    std::cout << "  page written to " << printable(output) << "\n";
+  }
+  return 0;
+}
 
 }  // namespace
 
@@ -70,6 +139,11 @@ int run_view(const std::vector<std::string>& argv) {
 
   std::string data = "{";
   std::string title;
+  if (a.positional.size() == 1 && is_scene_file(a.positional[0])) {
+    const LoadedScene scene = load_scene(a.positional[0]);
+    if (scene.shapes.size() != 1 || scene.shapes[0].kind != SceneShape::Kind::polytope)
+      return view_scene(a, scene, *output);
+  }
   const ConvexPolytope pa = load_operand(a.positional[0], hull, nullptr);
   if (a.positional.size() == 1) {
     title = a.value_or("--title", a.positional[0]);

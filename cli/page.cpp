@@ -133,7 +133,18 @@ void write_cgm_page(const std::string& path, const std::string& title, const Cub
   const bool with_origin = sum && provenance.size() == shown.num_facets();
   std::string data = "{\"kind\": \"cgm\", \"title\": " + json_string(title) + ", \"origins\": " + origin_names_json();
   if (sum) data += ", \"operands\": [" + json_string(operands[0]) + ", " + json_string(operands[1]) + "]";
-  data += ", \"maps\": [";
+  data += ", \"maps\": ";
+  append_cgm_maps_json(data, g, with_origin ? &provenance : nullptr);
+  data += ", \"solids\": [";
+  append_solid_json(data, shown, title, sum ? "sum" : "polytope", with_origin ? &provenance : nullptr);
+  data += "]}";
+  write_page(path, title, data);
+}
+
+void append_cgm_maps_json(std::string& data, const CubicalGaussianMap& g,
+                          const std::vector<FacetProvenance>* provenance) {
+  const bool with_origin = provenance != nullptr;
+  data += "[";
   for (int k = 0; k < 6; ++k) {
     const CubicalGaussianMap::PlanarMap& m = g.map(k);
     const auto c = g.counts(k);
@@ -155,7 +166,7 @@ void write_cgm_page(const std::string& path, const std::string& title, const Cub
     if (with_origin) {
       data += "], \"origin\": [";
       for (Index v = 0; v < m.vertices.size(); ++v)
-        data += (v ? "," : "") + (m.vertices[v].real ? std::to_string(int(provenance[m.vertices[v].facet].origin()))
+        data += (v ? "," : "") + (m.vertices[v].real ? std::to_string(int((*provenance)[m.vertices[v].facet].origin()))
                                                      : std::string("-1"));
     }
     data += "], \"edges\": [";
@@ -170,10 +181,7 @@ void write_cgm_page(const std::string& path, const std::string& title, const Cub
     }
     data += "]}";
   }
-  data += "], \"solids\": [";
-  append_solid_json(data, shown, title, sum ? "sum" : "polytope", with_origin ? &provenance : nullptr);
-  data += "]}";
-  write_page(path, title, data);
+  data += "]";
 }
 
 void write_motion_page(const std::string& path, const std::string& title, const ConvexPolytope& obstacle,

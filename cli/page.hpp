@@ -49,6 +49,12 @@ void write_cgm_page(const std::string& path, const std::string& title, const Cub
                     const ConvexPolytope& shown, const std::vector<std::string>& operands,
                     const std::vector<FacetProvenance>& provenance);
 
+// The "maps" array of a page of a Cubical Gaussian Map (write_cgm_page
+// above), appended; `provenance` (of the facets of g's polytope), when given,
+// adds "origin".
+void append_cgm_maps_json(std::string& out, const CubicalGaussianMap& g,
+                          const std::vector<FacetProvenance>* provenance = nullptr);
+
 // One frame of 'minksum simulate': the robot's translation and orientation
 // (index into the quaternions), its state (0 separate, 1 touching, 2
 // penetrating) and the exact squared distance or depth.

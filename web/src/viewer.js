@@ -73,7 +73,7 @@ view.append(el('div', { id: 'hint', text: 'drag: turn · wheel: zoom · right-dr
 // Renderer, camera, lights.
 
 // Multisampling costs much in a software renderer; big scenes go without.
-const totalFacets = (data.solids || []).reduce((n, s) => n + s.facets.length, 0);
+const totalFacets = (data.solids || []).concat((data.cgms || []).map((c) => c.solid)).reduce((n, s) => n + s.facets.length, 0);
 const renderer = new THREE.WebGLRenderer({ antialias: totalFacets <= 30000 });
 renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
 renderer.setClearColor(0xf4f6f9);
@@ -432,7 +432,10 @@ function initSum() {
 // The Cubical Gaussian Map: the cube [-1,1]^3 with the six planar maps on its
 // faces (real arcs solid, coloured by operand; artificial edges dashed; real
 // vertices as dots), and the polytope it encodes beside it.
-function initCgm() {
+const CGM_FACE_NAMES = ['0: x = −1', '1: y = −1', '2: z = −1', '3: x = +1', '4: y = +1', '5: z = +1'];
+
+// The cube of one map `d` ({ maps, origins }), added to the scene.
+function buildCgmCube(d) {
   const cube = new THREE.Group();
   const faces = new THREE.Mesh(new THREE.BoxGeometry(2, 2, 2), new THREE.MeshLambertMaterial({
     color: 0xffffff, transparent: true, opacity: 0.55, polygonOffset: true, polygonOffsetFactor: 2, polygonOffsetUnits: 2 }));
@@ -442,7 +445,7 @@ function initCgm() {
   const facetSeen = new Set();
   let realVertices = 0;
   const colour = new THREE.Color();
-  for (const m of data.maps) {
+  for (const m of d.maps) {
     for (let e = 0; e < m.edges.length; e += 3) {
       const u = m.edges[e], v = m.edges[e + 1], code = m.edges[e + 2];
       const kind = code === 0 ? 'artificial' : code === 1 ? 'real' : code === 2 ? 'p' : code === 3 ? 'q' : 'both';
@@ -453,12 +456,10 @@ function initCgm() {
       ++realVertices;
       facetSeen.add(m.facet[v]);
       dots.push(m.xyz[3 * v], m.xyz[3 * v + 1], m.xyz[3 * v + 2]);
-      colour.setHex(m.origin && m.origin[v] >= 0 ? COLOURS[data.origins[m.origin[v]]] : COLOURS.real, THREE.SRGBColorSpace);
+      colour.setHex(m.origin && m.origin[v] >= 0 ? COLOURS[d.origins[m.origin[v]]] : COLOURS.real, THREE.SRGBColorSpace);
       dotColours.push(colour.r, colour.g, colour.b);
     }
   }
-  api.cgmRealVertices = realVertices;
-  api.cgmDrawnFacets = facetSeen.size;
   const lineKinds = {};
   for (const [kind, seg] of Object.entries(kinds)) {
     if (!seg.length) continue;
@@ -478,7 +479,7 @@ function initCgm() {
   const points = new THREE.Points(dg, new THREE.PointsMaterial({ size: 5, sizeAttenuation: false, vertexColors: true }));
   cube.add(points);
   // Face names: the map id and its plane, written on each cube face.
-  const names = ['0: x = −1', '1: y = −1', '2: z = −1', '3: x = +1', '4: y = +1', '5: z = +1'];
+  const names = CGM_FACE_NAMES;
   for (let k = 0; k < 6; ++k) {
     const c = document.createElement('canvas');
     c.width = 256; c.height = 64;
@@ -497,16 +498,28 @@ function initCgm() {
     cube.add(sprite);
   }
   scene.add(cube);
-  api.cgmEdges = lineKinds;
+  return { cube, realVertices, facets: facetSeen.size, lineKinds };
+}
 
-  const s = buildSolid(data.solids[0], data.solids[0].role);
-  // The polytope beside the cube, scaled to the cube's size (drawing only).
+// The polytope of a map beside its cube (centred at x = cubeX), scaled to
+// the cube's size (drawing only).
+function placeBesideCube(s, cubeX) {
   const box = s.mesh.geometry.boundingBox;
   const size = Math.max(box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z) || 1;
   const scale = 2 / size;
   s.group.scale.setScalar(scale);
   const centre = box.getCenter(new THREE.Vector3()).multiplyScalar(scale);
-  s.group.position.set(3.4 - centre.x, -centre.y, -centre.z);
+  s.group.position.set(cubeX + 3.4 - centre.x, -centre.y, -centre.z);
+}
+
+function initCgm() {
+  const { cube, realVertices, facets, lineKinds } = buildCgmCube(data);
+  api.cgmRealVertices = realVertices;
+  api.cgmDrawnFacets = facets;
+  api.cgmEdges = lineKinds;
+  const names = CGM_FACE_NAMES;
+  const s = buildSolid(data.solids[0], data.solids[0].role);
+  placeBesideCube(s, 0);
 
   side.append(el('h2', { text: 'Cubical Gaussian Map' }));
   const legend = el('div', { id: 'legend' });
@@ -536,6 +549,64 @@ function initCgm() {
   side.append(displayControls([s]));
   side.append(el('h2', { text: 'Picked facet' }), pickPanel);
   fitCamera([cube, s.group]);
+}
+
+// A VRML scene (minksum view scene.wrl, docs/vrml.md): its ExactPolyhedron
+// shapes as solids in a row, at one common scale (the largest 2 units wide),
+// and below them each CubicalGaussianMap as its cube with the polytope it
+// encodes beside it, as on the page of 'cgm --html'; both rows centred.
+function initScene() {
+  const list = [];
+  data.solids.forEach((d, i) => list.push(buildSolid(d, `solid${i}`)));
+  let largest = 0;
+  for (const s of list) {
+    const b = s.mesh.geometry.boundingBox;
+    largest = Math.max(largest, b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z);
+  }
+  const scale = largest > 0 ? 2 / largest : 1;
+  const rowZ = data.cgms.length && list.length ? 1.8 : 0;
+  let x = 0;
+  for (const s of list) {
+    const b = s.mesh.geometry.boundingBox;
+    s.group.scale.setScalar(scale);
+    s.group.position.set(x - b.min.x * scale, -(b.min.y + b.max.y) / 2 * scale, rowZ - (b.min.z + b.max.z) / 2 * scale);
+    x += (b.max.x - b.min.x) * scale + 0.8;
+  }
+  for (const s of list) s.group.position.x -= (x - 0.8) / 2;
+  api.sceneCgms = [];
+  const cgmX = (i) => 6.2 * i - (6.2 * data.cgms.length - 1.8) / 2 + 1;  // a cube's centre
+  const cgms = data.cgms.map((d, i) => {
+    const c = buildCgmCube({ maps: d.maps, origins: data.origins });
+    c.cube.position.set(cgmX(i), 0, -rowZ);
+    const s = buildSolid(d.solid, `cgm${i}`);
+    placeBesideCube(s, cgmX(i));
+    s.group.position.z -= rowZ;
+    api.sceneCgms.push({ name: d.name, realVertices: c.realVertices, facets: c.facets, edges: c.lineKinds });
+    return { d, cube: c.cube, solid: s };
+  });
+  const all = list.concat(cgms.map((c) => c.solid));
+  side.append(el('h2', { text: 'Shapes' }));
+  list.forEach((s) => side.append(el('div', { class: 'row' },
+    checkbox(`show-${s.key}`, '', true, (on) => { s.group.visible = on; }),
+    el('span', { class: 'sw', style: `background:${hex(COLOURS.polytope)}` }), el("span", { text: `polytope ${s.data.name}` }))));
+  cgms.forEach((c) => side.append(el('div', { class: 'row' },
+    checkbox(`show-${c.solid.key}`, '', true, (on) => { c.cube.visible = on; c.solid.group.visible = on; }),
+    el('span', { class: 'sw', style: `background:${hex(COLOURS.real)}` }),
+    el('span', { text: `CubicalGaussianMap ${c.d.name}` + (c.d.operands ? ` (of ${c.d.operands[0]} ⊕ ${c.d.operands[1]})` : '') }))));
+  side.append(countsTable(all.map((s) => s.data)));
+  if (cgms.length) {
+    const legend = el('div', { id: 'legend' });
+    const row = (colourHex, text, dashed) => el('div', { class: 'row' },
+      el('span', { class: 'sw', style: dashed ? `background:repeating-linear-gradient(90deg,${hex(colourHex)} 0 4px,#fff 4px 7px)` : `background:${hex(colourHex)}` }), text);
+    legend.append(row(COLOURS.real, 'arcs (edges of the polytope)'));
+    if (cgms.some((c) => c.d.operands)) legend.append(row(COLOURS.p, 'arcs of the first operand'), row(COLOURS.q, 'arcs of the second operand'), row(COLOURS.both, 'arcs of both (overlapping)'));
+    legend.append(row(COLOURS.artificial, 'artificial edges (cube-face boundaries)', true), row(COLOURS.real, 'dots: facet normals'));
+    side.append(el('h2', { text: 'Cubical Gaussian Maps' }), legend);
+  }
+  side.append(el('h2', { text: 'Display' }), displayControls(all));
+  side.append(el('h2', { text: 'Picked facet' }), pickPanel);
+  side.append(el('h2', { text: 'Volumes' }), volumes(all.map((s) => s.data)));
+  fitCamera(all.map((s) => s.group).concat(cgms.map((c) => c.cube)), new THREE.Vector3(0.2, -1.0, 0.35));
 }
 
 // The motion: obstacle fixed, robot moved frame by frame, coloured by its
@@ -679,7 +750,7 @@ api.measureFrames = function (n = 60) {
   return { frames: n, meanMs: times.reduce((a, b) => a + b, 0) / n, medianMs: times[Math.floor(n / 2)], maxMs: times[n - 1] };
 };
 
-const init = { polytope: initPolytope, sum: initSum, cgm: initCgm, motion: initMotion }[data.kind];
+const init = { polytope: initPolytope, sum: initSum, cgm: initCgm, motion: initMotion, scene: initScene }[data.kind];
 if (!init) throw new Error(`minksum: unknown page kind '${data.kind}'`);
 init();
 resize();

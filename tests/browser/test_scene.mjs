@@ -1,0 +1,60 @@
+// Browser test of 'minksum view scene.wrl': a VRML scene with both node types
+// (ExactPolyhedron and CubicalGaussianMap), written by 'minksum cgm P Q -o'.
+// node test_scene.mjs --minksum BIN --out DIR
+// Checked against the command line: the solids drawn and their facets (the
+// scene's three polytopes against 'minksum sum/gen --json'), each map's facet
+// normals and edges against 'minksum cgm --json' of its polytope (the sum's
+// arcs of P and of Q both drawn), and a facet of the sum clicked against the
+// exact polytope 'minksum sum --exact' writes.
+import { check, checkPage, checkPickedFacet, clickFacet, launch, minksum, minksumJson, open, options, readOff } from './lib.mjs';
+import { join } from 'node:path';
+
+const o = options();
+const P = 'truncated-cube@rot:2', Q = 'octahedron@rot:1,2,3,7';
+const wrl = join(o.out, 'scene.wrl'), html = join(o.out, 'scene.html');
+minksum(o.minksum, ['cgm', P, Q, '-o', wrl]);
+const view = minksumJson(o.minksum, ['view', wrl, '-o', html, '--json']);
+check(view.shapes.length === 6, `scene: ${view.shapes.length} shapes, expected P, Q, S and their three maps`);
+const offFile = join(o.out, 'scene-sum.off');
+minksum(o.minksum, ['sum', P, Q, '--exact', '-o', offFile]);
+const off = readOff(offFile);
+const expected = [minksumJson(o.minksum, ['stats', P, '--json']), minksumJson(o.minksum, ['stats', Q, '--json']),
+                  minksumJson(o.minksum, ['sum', P, Q, '--json'])];
+const maps = [minksumJson(o.minksum, ['cgm', P, '--json']), minksumJson(o.minksum, ['cgm', Q, '--json']),
+              minksumJson(o.minksum, ['cgm', P, Q, '--json'])];
+
+const browser = await launch();
+try {
+  const { page, log } = await open(browser.context, html);
+  await checkPage(page, log, 'scene');
+  const s = await page.evaluate(() => ({ drawn: window.minksum.drawnFacets, cgms: window.minksum.sceneCgms }));
+  expected.forEach((e, i) => {
+    check(s.drawn[`solid${i}`] === e.facets, `scene: solid ${i}: ${s.drawn[`solid${i}`]} facets drawn, minksum says ${e.facets}`);
+    check(s.drawn[`cgm${i}`] === e.facets, `scene: the polytope of map ${i}: ${s.drawn[`cgm${i}`]} facets drawn, minksum says ${e.facets}`);
+  });
+  check(s.cgms.length === 3, `scene: ${s.cgms.length} maps drawn`);
+  s.cgms.forEach((c, i) => {
+    const m = maps[i];
+    const sum = (f) => m.maps.reduce((t, x) => t + f(x), 0);
+    check(c.realVertices === sum((x) => x.real_vertices), `scene: map ${c.name}: ${c.realVertices} facet normals drawn, minksum cgm says ${sum((x) => x.real_vertices)}`);
+    check(c.facets === m.facets, `scene: map ${c.name}: the dots stand for ${c.facets} facets, the polytope has ${m.facets}`);
+    const all = Object.values(c.edges).reduce((a, b) => a + b, 0);
+    check(all === sum((x) => x.halfedges / 2), `scene: map ${c.name}: ${all} edges drawn, the maps have ${sum((x) => x.halfedges / 2)}`);
+    check(all - (c.edges.artificial || 0) === sum((x) => x.real_edges), `scene: map ${c.name}: ${all - (c.edges.artificial || 0)} arcs drawn, minksum cgm says ${sum((x) => x.real_edges)}`);
+  });
+  check(s.cgms[2].edges.p > 0 && s.cgms[2].edges.q > 0, `scene: the sum's map has arcs of P and of Q: ${JSON.stringify(s.cgms[2].edges)}`);
+  await page.screenshot({ path: join(o.out, 'scene.png') });
+  // A facet of S the camera sees (visibleFacet looks solids up by role; here every solid is a 'polytope').
+  const f = await page.evaluate(() => {
+    const n = window.minksum.data.solids[2].facets.length;
+    for (let i = 0; i < n; ++i) if (window.minksum.facetScreenPoint('solid2', i)) return i;
+    return -1;
+  });
+  check(f >= 0, 'scene: no facet of the sum S is visible');
+  const picked = await clickFacet(page, 'solid2', f, 'scene');
+  checkPickedFacet(picked, off, 'scene');
+  console.log(`scene: ${view.shapes.length} shapes; maps ${s.cgms.map((c) => `${c.name} ${c.realVertices} normals`).join(', ')}; picked facet ${picked.facet} of S: ${picked.plane}`);
+} finally {
+  await browser.close();
+}
+console.log('PASS: scene');

@@ -35,8 +35,7 @@ coordinates.  With one operand the page shows its counts and exact volume.
 docs/viewer.md describes the page.
 
 A VRML scene (docs/vrml.md) with several shapes or with CubicalGaussianMap
-nodes, such as 'minksum cgm P Q -o cgm.wrl' and 'minksum sum A B -o s.wrl
---scene' write, is shown whole: every ExactPolyhedron (or IndexedFaceSet) as
+nodes, such as 'minksum cgm P Q -o cgm.wrl' writes, is shown whole: every ExactPolyhedron (or IndexedFaceSet) as
 a solid, every CubicalGaussianMap as its cube with the six planar maps and
 the polytope it encodes beside it.  Every node is checked first (exit
 status 3 and one line naming the file, the line and the problem).

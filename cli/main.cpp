@@ -21,7 +21,7 @@ const char* kMainHelp = R"(minksum — exact Minkowski sums of convex polyhedra 
 
 Usage:
   minksum sum A B [C ...] [-o OUT] [--method M] [--exact] [--binary] [--json]
-                [--hull] [--format F]
+                [--hull] [--scene] [--format F]
   minksum stats P [--json] [--hull] [--format F]
   minksum gen NAME -o OUT [--exact] [--binary] [--format F]
   minksum convert IN -o OUT [--hull] [--exact] [--binary] [--format F]
@@ -32,9 +32,10 @@ Usage:
                 [--format F]
   minksum simulate [--obstacle Q] [--robot P] [--frames N] [--turn A,B,C,D]
                 [-o OUT.svg] [--html OUT.html] [--show-m] [--json]
-  minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [--stats] [--json]
-                [--format F]
+  minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [-o OUT.wrl] [--stats]
+                [--json] [--format F]
   minksum view A [B] -o OUT.html [--method M] [--hull] [--title T] [--json]
+  minksum view SCENE.wrl -o OUT.html [--title T] [--json]
   minksum batch [FILE] [--threads N] [--method M] [--hull]
   minksum COMMAND --help          help on one command
   minksum --version

@@ -99,7 +99,7 @@ int run_cgm(const std::vector<std::string>& argv) {
       comments.push_back("S = P ⊕ Q");
       scene.cgms.push_back(cgm_node(g, "CGM_S", 2, {0, 1}));
     }
-    if (html || scene_path) provenance = r.facet_provenance.empty() ? facet_provenance(p, q, r.polytope) : r.facet_provenance;
+    if (html) provenance = r.facet_provenance.empty() ? facet_provenance(p, q, r.polytope) : r.facet_provenance;
   } else {
     g = CubicalGaussianMap::from_polytope(p);
     if (scene_path) scene.cgms.push_back(cgm_node(g, "CGM_P", 0));

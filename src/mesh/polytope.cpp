@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <mutex>
@@ -933,9 +934,54 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
   }
   ConvexPolytope r = from_trusted_parts(points, std::move(origin), std::move(next), std::move(facet),
                                         std::move(facet_he));
-  // Points (2) for polygons and (4), on intervals (exact when undecided),
-  // as step 8 of build.
-  {
+  // Point (4) on the doubles first.  The vertex test holds for any axis a
+  // (projected along a, the facets around v are wedges of angle below pi;
+  // turning strictly counter-clockwise and winding once, they cover a
+  // neighbourhood of v's projection once, so the surface near v is a graph
+  // over the plane orthogonal to a).  Here a = v - c, c the mean of the
+  // points computed in doubles (its rounding is irrelevant: c is some double
+  // point, inside a convex solid): then det(a, d_i, d_j) =
+  // -orient3d(v, u_i, u_j, c), the kernel's filtered orient3d.  A vertex
+  // where a sign is zero or the test fails is left to step 8's test (axis
+  // minus the sum of its edge directions, on intervals, exact when they
+  // cannot decide), which decides; it often cannot decide on intervals where
+  // opposite edges of a Minkowski sum make that axis's projection
+  // degenerate, and then computes in rationals.
+  Vec3d c{0, 0, 0};
+  for (Index i = 0; i < nv; ++i) c = Vec3d{c.x + v[i].x / nv, c.y + v[i].y / nv, c.z + v[i].z / nv};
+  const bool c_ok = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
+  std::vector<Index> around, undecided;
+  for (Index i = 0; i < nv; ++i) {
+    around.clear();
+    Index h = r.vertex_he_[i];
+    do {
+      around.push_back(r.he_origin_[h ^ 1u]);
+      h = r.he_prev_[h] ^ 1u;
+    } while (h != r.vertex_he_[i]);
+    const std::size_t k = around.size();
+    bool ok = c_ok;
+    for (std::size_t j = 0; j < k && ok; ++j)
+      ok = orient3d(v[i], v[around[j]], v[around[j + 1 == k ? 0 : j + 1]], c) < 0;
+    // Winding: the side of d_j of the reference ray d_0 (within (0, pi)
+    // counter-clockwise, or within (pi, 2 pi)); each step turns by less than
+    // pi, so it passes the ray exactly when it goes from the second side
+    // back to the first, or to d_0 itself at the end.
+    long winding = 0;
+    bool prev_second = false;
+    for (std::size_t j = 1; j < k && ok; ++j) {
+      const int side = -orient3d(v[i], v[around[0]], v[around[j]], c);
+      if (side == 0) ok = false;  // along the ray or against it: step 8's test decides
+      if (prev_second && side > 0) ++winding;
+      prev_second = side < 0;
+    }
+    winding += prev_second;
+    if (!ok || winding != 1) undecided.push_back(i);
+  }
+  // Points (2) for polygons and (4) where the doubles did not decide, on
+  // intervals (exact when undecided), as step 8 of build.
+  bool polygons = false;
+  for (Index f = 0; f < nf && !polygons; ++f) polygons = r.facet_degree(f) > 3;
+  if (polygons || !undecided.empty()) {
     std::vector<FastIPoint> ip(nv), nrm(nf);
     CGAL::Protect_FPU_rounding<true> upward;
     for (Index i = 0; i < nv; ++i) ip[i] = {FastInterval(v[i].x), FastInterval(v[i].y), FastInterval(v[i].z)};
@@ -965,7 +1011,7 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
                           [&]() -> const Point3& { return exact = polygon_normal(points, loop); }, scratch))
         return std::nullopt;
     }
-    for (Index i = 0; i < nv; ++i)
+    for (Index i : undecided)
       if (!convex_vertex(i, r.vertex_he_[i], r.he_origin_.data(), r.he_prev_.data(), r.he_facet_.data(), ip, nrm,
                          points, scratch))
         return std::nullopt;

@@ -1204,6 +1204,13 @@ ConvexPolytope roof(const Point3& d, const Point3& c) {
     pts.push_back(Point3(Rational(x), Rational(y), Rational(-1)));
   return ConvexPolytope::hull(pts);
 }
+// The nearest doubles of p's vertices, as the writer rounds them.
+PointList nearest_doubles(const ConvexPolytope& p) {
+  PointList rounded;
+  for (Index v = 0; v < p.num_vertices(); ++v)
+    rounded.push_back(Vec3d{to_double(p.point(v).x), to_double(p.point(v).y), to_double(p.point(v).z)});
+  return rounded;
+}
 }  // namespace
 
 // A fold made coplanar by rounding: D = (0, 2, 1 - 2^-60) lies below the
@@ -1214,10 +1221,7 @@ TEST(IoRounding, FoldMadeCoplanarByRoundingIsMerged) {
                                Point3(Rational(1), Rational(2), Rational(1)));
   ASSERT_EQ(p.num_vertices(), 8u);
   ASSERT_EQ(p.num_facets(), 7u);
-  PointList rounded;
-  for (Index v = 0; v < p.num_vertices(); ++v)
-    rounded.push_back(Vec3d{to_double(p.point(v).x), to_double(p.point(v).y), to_double(p.point(v).z)});
-  EXPECT_FALSE(PolytopeBuilder::moved(p, rounded, nullptr).has_value());
+  EXPECT_FALSE(PolytopeBuilder::moved(p, nearest_doubles(p), nullptr).has_value());
   RoundingReport r;
   const ConvexPolytope w = writable_polytope(p, Format::off, {}, &r);
   EXPECT_EQ(r.coordinates, 1u);
@@ -1236,10 +1240,7 @@ TEST(IoRounding, FoldMadeReflexByRoundingIsNotCertified) {
   const ConvexPolytope p = roof(Point3(Rational(0), Rational(2) - pow2(-58), 7 * pow2(-62)),
                                Point3(Rational(1), Rational(2), Rational(0)));
   ASSERT_EQ(p.num_vertices(), 8u);
-  PointList rounded;
-  for (Index v = 0; v < p.num_vertices(); ++v)
-    rounded.push_back(Vec3d{to_double(p.point(v).x), to_double(p.point(v).y), to_double(p.point(v).z)});
-  EXPECT_FALSE(PolytopeBuilder::moved(p, rounded, nullptr).has_value());
+  EXPECT_FALSE(PolytopeBuilder::moved(p, nearest_doubles(p), nullptr).has_value());
   RoundingReport r;
   const ConvexPolytope w = writable_polytope(p, Format::off, {}, &r);
   EXPECT_EQ(r.coordinates, 1u);

@@ -7,9 +7,11 @@
 #include <minksum/io.hpp>
 #include <minksum/minkowski.hpp>
 #include <minksum/operand.hpp>
+#include <minksum/predicates.hpp>
 #include <minksum/scene.hpp>
 
 #include "io/readers.hpp"  // parse_coordinate, checked_float
+#include "mesh/builder.hpp"  // PolytopeBuilder::moved
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -1256,4 +1258,155 @@ TEST(VrmlScene, MalformedNodesNameTheLine) {
                    "scene.wrl");
       },
       "scene.wrl", "the CubicalGaussianMap is inside a Transform with a non-identity 'translation'", "line 3");
+}
+
+// The writer's local certificate (PolytopeBuilder::moved) against full
+// validation.  The rounded vertices of exact sums, nudged by a few ulps (the
+// folds of rotated spheres are nearly flat, so nudges make some reflex,
+// flatten some, and keep most convex): whenever the certificate accepts, full
+// validation of the same mesh builds the same polytope, facet by facet;
+// whenever it declines, full validation refuses the mesh or changes it
+// (merges coplanar facets, welds points).
+TEST(IoRounding, LocalCertificateAgreesWithFullValidation) {
+  const unsigned seed = 20261123;
+  std::mt19937 rng(seed);
+  int accepted = 0, declined = 0;
+  for (const auto& [a, b] : std::vector<std::pair<std::string, std::string>>{
+           {"sphere:3", "sphere:3@rot:5"}, {"dodecahedron", "truncated-cube@rot:2"},
+           {"random:200:1", "sphere:2@rot:3"}, {"cube@rot:1", "octahedron@rot:2"}}) {
+    const ConvexPolytope s = minkowski_sum(catalog_polytope(a), catalog_polytope(b)).polytope;
+    for (int trial = 0; trial < 16; ++trial) {
+      SCOPED_TRACE(a + " + " + b + ", trial " + std::to_string(trial) + ", seed " + std::to_string(seed));
+      PointList pts;
+      for (Index v = 0; v < s.num_vertices(); ++v) {
+        double c[3];
+        for (int k = 0; k < 3; ++k) {
+          c[k] = io_detail::coordinate_double(s.coordinates(), v, k);
+          // trial 0: as written; then about one coordinate in 3, moved by
+          // up to 2^(3 trial) ulps either way (2^45 ulps: a relative 2^-7).
+          if (trial > 0 && rng() % 3 == 0) {
+            const double ulp = std::nextafter(std::abs(c[k]), 1e300) - std::abs(c[k]);
+            c[k] += std::ldexp(ulp, 3 * trial) * (double(rng() % 2001) / 1000 - 1);
+          }
+          c[k] += 0.0;
+        }
+        pts.push_back(Vec3d{c[0], c[1], c[2]});
+      }
+      // The mesh the full path validates: s's facets, quadrilaterals no
+      // longer planar cut along the diagonal that folds outwards.
+      Mesh m;
+      m.points = pts;
+      bool large_cut = false;
+      for (Index f = 0; f < s.num_facets(); ++f) {
+        const std::vector<Index> loop = s.facet_vertices(f);
+        const auto& v = pts.approx();
+        bool planar = true;
+        for (std::size_t i = 3; i < loop.size(); ++i)
+          planar = planar && orient3d(v[loop[0]], v[loop[1]], v[loop[2]], v[loop[i]]) == 0;
+        if (planar) {
+          m.faces.push_back(loop);
+        } else if (loop.size() == 4) {
+          const Index p0 = loop[0], p1 = loop[1], p2 = loop[2], p3 = loop[3];
+          if (orient3d(v[p0], v[p1], v[p2], v[p3]) < 0) {
+            m.faces.push_back({p0, p1, p2});
+            m.faces.push_back({p0, p2, p3});
+          } else {
+            m.faces.push_back({p1, p2, p3});
+            m.faces.push_back({p1, p3, p0});
+          }
+        } else {
+          large_cut = true;
+        }
+      }
+      std::size_t split = 0;
+      const std::optional<ConvexPolytope> fast = PolytopeBuilder::moved(s, pts, &split);
+      if (large_cut) {
+        EXPECT_FALSE(fast.has_value());
+        continue;
+      }
+      std::optional<ConvexPolytope> full;
+      try {
+        full = ConvexPolytope::from_mesh(m);
+      } catch (const InputError&) {
+      }
+      const bool same = full && full->num_vertices() == s.num_vertices() && full->num_facets() == m.faces.size();
+      EXPECT_EQ(fast.has_value(), same);
+      if (!fast || !same) {
+        ++declined;
+        continue;
+      }
+      ++accepted;
+      EXPECT_EQ(split, m.faces.size() - s.num_facets());
+      ASSERT_EQ(fast->num_facets(), full->num_facets());
+      EXPECT_EQ(fast->num_edges(), full->num_edges());
+      for (Index f = 0; f < fast->num_facets(); ++f) EXPECT_EQ(fast->facet_vertices(f), full->facet_vertices(f)) << f;
+      for (Index v = 0; v < fast->num_vertices(); ++v) {
+        const Vec3d &x = fast->approx(v), &y = full->approx(v);
+        EXPECT_TRUE(x.x == y.x && x.y == y.y && x.z == y.z) << v;
+      }
+      if (trial == 0) {
+        EXPECT_EQ(fast->check_invariants(), "");
+      }
+    }
+  }
+  EXPECT_GT(accepted, 10) << declined;
+  EXPECT_GT(declined, 5) << accepted;
+}
+
+namespace {
+// A box [0,1] x [0,2] x [-1, top] whose top is two triangles A B C and
+// A C D folding along A-C, D given exactly (not a double).
+ConvexPolytope roof(const Point3& d, const Point3& c) {
+  PointList pts;
+  pts.push_back(Point3(Rational(0), Rational(0), Rational(1)));
+  pts.push_back(Point3(Rational(1), Rational(0), Rational(1)));
+  pts.push_back(c);
+  pts.push_back(d);
+  for (const auto& [x, y] : std::vector<std::pair<int, int>>{{0, 0}, {1, 0}, {1, 2}, {0, 2}})
+    pts.push_back(Point3(Rational(x), Rational(y), Rational(-1)));
+  return ConvexPolytope::hull(pts);
+}
+// The nearest doubles of p's vertices, as the writer rounds them.
+PointList nearest_doubles(const ConvexPolytope& p) {
+  PointList rounded;
+  for (Index v = 0; v < p.num_vertices(); ++v)
+    rounded.push_back(Vec3d{to_double(p.point(v).x), to_double(p.point(v).y), to_double(p.point(v).z)});
+  return rounded;
+}
+}  // namespace
+
+// A fold made coplanar by rounding: D = (0, 2, 1 - 2^-60) lies below the
+// plane z = 1 of A, B, C = (1, 2, 1); rounded, it lies on it.  Not certified
+// locally; the full path merges the two triangles: the box, 6 facets.
+TEST(IoRounding, FoldMadeCoplanarByRoundingIsMerged) {
+  const ConvexPolytope p = roof(Point3(Rational(0), Rational(2), Rational(1) - pow2(-60)),
+                               Point3(Rational(1), Rational(2), Rational(1)));
+  ASSERT_EQ(p.num_vertices(), 8u);
+  ASSERT_EQ(p.num_facets(), 7u);
+  EXPECT_FALSE(PolytopeBuilder::moved(p, nearest_doubles(p), nullptr).has_value());
+  RoundingReport r;
+  const ConvexPolytope w = writable_polytope(p, Format::off, {}, &r);
+  EXPECT_EQ(r.coordinates, 1u);
+  EXPECT_FALSE(r.hull);
+  EXPECT_EQ(w.num_vertices(), 8u);
+  EXPECT_EQ(w.num_facets(), 6u);
+  EXPECT_EQ(w.volume(), Rational(4));
+  EXPECT_EQ(w.check_invariants(), "");
+}
+
+// A fold made reflex by rounding: C = (1, 2, 0), so A B C spans the plane
+// z = 1 - y/2; D = (0, 2 - 2^-58, 7 * 2^-62) lies 2^-62 below it.  Rounded,
+// D = (0, 2, 7 * 2^-62) lies above the plane's height 0 there: the fold turns
+// reflex.  Not certified locally; the hull of the rounded points is written.
+TEST(IoRounding, FoldMadeReflexByRoundingIsNotCertified) {
+  const ConvexPolytope p = roof(Point3(Rational(0), Rational(2) - pow2(-58), 7 * pow2(-62)),
+                               Point3(Rational(1), Rational(2), Rational(0)));
+  ASSERT_EQ(p.num_vertices(), 8u);
+  EXPECT_FALSE(PolytopeBuilder::moved(p, nearest_doubles(p), nullptr).has_value());
+  RoundingReport r;
+  const ConvexPolytope w = writable_polytope(p, Format::off, {}, &r);
+  EXPECT_EQ(r.coordinates, 1u);
+  EXPECT_TRUE(r.hull);
+  EXPECT_EQ(w.check_invariants(), "");
+  for (const WriteMode& m : every_write_mode()) expect_reads_back(p, m, "reflex roof");
 }

@@ -6,11 +6,15 @@
 // or more vertices is then in general no longer exactly planar, and an edge
 // between two almost coplanar facets can turn reflex: a reader that checks
 // exactly refuses the file.  So the rounded mesh is validated exactly like a
-// file being read (ConvexPolytope::from_mesh); when it is not a convex
-// polytope, the exact convex hull of the rounded points is written instead:
+// file being read (ConvexPolytope::from_mesh), unless the rounded points
+// with p's structure are certified locally (PolytopeBuilder::moved, the
+// common case: linear, filtered predicates on the doubles); when it is not
+// a convex polytope, the exact convex hull of the rounded points is written
+// instead:
 // its facets are exactly planar and its edges convex by construction, and it
 // is within the largest rounding displacement of the exact solid.
 #include "io/readers.hpp"
+#include "mesh/builder.hpp"
 
 #include <minksum/io.hpp>
 #include <minksum/predicates.hpp>
@@ -19,6 +23,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <unordered_set>
 
 namespace minksum {
@@ -134,6 +139,12 @@ ConvexPolytope writable_polytope(const ConvexPolytope& p, Format format, const W
   if (r.coordinates == 0) {
     if (report) *report = r;
     return p;
+  }
+  // The common case, certified locally in linear time: p's structure on the
+  // rounded points (docs/data-model.md, "Writing rounded coordinates").
+  if (std::optional<ConvexPolytope> q = PolytopeBuilder::moved(p, m.points, &r.split)) {
+    if (report) *report = r;
+    return std::move(*q);
   }
   {
     std::unordered_set<Vec3d, BitsHash, BitsEqual> seen;

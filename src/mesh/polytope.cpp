@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <mutex>
@@ -328,6 +329,69 @@ long check_fan_t(const V& a, const std::vector<V>& d, const std::vector<V>* turn
 }  // namespace
 
 long check_fan(const Point3& a, const std::vector<Point3>& d) { return check_fan_t(a, d); }
+
+namespace {
+
+struct FanScratch {
+  std::vector<Point3> dirs;
+  std::vector<FastIPoint> idirs, inormals;
+};
+
+// Step 8's facet test: the polygon `poly` (intervals `ip` of the points
+// `pts`) turns strictly counter-clockwise about its normal, whose interval
+// is `n`, and winds once.  `exact_normal()` gives the exact normal when the
+// intervals cannot decide.
+template <class ExactNormal>
+bool convex_polygon(const std::vector<Index>& poly, const std::vector<FastIPoint>& ip, const PointList& pts,
+                    const FastIPoint& n, ExactNormal&& exact_normal, FanScratch& s) {
+  const std::size_t k = poly.size();
+  s.idirs.clear();
+  for (std::size_t i = 0; i < k; ++i) s.idirs.push_back(ip[poly[(i + 1) % k]] - ip[poly[i]]);
+  long r = check_fan_t(n, s.idirs);
+  if (r == kFanUncertain) {
+    s.dirs.clear();
+    for (std::size_t i = 0; i < k; ++i) s.dirs.push_back(pts.exact(poly[(i + 1) % k]) - pts.exact(poly[i]));
+    r = check_fan_t(exact_normal(), s.dirs);
+  }
+  return r < 0;
+}
+
+// Step 8's vertex test: around v (outgoing half-edge `start`; half-edge
+// arrays origin, prev, facet with twin(h) = h ^ 1), the edge directions,
+// seen along the axis minus their sum, turn strictly counter-clockwise and
+// wind once.  The facet between consecutive edges d_i, d_(i+1) (the facet
+// of the outgoing half-edge h_i) has its outward normal along
+// d_i x d_(i+1) once every facet is a strictly convex polygon, so the
+// intervals of the facets' normals `facet_normal` serve for the turns.
+bool convex_vertex(Index v, Index start, const Index* origin, const Index* prev, const Index* facet,
+                   const std::vector<FastIPoint>& ip, const std::vector<FastIPoint>& facet_normal,
+                   const PointList& pts, FanScratch& s) {
+  s.idirs.clear();
+  s.inormals.clear();
+  FastIPoint isum{FastInterval(0), FastInterval(0), FastInterval(0)};
+  Index h = start;
+  do {
+    s.idirs.push_back(ip[origin[h ^ 1u]] - ip[v]);
+    s.inormals.push_back(facet_normal[facet[h]]);
+    isum = isum + s.idirs.back();
+    h = prev[h] ^ 1u;
+  } while (h != start);
+  long r = check_fan_t(-isum, s.idirs, &s.inormals);
+  if (r == kFanUncertain) {
+    s.dirs.clear();
+    Point3 sum(Rational(0), Rational(0), Rational(0));
+    const Point3 pv = pts.exact(v);
+    do {
+      s.dirs.push_back(pts.exact(origin[h ^ 1u]) - pv);
+      sum = sum + s.dirs.back();
+      h = prev[h] ^ 1u;
+    } while (h != start);
+    r = is_zero(sum) ? 0 : check_fan_t(-sum, s.dirs);
+  }
+  return r < 0;
+}
+
+}  // namespace
 
 
 ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& source) {
@@ -715,20 +779,11 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
 
   // 8. Convexity: facets, edges, vertices (see the comment at the top).
   //    Each test runs on intervals first and exactly when undecided.
-  std::vector<Point3> dirs;
-  std::vector<FastIPoint> idirs;
+  FanScratch scratch;
   for (Index f = 0; f < final_faces.size(); ++f) {
     const auto& poly = final_faces[f];
     if (poly.size() == 3) continue;  // a triangle turns counter-clockwise about its own normal
-    idirs.clear();
-    for (std::size_t i = 0; i < poly.size(); ++i) idirs.push_back(fip[poly[(i + 1) % poly.size()]] - fip[poly[i]]);
-    long r = check_fan_t(finrm[f], idirs);
-    if (r == kFanUncertain) {
-      dirs.clear();
-      for (std::size_t i = 0; i < poly.size(); ++i) dirs.push_back(fpoint(poly[(i + 1) % poly.size()]) - fpoint(poly[i]));
-      r = check_fan_t(fnormal(f), dirs);
-    }
-    if (r >= 0)
+    if (!convex_polygon(poly, fip, fpts, finrm[f], [&]() -> const Point3& { return fnormal(f); }, scratch))
       throw NotConvexError(source, fct(merged_name[f]), "is not a convex polygon (the solid is not convex)");
   }
   for (Index h = 0; h < fg.num_halfedges(); h += 2) {
@@ -748,35 +803,10 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
                        "reflex edge between " + fct(merged_name[f]) + " and " + fct(merged_name[o]) +
                            " (the solid is not convex)");
   }
-  // Around a vertex, the facet between consecutive edges d_i, d_(i+1) (the
-  // facet of the outgoing half-edge h_i) has its outward normal along
-  // d_i x d_(i+1): every facet is a strictly convex polygon by now.
-  std::vector<FastIPoint> inormals;
-  for (Index v = 0; v < fpts.size(); ++v) {
-    idirs.clear();
-    inormals.clear();
-    FastIPoint isum{FastInterval(0), FastInterval(0), FastInterval(0)};
-    Index h = fg.vertex_he[v];
-    do {
-      idirs.push_back(fip[fg.origin[h ^ 1u]] - fip[v]);
-      inormals.push_back(finrm[fg.facet[h]]);
-      isum = isum + idirs.back();
-      h = fg.prev[h] ^ 1u;
-    } while (h != fg.vertex_he[v]);
-    long r = check_fan_t(-isum, idirs, &inormals);
-    if (r == kFanUncertain) {
-      dirs.clear();
-      Point3 sum(Rational(0), Rational(0), Rational(0));
-      const Point3 pv = fpoint(v);
-      do {
-        dirs.push_back(fpoint(fg.origin[h ^ 1u]) - pv);
-        sum = sum + dirs.back();
-        h = fg.prev[h] ^ 1u;
-      } while (h != fg.vertex_he[v]);
-      r = is_zero(sum) ? 0 : check_fan_t(-sum, dirs);
-    }
-    if (r >= 0) throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
-  }
+  for (Index v = 0; v < fpts.size(); ++v)
+    if (!convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), fip, finrm, fpts,
+                       scratch))
+      throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
 
   // 9. The polytope.
   ConvexPolytope p;
@@ -790,6 +820,204 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   p.vertex_he_ = std::move(fg.vertex_he);
   p.reset_cache();
   return p;
+}
+
+// Why the tests below suffice (see also the comment at the top): the
+// moved surface keeps p's vertices (pairwise distinct, checked first), its
+// edges and its facets, except that a quadrilateral cut along a diagonal
+// becomes two triangles, one more edge and one more facet.  So it is a
+// closed, connected, consistently oriented 2-manifold with V - E + F = 2,
+// point (1), without linking anything.  Each facet is then checked planar
+// (orient3d of its corners against its first three, zero) and strictly
+// convex turning counter-clockwise once about its normal, point (2); for a
+// triangle that is its edge tests below being nonzero.  Each edge p->q of
+// facet f (the next corner of f after q is c) with the facet o on its other
+// side (whose corner after p is d) is strictly convex exactly when
+// orient3d(p, q, c, d) < 0: f is a strictly convex planar polygon, so p, q,
+// c span its plane with (q - p) x (c - p) a positive multiple of its outward
+// normal, and d is a corner of o off the line p-q; zero would make f and o
+// coplanar (from_mesh would merge them: not certified here), point (3).
+// Point (4) is step 8's vertex test.  Then from_mesh would weld nothing,
+// merge nothing, drop no vertex (p has none of degree 2 and cutting adds
+// edges) and flip nothing: it would build this same structure.
+std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, const PointList& points,
+                                                     std::size_t* split) {
+  const Index nv = p.num_vertices(), nf0 = p.num_facets(), nh0 = p.num_halfedges();
+  if (points.form() != PointList::Form::doubles || points.size() != nv) return std::nullopt;
+  const std::vector<Vec3d>& v = points.approx();
+  // Pairwise distinct: open addressing on the coordinates' bits (zeros are
+  // stored unsigned, so equal points have equal bits).
+  {
+    auto bits = [](double d) {
+      std::uint64_t b;
+      std::memcpy(&b, &d, 8);
+      return b;
+    };
+    std::size_t n = 16;
+    while (n < 2 * std::size_t(nv) + 2) n *= 2;
+    std::vector<Index> slot(n, kNoIndex);
+    for (Index i = 0; i < nv; ++i) {
+      const Vec3d& a = v[i];
+      const std::uint64_t h = mix64(bits(a.x)) ^ (mix64(bits(a.y) + 0x9e3779b97f4a7c15ULL) * 3) ^
+                              (mix64(bits(a.z) + 0x3c6ef372fe94f82aULL) * 7);
+      for (std::size_t j = h & (n - 1);; j = (j + 1) & (n - 1)) {
+        if (slot[j] == kNoIndex) {
+          slot[j] = i;
+          break;
+        }
+        const Vec3d& b = v[slot[j]];
+        if (a.x == b.x && a.y == b.y && a.z == b.z) return std::nullopt;
+      }
+    }
+  }
+  // Facets still planar; a quadrilateral that is not is cut along the
+  // diagonal that folds outwards (1: a-c, when d lies below the plane of
+  // a, b, c; 2: b-d), as writable_polytope's full path cuts it.
+  std::vector<unsigned char> cut(nf0, 0);
+  std::size_t cuts = 0;
+  for (Index f = 0; f < nf0; ++f) {
+    const Index h0 = p.facet_he_[f], h1 = p.he_next_[h0], h2 = p.he_next_[h1];
+    Index h = p.he_next_[h2];
+    if (h == h0) continue;  // a triangle
+    const Vec3d &a = v[p.he_origin_[h0]], &b = v[p.he_origin_[h1]], &c = v[p.he_origin_[h2]];
+    bool planar = true;
+    for (; h != h0 && planar; h = p.he_next_[h]) planar = orient3d(a, b, c, v[p.he_origin_[h]]) == 0;
+    if (planar) continue;
+    const Index h3 = p.he_next_[h2];
+    if (p.he_next_[h3] != h0) return std::nullopt;  // a larger polygon: the full path cuts it by a hull
+    cut[f] = orient3d(a, b, c, v[p.he_origin_[h3]]) < 0 ? 1 : 2;
+    ++cuts;
+  }
+  // The structure: p's half-edges, then one edge per cut quadrilateral.
+  // Facets are numbered as the full path's mesh lists them: a cut facet's
+  // two pieces take consecutive numbers, each starting where that mesh's
+  // polygon starts.
+  const Index nh = nh0 + Index(2 * cuts), nf = nf0 + Index(cuts);
+  std::vector<Index> origin(p.he_origin_), next(p.he_next_), facet(nh), facet_he(nf);
+  origin.resize(nh);
+  next.resize(nh);
+  {
+    Index g = 0, e = nh0;
+    for (Index f = 0; f < nf0; ++f) {
+      const Index h0 = p.facet_he_[f];
+      if (!cut[f]) {
+        Index h = h0;
+        do {
+          facet[h] = g;
+          h = p.he_next_[h];
+        } while (h != h0);
+        facet_he[g++] = h0;
+        continue;
+      }
+      const Index h1 = p.he_next_[h0], h2 = p.he_next_[h1], h3 = p.he_next_[h2];
+      const Index a = p.he_origin_[h0], b = p.he_origin_[h1], c = p.he_origin_[h2], d = p.he_origin_[h3];
+      if (cut[f] == 1) {  // (a, b, c), (a, c, d): e = a->c, e + 1 = c->a
+        origin[e] = a, origin[e + 1] = c;
+        next[h1] = e + 1, next[e + 1] = h0, next[h3] = e, next[e] = h2;
+        facet[h0] = facet[h1] = facet[e + 1] = g, facet_he[g] = h0;
+        facet[e] = facet[h2] = facet[h3] = g + 1, facet_he[g + 1] = e;
+      } else {  // (b, c, d), (b, d, a): e = d->b, e + 1 = b->d
+        origin[e] = d, origin[e + 1] = b;
+        next[h2] = e, next[e] = h1, next[h0] = e + 1, next[e + 1] = h3;
+        facet[h1] = facet[h2] = facet[e] = g, facet_he[g] = h1;
+        facet[e + 1] = facet[h3] = facet[h0] = g + 1, facet_he[g + 1] = e + 1;
+      }
+      g += 2;
+      e += 2;
+    }
+  }
+  // Point (3): every edge strictly convex, by the kernel's filtered orient3d.
+  for (Index h = 0; h < nh; h += 2) {
+    const Index q = origin[h + 1];
+    if (orient3d(v[origin[h]], v[q], v[origin[next[next[h]]]], v[origin[next[next[h + 1]]]]) >= 0)
+      return std::nullopt;
+  }
+  ConvexPolytope r = from_trusted_parts(points, std::move(origin), std::move(next), std::move(facet),
+                                        std::move(facet_he));
+  // Point (4) on the doubles first.  The vertex test holds for any axis a
+  // (projected along a, the facets around v are wedges of angle below pi;
+  // turning strictly counter-clockwise and winding once, they cover a
+  // neighbourhood of v's projection once, so the surface near v is a graph
+  // over the plane orthogonal to a).  Here a = v - c, c the mean of the
+  // points computed in doubles (its rounding is irrelevant: c is some double
+  // point, inside a convex solid): then det(a, d_i, d_j) =
+  // -orient3d(v, u_i, u_j, c), the kernel's filtered orient3d.  A vertex
+  // where a sign is zero or the test fails is left to step 8's test (axis
+  // minus the sum of its edge directions, on intervals, exact when they
+  // cannot decide), which decides; it often cannot decide on intervals where
+  // opposite edges of a Minkowski sum make that axis's projection
+  // degenerate, and then computes in rationals.
+  Vec3d c{0, 0, 0};
+  for (Index i = 0; i < nv; ++i) c = Vec3d{c.x + v[i].x / nv, c.y + v[i].y / nv, c.z + v[i].z / nv};
+  const bool c_ok = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
+  std::vector<Index> around, undecided;
+  for (Index i = 0; i < nv; ++i) {
+    around.clear();
+    Index h = r.vertex_he_[i];
+    do {
+      around.push_back(r.he_origin_[h ^ 1u]);
+      h = r.he_prev_[h] ^ 1u;
+    } while (h != r.vertex_he_[i]);
+    const std::size_t k = around.size();
+    bool ok = c_ok;
+    for (std::size_t j = 0; j < k && ok; ++j)
+      ok = orient3d(v[i], v[around[j]], v[around[j + 1 == k ? 0 : j + 1]], c) < 0;
+    // Winding: the side of d_j of the reference ray d_0 (within (0, pi)
+    // counter-clockwise, or within (pi, 2 pi)); each step turns by less than
+    // pi, so it passes the ray exactly when it goes from the second side
+    // back to the first, or to d_0 itself at the end.
+    long winding = 0;
+    bool prev_second = false;
+    for (std::size_t j = 1; j < k && ok; ++j) {
+      const int side = -orient3d(v[i], v[around[0]], v[around[j]], c);
+      if (side == 0) ok = false;  // along the ray or against it: step 8's test decides
+      if (prev_second && side > 0) ++winding;
+      prev_second = side < 0;
+    }
+    winding += prev_second;
+    if (!ok || winding != 1) undecided.push_back(i);
+  }
+  // Points (2) for polygons and (4) where the doubles did not decide, on
+  // intervals (exact when undecided), as step 8 of build.
+  bool polygons = false;
+  for (Index f = 0; f < nf && !polygons; ++f) polygons = r.facet_degree(f) > 3;
+  if (polygons || !undecided.empty()) {
+    std::vector<FastIPoint> ip(nv), nrm(nf);
+    CGAL::Protect_FPU_rounding<true> upward;
+    for (Index i = 0; i < nv; ++i) ip[i] = {FastInterval(v[i].x), FastInterval(v[i].y), FastInterval(v[i].z)};
+    FanScratch scratch;
+    std::vector<Index> loop;
+    for (Index f = 0; f < nf; ++f) {
+      const Index h0 = r.facet_he_[f];
+      const FastIPoint& o = ip[r.he_origin_[h0]];
+      Index h = r.he_next_[h0];
+      FastIPoint prev = ip[r.he_origin_[h]] - o, n{FastInterval(0), FastInterval(0), FastInterval(0)};
+      std::size_t k = 2;
+      for (h = r.he_next_[h]; h != h0; h = r.he_next_[h], ++k) {
+        FastIPoint cur = ip[r.he_origin_[h]] - o;
+        n = n + cross(prev, cur);
+        prev = cur;
+      }
+      nrm[f] = n;
+      if (k == 3) continue;
+      loop.clear();
+      h = h0;
+      do {
+        loop.push_back(r.he_origin_[h]);
+        h = r.he_next_[h];
+      } while (h != h0);
+      Point3 exact;
+      if (!convex_polygon(loop, ip, points, n,
+                          [&]() -> const Point3& { return exact = polygon_normal(points, loop); }, scratch))
+        return std::nullopt;
+    }
+    for (Index i : undecided)
+      if (!convex_vertex(i, r.vertex_he_[i], r.he_origin_.data(), r.he_prev_.data(), r.he_facet_.data(), ip, nrm,
+                         points, scratch))
+        return std::nullopt;
+  }
+  if (split) *split = cuts;
+  return r;
 }
 
 void PolytopeBuilder::canonicalize_facets(ConvexPolytope& p) {

@@ -3,6 +3,7 @@
 
 #include <minksum/polytope.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,21 @@ class PolytopeBuilder {
   static ConvexPolytope from_trusted_parts(PointList points, std::vector<Index> he_origin,
                                            std::vector<Index> he_next, std::vector<Index> he_facet,
                                            std::vector<Index> facet_he);
+
+  // The polytope p with its vertices moved to `points` (doubles: the
+  // rounded coordinates a writer prints; as many as p's vertices), when the
+  // moved surface is provably again a convex polytope with p's facets, or
+  // with quadrilaterals no longer planar split along the diagonal that folds
+  // outwards (*split counts them).  Certified locally, without validating
+  // the mesh from scratch (docs/data-model.md, "Writing rounded
+  // coordinates"): p's topology is kept, so every facet planar and strictly
+  // convex, every edge strictly convex and every vertex winding once make it
+  // a convex polytope, the same from_mesh would build from the moved mesh.
+  // nullopt when some point repeats, a larger polygon is no longer planar,
+  // two neighbouring facets became coplanar or a test fails: the caller
+  // validates the mesh in full then.
+  static std::optional<ConvexPolytope> moved(const ConvexPolytope& p, const PointList& points,
+                                             std::size_t* split);
 
 };
 

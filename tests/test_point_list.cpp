@@ -487,3 +487,21 @@ TEST(ToFloat, NearestAgainstMpfr) {
     }
   }
 }
+
+// Regression: to_double of a dyadic rational in the subnormal range went
+// through ldexp, which rounds in the caller's rounding mode: with FE_DOWNWARD
+// it gave the double below the nearest one.
+TEST(ToDouble, SubnormalDyadicIsNearestInEveryMode) {
+  const Rational q = Rational(Integer(1226299077618285L)) / (Integer(1) << 1120);  // 53 bits, subnormal
+  const Rational r = Rational(Integer(3)) / (Integer(1) << 1076);                   // 3/4 of the smallest subnormal
+  const double want_q = mpfr_nearest(q), want_r = mpfr_nearest(r);
+  const int old = std::fegetround();
+  for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+    std::fesetround(mode);
+    const double got_q = to_double(q), got_r = to_double(r), got_nq = to_double(-q);
+    std::fesetround(old);
+    EXPECT_EQ(got_q, want_q) << "mode " << mode;
+    EXPECT_EQ(got_nq, -want_q) << "mode " << mode;
+    EXPECT_EQ(got_r, want_r) << "mode " << mode;
+  }
+}

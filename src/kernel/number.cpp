@@ -26,13 +26,15 @@ bool is_zero(const Point3& a) { return sgn(a.x) == 0 && sgn(a.y) == 0 && sgn(a.z
 // Round n/d (d > 0) to the nearest double, ties to even, with gradual
 // underflow and overflow to infinity.  mpq_get_d truncates, so it is not used.
 namespace {
-// Fast path: q = m / 2^k with |m| < 2^53 is exactly m * 2^-k, and ldexp
-// rounds correctly if the result is subnormal.  Returns false otherwise.
+// Fast path: q = m / 2^k with |m| < 2^53 and k ≤ 1022 is exactly the normal
+// double m * 2^-k.  Returns false otherwise (a subnormal result would be
+// rounded by ldexp in the current rounding mode, not to nearest).
 bool dyadic_short(const Rational& q, double& out) {
   const mpz_srcptr den = q.get_den_mpz_t();
   const mpz_srcptr num = q.get_num_mpz_t();
   std::size_t dbits = mpz_sizeinbase(den, 2);
   if (mpz_scan1(den, 0) != dbits - 1) return false;  // not a power of two
+  if (dbits - 1 > 1022) return false;
   if (mpz_sizeinbase(num, 2) > 53) return false;
   out = std::ldexp(mpz_get_d(num), -int(dbits - 1));
   return true;

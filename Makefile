@@ -139,6 +139,18 @@ bench-python:
 	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target minksum_python
 	PYTHONPATH=$(BENCH_BUILD)/python /usr/bin/python3 bench/python_bench.py --page docs/python.md --command "make bench-python"
 
+# The walk against the conversion of its result to a ConvexPolytope
+# (to_polytope), alternating on the pairs of docs/data-model.md.
+CONVERSION_PAIRS ?= sphere:3 sphere:3@rot:1 sphere:4 sphere:4@rot:1 sphere:5 sphere:5@rot:1 \
+                    sphere:6 sphere:6@rot:1 sphere:5@rot:1 sphere:5@rot:2 icosahedron icosahedron@rot:1 \
+                    pentagonal-hexecontahedron truncated-icosidodecahedron cube box:1:2:3@rot:1 cube sphere:6
+.PHONY: bench-conversion
+bench-conversion:
+	@$(MAKE) --no-print-directory setup
+	$(BENCH_CONFIGURE)
+	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target bench_conversion
+	$(BENCH_BUILD)/bin/bench_conversion $(CONVERSION_PAIRS)
+
 bench-quick:
 	@$(MAKE) --no-print-directory setup
 	$(BENCH_CONFIGURE)

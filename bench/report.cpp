@@ -161,7 +161,7 @@ void walk_targets(std::ostream& md, const RunInfo& info, const std::vector<Conte
   }
   md << "walk's time, here and in every table below, is `minkowski_walk` alone: its result is the exact sum as a "
         "half-edge structure with implicit coordinates (each vertex a pair of input vertices), and the counts are "
-        "read off it. The conversion to explicit exact rational coordinates and canonical planes (`to_polytope`, "
+        "read off it. The conversion to a polytope with explicit exact coordinates (`to_polytope`, "
         "what `minkowski_sum(a, b, Method::walk)` adds) is timed separately, once, after the cell's first walk, and "
         "shown as the "
         "second figure of walk's cells, `(+ conversion s)`. A ratio is the competitor's median ÷ walk's median, "
@@ -329,8 +329,8 @@ void write_markdown(const std::string& path, const std::string& svg_name, const 
      << (std::any_of(cs.begin(), cs.end(), [](const Contender& c) { return c.key == "walk"; })
              ? "; except **walk**: `minkowski_walk(a, b)` alone, whose result is the exact sum as a half-edge "
                "structure with implicit coordinates (vertex = pair of input vertices); `(+ conversion s)` is "
-               "`to_polytope`, the conversion of that result to explicit exact rational coordinates and canonical "
-               "planes, timed once after the cell's first walk (so that the walk's runs follow each other like every other "
+               "`to_polytope`, the conversion of that result to a polytope with explicit exact coordinates "
+               "(planes on demand), timed once after the cell's first walk (so that the walk's runs follow each other like every other "
                "contender's) and not included in the first figure (walk's first "
                "figure plus its conversion is what `minkowski_sum(a, b, Method::walk)` costs)"
              : "")

@@ -487,3 +487,249 @@ TEST(ToFloat, NearestAgainstMpfr) {
     }
   }
 }
+
+// to_double_rest: the nearest double (as MPFR's), and a rest with a bound
+// that holds exactly, zero exactly for doubles; random rationals of every
+// size, exact ties and near-ties, in every rounding mode.
+namespace {
+Rational pow2(int e) {
+  Rational r(1);
+  if (e > 0) mpq_mul_2exp(r.get_mpq_t(), r.get_mpq_t(), mp_bitcnt_t(e));
+  else mpq_div_2exp(r.get_mpq_t(), r.get_mpq_t(), mp_bitcnt_t(-e));
+  return r;
+}
+// "" when (hi, lo, err) is a valid rest of q, else what is wrong.
+std::string rest_problem(const Rational& q, double hi, double lo, double err) {
+  if (!(hi == mpfr_nearest(q))) return "hi is not the nearest double";
+  if (std::isinf(hi)) return lo == 0 && err == HUGE_VAL ? "" : "overflow without an infinite bound";
+  if (!(err >= 0) || std::isnan(lo)) return "bad lo or err";
+  if (abs(q - Rational(hi) - Rational(lo)) > Rational(err)) return "|q - hi - lo| > err";
+  if ((lo == 0 && err == 0) != is_double(q)) return "lo = err = 0 must say exactly whether q is a double";
+  return "";
+}
+}  // namespace
+
+TEST(ToDoubleRest, BoundHoldsAgainstExactRestInEveryMode) {
+  const int modes[] = {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO};
+  const int old = std::fegetround();
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    std::mt19937_64 rng(seed);
+    for (int i = 0; i < 1500; ++i) {
+      const int nb = 1 + int(rng() % 300), db = 1 + int(rng() % 300);
+      Rational q(random_integer(rng, nb), random_integer(rng, db));
+      if (i % 5 == 0) q = Rational(random_integer(rng, nb));  // an integer: dyadic, often more than 53 bits
+      if (i % 7 == 0) q = Rational(random_integer(rng, nb), Integer(1) << int(rng() % 200));  // dyadic
+      q.canonicalize();
+      if (rng() & 1) q = -q;
+      const int shift = int(rng() % 2300) - 1150;  // every path: subnormals, overflow, the ±900 window
+      q *= pow2(shift);
+      for (int mode : modes) {
+        std::fesetround(mode);
+        double hi, lo, err;
+        to_double_rest(q, hi, lo, err);
+        std::fesetround(old);
+        ASSERT_EQ(rest_problem(q, hi, lo, err), "")
+            << "seed " << seed << " case " << i << " mode " << mode << ": " << format_exact(q);
+      }
+    }
+  }
+  // Ties (55- and 56-bit odd numerators), a tiny excess either way, doubles
+  // stored as rationals, zero; at exponents in and out of the fast window.
+  for (int e : {-1100, -1070, -1000, -950, -901, -899, -60, 0, 52, 899, 901, 969}) {
+    for (std::uint64_t m : {(std::uint64_t(1) << 54) + 1, (std::uint64_t(1) << 55) + 2, (std::uint64_t(1) << 55) - 2,
+                            (std::uint64_t(1) << 53) - 1, std::uint64_t(3)}) {
+      const Rational t = Rational(Integer(static_cast<unsigned long>(m))) * pow2(e);
+      for (const Rational& q : {t, Rational(t + pow2(e - 3000)), Rational(t - pow2(e - 3000)), Rational(-t)}) {
+        double hi, lo, err;
+        to_double_rest(q, hi, lo, err);
+        EXPECT_EQ(rest_problem(q, hi, lo, err), "") << m << " * 2^" << e;
+      }
+    }
+  }
+  double hi = 1, lo = 1, err = 1;
+  to_double_rest(Rational(0), hi, lo, err);
+  EXPECT_TRUE(hi == 0 && lo == 0 && err == 0 && !std::signbit(hi));
+}
+
+// The lazy sums: operands of every form (doubles, exact pairs, rationals,
+// and lazy sums themselves) with coordinates chosen to sit on and next to
+// the midpoints between doubles, near zero, subnormal and huge.  Each sum's
+// approx is the nearest double (MPFR), its rest bound holds, is_double is
+// exact, exact() and exact_ref() are the GMP sum, in every rounding mode.
+namespace {
+// A coordinate for operand lists built to make the sums' roundings hard.
+Rational hard_coordinate(std::mt19937_64& rng, double base) {
+  const double ulp = std::ldexp(1.0, std::ilogb(base == 0 ? 1.0 : base) - 52);
+  switch (rng() % 9) {
+    case 0: return Rational(0);
+    case 1: return Rational(ulp / 2);  // exactly a half ulp: ties
+    case 2: return Rational(-ulp / 2);
+    case 3: return Rational(ulp / 2) + pow2(-300);  // just past a tie
+    case 4: return Rational(ulp / 2) - pow2(-1200);
+    case 5: return Rational(1, 3) * Rational(ulp);
+    case 6: return Rational(Integer(long(rng() % 1000000) + 1), Integer(long(rng() % 999983) + 1));
+    case 7: return Rational(wild_double(rng));
+    default: return Rational(base) + Rational(Integer(1), Integer(3) << int(rng() % 1200));
+  }
+}
+PointList hard_list(std::mt19937_64& rng, int form, const std::vector<double>& bases) {
+  PointList l;
+  for (std::size_t i = 0; i + 2 < bases.size(); i += 3) {
+    Point3 p;
+    for (int k = 0; k < 3; ++k) {
+      const double b = bases[i + std::size_t(k)];
+      if (form == 0) p[k] = Rational(b);
+      else p[k] = hard_coordinate(rng, b);
+    }
+    if (form == 1) {
+      double hi[3], lo[3];
+      for (int k = 0; k < 3; ++k) two_sum(bases[i + std::size_t(k)], std::ldexp(bases[i + std::size_t(k)], -60), hi[k], lo[k]);
+      l.push_pair(Vec3d{hi[0], hi[1], hi[2]}, Vec3d{lo[0], lo[1], lo[2]});
+    } else {
+      l.push_back(p);
+    }
+  }
+  return l;
+}
+std::string sum_problem(const PointList& s, std::size_t m, const Point3& want) {
+  if (!(s.exact(m) == want)) return "exact() is not the exact sum";
+  if (s.is_double(m) != is_double(want)) return "is_double is wrong";
+  for (int k = 0; k < 3; ++k) {
+    if (!(s.approx(m)[k] == mpfr_nearest(want[k]))) return "approx is not the nearest double";
+    if (std::signbit(s.approx(m)[k]) && s.approx(m)[k] == 0) return "a negative zero";
+    if (s.form() == PointList::Form::rationals && std::isfinite(s.approx(m)[k]) &&
+        abs(want[k] - Rational(s.approx(m)[k]) - Rational(s.low(m)[k])) > Rational(s.low_error(m)[k]))
+      return "|exact - approx - low| > low_error";
+  }
+  return "";
+}
+}  // namespace
+
+TEST(SumCoordinates, LazySumsAgreeWithExactOnHardInputs) {
+  const int old = std::fegetround();
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::vector<double> bases;
+    for (int i = 0; i < 3 * 40; ++i) {
+      const int kind = int(rng() % 6);
+      bases.push_back(kind == 0 ? 0.0 : kind == 1 ? std::ldexp(1.0, int(rng() % 60) - 30) : wild_double(rng));
+    }
+    std::vector<double> neg = bases;
+    for (double& b : neg) b = -b;  // sums that cancel exactly or nearly
+    for (int fa = 0; fa < 3; ++fa)
+      for (int fb = 0; fb < 3; ++fb) {
+        const PointList a = hard_list(rng, fa, bases), b = hard_list(rng, fb, rng() % 2 ? neg : bases);
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+        for (std::uint32_t i = 0; i < a.size(); ++i)
+          for (std::uint32_t j = 0; j < b.size(); j += 3) pairs.emplace_back(i, (i + j) % std::uint32_t(b.size()));
+        for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+          std::fesetround(mode);
+          const PointList s = PointList::sums(pairs, a, b);
+          std::fesetround(old);
+          for (std::size_t m = 0; m < pairs.size(); ++m) {
+            const Point3 want = a.exact(pairs[m].first) + b.exact(pairs[m].second);
+            ASSERT_EQ(sum_problem(s, m, want), "")
+                << "seed " << seed << " forms " << fa << "+" << fb << " mode " << mode << " pair " << m;
+          }
+          if (s.form() == PointList::Form::rationals) {
+            for (std::size_t m = 0; m < pairs.size(); ++m) {
+              ASSERT_EQ(s.exact_ref(m), a.exact(pairs[m].first) + b.exact(pairs[m].second)) << "seed " << seed;
+            }
+          }
+          // A sum of sums: the lazy list as an operand.
+          if (mode == FE_TONEAREST && s.size() > 7) {
+            const std::vector<std::pair<std::uint32_t, std::uint32_t>> again = {{0, 1}, {3, 2}, {5, 5}, {7, 0}};
+            const PointList t = PointList::sums(again, s, s);
+            for (std::size_t m = 0; m < again.size(); ++m)
+              ASSERT_EQ(sum_problem(t, m, s.exact(again[m].first) + s.exact(again[m].second)), "")
+                  << "seed " << seed << " sum of sums " << m;
+          }
+        }
+      }
+  }
+}
+
+// Ties decided by the low parts: a double plus a rational exactly half an
+// ulp away rounds to even; a hair more or less decides; zero and -0.0.
+TEST(SumCoordinates, TiesAndZerosInLazySums) {
+  const double one = 1.0, odd = 1.0 + 0x1p-52;
+  struct Case {
+    double a;
+    Rational b;
+  } cases[] = {
+      {one, Rational(0x1p-53)},                                  // tie, to even: 1
+      {odd, Rational(0x1p-53)},                                  // tie, to even: up
+      {one, Rational(0x1p-53) + pow2(-400)},                     // past the tie: up
+      {odd, Rational(0x1p-53) - pow2(-1300)},                    // short of it: down
+      {one, Rational(-0x1p-54)},                                 // tie below a power of two
+      {one, Rational(-0x1p-54) + Rational(1, 3) * pow2(-200)},   // just inside
+      {-0.0, Rational(1, 3)},
+      {0.0, Rational(0)},
+      {-0x1p-1074, Rational(0x1p-1074)},                         // cancels to zero
+      {1e300, Rational(1e300) / 3},
+      {0x1p-1000, Rational(1, 3) * pow2(-1000)},                 // below the filter's range
+  };
+  for (const Case& c : cases) {
+    PointList a, b;
+    a.push_back(Vec3d{c.a, c.a, 0.0});
+    b.push_back(Point3(c.b, Rational(1, 7), Rational(1, 5)));
+    ASSERT_EQ(b.form(), PointList::Form::rationals);
+    const PointList s = PointList::sums({{0, 0}}, a, b);
+    const Point3 want = a.exact(0) + b.exact(0);
+    EXPECT_EQ(sum_problem(s, 0, want), "") << c.a << " + " << format_exact(c.b);
+  }
+}
+
+// A lazy list is shared by its copies, and becomes a list of its own when
+// changed; concurrent exact_ref()/exact() calls on one list and its copy all
+// see the same points.
+TEST(SumCoordinates, LazyListCopiesAndConcurrentReaders) {
+  const ConvexPolytope a = catalog_polytope("icosahedron"), b = catalog_polytope("sphere:2@rot:1");
+  ASSERT_EQ(b.coordinates().form(), PointList::Form::rationals);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (std::uint32_t i = 0; i < a.num_vertices(); ++i)
+    for (std::uint32_t j = 0; j < b.num_vertices(); j += 5) pairs.emplace_back(i, j);
+  const PointList s = PointList::sums(pairs, a.coordinates(), b.coordinates());
+  ASSERT_EQ(s.form(), PointList::Form::rationals);
+  std::vector<Point3> want;
+  for (auto [i, j] : pairs) want.push_back(a.point(i) + b.point(j));
+  const PointList copy = s;
+  std::vector<Point3> got[4];
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      const PointList& l = t % 2 ? copy : s;
+      for (std::size_t m = 0; m < l.size(); ++m) got[t].push_back(t < 2 ? l.exact_ref(m) : l.exact(m));
+    });
+  for (auto& th : threads) th.join();
+  for (int t = 0; t < 4; ++t) EXPECT_EQ(got[t], want) << "reader " << t;
+  PointList changed = s;
+  changed.negate();
+  changed.set(1, P(1, 2, 3));
+  changed.push_back(Q("1/3", "1", "1"));
+  EXPECT_EQ(changed.size(), s.size() + 1);
+  EXPECT_EQ(changed.exact(0), -want[0]);
+  EXPECT_EQ(changed.exact(1), P(1, 2, 3));
+  EXPECT_EQ(changed.approx(0).x, to_double(-want[0].x));
+  for (std::size_t m = 0; m < s.size(); ++m) ASSERT_EQ(s.exact_ref(m), want[m]) << "the original is unchanged";
+  EXPECT_TRUE(copy == s);
+  EXPECT_FALSE(changed == s);
+}
+
+// Regression: to_double of a dyadic rational in the subnormal range went
+// through ldexp, which rounds in the caller's rounding mode: with FE_DOWNWARD
+// it gave the double below the nearest one.
+TEST(ToDouble, SubnormalDyadicIsNearestInEveryMode) {
+  const Rational q = Rational(Integer(1226299077618285L)) / (Integer(1) << 1120);  // 53 bits, subnormal
+  const Rational r = Rational(Integer(3)) / (Integer(1) << 1076);                   // 3/4 of the smallest subnormal
+  const double want_q = mpfr_nearest(q), want_r = mpfr_nearest(r);
+  const int old = std::fegetround();
+  for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+    std::fesetround(mode);
+    const double got_q = to_double(q), got_r = to_double(r), got_nq = to_double(-q);
+    std::fesetround(old);
+    EXPECT_EQ(got_q, want_q) << "mode " << mode;
+    EXPECT_EQ(got_nq, -want_q) << "mode " << mode;
+    EXPECT_EQ(got_r, want_r) << "mode " << mode;
+  }
+}

@@ -26,13 +26,15 @@ bool is_zero(const Point3& a) { return sgn(a.x) == 0 && sgn(a.y) == 0 && sgn(a.z
 // Round n/d (d > 0) to the nearest double, ties to even, with gradual
 // underflow and overflow to infinity.  mpq_get_d truncates, so it is not used.
 namespace {
-// Fast path: q = m / 2^k with |m| < 2^53 is exactly m * 2^-k, and ldexp
-// rounds correctly if the result is subnormal.  Returns false otherwise.
+// Fast path: q = m / 2^k with |m| < 2^53 and k ≤ 1022 is exactly the normal
+// double m * 2^-k.  Returns false otherwise (a subnormal result would be
+// rounded by ldexp in the current rounding mode, not to nearest).
 bool dyadic_short(const Rational& q, double& out) {
   const mpz_srcptr den = q.get_den_mpz_t();
   const mpz_srcptr num = q.get_num_mpz_t();
   std::size_t dbits = mpz_sizeinbase(den, 2);
   if (mpz_scan1(den, 0) != dbits - 1) return false;  // not a power of two
+  if (dbits - 1 > 1022) return false;
   if (mpz_sizeinbase(num, 2) > 53) return false;
   out = std::ldexp(mpz_get_d(num), -int(dbits - 1));
   return true;
@@ -45,21 +47,21 @@ namespace {
 // then rounded to 53 with its low bits and the remainder as sticky bit.
 // Returns false (nothing decided) near or beyond the ends of the double
 // range, where the general code below handles subnormals and overflow.
-bool to_double_fast(mpz_srcptr n, mpz_srcptr d, double& out) {
-  // Scratch integers, one set per thread, freed when the thread ends.
-  struct Scratch {
-    mpz_t t, m, r;
-    Scratch() { mpz_inits(t, m, r, nullptr); }
-    ~Scratch() { mpz_clears(t, m, r, nullptr); }
-    Scratch(const Scratch&) = delete;
-    Scratch& operator=(const Scratch&) = delete;
-  };
-  thread_local Scratch scratch;
-  mpz_ptr t = scratch.t, m = scratch.m, r = scratch.r;
-  const long bn = long(mpz_sizeinbase(n, 2)), bd = long(mpz_sizeinbase(d, 2));
-  const long e0 = bn - bd;                // floor(log2(|n|/d)) is e0 or e0 - 1
-  if (e0 > 1000 || e0 < -1000) return false;
-  const long k = 55 - e0;                 // |n| 2^k / d lies in [2^54, 2^56)
+// Scratch integers, one set per thread, freed when the thread ends.
+struct Scratch {
+  mpz_t t, m, r;
+  Scratch() { mpz_inits(t, m, r, nullptr); }
+  ~Scratch() { mpz_clears(t, m, r, nullptr); }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+};
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
+}
+
+// m, r = the quotient and remainder of |n| 2^k / d (d > 0), in scratch.
+void scaled_quotient(mpz_srcptr n, mpz_srcptr d, long k, mpz_ptr t, mpz_ptr m, mpz_ptr r) {
   if (k >= 0) {
     mpz_mul_2exp(t, n, mp_bitcnt_t(k));
     mpz_abs(t, t);
@@ -69,6 +71,16 @@ bool to_double_fast(mpz_srcptr n, mpz_srcptr d, double& out) {
     mpz_abs(m, n);
     mpz_tdiv_qr(m, r, m, t);
   }
+}
+
+bool to_double_fast(mpz_srcptr n, mpz_srcptr d, double& out) {
+  Scratch& s = scratch();
+  mpz_ptr t = s.t, m = s.m, r = s.r;
+  const long bn = long(mpz_sizeinbase(n, 2)), bd = long(mpz_sizeinbase(d, 2));
+  const long e0 = bn - bd;                // floor(log2(|n|/d)) is e0 or e0 - 1
+  if (e0 > 1000 || e0 < -1000) return false;
+  const long k = 55 - e0;                 // |n| 2^k / d lies in [2^54, 2^56)
+  scaled_quotient(n, d, k, t, m, r);
   const int bm = int(mpz_sizeinbase(m, 2));  // 55 or 56
   const std::uint64_t q = mpz_get_ui(m);
   const int drop = bm - 53;                  // 2 or 3 low bits to round away
@@ -119,6 +131,71 @@ double to_double(const Rational& q) {
   if (double d; to_double_fast(q.get_num_mpz_t(), q.get_den_mpz_t(), d)) return s < 0 ? -d : d;
   const double v = round_to_binary(abs(q.get_num()), q.get_den(), 53, -1074, 1023);
   return s < 0 ? -v : v;
+}
+
+namespace {
+// to_double_rest for |n| / d with floor(log2) within ±900: the quotient of
+// |n| 2^k / d with 113 or 114 bits, M + r/d; hi is M rounded to 53 bits
+// (ties to even, the remainder r as sticky bit), H its integer value, and
+// R = M − H (|R| ≤ 2^60) what is left: |n|/d − hi = (R + r/d) 2^−k.
+// lo = R 2^−k, exact when |R| < 2^53 and r = 0; otherwise off by less than
+// one unit of R's double (≤ |R| 2^−52, whatever the rounding mode) plus
+// r/d < 1, in units of 2^−k: err = (⌊|R| / 2^52⌋ + 2) 2^−k.  Every double
+// made here is an exact ldexp of a small integer.
+bool to_double_rest_fast(mpz_srcptr n, mpz_srcptr d, double& hi, double& lo, double& err) {
+  Scratch& s = scratch();
+  mpz_ptr t = s.t, m = s.m, r = s.r;
+  const long e0 = long(mpz_sizeinbase(n, 2)) - long(mpz_sizeinbase(d, 2));
+  if (e0 > 900 || e0 < -900) return false;
+  const long k = 113 - e0;  // |n| 2^k / d lies in [2^112, 2^114)
+  scaled_quotient(n, d, k, t, m, r);
+  static_assert(GMP_NUMB_BITS == 64, "two limbs hold the 114-bit quotient");
+  const unsigned __int128 M = (unsigned __int128)(mpz_getlimbn(m, 1)) << 64 | mpz_getlimbn(m, 0);
+  const int bm = 128 - __builtin_clzll(std::uint64_t(M >> 64));  // 113 or 114
+  const int drop = bm - 53;                                     // 60 or 61
+  std::uint64_t kept = std::uint64_t(M >> drop);
+  const std::uint64_t rest = std::uint64_t(M) & ((std::uint64_t(1) << drop) - 1);
+  const std::uint64_t half = std::uint64_t(1) << (drop - 1);
+  const bool sticky = mpz_sgn(r) != 0;
+  std::int64_t R = std::int64_t(rest);
+  if (rest > half || (rest == half && (sticky || (kept & 1)))) {
+    ++kept;  // <= 2^53
+    R -= std::int64_t(std::uint64_t(1) << drop);
+  }
+  hi = std::ldexp(double(kept), int(drop - k));
+  lo = std::ldexp(double(R), int(-k));
+  const std::uint64_t aR = std::uint64_t(R < 0 ? -R : R);
+  err = !sticky && aR < (std::uint64_t(1) << 53) ? 0.0 : std::ldexp(double((aR >> 52) + 2), int(-k));
+  return true;
+}
+}  // namespace
+
+void to_double_rest(const Rational& q, double& hi, double& lo, double& err) {
+  lo = 0;
+  err = 0;
+  const int s = sgn(q);
+  if (s == 0) {
+    hi = 0;
+    return;
+  }
+  if (dyadic_short(q, hi)) return;  // exact
+  if (to_double_rest_fast(q.get_num_mpz_t(), q.get_den_mpz_t(), hi, lo, err)) {
+    if (s < 0) hi = -hi, lo = -lo;
+    return;
+  }
+  // Near the ends of the range: the rest exactly, then its nearest double,
+  // whose error is at most half an ulp: ≤ |lo| 2^−53 when normal, ≤ 2^−1075
+  // below (both covered by |lo| 2^−52 + 2^−1000, a sum that rounds up or
+  // to a value ≥ both terms in every mode).
+  hi = to_double(q);
+  if (!std::isfinite(hi)) {
+    err = HUGE_VAL;
+    return;
+  }
+  const Rational rest = q - Rational(hi);
+  if (sgn(rest) == 0) return;
+  lo = to_double(rest);
+  if (!is_double(rest)) err = std::fabs(lo) * 0x1p-52 + 0x1p-1000;
 }
 
 float to_float(const Rational& q) {

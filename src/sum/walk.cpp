@@ -800,56 +800,8 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const S
   return w;
 }
 
-namespace {
-// Error-free sum (Knuth's TwoSum): s + e = x + y exactly, s = fl(x + y), in
-// round-to-nearest and when s is finite.
-inline void two_sum(double x, double y, double& s, double& e) {
-  s = x + y;
-  const double yv = s - x;
-  const double xv = s - yv;
-  e = (x - xv) + (y - yv);
-}
-}  // namespace
-
 PointList sum_coordinates(const std::vector<std::pair<Index, Index>>& pairs, const PointList& a, const PointList& b) {
-  PointList out;
-  out.reserve(pairs.size());
-  // Double operands: every vertex a_i + b_j as the exact pair (fl(a + b),
-  // error), which needs round-to-nearest (the default; checked) and no
-  // overflow (checked per sum: then the exact rational path).
-  const bool dbl = a.all_doubles() && b.all_doubles() && std::fegetround() == FE_TONEAREST;
-  if (dbl) {
-    for (auto [i, j] : pairs) {
-      const Vec3d& p = a.approx(i);
-      const Vec3d& q = b.approx(j);
-      Vec3d hi, lo;
-      two_sum(p.x, q.x, hi.x, lo.x);
-      two_sum(p.y, q.y, hi.y, lo.y);
-      two_sum(p.z, q.z, hi.z, lo.z);
-      if (!std::isfinite(hi.x) || !std::isfinite(hi.y) || !std::isfinite(hi.z)) {
-        out.push_back(a.exact(i) + b.exact(j));
-        continue;
-      }
-      out.push_pair(hi, lo);
-    }
-    return out;
-  }
-  // Exact rationals: each operand's exact points once (its own storage when
-  // it holds rationals), each sum made in place and moved into the list.
-  std::vector<Point3> own_a, own_b;
-  auto points_of = [](const PointList& l, std::vector<Point3>& own) -> const Point3* {
-    if (l.form() == PointList::Form::rationals) return l.size() ? &l.exact_ref(0) : nullptr;
-    own = l.to_points();
-    return own.data();
-  };
-  const Point3* pa = points_of(a, own_a);
-  const Point3* pb = points_of(b, own_b);
-  for (auto [i, j] : pairs) {
-    Point3 s;
-    for (int k = 0; k < 3; ++k) mpq_add(s[k].get_mpq_t(), pa[i][k].get_mpq_t(), pb[j][k].get_mpq_t());
-    out.push_back(std::move(s));
-  }
-  return out;
+  return PointList::sums(pairs, a, b);
 }
 
 ConvexPolytope to_polytope(const WalkSum& w, const ConvexPolytope& a, const ConvexPolytope& b) {

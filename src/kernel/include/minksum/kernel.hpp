@@ -71,6 +71,12 @@ bool is_zero(const Point3& a);
 // Nearest double of a rational (round to nearest, ties to even), and of a point.
 double to_double(const Rational& q);
 Vec3d to_double(const Point3& p);
+// The nearest double hi of q and the rest: a double lo near q − hi and a
+// bound err ≥ |q − hi − lo| (err = 0: q = hi + lo exactly; lo = err = 0
+// exactly when q is a double; err = +inf, lo = 0 when hi overflows).  One
+// division of scratch integers for the usual magnitudes.  In every rounding
+// mode hi is the nearest double and the bound holds.
+void to_double_rest(const Rational& q, double& hi, double& lo, double& err);
 // Nearest float (round to nearest, ties to even; +-inf beyond the float
 // range), as binary STL stores coordinates.
 float to_float(const Rational& q);

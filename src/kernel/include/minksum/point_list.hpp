@@ -12,15 +12,26 @@
 //                   nearest, ties to even) and |lo| ≤ half an ulp of hi; the
 //                   form of a Minkowski sum of two double polytopes (each
 //                   vertex is a_i + b_j, split by the error-free TwoSum).
-//   * rationals:    one GMP rational per coordinate (p/q tokens, exact
-//                   rotations, sums of sums); approx(i) is the nearest double.
+//   * rationals:    exact rationals (p/q tokens, exact rotations, sums with
+//                   a rational operand); approx(i) is the nearest double, and
+//                   beside it a second double low(i) and a bound
+//                   low_error(i) with |exact − approx − low| ≤ low_error
+//                   coordinate-wise (low_error 0: the pair is exact).  The GMP
+//                   rationals are either stored, or — for a Minkowski sum
+//                   made by sums() — computed on demand from the two operand
+//                   lists (shared, never copied): exact(i) adds two operand
+//                   points, exact_ref(i) builds every point once (thread-safe)
+//                   and keeps them.
 //
-// Costs: approx(i), low(i), form(), is_double(i) and all_doubles() are O(1)
-// and never allocate.  exact(i) (and operator[], iteration) builds a Point3:
-// three GMP rationals, i.e. heap allocations — use it for exact fallbacks and
-// output, not in loops over every point.  Appending a point that is not
-// representable in the current form converts the whole list once to the
-// next form (doubles → double_pairs → rationals).
+// Costs: approx(i), low(i), low_error(i), form(), is_double(i) and
+// all_doubles() are O(1) and never allocate.  exact(i) (and operator[],
+// iteration) builds a Point3: three GMP rationals, i.e. heap allocations —
+// use it for exact fallbacks and output, not in loops over every point.
+// exact_ref(i) is free for stored rationals; on a sum's lazy list the first
+// call builds all of them (one GMP addition per coordinate).  Appending a
+// point that is not representable in the current form converts the whole
+// list once to the next form (doubles → double_pairs → rationals).  Copies
+// share the rationals (a list that is changed gets its own first).
 //
 // Zeros are stored as +0.0 (an exact coordinate has no sign of zero), so two
 // equal points have equal bits in every form.
@@ -31,6 +42,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <memory>
+#include <utility>
 #include <vector>
 
 namespace minksum {
@@ -52,8 +65,12 @@ class PointList {
   // The nearest doubles of point i's coordinates (exact in the doubles form).
   const Vec3d& approx(std::size_t i) const { return hi_[i]; }
   const std::vector<Vec3d>& approx() const { return hi_; }
-  // double_pairs only: exact point = approx(i) + low(i), coordinate-wise.
+  // double_pairs: exact point = approx(i) + low(i), coordinate-wise.
+  // rationals: |exact − approx(i) − low(i)| ≤ low_error(i), coordinate-wise
+  // (a finite or infinite double ≥ 0; 0 when approx + low is exact).  A
+  // coordinate is exactly a double iff its low and low_error are both 0.
   const Vec3d& low(std::size_t i) const { return lo_[i]; }
+  const Vec3d& low_error(std::size_t i) const { return err_[i]; }
   // True when point i's three coordinates are exactly doubles (then
   // approx(i) is exact, whatever the form).
   bool is_double(std::size_t i) const;
@@ -63,8 +80,9 @@ class PointList {
   // The exact point (allocates three GMP rationals).
   Point3 exact(std::size_t i) const;
   Point3 operator[](std::size_t i) const { return exact(i); }
-  // Rationals form only: the stored exact point.
-  const Point3& exact_ref(std::size_t i) const { return exact_[i]; }
+  // Rationals form only: the exact point, kept by the list (a sum's lazy
+  // list builds all of its points on the first call, once, thread-safe).
+  const Point3& exact_ref(std::size_t i) const;
   // Every exact point (allocates).
   std::vector<Point3> to_points() const;
 
@@ -77,6 +95,20 @@ class PointList {
   void push_pair(const Vec3d& hi, const Vec3d& lo);
   // Append point i of `other` (in its own form, no rounding).
   void push_from(const PointList& other, std::size_t i);
+
+  // The exact points a_i + b_j for the given index pairs, in the cheapest
+  // exact form, without a GMP operation per point:
+  //   * both lists doubles (and the FPU rounding to nearest): double pairs,
+  //     each coordinate split by TwoSum (a sum beyond the double range is
+  //     kept as a rational);
+  //   * otherwise rationals computed on demand from a and b (which the
+  //     result shares), with approx(i) the nearest double decided from the
+  //     operands' (approx, low, low_error) triples by a filter with a
+  //     derived bound (point_list.cpp), and from exact GMP sums where it
+  //     cannot decide (near a tie, near the ends of the double range, in a
+  //     rounding mode other than to-nearest).
+  static PointList sums(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, const PointList& a,
+                        const PointList& b);
   template <class... A>
   void emplace_back(A&&... a) {
     push_back(Point3(std::forward<A>(a)...));
@@ -119,12 +151,17 @@ class PointList {
   friend bool operator==(const PointList& a, const PointList& b);
 
  private:
+  struct Exact;  // rationals: the GMP points, stored or made on demand (point_list.cpp)
+
   void promote(Form to);
+  std::vector<Point3>& own_points();  // rationals: the stored points, unshared, to change
+  void push_rational(const Vec3d& hi, const Vec3d& lo, const Vec3d& err, Point3&& p);
 
   Form form_ = Form::doubles;
-  std::vector<Vec3d> hi_;      // nearest doubles (all forms)
-  std::vector<Vec3d> lo_;      // double_pairs: the low parts
-  std::vector<Point3> exact_;  // rationals: the exact points
+  std::vector<Vec3d> hi_;     // nearest doubles (all forms)
+  std::vector<Vec3d> lo_;     // double_pairs: the low parts; rationals: the next doubles
+  std::vector<Vec3d> err_;    // rationals: bounds on |exact − hi − lo|
+  std::shared_ptr<Exact> exact_;  // rationals: the exact points
   std::size_t non_double_ = 0;
 };
 

@@ -73,9 +73,10 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const S
 ConvexPolytope to_polytope(const WalkSum& w, const ConvexPolytope& a, const ConvexPolytope& b);
 
 // The exact points a_i + b_j for the given index pairs, in the cheapest exact
-// form: exact pairs of doubles (TwoSum, no allocation) when both lists hold
-// doubles and the FPU rounds to nearest, GMP rationals otherwise (and for a
-// sum beyond the double range).
+// form (PointList::sums): exact pairs of doubles (TwoSum, no allocation) when
+// both lists hold doubles and the FPU rounds to nearest; otherwise rationals
+// made on demand from the two lists, with their nearest doubles decided by a
+// filter on the operands' doubles (GMP only where it cannot decide).
 PointList sum_coordinates(const std::vector<std::pair<Index, Index>>& pairs, const PointList& a, const PointList& b);
 
 }  // namespace minksum

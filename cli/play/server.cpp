@@ -261,6 +261,15 @@ int run_play_server(const std::vector<std::string>& argv) {
     return 0;
   }
   if (a.positional.size() != 2) throw UsageError("'play' needs two operands P Q (see 'minksum play --help')");
+  // SIGINT and SIGTERM are taken by one thread (sigwait), which stops the
+  // server; every other thread has them blocked, including the worker
+  // threads a computation of M may start, so they are blocked from here on
+  // (a signal that comes while the operands load stops the server once it runs).
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
   const int port = port_option(a);
   const std::string method_text = a.value_or("--method", "auto");
   const auto method = parse_method(method_text);
@@ -280,13 +289,6 @@ int run_play_server(const std::vector<std::string>& argv) {
   data += "]}";
   const std::string html = page_html(title, data, true);
 
-  // SIGINT and SIGTERM are taken by one thread (sigwait), which stops the
-  // server; every other thread, started after this, has them blocked.
-  sigset_t stop_signals;
-  sigemptyset(&stop_signals);
-  sigaddset(&stop_signals, SIGINT);
-  sigaddset(&stop_signals, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
   // A browser that closes a connection must not kill the server.
   signal(SIGPIPE, SIG_IGN);
 

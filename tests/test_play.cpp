@@ -54,9 +54,10 @@ struct CmdRun {
   std::string out;
 };
 
-CmdRun run(const std::string& args) {
+// A shell command line: its standard output and exit status.
+CmdRun run_line(const std::string& line) {
   CmdRun r;
-  FILE* p = ::popen((std::string(MINKSUM_BIN) + " " + args + " 2>/dev/null </dev/null").c_str(), "r");
+  FILE* p = ::popen(line.c_str(), "r");
   if (!p) return r;
   std::array<char, 4096> buf;
   std::size_t n;
@@ -64,6 +65,10 @@ CmdRun run(const std::string& args) {
   const int st = ::pclose(p);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
   return r;
+}
+
+CmdRun run(const std::string& args) {
+  return run_line(std::string(MINKSUM_BIN) + " " + args + " 2>/dev/null </dev/null");
 }
 
 // `minksum play ARGS --no-open` as a child process; its first stdout line.
@@ -329,6 +334,22 @@ TEST(Play, PortInUseExitsWithStatusOne) {
   EXPECT_NE(err.find("cannot listen on 127.0.0.1:"), std::string::npos) << err;
   EXPECT_EQ(err.find('\n'), err.size() - 1) << err;
   EXPECT_EQ(s.stop(SIGTERM), 0);
+}
+
+}  // namespace
+
+namespace {
+
+// The command runs the server from beside itself: a copy of the command
+// alone says so on one line and exits with status 1.
+TEST(Play, CommandWithoutItsServerBesideItExitsWithStatusOne) {
+  const std::string dir = ::testing::TempDir() + "/minksum_play_alone_" + std::to_string(::getpid());
+  ASSERT_EQ(std::system(("mkdir -p " + dir + " && cp " + MINKSUM_BIN + " " + dir + "/minksum").c_str()), 0);
+  const CmdRun r = run_line(dir + "/minksum play cube cube --no-open 2>&1 </dev/null");
+  std::system(("rm -rf " + dir).c_str());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find("cannot run the server of 'minksum play'"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << r.out;
 }
 
 }  // namespace

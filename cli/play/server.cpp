@@ -1,5 +1,6 @@
-// The server of 'minksum play P Q' (the executable minksum-play, which the
-// command runs: cli/cmd_play.cpp): the interactive proximity application.  A page served on
+// The server of 'minksum play P Q' (run_play_server, in the executable
+// minksum-play, which the command runs: cli/cmd_play.cpp): the interactive
+// proximity application.  A page served on
 // the loopback interface shows P and Q; the user drags and turns P, and the
 // page asks this server, on every move, for the exact state, distance or
 // penetration depth and witnesses (the library's TranslationalObstacle, the
@@ -9,6 +10,8 @@
 #include <minksum/proximity.hpp>
 
 #include <httplib.h>
+
+#include "mesh/support.hpp"  // feature_vertices
 
 #include <fcntl.h>
 #include <pthread.h>
@@ -27,11 +30,11 @@
 #include <thread>
 #include <vector>
 
-#include "common.hpp"
-#include "json_object.hpp"
-#include "page.hpp"
-#include "pose.hpp"
-#include "proximity_json.hpp"
+#include "../common.hpp"
+#include "../json_object.hpp"
+#include "../page.hpp"
+#include "../pose.hpp"
+#include "../proximity_json.hpp"
 
 extern char** environ;
 
@@ -92,20 +95,7 @@ const Integer kMaxQuaternion = 1000000;
 // The feature of a polytope as the page draws it: its vertices' coordinates.
 std::string feature_points_json(const ConvexPolytope& p, const Feature& f, const Point3& shift) {
   std::vector<Index> vs;
-  if (f.index != kNoIndex) {
-    if (f.dim == FeatureDim::vertex) {
-      vs.push_back(f.index);
-    } else if (f.dim == FeatureDim::edge) {
-      vs = {p.origin(2 * f.index), p.origin(2 * f.index + 1)};
-    } else {
-      const Index h0 = p.facet_halfedge(f.index);
-      Index h = h0;
-      do {
-        vs.push_back(p.origin(h));
-        h = p.next(h);
-      } while (h != h0);
-    }
-  }
+  if (f.index != kNoIndex) feature_vertices(p, f, vs);
   std::string xyz, exact;
   for (std::size_t i = 0; i < vs.size(); ++i) {
     const Point3 x = p.point(vs[i]) + shift;
@@ -368,37 +358,3 @@ int run_play_server(const std::vector<std::string>& argv) {
 }
 
 }  // namespace minksum::cli
-
-// minksum-play ARGS: what 'minksum play ARGS' runs, with the command's exit
-// statuses and one-line errors.
-int main(int argc, char** argv) {
-  using namespace minksum;
-  using namespace minksum::cli;
-  const std::vector<std::string> args(argv + 1, argv + argc);
-  std::ios::sync_with_stdio(false);
-  int status = 0;
-  try {
-    status = run_play_server(args);
-  } catch (const UsageError& e) {
-    std::cerr << "minksum: " << printable(e.what()) << "\n";
-    status = 2;
-  } catch (const InputError& e) {
-    std::cerr << "minksum: " << printable(e.what()) << "\n";
-    status = 3;
-  } catch (const OutputError& e) {
-    std::cerr << "minksum: " << printable(e.what()) << "\n";
-    status = 1;
-  } catch (const std::exception& e) {
-    std::cerr << "minksum: internal error: " << printable(e.what()) << "\n";
-    status = 1;
-  }
-  if (status == 0) {
-    try {
-      check_stdout();
-    } catch (const OutputError& e) {
-      std::cerr << "minksum: " << e.what() << "\n";
-      status = 1;
-    }
-  }
-  return status;
-}

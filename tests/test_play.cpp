@@ -304,6 +304,11 @@ TEST(Play, MalformedRequestsGet400AndOneLine) {
   EXPECT_EQ(s.stop(SIGTERM), 0);
 }
 
+// The URL cannot be written: nothing is served, exit status 1.
+TEST(Play, UnwritableStandardOutputExitsWithStatusOne) {
+  EXPECT_EQ(run_line("timeout 60 " + std::string(MINKSUM_BIN) + " play cube cube --no-open >/dev/full 2>/dev/null").status, 1);
+}
+
 TEST(Play, UsageAndInputErrors) {
   EXPECT_EQ(run("play cube").status, 2);
   EXPECT_EQ(run("play cube cube --port 70000").status, 2);

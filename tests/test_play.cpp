@@ -346,15 +346,22 @@ TEST(Play, PortInUseExitsWithStatusOne) {
 namespace {
 
 // The command runs the server from beside itself: a copy of the command
-// alone says so on one line and exits with status 1.
+// alone says so on one line and exits with status 1 (but answers --help and
+// usage errors itself).
 TEST(Play, CommandWithoutItsServerBesideItExitsWithStatusOne) {
   const std::string dir = ::testing::TempDir() + "/minksum_play_alone_" + std::to_string(::getpid());
   ASSERT_EQ(std::system(("mkdir -p " + dir + " && cp " + MINKSUM_BIN + " " + dir + "/minksum").c_str()), 0);
   const CmdRun r = run_line(dir + "/minksum play cube cube --no-open 2>&1 </dev/null");
+  // Help and usage errors need no server.
+  const CmdRun help = run_line(dir + "/minksum play --help 2>&1 </dev/null");
+  const CmdRun usage = run_line(dir + "/minksum play cube --no-open 2>&1 </dev/null");
   std::system(("rm -rf " + dir).c_str());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.out.find("cannot run the server of 'minksum play'"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find('\n'), r.out.size() - 1) << r.out;
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("Usage: minksum play P Q"), std::string::npos) << help.out;
+  EXPECT_EQ(usage.status, 2) << usage.out;
 }
 
 }  // namespace

@@ -34,6 +34,7 @@
 #include "../json_object.hpp"
 #include "../page.hpp"
 #include "../pose.hpp"
+#include "../play.hpp"
 #include "../proximity_json.hpp"
 
 extern char** environ;
@@ -41,52 +42,6 @@ extern char** environ;
 namespace minksum::cli {
 
 namespace {
-
-const char* kPlayHelp = R"(Usage: minksum play P Q [--port N] [--no-open] [--method M] [--hull]
-
-Serve an interactive page on this machine's loopback interface (127.0.0.1
-only) where the convex polytope P can be dragged and turned with the mouse
-against the fixed polytope Q.  On every move the page asks the server, which
-answers with the library, exactly: the state (separate, touching or
-penetrating, in colour), the squared distance or squared penetration depth as
-an exact rational and its square root as a double, the closest points (or a
-common point) of P and Q with exact coordinates, the minimal translation of P
-that separates them, and the witness features of P and Q (drawn in the scene).
-M = P ⊕ (−Q) is computed once per orientation of P: turning P computes it
-again.
-
-The first line on standard output is the page's URL (http://127.0.0.1:PORT/).
-Ctrl-C (SIGINT) or SIGTERM stops the server; it then exits with status 0.
-
-In the page: drag P to move it in the view plane, shift-drag P to turn it
-about its origin (the origin of its coordinates), drag elsewhere to turn the
-view, wheel to zoom.
-
-Exact poses: a translation is three exact rationals (the page moves P on a
-grid of 1/2^k steps); a rotation is an integer quaternion A+Bi+Cj+Dk, the
-rotation with the rational matrix of the catalog's @rot:A,B,C,D (the page
-rounds the orientation it turns to a quaternion of norm about 64, so the
-drawn and the computed P are the same).  The page shows each pose in the
-syntax of 'minksum query' (X,Y,Z and A,B,C,D), which answers it alike.
-
-Options:
-  --port N     listen on port N (default 0: a free port the system chooses)
-  --no-open    do not open the page in a browser (else xdg-open is tried)
-  --method M   how M is computed: {methods}
-  --hull       take the convex hull of each input file's points
-
-The server: GET / is the page; POST /query takes a JSON object
-  {"translate_p": "X,Y,Z", "rotate_p": "A,B,C,D", "translate_q": "X,Y,Z"}
-(rotate_p and translate_q optional; the syntax of 'minksum query') and
-answers a JSON object (status, squared_distance, distance, squared_depth,
-depth, point_p, point_p_exact, point_q, point_q_exact, direction,
-depth_direction, witness, depth_witness, features, m, recomputed, pose,
-seconds).  A request body is at most 4096 bytes, a rotation's integers at
-most 10^6 in magnitude; a bad request gets HTTP 400 and one line saying why.
-
-Exit status: 0 after Ctrl-C or SIGTERM, 1 when the port cannot be bound or
-standard output cannot be written, 2 bad usage, 3 bad input data.
-)";
 
 constexpr std::size_t kMaxBody = 4096;
 // Bound on the integers of a rotation: M's coordinates grow with them.
@@ -204,16 +159,6 @@ class Session {
   std::optional<Quaternion> rp_;
 };
 
-int port_option(const Args& a) {
-  const auto v = a.value("--port");
-  if (!v) return 0;
-  std::string why;
-  const auto n = parse_number(*v, &why);
-  if (!n || n->get_den() != 1 || *n < 0 || *n > 65535 || v->find_first_of(".eEx/") != std::string::npos)
-    throw UsageError("--port: expected an integer from 0 to 65535, got '" + printable(*v) + "'");
-  return int(n->get_num().get_si());
-}
-
 // Opens the URL with xdg-open when there is one; says so otherwise.
 void open_in_browser(const std::string& url) {
   posix_spawn_file_actions_t actions;
@@ -243,14 +188,7 @@ void open_in_browser(const std::string& url) {
 
 }  // namespace
 
-int run_play_server(const std::vector<std::string>& argv) {
-  const Args a = parse_args(argv, "play",
-                            {{"--port", "", true}, {"--no-open"}, {"--method", "", true}, {"--hull"}});
-  if (a.help) {
-    std::cout << expand_help(kPlayHelp);
-    return 0;
-  }
-  if (a.positional.size() != 2) throw UsageError("'play' needs two operands P Q (see 'minksum play --help')");
+int run_play_server(const PlayOptions& o) {
   // SIGINT and SIGTERM are taken by one thread (sigwait), which stops the
   // server; every other thread has them blocked, including the worker
   // threads a computation of M may start, so they are blocked from here on
@@ -260,22 +198,15 @@ int run_play_server(const std::vector<std::string>& argv) {
   sigaddset(&stop_signals, SIGINT);
   sigaddset(&stop_signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
-  const int port = port_option(a);
-  const std::string method_text = a.value_or("--method", "auto");
-  const auto method = parse_method(method_text);
-  if (!method) throw UsageError("unknown method '" + method_text + "' (" + method_list() + ")");
-  if (!method_available(*method))
-    throw UsageError(std::string("method '") + method_name(*method) + "' is not implemented in this version of minksum");
-  const bool hull = a.flag("--hull");
-  const ConvexPolytope p = load_operand(a.positional[0], hull, nullptr);
-  const ConvexPolytope q = load_operand(a.positional[1], hull, nullptr);
-  Session session(p, q, *method);
+  const ConvexPolytope p = load_operand(o.p, o.hull, nullptr);
+  const ConvexPolytope q = load_operand(o.q, o.hull, nullptr);
+  Session session(p, q, o.method);
 
-  const std::string title = a.positional[0] + " against " + a.positional[1];
+  const std::string title = o.p + " against " + o.q;
   std::string data = "{\"kind\": \"play\", \"title\": " + json_string(title) + ", \"solids\": [";
-  append_solid_json(data, p, a.positional[0], "p");
+  append_solid_json(data, p, o.p, "p");
   data += ", ";
-  append_solid_json(data, q, a.positional[1], "q");
+  append_solid_json(data, q, o.q, "q");
   data += "]}";
   const std::string html = page_html(title, data, true);
 
@@ -326,15 +257,16 @@ int run_play_server(const std::vector<std::string>& argv) {
     else fail(res, res.status, "bad request");
   });
 
+  const int port = o.port;
   const int bound = port == 0 ? server.bind_to_any_port("127.0.0.1") : (server.bind_to_port("127.0.0.1", port) ? port : -1);
   if (bound < 0)
     throw OutputError("cannot listen on 127.0.0.1:" + std::to_string(port) + " (the port is taken or not allowed)");
   const std::string url = "http://127.0.0.1:" + std::to_string(bound) + "/";
   std::cout << url << std::endl;
   check_stdout();
-  std::cerr << "minksum play: " << printable(a.positional[0]) << " against " << printable(a.positional[1])
+  std::cerr << "minksum play: " << printable(o.p) << " against " << printable(o.q)
             << " at " << url << " (Ctrl-C stops)" << std::endl;
-  if (!a.flag("--no-open")) open_in_browser(url);
+  if (o.open) open_in_browser(url);
 
   std::atomic<bool> listening_done{false}, stop_requested{false};
   std::thread stopper([&] {

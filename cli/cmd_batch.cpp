@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "json_object.hpp"
 
 namespace minksum::cli {
 
@@ -62,138 +63,6 @@ struct Outcome {
   std::string error;
 };
 
-// One member of a JSON line: a string, or a boolean (value "true" / "false").
-struct Member {
-  std::string key, value;
-  bool is_string = true;
-};
-
-// A JSON line {"key": value, ...} with string and boolean values.  Throws InputError.
-class LineParser {
- public:
-  LineParser(const std::string& text, const std::string& file, std::size_t line)
-      : s_(text), file_(file), place_("line " + std::to_string(line)) {}
-
-  std::vector<Member> object() {
-    std::vector<Member> out;
-    expect('{');
-    if (peek() == '}') {
-      ++i_;
-    } else {
-      for (;;) {
-        std::string key = string();
-        expect(':');
-        Member m{key, "", peek() == '"'};
-        if (m.is_string) m.value = string();
-        else if (word("true")) m.value = "true";
-        else if (word("false")) m.value = "false";
-        else fail("the value of \"" + key + "\" is not a string or a boolean");
-        for (const auto& other : out)
-          if (other.key == key) fail("\"" + key + "\" given twice");
-        out.push_back(std::move(m));
-        if (peek() == ',') {
-          ++i_;
-          continue;
-        }
-        expect('}');
-        break;
-      }
-    }
-    if (peek() != '\0') fail("text after the JSON object");
-    return out;
-  }
-
-  [[noreturn]] void fail(const std::string& problem) const { throw InputError(file_, place_, problem); }
-
- private:
-  char peek() {
-    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\t' || s_[i_] == '\r')) ++i_;
-    return i_ < s_.size() ? s_[i_] : '\0';
-  }
-  void expect(char c) {
-    if (peek() != c) fail(std::string("expected '") + c + "' at column " + std::to_string(i_ + 1));
-    ++i_;
-  }
-  bool word(const char* w) {
-    const std::string t(w);
-    if (s_.compare(i_, t.size(), t) != 0) return false;
-    i_ += t.size();
-    return true;
-  }
-  static void append_utf8(std::string& out, unsigned cp) {
-    if (cp < 0x80) {
-      out += char(cp);
-    } else if (cp < 0x800) {
-      out += char(0xc0 | (cp >> 6));
-      out += char(0x80 | (cp & 0x3f));
-    } else if (cp < 0x10000) {
-      out += char(0xe0 | (cp >> 12));
-      out += char(0x80 | ((cp >> 6) & 0x3f));
-      out += char(0x80 | (cp & 0x3f));
-    } else {
-      out += char(0xf0 | (cp >> 18));
-      out += char(0x80 | ((cp >> 12) & 0x3f));
-      out += char(0x80 | ((cp >> 6) & 0x3f));
-      out += char(0x80 | (cp & 0x3f));
-    }
-  }
-  unsigned hex4() {
-    if (i_ + 4 > s_.size()) fail("truncated \\u escape");
-    unsigned v = 0;
-    for (int k = 0; k < 4; ++k) {
-      const char c = s_[i_++];
-      v <<= 4;
-      if (c >= '0' && c <= '9') v |= unsigned(c - '0');
-      else if (c >= 'a' && c <= 'f') v |= unsigned(c - 'a' + 10);
-      else if (c >= 'A' && c <= 'F') v |= unsigned(c - 'A' + 10);
-      else fail("bad \\u escape");
-    }
-    return v;
-  }
-  std::string string() {
-    expect('"');
-    std::string out;
-    for (;;) {
-      if (i_ >= s_.size()) fail("unterminated string");
-      const char c = s_[i_++];
-      if (c == '"') return out;
-      if (static_cast<unsigned char>(c) < 0x20) fail("control character in a string");
-      if (c != '\\') {
-        out += c;
-        continue;
-      }
-      if (i_ >= s_.size()) fail("unterminated string");
-      switch (const char e = s_[i_++]) {
-        case '"': case '\\': case '/': out += e; break;
-        case 'b': out += '\b'; break;
-        case 'f': out += '\f'; break;
-        case 'n': out += '\n'; break;
-        case 'r': out += '\r'; break;
-        case 't': out += '\t'; break;
-        case 'u': {
-          unsigned cp = hex4();
-          if (cp >= 0xd800 && cp < 0xdc00) {  // a surrogate pair
-            if (!word("\\u")) fail("lone surrogate in a \\u escape");
-            const unsigned lo = hex4();
-            if (lo < 0xdc00 || lo >= 0xe000) fail("lone surrogate in a \\u escape");
-            cp = 0x10000 + ((cp - 0xd800) << 10) + (lo - 0xdc00);
-          } else if (cp >= 0xdc00 && cp < 0xe000) {
-            fail("lone surrogate in a \\u escape");
-          }
-          if (cp == 0) fail("NUL in a string");
-          append_utf8(out, cp);
-          break;
-        }
-        default: fail(std::string("bad escape '\\") + e + "'");
-      }
-    }
-  }
-
-  const std::string& s_;
-  std::string file_, place_;
-  std::size_t i_ = 0;
-};
-
 Method method_of(const std::string& text) {
   auto m = parse_method(text);
   if (!m) throw UsageError("unknown method '" + text + "' (" + method_list() + ")");
@@ -213,7 +82,7 @@ std::vector<Pair> read_pairs(std::istream& in, const std::string& file, Method m
     p.line = line;
     p.method = method;
     p.hull = hull;
-    LineParser parser(text, file, line);
+    JsonObjectParser parser(text, file, "line " + std::to_string(line));
     if (text[first] == '{') {
       bool has_a = false, has_b = false;
       for (const auto& [key, value, is_string] : parser.object()) {

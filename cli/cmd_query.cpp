@@ -17,6 +17,7 @@
 #include "common.hpp"
 #include "mesh_io.hpp"
 #include "pose.hpp"
+#include "proximity_json.hpp"
 
 namespace minksum::cli {
 
@@ -95,32 +96,12 @@ std::optional<Quaternion> rotation_option(const Args& a, const std::string& name
   return q;
 }
 
-const char* feature_type(FeatureDim dim) {
-  return dim == FeatureDim::vertex ? "vertex" : dim == FeatureDim::edge ? "edge" : "facet";
-}
-
-std::string feature_json(const Feature& f) {
-  return std::string("{\"type\": \"") + feature_type(f.dim) + "\", \"index\": " + std::to_string(f.index) + "}";
-}
-
-std::string witness_json(const Witness& w) {
-  return "{\"facet\": " + std::to_string(w.facet) + ", \"m\": " + feature_json(w.m) + ", \"p\": " +
-         feature_json(w.p) + ", \"q\": " + feature_json(w.q) + "}";
-}
-
 std::string witness_text(const Witness& w) {
   return std::string("facet ") + std::to_string(w.facet) + " of M; " + feature_type(w.m.dim) + " " +
          std::to_string(w.m.index) + " of M = " + feature_type(w.p.dim) + " " + std::to_string(w.p.index) +
          " of P ⊕ −(" + feature_type(w.q.dim) + " " + std::to_string(w.q.index) + " of Q)";
 }
 
-std::string exact_vector_json(const Point3& p) {
-  return "[\"" + format_exact(p.x) + "\", \"" + format_exact(p.y) + "\", \"" + format_exact(p.z) + "\"]";
-}
-std::string double_vector_json(const Point3& p) {
-  return "[" + json_number(to_double(p.x)) + ", " + json_number(to_double(p.y)) + ", " +
-         json_number(to_double(p.z)) + "]";
-}
 std::string vector_text(const Point3& p) {
   return "(" + format_exact(p.x) + ", " + format_exact(p.y) + ", " + format_exact(p.z) + ")";
 }

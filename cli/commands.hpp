@@ -17,5 +17,6 @@ int run_cgm(const std::vector<std::string>& args);
 int run_batch(const std::vector<std::string>& args);
 int run_convert(const std::vector<std::string>& args);
 int run_view(const std::vector<std::string>& args);
+int run_play(const std::vector<std::string>& args);
 
 }  // namespace minksum::cli

@@ -36,6 +36,7 @@ Usage:
                 [--json] [--format F]
   minksum view A [B] -o OUT.html [--method M] [--hull] [--title T] [--json]
   minksum view SCENE.wrl -o OUT.html [--title T] [--json]
+  minksum play P Q [--port N] [--no-open] [--method M] [--hull]
   minksum batch [FILE] [--threads N] [--method M] [--hull]
   minksum COMMAND --help          help on one command
   minksum --version
@@ -69,6 +70,7 @@ constexpr Command kCommands[] = {
     {"batch", run_batch},
     {"convert", run_convert},
     {"view", run_view},
+    {"play", run_play},
 };
 
 }  // namespace

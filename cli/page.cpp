@@ -98,7 +98,7 @@ void append_solid_json(std::string& out, const ConvexPolytope& p, const std::str
   out += "}";
 }
 
-void write_page(const std::string& path, const std::string& title, const std::string& data) {
+std::string page_html(const std::string& title, const std::string& data, bool connect_self) {
   const std::string_view script = asset(minksum_viewer_js, minksum_viewer_js_end);
   const std::string_view licence = asset(minksum_three_licence, minksum_three_licence_end);
   std::string escaped_title;
@@ -108,19 +108,30 @@ void write_page(const std::string& path, const std::string& title, const std::st
     else if (c == '&') escaped_title += "&amp;";
     else escaped_title += c;
   }
+  // The Content-Security-Policy forbids every request (the page works offline
+  // or not at all), but, for a page its own server serves, requests to that server.
+  std::string o;
+  o.reserve(script.size() + licence.size() + data.size() + 1024);
+  o += "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n";
+  o += "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; script-src 'unsafe-inline'; "
+       "style-src 'unsafe-inline'; img-src data: blob:";
+  if (connect_self) o += "; connect-src 'self'";
+  o += "\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+  o += "<meta name=\"generator\" content=\"minksum\">\n<title>" + escaped_title + "</title></head>\n<body>\n";
+  o += "<noscript>This page draws with JavaScript and WebGL.</noscript>\n";
+  o += "<script type=\"application/json\" id=\"minksum-data\">" + data + "</script>\n";
+  o += "<script>\n/* The viewer of minksum, bundled with three.js (https://threejs.org), whose licence follows.\n\n";
+  o += licence;
+  o += "*/\n";
+  o += script;
+  o += "\n</script>\n</body></html>\n";
+  return o;
+}
+
+void write_page(const std::string& path, const std::string& title, const std::string& data) {
+  const std::string html = page_html(title, data);
   try {
-    write_file_atomically(path, [&](std::ostream& o) {
-      // The Content-Security-Policy forbids every request: the page works offline or not at all.
-      o << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
-        << "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; script-src 'unsafe-inline'; "
-           "style-src 'unsafe-inline'; img-src data: blob:\">\n"
-        << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-        << "<meta name=\"generator\" content=\"minksum\">\n<title>" << escaped_title << "</title></head>\n<body>\n"
-        << "<noscript>This page draws with JavaScript and WebGL.</noscript>\n"
-        << "<script type=\"application/json\" id=\"minksum-data\">" << data << "</script>\n"
-        << "<script>\n/* The viewer of minksum, bundled with three.js (https://threejs.org), whose licence follows.\n\n"
-        << licence << "*/\n" << script << "\n</script>\n</body></html>\n";
-    });
+    write_file_atomically(path, [&](std::ostream& o) { o << html; });
   } catch (const InputError& e) {
     throw OutputError(std::string("cannot write ") + e.what());
   }

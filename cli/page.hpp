@@ -34,6 +34,11 @@ std::string origin_names_json();
 // A JSON string literal of s (quotes included).
 std::string json_string(const std::string& s);
 
+// The whole page as text: the viewer's script and three.js inlined, `data`
+// embedded.  With `connect_self` its Content-Security-Policy also lets it
+// send requests to the server it came from (the page of 'minksum play').
+std::string page_html(const std::string& title, const std::string& data, bool connect_self = false);
+
 // Writes the page atomically: `data` is one JSON object (it holds "kind":
 // "sum", "polytope", "cgm" or "motion"); OutputError when the file cannot be written.
 void write_page(const std::string& path, const std::string& title, const std::string& data);

@@ -38,8 +38,10 @@ export function minksumJson(bin, args) {
   return JSON.parse(minksum(bin, args));
 }
 
-// Exit 77 (ctest: skipped) when the browser is missing.
-export async function launch() {
+// Exit 77 (ctest: skipped) when the browser is missing.  The network is off
+// unless `offline` is false (a page served on the loopback interface; the
+// test then refuses every other request itself).
+export async function launch({ offline = true } = {}) {
   if (!existsSync(CHROMIUM)) {
     console.log(`SKIP: ${CHROMIUM} is missing (Debian package chromium; 'make setup' installs it)`);
     process.exit(77);
@@ -49,7 +51,7 @@ export async function launch() {
   const context = await chromium.launchPersistentContext(profile, {
     executablePath: CHROMIUM,
     headless: true,
-    offline: true,
+    offline,
     viewport: { width: 1280, height: 800 },
     args: ['--headless', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
            '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'],

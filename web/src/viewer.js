@@ -10,6 +10,7 @@
 // is drawn.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { initPlay } from './play.js';
 
 const parseStart = performance.now();
 const data = JSON.parse(document.getElementById('minksum-data').textContent);
@@ -750,7 +751,10 @@ api.measureFrames = function (n = 60) {
   return { frames: n, meanMs: times.reduce((a, b) => a + b, 0) / n, medianMs: times[Math.floor(n / 2)], maxMs: times[n - 1] };
 };
 
-const init = { polytope: initPolytope, sum: initSum, cgm: initCgm, motion: initMotion, scene: initScene }[data.kind];
+// 'minksum play': P and Q, P moved by the mouse, answers from the server (play.js).
+const initPlayPage = () => initPlay({ THREE, data, api, scene, camera, controls, renderer, view, side, el, hex, COLOURS,
+  buildSolid, fitCamera, requestRender, countsTable, displayControls, pickPanel });
+const init = { polytope: initPolytope, sum: initSum, cgm: initCgm, motion: initMotion, play: initPlayPage, scene: initScene }[data.kind];
 if (!init) throw new Error(`minksum: unknown page kind '${data.kind}'`);
 init();
 resize();

@@ -70,7 +70,8 @@ that is not a double is rounded only when the rounded surface is still a valid
 solid, else the write is refused (exit 1) naming --exact.  --json then reports
 "pieces", "pairs", "pair_vertices", "pair_facets" and "union" (joins, shells,
 non-manifold edges) and the phases decompose, pairs, union and boundary.
---method and more than two operands apply to convex operands only.
+--method sums the pairs of convex pieces (walk by default); a sum with a
+non-convex operand takes exactly two operands.
 
 Progress: when stderr is a terminal and the sum takes more than a second, one
 line is rewritten in place on stderr every 0.2 s and erased when the sum is
@@ -149,7 +150,7 @@ int run_sum(const std::vector<std::string>& argv) {
       load.read += l.read;
       load.validate += l.validate;
     }
-    if (!convex) return run_nonconvex_sum(names, any, load, output, json);
+    if (!convex) return run_nonconvex_sum(names, any, load, output, json, *method);
     for (auto& o : any) operands.push_back(std::move(*o.polytope));
   }
   for (std::size_t i = 0; hull && i < names.size(); ++i) {

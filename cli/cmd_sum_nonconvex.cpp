@@ -131,7 +131,7 @@ AnyOperand load_any_operand_from(const std::string& spec, LoadPhases* phases, st
 }
 
 int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<AnyOperand>& operands,
-                      const LoadPhases& load, const std::optional<MeshOutput>& output, bool json) {
+                      const LoadPhases& load, const std::optional<MeshOutput>& output, bool json, Method method) {
   if (operands.size() != 2)
     throw UsageError("a sum with a non-convex operand takes exactly two operands A B (" +
                      std::to_string(operands.size()) + " given)");
@@ -153,7 +153,8 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
   NonconvexSum r;
   {
     ProgressTicker ticker("minksum sum");
-    r = minkowski_sum_nonconvex(solids[0], solids[1], ticker.sum_options());
+    r = minkowski_sum_nonconvex(solids[0], solids[1], ticker.sum_options(), 0,
+                                method == Method::automatic ? Method::walk : method);
   }
   const auto w0 = std::chrono::steady_clock::now();
   std::size_t rounded = 0;
@@ -163,7 +164,8 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
     report << "{\"vertices\": " << c.vertices << ", \"edges\": " << c.edges << ", \"facets\": " << c.faces
-           << ", \"method\": \"nonconvex\", \"seconds\": " << json_number(r.seconds())
+           << ", \"method\": \"nonconvex\", \"pair_method\": \""
+           << method_name(method == Method::automatic ? Method::walk : method) << "\", \"seconds\": " << json_number(r.seconds())
            << ", \"phases\": {\"read\": " << json_number(load.read) << ", \"validate\": " << json_number(validate_seconds)
            << ", \"decompose\": " << json_number(r.seconds_decompose) << ", \"pairs\": " << json_number(r.seconds_pairs)
            << ", \"union\": " << json_number(r.seconds_union) << ", \"boundary\": " << json_number(r.seconds_boundary)

@@ -941,10 +941,12 @@ TEST_F(Cli, NonConvexSumJsonAndExactOutput) {
   ASSERT_EQ(back.status, 0) << back.err;
   EXPECT_NE(back.out.find("\"volume\": \"27\""), std::string::npos) << back.out;
   EXPECT_EQ(json_int(back.out, "facets"), 6);
-  // A ⊕ B = B ⊕ A.
-  CmdResult ba = run("sum box:1/2:1/2:1/2 tube --json");
+  // A ⊕ B = B ⊕ A, with the pairs summed by another method.
+  CmdResult ba = run("sum box:1/2:1/2:1/2 tube --method cvms --json");
   ASSERT_EQ(ba.status, 0) << ba.err;
   EXPECT_NE(ba.out.find("\"volume\": \"15\""), std::string::npos) << ba.out;
+  EXPECT_NE(ba.out.find("\"pair_method\": \"cvms\""), std::string::npos) << ba.out;
+  EXPECT_NE(r.out.find("\"pair_method\": \"walk\""), std::string::npos) << r.out;
 }
 
 // Without --exact: doubles written as they are; other coordinates rounded

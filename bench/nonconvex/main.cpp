@@ -5,13 +5,6 @@
 #include <minksum/catalog.hpp>
 #include <minksum/nonconvex.hpp>
 
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-#include <CGAL/Nef_polyhedron_3.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polyhedron_3.h>
-#include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
-#include <CGAL/minkowski_sum_3.h>
-
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -23,24 +16,9 @@ using namespace minksum;
 
 namespace {
 
-using K = CGAL::Exact_predicates_exact_constructions_kernel;
-using Nef = CGAL::Nef_polyhedron_3<K>;
 using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-Nef nef_of(const Mesh& m) {
-  std::vector<K::Point_3> pts;
-  for (std::size_t i = 0; i < m.points.size(); ++i) {
-    const Point3 p = m.points[i];
-    pts.emplace_back(K::FT(p.x), K::FT(p.y), K::FT(p.z));
-  }
-  std::vector<std::vector<std::size_t>> faces;
-  for (const auto& f : m.faces) faces.emplace_back(f.begin(), f.end());
-  CGAL::Polyhedron_3<K> poly;
-  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(pts, faces, poly);
-  return Nef(poly);
-}
 
 }  // namespace
 
@@ -70,19 +48,8 @@ int main(int argc, char** argv) {
     auto t = Clock::now();
     const NonconvexSum r = minkowski_sum_nonconvex(sa, sb);
     const double ours = since(t);
-    Nef na = nef_of(sa.triangles), nb = nef_of(sb.triangles);
-    t = Clock::now();
-    Nef s = CGAL::minkowski_sum_3(na, nb);
-    const double cgal = since(t);
-    std::vector<K::Point_3> pts;
-    std::vector<std::vector<std::size_t>> polys;
-    CGAL::convert_nef_polyhedron_to_polygon_soup(s, pts, polys, false);
-    Mesh m;
-    for (const auto& p : pts) {
-      const auto& e = CGAL::exact(p);
-      m.points.push_back(Point3(Rational(e.x()), Rational(e.y()), Rational(e.z())));
-    }
-    for (const auto& f : polys) m.faces.emplace_back(f.begin(), f.end());
+    double cgal = 0;
+    const Mesh m = reference_minkowski_sum(sa, sb, &cgal);
     std::printf("| %s ⊕ %s | %zu | %zu + %zu | %zu | %.3f (%.3f / %.3f / %.3f / %.3f) | %.3f | %.1f× | %s |\n", a.c_str(),
                 b.c_str(), sb.vertices, r.pieces_a, r.pieces_b, r.pairs, ours, r.seconds_decompose, r.seconds_pairs,
                 r.seconds_union, r.seconds_boundary, cgal, cgal / ours, mesh_volume(m) == r.volume ? "yes" : "NO");

@@ -15,6 +15,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 #include <CGAL/convex_decomposition_3.h>
+#include <CGAL/minkowski_sum_3.h>
 
 #include <algorithm>
 #include <chrono>
@@ -152,6 +153,31 @@ std::vector<ConvexPolytope> nef_convex_pieces(const Mesh& triangles) {
   return pieces;
 }
 
+namespace {
+// The boundary of a Nef polyhedron as polygons, counter-clockwise seen from
+// outside, exactly equal points one vertex.
+Mesh boundary_mesh(const Nef& u) {
+  Mesh out;
+  std::vector<KPoint> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  CGAL::convert_nef_polyhedron_to_polygon_soup(u, points, polygons, false);
+  std::map<Point3, Index> index;
+  std::vector<Index> renum(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    Point3 p = from_cgal(points[i]);
+    auto [it, fresh] = index.emplace(p, Index(out.points.size()));
+    if (fresh) out.points.push_back(std::move(p));
+    renum[i] = it->second;
+  }
+  for (const auto& poly : polygons) {
+    std::vector<Index> f;
+    for (std::size_t v : poly) f.push_back(renum[v]);
+    out.faces.push_back(std::move(f));
+  }
+  return out;
+}
+}  // namespace
+
 void nef_union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& options, NonconvexSum& out) {
   auto t0 = Clock::now();
   std::vector<Nef> level;
@@ -181,23 +207,7 @@ void nef_union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptio
   out.mesh = Mesh{};
   if (level.empty()) return;
   const Nef& u = level[0];
-  std::vector<KPoint> points;
-  std::vector<std::vector<std::size_t>> polygons;
-  CGAL::convert_nef_polyhedron_to_polygon_soup(u, points, polygons, false);
-  // Vertices shared between shells are one point each.
-  std::map<Point3, Index> index;
-  std::vector<Index> renum(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    Point3 p = from_cgal(points[i]);
-    auto [it, fresh] = index.emplace(p, Index(out.mesh.points.size()));
-    if (fresh) out.mesh.points.push_back(std::move(p));
-    renum[i] = it->second;
-  }
-  for (const auto& poly : polygons) {
-    std::vector<Index> f;
-    for (std::size_t v : poly) f.push_back(renum[v]);
-    out.mesh.faces.push_back(std::move(f));
-  }
+  out.mesh = boundary_mesh(u);
   // Shells: the volumes' first shells that the conversion visits; edges at
   // more than two faces are where the solid touches itself.
   std::size_t shells = 0;
@@ -216,3 +226,16 @@ void nef_union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptio
 }
 
 }  // namespace minksum::nonconvex_detail
+
+namespace minksum {
+
+Mesh reference_minkowski_sum(const Solid& a, const Solid& b, double* seconds) {
+  using namespace nonconvex_detail;
+  Nef na = solid_nef(a.triangles), nb = solid_nef(b.triangles);
+  const auto t0 = Clock::now();
+  Nef s = CGAL::minkowski_sum_3(na, nb);
+  if (seconds) *seconds = since(t0);
+  return boundary_mesh(s);
+}
+
+}  // namespace minksum

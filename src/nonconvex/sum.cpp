@@ -22,7 +22,8 @@ std::vector<ConvexPolytope> convex_decomposition(const Solid& s) {
   return nonconvex_detail::nef_convex_pieces(s.triangles);
 }
 
-NonconvexSum minkowski_sum_nonconvex(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads) {
+NonconvexSum minkowski_sum_nonconvex(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads,
+                                     Method method) {
   NonconvexSum out;
   auto t0 = Clock::now();
   options.report("decompose", -1.0);
@@ -33,7 +34,7 @@ NonconvexSum minkowski_sum_nonconvex(const Solid& a, const Solid& b, const SumOp
   out.pieces_b = pb.size();
   out.seconds_decompose = since(t0);
 
-  // Pair sums by the walk, in parallel; progress and cancellation between
+  // Pair sums (by the walk unless told otherwise), in parallel; progress and cancellation between
   // batches, on this thread.
   t0 = Clock::now();
   const std::size_t n = pa.size() * pb.size();
@@ -45,7 +46,7 @@ NonconvexSum minkowski_sum_nonconvex(const Solid& a, const Solid& b, const SumOp
     const std::size_t count = std::min(batch, n - start);
     parallel_for(count, workers, [&](std::size_t k) {
       const std::size_t i = start + k;
-      sums[i] = minkowski_sum(pa[i / pb.size()], pb[i % pb.size()], Method::walk).polytope;
+      sums[i] = minkowski_sum(pa[i / pb.size()], pb[i % pb.size()], method).polytope;
     });
     options.report("pairs", double(start + count) / double(n));
   }

@@ -84,11 +84,20 @@ struct NonconvexSum {
 };
 
 // A ⊕ B for two solids (either or both non-convex).  `threads` (0: all
-// hardware threads) sum the pairs of pieces; `options` reports progress
-// (phases "decompose", "pairs", "union", "boundary"; fractions for pairs and
-// union) and is checked for cancellation between steps.
+// hardware threads) sum the pairs of pieces with `method` (any method of
+// <minksum/minkowski.hpp>; all give the same exact pair sums); `options`
+// reports progress (phases "decompose", "pairs", "union", "boundary";
+// fractions for pairs and union) and is checked for cancellation between
+// steps.
 NonconvexSum minkowski_sum_nonconvex(const Solid& a, const Solid& b, const SumOptions& options = {},
-                                     unsigned threads = 0);
+                                     unsigned threads = 0, Method method = Method::walk);
+
+// The reference: A ⊕ B by CGAL's minkowski_sum_3 on the solids' Nef
+// polyhedra (Hachenberger's implementation: its own decomposition, pair sums
+// and union), its boundary as NonconvexSum::mesh is.  Slow; the oracle of the
+// tests and the competitor of bench/nonconvex.  `seconds`, when given,
+// receives the time of minkowski_sum_3 alone.
+Mesh reference_minkowski_sum(const Solid& a, const Solid& b, double* seconds = nullptr);
 
 // The faces of `mesh` (simple planar polygons, as a NonconvexSum's) cut into
 // triangles by exact ear clipping, same orientation, same points; for formats

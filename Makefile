@@ -36,6 +36,7 @@ demo: build
 	$(BUILD)/bin/minksum sum dodecahedron truncated-cube --method essdms --exact -o $(BUILD)/demo/dodeca+trunccube.off
 	$(BUILD)/bin/minksum sum sphere:3 sphere:3@rot:5 --method cgm --exact -o $(BUILD)/demo/sphere3+rotated.off
 	$(BUILD)/bin/minksum stats $(BUILD)/demo/cube+sphere3.off
+	$(BUILD)/bin/minksum sum tube sphere:2@scale:1/4 --exact -o $(BUILD)/demo/tube+sphere2.off
 	$(BUILD)/bin/minksum cgm dioctagonal:17 dioctagonal:17@rot:100,0,0,99 --svg $(BUILD)/demo/cgm.svg
 	$(BUILD)/bin/minksum view truncated-cube sphere:3@rot:1 -o $(BUILD)/demo/scene.html
 	@echo "demo: open $(abspath $(BUILD))/demo/scene.html in a browser (one file, works offline): A, B and A ⊕ B in 3D"
@@ -123,6 +124,14 @@ bench:
 
 E2E = /usr/bin/python3 bench/e2e.py --minksum $(BENCH_BUILD)/bin/minksum --work $(BENCH_BUILD)/e2e \
       --page docs/generated/benchmarks.md
+
+# Sums of non-convex solids against CGAL's minkowski_sum_3 (docs/nonconvex.md).
+.PHONY: bench-nonconvex
+bench-nonconvex:
+	@$(MAKE) --no-print-directory setup
+	$(BENCH_CONFIGURE)
+	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target bench_nonconvex
+	$(BENCH_BUILD)/bin/bench_nonconvex
 
 bench-e2e:
 	@$(MAKE) --no-print-directory setup

@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "mesh_io.hpp"
+#include "nonconvex_sum.hpp"
 
 namespace minksum::cli {
 
@@ -33,13 +34,24 @@ int run_gen(const std::vector<std::string>& argv) {
       if (syn.size() < 22) syn.resize(22, ' ');
       std::cout << "  " << syn << " " << e.description << "\n";
     }
+    std::cout << "\nNon-convex solids (closed, for 'minksum sum'; docs/nonconvex.md):\n";
+    for (const auto& e : nonconvex_catalog_entries()) {
+      std::string syn = e.syntax;
+      if (syn.size() < 22) syn.resize(22, ' ');
+      std::cout << "  " << syn << " " << e.description << "\n";
+    }
     return 0;
   }
   if (a.positional.size() != 1) throw UsageError("'gen' needs one catalog name (see 'minksum gen --help')");
   const std::optional<MeshOutput> output = output_option(a);
   if (!output) throw UsageError("'gen' needs -o OUT");
   // catalog_polytope names the closest catalog name when the name is unknown.
-  ConvexPolytope p = catalog_polytope(a.positional[0]);
+  ConvexPolytope p;
+  try {
+    p = catalog_polytope(a.positional[0]);
+  } catch (const NotConvexError&) {  // a non-convex solid of the catalog
+    return write_nonconvex_catalog_solid(a.positional[0], *output);
+  }
   write_mesh_output(*output, p);
   output->report_stream() << printable(a.positional[0]) << ": " << p.num_vertices() << " vertices, " << p.num_edges()
                           << " edges, " << p.num_facets() << " facets, written to "

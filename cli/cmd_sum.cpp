@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "mesh_io.hpp"
+#include "nonconvex_sum.hpp"
 #include "progress.hpp"
 #include "scene.hpp"
 #include "text.hpp"
@@ -64,6 +65,21 @@ coordinates rounded, largest vertex displacement, facets split, hull taken,
 vertices merged and dropped) says so.  A coordinate beyond the format's range,
 or a solid that rounding collapses, is refused with exit status 1 and one line
 naming the fix.
+
+Non-convex operands: a file or catalog solid (tube, lshape, ring:N, star:N,
+gear:N) that is not convex must be a closed solid: a closed, consistently
+oriented 2-manifold surface of planar faces, without self-intersection, facing
+outwards (else exit status 3 and one line naming the problem).  The sum of two
+operands, one or both non-convex, is exact: each non-convex operand is cut
+into convex pieces, the pieces are summed pairwise (walk, in parallel) and the
+exact union of the pair sums is written (polygons of exact coordinates,
+cavities as inner shells; docs/nonconvex.md).  Without --exact, a coordinate
+that is not a double is rounded only when the rounded surface is still a valid
+solid, else the write is refused (exit 1) naming --exact.  --json then reports
+"pieces", "pairs", "pair_vertices", "pair_facets" and "union" (joins, shells,
+non-manifold edges) and the phases decompose, pairs, union and boundary.
+--method sums the pairs of convex pieces (walk by default); a sum with a
+non-convex operand takes exactly two operands.
 
 Progress: when stderr is a terminal and the sum takes more than a second, one
 line is rewritten in place on stderr every 0.2 s and erased when the sum is
@@ -177,9 +193,22 @@ int run_sum(const std::vector<std::string>& argv) {
   const std::vector<std::string>& names = a.positional;
   std::vector<ConvexPolytope> operands;
   LoadPhases load;
-  for (const std::string& name : names) {
+  if (!hull) {  // operands that may be non-convex (docs/nonconvex.md)
+    std::vector<AnyOperand> any;
+    bool convex = true;
+    for (const std::string& name : names) {
+      LoadPhases l;
+      any.push_back(load_any_operand_from(name, &l, format));
+      convex = convex && any.back().polytope;
+      load.read += l.read;
+      load.validate += l.validate;
+    }
+    if (!convex) return run_nonconvex_sum(names, any, load, output, json, *method);
+    for (auto& o : any) operands.push_back(std::move(*o.polytope));
+  }
+  for (std::size_t i = 0; hull && i < names.size(); ++i) {
     LoadPhases l;
-    operands.push_back(load_operand(name, hull, &l, format));
+    operands.push_back(load_operand(names[i], hull, &l, format));
     load.read += l.read;
     load.validate += l.validate;
   }

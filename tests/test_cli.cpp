@@ -268,7 +268,17 @@ TEST_F(Cli, BadInputExitsThreeWithOneLine) {
     std::string in = data(std::string("bad/") + c);
     ASSERT_TRUE(fs::exists(in)) << in;
     std::string out = path("out.off");
-    CmdResult r = run("sum " + in + " cube -o " + out);
+    // An L prism and two disjoint cubes are closed solids: sum takes them
+    // (docs/nonconvex.md); the convex-only commands refuse them.
+    const bool solid = std::string(c) == "nonconvex_lprism.off" || std::string(c) == "two_cubes.off";
+    CmdResult r = run("sum " + in + (solid ? " tube -o " : " cube -o ") + out);
+    if (solid) {
+      EXPECT_EQ(r.status, 0) << r.err;
+      fs::remove(out);
+      CmdResult st = run("stats " + in);
+      EXPECT_EQ(st.status, 3) << st.err;
+      continue;
+    }
     EXPECT_EQ(r.status, 3) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_NE(r.err.find(c), std::string::npos) << r.err;
@@ -285,7 +295,9 @@ TEST_F(Cli, NotConvexInputSuggestsHull) {
   for (const char* c : {"nonplanar_facet.off", "nonconvex_lprism.off"}) {
     SCOPED_TRACE(c);
     const std::string in = data(std::string("bad/") + c);
+    const bool solid = std::string(c) == "nonconvex_lprism.off";  // sum takes it (docs/nonconvex.md)
     for (const std::string& cmd : {"stats " + in, "sum " + in + " cube"}) {
+      if (solid && cmd[1] == 'u') continue;
       CmdResult r = run(cmd);
       EXPECT_EQ(r.status, 3) << r.err;
       EXPECT_NE(r.err.find("; --hull takes the convex hull of its points instead"), std::string::npos) << r.err;
@@ -865,7 +877,8 @@ TEST_F(Cli, CadMeshesAreRefusedNamingHullAndAcceptedWithIt) {
                         Case{"hull.stl", 332, -1, -1}}) {
     SCOPED_TRACE(c.file);
     const std::string in = data(std::string("cad/") + c.file);
-    for (const std::string& cmd : {"stats " + in, "sum " + in + " cube", "convert " + in + " -o " + path("x.off")}) {
+    // (sum takes them as the non-convex solids they are: docs/nonconvex.md.)
+    for (const std::string& cmd : {"stats " + in, "convert " + in + " -o " + path("x.off")}) {
       CmdResult r = run(cmd);
       EXPECT_EQ(r.status, 3) << r.err;
       EXPECT_EQ(lines(r.err), 1u) << r.err;
@@ -1030,4 +1043,153 @@ TEST_F(SceneCli, MalformedSceneNodesExitThreeNamingTheLine) {
   // Syntax: an unknown field.
   expect_bad_scene(edited(text, "polytope USE S", "polytope USE S colour 1", "field.wrl"), "line " + std::to_string(cgm_s + 1),
                    "unknown field 'colour'");
+}
+
+// ---------------------------------------------------------------------------
+// Non-convex operands (docs/nonconvex.md).
+
+// Exactly the closed form of tube ⊕ [-1/4,1/4]^3 ([-5/4,5/4]^3 minus a hole
+// of side 1/2): volume 125/8 - 5/8 = 15, with the pieces, pairs and union
+// work in --json; the exact output reads back as the same solid.
+TEST_F(Cli, NonConvexSumJsonAndExactOutput) {
+  CmdResult r = run("sum tube box:1/2:1/2:1/2 --json --exact -o " + path("s.off"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_NE(r.out.find("\"method\": \"nonconvex\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"volume\": \"15\""), std::string::npos) << r.out;
+  EXPECT_EQ(json_int(r.out, "vertices"), 16);
+  EXPECT_EQ(json_int(r.out, "facets"), 24);
+  const std::string work = r.out.substr(r.out.find("\"pieces\""));  // after the phases' seconds
+  EXPECT_EQ(json_int(work, "b"), 1);  // "pieces": {"a": N, "b": 1}
+  EXPECT_GE(json_int(work, "a"), 2);
+  EXPECT_EQ(json_int(work, "pairs"), json_int(work, "a"));
+  EXPECT_EQ(json_int(work, "joins"), json_int(work, "pairs") - 1);
+  EXPECT_EQ(json_int(r.out, "shells"), 1);
+  EXPECT_EQ(json_int(r.out, "non_manifold_edges"), 0);
+  for (const char* key : {"decompose", "pairs", "union", "boundary", "pair_facets", "rounded_coordinates"})
+    EXPECT_NE(r.out.find(std::string("\"") + key + "\""), std::string::npos) << key;
+  // Read back, a valid solid again: ⊕ [-1/4,1/4]^3 closes its hole (1/2)
+  // exactly, leaving the cube [-3/2,3/2]^3.
+  CmdResult back = run("sum " + path("s.off") + " box:1/2:1/2:1/2 --json");
+  ASSERT_EQ(back.status, 0) << back.err;
+  EXPECT_NE(back.out.find("\"volume\": \"27\""), std::string::npos) << back.out;
+  EXPECT_EQ(json_int(back.out, "facets"), 6);
+  // A ⊕ B = B ⊕ A, with the pairs summed by another method.
+  CmdResult ba = run("sum box:1/2:1/2:1/2 tube --method cvms --json");
+  ASSERT_EQ(ba.status, 0) << ba.err;
+  EXPECT_NE(ba.out.find("\"volume\": \"15\""), std::string::npos) << ba.out;
+  EXPECT_NE(ba.out.find("\"pair_method\": \"cvms\""), std::string::npos) << ba.out;
+  EXPECT_NE(r.out.find("\"pair_method\": \"walk\""), std::string::npos) << r.out;
+}
+
+// Without --exact: doubles written as they are; other coordinates rounded
+// only when the rounded mesh is still a valid solid (a note says so).
+TEST_F(Cli, NonConvexSumWrittenWithoutExact) {
+  CmdResult r = run("sum lshape cube -o " + path("l.obj"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  CmdResult s = run("sum " + path("l.obj") + " tetra --json");
+  ASSERT_EQ(s.status, 0) << s.err;
+  // STL holds triangles: the L-shaped caps are cut exactly (a fan from one
+  // corner would cover the notch), and the file reads back as the same solid.
+  ASSERT_EQ(run("sum lshape cube -o " + path("l.stl")).status, 0);
+  CmdResult st = run("sum " + path("l.stl") + " tetra --json");
+  ASSERT_EQ(st.status, 0) << st.err;
+  const auto volume = [](const std::string& json) { return json.substr(json.find("\"volume\""), 40); };
+  EXPECT_EQ(volume(st.out), volume(s.out));
+  // 1/3 is no double: the faces are written as triangles of rounded points,
+  // still a valid solid, with a note; the file reads back as a solid.
+  CmdResult third = run("sum lshape cube@scale:1/3 -o " + path("third.off"));
+  ASSERT_EQ(third.status, 0) << third.err;
+  EXPECT_NE(third.err.find("minksum: note: " + path("third.off") + ": 36 coordinates are not doubles, written "
+                           "rounded to the nearest ones, the faces as triangles"),
+            std::string::npos)
+      << third.err;
+  EXPECT_EQ(lines(third.err), 1u);
+  CmdResult back = run("sum " + path("third.off") + " tetra --json");
+  ASSERT_EQ(back.status, 0) << back.err;
+  EXPECT_EQ(json_int(back.out, "vertices"), 20);
+}
+
+// Bad solids: exit 3, one line naming the file, the place and the problem.
+TEST_F(Cli, NonConvexBadSolidsExitThree) {
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(path(name)) << text;
+    return path(name);
+  };
+  // An L prism (tests/data/bad/nonconvex_lprism.off) with one face dropped,
+  // with one face reversed, and with every face reversed.
+  const std::string l = slurp(data("bad/nonconvex_lprism.off"));
+  const std::size_t faces_at = [&] {
+    std::size_t at = 0;
+    for (int line = 0; line < 2 + 12; ++line) at = l.find('\n', at) + 1;
+    return at;
+  }();
+  std::vector<std::string> face_lines;
+  {
+    std::istringstream in(l.substr(faces_at));
+    for (std::string line; std::getline(in, line);)
+      if (!line.empty()) face_lines.push_back(line);
+  }
+  ASSERT_EQ(face_lines.size(), 8u);
+  auto reversed = [](const std::string& line) {
+    std::istringstream in(line);
+    int n;
+    in >> n;
+    std::vector<std::string> v(n);
+    for (auto& x : v) in >> x;
+    std::string out = std::to_string(n);
+    for (int i = n; i-- > 0;) out += " " + v[i];
+    return out;
+  };
+  std::string head = l.substr(0, faces_at);
+  std::string open = head, flipped = head, inverted = head;
+  open.replace(open.find("12 8 0"), 6, "12 7 0");
+  for (std::size_t i = 0; i < face_lines.size(); ++i) {
+    if (i != 0) open += face_lines[i] + "\n";
+    flipped += (i == 3 ? reversed(face_lines[i]) : face_lines[i]) + "\n";
+    inverted += reversed(face_lines[i]) + "\n";
+  }
+  struct Case {
+    std::string file, problem;
+  };
+  for (const Case& c : {Case{write("open.off", open), "(the mesh is not closed)"},
+                        Case{write("flipped.off", flipped), "used twice in the same direction"},
+                        Case{write("inverted.off", inverted), "oriented inwards"},
+                        Case{write("crossing.off", "OFF\n16 12 0\n"
+                                                   "0 0 0\n2 0 0\n0 2 0\n2 2 0\n0 0 2\n2 0 2\n0 2 2\n2 2 2\n"
+                                                   "1 1 1\n3 1 1\n1 3 1\n3 3 1\n1 1 3\n3 1 3\n1 3 3\n3 3 3\n"
+                                                   "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n"
+                                                   "4 8 10 11 9\n4 12 13 15 14\n4 8 9 13 12\n4 10 14 15 11\n"
+                                                   "4 8 12 14 10\n4 9 11 15 13\n"),
+                             "intersect (the surface intersects itself)"}}) {
+    SCOPED_TRACE(c.file);
+    CmdResult r = run("sum " + c.file + " cube --json -o " + path("out.off"));
+    EXPECT_EQ(r.status, 3) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("minksum: " + c.file + ": ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(c.problem), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_FALSE(fs::exists(path("out.off")));
+  }
+  // Usage: three operands with a non-convex one.
+  EXPECT_EQ(run("sum tube cube cube").status, 2);
+}
+
+TEST_F(Cli, NonConvexCatalogSolidsGenAndHelp) {
+  CmdResult h = run("gen --help");
+  ASSERT_EQ(h.status, 0);
+  for (const char* n : {"tube:H", "lshape", "ring:N", "star:N", "gear:N"}) EXPECT_NE(h.out.find(n), std::string::npos) << n;
+  CmdResult g = run("gen gear:4 -o " + path("gear.off"));
+  ASSERT_EQ(g.status, 0) << g.err;
+  EXPECT_NE(g.out.find("gear:4: 64 vertices, 64 faces, non-convex"), std::string::npos) << g.out;
+  EXPECT_EQ(run("stats " + path("gear.off")).status, 3);  // not convex
+  CmdResult s = run("sum " + path("gear.off") + " cube@scale:1/16 --json");
+  ASSERT_EQ(s.status, 0) << s.err;
+  CmdResult t = run("sum gear:4 cube@scale:1/16 --json");
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_EQ(s.out.substr(0, s.out.find("\"method\"")), t.out.substr(0, t.out.find("\"method\"")));
+  EXPECT_EQ(run("gen gear:2 -o " + path("x.off")).status, 2);
+  CmdResult help = run("sum --help");
+  EXPECT_NE(help.out.find("Non-convex operands"), std::string::npos);
 }

@@ -41,10 +41,27 @@ const Form kTransforms[] = {
     {"neg", "@neg", "point reflection through the origin (the solid -P)"},
 };
 
+// Non-convex solids (nonconvex.cpp): catalog_mesh() builds them;
+// catalog_polytope() refuses them with a NotConvexError.
+const Form kNonconvex[] = {
+    {"tube", "tube", "the cube [-1,1]^3 with a square hole of side 1 along z (genus 1)"},
+    {"tube", "tube:H", "the cube [-1,1]^3 with a square hole of side H (0 < H < 2) along z"},
+    {"lshape", "lshape", "prism of height 1 over an L of three unit squares"},
+    {"ring", "ring:N", "prism of height 1/2 over the ring between regular N-gons (3..10000) of radii 1 and 1/2"},
+    {"star", "star:N", "prism of height 1/2 over an N-pointed star (3..10000), radii 1 and 1/2"},
+    {"gear", "gear:N", "prism of height 1/2 over a gear of N teeth (3..10000), radii 3/4 and 1, bore 1/4"},
+};
+
+bool is_nonconvex_name(const std::string& name) {
+  for (const Form& f : kNonconvex)
+    if (name == f.name) return true;
+  return false;
+}
+
 bool is_family(const std::string& name) {
   for (const Form& f : kFamilies)
     if (name == f.name) return true;
-  return false;
+  return is_nonconvex_name(name);
 }
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -89,6 +106,8 @@ std::vector<std::string> all_base_names() {
     for (const std::string& a : s.aliases) names.push_back(a);
   }
   for (const Form& f : kFamilies)
+    if (std::find(names.begin(), names.end(), f.name) == names.end()) names.push_back(f.name);
+  for (const Form& f : kNonconvex)
     if (std::find(names.begin(), names.end(), f.name) == names.end()) names.push_back(f.name);
   return names;
 }
@@ -200,6 +219,31 @@ ConvexPolytope build_base(const std::string& spec, const std::string& base) {
   unknown_name(spec, name);
 }
 
+// The mesh of a non-convex base (kNonconvex).
+Mesh nonconvex_base(const std::string& spec, const std::string& base) {
+  std::vector<std::string> parts = split(base, ':');
+  const std::string name = parts[0];
+  const std::vector<std::string> params(parts.begin() + 1, parts.end());
+  if (name == "tube") {
+    if (params.empty()) return make_tube(1);
+    const std::string form = "tube:H";
+    arity(spec, form, params, 1);
+    const Rational h = positive(spec, form, "H", params[0]);
+    if (h >= 2) fail(spec, form + " needs H < 2 (the hole inside the cube's side 2), got " + params[0]);
+    return make_tube(h);
+  }
+  if (name == "lshape") {
+    if (!params.empty()) fail(spec, "'lshape' takes no parameters");
+    return make_lshape();
+  }
+  const std::string form = name + ":N";
+  arity(spec, form, params, 1);
+  const std::uint64_t n = bounded(spec, form, "N", params[0], 3, kNonconvexMax);
+  if (name == "ring") return make_ring(n);
+  if (name == "star") return make_star(n);
+  return make_gear(n);
+}
+
 // ---------------------------------------------------------------------------
 // Transforms: parsed (and checked) before the base is built, then applied
 // to the vertices of the base's mesh in order.
@@ -289,6 +333,15 @@ const std::vector<CatalogEntry>& catalog_entries() {
   return entries;
 }
 
+const std::vector<CatalogEntry>& nonconvex_catalog_entries() {
+  static const std::vector<CatalogEntry> entries = [] {
+    std::vector<CatalogEntry> e;
+    for (const Form& f : kNonconvex) e.push_back({f.syntax, f.description});
+    return e;
+  }();
+  return entries;
+}
+
 std::string closest_catalog_name(const std::string& spec) {
   // The closest name within two edits, else one the text begins.
   const std::string name = base_name(spec);
@@ -312,9 +365,24 @@ bool is_catalog_spec(const std::string& spec) {
   return find_fixed_solid(name) != nullptr || is_family(name);
 }
 
+Mesh catalog_mesh(const std::string& spec) {
+  if (spec.empty()) throw UsageError("empty catalog spec; see 'minksum gen --help' for the names");
+  const std::vector<std::string> parts = split(spec, '@');
+  std::vector<Transform> transforms;
+  for (std::size_t i = 1; i < parts.size(); ++i) transforms.push_back(parse_transform(spec, parts[i]));
+  Mesh mesh = is_nonconvex_name(base_name(parts[0])) ? nonconvex_base(spec, parts[0])
+                                                     : build_base(spec, parts[0]).to_mesh();
+  for (const Transform& t : transforms) t(mesh);
+  return mesh;
+}
+
 ConvexPolytope catalog_polytope(const std::string& spec) {
   if (spec.empty()) throw UsageError("empty catalog spec; see 'minksum gen --help' for the names");
   const std::vector<std::string> parts = split(spec, '@');
+  if (is_nonconvex_name(base_name(parts[0]))) {
+    catalog_mesh(spec);  // a bad parameter or transform is a UsageError first
+    throw NotConvexError(spec, "", "a non-convex solid of the catalog (only 'minksum sum' takes it)");
+  }
   std::vector<Transform> transforms;
   for (std::size_t i = 1; i < parts.size(); ++i) transforms.push_back(parse_transform(spec, parts[i]));
   ConvexPolytope p = build_base(spec, parts[0]);

@@ -50,6 +50,50 @@ ConvexPolytope load_polytope(const std::string& spec, bool hull, LoadPhases* pha
     if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
     return p;
   }
+  unknown_operand(spec, format);
+}
+
+namespace {
+// The polytope of `mesh` when it is convex, else the mesh itself.
+AnyOperand convex_or_mesh(Mesh mesh, const std::string& name, LoadPhases* phases, Clock::time_point t0) {
+  AnyOperand o;
+  const auto t1 = Clock::now();
+  try {
+    o.polytope = ConvexPolytope::from_mesh(mesh, name);
+  } catch (const InputError&) {  // not a convex polytope: validate_solid says what it is
+    o.mesh = std::move(mesh);
+  }
+  if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
+  return o;
+}
+}  // namespace
+
+AnyOperand load_any_operand(std::istream& in, Format format, const std::string& name, LoadPhases* phases) {
+  const auto t0 = Clock::now();
+  return convex_or_mesh(read_mesh(in, format, name), name, phases, t0);
+}
+
+AnyOperand load_any_operand(const std::string& spec, LoadPhases* phases, std::optional<Format> given) {
+  const auto format = format_from_path(spec);
+  struct stat st{};
+  const bool exists = ::stat(spec.c_str(), &st) == 0;
+  const auto t0 = Clock::now();
+  if (exists && (format || !is_catalog_spec(spec)))
+    return convex_or_mesh(format || !given ? read_mesh(spec) : read_mesh(spec, *given), spec, phases, t0);
+  if (is_catalog_spec(spec)) {
+    AnyOperand o;
+    try {
+      o.polytope = catalog_polytope(spec);
+    } catch (const NotConvexError&) {  // a non-convex solid of the catalog
+      o.mesh = catalog_mesh(spec);
+    }
+    if (phases) *phases = {seconds(t0, Clock::now()), 0};
+    return o;
+  }
+  unknown_operand(spec, format);
+}
+
+void unknown_operand(const std::string& spec, std::optional<Format> format) {
   if (format) throw InputError(spec, "", "no such file");
   const std::string best = closest_catalog_name(spec);
   throw UsageError("'" + spec + "' is neither a file nor a catalog name" +

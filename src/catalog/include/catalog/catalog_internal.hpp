@@ -110,6 +110,20 @@ ConvexPolytope make_zonotope(const std::vector<Point3>& generators, const std::s
 std::array<double, 2> unit_circle_point(std::uint64_t k, std::uint64_t n);
 
 // ---------------------------------------------------------------------------
+// Non-convex solids (nonconvex.cpp): meshes, validated by the caller.
+inline constexpr std::uint64_t kNonconvexMax = 10000;  // most teeth, points, sides of ring:N, star:N, gear:N
+// Cube [-1,1]^3 with a square hole of side `hole` (0 < hole < 2) along z.
+Mesh make_tube(const Rational& hole);
+// Prism of height 1 over an L of three unit squares.
+Mesh make_lshape();
+// Prism of height 1/2 over the ring between regular N-gons of radii 1 and 1/2.
+Mesh make_ring(std::uint64_t n);
+// Prism of height 1/2 over an N-pointed star (radii 1 and 1/2).
+Mesh make_star(std::uint64_t n);
+// Prism of height 1/2 over a gear of N teeth (radii 3/4 and 1) with a bore of radius 1/4.
+Mesh make_gear(std::uint64_t n);
+
+// ---------------------------------------------------------------------------
 // Rotations (rotation.cpp; the matrices are in <minksum/transform.hpp>).
 // The quaternion of rot:SEED: integers in [-100, 100] drawn until
 // 50 <= |q| <= 100 (so the rotation is close to uniformly distributed).

@@ -11,6 +11,8 @@
 //             | zonotope:N:SEED    N random generators in general position, 3 <= N <= 256
 //             | zonotope:X,Y,Z:... 1..16 explicit generators
 //             | box:X:Y:Z          axis-aligned box with sides X, Y, Z > 0
+//             | tube | tube:H | lshape | ring:N | star:N | gear:N
+//                                  non-convex solids (catalog_mesh only)
 //   transform:= rot:SEED           a pseudo-random exact rational rotation
 //             | rot:A,B,C,D        the rotation of the integer quaternion (A,B,C,D)
 //             | scale:S | scale:X,Y,Z | translate:X,Y,Z | neg
@@ -35,8 +37,11 @@ struct CatalogEntry {
   std::string description;  // one line, for --help and docs
 };
 
-// All names and parameterised forms the catalog understands.
+// All names and parameterised forms the catalog understands for convex
+// polytopes, and its transforms.
 const std::vector<CatalogEntry>& catalog_entries();
+// The non-convex solids of the catalog (catalog_mesh), the same way.
+const std::vector<CatalogEntry>& nonconvex_catalog_entries();
 
 // True if `spec` names the catalog: its base name (the text before the first
 // ':' or '@') is a catalog name.  Parameters and transforms are not checked
@@ -52,6 +57,13 @@ std::string closest_catalog_name(const std::string& spec);
 
 // Build the polytope named by `spec`.  Throws UsageError for an unknown name
 // or a bad/out-of-range parameter (message says which and the allowed range).
+// Non-convex solids (tube, lshape, ring:N, star:N, gear:N) are refused with
+// a NotConvexError: catalog_mesh() gives them.
 ConvexPolytope catalog_polytope(const std::string& spec);
+
+// The mesh named by `spec`, not validated: a convex polytope's facets, or a
+// non-convex solid's faces (polygons, counter-clockwise from outside), with
+// the transforms applied.  Throws UsageError like catalog_polytope().
+Mesh catalog_mesh(const std::string& spec);
 
 }  // namespace minksum

@@ -36,4 +36,22 @@ ConvexPolytope load_polytope(const std::string& spec, bool hull = false, LoadPha
 ConvexPolytope load_polytope(std::istream& in, Format format, const std::string& name, bool hull = false,
                              LoadPhases* phases = nullptr);
 
+// An operand that may be non-convex, for sums of solids: the polytope when
+// the mesh (file or catalog_mesh) is a convex polytope, else the mesh as
+// read, not yet validated (validate_solid in <minksum/nonconvex.hpp> does
+// that, and says what is wrong with it).  Errors as load_polytope's, except
+// that a mesh that is not a convex polytope is no error here.
+struct AnyOperand {
+  std::optional<ConvexPolytope> polytope;
+  Mesh mesh;  // when there is no polytope
+};
+AnyOperand load_any_operand(const std::string& spec, LoadPhases* phases = nullptr,
+                            std::optional<Format> format = std::nullopt);
+AnyOperand load_any_operand(std::istream& in, Format format, const std::string& name, LoadPhases* phases = nullptr);
+
+// The error for a name that is neither an existing file nor a catalog spec:
+// InputError "no such file" when it has a known extension, else UsageError
+// with the closest catalog name.
+[[noreturn]] void unknown_operand(const std::string& spec, std::optional<Format> format);
+
 }  // namespace minksum

@@ -1,0 +1,198 @@
+// minksum sum A B when an operand is not convex (docs/nonconvex.md): the
+// solids validated, then minkowski_sum_nonconvex.
+#include <minksum/catalog.hpp>
+#include <minksum/io.hpp>
+#include <minksum/nonconvex.hpp>
+#include <minksum/operand.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include "common.hpp"
+#include "mesh_io.hpp"
+#include "nonconvex_sum.hpp"
+#include "progress.hpp"
+#include "text.hpp"
+
+namespace minksum::cli {
+
+namespace {
+
+std::string solid_json(const std::string& name, const Solid& s, std::size_t pieces) {
+  std::ostringstream o;
+  o << "{\"name\": \"" << json_escape(name) << "\", \"vertices\": " << s.vertices << ", \"faces\": " << s.faces
+    << ", \"convex\": " << (s.convex ? "true" : "false") << ", \"pieces\": " << pieces << "}";
+  return o.str();
+}
+
+// Vertices, edges and faces of a polygon mesh.
+struct Counts {
+  std::size_t vertices = 0, edges = 0, faces = 0;
+};
+Counts counts(const Mesh& m) {
+  Counts c;
+  c.vertices = m.points.size();
+  c.faces = m.faces.size();
+  std::size_t corners = 0;
+  for (const auto& f : m.faces) corners += f.size();
+  c.edges = corners / 2;  // every edge has as many faces on each side
+  return c;
+}
+
+// The mesh as `out`'s format holds it: itself when every coordinate is
+// representable; else its faces triangulated exactly, the points rounded to
+// the nearest representable ones, and written only when the rounded mesh is
+// still a valid solid (validate_solid: closed, oriented, 2-manifold, without
+// self-intersection, positive volume); else OutputError naming --exact.
+// Returns the number of coordinates rounded.
+std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh) {
+  const std::string name = out.to_stdout() ? "<stdout>" : out.path;
+  const bool floats = out.format == Format::stl && out.options.binary;
+  // The coordinates the format cannot hold.
+  std::size_t rounded = 0;
+  const auto representable = [&](const Rational& q) {
+    return floats ? Rational(double(to_float(q))) == q : is_double(q);
+  };
+  if (!out.options.exact)
+    for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+      const Point3 p = mesh.points[i];
+      for (int k = 0; k < 3; ++k) rounded += !representable(p[k]);
+    }
+  // Faces cut into triangles exactly when the format holds triangles only
+  // (STL: an L-shaped cap fanned from a corner would cover its notch), or
+  // before rounding (a rounded triangle stays planar, a rounded polygon not).
+  Mesh written = out.format == Format::stl || rounded ? triangulate(mesh, name) : mesh;
+  if (rounded) {
+    PointList pts;
+    for (std::size_t i = 0; i < written.points.size(); ++i) {
+      const Point3 p = written.points[i];
+      Point3 q;
+      for (int k = 0; k < 3; ++k) {
+        const double d = floats ? double(to_float(p[k])) : to_double(p[k]);
+        if (!std::isfinite(d))
+          throw OutputError("cannot write " + name + ": a coordinate is beyond the range of " +
+                            (floats ? "32-bit floats" : "doubles") + "; use --exact with " +
+                            extension_list(", ", " or ", true) + " to write exact rationals");
+        q[k] = Rational(d);
+      }
+      pts.push_back(q);
+    }
+    written.points = std::move(pts);
+    try {
+      validate_solid(written, name);
+    } catch (const InputError& e) {
+      throw OutputError("cannot write " + name + ": " + std::to_string(rounded) + " coordinates are not " +
+                        (floats ? "32-bit floats" : "doubles") + " and the rounded surface is no longer a valid solid (" +
+                        e.problem() + "); use --exact with " + extension_list(", ", " or ", true) +
+                        " to write exact rationals");
+    }
+  }
+  try {
+    if (out.to_stdout()) {
+      write_mesh(std::cout, written, out.format, out.options);
+      std::cout.flush();
+      if (!std::cout) throw OutputError("cannot write the mesh to standard output: write error");
+    } else {
+      write_mesh(out.path, written, out.options);
+    }
+  } catch (const UnrepresentableError& e) {
+    throw OutputError("cannot write " + name + ": " + e.problem() + "; use --exact with " +
+                      extension_list(", ", " or ", true) + " to write exact rationals");
+  } catch (const InputError& e) {
+    throw OutputError(std::string("cannot write ") + e.what());
+  }
+  if (rounded)
+    std::cerr << "minksum: note: " << printable(name) << ": " << rounded << " coordinates are not "
+              << (floats ? "32-bit floats" : "doubles")
+              << ", written rounded to the nearest ones, the faces as triangles (the rounded surface is still a "
+                 "closed solid without self-intersection; --exact writes the exact sum)\n";
+  return rounded;
+}
+
+}  // namespace
+
+int write_nonconvex_catalog_solid(const std::string& spec, const MeshOutput& output) {
+  const Solid s = validate_solid(catalog_mesh(spec), spec);
+  const Mesh m = catalog_mesh(spec);
+  write_solid_mesh(output, m);
+  output.report_stream() << printable(spec) << ": " << s.vertices << " vertices, " << s.faces
+                         << " faces, non-convex, written to "
+                         << (output.to_stdout() ? std::string("standard output") : printable(output.path)) << "\n";
+  return 0;
+}
+
+AnyOperand load_any_operand_from(const std::string& spec, LoadPhases* phases, std::optional<Format> format) {
+  if (spec != "-") return load_any_operand(spec, phases, format);
+  if (!format) throw UsageError("reading a mesh from standard input ('-') needs --format " + format_choices());
+  claim_stdin("an operand");
+  return load_any_operand(std::cin, *format, "<stdin>", phases);
+}
+
+int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<AnyOperand>& operands,
+                      const LoadPhases& load, const std::optional<MeshOutput>& output, bool json, Method method) {
+  if (operands.size() != 2)
+    throw UsageError("a sum with a non-convex operand takes exactly two operands A B (" +
+                     std::to_string(operands.size()) + " given)");
+  const auto v0 = std::chrono::steady_clock::now();
+  std::vector<Solid> solids;
+  for (std::size_t i = 0; i < 2; ++i) {
+    if (operands[i].polytope) {
+      solids.push_back(solid_of(*operands[i].polytope));
+      continue;
+    }
+    try {
+      solids.push_back(validate_solid(operands[i].mesh, names[i] == "-" ? "<stdin>" : names[i]));
+    } catch (const InputError& e) {
+      throw InputError(e.file(), e.place(), e.problem() + "; --hull takes the convex hull of its points instead");
+    }
+  }
+  const double validate_seconds =
+      load.validate + std::chrono::duration<double>(std::chrono::steady_clock::now() - v0).count();
+  NonconvexSum r;
+  {
+    ProgressTicker ticker("minksum sum");
+    r = minkowski_sum_nonconvex(solids[0], solids[1], ticker.sum_options(), 0,
+                                method == Method::automatic ? Method::walk : method);
+  }
+  const auto w0 = std::chrono::steady_clock::now();
+  std::size_t rounded = 0;
+  if (output) rounded = write_solid_mesh(*output, r.mesh);
+  const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+  const Counts c = counts(r.mesh);
+  std::ostream& report = output ? output->report_stream() : std::cout;
+  if (json) {
+    report << "{\"vertices\": " << c.vertices << ", \"edges\": " << c.edges << ", \"facets\": " << c.faces
+           << ", \"method\": \"nonconvex\", \"pair_method\": \""
+           << method_name(method == Method::automatic ? Method::walk : method) << "\", \"seconds\": " << json_number(r.seconds())
+           << ", \"phases\": {\"read\": " << json_number(load.read) << ", \"validate\": " << json_number(validate_seconds)
+           << ", \"decompose\": " << json_number(r.seconds_decompose) << ", \"pairs\": " << json_number(r.seconds_pairs)
+           << ", \"union\": " << json_number(r.seconds_union) << ", \"boundary\": " << json_number(r.seconds_boundary)
+           << ", \"write\": " << json_number(write_seconds) << "}, \"volume\": \"" << format_exact(r.volume)
+           << "\", \"volume_double\": " << json_number(to_double(r.volume)) << ", \"pieces\": {\"a\": " << r.pieces_a
+           << ", \"b\": " << r.pieces_b << "}, \"pairs\": " << r.pairs << ", \"pair_vertices\": " << r.pair_vertices
+           << ", \"pair_facets\": " << r.pair_facets << ", \"union\": {\"joins\": " << r.unions
+           << ", \"shells\": " << r.shells << ", \"non_manifold_edges\": " << r.non_manifold_edges << "}"
+           << ", \"a\": " << solid_json(names[0], solids[0], r.pieces_a)
+           << ", \"b\": " << solid_json(names[1], solids[1], r.pieces_b) << ", \"output\": ";
+    if (!output) report << "null";
+    else report << "\"" << json_escape(output->to_stdout() ? "-" : output->path) << "\"";
+    report << ", \"rounded_coordinates\": " << rounded << "}\n";
+  } else {
+    for (std::size_t i = 0; i < 2; ++i)
+      report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << solids[i].vertices << " V, " << solids[i].faces
+             << " F, " << (solids[i].convex ? "convex" : std::to_string(r.pieces_a * (i == 0) + r.pieces_b * (i == 1)) +
+                                                             " convex pieces")
+             << ")";
+    report << "\n  = " << c.vertices << " vertices, " << c.edges << " edges, " << c.faces << " faces"
+           << (r.shells > 1 ? ", " + std::to_string(r.shells) + " shells" : std::string())
+           << (r.non_manifold_edges ? ", " + std::to_string(r.non_manifold_edges) + " non-manifold edges" : std::string())
+           << "\n  non-convex sum: " << r.pairs << " pair sums, " << r.unions << " unions, "
+           << format_double(r.seconds()) << " s\n";
+    if (output) report << "  written to " << (output->to_stdout() ? std::string("standard output") : printable(output->path)) << "\n";
+  }
+  return 0;
+}
+
+}  // namespace minksum::cli

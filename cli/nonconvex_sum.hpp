@@ -1,0 +1,29 @@
+// minksum sum with a non-convex operand (cli/cmd_sum_nonconvex.cpp).
+#pragma once
+
+#include <minksum/minkowski.hpp>
+#include <minksum/operand.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mesh_io.hpp"
+
+namespace minksum::cli {
+
+// The sum of two operands, one or both not convex: validates them as solids
+// (exit 3 naming the problem), sums them, writes the boundary to `output`
+// and prints the summary or JSON.  Returns the exit status.
+// `method` sums the pairs of convex pieces.
+int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<AnyOperand>& operands,
+                      const LoadPhases& load, const std::optional<MeshOutput>& output, bool json, Method method);
+
+// minksum gen for a non-convex solid of the catalog: validated, written like
+// a sum's boundary, one summary line.
+int write_nonconvex_catalog_solid(const std::string& spec, const MeshOutput& output);
+
+// An operand that may be non-convex: '-' is standard input in `format`.
+AnyOperand load_any_operand_from(const std::string& spec, LoadPhases* phases, std::optional<Format> format);
+
+}  // namespace minksum::cli

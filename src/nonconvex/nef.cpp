@@ -1,0 +1,241 @@
+// The steps of the non-convex sum done with CGAL's exact Nef polyhedra
+// (Hachenberger, Algorithmica 2009): convex decomposition and the union of
+// the pair sums, plus the self-intersection test of validation.  The only
+// CGAL translation unit of the layer.
+#include <minksum/error.hpp>
+#include <minksum/nonconvex.hpp>
+
+#include "nonconvex/nef.hpp"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
+#include <CGAL/convex_decomposition_3.h>
+#include <CGAL/minkowski_sum_3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <iterator>
+#include <map>
+
+namespace minksum::nonconvex_detail {
+
+namespace {
+
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using KPoint = K::Point_3;
+using Polyhedron = CGAL::Polyhedron_3<K>;
+using Nef = CGAL::Nef_polyhedron_3<K>;
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+KPoint to_cgal(const Point3& p) { return KPoint(K::FT(p.x), K::FT(p.y), K::FT(p.z)); }
+
+Point3 from_cgal(const KPoint& p) {
+  const auto& e = CGAL::exact(p);
+  return Point3(Rational(e.x()), Rational(e.y()), Rational(e.z()));
+}
+
+std::vector<KPoint> cgal_points(const PointList& points) {
+  std::vector<KPoint> out;
+  out.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) out.push_back(to_cgal(points[i]));
+  return out;
+}
+
+Polyhedron polyhedron_of(const Mesh& m) {
+  std::vector<std::vector<std::size_t>> faces;
+  faces.reserve(m.faces.size());
+  for (const auto& f : m.faces) faces.emplace_back(f.begin(), f.end());
+  Polyhedron p;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(cgal_points(m.points), faces, p);
+  return p;
+}
+
+Nef nef_of(const ConvexPolytope& p) {
+  Polyhedron poly = polyhedron_of(p.to_mesh());
+  return Nef(poly);
+}
+
+struct FirstHit {};
+
+// The shells of a closed 2-manifold triangle mesh: its connected components
+// (triangles linked by shared edges), each as a mesh of its own, faces
+// turned outwards (a cavity's shell faces into the cavity: reversed).
+std::vector<Mesh> outward_shells(const Mesh& triangles) {
+  const std::size_t n = triangles.faces.size();
+  std::vector<std::size_t> parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::map<std::pair<Index, Index>, std::size_t> edge;
+  for (std::size_t t = 0; t < n; ++t)
+    for (int k = 0; k < 3; ++k) {
+      Index a = triangles.faces[t][k], b = triangles.faces[t][(k + 1) % 3];
+      auto [it, fresh] = edge.emplace(std::make_pair(std::min(a, b), std::max(a, b)), t);
+      if (!fresh) parent[find(t)] = find(it->second);
+    }
+  std::map<std::size_t, Mesh> by_root;
+  for (std::size_t t = 0; t < n; ++t) by_root[find(t)].faces.push_back(triangles.faces[t]);
+  std::vector<Mesh> shells;
+  for (auto& [root, m] : by_root) {
+    std::map<Index, Index> renum;  // the shell's own vertices only
+    for (auto& f : m.faces)
+      for (Index& v : f) {
+        auto [it, fresh] = renum.emplace(v, Index(m.points.size()));
+        if (fresh) m.points.push_from(triangles.points, v);
+        v = it->second;
+      }
+    if (sgn(mesh_volume(m)) < 0)
+      for (auto& f : m.faces) std::reverse(f.begin(), f.end());
+    shells.push_back(std::move(m));
+  }
+  return shells;
+}
+
+// The solid bounded by a validated triangle mesh as a Nef polyhedron: the
+// points inside an odd number of its shells (its shells are disjoint and
+// nested), i.e. the symmetric difference of the shells' interiors.
+Nef solid_nef(const Mesh& triangles) {
+  std::optional<Nef> nef;
+  for (const Mesh& shell : outward_shells(triangles)) {
+    Polyhedron poly = polyhedron_of(shell);
+    Nef n(poly);
+    nef = nef ? nef->symmetric_difference(n) : n;
+  }
+  return nef->regularization();
+}
+
+}  // namespace
+
+std::optional<std::pair<Index, Index>> first_self_intersection(const Mesh& triangles) {
+  using SM = CGAL::Surface_mesh<KPoint>;
+  using Face = SM::Face_index;
+  std::vector<std::vector<std::size_t>> faces;
+  for (const auto& f : triangles.faces) faces.emplace_back(f.begin(), f.end());
+  SM sm;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(cgal_points(triangles.points), faces, sm);
+  std::optional<std::pair<Index, Index>> hit;
+  // polygon_soup_to_polygon_mesh keeps the order of the faces.
+  auto out = boost::make_function_output_iterator([&](const std::pair<Face, Face>& p) {
+    Index a = Index(p.first), b = Index(p.second);
+    hit = std::make_pair(std::min(a, b), std::max(a, b));
+    throw FirstHit{};
+  });
+  try {
+    CGAL::Polygon_mesh_processing::self_intersections(sm, out);
+  } catch (const FirstHit&) {
+  }
+  return hit;
+}
+
+std::vector<ConvexPolytope> nef_convex_pieces(const Mesh& triangles) {
+  Nef nef = solid_nef(triangles);
+  CGAL::convex_decomposition_3(nef);
+  std::vector<ConvexPolytope> pieces;
+  // The first volume is the unbounded outside; every other marked volume is
+  // one convex piece.
+  for (auto c = std::next(nef.volumes_begin()); c != nef.volumes_end(); ++c) {
+    if (!c->mark()) continue;
+    Polyhedron piece;
+    nef.convert_inner_shell_to_polyhedron(c->shells_begin(), piece);
+    std::vector<Point3> points;
+    for (auto v = piece.vertices_begin(); v != piece.vertices_end(); ++v) points.push_back(from_cgal(v->point()));
+    pieces.push_back(ConvexPolytope::hull(points, "convex piece"));
+  }
+  return pieces;
+}
+
+namespace {
+// The boundary of a Nef polyhedron as polygons, counter-clockwise seen from
+// outside, exactly equal points one vertex.
+Mesh boundary_mesh(const Nef& u) {
+  Mesh out;
+  std::vector<KPoint> points;
+  std::vector<std::vector<std::size_t>> polygons;
+  CGAL::convert_nef_polyhedron_to_polygon_soup(u, points, polygons, false);
+  std::map<Point3, Index> index;
+  std::vector<Index> renum(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    Point3 p = from_cgal(points[i]);
+    auto [it, fresh] = index.emplace(p, Index(out.points.size()));
+    if (fresh) out.points.push_back(std::move(p));
+    renum[i] = it->second;
+  }
+  for (const auto& poly : polygons) {
+    std::vector<Index> f;
+    for (std::size_t v : poly) f.push_back(renum[v]);
+    out.faces.push_back(std::move(f));
+  }
+  return out;
+}
+}  // namespace
+
+void nef_union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& options, NonconvexSum& out) {
+  auto t0 = Clock::now();
+  std::vector<Nef> level;
+  level.reserve(parts.size());
+  for (const auto& p : parts) level.push_back(nef_of(p));
+  // A balanced tree of joins: each round joins neighbours pairwise, so the
+  // operands of a join have similar sizes.
+  const std::size_t total = parts.empty() ? 0 : parts.size() - 1;
+  std::size_t done = 0;
+  options.report("union", 0.0);
+  while (level.size() > 1) {
+    std::vector<Nef> next;
+    next.reserve((level.size() + 1) / 2);
+    for (std::size_t i = 0; i + 1 < level.size(); i += 2) {
+      next.push_back(level[i].join(level[i + 1]));
+      ++done;
+      options.report("union", total ? double(done) / double(total) : 1.0);
+    }
+    if (level.size() % 2) next.push_back(std::move(level.back()));
+    level = std::move(next);
+  }
+  out.unions = done;
+  out.seconds_union = since(t0);
+
+  t0 = Clock::now();
+  options.report("boundary", -1.0);
+  out.mesh = Mesh{};
+  if (level.empty()) return;
+  const Nef& u = level[0];
+  out.mesh = boundary_mesh(u);
+  // Shells: the volumes' first shells that the conversion visits; edges at
+  // more than two faces are where the solid touches itself.
+  std::size_t shells = 0;
+  for (auto c = std::next(u.volumes_begin()); c != u.volumes_end(); ++c) ++shells;
+  out.shells = shells;
+  std::map<std::pair<Index, Index>, int> edge_faces;
+  for (const auto& f : out.mesh.faces)
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      Index a = f[i], b = f[(i + 1) % f.size()];
+      ++edge_faces[{std::min(a, b), std::max(a, b)}];
+    }
+  out.non_manifold_edges = 0;
+  for (const auto& [e, c] : edge_faces)
+    if (c > 2) ++out.non_manifold_edges;
+  out.seconds_boundary = since(t0);
+}
+
+}  // namespace minksum::nonconvex_detail
+
+namespace minksum {
+
+Mesh reference_minkowski_sum(const Solid& a, const Solid& b, double* seconds) {
+  using namespace nonconvex_detail;
+  Nef na = solid_nef(a.triangles), nb = solid_nef(b.triangles);
+  const auto t0 = Clock::now();
+  Nef s = CGAL::minkowski_sum_3(na, nb);
+  if (seconds) *seconds = since(t0);
+  return boundary_mesh(s);
+}
+
+}  // namespace minksum

@@ -1,0 +1,236 @@
+// Validation of a closed solid (validate_solid) and its exact volume.
+#include <minksum/error.hpp>
+#include <minksum/nonconvex.hpp>
+#include <minksum/predicates.hpp>
+
+#include "nonconvex/nef.hpp"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+namespace minksum {
+
+namespace {
+
+std::string face_name(Index f) { return "face " + std::to_string(f); }
+std::string vertex_name(Index v) { return "vertex " + std::to_string(v); }
+
+// Exact normal of a planar polygon (Newell's formula: twice its vector area).
+Point3 polygon_normal(const std::vector<Point3>& p) {
+  Point3 n(Rational(0), Rational(0), Rational(0));
+  for (std::size_t i = 0; i < p.size(); ++i) n = n + cross(p[i], p[(i + 1) % p.size()]);
+  return n;
+}
+
+// Signed area (doubled) of the triangle a b c projected along axis `drop`.
+int orient2d(const Point3& a, const Point3& b, const Point3& c, int drop) {
+  const int u = (drop + 1) % 3, v = (drop + 2) % 3;
+  const Rational d = (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
+  return sgn(d);
+}
+
+// Ear clipping of a simple planar polygon (indices into `pts`), exact; the
+// polygon is counter-clockwise about `normal`.  Returns false when no ear is
+// found (the polygon is not simple).
+bool ear_clip(const std::vector<Index>& loop, const std::vector<Point3>& pts, const Point3& normal,
+              std::vector<std::array<Index, 3>>& out) {
+  int drop = 0;
+  for (int i = 1; i < 3; ++i)
+    if (cmp(abs(normal[i]), abs(normal[drop])) > 0) drop = i;
+  // Orientation of a counter-clockwise triangle in the projection.
+  const int ccw = sgn(normal[drop]);
+  std::vector<Index> poly = loop;
+  while (poly.size() > 3) {
+    bool clipped = false;
+    for (std::size_t i = 0; i < poly.size() && !clipped; ++i) {
+      const std::size_t n = poly.size();
+      const Index a = poly[(i + n - 1) % n], b = poly[i], c = poly[(i + 1) % n];
+      if (orient2d(pts[a], pts[b], pts[c], drop) != ccw) continue;  // reflex or flat corner
+      bool empty = true;
+      for (std::size_t j = 0; j < n && empty; ++j) {
+        const Index q = poly[j];
+        if (q == a || q == b || q == c) continue;
+        // q inside or on the closed triangle a b c blocks the ear.
+        if (orient2d(pts[a], pts[b], pts[q], drop) != -ccw && orient2d(pts[b], pts[c], pts[q], drop) != -ccw &&
+            orient2d(pts[c], pts[a], pts[q], drop) != -ccw)
+          empty = false;
+      }
+      if (!empty) continue;
+      out.push_back({a, b, c});
+      poly.erase(poly.begin() + std::ptrdiff_t(i));
+      clipped = true;
+    }
+    if (!clipped) return false;
+  }
+  if (orient2d(pts[poly[0]], pts[poly[1]], pts[poly[2]], drop) != ccw) return false;
+  out.push_back({poly[0], poly[1], poly[2]});
+  return true;
+}
+
+}  // namespace
+
+Mesh triangulate(const Mesh& mesh, const std::string& source) {
+  Mesh out;
+  out.points = mesh.points;
+  const std::vector<Point3> pts = mesh.points.to_points();
+  for (Index f = 0; f < mesh.faces.size(); ++f) {
+    const auto& loop = mesh.faces[f];
+    if (loop.size() == 3) {
+      out.faces.push_back(loop);
+      continue;
+    }
+    std::vector<Point3> p;
+    for (Index v : loop) p.push_back(pts[v]);
+    std::vector<std::array<Index, 3>> tris;
+    const Point3 normal = polygon_normal(p);
+    if (is_zero(normal) || !ear_clip(loop, pts, normal, tris))
+      throw InputError(source, face_name(f), "is not a simple polygon (its boundary crosses or touches itself)");
+    for (const auto& t : tris) out.faces.push_back({t[0], t[1], t[2]});
+  }
+  return out;
+}
+
+Rational mesh_volume(const Mesh& mesh) {
+  Rational six_v = 0;
+  for (const auto& f : mesh.faces) {
+    const Point3 p0 = mesh.points[f[0]];
+    for (std::size_t i = 1; i + 1 < f.size(); ++i) six_v += dot(p0, cross(mesh.points[f[i]], mesh.points[f[i + 1]]));
+  }
+  return six_v / 6;
+}
+
+Solid validate_solid(const Mesh& mesh, const std::string& source) {
+  // A convex polytope is a valid solid: the convex path, no further test.
+  try {
+    return solid_of(ConvexPolytope::from_mesh(mesh, source));
+  } catch (const InputError&) {
+    // Not convex (or not valid at all): the general checks below say why.
+  }
+  // Weld exactly equal points: canonical index = first of its value.
+  const std::size_t n = mesh.points.size();
+  std::vector<Point3> exact = mesh.points.to_points();
+  std::vector<Index> order(n);
+  std::iota(order.begin(), order.end(), Index(0));
+  std::sort(order.begin(), order.end(), [&](Index a, Index b) {
+    if (exact[a] < exact[b]) return true;
+    if (exact[b] < exact[a]) return false;
+    return a < b;
+  });
+  std::vector<Index> weld(n);
+  for (std::size_t i = 0; i < n; ++i)
+    weld[order[i]] = (i > 0 && exact[order[i]] == exact[order[i - 1]]) ? weld[order[i - 1]] : order[i];
+
+  if (mesh.faces.empty()) throw InputError(source, "", "the mesh has no faces (a point cloud is not a solid)");
+  // Faces: distinct vertices, planar, simple; triangulated.
+  std::vector<std::array<Index, 3>> tris;
+  std::vector<Index> tri_face;
+  for (Index f = 0; f < mesh.faces.size(); ++f) {
+    std::vector<Index> loop;
+    for (Index v : mesh.faces[f]) loop.push_back(weld[v]);
+    if (loop.size() < 3) throw InputError(source, face_name(f), "has fewer than three vertices");
+    {
+      std::vector<Index> s = loop;
+      std::sort(s.begin(), s.end());
+      if (std::adjacent_find(s.begin(), s.end()) != s.end())
+        throw InputError(source, face_name(f), "uses a vertex twice (after welding equal points)");
+    }
+    std::vector<Point3> p;
+    for (Index v : loop) p.push_back(exact[v]);
+    const Point3 normal = polygon_normal(p);
+    if (is_zero(normal)) throw InputError(source, face_name(f), "has zero area");
+    if (loop.size() == 3) {
+      tris.push_back({loop[0], loop[1], loop[2]});
+      tri_face.push_back(f);
+      continue;
+    }
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (sgn(dot(normal, p[i] - p[0])) != 0) throw InputError(source, face_name(f), "is not planar");
+    const std::size_t before = tris.size();
+    if (!ear_clip(loop, exact, normal, tris))
+      throw InputError(source, face_name(f), "is not a simple polygon (its boundary crosses or touches itself)");
+    tri_face.resize(tris.size(), f);
+    (void)before;
+  }
+
+  // Edges: every directed edge once, its reverse once.
+  std::map<std::pair<Index, Index>, Index> directed;  // (u, v) -> triangle
+  for (Index t = 0; t < tris.size(); ++t)
+    for (int i = 0; i < 3; ++i) {
+      const Index u = tris[t][i], v = tris[t][(i + 1) % 3];
+      if (!directed.emplace(std::make_pair(u, v), t).second)
+        throw InputError(source, face_name(tri_face[t]),
+                         "the edge from vertex " + std::to_string(u) + " to vertex " + std::to_string(v) +
+                             " is used twice in the same direction (faces inconsistently oriented, or more than "
+                             "two faces at an edge)");
+    }
+  for (const auto& [e, t] : directed)
+    if (!directed.count({e.second, e.first}))
+      throw InputError(source, face_name(tri_face[t]),
+                       "the edge between vertex " + std::to_string(e.first) + " and vertex " +
+                           std::to_string(e.second) + " has no facet on its other side (the mesh is not closed)");
+
+  // Vertices: the triangles around each form one cycle (a single fan).
+  std::vector<std::vector<std::pair<Index, Index>>> around(n);  // v -> (next, prev) of each corner
+  for (const auto& t : tris)
+    for (int i = 0; i < 3; ++i) around[t[i]].push_back({t[(i + 1) % 3], t[(i + 2) % 3]});
+  std::size_t used = 0;
+  for (Index v = 0; v < n; ++v) {
+    auto& fan = around[v];
+    if (fan.empty()) continue;
+    ++used;
+    std::unordered_map<Index, Index> link;  // corner's next vertex -> its prev vertex
+    for (const auto& [a, b] : fan) link[a] = b;
+    Index w = fan[0].first;
+    std::size_t steps = 0;
+    do {
+      w = link.at(w);
+      ++steps;
+    } while (w != fan[0].first && steps <= fan.size());
+    if (steps != fan.size())
+      throw InputError(source, vertex_name(v),
+                       "several separate fans of faces meet at this vertex (the surface is not a 2-manifold)");
+  }
+
+  Solid s;
+  // Compact the vertices.
+  std::vector<Index> renum(n, kNoIndex);
+  for (const auto& t : tris)
+    for (Index v : t)
+      if (renum[v] == kNoIndex) {
+        renum[v] = Index(s.triangles.points.size());
+        s.triangles.points.push_from(mesh.points, v);
+      }
+  for (const auto& t : tris) s.triangles.faces.push_back({renum[t[0]], renum[t[1]], renum[t[2]]});
+  s.source_face = std::move(tri_face);
+  s.faces = mesh.faces.size();
+  s.vertices = used;
+
+  if (const auto hit = nonconvex_detail::first_self_intersection(s.triangles))
+    throw InputError(source, face_name(s.source_face[hit->first]) + " and " + face_name(s.source_face[hit->second]),
+                     "intersect (the surface intersects itself)");
+  s.volume = mesh_volume(s.triangles);
+  if (sgn(s.volume) < 0)
+    throw InputError(source, "", "the faces are oriented inwards (the enclosed volume is negative)");
+  if (sgn(s.volume) == 0) throw InputError(source, "", "the enclosed volume is zero");
+  return s;
+}
+
+Solid solid_of(const ConvexPolytope& p) {
+  Solid s;
+  const Mesh m = p.to_mesh();
+  s.faces = m.faces.size();
+  s.vertices = p.num_vertices();
+  s.triangles.points = m.points;
+  for (Index f = 0; f < m.faces.size(); ++f)
+    for (std::size_t i = 1; i + 1 < m.faces[f].size(); ++i) {
+      s.triangles.faces.push_back({m.faces[f][0], m.faces[f][i], m.faces[f][i + 1]});
+      s.source_face.push_back(f);
+    }
+  s.volume = p.volume();
+  s.convex = p;
+  return s;
+}
+
+}  // namespace minksum

@@ -1,0 +1,340 @@
+// Sums of non-convex solids (src/nonconvex, docs/nonconvex.md): validation,
+// convex decomposition, closed forms and properties of A ⊕ B, the catalog's
+// non-convex solids.  The CGAL minkowski_sum_3 oracle is in
+// test_nonconvex_oracle_long.cpp.
+#include <minksum/catalog.hpp>
+#include <minksum/error.hpp>
+#include <minksum/nonconvex.hpp>
+#include <minksum/transform.hpp>
+
+#include "nonconvex_support.hpp"
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+using namespace minksum;
+using namespace minksum::testing;
+
+namespace {
+
+Solid solid(const std::string& spec) { return validate_solid(catalog_mesh(spec), spec); }
+
+// The problem of the InputError that validating `m` throws ("" if none).
+std::string problem(const Mesh& m) {
+  try {
+    validate_solid(m, "m.off");
+  } catch (const InputError& e) {
+    return std::string(e.what());
+  }
+  return "";
+}
+
+// The surfaces of a and b as one mesh, b's faces reversed when `flip`.
+Mesh join(Mesh a, const Mesh& b, bool flip = false) {
+  const Index offset = Index(a.points.size());
+  for (std::size_t i = 0; i < b.points.size(); ++i) a.points.push_back(b.points[i]);
+  for (auto f : b.faces) {
+    if (flip) std::reverse(f.begin(), f.end());
+    for (auto& v : f) v += offset;
+    a.faces.push_back(f);
+  }
+  return a;
+}
+
+// Hollow cube: [-2,2]^3 with the cavity [-1,1]^3 (inner shell facing in).
+Mesh hollow_cube() { return join(cube_mesh(2), cube_mesh(1), true); }
+
+std::set<Point3> vertex_set(const Mesh& m) {
+  std::set<Point3> s;
+  for (std::size_t i = 0; i < m.points.size(); ++i) s.insert(m.points[i]);
+  return s;
+}
+
+// Every directed edge is matched by as many opposite ones (closed, oriented,
+// non-manifold edges included), every face is exactly planar and the volume
+// is the one reported.
+void expect_closed_oriented(const NonconvexSum& r) {
+  std::map<std::pair<Index, Index>, int> d;
+  for (const auto& f : r.mesh.faces) {
+    ASSERT_GE(f.size(), 3u);
+    for (std::size_t i = 0; i < f.size(); ++i) ++d[{f[i], f[(i + 1) % f.size()]}];
+    Point3 n(Rational(0), Rational(0), Rational(0));
+    for (std::size_t i = 0; i < f.size(); ++i) n = n + cross(r.mesh.points[f[i]], r.mesh.points[f[(i + 1) % f.size()]]);
+    ASSERT_FALSE(is_zero(n));
+    for (Index v : f) EXPECT_EQ(sgn(dot(n, r.mesh.points[v] - r.mesh.points[f[0]])), 0);
+  }
+  for (const auto& [e, c] : d) EXPECT_EQ(c, (d.count({e.second, e.first}) ? d.at({e.second, e.first}) : 0));
+  EXPECT_EQ(mesh_volume(r.mesh), r.volume);
+  EXPECT_GT(sgn(r.volume), 0);
+}
+
+NonconvexSum sum(const std::string& a, const std::string& b) {
+  Solid sa = solid(a), sb = solid(b);
+  return minkowski_sum_nonconvex(sa, sb);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Validation.
+
+TEST(NonconvexValidation, TubeIsAGenusOneSolid) {
+  const Solid s = solid("tube");
+  EXPECT_FALSE(s.convex);
+  EXPECT_EQ(s.vertices, 16u);
+  EXPECT_EQ(s.faces, 16u);
+  EXPECT_EQ(s.volume, Rational(6));  // 8 - 1 * 1 * 2
+  // Euler characteristic of the triangulated surface: 2 - 2g = 0.
+  EXPECT_EQ(long(s.triangles.points.size()) - long(s.triangles.faces.size()) * 3 / 2 + long(s.triangles.faces.size()), 0);
+}
+
+TEST(NonconvexValidation, ConvexMeshKeepsTheConvexPath) {
+  const Solid s = validate_solid(cube_mesh(), "cube");
+  ASSERT_TRUE(s.convex);
+  EXPECT_EQ(s.convex->num_facets(), 6u);
+  EXPECT_EQ(s.volume, Rational(8));
+}
+
+TEST(NonconvexValidation, OpenMeshIsRefused) {
+  Mesh m = catalog_mesh("tube");
+  m.faces.pop_back();
+  EXPECT_NE(problem(m).find("has no facet on its other side (the mesh is not closed)"), std::string::npos) << problem(m);
+}
+
+TEST(NonconvexValidation, InvertedMeshIsRefused) {
+  Mesh m = catalog_mesh("lshape");
+  for (auto& f : m.faces) std::reverse(f.begin(), f.end());
+  EXPECT_NE(problem(m).find("oriented inwards"), std::string::npos) << problem(m);
+}
+
+TEST(NonconvexValidation, OneFlippedFaceIsRefused) {
+  Mesh m = catalog_mesh("tube");
+  std::reverse(m.faces[3].begin(), m.faces[3].end());
+  EXPECT_NE(problem(m).find("used twice in the same direction"), std::string::npos) << problem(m);
+}
+
+TEST(NonconvexValidation, SelfIntersectingMeshIsRefused) {
+  // Two overlapping cubes as one surface.
+  const Mesh m = join(cube_mesh(2), box_mesh(1, 3, 1, 3, 1, 3));
+  const std::string p = problem(m);
+  EXPECT_NE(p.find("intersect (the surface intersects itself)"), std::string::npos) << p;
+  EXPECT_EQ(p.rfind("m.off: face ", 0), 0u) << p;
+}
+
+TEST(NonconvexValidation, CubesTouchingAtAVertexAreNotAManifold) {
+  const Mesh m = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1, 2, 1, 2, 1, 2));
+  EXPECT_NE(problem(m).find("several separate fans"), std::string::npos) << problem(m);
+}
+
+TEST(NonconvexValidation, NonPlanarFaceIsRefused) {
+  Mesh m = catalog_mesh("lshape");
+  Point3 p = m.points[0];
+  p.z += Rational(1, 1000);
+  m.points.set(0, p);
+  EXPECT_NE(problem(m).find("is not planar"), std::string::npos) << problem(m);
+}
+
+TEST(NonconvexValidation, DisjointShellsAndCavitiesAreSolids) {
+  const Solid h = validate_solid(hollow_cube(), "hollow");
+  EXPECT_FALSE(h.convex);
+  EXPECT_EQ(h.volume, Rational(56));
+}
+
+// ---------------------------------------------------------------------------
+// Decomposition.
+
+TEST(NonconvexDecomposition, PiecesAreConvexAndFillTheSolid) {
+  for (const char* spec : {"tube", "lshape", "star:5", "gear:6", "ring:7@rot:3"}) {
+    SCOPED_TRACE(spec);
+    const Solid s = solid(spec);
+    const auto pieces = convex_decomposition(s);
+    EXPECT_GE(pieces.size(), 2u);
+    Rational v = 0;
+    for (const auto& p : pieces) {
+      EXPECT_EQ(p.check_invariants(), "");
+      v += p.volume();
+    }
+    EXPECT_EQ(v, s.volume);
+  }
+  // A cavity stays empty: the pieces of the hollow cube fill its shell only.
+  const Solid h = validate_solid(hollow_cube(), "hollow");
+  Rational v = 0;
+  for (const auto& p : convex_decomposition(h)) v += p.volume();
+  EXPECT_EQ(v, Rational(56));
+}
+
+// ---------------------------------------------------------------------------
+// Sums: closed forms.
+
+// tube ⊕ [-s,s]^3: the box [-(1+s), 1+s]^3 with a square hole of side 1 - 2s.
+TEST(NonconvexSum, TubePlusCubeClosedForm) {
+  const NonconvexSum r = sum("tube", "box:1/2:1/2:1/2");
+  expect_closed_oriented(r);
+  const Rational s(1, 4), h = 1 - 2 * s, side = 2 + 2 * s;
+  EXPECT_EQ(r.volume, side * side * side - h * h * side);
+  EXPECT_EQ(r.mesh.points.size(), 16u);
+  // 4 outer and 4 inner walls; each cap, a square with a square hole, is
+  // triangulated into 8 triangles.
+  EXPECT_EQ(r.mesh.faces.size(), 24u);
+  EXPECT_EQ(r.shells, 1u);
+  EXPECT_EQ(r.pieces_b, 1u);
+  EXPECT_EQ(r.pairs, r.pieces_a);
+}
+
+// The hole closes exactly when the cube's side equals it: a convex box.
+TEST(NonconvexSum, HoleThatClosesExactly) {
+  const NonconvexSum r = sum("tube", "box:1:1:1");
+  expect_closed_oriented(r);
+  EXPECT_EQ(r.volume, Rational(27));
+  EXPECT_EQ(r.mesh.points.size(), 8u);
+  EXPECT_EQ(r.mesh.faces.size(), 6u);
+  EXPECT_EQ(face_planes(r.mesh).size(), 6u);
+}
+
+// The hollow cube's cavity [-1,1]^3 shrinks by the cube [-s,s]^3 and
+// vanishes at s = 1.
+TEST(NonconvexSum, CavityKeptThenVanishes) {
+  const Solid h = validate_solid(hollow_cube(), "hollow");
+  {
+    const NonconvexSum r = minkowski_sum_nonconvex(h, solid("box:1:1:1"));
+    expect_closed_oriented(r);
+    EXPECT_EQ(r.volume, Rational(125 - 1));
+    EXPECT_EQ(r.mesh.faces.size(), 12u);
+    EXPECT_EQ(r.mesh.points.size(), 16u);
+  }
+  {
+    const NonconvexSum r = minkowski_sum_nonconvex(h, solid("box:2:2:2"));
+    expect_closed_oriented(r);
+    EXPECT_EQ(r.volume, Rational(216));
+    EXPECT_EQ(r.mesh.faces.size(), 6u);
+  }
+}
+
+// L ⊕ [-s,s]^3: the L profile [-1,1]^2 minus (0,1]^2 becomes
+// [-1-s,1+s]^2 minus (s,1+s]^2 (the notch keeps its side 1), of height 1 + 2s.
+TEST(NonconvexSum, LShapePlusCubeClosedForm) {
+  const NonconvexSum r = sum("lshape", "box:1/2:1/2:1/2");
+  expect_closed_oriented(r);
+  const Rational s(1, 4), side = 2 + 2 * s;
+  EXPECT_EQ(r.volume, (side * side - 1) * (1 + 2 * s));
+  EXPECT_EQ(r.mesh.points.size(), 12u);
+  EXPECT_EQ(r.mesh.faces.size(), 8u);  // the two caps are L-shaped polygons
+}
+
+// Two unit cubes one apart along x, each ⊕ [-1/2,1/2]^3: the sums touch in a
+// face (a coplanar contact of opposite orientation) and become one box.
+TEST(NonconvexSum, TouchingPiecesMergeAcrossACoplanarContact) {
+  const Mesh m = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(2, 3, 0, 1, 0, 1));
+  const NonconvexSum r = minkowski_sum_nonconvex(validate_solid(m, "two"), solid("box:1:1:1"));
+  expect_closed_oriented(r);
+  EXPECT_EQ(r.volume, Rational(16));
+  EXPECT_EQ(r.mesh.points.size(), 8u);
+  EXPECT_EQ(r.mesh.faces.size(), 6u);
+  EXPECT_EQ(r.non_manifold_edges, 0u);
+}
+
+// Two unit cubes diagonal to each other, each ⊕ [-1/2,1/2]^3: the sums touch
+// along one edge, which the boundary keeps as a non-manifold edge of four faces.
+TEST(NonconvexSum, SumsTouchingAlongAnEdgeKeepANonManifoldEdge) {
+  const Mesh m = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(2, 3, 2, 3, 0, 1));
+  const NonconvexSum r = minkowski_sum_nonconvex(validate_solid(m, "diagonal"), solid("box:1:1:1"));
+  expect_closed_oriented(r);
+  EXPECT_EQ(r.volume, Rational(16));
+  EXPECT_EQ(r.non_manifold_edges, 1u);
+  EXPECT_EQ(r.mesh.faces.size(), 12u);
+}
+
+// ---------------------------------------------------------------------------
+// Sums: properties.
+
+TEST(NonconvexSum, IsSymmetric) {
+  const NonconvexSum ab = sum("star:5", "lshape@scale:1/3"), ba = sum("lshape@scale:1/3", "star:5");
+  expect_closed_oriented(ab);
+  EXPECT_EQ(ab.volume, ba.volume);
+  EXPECT_EQ(vertex_set(ab.mesh), vertex_set(ba.mesh));
+  EXPECT_EQ(face_planes(ab.mesh), face_planes(ba.mesh));
+}
+
+TEST(NonconvexSum, TranslationMovesTheSum) {
+  const NonconvexSum r = sum("tube", "octahedron@scale:1/4"),
+                     t = sum("tube@translate:1/3,-1/5,1/7", "octahedron@scale:1/4@translate:1,2,3");
+  expect_closed_oriented(r);
+  EXPECT_EQ(r.volume, t.volume);
+  std::set<Point3> moved;
+  for (const Point3& p : vertex_set(r.mesh)) moved.insert(p + Point3(Rational(4, 3), Rational(9, 5), Rational(22, 7)));
+  EXPECT_EQ(moved, vertex_set(t.mesh));
+}
+
+TEST(NonconvexSum, ScalingBothScalesTheVolume) {
+  const NonconvexSum r = sum("gear:5", "cube@scale:1/8"), s = sum("gear:5@scale:2", "cube@scale:1/4");
+  expect_closed_oriented(r);
+  EXPECT_EQ(s.volume, 8 * r.volume);
+  EXPECT_EQ(r.mesh.faces.size(), s.mesh.faces.size());
+}
+
+// Non-convex ⊕ non-convex: bounded by the pair sums (at least the largest,
+// at most their total) and at least each operand's volume.
+TEST(NonconvexSum, NonConvexPlusNonConvex) {
+  const Solid a = solid("tube"), b = solid("lshape@scale:1/4");
+  const NonconvexSum r = minkowski_sum_nonconvex(a, b);
+  expect_closed_oriented(r);
+  EXPECT_GT(r.pieces_a, 1u);
+  EXPECT_GT(r.pieces_b, 1u);
+  EXPECT_EQ(r.pairs, r.pieces_a * r.pieces_b);
+  EXPECT_GT(r.volume, a.volume);
+  EXPECT_EQ(r.shells, 1u);
+  // The tube's hole (side 1) narrowed by the L's extent (1/2) stays open: genus 1.
+  std::set<std::pair<Index, Index>> edges;
+  for (const auto& f : r.mesh.faces)
+    for (std::size_t i = 0; i < f.size(); ++i)
+      edges.insert({std::min(f[i], f[(i + 1) % f.size()]), std::max(f[i], f[(i + 1) % f.size()])});
+  EXPECT_EQ(long(r.mesh.points.size()) - long(edges.size()) + long(r.mesh.faces.size()), 0);
+}
+
+TEST(NonconvexSum, ReportsProgressAndHonoursCancel) {
+  std::vector<std::string> phases;
+  SumOptions o;
+  o.progress = [&](const char* p, double) {
+    if (phases.empty() || phases.back() != p) phases.push_back(p);
+  };
+  minkowski_sum_nonconvex(solid("tube"), solid("cube@scale:1/8"), o);
+  EXPECT_EQ(phases, (std::vector<std::string>{"decompose", "pairs", "union", "boundary"}));
+  std::atomic<bool> cancel{true};
+  SumOptions c;
+  c.cancel = &cancel;
+  EXPECT_THROW(minkowski_sum_nonconvex(solid("tube"), solid("cube"), c), Cancelled);
+}
+
+// ---------------------------------------------------------------------------
+// Catalog.
+
+TEST(NonconvexCatalog, EverySolidIsValidAndNotConvex) {
+  struct Case {
+    const char* spec;
+    long euler;  // of the triangulated surface: 2 - 2 * genus
+  };
+  for (const Case& c : {Case{"tube", 0}, Case{"tube:1/3", 0}, Case{"lshape", 2}, Case{"ring:8", 0}, Case{"star:5", 2},
+                        Case{"gear:12", 0}, Case{"gear:12@rot:5@neg", 0}, Case{"star:7@scale:1/3,2,5", 2}}) {
+    SCOPED_TRACE(c.spec);
+    const Solid s = solid(c.spec);
+    EXPECT_FALSE(s.convex);
+    const long v = long(s.triangles.points.size()), f = long(s.triangles.faces.size());
+    EXPECT_EQ(v - f * 3 / 2 + f, c.euler);
+    EXPECT_THROW(catalog_polytope(c.spec), NotConvexError);
+  }
+  EXPECT_EQ(solid("tube:1/3").volume, 8 - Rational(2, 9));
+  EXPECT_EQ(solid("lshape").volume, Rational(3));
+  EXPECT_EQ(solid("lshape@scale:2").volume, Rational(24));
+}
+
+TEST(NonconvexCatalog, BadParametersAreUsageErrors) {
+  for (const char* spec : {"tube:2", "tube:0", "ring:2", "star:10001", "gear:x", "lshape:3", "ring"}) {
+    SCOPED_TRACE(spec);
+    EXPECT_THROW(catalog_mesh(spec), UsageError);
+  }
+  EXPECT_TRUE(is_catalog_spec("gear:12@rot:1"));
+  EXPECT_EQ(nonconvex_catalog_entries().size(), 6u);
+}

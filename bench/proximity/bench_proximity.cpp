@@ -7,11 +7,13 @@
 //
 // Usage: bench_proximity [--steps N] [--reps R]
 //        bench_proximity --count P Q F N   (FCL builds only) one pose of the table
-//            (s = c + F·α*·dir), N distance and N depth queries, N FCL distances,
-//            each loop in its own function, for instruction counts:
+//            (s = c + F·α*·dir), N distance, N depth and N collision queries, N FCL
+//            distances, N libccd GJK+EPA and N GJK, each loop in its own function,
+//            for instruction counts:
 //            valgrind --tool=callgrind bench_proximity --count cube cube@rot:3 1.5 20
 //            then callgrind_annotate --inclusive=yes: count_ours_distance,
-//            count_ours_depth, count_fcl_distance (divide by N).
+//            count_ours_depth, count_ours_collide, count_fcl_distance, count_ccd_epa,
+//            count_ccd_gjk (divide by N).
 //        bench_proximity --count-trajectory P Q N   the coherent trajectory of N
 //            steps: count_ours_trajectory (distance_points), count_fcl_trajectory.
 #include <ccd/ccd.h>
@@ -181,6 +183,21 @@ __attribute__((noinline)) void count_ours_distance(TranslationalObstacle& ob, co
 __attribute__((noinline)) void count_ours_depth(TranslationalObstacle& ob, const Point3& s, int n) {
   for (int i = 0; i < n; ++i) ob.penetration_depth_point(s);
 }
+__attribute__((noinline)) int count_ccd_epa(Body& p, Body& q, ccd_t& c, int n) {
+  int ret = 0;
+  ccd_real_t depth;
+  ccd_vec3_t dir, pos;
+  for (int i = 0; i < n; ++i) ret += ccdGJKPenetration(&p, &q, &c, &depth, &dir, &pos);
+  return ret;
+}
+__attribute__((noinline)) int count_ccd_gjk(Body& p, Body& q, ccd_t& c, int n) {
+  int ret = 0;
+  for (int i = 0; i < n; ++i) ret += ccdGJKIntersect(&p, &q, &c);
+  return ret;
+}
+__attribute__((noinline)) void count_ours_collide(TranslationalObstacle& ob, const Point3& s, int n) {
+  for (int i = 0; i < n; ++i) ob.collide_point(s);
+}
 __attribute__((noinline)) double count_fcl_distance(Fcl& f, int n) {
   double d = 0;
   for (int i = 0; i < n; ++i) d = f.distance();
@@ -236,7 +253,13 @@ int count_main(int argc, char** argv) {
   ob.penetration_depth_point(s);
   count_ours_distance(ob, s, n);
   count_ours_depth(ob, s, n);
+  count_ours_collide(ob, s, n);
   const double fd = count_fcl_distance(fc, n);
+  Body bp = body(p), bq = body(q);
+  ccdVec3Set(&bq.t, sd.x, sd.y, sd.z);
+  ccd_t ccd = make_ccd();
+  count_ccd_epa(bp, bq, ccd, n);
+  count_ccd_gjk(bp, bq, ccd, n);
   std::printf("%s / %s, f = %g: %s, distance %.17g (FCL %.17g)\n", argv[2], argv[3], factor,
               contact_status_name(d.status), d.distance(), fd);
   return 0;

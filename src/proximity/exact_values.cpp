@@ -123,6 +123,8 @@ const Point3& zero_point() {
 // ---------------------------------------------------------------------------
 // DistanceResult.
 
+Point3 DistanceResult::point() const { return s_exact_ ? *s_exact_ : Point3(sd_.x, sd_.y, sd_.z); }
+
 detail::DistanceExact& DistanceResult::exact() const {
   if (!exact_) exact_ = std::make_shared<detail::DistanceExact>();
   return *exact_;
@@ -138,7 +140,8 @@ void DistanceResult::compute_distance() const {
     e.direction = zero_point();
     return;
   }
-  e.direction = s_ - geo_->closest_point(witness.m, s_);
+  const Point3 s = point();
+  e.direction = s - geo_->closest_point(witness.m, s);
   e.squared_distance = dot(e.direction, e.direction);
   e.distance = std::sqrt(to_double(e.squared_distance));
 }
@@ -152,14 +155,15 @@ void DistanceResult::compute_points() const {
     return;
   }
   std::pair<Point3, Point3> pq;
+  const Point3 s = point();
   if (status == ContactStatus::separate) {
     compute_distance();
-    pq = geo_->split(witness, s_ - e.direction);
+    pq = geo_->split(witness, s - e.direction);
   } else {
-    pq = geo_->common_point(witness, status, s_);
+    pq = geo_->common_point(witness, status, s);
   }
   e.point_p = std::move(pq.first);
-  e.point_q = pq.second + s_;
+  e.point_q = pq.second + s;
   if (e.translated) {
     e.point_p = e.point_p + e.u;
     e.point_q = e.point_q + e.u;
@@ -190,6 +194,8 @@ const Point3& DistanceResult::point_q() const {
 // ---------------------------------------------------------------------------
 // DepthResult.
 
+Point3 DepthResult::point() const { return s_exact_ ? *s_exact_ : Point3(sd_.x, sd_.y, sd_.z); }
+
 detail::DepthExact& DepthResult::exact() const {
   if (!exact_) exact_ = std::make_shared<detail::DepthExact>();
   detail::DepthExact& e = *exact_;
@@ -203,7 +209,7 @@ detail::DepthExact& DepthResult::exact() const {
   }
   const Index f = witness.facet;
   const Point3& n = geo_->normal[f];
-  const Rational gap = geo_->offset[f] - dot(n, s_);  // d − n·s > 0 for s inside
+  const Rational gap = geo_->offset[f] - dot(n, point());  // d − n·s > 0 for s inside
   const Rational t = gap / geo_->norm2[f];              // s + t n lies on the facet plane
   e.squared_depth = t * gap;
   e.depth = std::sqrt(to_double(e.squared_depth));

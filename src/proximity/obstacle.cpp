@@ -24,9 +24,12 @@
 #include <minksum/unit_plane.hpp>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <unordered_map>
 
+#include "kernel/plane.hpp"
+#include "kernel/predicates_internal.hpp"
 #include "mesh/support.hpp"
 #include "proximity/obstacle_geometry.hpp"
 
@@ -113,6 +116,9 @@ void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q) {
   facet_features_known_.assign(nf, 0);
   edge_features_.assign(m.num_edges(), {});
   edge_features_known_.assign(m.num_edges(), 0);
+  center_plane_.assign(2 * std::size_t(m.num_edges()), Plane{});
+  center_plane_approx_.resize(2 * std::size_t(m.num_edges()));
+  center_plane_known_.assign(2 * std::size_t(m.num_edges()), 0);
   last_stab_ = last_exit_ = last_depth_ = 0;
   last_closest_.reset();  // the first distance walk starts at the stabbed facet
   g_ = std::move(g);
@@ -206,6 +212,7 @@ std::pair<Point3, Point3> TranslationalObstacle::decompose(const Feature& feat, 
 
 struct TranslationalObstacle::RayApprox {
   Vec3d apex, through;
+  bool through_usable = false;  // detail::rounded_usable of the ray point's rounding
 };
 
 // orient3d(apex, m[a], m[b], through) on the cached roundings of M's
@@ -230,14 +237,44 @@ bool TranslationalObstacle::in_cone(Index f, const Point3& apex, const Point3& t
   rng_ ^= rng_ << 13, rng_ ^= rng_ >> 7, rng_ ^= rng_ << 17;
   for (std::uint64_t k = rng_ % 4; k > 0; --k) h0 = m.next(h0);
   Index h = h0;
+  const bool from_center = &apex == &g_->center;
   do {
-    if (orient_filtered(apex, m.origin(h), m.target(h), through, ra) < 0) {
+    const int side = from_center ? center_side(h, through, ra.through, ra.through_usable)
+                                 : orient_filtered(apex, m.origin(h), m.target(h), through, ra);
+    if (side < 0) {
       *exit = h;
       return false;
     }
     h = m.next(h);
   } while (h != h0);
   return true;
+}
+
+// orient3d(c, a, b, s) for the interior point c and the halfedge a→b is the
+// side of s of the plane through c, a and b with normal (a − c) × (b − c)
+// (non-zero: the line of a boundary edge of M misses its interior).  That
+// plane is computed exactly on the halfedge's first use (canonical integers
+// and their roundings) and kept; then each test is the plane_side filter, a
+// degree-1 polynomial in s, instead of orient3d's degree 3.
+int TranslationalObstacle::center_side(Index h, const Point3& s, const Vec3d& sd, bool usable) {
+  if (!center_plane_known_[h]) {
+    const ConvexPolytope& m = obstacle();
+    const Point3& c = g_->center;
+    const Point3 ca = m.point(m.origin(h)) - c;
+    center_plane_[h] = canonical_plane(cross(ca, m.point(m.target(h)) - c), c);
+    const Plane& pl = center_plane_[h];
+    center_plane_approx_[h] = {to_double(Rational(pl.a)), to_double(Rational(pl.b)), to_double(Rational(pl.c)),
+                               to_double(Rational(pl.d))};
+    const auto& r = center_plane_approx_[h];
+    const bool finite = std::fabs(r[0]) <= DBL_MAX && std::fabs(r[1]) <= DBL_MAX && std::fabs(r[2]) <= DBL_MAX &&
+                        std::fabs(r[3]) <= DBL_MAX;
+    center_plane_known_[h] = finite ? 1 : 2;
+  }
+  // plane_side's filter with the inputs checked once (the plane here, s per
+  // query), then plane_side itself when it does not decide.
+  if (usable && center_plane_known_[h] == 1)
+    if (const int side = detail::plane_side_sign_usable(center_plane_approx_[h], sd); side != 2) return side;
+  return plane_side(center_plane_[h], center_plane_approx_[h], RoundedPoint3{s, sd});
 }
 
 Index TranslationalObstacle::stab_scan(const Point3& apex, const Point3& through) const {
@@ -289,7 +326,7 @@ CollisionResult TranslationalObstacle::collide_rounded(const Point3& s, const Ve
     fill_operand_features(r.witness);
     return r;
   }
-  const Index f = stab(center, s, RayApprox{center_approx_, sd}, last_stab_);
+  const Index f = stab(center, s, RayApprox{center_approx_, sd, detail::rounded_usable(RoundedPoint3{s, sd})}, last_stab_);
   last_stab_ = f;
   const int side = side_filtered(f, s, sd);
   r.status = side > 0 ? ContactStatus::separate : side == 0 ? ContactStatus::touching : ContactStatus::penetrating;
@@ -539,6 +576,17 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, const Vec3d& sd,
   return scanned.dim == FeatureDim::facet ? foot_feature(facet, s, sd) : scanned;
 }
 
+void TranslationalObstacle::keep_point(const Point3& s, const Vec3d& sd, Vec3d& kept, std::shared_ptr<Point3>& exact) {
+  kept = sd;
+  if (is_double(s)) {
+    exact.reset();
+  } else if (exact.use_count() == 1) {
+    *exact = s;
+  } else {
+    exact = std::make_shared<Point3>(s);
+  }
+}
+
 DistanceResult TranslationalObstacle::distance_point(const Point3& s) {
   DistanceResult r;
   distance_into(s, r);
@@ -551,7 +599,7 @@ DistanceResult TranslationalObstacle::distance_point(const Point3& s) {
 void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
   const Vec3d sd = to_double(s);
   if (r.geo_ != g_) r.geo_ = g_;
-  r.s_ = s;
+  keep_point(s, sd, r.sd_, r.s_exact_);
   if (r.exact_.use_count() == 1) {  // a result of an earlier batch: keep its storage
     r.exact_->have_distance = r.exact_->have_points = false;
     r.exact_->translated = false;
@@ -625,11 +673,14 @@ void TranslationalObstacle::depth_into(const Point3& s, DepthResult& r) {
   CollisionResult c = collide_rounded(s, sd);
   r.status = c.status;
   r.witness = c.witness;
-  if (r.geo_ != g_) r.geo_ = g_;
-  r.s_ = s;
   if (r.exact_.use_count() == 1) r.exact_->have = false;  // keep the storage of an earlier batch's result
   else r.exact_.reset();
-  if (c.status != ContactStatus::penetrating) return;
+  if (c.status != ContactStatus::penetrating) {  // the exact values are zeros: neither M nor s is needed
+    r.geo_.reset();
+    return;
+  }
+  if (r.geo_ != g_) r.geo_ = g_;
+  keep_point(s, sd, r.sd_, r.s_exact_);
   // The facet nearest to s, the first on ties (kernel: nearest_plane on unit
   // planes, a filter with a derived bound, then exact comparisons among the
   // facets it cannot rule out).  The foot x of s on its plane lies in the

@@ -101,16 +101,18 @@ class DistanceResult {
   // point_q() − point_p(): translating P by it brings the bodies into
   // contact (zero unless separate).  Costs what squared_distance() costs.
   const Point3& direction() const;
-  // The configuration point s = w − u the answer is about.
-  const Point3& configuration_point() const { return s_; }
 
  private:
   friend class TranslationalObstacle;
   detail::DistanceExact& exact() const;
   void compute_distance() const;
   void compute_points() const;
+  Point3 point() const;  // s
   std::shared_ptr<const detail::ObstacleGeometry> geo_;
-  Point3 s_;  // s = w − u
+  // s = w − u: its doubles when it is exactly a double (no rational kept),
+  // else the rational point.
+  Vec3d sd_;
+  std::shared_ptr<Point3> s_exact_;
   // The translation u of P (added to the closest points) and the values
   // computed so far; copies of a result share them.
   mutable std::shared_ptr<detail::DistanceExact> exact_;
@@ -134,13 +136,14 @@ class DepthResult {
   // parallel to the outer normal of the witness facet of M, pointing against
   // it.  Costs what squared_depth() costs.
   const Point3& direction() const;
-  const Point3& configuration_point() const { return s_; }
 
  private:
   friend class TranslationalObstacle;
   detail::DepthExact& exact() const;
-  std::shared_ptr<const detail::ObstacleGeometry> geo_;
-  Point3 s_;
+  Point3 point() const;  // s
+  std::shared_ptr<const detail::ObstacleGeometry> geo_;  // none unless penetrating
+  Vec3d sd_;                          // s, when exactly a double
+  std::shared_ptr<Point3> s_exact_;   // else s
   mutable std::shared_ptr<detail::DepthExact> exact_;  // computed on first use; shared by copies
 };
 
@@ -238,6 +241,9 @@ class TranslationalObstacle {
   bool in_cone(Index f, const Point3& apex, const Point3& through, const RayApprox& ra, Index* exit_halfedge);
   int orient_filtered(const Point3& apex, Index a, Index b, const Point3& through, const RayApprox& ra) const;
   int side_filtered(Index f, const Point3& s, const Vec3d& sd) const;
+  // orient3d(interior point, origin(h), target(h), s) by the plane through
+  // the three (computed on first use).
+  int center_side(Index h, const Point3& s, const Vec3d& sd, bool usable);
   // The smallest feature of M holding the point x of M closest to s (s
   // outside M), and in `facet` a facet holding x that s sees.  On entry
   // `facet` is a facet s sees (the stabbed one); the filtered walk starts
@@ -249,6 +255,9 @@ class TranslationalObstacle {
   // The smallest face of facet f holding the foot of s on f's plane (which
   // lies in the facet): its edges with edge_normal_side 0 for s.
   Feature foot_feature(Index f, const Point3& s, const Vec3d& sd) const;
+  // Keeps s in an answer: its doubles when it is exactly a double, else the
+  // rational point (in `exact`'s storage when no other answer shares it).
+  static void keep_point(const Point3& s, const Vec3d& sd, Vec3d& kept, std::shared_ptr<Point3>& exact);
 
   std::shared_ptr<detail::ObstacleGeometry> g_;  // shared with the answers
   Method method_;
@@ -260,6 +269,10 @@ class TranslationalObstacle {
   // Features of P and Q behind each facet and each edge of M, filled on first use.
   mutable std::vector<std::array<Feature, 2>> facet_features_, edge_features_;
   mutable std::vector<char> facet_features_known_, edge_features_known_;
+  // Per halfedge of M: the plane through the interior point and the edge.
+  std::vector<Plane> center_plane_;
+  std::vector<std::array<double, 4>> center_plane_approx_;
+  std::vector<char> center_plane_known_;
   Index last_stab_ = 0, last_exit_ = 0, last_depth_ = 0;
   std::optional<Feature> last_closest_;  // none before the first distance query
   std::uint64_t rng_ = 0x9e3779b97f4a7c15ull;

@@ -557,6 +557,34 @@ TEST(Proximity, TrajectoryBatchEqualsFreshOneByOneAnswers) {
   EXPECT_GT(penetrating, 10);
 }
 
+// The distance walk runs first from the previous closest feature and skips
+// the collision query only when its certificate proves s outside M: poses
+// that touch M at the previous feature (a vertex, an edge, a facet of the
+// box M = [-2, 2]^3) or lie inside it must still be touching or penetrating,
+// as from scratch.
+TEST(Proximity, DistanceWalkFirstNeverClaimsATouchingPoseSeparate) {
+  const ConvexPolytope cube = catalog_polytope("cube");
+  TranslationalObstacle ob(cube, cube);
+  const Point3 poses[] = {P(3, 3, 3), P(2, 2, 2), P(3, 3, 3), P(3, 3, 0), P(2, 2, 0), P(3, 1, 0),
+                          P(2, 1, 0), P(3, 1, 0), R("1", "1/2", "1/3"), P(3, 1, 0), P(2, 2, 2), P(5, 0, 0)};
+  const ContactStatus want[] = {ContactStatus::separate, ContactStatus::touching,    ContactStatus::separate,
+                                ContactStatus::separate, ContactStatus::touching,    ContactStatus::separate,
+                                ContactStatus::touching, ContactStatus::separate,    ContactStatus::penetrating,
+                                ContactStatus::separate, ContactStatus::touching,    ContactStatus::separate};
+  for (std::size_t i = 0; i < std::size(poses); ++i) {
+    SCOPED_TRACE("pose " + std::to_string(i));
+    const DistanceResult d = ob.distance_point(poses[i]);
+    TranslationalObstacle fresh(cube, cube);
+    const DistanceResult e = fresh.distance_point(poses[i]);
+    EXPECT_EQ(d.status, want[i]);
+    EXPECT_EQ(e.status, want[i]);
+    EXPECT_EQ(d.witness.m, e.witness.m);
+    EXPECT_EQ(d.squared_distance(), brute_distance2(ob.obstacle(), poses[i]));
+    EXPECT_EQ(d.point_p(), e.point_p());
+    EXPECT_EQ(d.point_q(), e.point_q());
+  }
+}
+
 // The exact values are computed from the witness on first use, on the M the
 // answer was given on: an answer read after its obstacle was rotated (M
 // recomputed) or destroyed has the values it would have had at once.

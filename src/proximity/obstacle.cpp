@@ -121,6 +121,7 @@ void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q) {
   center_plane_known_.assign(2 * std::size_t(m.num_edges()), 0);
   last_stab_ = last_exit_ = last_depth_ = 0;
   last_closest_.reset();  // the first distance walk starts at the stabbed facet
+  last_separate_ = false;
   g_ = std::move(g);
   ++stats_.rebuilds;
 }
@@ -455,7 +456,10 @@ Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, 
 Feature TranslationalObstacle::closest_feature(const Point3& s, const Vec3d& sd, std::optional<Feature> start,
                                               Index& facet, bool first) {
   const ConvexPolytope& m = obstacle();
-  const std::uint64_t limit = 2 * (std::uint64_t(m.num_vertices()) + m.num_edges() + m.num_facets()) + 16;
+  // The walk before the collision query is short: a pose that moved far
+  // (or into M) goes the usual way.
+  const std::uint64_t limit =
+      first ? 16 : 2 * (std::uint64_t(m.num_vertices()) + m.num_edges() + m.num_facets()) + 16;
   auto valid = [&](const Feature& f) {
     switch (f.dim) {
       case FeatureDim::vertex: return f.index < m.num_vertices();
@@ -608,7 +612,7 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
   }
   Index facet = kNoIndex;
   Feature feat = Feature::vertex(kNoIndex);
-  if (last_closest_) {
+  if (last_closest_ && last_separate_) {
     // Coherence: the walk from the previous closest feature first.  A
     // certificate whose closest point differs from s proves s outside M
     // (the point of M nearest to a point of M is that point), so the
@@ -624,6 +628,7 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
     r.status = c.status;
     if (c.status != ContactStatus::separate) {
       r.witness = c.witness;
+      last_separate_ = false;
       return;
     }
     facet = c.witness.facet;
@@ -633,6 +638,7 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
   r.witness.facet = facet;
   r.witness.m = feat;
   last_closest_ = feat;
+  last_separate_ = true;
   fill_operand_features(r.witness);
 }
 

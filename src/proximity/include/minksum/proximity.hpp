@@ -275,6 +275,7 @@ class TranslationalObstacle {
   std::vector<char> center_plane_known_;
   Index last_stab_ = 0, last_exit_ = 0, last_depth_ = 0;
   std::optional<Feature> last_closest_;  // none before the first distance query
+  bool last_separate_ = false;           // the last distance answer was separate
   std::uint64_t rng_ = 0x9e3779b97f4a7c15ull;
   ProximityStats stats_;
 };

@@ -59,6 +59,11 @@ Options:
                         to their input orientation (M is recomputed when one
                         changes).  Blank lines and lines starting with '#' are
                         skipped.  Output: one line (or JSON object) per pose.
+                        The poses are answered in batches (the library's
+                        trajectory API: up to 4096 poses, or as many as the
+                        input has ready); seconds is then the batch's query
+                        time per pose (exact values are computed when
+                        printed).
   --json                print JSON: query, status, squared_distance /
                         squared_depth / t as exact rationals in strings
                         ("p/q" or an integer), distance / depth (double;
@@ -106,70 +111,111 @@ std::string vector_text(const Point3& p) {
   return "(" + format_exact(p.x) + ", " + format_exact(p.y) + ", " + format_exact(p.z) + ")";
 }
 
-// Answer one query and return its output line (JSON or text, no newline).
-std::string answer(TranslationalObstacle& ob, Kind kind, const Point3& u, const Point3& w, const Point3& d,
-                   bool json, const char* kind_name) {
-  const auto t0 = std::chrono::steady_clock::now();
+// The output line of one answer (JSON or text, no newline); `sec` is the
+// query's time.  The exact values of distance and depth answers are
+// computed here, on first use (DistanceResult, DepthResult); u is added to
+// the closest points of an answer given for s = w − u.
+std::string format_answer(const CollisionResult& r, double sec, bool json, const char* kind_name) {
   std::ostringstream o;
-  auto seconds = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (json)
+    o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status)
+      << "\", \"witness\": " << witness_json(r.witness) << ", \"seconds\": " << json_number(sec) << "}";
+  else
+    o << contact_status_name(r.status) << "  [" << witness_text(r.witness) << "]";
+  return o.str();
+}
+
+std::string format_answer(const DistanceResult& r, const Point3& u, double sec, bool json, const char* kind_name) {
+  std::ostringstream o;
+  const Point3 pp = r.point_p() + u, pq = r.point_q() + u;
+  if (json)
+    o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status)
+      << "\", \"squared_distance\": \"" << format_exact(r.squared_distance())
+      << "\", \"distance\": " << json_number(r.distance()) << ", \"direction\": " << exact_vector_json(r.direction())
+      << ", \"point_p\": " << double_vector_json(pp) << ", \"point_p_exact\": " << exact_vector_json(pp)
+      << ", \"point_q\": " << double_vector_json(pq) << ", \"point_q_exact\": " << exact_vector_json(pq)
+      << ", \"witness\": " << witness_json(r.witness) << ", \"seconds\": " << json_number(sec) << "}";
+  else
+    o << contact_status_name(r.status) << "  distance² = " << format_exact(r.squared_distance())
+      << "  distance ≈ " << format_double(r.distance()) << "  closest points " << vector_text(pp) << " on P, "
+      << vector_text(pq) << " on Q  [" << witness_text(r.witness) << "]";
+  return o.str();
+}
+
+std::string format_answer(const DepthResult& r, double sec, bool json, const char* kind_name) {
+  std::ostringstream o;
+  if (json)
+    o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status)
+      << "\", \"squared_depth\": \"" << format_exact(r.squared_depth()) << "\", \"depth\": " << json_number(r.depth())
+      << ", \"direction\": " << exact_vector_json(r.direction()) << ", \"witness\": " << witness_json(r.witness)
+      << ", \"seconds\": " << json_number(sec) << "}";
+  else
+    o << contact_status_name(r.status) << "  depth² = " << format_exact(r.squared_depth()) << "  depth ≈ "
+      << format_double(r.depth()) << "  translate P by " << vector_text(r.direction()) << "  ["
+      << witness_text(r.witness) << "]";
+  return o.str();
+}
+
+std::string format_answer(const DirectionalDepthResult& r, double sec, bool json, const char* kind_name) {
+  std::ostringstream o;
+  if (json)
+    o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status) << "\", \"t\": \""
+      << format_exact(r.t) << "\", \"depth\": " << json_number(r.depth)
+      << ", \"direction\": " << exact_vector_json(r.translation) << ", \"witness\": " << witness_json(r.witness)
+      << ", \"seconds\": " << json_number(sec) << "}";
+  else
+    o << contact_status_name(r.status) << "  t = " << format_exact(r.t) << "  depth ≈ " << format_double(r.depth)
+      << "  translate P by " << vector_text(r.translation) << "  [" << witness_text(r.witness) << "]";
+  return o.str();
+}
+
+// The answers for the poses (u[i], w[i]) in order, one line each, through
+// the library's trajectory API (one batch: the walks carry their witnesses
+// from pose to pose).  `seconds` is the batch's query time over its size.
+std::vector<std::string> answer_batch(TranslationalObstacle& ob, Kind kind, const std::vector<Point3>& u,
+                                      const std::vector<Point3>& w, const Point3& d, bool json,
+                                      const char* kind_name, double& total) {
+  std::vector<Point3> s(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) s[i] = w[i] - u[i];
+  std::vector<std::string> lines(u.size());
+  const auto t0 = std::chrono::steady_clock::now();
+  auto per_query = [&] {
+    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    total += sec;
+    return s.empty() ? 0.0 : sec / double(s.size());
   };
   switch (kind) {
     case Kind::collide: {
-      CollisionResult r = ob.collide(u, w);
-      const double sec = seconds();
-      if (json)
-        o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status)
-          << "\", \"witness\": " << witness_json(r.witness) << ", \"seconds\": " << json_number(sec) << "}";
-      else
-        o << contact_status_name(r.status) << "  [" << witness_text(r.witness) << "]";
+      std::vector<CollisionResult> r;
+      ob.collide_points(s, r);
+      const double sec = per_query();
+      for (std::size_t i = 0; i < s.size(); ++i) lines[i] = format_answer(r[i], sec, json, kind_name);
       break;
     }
     case Kind::distance: {
-      DistanceResult r = ob.distance(u, w);
-      const double sec = seconds();
-      if (json)
-        o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status)
-          << "\", \"squared_distance\": \"" << format_exact(r.squared_distance)
-          << "\", \"distance\": " << json_number(r.distance) << ", \"direction\": " << exact_vector_json(r.direction)
-          << ", \"point_p\": " << double_vector_json(r.point_p) << ", \"point_p_exact\": " << exact_vector_json(r.point_p)
-          << ", \"point_q\": " << double_vector_json(r.point_q) << ", \"point_q_exact\": " << exact_vector_json(r.point_q)
-          << ", \"witness\": " << witness_json(r.witness) << ", \"seconds\": " << json_number(sec) << "}";
-      else
-        o << contact_status_name(r.status) << "  distance² = " << format_exact(r.squared_distance)
-          << "  distance ≈ " << format_double(r.distance) << "  closest points " << vector_text(r.point_p) << " on P, "
-          << vector_text(r.point_q) << " on Q  [" << witness_text(r.witness) << "]";
+      std::vector<DistanceResult> r;
+      ob.distance_points(s, r);
+      const double sec = per_query();
+      for (std::size_t i = 0; i < s.size(); ++i) lines[i] = format_answer(r[i], u[i], sec, json, kind_name);
       break;
     }
     case Kind::depth: {
-      DepthResult r = ob.penetration_depth(u, w);
-      const double sec = seconds();
-      if (json)
-        o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status)
-          << "\", \"squared_depth\": \"" << format_exact(r.squared_depth) << "\", \"depth\": " << json_number(r.depth)
-          << ", \"direction\": " << exact_vector_json(r.direction) << ", \"witness\": " << witness_json(r.witness)
-          << ", \"seconds\": " << json_number(sec) << "}";
-      else
-        o << contact_status_name(r.status) << "  depth² = " << format_exact(r.squared_depth) << "  depth ≈ "
-          << format_double(r.depth) << "  translate P by " << vector_text(r.direction) << "  ["
-          << witness_text(r.witness) << "]";
+      std::vector<DepthResult> r;
+      ob.penetration_depth_points(s, r);
+      const double sec = per_query();
+      for (std::size_t i = 0; i < s.size(); ++i) lines[i] = format_answer(r[i], sec, json, kind_name);
       break;
     }
     case Kind::ddepth: {
-      DirectionalDepthResult r = ob.directional_depth(u, w, d);
-      const double sec = seconds();
-      if (json)
-        o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r.status) << "\", \"t\": \""
-          << format_exact(r.t) << "\", \"depth\": " << json_number(r.depth)
-          << ", \"direction\": " << exact_vector_json(r.translation) << ", \"witness\": " << witness_json(r.witness)
-          << ", \"seconds\": " << json_number(sec) << "}";
-      else
-        o << contact_status_name(r.status) << "  t = " << format_exact(r.t) << "  depth ≈ " << format_double(r.depth)
-          << "  translate P by " << vector_text(r.translation) << "  [" << witness_text(r.witness) << "]";
+      std::vector<DirectionalDepthResult> r;
+      r.reserve(s.size());
+      for (const Point3& si : s) r.push_back(ob.directional_depth_point(si, d));
+      const double sec = per_query();
+      for (std::size_t i = 0; i < s.size(); ++i) lines[i] = format_answer(r[i], sec, json, kind_name);
       break;
     }
   }
-  return o.str();
+  return lines;
 }
 
 }  // namespace
@@ -216,7 +262,8 @@ int run_query(const std::vector<std::string>& argv) {
 
   const auto trajectory = a.value("--trajectory");
   if (!trajectory) {
-    std::cout << answer(ob, kind, u, w, d, json, kind_name.c_str()) << "\n";
+    double total = 0;
+    std::cout << answer_batch(ob, kind, {u}, {w}, d, json, kind_name.c_str(), total)[0] << "\n";
     return 0;
   }
 
@@ -235,24 +282,49 @@ int run_query(const std::vector<std::string>& argv) {
   std::string line;
   long line_no = 0, poses = 0;
   double total = 0;
+  // Poses are answered in batches (the trajectory API): a batch ends at a
+  // change of rotation, after kBatch poses, and whenever the input has no
+  // more characters ready (so a pipe fed pose by pose is answered pose by
+  // pose).
+  constexpr std::size_t kBatch = 4096;
+  std::vector<Point3> bu, bw;
+  std::vector<long> blines;
+  auto flush = [&] {
+    const std::vector<std::string> out = answer_batch(ob, kind, bu, bw, d, json, kind_name.c_str(), total);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      ++poses;
+      if (json) std::cout << out[i] << "\n";
+      else std::cout << "pose " << poses << " (line " << blines[i] << "): " << out[i] << "\n";
+      // A failed write stops the run at once (exit 1), not after the whole trajectory.
+      if (!std::cout) check_stdout();
+    }
+    if (!out.empty()) std::cout.flush();
+    if (!std::cout) check_stdout();
+    bu.clear(), bw.clear(), blines.clear();
+  };
   while (std::getline(*in, line)) {
     ++line_no;
-    const auto pose = parse_pose_line(line, source, line_no);
-    if (!pose) continue;
-    const std::optional<Quaternion> nrp = pose->rp ? pose->rp : cur_rp, nrq = pose->rq ? pose->rq : cur_rq;
-    if (nrp != cur_rp || nrq != cur_rq) {
-      ob.set_operands(nrp ? rotated(p0, *nrp) : p0, nrq ? rotated(q0, *nrq) : q0);
-      cur_rp = nrp, cur_rq = nrq;
+    decltype(parse_pose_line(line, source, line_no)) pose;
+    try {
+      pose = parse_pose_line(line, source, line_no);
+    } catch (...) {
+      flush();  // the poses before a bad line are answered, as they would be one by one
+      throw;
     }
-    const auto t0 = std::chrono::steady_clock::now();
-    std::string out = answer(ob, kind, pose->p, pose->q.value_or(w), d, json, kind_name.c_str());
-    total += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    ++poses;
-    if (json) std::cout << out << "\n";
-    else std::cout << "pose " << poses << " (line " << line_no << "): " << out << "\n";
-    // A failed write stops the run at once (exit 1), not after the whole trajectory.
-    if (!std::cout) check_stdout();
+    if (pose) {
+      const std::optional<Quaternion> nrp = pose->rp ? pose->rp : cur_rp, nrq = pose->rq ? pose->rq : cur_rq;
+      if (nrp != cur_rp || nrq != cur_rq) {
+        flush();
+        ob.set_operands(nrp ? rotated(p0, *nrp) : p0, nrq ? rotated(q0, *nrq) : q0);
+        cur_rp = nrp, cur_rq = nrq;
+      }
+      bu.push_back(pose->p);
+      bw.push_back(pose->q.value_or(w));
+      blines.push_back(line_no);
+    }
+    if (bu.size() >= kBatch || in->rdbuf()->in_avail() <= 0) flush();
   }
+  flush();
   if (in->bad()) throw InputError(source, "line " + std::to_string(line_no + 1), "read error");
   if (!json && poses > 0) {
     char us[32];

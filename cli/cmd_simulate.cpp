@@ -29,7 +29,9 @@ whose height is computed exactly so that the robot grazes the obstacle
 through the obstacle.  The robot turns about the z axis (exact rational
 rotation) every other frame; M = P ⊕ (−Q) is recomputed then.  Each frame
 prints its status (separate / touching / penetrating), the exact distance or
-penetration depth, and the time of the query (and of M's computation).
+penetration depth, and the time of the query (and of M's computation).  The
+frames of one orientation are answered as one batch of the library's
+trajectory API; a frame's query time is the batch's time per frame.
 
 Options:
   --obstacle SPEC   the obstacle Q (file or catalog name; default dodecahedron@scale:2)
@@ -217,26 +219,51 @@ int run_simulate(const std::vector<std::string>& argv) {
   if (show_m) c_obstacles.push_back(ob.obstacle().negated());
   std::vector<Frame> trail;
   std::size_t current = 0;
+  // The frames of one orientation are one batch of the trajectory API
+  // (distance_points, then penetration_depth_points on the penetrating
+  // poses); each frame's query time is the batch's time per frame.
+  std::vector<Frame> batch;
+  std::vector<Point3> batch_s, inside_s;
+  std::vector<DistanceResult> dist;
+  std::vector<DepthResult> depth;
   for (long i = 0; i < frames; ++i) {
-    Frame fr;
-    fr.orientation = std::size_t(i / 2);
-    if (fr.orientation != current) {
+    if (batch.empty()) {
+      const std::size_t orientation = std::size_t(i / 2);
+      Frame first;
+      if (orientation != current) {
+        const auto t0 = std::chrono::steady_clock::now();
+        ob.set_p(robots[orientation]);
+        first.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        first.rebuilt = true;
+        current = orientation;
+        if (show_m) c_obstacles.push_back(ob.obstacle().negated());
+      }
+      batch_s.clear();
+      for (long k = i; k < frames && std::size_t(k / 2) == orientation; ++k) {
+        Frame fr = batch.empty() ? first : Frame{};
+        fr.orientation = orientation;
+        fr.u = Point3(xpos(k), k < pass1 ? height : Rational(0), Rational(0));
+        batch_s.push_back(-fr.u);  // s = w − u with Q (w = 0) fixed
+        batch.push_back(std::move(fr));
+      }
       const auto t0 = std::chrono::steady_clock::now();
-      ob.set_p(robots[fr.orientation]);
-      fr.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      fr.rebuilt = true;
-      current = fr.orientation;
-      if (show_m) c_obstacles.push_back(ob.obstacle().negated());
+      ob.distance_points(batch_s, dist);
+      inside_s.clear();
+      for (std::size_t k = 0; k < dist.size(); ++k)
+        if (dist[k].status == ContactStatus::penetrating) inside_s.push_back(batch_s[k]);
+      ob.penetration_depth_points(inside_s, depth);
+      const double per_frame =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / double(batch.size());
+      for (std::size_t k = 0, j = 0; k < batch.size(); ++k) {
+        batch[k].status = dist[k].status;
+        batch[k].value = dist[k].status == ContactStatus::penetrating ? depth[j++].squared_depth()
+                                                                       : dist[k].squared_distance();
+        batch[k].query_seconds = per_frame;
+      }
+      std::reverse(batch.begin(), batch.end());  // taken from the back, in frame order
     }
-    const Rational y = i < pass1 ? height : Rational(0);
-    fr.u = Point3(xpos(i), y, Rational(0));
-    const Point3 w(Rational(0), Rational(0), Rational(0));
-    const auto t0 = std::chrono::steady_clock::now();
-    DistanceResult d = ob.distance(fr.u, w);
-    fr.status = d.status;
-    fr.value = d.squared_distance;
-    if (d.status == ContactStatus::penetrating) fr.value = ob.penetration_depth(fr.u, w).squared_depth;
-    fr.query_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    Frame fr = std::move(batch.back());
+    batch.pop_back();
     if (json) {
       std::cout << "{\"frame\": " << i << ", \"orientation\": " << fr.orientation << ", \"rebuilt\": "
                 << (fr.rebuilt ? "true" : "false") << ", \"translation\": [\"" << format_exact(fr.u.x) << "\", \""

@@ -805,11 +805,11 @@ double of its square root; point_p, point_q: closest points of P and of the
 translated Q (exact Fraction triples; a common point when they touch or
 overlap); direction: point_q − point_p.)")
       .def_property_readonly("status", [=](const DistanceResult& r) { return status(r.status); })
-      .def_property_readonly("squared_distance", [](const DistanceResult& r) { return to_fraction(r.squared_distance); })
-      .def_readonly("distance", &DistanceResult::distance)
-      .def_property_readonly("point_p", [](const DistanceResult& r) { return to_fractions(r.point_p); })
-      .def_property_readonly("point_q", [](const DistanceResult& r) { return to_fractions(r.point_q); })
-      .def_property_readonly("direction", [](const DistanceResult& r) { return to_fractions(r.direction); })
+      .def_property_readonly("squared_distance", [](const DistanceResult& r) { return to_fraction(r.squared_distance()); })
+      .def_property_readonly("distance", [](const DistanceResult& r) { return r.distance(); })
+      .def_property_readonly("point_p", [](const DistanceResult& r) { return to_fractions(r.point_p()); })
+      .def_property_readonly("point_q", [](const DistanceResult& r) { return to_fractions(r.point_q()); })
+      .def_property_readonly("direction", [](const DistanceResult& r) { return to_fractions(r.direction()); })
       .def_property_readonly("witness", [](const DistanceResult& r) { return WitnessPy{r.witness}; });
   py::class_<DepthResult>(m, "DepthResult", R"(depth(): the penetration depth.
 
@@ -817,9 +817,9 @@ squared_depth: exact Fraction (0 unless penetrating); depth: the nearest
 double of its square root; direction: a minimal translation of P that makes
 the bodies touch (exact Fraction triple, zero unless penetrating).)")
       .def_property_readonly("status", [=](const DepthResult& r) { return status(r.status); })
-      .def_property_readonly("squared_depth", [](const DepthResult& r) { return to_fraction(r.squared_depth); })
-      .def_readonly("depth", &DepthResult::depth)
-      .def_property_readonly("direction", [](const DepthResult& r) { return to_fractions(r.direction); })
+      .def_property_readonly("squared_depth", [](const DepthResult& r) { return to_fraction(r.squared_depth()); })
+      .def_property_readonly("depth", [](const DepthResult& r) { return r.depth(); })
+      .def_property_readonly("direction", [](const DepthResult& r) { return to_fractions(r.direction()); })
       .def_property_readonly("witness", [](const DepthResult& r) { return WitnessPy{r.witness}; });
   py::class_<DirectionalDepthResult>(m, "DirectionalDepthResult", R"(directional_depth(): depth along d.
 

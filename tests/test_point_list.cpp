@@ -421,6 +421,23 @@ TEST(ToDouble, NearestAgainstMpfr) {
   }
 }
 
+// The one-limb path (numerator below 2^53 over a one-limb power of two):
+// every numerator size up to and past 2^53 and every denominator 2^0..2^63,
+// and the next limb, against MPFR.
+TEST(ToDouble, OneLimbDyadicsAgainstMpfr) {
+  std::mt19937_64 rng(7);
+  for (int k = 0; k <= 65; ++k)
+    for (int nb = 1; nb <= 56; ++nb)
+      for (int rep = 0; rep < 3; ++rep) {
+        Integer num = random_integer(rng, nb);
+        if (rep == 1) num = (Integer(1) << (nb - 1));  // a power of two itself
+        Rational q(num, Integer(1) << k);
+        q.canonicalize();
+        if (rng() & 1) q = -q;
+        ASSERT_EQ(to_double(q), mpfr_nearest(q)) << "seed 7: " << format_exact(q);
+      }
+}
+
 // Regression (to_double leaked its per-thread scratch integers): the GMP
 // memory a thread's to_double takes is given back when the thread ends.
 namespace {

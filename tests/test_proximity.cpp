@@ -14,6 +14,7 @@
 #include <minksum/proximity.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -229,23 +230,23 @@ void check_all_queries(TranslationalObstacle& ob, const std::vector<Point3>& poi
     // Distance.
     DistanceResult d = ob.distance_point(s);
     EXPECT_EQ(d.status, want);
-    EXPECT_EQ(d.squared_distance, brute_distance2(m, s));
-    EXPECT_EQ(dot(d.point_q - d.point_p, d.point_q - d.point_p), d.squared_distance);
-    EXPECT_NE(brute_status(ob.p(), d.point_p), ContactStatus::separate);
-    EXPECT_NE(brute_status(ob.q().translated(s), d.point_q), ContactStatus::separate);
+    EXPECT_EQ(d.squared_distance(), brute_distance2(m, s));
+    EXPECT_EQ(dot(d.point_q() - d.point_p(), d.point_q() - d.point_p()), d.squared_distance());
+    EXPECT_NE(brute_status(ob.p(), d.point_p()), ContactStatus::separate);
+    EXPECT_NE(brute_status(ob.q().translated(s), d.point_q()), ContactStatus::separate);
     if (want == ContactStatus::separate) {
-      EXPECT_TRUE(point_in_feature(m, d.witness.m, d.point_p - (d.point_q - s)));
+      EXPECT_TRUE(point_in_feature(m, d.witness.m, d.point_p() - (d.point_q() - s)));
       check_operand_features(ob, d.witness);
     }
 
     // Penetration depth.
     DepthResult p = ob.penetration_depth_point(s);
     EXPECT_EQ(p.status, want);
-    EXPECT_EQ(p.squared_depth, brute_depth2(m, s));
-    EXPECT_EQ(dot(p.direction, p.direction), p.squared_depth);
+    EXPECT_EQ(p.squared_depth(), brute_depth2(m, s));
+    EXPECT_EQ(dot(p.direction(), p.direction()), p.squared_depth());
     if (want == ContactStatus::penetrating) {
-      EXPECT_EQ(brute_status(m, s - p.direction), ContactStatus::touching);
-      EXPECT_TRUE(point_in_feature(m, p.witness.m, s - p.direction));
+      EXPECT_EQ(brute_status(m, s - p.direction()), ContactStatus::touching);
+      EXPECT_TRUE(point_in_feature(m, p.witness.m, s - p.direction()));
       check_operand_features(ob, p.witness);
     }
 
@@ -294,8 +295,8 @@ TEST(Proximity, CvmsAndChmsObstaclesAnswerAlike) {
   TranslationalObstacle b(catalog_polytope("cube@rot:3"), catalog_polytope("icosahedron"), Method::chms);
   for (const Point3& s : query_points(a, false)) {
     EXPECT_EQ(a.collide_point(s).status, b.collide_point(s).status);
-    EXPECT_EQ(a.distance_point(s).squared_distance, b.distance_point(s).squared_distance);
-    EXPECT_EQ(a.penetration_depth_point(s).squared_depth, b.penetration_depth_point(s).squared_depth);
+    EXPECT_EQ(a.distance_point(s).squared_distance(), b.distance_point(s).squared_distance());
+    EXPECT_EQ(a.penetration_depth_point(s).squared_depth(), b.penetration_depth_point(s).squared_depth());
   }
 }
 
@@ -319,14 +320,14 @@ TEST(Proximity, GrazingContactsAreExact) {
     EXPECT_EQ(ob.collide(R("1/3", "1/7", "-5"), w + R("1/3", "1/7", "-5")).status, ContactStatus::touching);
     DistanceResult d = ob.distance(zero(), out);
     EXPECT_EQ(d.status, ContactStatus::separate);
-    EXPECT_EQ(d.squared_distance, brute_distance2(ob.obstacle(), out));
+    EXPECT_EQ(d.squared_distance(), brute_distance2(ob.obstacle(), out));
     if (i < 3) {
-      EXPECT_EQ(d.squared_distance, tiny * tiny * dot(w, w));  // facet, edge, vertex: along w
+      EXPECT_EQ(d.squared_distance(), tiny * tiny * dot(w, w));  // facet, edge, vertex: along w
     }
-    EXPECT_GT(d.distance, 0);
+    EXPECT_GT(d.distance(), 0);
     DepthResult p = ob.penetration_depth(zero(), in);
     EXPECT_EQ(p.status, ContactStatus::penetrating);
-    EXPECT_GT(p.squared_depth, 0);
+    EXPECT_GT(p.squared_depth(), 0);
   }
 }
 
@@ -343,16 +344,16 @@ TEST(Proximity, DistanceThroughMEqualsDirectDistance) {
     for (const Point3& w : ws) {
       DistanceResult d = ob.distance(u, w);
       ConvexPolytope pu = p.translated(u), qw = q.translated(w);
-      EXPECT_NE(brute_status(pu, d.point_p), ContactStatus::separate);
-      EXPECT_NE(brute_status(qw, d.point_q), ContactStatus::separate);
-      const Point3 dir = d.point_q - d.point_p;
-      EXPECT_EQ(dot(dir, dir), d.squared_distance);
+      EXPECT_NE(brute_status(pu, d.point_p()), ContactStatus::separate);
+      EXPECT_NE(brute_status(qw, d.point_q()), ContactStatus::separate);
+      const Point3 dir = d.point_q() - d.point_p();
+      EXPECT_EQ(dot(dir, dir), d.squared_distance());
       if (d.status == ContactStatus::separate) {
-        for (Index v = 0; v < pu.num_vertices(); ++v) EXPECT_LE(dot(pu.point(v), dir), dot(d.point_p, dir));
-        for (Index v = 0; v < qw.num_vertices(); ++v) EXPECT_GE(dot(qw.point(v), dir), dot(d.point_q, dir));
+        for (Index v = 0; v < pu.num_vertices(); ++v) EXPECT_LE(dot(pu.point(v), dir), dot(d.point_p(), dir));
+        for (Index v = 0; v < qw.num_vertices(); ++v) EXPECT_GE(dot(qw.point(v), dir), dot(d.point_q(), dir));
       }
       SumResult direct = minkowski_sum(pu, qw.negated(), Method::chms);
-      EXPECT_EQ(d.squared_distance, brute_distance2(direct.polytope, zero()));
+      EXPECT_EQ(d.squared_distance(), brute_distance2(direct.polytope, zero()));
     }
 }
 
@@ -365,7 +366,7 @@ TEST(Proximity, CoherentTrajectoryWalksLocally) {
     const Point3 s(t, frac(1, 3) + t / 5, frac(-1, 2));
     const ContactStatus want = brute_status(ob.obstacle(), s);
     EXPECT_EQ(ob.collide_point(s).status, want);
-    EXPECT_EQ(ob.distance_point(s).squared_distance, brute_distance2(ob.obstacle(), s));
+    EXPECT_EQ(ob.distance_point(s).squared_distance(), brute_distance2(ob.obstacle(), s));
   }
   EXPECT_EQ(ob.stats().full_scans, 0u);
   EXPECT_LT(ob.stats().walk_steps, std::uint64_t(20 * n));
@@ -395,17 +396,17 @@ TEST(Proximity, FilteredDistanceWalkMatchesBruteForceOnRandomPoses) {
     SCOPED_TRACE("seed " + std::to_string(seed) + ", query " + std::to_string(i));
     const DistanceResult d = ob.distance_point(s);
     ASSERT_EQ(d.status, brute_status(m, s));
-    ASSERT_EQ(d.squared_distance, brute_distance2(m, s));
-    ASSERT_EQ(ob.squared_distance_by_scan(s), d.squared_distance);
+    ASSERT_EQ(d.squared_distance(), brute_distance2(m, s));
+    ASSERT_EQ(ob.squared_distance_by_scan(s), d.squared_distance());
     if (d.status != ContactStatus::separate) continue;
     ++separate;
-    EXPECT_EQ(dot(d.direction, d.direction), d.squared_distance);
-    EXPECT_TRUE(point_in_feature(m, d.witness.m, d.point_p - (d.point_q - s)));
+    EXPECT_EQ(dot(d.direction(), d.direction()), d.squared_distance());
+    EXPECT_TRUE(point_in_feature(m, d.witness.m, d.point_p() - (d.point_q() - s)));
     EXPECT_GT(m.plane(d.witness.facet).side(s), 0);
-    EXPECT_TRUE(point_in_feature(ob.p(), d.witness.p, d.point_p) ||
-                (d.witness.p.dim == FeatureDim::vertex && ob.p().point(d.witness.p.index) == d.point_p));
-    EXPECT_TRUE(point_in_feature(ob.q().translated(s), d.witness.q, d.point_q) ||
-                (d.witness.q.dim == FeatureDim::vertex && ob.q().point(d.witness.q.index) + s == d.point_q));
+    EXPECT_TRUE(point_in_feature(ob.p(), d.witness.p, d.point_p()) ||
+                (d.witness.p.dim == FeatureDim::vertex && ob.p().point(d.witness.p.index) == d.point_p()));
+    EXPECT_TRUE(point_in_feature(ob.q().translated(s), d.witness.q, d.point_q()) ||
+                (d.witness.q.dim == FeatureDim::vertex && ob.q().point(d.witness.q.index) + s == d.point_q()));
     ++dims[int(d.witness.p.dim)][int(d.witness.q.dim)];
   }
   ASSERT_GT(separate, 200);
@@ -444,18 +445,18 @@ TEST(Proximity, DistanceOnVoronoiRegionBoundaries) {
         const Point3 s = x + n;
         const DistanceResult d = ob.distance_point(s);
         ASSERT_EQ(d.status, ContactStatus::separate);
-        EXPECT_EQ(d.squared_distance, dot(n, n));
+        EXPECT_EQ(d.squared_distance(), dot(n, n));
         EXPECT_EQ(d.witness.m.dim, FeatureDim::edge);
         EXPECT_EQ(d.witness.m.index, e);
-        EXPECT_EQ(d.squared_distance, brute_distance2(m, s));
+        EXPECT_EQ(d.squared_distance(), brute_distance2(m, s));
       }
       // s − x along the edge's outer facet-normal sum, pushed to the edge's
       // end: s projects exactly onto the vertex (edge and vertex regions meet).
       const Point3& a = m.point(m.origin(h));
       const Point3 n = m.plane(m.facet(h)).normal() + m.plane(m.facet(h + 1)).normal();
       const DistanceResult d = ob.distance_point(a + n);
-      EXPECT_EQ(d.squared_distance, brute_distance2(m, a + n));
-      EXPECT_TRUE(point_in_feature(m, d.witness.m, d.point_p - (d.point_q - (a + n))));
+      EXPECT_EQ(d.squared_distance(), brute_distance2(m, a + n));
+      EXPECT_TRUE(point_in_feature(m, d.witness.m, d.point_p() - (d.point_q() - (a + n))));
     }
     for (Index v = 0; v < m.num_vertices(); ++v) {
       // Along a facet normal at the vertex: the facet's, its edges' and the
@@ -463,7 +464,7 @@ TEST(Proximity, DistanceOnVoronoiRegionBoundaries) {
       const Index h = m.vertex_halfedge(v);
       const Point3 n = m.plane(m.facet(h)).normal();
       const DistanceResult d = ob.distance_point(m.point(v) + n);
-      EXPECT_EQ(d.squared_distance, dot(n, n));
+      EXPECT_EQ(d.squared_distance(), dot(n, n));
       EXPECT_EQ(d.witness.m.dim, FeatureDim::vertex);
       EXPECT_EQ(d.witness.m.index, v);
     }
@@ -494,22 +495,153 @@ TEST(Proximity, TrajectoryBatchEqualsSingleQueries) {
       SCOPED_TRACE("round " + std::to_string(round) + ", pose " + std::to_string(i));
       const DistanceResult d = single.distance_point(traj[i]);
       EXPECT_EQ(dist[i].status, d.status);
-      EXPECT_EQ(dist[i].squared_distance, d.squared_distance);
-      EXPECT_EQ(dist[i].squared_distance, brute_distance2(batch.obstacle(), traj[i]));
-      EXPECT_EQ(dist[i].distance, d.distance);
-      EXPECT_EQ(dist[i].point_p, d.point_p);
-      EXPECT_EQ(dist[i].point_q, d.point_q);
-      EXPECT_EQ(dist[i].direction, d.direction);
+      EXPECT_EQ(dist[i].squared_distance(), d.squared_distance());
+      EXPECT_EQ(dist[i].squared_distance(), brute_distance2(batch.obstacle(), traj[i]));
+      EXPECT_EQ(dist[i].distance(), d.distance());
+      EXPECT_EQ(dist[i].point_p(), d.point_p());
+      EXPECT_EQ(dist[i].point_q(), d.point_q());
+      EXPECT_EQ(dist[i].direction(), d.direction());
       EXPECT_EQ(dist[i].witness.m.dim, d.witness.m.dim);
       EXPECT_EQ(dist[i].witness.m.index, d.witness.m.index);
       EXPECT_EQ(dist[i].witness.p.index, d.witness.p.index);
       EXPECT_EQ(dist[i].witness.q.index, d.witness.q.index);
       EXPECT_EQ(col[i].status, d.status);
-      EXPECT_EQ(depth[i].squared_depth, single.penetration_depth_point(traj[i]).squared_depth);
+      EXPECT_EQ(depth[i].squared_depth(), single.penetration_depth_point(traj[i]).squared_depth());
     }
   }
   EXPECT_EQ(batch.stats().full_scans, 0u);
   EXPECT_GT(batch.stats().certified, 100u);
+}
+
+// The batch answers of a trajectory of double poses (the kind a planner or
+// the command line sends: a helix through M, crossing its boundary) equal
+// the answers of the same poses asked one by one of a fresh obstacle, which
+// has no witness to start from: statuses, features, and every exact value.
+TEST(Proximity, TrajectoryBatchEqualsFreshOneByOneAnswers) {
+  const ConvexPolytope p = catalog_polytope("sphere:2"), q = catalog_polytope("dodecahedron@rot:1,2,0,1");
+  TranslationalObstacle batch(p, q);
+  std::vector<Point3> traj;
+  for (int i = 0; i < 120; ++i) {
+    const double th = 0.09 * i;
+    traj.emplace_back(2.6 * std::cos(th), 2.2 * std::sin(th), 0.02 * (i - 60));
+  }
+  std::vector<DistanceResult> dist;
+  std::vector<DepthResult> depth;
+  batch.distance_points(traj, dist);
+  batch.penetration_depth_points(traj, depth);
+  int separate = 0, penetrating = 0;
+  for (std::size_t i = 0; i < traj.size(); ++i) {
+    SCOPED_TRACE("pose " + std::to_string(i));
+    TranslationalObstacle fresh(p, q);
+    const DistanceResult d = fresh.distance_point(traj[i]);
+    const DepthResult e = fresh.penetration_depth_point(traj[i]);
+    ASSERT_EQ(dist[i].status, d.status);
+    EXPECT_EQ(dist[i].witness.m, d.witness.m);
+    EXPECT_EQ(dist[i].witness.p, d.witness.p);
+    EXPECT_EQ(dist[i].witness.q, d.witness.q);
+    EXPECT_EQ(dist[i].squared_distance(), d.squared_distance());
+    EXPECT_EQ(dist[i].squared_distance(), brute_distance2(fresh.obstacle(), traj[i]));
+    EXPECT_EQ(dist[i].point_p(), d.point_p());
+    EXPECT_EQ(dist[i].point_q(), d.point_q());
+    EXPECT_EQ(dist[i].direction(), d.direction());
+    ASSERT_EQ(depth[i].status, e.status);
+    EXPECT_EQ(depth[i].witness.facet, e.witness.facet);
+    EXPECT_EQ(depth[i].witness.m, e.witness.m);
+    EXPECT_EQ(depth[i].squared_depth(), e.squared_depth());
+    EXPECT_EQ(depth[i].squared_depth(), brute_depth2(fresh.obstacle(), traj[i]));
+    EXPECT_EQ(depth[i].direction(), e.direction());
+    separate += d.status == ContactStatus::separate;
+    penetrating += d.status == ContactStatus::penetrating;
+  }
+  EXPECT_GT(separate, 10);  // the helix is outside and inside M
+  EXPECT_GT(penetrating, 10);
+}
+
+// The distance walk runs first from the previous closest feature and skips
+// the collision query only when its certificate proves s outside M: poses
+// that touch M at the previous feature (a vertex, an edge, a facet of the
+// box M = [-2, 2]^3) or lie inside it must still be touching or penetrating,
+// as from scratch.
+TEST(Proximity, DistanceWalkFirstNeverClaimsATouchingPoseSeparate) {
+  const ConvexPolytope cube = catalog_polytope("cube");
+  TranslationalObstacle ob(cube, cube);
+  const Point3 poses[] = {P(3, 3, 3), P(2, 2, 2), P(3, 3, 3), P(3, 3, 0), P(2, 2, 0), P(3, 1, 0),
+                          P(2, 1, 0), P(3, 1, 0), R("1", "1/2", "1/3"), P(3, 1, 0), P(2, 2, 2), P(5, 0, 0)};
+  const ContactStatus want[] = {ContactStatus::separate, ContactStatus::touching,    ContactStatus::separate,
+                                ContactStatus::separate, ContactStatus::touching,    ContactStatus::separate,
+                                ContactStatus::touching, ContactStatus::separate,    ContactStatus::penetrating,
+                                ContactStatus::separate, ContactStatus::touching,    ContactStatus::separate};
+  for (std::size_t i = 0; i < std::size(poses); ++i) {
+    SCOPED_TRACE("pose " + std::to_string(i));
+    const DistanceResult d = ob.distance_point(poses[i]);
+    TranslationalObstacle fresh(cube, cube);
+    const DistanceResult e = fresh.distance_point(poses[i]);
+    EXPECT_EQ(d.status, want[i]);
+    EXPECT_EQ(e.status, want[i]);
+    EXPECT_EQ(d.witness.m, e.witness.m);
+    EXPECT_EQ(d.squared_distance(), brute_distance2(ob.obstacle(), poses[i]));
+    EXPECT_EQ(d.point_p(), e.point_p());
+    EXPECT_EQ(d.point_q(), e.point_q());
+  }
+}
+
+// The exact values are computed from the witness on first use, on the M the
+// answer was given on: an answer read after its obstacle was rotated (M
+// recomputed) or destroyed has the values it would have had at once.
+TEST(Proximity, AnswersKeepTheirObstacleAcrossRebuilds) {
+  const ConvexPolytope p = catalog_polytope("cube"), q = catalog_polytope("tetra");
+  const Point3 out = R("7/2", "1/3", "-1/5"), in = R("1/3", "1/5", "0");
+  DistanceResult late, late_inside;
+  DepthResult late_depth;
+  Rational d2, inside_p;
+  Point3 pp, dir;
+  {
+    TranslationalObstacle ob(p, q);
+    late = ob.distance_point(out);
+    late_inside = ob.distance(P(1, 0, 0), in + P(1, 0, 0));
+    late_depth = ob.penetration_depth_point(in);
+    TranslationalObstacle twin(p, q);
+    d2 = twin.distance_point(out).squared_distance();
+    pp = twin.distance_point(out).point_p();
+    inside_p = twin.distance(P(1, 0, 0), in + P(1, 0, 0)).point_p().x;
+    dir = twin.penetration_depth_point(in).direction();
+    ob.set_q(rotated(q, {Integer(1), Integer(2), Integer(3), Integer(4)}));
+    EXPECT_NE(ob.distance_point(out).squared_distance(), d2);  // M changed
+  }
+  EXPECT_EQ(late.squared_distance(), d2);
+  EXPECT_EQ(late.squared_distance(), brute_distance2(TranslationalObstacle(p, q).obstacle(), out));
+  EXPECT_EQ(late.point_p(), pp);
+  EXPECT_EQ(late_inside.point_p().x, inside_p);  // the common point, translated by u
+  EXPECT_EQ(late_inside.point_p(), late_inside.point_q());
+  EXPECT_EQ(late_depth.direction(), dir);
+  EXPECT_EQ(dot(dir, dir), late_depth.squared_depth());
+  // A copy shares the values; a default answer has none.
+  const DistanceResult copy = late;
+  EXPECT_EQ(copy.squared_distance(), d2);
+  EXPECT_EQ(DistanceResult{}.squared_distance(), 0);
+  EXPECT_EQ(DepthResult{}.depth(), 0);
+}
+
+// The foot of a point strictly inside M on its nearest facet plane lies in
+// the relative interior of that facet (were it on the facet's boundary, on
+// the plane of a neighbour g too, s would be strictly nearer to g's plane):
+// the witness face is the facet, which feature_on_facet confirms for the
+// exact foot, also for poses equidistant from several facets.
+TEST(Proximity, DepthFootLiesInsideTheNearestFacet) {
+  TranslationalObstacle ob(catalog_polytope("cube"), catalog_polytope("cube@rot:3"));
+  TranslationalObstacle box(catalog_polytope("cube"), catalog_polytope("cube"));  // M = [-2, 2]^3
+  const Point3 poses[] = {R("1", "1", "1/2"), R("3/2", "3/2", "0"), R("3/2", "3/2", "3/2"), R("3/2", "1/2", "1/4"),
+                          R("0", "0", "0"),   R("-1", "1", "1"),    R("1/3", "-3/2", "1/2")};
+  for (TranslationalObstacle* o : {&ob, &box})
+    for (const Point3& s : poses) {
+      SCOPED_TRACE(format_exact(s.x) + "," + format_exact(s.y) + "," + format_exact(s.z));
+      const DepthResult d = o->penetration_depth_point(s);
+      ASSERT_EQ(d.status, ContactStatus::penetrating);
+      const Point3 foot = s - d.direction();
+      EXPECT_EQ(d.witness.m, Feature::facet(d.witness.facet));
+      EXPECT_EQ(d.witness.m, o->feature_on_facet(d.witness.facet, foot));
+      EXPECT_EQ(d.squared_depth(), brute_depth2(o->obstacle(), s));
+    }
 }
 
 TEST(Proximity, RotationRebuildsM) {

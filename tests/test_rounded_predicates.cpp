@@ -139,6 +139,15 @@ TEST(RoundedPredicates, PlaneSideAgreesAndBoundHolds) {
         ASSERT_EQ(*f, sgn(P)) << "seed " << seed;
       }
       ASSERT_EQ(plane_side(pl, r, s.ref()), sgn(P)) << "seed " << seed << " mode " << mode;
+      if (detail::rounded_usable(s.ref())) {  // the inline form for inputs checked once
+        const int q = detail::plane_side_sign_usable(r, s.approx);
+        if (q != 2) {
+          ASSERT_EQ(q, sgn(P)) << "seed " << seed << " mode " << mode;
+        }
+        if (approx.status == detail::Approx::kOk) {
+          ASSERT_EQ(q == 2, !detail::plane_side_filter(r, s.ref())) << "seed " << seed;
+        }
+      }
       ASSERT_EQ(detail::plane_side_exact(pl, s.exact), sgn(P)) << "seed " << seed;
     });
   }

@@ -7,11 +7,13 @@
 //
 // Usage: bench_proximity [--steps N] [--reps R]
 //        bench_proximity --count P Q F N   (FCL builds only) one pose of the table
-//            (s = c + F·α*·dir), N distance and N depth queries, N FCL distances,
-//            each loop in its own function, for instruction counts:
+//            (s = c + F·α*·dir), N distance, N depth and N collision queries, N FCL
+//            distances, N libccd GJK+EPA and N GJK, each loop in its own function,
+//            for instruction counts:
 //            valgrind --tool=callgrind bench_proximity --count cube cube@rot:3 1.5 20
 //            then callgrind_annotate --inclusive=yes: count_ours_distance,
-//            count_ours_depth, count_fcl_distance (divide by N).
+//            count_ours_depth, count_ours_collide, count_fcl_distance, count_ccd_epa,
+//            count_ccd_gjk (divide by N).
 //        bench_proximity --count-trajectory P Q N   the coherent trajectory of N
 //            steps: count_ours_trajectory (distance_points), count_fcl_trajectory.
 #include <ccd/ccd.h>
@@ -181,6 +183,21 @@ __attribute__((noinline)) void count_ours_distance(TranslationalObstacle& ob, co
 __attribute__((noinline)) void count_ours_depth(TranslationalObstacle& ob, const Point3& s, int n) {
   for (int i = 0; i < n; ++i) ob.penetration_depth_point(s);
 }
+__attribute__((noinline)) int count_ccd_epa(Body& p, Body& q, ccd_t& c, int n) {
+  int ret = 0;
+  ccd_real_t depth;
+  ccd_vec3_t dir, pos;
+  for (int i = 0; i < n; ++i) ret += ccdGJKPenetration(&p, &q, &c, &depth, &dir, &pos);
+  return ret;
+}
+__attribute__((noinline)) int count_ccd_gjk(Body& p, Body& q, ccd_t& c, int n) {
+  int ret = 0;
+  for (int i = 0; i < n; ++i) ret += ccdGJKIntersect(&p, &q, &c);
+  return ret;
+}
+__attribute__((noinline)) void count_ours_collide(TranslationalObstacle& ob, const Point3& s, int n) {
+  for (int i = 0; i < n; ++i) ob.collide_point(s);
+}
 __attribute__((noinline)) double count_fcl_distance(Fcl& f, int n) {
   double d = 0;
   for (int i = 0; i < n; ++i) d = f.distance();
@@ -236,9 +253,15 @@ int count_main(int argc, char** argv) {
   ob.penetration_depth_point(s);
   count_ours_distance(ob, s, n);
   count_ours_depth(ob, s, n);
+  count_ours_collide(ob, s, n);
   const double fd = count_fcl_distance(fc, n);
+  Body bp = body(p), bq = body(q);
+  ccdVec3Set(&bq.t, sd.x, sd.y, sd.z);
+  ccd_t ccd = make_ccd();
+  count_ccd_epa(bp, bq, ccd, n);
+  count_ccd_gjk(bp, bq, ccd, n);
   std::printf("%s / %s, f = %g: %s, distance %.17g (FCL %.17g)\n", argv[2], argv[3], factor,
-              contact_status_name(d.status), d.distance, fd);
+              contact_status_name(d.status), d.distance(), fd);
   return 0;
 }
 #endif
@@ -295,9 +318,11 @@ int main(int argc, char** argv) {
               "f = 1.5 (separated), 1 (touching), 1 ± 1e-9 (near-touching), 0.5 (penetrating); s is then\n"
               "rounded to doubles, so the 'touching' point's exact status is whatever the rounding gives.\n"
               "Distance: a walk on M whose every move and final Voronoi-region certificate are filtered exact\n"
-              "predicates on doubles, then the exact squared distance and closest points (rationals) from the\n"
-              "one certified feature.  Depth: a scan of M's unit facet planes with a derived error bound, exact\n"
-              "comparisons among the planes it cannot rule out.\n",
+              "predicates on doubles; the answer holds the certified feature, and its exact squared distance\n"
+              "and closest points (rationals) are computed on first use: 'ours distance' is the query,\n"
+              "'+ exact' the query and those rationals.  Depth: a scan of M's unit facet planes with a derived\n"
+              "error bound, exact comparisons among the planes it cannot rule out (the squared depth, a\n"
+              "rational, on first use as well).\n",
               steps, reps, reps);
 #ifdef MINKSUM_HAVE_FCL
   std::printf("FCL %s: fcl::Convexd pairs (same vertices and facets), fcl::collide and fcl::distance with\n"
@@ -312,14 +337,14 @@ int main(int argc, char** argv) {
               CGAL_VERSION_STR);
 #endif
   std::printf("| pair | configuration | exact status | ours collide µs | ours depth µs | ours distance µs | "
-              "GJK µs | GJK+EPA µs | MPR µs | FCL collide µs | FCL distance µs | CGAL distance µs (agrees) | "
+              "ours distance + exact µs | GJK µs | GJK+EPA µs | MPR µs | FCL collide µs | FCL distance µs | CGAL distance µs (agrees) | "
               "GJK/ours collide | libccd wrong (GJK, EPA, MPR) | FCL wrong (collide, distance) |\n");
-  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---|---|\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---|---|\n");
 #else
   std::printf("\n");
   std::printf("| pair | configuration | exact status | ours collide µs | ours depth µs | ours distance µs | "
-              "GJK µs | GJK+EPA µs | MPR µs | GJK/ours collide | libccd wrong (GJK, EPA, MPR) |\n");
-  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
+              "ours distance + exact µs | GJK µs | GJK+EPA µs | MPR µs | GJK/ours collide | libccd wrong (GJK, EPA, MPR) |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
 #endif
 
   for (auto& pr : pairs) {
@@ -351,6 +376,13 @@ int main(int argc, char** argv) {
       t0 = Clock::now();
       for (long r = 0; r < reps / 10 + 1; ++r) ob.distance_point(s);
       const double us_dist = now_us(t0, reps / 10 + 1);
+      t0 = Clock::now();
+      for (long r = 0; r < reps / 10 + 1; ++r) {
+        const DistanceResult d = ob.distance_point(s);
+        d.squared_distance();
+        d.point_p();
+      }
+      const double us_dist_exact = now_us(t0, reps / 10 + 1);
 
       int gjk = 0, mpr = 0, epa_ret = 0;
       ccd_real_t depth = 0;
@@ -369,7 +401,7 @@ int main(int argc, char** argv) {
       const int wrong_gjk = (gjk != 0) != inter;
       const int wrong_mpr = (mpr != 0) != inter;
       int wrong_epa = (epa_ret == 0) != inter;
-      if (!wrong_epa && epa_ret == 0 && exact == ContactStatus::penetrating) wrong_epa = rel_off(depth, dr.depth);
+      if (!wrong_epa && epa_ret == 0 && exact == ContactStatus::penetrating) wrong_epa = rel_off(depth, dr.depth());
 #ifdef MINKSUM_HAVE_FCL
       Fcl fc(p, q);
       fc.at(sd.x, sd.y, sd.z);
@@ -383,8 +415,8 @@ int main(int argc, char** argv) {
       const double us_fdist = now_us(t0, reps);
       const int wrong_fcol = fcol != inter;
       int wrong_fdist = (fdist <= 0) != inter;
-      if (!wrong_fdist && exact == ContactStatus::separate) wrong_fdist = rel_off(fdist, sr.distance);
-      if (!wrong_fdist && exact == ContactStatus::penetrating) wrong_fdist = rel_off(-fdist, dr.depth);
+      if (!wrong_fdist && exact == ContactStatus::separate) wrong_fdist = rel_off(fdist, sr.distance());
+      if (!wrong_fdist && exact == ContactStatus::penetrating) wrong_fdist = rel_off(-fdist, dr.depth());
       std::string cgal = "–";
 #ifdef MINKSUM_HAVE_CGAL_DISTANCE
       if (exact == ContactStatus::separate) {
@@ -393,18 +425,18 @@ int main(int argc, char** argv) {
         t0 = Clock::now();
         for (long r = 0; r < n; ++r) d2 = cgal_squared_distance(p, q, s);
         char buf[64];
-        std::snprintf(buf, sizeof buf, "%.2f (%s)", now_us(t0, n), d2 == sr.squared_distance ? "yes" : "NO");
+        std::snprintf(buf, sizeof buf, "%.2f (%s)", now_us(t0, n), d2 == sr.squared_distance() ? "yes" : "NO");
         cgal = buf;
       }
 #endif
-      std::printf("| %s / %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %s | %.2f | %d, %d, %d | %d, %d |\n",
-                  pr[0], pr[1], cf.name, contact_status_name(exact), us_collide, us_depth, us_dist, us_gjk, us_epa,
+      std::printf("| %s / %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %s | %.2f | %d, %d, %d | %d, %d |\n",
+                  pr[0], pr[1], cf.name, contact_status_name(exact), us_collide, us_depth, us_dist, us_dist_exact, us_gjk, us_epa,
                   us_mpr, us_fcol, us_fdist, cgal.c_str(), us_gjk / us_collide, wrong_gjk, wrong_epa, wrong_mpr,
                   wrong_fcol, wrong_fdist);
 #else
       (void)sr;
-      std::printf("| %s / %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %d, %d, %d |\n", pr[0], pr[1],
-                  cf.name, contact_status_name(exact), us_collide, us_depth, us_dist, us_gjk, us_epa, us_mpr,
+      std::printf("| %s / %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %d, %d, %d |\n", pr[0], pr[1],
+                  cf.name, contact_status_name(exact), us_collide, us_depth, us_dist, us_dist_exact, us_gjk, us_epa, us_mpr,
                   us_gjk / us_collide, wrong_gjk, wrong_epa, wrong_mpr);
 #endif
     }
@@ -503,13 +535,13 @@ int main(int argc, char** argv) {
       separate += sep;
       wrong_ours += d.status != ours[std::size_t(i)];
       const double f = fdist[std::size_t(i)];
-      wrong_fdist += (f > 0) != sep || (sep && rel_off(f, d.distance));
+      wrong_fdist += (f > 0) != sep || (sep && rel_off(f, d.distance()));
     }
     // Every 1000th separate pose: the exact squared distance against an exact
     // scan of all the facets of M the pose sees (no walk, no filter).
     for (long i = 0; i < steps; i += 1000)
       if (dist[std::size_t(i)].status == ContactStatus::separate)
-        wrong_ours += dist[std::size_t(i)].squared_distance != ob.squared_distance_by_scan(traj[std::size_t(i)]);
+        wrong_ours += dist[std::size_t(i)].squared_distance() != ob.squared_distance_by_scan(traj[std::size_t(i)]);
     std::printf("| %s / %s | %.2f | %.2f | %.2f | %.2f | %.2f | %ld | %ld | %ld | %ld | %.4f | %llu | %.2f | %.2f | "
                 "%llu / %ld | %ld |\n",
                 pr[0], pr[1], us_ours, us_gjk, us_mpr, us_fcl, us_gjk / us_ours, wrong_ours, wrong_gjk, wrong_mpr,

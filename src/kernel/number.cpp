@@ -3,6 +3,7 @@
 #include <minksum/kernel.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
 #include <climits>
 #include <cstdint>
@@ -127,6 +128,21 @@ double round_to_binary(const Integer& n, const Integer& d, int precision, long m
 double to_double(const Rational& q) {
   int s = sgn(q);
   if (s == 0) return 0.0;
+  {
+    // One-limb fast path: |num| < 2^53 over a one-limb power of two is exact
+    // as a double (at most 2^63 in the denominator: no underflow).
+    const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
+    if constexpr (GMP_NUMB_BITS == 64) {
+      if (mpz_size(num) == 1 && mpz_size(den) == 1) {
+        const std::uint64_t n = mpz_getlimbn(num, 0), d = mpz_getlimbn(den, 0);
+        if (n < (std::uint64_t(1) << 53) && (d & (d - 1)) == 0) {
+          // 2^-k for k = log2(d) ≤ 63, built from its exponent bits: exact.
+          const double v = double(n) * std::bit_cast<double>(std::uint64_t(1023 - __builtin_ctzll(d)) << 52);
+          return s < 0 ? -v : v;
+        }
+      }
+    }
+  }
   if (double d; dyadic_short(q, d)) return d;
   if (double d; to_double_fast(q.get_num_mpz_t(), q.get_den_mpz_t(), d)) return s < 0 ? -d : d;
   const double v = round_to_binary(abs(q.get_num()), q.get_den(), 53, -1074, 1023);

@@ -19,6 +19,9 @@ namespace minksum {
 namespace detail {
 
 bool rounded_usable(const RoundedPoint3& p) {
+  // The common case first: three normal doubles (no look at the rationals).
+  const double ax = std::fabs(p.approx.x), ay = std::fabs(p.approx.y), az = std::fabs(p.approx.z);
+  if (ax >= DBL_MIN && ax <= DBL_MAX && ay >= DBL_MIN && ay <= DBL_MAX && az >= DBL_MIN && az <= DBL_MAX) return true;
   for (int j = 0; j < 3; ++j) {
     const double x = j == 0 ? p.approx.x : j == 1 ? p.approx.y : p.approx.z;
     if (x == 0) {
@@ -35,13 +38,8 @@ Approx plane_side_approx(const std::array<double, 4>& r, const RoundedPoint3& s)
   if (!rounded_usable(s)) return a;
   for (double c : r)  // integers: a zero rounding is an exact zero
     if (!(std::fabs(c) <= DBL_MAX)) return a;
-  const Vec3d& x = s.approx;
-  const double px = r[0] * x.x, py = r[1] * x.y, pz = r[2] * x.z;
-  const double mag = ((std::fabs(px) + std::fabs(py)) + std::fabs(pz)) + std::fabs(r[3]);
-  if (!(mag < 0x1p1000)) return a;
+  if (!plane_side_value(r, s.approx, a.value, a.bound)) return a;
   a.status = Approx::kOk;
-  a.value = ((px + py) + pz) - r[3];
-  a.bound = kPlaneSideFactor * mag + kPlaneSideAbsolute;
   return a;
 }
 
@@ -94,7 +92,11 @@ std::vector<std::size_t> nearest_plane_candidates(const std::array<double, 4>* r
 }  // namespace detail
 
 int plane_side(const Plane& plane, const std::array<double, 4>& rounded, const RoundedPoint3& s) {
-  if (auto r = detail::plane_side_filter(rounded, s)) return *r;
+  const detail::Approx a = detail::plane_side_approx(rounded, s);
+  if (a.status == detail::Approx::kOk) {  // certified_sign of a filter without a dynamic step
+    if (a.value > a.bound) return 1;
+    if (a.value < -a.bound) return -1;
+  }
   return detail::plane_side_exact(plane, s.exact);
 }
 

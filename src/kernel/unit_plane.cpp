@@ -105,6 +105,8 @@ std::vector<std::size_t> nearest_unit_plane_candidates(const UnitPlane* unit, st
 
 std::size_t nearest_plane_among(const Plane* const* planes, const std::vector<std::size_t>& candidates,
                                 const RoundedPoint3& s) {
+  // Every minimiser is a candidate: a single candidate is the answer.
+  if (candidates.size() == 1) return candidates[0];
   std::size_t arg = std::size_t(-1);
   Rational arg_gap, gap;
   Integer arg_norm2, norm2;

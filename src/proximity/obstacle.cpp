@@ -24,11 +24,14 @@
 #include <minksum/unit_plane.hpp>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
-#include <tuple>
 #include <unordered_map>
 
+#include "kernel/plane.hpp"
+#include "kernel/predicates_internal.hpp"
 #include "mesh/support.hpp"
+#include "proximity/obstacle_geometry.hpp"
 
 namespace minksum {
 
@@ -53,61 +56,73 @@ Point3 average(const std::vector<Point3>& pts) {
 
 }  // namespace
 
-TranslationalObstacle::TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method)
-    : p_(std::move(p)), q_(std::move(q)), method_(method) {
-  rebuild();
+TranslationalObstacle::TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method) : method_(method) {
+  rebuild(std::move(p), std::move(q));
 }
 
+// The operand kept by a rebuild: moved out of the current geometry when no
+// answer shares it, copied otherwise.
 void TranslationalObstacle::set_p(ConvexPolytope p) {
-  p_ = std::move(p);
-  rebuild();
+  rebuild(std::move(p), g_.use_count() == 1 ? std::move(g_->q) : g_->q);
 }
 void TranslationalObstacle::set_q(ConvexPolytope q) {
-  q_ = std::move(q);
-  rebuild();
+  rebuild(g_.use_count() == 1 ? std::move(g_->p) : g_->p, std::move(q));
 }
-void TranslationalObstacle::set_operands(ConvexPolytope p, ConvexPolytope q) {
-  p_ = std::move(p);
-  q_ = std::move(q);
-  rebuild();
-}
+void TranslationalObstacle::set_operands(ConvexPolytope p, ConvexPolytope q) { rebuild(std::move(p), std::move(q)); }
 
-void TranslationalObstacle::rebuild() {
-  neg_q_ = q_.negated();
+const ConvexPolytope& TranslationalObstacle::p() const { return g_->p; }
+const ConvexPolytope& TranslationalObstacle::q() const { return g_->q; }
+const ConvexPolytope& TranslationalObstacle::obstacle() const { return g_->sum.polytope; }
+const SumResult& TranslationalObstacle::sum() const { return g_->sum; }
+const Point3& TranslationalObstacle::interior_point() const { return g_->center; }
+
+void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q) {
+  // A new geometry: the answers given so far keep the one they were answered on.
+  auto g = std::make_shared<detail::ObstacleGeometry>();
+  g->p = std::move(p);
+  g->q = std::move(q);
+  g->neg_q = g->q.negated();
   std::unordered_map<Point3, Index, Point3Hash> q_index;
-  for (Index v = 0; v < q_.num_vertices(); ++v) q_index.emplace(q_.point(v), v);
-  neg_to_q_.assign(neg_q_.num_vertices(), kNoIndex);
-  for (Index v = 0; v < neg_q_.num_vertices(); ++v) neg_to_q_[v] = q_index.at(-neg_q_.point(v));
-  sum_ = minkowski_sum(p_, neg_q_, method_);
-  const ConvexPolytope& m = sum_.polytope;
+  for (Index v = 0; v < g->q.num_vertices(); ++v) q_index.emplace(g->q.point(v), v);
+  g->neg_to_q.assign(g->neg_q.num_vertices(), kNoIndex);
+  for (Index v = 0; v < g->neg_q.num_vertices(); ++v) g->neg_to_q[v] = q_index.at(-g->neg_q.point(v));
+  g->sum = minkowski_sum(g->p, g->neg_q, method_);
+  const ConvexPolytope& m = g->sum.polytope;
   const Index nf = m.num_facets();
-  normal_.resize(nf);
-  offset_.resize(nf);
-  norm2_.resize(nf);
+  g->normal.resize(nf);
+  g->offset.resize(nf);
+  g->norm2.resize(nf);
   plane_approx_.resize(nf);
   normal_approx_.resize(nf);
   unit_plane_.resize(nf);
   plane_ptr_.resize(nf);
   for (Index f = 0; f < nf; ++f) {
     const Plane& pl = m.plane(f);
-    normal_[f] = pl.normal();
-    offset_[f] = Rational(pl.d);
-    norm2_[f] = squared_norm(normal_[f]);
+    g->normal[f] = pl.normal();
+    g->offset[f] = Rational(pl.d);
+    g->norm2[f] = squared_norm(g->normal[f]);
     plane_approx_[f] = {to_double(Rational(pl.a)), to_double(Rational(pl.b)), to_double(Rational(pl.c)),
-                        to_double(offset_[f])};
+                        to_double(g->offset[f])};
     normal_approx_[f] = Vec3d{plane_approx_[f][0], plane_approx_[f][1], plane_approx_[f][2]};
     unit_plane_[f] = unit_plane(pl);
     plane_ptr_[f] = &pl;
   }
   // avg(P) − avg(Q) is strictly inside M and has the obvious decomposition.
-  p_center_ = average(p_.points());
-  q_center_ = average(q_.points());
-  center_ = p_center_ - q_center_;
-  center_approx_ = to_double(center_);
+  g->p_center = average(g->p.points());
+  g->q_center = average(g->q.points());
+  g->center = g->p_center - g->q_center;
+  center_approx_ = to_double(g->center);
   facet_features_.assign(nf, {});
   facet_features_known_.assign(nf, 0);
+  edge_features_.assign(m.num_edges(), {});
+  edge_features_known_.assign(m.num_edges(), 0);
+  center_plane_.assign(2 * std::size_t(m.num_edges()), Plane{});
+  center_plane_approx_.resize(2 * std::size_t(m.num_edges()));
+  center_plane_known_.assign(2 * std::size_t(m.num_edges()), 0);
   last_stab_ = last_exit_ = last_depth_ = 0;
   last_closest_.reset();  // the first distance walk starts at the stabbed facet
+  last_separate_ = false;
+  g_ = std::move(g);
   ++stats_.rebuilds;
 }
 
@@ -115,7 +130,7 @@ void TranslationalObstacle::rebuild() {
 // Witness helpers.
 
 Feature TranslationalObstacle::feature_on_facet(Index f, const Point3& x) const {
-  const ConvexPolytope& m = sum_.polytope;
+  const ConvexPolytope& m = obstacle();
   const Index h0 = m.facet_halfedge(f);
   Index h = h0;
   do {
@@ -126,7 +141,7 @@ Feature TranslationalObstacle::feature_on_facet(Index f, const Point3& x) const 
   // edge's line, ⟨x − a, (b − a) × n⟩ = 0 (kernel: edge_normal_side, filtered
   // on the roundings; only a zero is decided exactly).
   const Vec3d xd = to_double(x);
-  const RoundedPoint3 rx{x, xd}, rn{normal_[f], normal_approx_[f]};
+  const RoundedPoint3 rx{x, xd}, rn{g_->normal[f], normal_approx_[f]};
   h = h0;
   do {
     const Index a = m.origin(h), b = m.target(h);
@@ -137,61 +152,60 @@ Feature TranslationalObstacle::feature_on_facet(Index f, const Point3& x) const 
   return Feature::facet(f);
 }
 
+// The foot x = s + t·n of s on facet f's plane lies in the facet (the
+// nearest plane of a point inside M, or a facet that certified a distance).
+// ⟨x − a, (b − a) × n⟩ = ⟨s − a, (b − a) × n⟩ since n ⟂ (b − a) × n, so x
+// lies on the edge a→b exactly when edge_normal_side(a, b, n, s) = 0: the
+// face is read off s itself, with no rational point formed.  Two such edges
+// meet at x's vertex.
+Feature TranslationalObstacle::foot_feature(Index f, const Point3& s, const Vec3d& sd) const {
+  const ConvexPolytope& m = obstacle();
+  const RoundedPoint3 rs{s, sd}, rn{g_->normal[f], normal_approx_[f]};
+  const Index h0 = m.facet_halfedge(f);
+  Index h = h0, on_first = kNoIndex, on_second = kNoIndex;
+  do {
+    const Index a = m.origin(h), b = m.target(h);
+    if (edge_normal_side(RoundedPoint3{m.point(a), m.approx(a)}, RoundedPoint3{m.point(b), m.approx(b)}, rn, rs) == 0)
+      (on_first == kNoIndex ? on_first : on_second) = h;
+    h = m.next(h);
+  } while (h != h0);
+  if (on_second != kNoIndex)  // x on two edges of f: their common vertex
+    return Feature::vertex(m.next(on_first) == on_second ? m.origin(on_second) : m.origin(on_first));
+  if (on_first != kNoIndex) return Feature::edge(ConvexPolytope::edge(on_first));
+  return Feature::facet(f);
+}
+
 void TranslationalObstacle::fill_operand_features(Witness& w) const {
-  const ConvexPolytope& m = sum_.polytope;
-  if (w.m.dim == FeatureDim::facet && facet_features_known_[w.m.index]) {
-    w.p = facet_features_[w.m.index][0];
-    w.q = facet_features_[w.m.index][1];
+  const detail::ObstacleGeometry& g = *g_;
+  if (w.m.dim == FeatureDim::vertex) {  // a vertex of M is a vertex of P plus a vertex of −Q
+    w.p = Feature::vertex(g.sum.vertex_origin[w.m.index].first);
+    w.q = Feature::vertex(g.neg_to_q[g.sum.vertex_origin[w.m.index].second]);
+    return;
+  }
+  auto& cache = w.m.dim == FeatureDim::facet ? facet_features_ : edge_features_;
+  auto& known = w.m.dim == FeatureDim::facet ? facet_features_known_ : edge_features_known_;
+  if (known[w.m.index]) {
+    w.p = cache[w.m.index][0];
+    w.q = cache[w.m.index][1];
     return;
   }
   std::vector<Index> pv, qv;
-  for (Index v : feature_vertices(m, w.m)) {
-    pv.push_back(sum_.vertex_origin[v].first);
-    qv.push_back(neg_to_q_[sum_.vertex_origin[v].second]);
+  for (Index v : feature_vertices(g.m(), w.m)) {
+    pv.push_back(g.sum.vertex_origin[v].first);
+    qv.push_back(g.neg_to_q[g.sum.vertex_origin[v].second]);
   }
   std::sort(pv.begin(), pv.end());
   pv.erase(std::unique(pv.begin(), pv.end()), pv.end());
   std::sort(qv.begin(), qv.end());
   qv.erase(std::unique(qv.begin(), qv.end()), qv.end());
-  w.p = feature_of_vertices(p_, pv);
-  w.q = feature_of_vertices(q_, qv);
-  if (w.m.dim == FeatureDim::facet) {
-    facet_features_[w.m.index] = {w.p, w.q};
-    facet_features_known_[w.m.index] = 1;
-  }
+  w.p = feature_of_vertices(g.p, pv);
+  w.q = feature_of_vertices(g.q, qv);
+  cache[w.m.index] = {w.p, w.q};
+  known[w.m.index] = 1;
 }
 
 std::pair<Point3, Point3> TranslationalObstacle::decompose(const Feature& feat, const Point3& x) const {
-  const ConvexPolytope& m = sum_.polytope;
-  auto pq = [&](Index v) -> std::pair<Point3, Point3> {
-    return {p_.point(sum_.vertex_origin[v].first), q_.point(neg_to_q_[sum_.vertex_origin[v].second])};
-  };
-  if (feat.dim == FeatureDim::vertex) return pq(feat.index);
-  if (feat.dim == FeatureDim::edge) {
-    const Index a = m.origin(2 * feat.index), b = m.target(2 * feat.index);
-    const Point3 e = m.point(b) - m.point(a);
-    const Rational t = dot(x - m.point(a), e) / dot(e, e);
-    auto [pa, qa] = pq(a);
-    auto [pb, qb] = pq(b);
-    return {pa + t * (pb - pa), qa + t * (qb - qa)};
-  }
-  const std::vector<Index> vs = m.facet_vertices(feat.index);
-  const Point3& n = normal_[feat.index];
-  const Point3& w0 = m.point(vs[0]);
-  for (std::size_t i = 1; i + 1 < vs.size(); ++i) {
-    const Point3& wi = m.point(vs[i]);
-    const Point3& wj = m.point(vs[i + 1]);
-    const Rational area = dot(cross(wi - w0, wj - w0), n);
-    const Rational li = dot(cross(x - w0, wj - w0), n) / area;
-    const Rational lj = dot(cross(wi - w0, x - w0), n) / area;
-    const Rational l0 = 1 - li - lj;
-    if (sgn(li) < 0 || sgn(lj) < 0 || sgn(l0) < 0) continue;
-    auto [p0, q0] = pq(vs[0]);
-    auto [pi, qi] = pq(vs[i]);
-    auto [pj, qj] = pq(vs[i + 1]);
-    return {l0 * p0 + li * pi + lj * pj, l0 * q0 + li * qi + lj * qj};
-  }
-  throw std::logic_error("proximity: point not in the facet it was attributed to");
+  return g_->decompose(feat, x);
 }
 
 // ---------------------------------------------------------------------------
@@ -199,33 +213,36 @@ std::pair<Point3, Point3> TranslationalObstacle::decompose(const Feature& feat, 
 
 struct TranslationalObstacle::RayApprox {
   Vec3d apex, through;
+  bool through_usable = false;  // detail::rounded_usable of the ray point's rounding
 };
 
 // orient3d(apex, m[a], m[b], through) on the cached roundings of M's
 // vertices, the apex and the ray point (kernel: orient3d on RoundedPoint3).
 int TranslationalObstacle::orient_filtered(const Point3& apex, Index a, Index b, const Point3& through,
                                            const RayApprox& ra) const {
-  const ConvexPolytope& m = sum_.polytope;
+  const ConvexPolytope& m = obstacle();
   return orient3d(RoundedPoint3{apex, ra.apex}, RoundedPoint3{m.point(a), m.approx(a)},
                   RoundedPoint3{m.point(b), m.approx(b)}, RoundedPoint3{through, ra.through});
 }
 
 // The side of s with respect to facet f's plane, filtered on the plane's
 // cached roundings (kernel: plane_side).
-int TranslationalObstacle::side_filtered(Index f, const Point3& s) const {
-  const Vec3d sd = to_double(s);
-  return plane_side(sum_.polytope.plane(f), plane_approx_[f], RoundedPoint3{s, sd});
+int TranslationalObstacle::side_filtered(Index f, const Point3& s, const Vec3d& sd) const {
+  return plane_side(obstacle().plane(f), plane_approx_[f], RoundedPoint3{s, sd});
 }
 
 bool TranslationalObstacle::in_cone(Index f, const Point3& apex, const Point3& through, const RayApprox& ra,
                                     Index* exit) {
-  const ConvexPolytope& m = sum_.polytope;
+  const ConvexPolytope& m = obstacle();
   Index h0 = m.facet_halfedge(f);
   rng_ ^= rng_ << 13, rng_ ^= rng_ >> 7, rng_ ^= rng_ << 17;
   for (std::uint64_t k = rng_ % 4; k > 0; --k) h0 = m.next(h0);
   Index h = h0;
+  const bool from_center = &apex == &g_->center;
   do {
-    if (orient_filtered(apex, m.origin(h), m.target(h), through, ra) < 0) {
+    const int side = from_center ? center_side(h, through, ra.through, ra.through_usable)
+                                 : orient_filtered(apex, m.origin(h), m.target(h), through, ra);
+    if (side < 0) {
       *exit = h;
       return false;
     }
@@ -234,8 +251,35 @@ bool TranslationalObstacle::in_cone(Index f, const Point3& apex, const Point3& t
   return true;
 }
 
+// orient3d(c, a, b, s) for the interior point c and the halfedge a→b is the
+// side of s of the plane through c, a and b with normal (a − c) × (b − c)
+// (non-zero: the line of a boundary edge of M misses its interior).  That
+// plane is computed exactly on the halfedge's first use (canonical integers
+// and their roundings) and kept; then each test is the plane_side filter, a
+// degree-1 polynomial in s, instead of orient3d's degree 3.
+int TranslationalObstacle::center_side(Index h, const Point3& s, const Vec3d& sd, bool usable) {
+  if (!center_plane_known_[h]) {
+    const ConvexPolytope& m = obstacle();
+    const Point3& c = g_->center;
+    const Point3 ca = m.point(m.origin(h)) - c;
+    center_plane_[h] = canonical_plane(cross(ca, m.point(m.target(h)) - c), c);
+    const Plane& pl = center_plane_[h];
+    center_plane_approx_[h] = {to_double(Rational(pl.a)), to_double(Rational(pl.b)), to_double(Rational(pl.c)),
+                               to_double(Rational(pl.d))};
+    const auto& r = center_plane_approx_[h];
+    const bool finite = std::fabs(r[0]) <= DBL_MAX && std::fabs(r[1]) <= DBL_MAX && std::fabs(r[2]) <= DBL_MAX &&
+                        std::fabs(r[3]) <= DBL_MAX;
+    center_plane_known_[h] = finite ? 1 : 2;
+  }
+  // plane_side's filter with the inputs checked once (the plane here, s per
+  // query), then plane_side itself when it does not decide.
+  if (usable && center_plane_known_[h] == 1)
+    if (const int side = detail::plane_side_sign_usable(center_plane_approx_[h], sd); side != 2) return side;
+  return plane_side(center_plane_[h], center_plane_approx_[h], RoundedPoint3{s, sd});
+}
+
 Index TranslationalObstacle::stab_scan(const Point3& apex, const Point3& through) const {
-  const ConvexPolytope& m = sum_.polytope;
+  const ConvexPolytope& m = obstacle();
   for (Index f = 0; f < m.num_facets(); ++f) {
     bool inside = true;
     const Index h0 = m.facet_halfedge(f);
@@ -252,11 +296,10 @@ Index TranslationalObstacle::stab_scan(const Point3& apex, const Point3& through
   throw std::logic_error("proximity: no facet of M is hit by the ray");
 }
 
-Index TranslationalObstacle::stab(const Point3& apex, const Point3& through, Index start) {
-  const ConvexPolytope& m = sum_.polytope;
+Index TranslationalObstacle::stab(const Point3& apex, const Point3& through, const RayApprox& ra, Index start) {
+  const ConvexPolytope& m = obstacle();
   Index f = start < m.num_facets() ? start : 0;
   const std::uint64_t limit = std::uint64_t(m.num_facets()) + 16;
-  const RayApprox ra{&apex == &center_ ? center_approx_ : to_double(apex), to_double(through)};
   for (std::uint64_t steps = 0; steps <= limit; ++steps) {
     Index exit;
     if (in_cone(f, apex, through, ra, &exit)) return f;
@@ -270,20 +313,23 @@ Index TranslationalObstacle::stab(const Point3& apex, const Point3& through, Ind
 // ---------------------------------------------------------------------------
 // Collision.
 
-CollisionResult TranslationalObstacle::collide_point(const Point3& s) {
+CollisionResult TranslationalObstacle::collide_point(const Point3& s) { return collide_rounded(s, to_double(s)); }
+
+CollisionResult TranslationalObstacle::collide_rounded(const Point3& s, const Vec3d& sd) {
   ++stats_.queries;
   CollisionResult r;
-  const ConvexPolytope& m = sum_.polytope;
-  if (s == center_) {
+  const ConvexPolytope& m = obstacle();
+  const Point3& center = g_->center;
+  if (sd.x == center_approx_.x && sd.y == center_approx_.y && sd.z == center_approx_.z && s == center) {
     r.status = ContactStatus::penetrating;
     r.witness.facet = last_stab_ < m.num_facets() ? last_stab_ : 0;
     r.witness.m = Feature::facet(r.witness.facet);
     fill_operand_features(r.witness);
     return r;
   }
-  const Index f = stab(center_, s, last_stab_);
+  const Index f = stab(center, s, RayApprox{center_approx_, sd, detail::rounded_usable(RoundedPoint3{s, sd})}, last_stab_);
   last_stab_ = f;
-  const int side = side_filtered(f, s);
+  const int side = side_filtered(f, s, sd);
   r.status = side > 0 ? ContactStatus::separate : side == 0 ? ContactStatus::touching : ContactStatus::penetrating;
   r.witness.facet = f;
   r.witness.m = side == 0 ? feature_on_facet(f, s) : Feature::facet(f);
@@ -347,7 +393,7 @@ Closest boundary_closest(const ConvexPolytope& m, Index f, const Point3& s) {
 }  // namespace
 
 Rational TranslationalObstacle::squared_distance_by_scan(const Point3& s) const {
-  const ConvexPolytope& m = sum_.polytope;
+  const ConvexPolytope& m = obstacle();
   for (Index f = 0; f < m.num_facets(); ++f)
     if (m.plane(f).side(s) > 0) {
       Point3 x;
@@ -360,17 +406,17 @@ Rational TranslationalObstacle::squared_distance_by_scan(const Point3& s) const 
 }
 
 Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const {
-  const ConvexPolytope& m = sum_.polytope;
+  const ConvexPolytope& m = obstacle();
   bool found = false;
   Feature best = Feature::facet(0);
   for (Index f = 0; f < m.num_facets(); ++f) {
     if (m.plane(f).side(s) <= 0) continue;  // the closest point lies on a facet s sees
-    const Point3& n = normal_[f];
+    const Point3& n = g_->normal[f];
     Closest c;
     if (!beyond_an_edge(m, f, n, s)) {
-      const Rational t = (dot(n, s) - offset_[f]) / norm2_[f];
+      const Rational t = (dot(n, s) - g_->offset[f]) / g_->norm2[f];
       c.x = s - t * n;
-      c.d2 = t * t * norm2_[f];
+      c.d2 = t * t * g_->norm2[f];
       c.feat = Feature::facet(f);
     } else {
       c = boundary_closest(m, f, s);
@@ -407,10 +453,13 @@ Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, 
 // A certified feature contains the closest point x (for a facet, x lies on
 // the edges whose test is exactly 0, on their common vertex for two).  The
 // walk is bounded; beyond the bound it scans all facets exactly.
-Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Feature> start, Point3& dir, Rational& d2,
-                                              Index& facet) {
-  const ConvexPolytope& m = sum_.polytope;
-  const std::uint64_t limit = 2 * (std::uint64_t(m.num_vertices()) + m.num_edges() + m.num_facets()) + 16;
+Feature TranslationalObstacle::closest_feature(const Point3& s, const Vec3d& sd, std::optional<Feature> start,
+                                              Index& facet, bool first) {
+  const ConvexPolytope& m = obstacle();
+  // The walk before the collision query is short: a pose that moved far
+  // (or into M) goes the usual way.
+  const std::uint64_t limit =
+      first ? 16 : 2 * (std::uint64_t(m.num_vertices()) + m.num_edges() + m.num_facets()) + 16;
   auto valid = [&](const Feature& f) {
     switch (f.dim) {
       case FeatureDim::vertex: return f.index < m.num_vertices();
@@ -419,10 +468,9 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
     }
     return false;
   };
-  const Vec3d sd = to_double(s);
   const RoundedPoint3 rs{s, sd};
   auto rv = [&](Index v) { return RoundedPoint3{m.point(v), m.approx(v)}; };
-  auto rn = [&](Index f) { return RoundedPoint3{normal_[f], normal_approx_[f]}; };
+  auto rn = [&](Index f) { return RoundedPoint3{g_->normal[f], normal_approx_[f]}; };
   auto sees = [&](Index f) { return plane_side(m.plane(f), plane_approx_[f], rs) > 0; };
   const Index stabbed = facet < m.num_facets() ? facet : 0;
   bool restarted = false;
@@ -440,10 +488,8 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
         h = m.next_around_vertex(h);
       } while (h != h0);
       if (move == kNoIndex) {
-        dir = s - m.point(v);
-        d2 = squared_norm(dir);
         h = h0;
-        facet = m.facet(h0);
+        facet = kNoIndex;
         do {  // a facet through v that s sees
           if (sees(m.facet(h))) {
             facet = m.facet(h);
@@ -451,6 +497,10 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
           }
           h = m.next_around_vertex(h);
         } while (h != h0);
+        if (facet == kNoIndex) {  // none: s = v
+          if (first) return Feature::vertex(kNoIndex);
+          facet = m.facet(h0);
+        }
         ++stats_.certified;
         return cur;
       }
@@ -468,12 +518,11 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
       } else if (edge_normal_side(rv(ib), rv(ia), rn(f2), rs) < 0) {
         cur = Feature::facet(f2);
       } else {
-        const Point3& a = m.point(ia);
-        const Point3 e = m.point(ib) - a;
-        const Point3 sa = s - a;
-        dir = sa - (dot(sa, e) / dot(e, e)) * e;
-        d2 = squared_norm(dir);
-        facet = sees(f1) ? f1 : f2;
+        facet = sees(f1) ? f1 : sees(f2) ? f2 : kNoIndex;
+        if (facet == kNoIndex) {  // s on the edge
+          if (first) return Feature::vertex(kNoIndex);
+          facet = f2;
+        }
         ++stats_.certified;
         return cur;
       }
@@ -506,16 +555,13 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
         cur = Feature::edge(ConvexPolytope::edge(beyond));
       } else {
         if (!sees(f)) {  // local trap: restart once from the stabbed facet (s sees it), then scan
+          if (first) return Feature::vertex(kNoIndex);
           if (restarted) break;
           restarted = true;
           cur = Feature::facet(stabbed);
           ++stats_.walk_steps;
           continue;
         }
-        const Rational side = dot(normal_[f], s) - offset_[f];
-        const Rational t = side / norm2_[f];
-        dir = t * normal_[f];
-        d2 = t * side;
         facet = f;
         ++stats_.certified;
         if (on_second != kNoIndex)  // x on two edges of f: their common vertex
@@ -526,11 +572,23 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, std::optional<Fe
     }
     ++stats_.walk_steps;
   }
+  if (first) return Feature::vertex(kNoIndex);
   ++stats_.full_scans;
   Point3 x;
+  Rational d2;
   const Feature scanned = closest_feature_scan(s, x, d2, facet);
-  dir = s - x;
-  return scanned.dim == FeatureDim::facet ? feature_on_facet(facet, x) : scanned;
+  return scanned.dim == FeatureDim::facet ? foot_feature(facet, s, sd) : scanned;
+}
+
+void TranslationalObstacle::keep_point(const Point3& s, const Vec3d& sd, Vec3d& kept, std::shared_ptr<Point3>& exact) {
+  kept = sd;
+  if (is_double(s)) {
+    exact.reset();
+  } else if (exact.use_count() == 1) {
+    *exact = s;
+  } else {
+    exact = std::make_shared<Point3>(s);
+  }
 }
 
 DistanceResult TranslationalObstacle::distance_point(const Point3& s) {
@@ -539,82 +597,49 @@ DistanceResult TranslationalObstacle::distance_point(const Point3& s) {
   return r;
 }
 
-// The distance query written into r (its rationals assigned, not rebuilt).
+// The distance query written into r: its status and witness, and what its
+// accessors need to compute the exact values (the geometry and s, assigned
+// into r's storage; no rational arithmetic).
 void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
-  CollisionResult c = collide_point(s);
-  r.status = c.status;
-  r.distance = 0;
-  r.squared_distance = 0;
-  if (c.status != ContactStatus::separate) {
-    r.witness = c.witness;
-    Point3 p, q;
-    if (c.status == ContactStatus::touching) {
-      std::tie(p, q) = split(c.witness, s);
-    } else {
-      // s = (1 − λ) c + λ y with y the exit point of the ray from c through s.
-      const Index f = c.witness.facet;
-      const Point3 dir = s - center_;
-      const Rational along = dot(normal_[f], dir);
-      if (sgn(along) <= 0) {  // s == center_
-        p = p_center_, q = q_center_;
-      } else {
-        const Rational mu = (offset_[f] - dot(normal_[f], center_)) / along;  // >= 1
-        const Point3 y = center_ + mu * dir;
-        auto [py, qy] = split(c.witness, y);  // y lies in the stabbed facet f = c.witness.m
-        const Rational lambda = 1 / mu;
-        p = (1 - lambda) * p_center_ + lambda * py;
-        q = (1 - lambda) * q_center_ + lambda * qy;
-      }
-    }
-    r.point_p = p;
-    r.point_q = q + s;
-    r.direction.x = 0, r.direction.y = 0, r.direction.z = 0;
-    return;
+  const Vec3d sd = to_double(s);
+  if (r.geo_ != g_) r.geo_ = g_;
+  keep_point(s, sd, r.sd_, r.s_exact_);
+  if (r.exact_.use_count() == 1) {  // a result of an earlier batch: keep its storage
+    r.exact_->have_distance = r.exact_->have_points = false;
+    r.exact_->translated = false;
+  } else {
+    r.exact_.reset();
   }
-  Index facet = c.witness.facet;
-  const Feature feat = closest_feature(s, last_closest_, r.direction, r.squared_distance, facet);
-  r.distance = std::sqrt(to_double(r.squared_distance));
+  Index facet = kNoIndex;
+  Feature feat = Feature::vertex(kNoIndex);
+  if (last_closest_ && last_separate_) {
+    // Coherence: the walk from the previous closest feature first.  A
+    // certificate whose closest point differs from s proves s outside M
+    // (the point of M nearest to a point of M is that point), so the
+    // collision query is not needed; otherwise (s in M, or a trap of the
+    // descent) the query below decides as from scratch.
+    ++stats_.queries;
+    feat = closest_feature(s, sd, last_closest_, facet, true);
+    if (feat.index != kNoIndex) r.status = ContactStatus::separate;
+    else --stats_.queries;
+  }
+  if (feat.index == kNoIndex) {
+    CollisionResult c = collide_rounded(s, sd);
+    r.status = c.status;
+    if (c.status != ContactStatus::separate) {
+      r.witness = c.witness;
+      last_separate_ = false;
+      return;
+    }
+    facet = c.witness.facet;
+    feat = closest_feature(s, sd, last_closest_, facet, false);
+  }
   r.witness = Witness{};
   r.witness.facet = facet;
   r.witness.m = feat;
-  last_closest_ = r.witness.m;
+  last_closest_ = feat;
+  last_separate_ = true;
   fill_operand_features(r.witness);
-  auto [p, q] = split(r.witness, s - r.direction);
-  r.point_p = std::move(p);
-  r.point_q = q + s;
-}
-
-// x = p − q with p in the face w.p of P and q in the face w.q of Q, for a
-// point x of the face w.m = w.p ⊕ (−w.q) of M (or of any face of M whose
-// faces of P and Q are w.p and w.q).  When one of them is a vertex the other
-// point is x translated by it; for two non-parallel edges p0 + α·u and
-// q0 + β·v (the generic facet of M), x − (p0 − q0) = α·u − β·v and Cramer's
-// rule on the normal equations gives
-//   α = (⟨u,v⟩⟨w,v⟩ − ⟨v,v⟩⟨w,u⟩) / (⟨u,v⟩² − ⟨u,u⟩⟨v,v⟩),  w = x − p0 + q0;
-// otherwise x's barycentric coordinates in w.m (decompose).
-std::pair<Point3, Point3> TranslationalObstacle::split(const Witness& w, const Point3& x) const {
-  if (w.q.dim == FeatureDim::vertex) {
-    const Point3& q = q_.point(w.q.index);
-    return {x + q, q};
-  }
-  if (w.p.dim == FeatureDim::vertex) {
-    const Point3& p = p_.point(w.p.index);
-    return {p, p - x};
-  }
-  if (w.p.dim == FeatureDim::edge && w.q.dim == FeatureDim::edge) {
-    const Index hp = 2 * w.p.index, hq = 2 * w.q.index;
-    const Point3& p0 = p_.point(p_.origin(hp));
-    const Point3& q0 = q_.point(q_.origin(hq));
-    const Point3 u = p_.point(p_.target(hp)) - p0, v = q_.point(q_.target(hq)) - q0;
-    const Rational uv = dot(u, v);
-    const Rational det = uv * uv - dot(u, u) * dot(v, v);  // −|u × v|²
-    if (sgn(det) != 0) {
-      const Point3 wv = x - p0 + q0;
-      const Point3 p = p0 + ((uv * dot(wv, v) - dot(v, v) * dot(wv, u)) / det) * u;
-      return {p, p - x};
-    }
-  }
-  return decompose(w.m, x);
 }
 
 void TranslationalObstacle::collide_points(std::span<const Point3> s, std::vector<CollisionResult>& out) {
@@ -629,13 +654,14 @@ void TranslationalObstacle::distance_points(std::span<const Point3> s, std::vect
 
 void TranslationalObstacle::penetration_depth_points(std::span<const Point3> s, std::vector<DepthResult>& out) {
   out.resize(s.size());
-  for (std::size_t i = 0; i < s.size(); ++i) out[i] = penetration_depth_point(s[i]);
+  for (std::size_t i = 0; i < s.size(); ++i) depth_into(s[i], out[i]);
 }
 
 DistanceResult TranslationalObstacle::distance(const Point3& u, const Point3& w) {
   DistanceResult r = distance_point(w - u);
-  r.point_p = r.point_p + u;
-  r.point_q = r.point_q + u;
+  detail::DistanceExact& e = r.exact();
+  e.u = u;
+  e.translated = true;
   return r;
 }
 
@@ -643,32 +669,38 @@ DistanceResult TranslationalObstacle::distance(const Point3& u, const Point3& w)
 // Penetration depth.
 
 DepthResult TranslationalObstacle::penetration_depth_point(const Point3& s) {
-  CollisionResult c = collide_point(s);
   DepthResult r;
+  depth_into(s, r);
+  return r;
+}
+
+void TranslationalObstacle::depth_into(const Point3& s, DepthResult& r) {
+  const Vec3d sd = to_double(s);
+  CollisionResult c = collide_rounded(s, sd);
   r.status = c.status;
-  r.squared_depth = 0;
-  r.direction = Point3(Rational(0), Rational(0), Rational(0));
   r.witness = c.witness;
-  if (c.status != ContactStatus::penetrating) return r;
-  const ConvexPolytope& m = sum_.polytope;
-  const Index nf = m.num_facets();
+  if (r.exact_.use_count() == 1) r.exact_->have = false;  // keep the storage of an earlier batch's result
+  else r.exact_.reset();
+  if (c.status != ContactStatus::penetrating) {  // the exact values are zeros: neither M nor s is needed
+    r.geo_.reset();
+    return;
+  }
+  if (r.geo_ != g_) r.geo_ = g_;
+  keep_point(s, sd, r.sd_, r.s_exact_);
   // The facet nearest to s, the first on ties (kernel: nearest_plane on unit
   // planes, a filter with a derived bound, then exact comparisons among the
-  // facets it cannot rule out).
-  const Vec3d sd = to_double(s);
+  // facets it cannot rule out).  The foot x of s on its plane lies in the
+  // relative interior of the facet: were x on its boundary, x would lie on
+  // the plane of a neighbouring facet g too, and s − x, parallel to this
+  // facet's normal, not to g's, would make s strictly nearer to g's plane.
+  // So the witness face is the facet itself.  The exact values are the
+  // result's, on demand.
+  const Index nf = obstacle().num_facets();
   const Index arg = Index(nearest_plane(plane_ptr_.data(), unit_plane_.data(), nf, RoundedPoint3{s, sd}));
-  const Rational arg_gap = offset_[arg] - dot(normal_[arg], s);  // d − n·s (> 0 for s inside)
   last_depth_ = arg;
-  const Rational t = arg_gap / norm2_[arg];  // s + t n lies on the facet plane
-  r.squared_depth = t * arg_gap;
-  r.depth = std::sqrt(to_double(r.squared_depth));
-  const Point3 move = t * normal_[arg];
-  r.direction = -move;
-  const Point3 x = s + move;
   r.witness.facet = arg;
-  r.witness.m = feature_on_facet(arg, x);
+  r.witness.m = Feature::facet(arg);
   fill_operand_features(r.witness);
-  return r;
 }
 
 DepthResult TranslationalObstacle::penetration_depth(const Point3& u, const Point3& w) {
@@ -688,10 +720,11 @@ DirectionalDepthResult TranslationalObstacle::directional_depth_point(const Poin
   r.witness = c.witness;
   if (c.status != ContactStatus::penetrating) return r;
   // s is strictly inside M: shoot the ray s − α d, α >= 0, from s itself.
-  const Index f = stab(s, s - d, last_exit_);
+  const Point3 through = s - d;
+  const Index f = stab(s, through, RayApprox{to_double(s), to_double(through)}, last_exit_);
   last_exit_ = f;
-  const Rational along = -dot(normal_[f], d);  // > 0: the ray leaves through f
-  r.t = (offset_[f] - dot(normal_[f], s)) / along;
+  const Rational along = -dot(g_->normal[f], d);  // > 0: the ray leaves through f
+  r.t = (g_->offset[f] - dot(g_->normal[f], s)) / along;
   r.translation = r.t * d;
   r.depth = std::sqrt(to_double(r.t * r.t * dot(d, d)));
   const Point3 y = s - r.translation;

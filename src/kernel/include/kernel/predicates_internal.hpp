@@ -36,6 +36,8 @@
 //                     statistics
 #pragma once
 
+#include <cmath>
+
 #include <array>
 #include <concepts>
 #include <cstddef>
@@ -345,6 +347,24 @@ ApproxOf<typename D::Shape> approx_rounded(const std::array<const RoundedPoint3*
 inline constexpr double kPlaneSideFactor = 0x1p-49;
 inline constexpr double kPlaneSideAbsolute = 0x1p-1000;
 Approx plane_side_approx(const std::array<double, 4>& rounded, const RoundedPoint3& s);
+// plane_side_approx's arithmetic on finite roundings r of the plane and a
+// usable rounding x of the point (rounded_usable): the value and its bound,
+// false when M̃ is out of range.  Inline, for callers that check the inputs
+// once for many planes.
+inline bool plane_side_value(const std::array<double, 4>& r, const Vec3d& x, double& value, double& bound) {
+  const double px = r[0] * x.x, py = r[1] * x.y, pz = r[2] * x.z;
+  const double mag = ((std::fabs(px) + std::fabs(py)) + std::fabs(pz)) + std::fabs(r[3]);
+  if (!(mag < 0x1p1000)) return false;
+  value = ((px + py) + pz) - r[3];
+  bound = kPlaneSideFactor * mag + kPlaneSideAbsolute;
+  return true;
+}
+// The sign that bound proves, or 2.
+inline int plane_side_sign_usable(const std::array<double, 4>& r, const Vec3d& x) {
+  double value, bound;
+  if (!plane_side_value(r, x, value, bound)) return 2;
+  return value > bound ? 1 : value < -bound ? -1 : 2;
+}
 std::optional<int> plane_side_filter(const std::array<double, 4>& rounded, const RoundedPoint3& s);
 int plane_side_exact(const Plane& plane, const Point3& s);
 

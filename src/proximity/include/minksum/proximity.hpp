@@ -34,6 +34,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -65,27 +66,85 @@ struct CollisionResult {
   Witness witness;
 };
 
-struct DistanceResult {
+namespace detail {
+struct ObstacleGeometry;  // M, P, Q and their exact data, shared by an obstacle and its answers
+struct DistanceExact;     // a distance answer's exact values, allocated on first use
+struct DepthExact;        // a depth answer's
+}
+
+// A separation-distance answer.  The query decides `status` and `witness`
+// (filtered exact predicates, no rational arithmetic on the common path) and
+// keeps the configuration point; the exact values are computed from the
+// certified witness on the first call of their accessor and kept in the
+// result (later calls return them at no cost).  A result stays valid after
+// its obstacle is rebuilt or destroyed: it shares the exact data of M, P and
+// Q it was answered on.  Reading the exact values of one result from two
+// threads at once is not safe (the first call fills the cache).
+class DistanceResult {
+ public:
   ContactStatus status = ContactStatus::separate;
-  Rational squared_distance;  // 0 unless separate
-  double distance = 0;        // nearest double of sqrt(squared_distance)
-  // Closest points of P+u and of Q+w (equal when the bodies touch or overlap:
-  // then a common point).
-  Point3 point_p, point_q;
-  // point_q − point_p: translating P by it brings the bodies into contact.
-  Point3 direction;
   Witness witness;
+
+  // |s − x|², x the closest point of M: 0 unless separate.  First call: a
+  // dozen rational operations on the witness feature (a vertex, the
+  // projection on an edge's line or on a facet's plane).
+  const Rational& squared_distance() const;
+  // The nearest double of sqrt(squared_distance()) (computes it).
+  double distance() const;
+  // The closest points of P+u and of Q+w (equal when the bodies touch or
+  // overlap: then a common point).  First call: the squared distance's work,
+  // then the split of x into a point of P and a point of Q (a translate when
+  // one of the faces behind x is a vertex, Cramer's rule on two skew edges,
+  // else barycentric coordinates): a few dozen rational operations.
+  const Point3& point_p() const;
+  const Point3& point_q() const;
+  // point_q() − point_p(): translating P by it brings the bodies into
+  // contact (zero unless separate).  Costs what squared_distance() costs.
+  const Point3& direction() const;
+
+ private:
+  friend class TranslationalObstacle;
+  detail::DistanceExact& exact() const;
+  void compute_distance() const;
+  void compute_points() const;
+  Point3 point() const;  // s
+  std::shared_ptr<const detail::ObstacleGeometry> geo_;
+  // s = w − u: its doubles when it is exactly a double (no rational kept),
+  // else the rational point.
+  Vec3d sd_;
+  std::shared_ptr<Point3> s_exact_;
+  // The translation u of P (added to the closest points) and the values
+  // computed so far; copies of a result share them.
+  mutable std::shared_ptr<detail::DistanceExact> exact_;
 };
 
-struct DepthResult {
+// A penetration-depth answer: `status` and `witness` (the nearest facet of M
+// and the smallest face of M holding the foot of s on it) are decided by the
+// query; the exact values are computed on first use, like DistanceResult's.
+class DepthResult {
+ public:
   ContactStatus status = ContactStatus::separate;
-  Rational squared_depth;  // 0 unless penetrating
-  double depth = 0;        // nearest double of sqrt(squared_depth)
-  // A minimal translation of P that makes the bodies touch (zero vector unless
-  // penetrating); its squared length is squared_depth.  It is parallel to the
-  // outer normal of the witness facet of M, pointing against it.
-  Point3 direction;
   Witness witness;
+
+  // (d − n·s)² / |n|² for the witness facet's plane n·x = d: 0 unless
+  // penetrating.  First call: about ten rational operations.
+  const Rational& squared_depth() const;
+  // The nearest double of sqrt(squared_depth()) (computes it).
+  double depth() const;
+  // A minimal translation of P that makes the bodies touch (zero vector
+  // unless penetrating); its squared length is squared_depth().  It is
+  // parallel to the outer normal of the witness facet of M, pointing against
+  // it.  Costs what squared_depth() costs.
+  const Point3& direction() const;
+
+ private:
+  friend class TranslationalObstacle;
+  detail::DepthExact& exact() const;
+  Point3 point() const;  // s
+  std::shared_ptr<const detail::ObstacleGeometry> geo_;  // none unless penetrating
+  Vec3d sd_;                          // s, when exactly a double
+  std::shared_ptr<Point3> s_exact_;   // else s
+  mutable std::shared_ptr<detail::DepthExact> exact_;  // computed on first use; shared by copies
 };
 
 struct DirectionalDepthResult {
@@ -112,18 +171,19 @@ class TranslationalObstacle {
   TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method = Method::automatic);
 
   // Replace P or Q (e.g. rotated copies of the originals); recomputes M and
-  // forgets the cached witnesses.
+  // forgets the cached witnesses.  Answers given before keep the M they were
+  // answered on.
   void set_p(ConvexPolytope p);
   void set_q(ConvexPolytope q);
   void set_operands(ConvexPolytope p, ConvexPolytope q);
 
-  const ConvexPolytope& p() const { return p_; }
-  const ConvexPolytope& q() const { return q_; }
+  const ConvexPolytope& p() const;
+  const ConvexPolytope& q() const;
   // M = P ⊕ (−Q) and how it was computed (vertex_origin indexes P and −Q).
-  const ConvexPolytope& obstacle() const { return sum_.polytope; }
-  const SumResult& sum() const { return sum_; }
+  const ConvexPolytope& obstacle() const;
+  const SumResult& sum() const;
   // The point of M's interior the collision rays start from (exact).
-  const Point3& interior_point() const { return center_; }
+  const Point3& interior_point() const;
 
   // Queries for P translated by u and Q translated by w.
   CollisionResult collide(const Point3& u, const Point3& w);
@@ -142,9 +202,9 @@ class TranslationalObstacle {
   // points s[0], s[1], … in order, written into `out` (resized to s.size()).
   // Each walk starts from the previous query's witness, so a coherent
   // trajectory costs a few filtered moves per query; the answers are those of
-  // the single queries.  distance_points assigns into the existing results,
-  // so a caller that keeps `out` from one batch to the next reuses its
-  // rationals' storage instead of allocating new ones.
+  // the single queries.  distance_points and penetration_depth_points assign
+  // into the existing results, so a caller that keeps `out` from one batch
+  // to the next reuses their storage instead of allocating new ones.
   void collide_points(std::span<const Point3> s, std::vector<CollisionResult>& out);
   void distance_points(std::span<const Point3> s, std::vector<DistanceResult>& out);
   void penetration_depth_points(std::span<const Point3> s, std::vector<DepthResult>& out);
@@ -168,42 +228,54 @@ class TranslationalObstacle {
   std::pair<Point3, Point3> decompose(const Feature& m, const Point3& x) const;
 
  private:
-  void rebuild();
+  void rebuild(ConvexPolytope p, ConvexPolytope q);
   void distance_into(const Point3& s, DistanceResult& r);
-  std::pair<Point3, Point3> split(const Witness& w, const Point3& x) const;
+  void depth_into(const Point3& s, DepthResult& r);
+  // Collision on s with its rounding sd (computed once per query).
+  CollisionResult collide_rounded(const Point3& s, const Vec3d& sd);
   // Facet of M whose cone from `apex` (strictly inside M) contains the ray
   // through `through` (≠ apex); walks from `start`.
-  Index stab(const Point3& apex, const Point3& through, Index start);
-  Index stab_scan(const Point3& apex, const Point3& through) const;
   struct RayApprox;  // the apex and the ray point rounded to doubles, for the filters
+  Index stab(const Point3& apex, const Point3& through, const RayApprox& ra, Index start);
+  Index stab_scan(const Point3& apex, const Point3& through) const;
   bool in_cone(Index f, const Point3& apex, const Point3& through, const RayApprox& ra, Index* exit_halfedge);
   int orient_filtered(const Point3& apex, Index a, Index b, const Point3& through, const RayApprox& ra) const;
-  int side_filtered(Index f, const Point3& s) const;
+  int side_filtered(Index f, const Point3& s, const Vec3d& sd) const;
+  // orient3d(interior point, origin(h), target(h), s) by the plane through
+  // the three (computed on first use).
+  int center_side(Index h, const Point3& s, const Vec3d& sd, bool usable);
   // The smallest feature of M holding the point x of M closest to s (s
-  // outside M), dir = s − x and d2 = |s − x|², and in `facet` a facet
-  // holding x that s sees.  On entry `facet` is a facet s sees (the stabbed one); the filtered
-  // walk starts from `start` (none: from that facet).
-  Feature closest_feature(const Point3& s, std::optional<Feature> start, Point3& dir, Rational& d2, Index& facet);
+  // outside M), and in `facet` a facet holding x that s sees.  On entry
+  // `facet` is a facet s sees (the stabbed one); the filtered walk starts
+  // from `start` (none: from that facet).  With `first` (s not yet known
+  // to be outside M, no stabbed facet): a feature only when its certificate
+  // proves s ≠ x, i.e. s outside M; else a vertex of index kNoIndex.
+  Feature closest_feature(const Point3& s, const Vec3d& sd, std::optional<Feature> start, Index& facet, bool first);
   Feature closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const;
+  // The smallest face of facet f holding the foot of s on f's plane (which
+  // lies in the facet): its edges with edge_normal_side 0 for s.
+  Feature foot_feature(Index f, const Point3& s, const Vec3d& sd) const;
+  // Keeps s in an answer: its doubles when it is exactly a double, else the
+  // rational point (in `exact`'s storage when no other answer shares it).
+  static void keep_point(const Point3& s, const Vec3d& sd, Vec3d& kept, std::shared_ptr<Point3>& exact);
 
-  ConvexPolytope p_, q_, neg_q_;
+  std::shared_ptr<detail::ObstacleGeometry> g_;  // shared with the answers
   Method method_;
-  SumResult sum_;
-  std::vector<Index> neg_to_q_;       // vertex of −Q -> vertex of Q
-  std::vector<Point3> normal_;        // facet normals (a, b, c) as rationals
-  std::vector<Rational> offset_;      // d
-  std::vector<Rational> norm2_;       // a² + b² + c²
   std::vector<std::array<double, 4>> plane_approx_;  // a, b, c, d rounded to doubles
   std::vector<Vec3d> normal_approx_;                 // (a, b, c) rounded to doubles
   std::vector<UnitPlane> unit_plane_;                // unit normals and offsets (penetration depth)
   std::vector<const Plane*> plane_ptr_;              // &obstacle().plane(f)
-  Point3 center_, p_center_, q_center_;  // center_ = p_center_ − q_center_ (the vertex averages)
   Vec3d center_approx_;
-  // Features of P and Q behind each facet of M, filled on first use.
-  mutable std::vector<std::array<Feature, 2>> facet_features_;
-  mutable std::vector<char> facet_features_known_;
+  // Features of P and Q behind each facet and each edge of M, filled on first use.
+  mutable std::vector<std::array<Feature, 2>> facet_features_, edge_features_;
+  mutable std::vector<char> facet_features_known_, edge_features_known_;
+  // Per halfedge of M: the plane through the interior point and the edge.
+  std::vector<Plane> center_plane_;
+  std::vector<std::array<double, 4>> center_plane_approx_;
+  std::vector<char> center_plane_known_;
   Index last_stab_ = 0, last_exit_ = 0, last_depth_ = 0;
   std::optional<Feature> last_closest_;  // none before the first distance query
+  bool last_separate_ = false;           // the last distance answer was separate
   std::uint64_t rng_ = 0x9e3779b97f4a7c15ull;
   ProximityStats stats_;
 };

@@ -23,6 +23,43 @@ ConvexPolytope validate(const Mesh& mesh, const std::string& name, bool hull, Lo
 }
 }  // namespace
 
+namespace {
+ConvexSet validate_set(const Mesh& mesh, const std::string& name, bool hull, LoadPhases* phases,
+                       Clock::time_point t0) {
+  const auto t1 = Clock::now();
+  ConvexSet s = hull ? ConvexSet::hull(mesh.points, name) : ConvexSet::from_mesh(mesh, name);
+  if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
+  return s;
+}
+}  // namespace
+
+ConvexSet load_convex_set(std::istream& in, Format format, const std::string& name, bool hull,
+                          LoadPhases* phases) {
+  const auto t0 = Clock::now();
+  return validate_set(read_mesh(in, format, name), name, hull, phases, t0);
+}
+
+ConvexSet load_convex_set(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> given) {
+  const auto format = format_from_path(spec);
+  struct stat st{};
+  const bool exists = ::stat(spec.c_str(), &st) == 0;
+  if (exists && (format || !is_catalog_spec(spec))) {
+    const auto t0 = Clock::now();
+    Mesh mesh = format || !given ? read_mesh(spec) : read_mesh(spec, *given);
+    return validate_set(mesh, spec, hull, phases, t0);
+  }
+  if (is_catalog_spec(spec)) {
+    const auto t0 = Clock::now();
+    ConvexSet s = catalog_convex_set(spec);
+    const auto t1 = Clock::now();
+    if (hull) s = ConvexSet::hull(s.vertices(), spec);
+    if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
+    return s;
+  }
+  // Not a file, not a catalog name: load_polytope's errors.
+  return ConvexSet(load_polytope(spec, hull, phases, given));
+}
+
 ConvexPolytope load_polytope(std::istream& in, Format format, const std::string& name, bool hull,
                              LoadPhases* phases) {
   const auto t0 = Clock::now();

@@ -11,6 +11,9 @@
 //             | zonotope:N:SEED    N random generators in general position, 3 <= N <= 256
 //             | zonotope:X,Y,Z:... 1..16 explicit generators
 //             | box:X:Y:Z          axis-aligned box with sides X, Y, Z > 0
+//             | point:X,Y,Z        lower-dimensional sets (docs/sweeps.md):
+//             | segment:X,Y,Z:X,Y,Z  a point, a segment (distinct ends),
+//             | polygon:N | square   a regular N-gon or the unit square at z=0
 //   transform:= rot:SEED           a pseudo-random exact rational rotation
 //             | rot:A,B,C,D        the rotation of the integer quaternion (A,B,C,D)
 //             | scale:S | scale:X,Y,Z | translate:X,Y,Z | neg
@@ -23,6 +26,7 @@
 // is documented in catalog_entries() and docs/catalog.md.
 #pragma once
 
+#include <minksum/convex_set.hpp>
 #include <minksum/polytope.hpp>
 
 #include <string>
@@ -52,6 +56,12 @@ std::string closest_catalog_name(const std::string& spec);
 
 // Build the polytope named by `spec`.  Throws UsageError for an unknown name
 // or a bad/out-of-range parameter (message says which and the allowed range).
+// A point, segment or polygon spec is refused here (UsageError saying so).
 ConvexPolytope catalog_polytope(const std::string& spec);
+
+// Build the convex set named by `spec`: a point, a segment or a polygon for
+// those names (transforms applied to their points), else the polytope of
+// catalog_polytope().
+ConvexSet catalog_convex_set(const std::string& spec);
 
 }  // namespace minksum

@@ -3,6 +3,7 @@
 // one place that decides which a name is.
 #pragma once
 
+#include <minksum/convex_set.hpp>
 #include <minksum/io.hpp>
 #include <minksum/polytope.hpp>
 
@@ -35,5 +36,14 @@ ConvexPolytope load_polytope(const std::string& spec, bool hull = false, LoadPha
 // validated (or its hull taken) as above; `name` names it in error messages.
 ConvexPolytope load_polytope(std::istream& in, Format format, const std::string& name, bool hull = false,
                              LoadPhases* phases = nullptr);
+
+// The same, for commands that also take lower-dimensional operands
+// (docs/sweeps.md): a catalog point, segment or polygon; a file holding one
+// face (a flat polygon); with `hull`, the hull of the points in whatever
+// dimension they span (0 to 3).  Everything else as load_polytope.
+ConvexSet load_convex_set(const std::string& spec, bool hull = false, LoadPhases* phases = nullptr,
+                          std::optional<Format> format = std::nullopt);
+ConvexSet load_convex_set(std::istream& in, Format format, const std::string& name, bool hull = false,
+                          LoadPhases* phases = nullptr);
 
 }  // namespace minksum

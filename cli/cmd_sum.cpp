@@ -11,6 +11,7 @@
 #include "common.hpp"
 #include "mesh_io.hpp"
 #include "progress.hpp"
+#include "sweep.hpp"
 
 namespace minksum::cli {
 
@@ -38,14 +39,28 @@ Options:
                      double.  Only {exact_formats} can hold rationals.
   --binary           binary {binary_formats} output
   --hull             take the convex hull of each input file's points instead
-                     of requiring a valid convex mesh (point clouds)
-  --json             print one JSON object: vertices, edges, facets, method,
+                     of requiring a valid convex mesh (point clouds); points
+                     spanning fewer than 3 dimensions give a point, a
+                     segment or a polygon
+  --json             print one JSON object: dimension (3 for a polytope, 2,
+                     1, 0 for a polygon, segment, point), vertices, edges,
+                     facets, method,
                      seconds (the computation alone, not the I/O), phases
                      (seconds spent reading the operands, validating them,
                      computing the sum, making its explicit polytope, and
                      writing OUT), volume (exact rational as a string), the
                      operands' names and counts ("operands"; also "a" and "b"
                      for two), and "rounding" (below)
+
+Sweeps: an operand may be a point, a segment or a flat convex polygon: a
+catalog name (point:X,Y,Z, segment:X,Y,Z:X,Y,Z, polygon:N, square, with @
+transforms), a file holding one face, or points spanning fewer than 3
+dimensions with --hull.  A polytope ⊕ a segment is the solid the polytope
+sweeps along it; two lower-dimensional operands give a point, a segment, a
+polygon or a polytope ("dimension" in --json, "kind" its name, "route" how it
+was made).  Only walk (the default) and chms take them.  A polygon result is
+written as one face, a point or a segment as its points without faces
+(exactly: never rounded; not to STL).  See docs/sweeps.md.
 
 Rounding: the file written always reads back as a valid convex polytope.
 Without --exact, coordinates that are not doubles (binary STL: 32-bit floats)
@@ -122,14 +137,19 @@ int run_sum(const std::vector<std::string>& argv) {
   const auto format = format_option(a);
   const std::optional<MeshOutput> output = output_option(a);
   const std::vector<std::string>& names = a.positional;
-  std::vector<ConvexPolytope> operands;
+  std::vector<ConvexSet> sets;
   LoadPhases load;
   for (const std::string& name : names) {
     LoadPhases l;
-    operands.push_back(load_operand(name, hull, &l, format));
+    sets.push_back(load_set_operand(name, hull, &l, format));
     load.read += l.read;
     load.validate += l.validate;
   }
+  // Points, segments, polygons: docs/sweeps.md.
+  for (const ConvexSet& s : sets)
+    if (!s.full()) return sum_sets(names, sets, *method, output, json, load);
+  std::vector<ConvexPolytope> operands;
+  for (const ConvexSet& s : sets) operands.push_back(s.polytope());
   // A ⊕ B ⊕ C ... left to right; the times add up, the method's details are
   // those of the last step.
   SumResult r;
@@ -150,7 +170,7 @@ int run_sum(const std::vector<std::string>& argv) {
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
     Rational vol = s.volume();
-    report << "{" << counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
+    report << "{\"dimension\": 3, " << counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
            << ", \"seconds\": " << json_number(seconds) << ", \"phases\": {\"read\": " << json_number(load.read)
            << ", \"validate\": " << json_number(load.validate)
            << ", \"sum\": " << json_number(seconds - explicit_seconds)

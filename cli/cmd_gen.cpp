@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "mesh_io.hpp"
+#include "sweep.hpp"
 
 namespace minksum::cli {
 
@@ -14,7 +15,9 @@ const char* kGenHelpHead = R"(Usage: minksum gen NAME -o OUT [--exact] [--binary
 
 Write a built-in polytope to OUT ({formats}), or to standard
 output for '-o -' (with --format {format_names}; the summary then
-goes to stderr).  Use --exact for rational coordinates (rotated solids have
+goes to stderr).  A point, a segment or a polygon is written exactly as
+'minksum sum' writes one (docs/sweeps.md): a polygon as one face, a point
+or a segment as its points without faces.  Use --exact for rational coordinates (rotated solids have
 them); without it coordinates are written as the nearest doubles, and the file
 still reads back as a valid convex polytope (see 'minksum sum --help',
 Rounding).
@@ -38,8 +41,17 @@ int run_gen(const std::vector<std::string>& argv) {
   if (a.positional.size() != 1) throw UsageError("'gen' needs one catalog name (see 'minksum gen --help')");
   const std::optional<MeshOutput> output = output_option(a);
   if (!output) throw UsageError("'gen' needs -o OUT");
-  // catalog_polytope names the closest catalog name when the name is unknown.
-  ConvexPolytope p = catalog_polytope(a.positional[0]);
+  // catalog_convex_set names the closest catalog name when the name is unknown.
+  const ConvexSet set = catalog_convex_set(a.positional[0]);
+  if (!set.full()) {  // a point, a segment, a polygon (docs/sweeps.md)
+    write_set_output(*output, set);
+    output->report_stream() << printable(a.positional[0]) << ": a " << dimension_name(set.dimension()) << ", "
+                            << set.num_vertices() << " vertices, written to "
+                            << (output->to_stdout() ? std::string("standard output") : printable(output->path))
+                            << "\n";
+    return 0;
+  }
+  const ConvexPolytope& p = set.polytope();
   write_mesh_output(*output, p);
   output->report_stream() << printable(a.positional[0]) << ": " << p.num_vertices() << " vertices, " << p.num_edges()
                           << " edges, " << p.num_facets() << " facets, written to "

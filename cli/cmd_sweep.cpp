@@ -53,6 +53,12 @@ void write_lower(const MeshOutput& out, const ConvexSet& s) {
 
 }  // namespace
 
+RoundingReport write_set_output(const MeshOutput& out, const ConvexSet& s) {
+  if (s.full()) return write_mesh_output(out, s.polytope());
+  write_lower(out, s);
+  return {};
+}
+
 ConvexSet load_set_operand(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> format) {
   try {
     if (spec != "-") return load_convex_set(spec, hull, phases, format);
@@ -79,10 +85,7 @@ int sum_sets(const std::vector<std::string>& names, const std::vector<ConvexSet>
   const ConvexSet& s = r.set;
   const auto w0 = std::chrono::steady_clock::now();
   RoundingReport rounding;
-  if (output) {
-    if (s.full()) rounding = write_mesh_output(*output, s.polytope());
-    else write_lower(*output, s);
-  }
+  if (output) rounding = write_set_output(*output, s);
   const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {

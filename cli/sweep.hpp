@@ -18,6 +18,12 @@ namespace minksum::cli {
 // through load_convex_set (operand.hpp).
 ConvexSet load_set_operand(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> format);
 
+// Write a set: a polytope by write_mesh_output (mesh_io.hpp); a polygon as
+// one face, a point or a segment as its points without faces, exactly (never
+// rounded: OutputError naming --exact when a coordinate is not a double;
+// OutputError for STL, which holds closed triangle meshes only).
+RoundingReport write_set_output(const MeshOutput& out, const ConvexSet& s);
+
 // The rest of 'minksum sum' when an operand is not full-dimensional: the sum
 // left to right by minkowski_sum_sets, written (a polytope as usual; a
 // polygon as one face; a point or a segment as its points without faces)

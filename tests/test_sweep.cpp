@@ -450,3 +450,49 @@ TEST(SweepCli, ErrorsAndExitStatuses) {
   EXPECT_NE(r.err.find(bad.string()), std::string::npos) << r.err;
   fs::remove(bad);
 }
+
+// minksum view: a polygon is drawn as its loop and the reversed loop with
+// opposite planes (a face seen from both sides), a segment as its edge.
+TEST(SweepCli, ViewShowsAPolygonFromBothSides) {
+  const fs::path page = fs::temp_directory_path() / ("minksum_sweep_view_" + std::to_string(::getpid()) + ".html");
+  CmdRun r = run("view square polygon:4@rot:1,0,0,1 -o " + page.string() + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json_int(r.out, "dimension"), 2) << r.out;
+  std::ifstream in(page);
+  std::stringstream s;
+  s << in.rdbuf();
+  const std::string html = s.str();
+  // The square [-1/2, 1/2]^2 at z = 0: its two sides z = 0 and -z = 0.
+  EXPECT_NE(html.find("\"facets\": [[0,1,2,3],[3,2,1,0]], \"planes\": [\"0 0 1 0\",\"0 0 -1 0\"]"), std::string::npos);
+  r = run("view cube segment:0,0,0:1,2,3 -o " + page.string() + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json_int(r.out, "dimension"), 3) << r.out;
+  std::ifstream in2(page);
+  std::stringstream s2;
+  s2 << in2.rdbuf();
+  EXPECT_NE(s2.str().find("\"facets\": [[0,1,0]]"), std::string::npos);
+  fs::remove(page);
+}
+
+// minksum gen writes a polygon as one face and a segment as its two points;
+// both read back as what they were.
+TEST(SweepCli, GenWritesLowerDimensionalSets) {
+  const fs::path dir = fs::temp_directory_path() / ("minksum_sweep_gen_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string poly = (dir / "hex.obj").string(), seg = (dir / "seg.ply").string();
+  CmdRun r = run("gen polygon:6 -o " + poly);
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("sum " + poly + " point:0,0,0 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json_int(r.out, "dimension"), 2);
+  EXPECT_EQ(json_int(r.out, "vertices"), 6);
+  r = run("gen segment:0,0,0:1,2,3 -o " + seg);
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("sum " + seg + " point:0,0,0 --hull --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json_int(r.out, "dimension"), 1);
+  r = run("gen segment:0,0,0:1,2,3@rot:5 -o " + seg);  // rational coordinates: --exact (not in PLY)
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  fs::remove_all(dir);
+}

@@ -45,6 +45,14 @@ const char* dimension_name(int dimension) {
 
 ConvexSet::ConvexSet(ConvexPolytope p) : dim_(3), polytope_(std::move(p)) {}
 
+ConvexSet ConvexSet::convex_polygon(std::vector<Point3> loop) {
+  ConvexSet out;
+  out.dim_ = 2;
+  out.vertices_ = std::move(loop);
+  out.normal_ = cross(out.vertices_[1] - out.vertices_[0], out.vertices_[2] - out.vertices_[1]);
+  return out;
+}
+
 ConvexSet ConvexSet::point(const Point3& p) {
   ConvexSet s;
   s.dim_ = 0;
@@ -127,11 +135,7 @@ ConvexSet ConvexSet::polygon(const std::vector<Point3>& given, const std::string
     if (descents != 1)
       throw InputError(source, "", "polygon not convex: its boundary winds around " + std::to_string(descents) + " times");
   }
-  ConvexSet out;
-  out.dim_ = 2;
-  out.vertices_ = std::move(loop);
-  out.normal_ = cross(out.vertices_[1] - out.vertices_[0], out.vertices_[2] - out.vertices_[1]);
-  return out;
+  return convex_polygon(std::move(loop));
 }
 
 ConvexSet ConvexSet::hull(const PointList& points, const std::string& source) {
@@ -179,11 +183,7 @@ ConvexSet ConvexSet::hull(const std::vector<Point3>& given, const std::string& s
     h[t++] = pts[i];
   }
   h.resize(t - 1);
-  ConvexSet out;
-  out.dim_ = 2;
-  out.vertices_ = std::move(h);
-  out.normal_ = cross(out.vertices_[1] - out.vertices_[0], out.vertices_[2] - out.vertices_[1]);
-  return out;
+  return convex_polygon(std::move(h));
 }
 
 ConvexSet ConvexSet::from_mesh(const Mesh& mesh, const std::string& source) {

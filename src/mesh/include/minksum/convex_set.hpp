@@ -79,6 +79,9 @@ class ConvexSet {
   friend bool same_set(const ConvexSet& a, const ConvexSet& b);
 
  private:
+  // A polygon from a loop already known to be strictly convex.
+  static ConvexSet convex_polygon(std::vector<Point3> loop);
+
   int dim_ = 0;
   ConvexPolytope polytope_;
   std::vector<Point3> vertices_;

@@ -38,6 +38,7 @@ demo: build
 	$(BUILD)/bin/minksum stats $(BUILD)/demo/cube+sphere3.off
 	$(BUILD)/bin/minksum cgm dioctagonal:17 dioctagonal:17@rot:100,0,0,99 --svg $(BUILD)/demo/cgm.svg
 	$(BUILD)/bin/minksum view truncated-cube sphere:3@rot:1 -o $(BUILD)/demo/scene.html
+	$(BUILD)/bin/minksum sum truncated-cube segment:0,0,0:3,1,2 -o $(BUILD)/demo/sweep.off
 	@echo "demo: open $(abspath $(BUILD))/demo/scene.html in a browser (one file, works offline): A, B and A ⊕ B in 3D"
 
 # Fig. 4 of Fogel and Halperin (2006): a robot grazing, then penetrating an obstacle, turning every

@@ -31,11 +31,16 @@ int run_gen(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "gen", {{"--output", "-o", true}, {"--exact"}, {"--binary"}, kFormatOption});
   if (a.help) {
     std::cout << expand_help(kGenHelpHead);
-    for (const auto& e : catalog_entries()) {
-      std::string syn = e.syntax;
-      if (syn.size() < 22) syn.resize(22, ' ');
-      std::cout << "  " << syn << " " << e.description << "\n";
-    }
+    auto list = [](const std::vector<CatalogEntry>& entries) {
+      for (const auto& e : entries) {
+        std::string syn = e.syntax;
+        if (syn.size() < 22) syn.resize(22, ' ');
+        std::cout << "  " << syn << " " << e.description << "\n";
+      }
+    };
+    list(catalog_entries());
+    std::cout << "\nPoints, segments and polygons (operands of sweeps, docs/sweeps.md):\n";
+    list(flat_catalog_entries());
     return 0;
   }
   if (a.positional.size() != 1) throw UsageError("'gen' needs one catalog name (see 'minksum gen --help')");

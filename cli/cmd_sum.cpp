@@ -170,7 +170,7 @@ int run_sum(const std::vector<std::string>& argv) {
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
     Rational vol = s.volume();
-    report << "{\"dimension\": 3, " << counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
+    report << "{" << counts_json(s) << ", \"dimension\": 3, \"method\": \"" << method_name(r.method) << "\""
            << ", \"seconds\": " << json_number(seconds) << ", \"phases\": {\"read\": " << json_number(load.read)
            << ", \"validate\": " << json_number(load.validate)
            << ", \"sum\": " << json_number(seconds - explicit_seconds)
@@ -184,10 +184,7 @@ int run_sum(const std::vector<std::string>& argv) {
     report << ", \"operands\": [";
     for (std::size_t i = 0; i < names.size(); ++i)
       report << (i ? ", " : "") << "{\"name\": \"" << json_escape(names[i]) << "\", " << counts_json(operands[i]) << "}";
-    report << "], \"output\": ";
-    if (!output) report << "null";
-    else report << "\"" << json_escape(output->to_stdout() ? "-" : output->path) << "\"";
-    report << ", \"rounding\": " << rounding_json(rounding) << "}\n";
+    report << "]" << output_json_tail(output, rounding) << "\n";
   } else {
     for (std::size_t i = 0; i < names.size(); ++i)
       report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << operands[i].num_vertices() << " V, "

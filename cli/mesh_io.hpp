@@ -57,5 +57,8 @@ RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p,
 // The report as JSON: null when nothing was rounded, else {"coordinates": N,
 // "max_displacement": D, "split": S, "hull": B, "merged": M, "dropped": K}.
 std::string rounding_json(const RoundingReport& r);
+// ", \"output\": OUT, \"rounding\": R}" closing a sum's JSON object: the
+// output's name ("-" for standard output) or null, and rounding_json(r).
+std::string output_json_tail(const std::optional<MeshOutput>& output, const RoundingReport& r);
 
 }  // namespace minksum::cli

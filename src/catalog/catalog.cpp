@@ -354,8 +354,16 @@ const std::vector<CatalogEntry>& catalog_entries() {
       e.push_back({syntax, d.str()});
     }
     for (const Form& f : kFamilies) e.push_back({f.syntax, f.description});
-    for (const Form& f : kFlat) e.push_back({f.syntax, f.description});
     for (const Form& f : kTransforms) e.push_back({f.syntax, f.description});
+    return e;
+  }();
+  return entries;
+}
+
+const std::vector<CatalogEntry>& flat_catalog_entries() {
+  static const std::vector<CatalogEntry> entries = [] {
+    std::vector<CatalogEntry> e;
+    for (const Form& f : kFlat) e.push_back({f.syntax, f.description});
     return e;
   }();
   return entries;

@@ -39,8 +39,12 @@ struct CatalogEntry {
   std::string description;  // one line, for --help and docs
 };
 
-// All names and parameterised forms the catalog understands.
+// All names and parameterised forms of solids the catalog understands, and
+// its transforms.
 const std::vector<CatalogEntry>& catalog_entries();
+// The lower-dimensional sets (point, segment, polygon, square): not solids,
+// listed apart so that every name of catalog_entries() is a polytope.
+const std::vector<CatalogEntry>& flat_catalog_entries();
 
 // True if `spec` names the catalog: its base name (the text before the first
 // ':' or '@') is a catalog name.  Parameters and transforms are not checked

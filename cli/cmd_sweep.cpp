@@ -2,6 +2,9 @@
 #include "sweep.hpp"
 
 #include <minksum/sweep.hpp>
+#include <minksum/sweep_proximity.hpp>
+
+#include <cmath>
 
 #include "kernel/plane.hpp"
 
@@ -18,9 +21,9 @@ namespace minksum::cli {
 namespace {
 
 std::string set_counts_json(const ConvexSet& s) {
-  return "\"dimension\": " + std::to_string(s.dimension()) + ", \"kind\": \"" + dimension_name(s.dimension()) +
-         "\", \"vertices\": " + std::to_string(s.num_vertices()) + ", \"edges\": " + std::to_string(s.num_edges()) +
-         ", \"facets\": " + std::to_string(s.num_facets());
+  return "\"vertices\": " + std::to_string(s.num_vertices()) + ", \"edges\": " + std::to_string(s.num_edges()) +
+         ", \"facets\": " + std::to_string(s.num_facets()) + ", \"dimension\": " + std::to_string(s.dimension()) +
+         ", \"kind\": \"" + dimension_name(s.dimension()) + "\"";
 }
 
 // A point, a segment or a polygon, written exactly as it is: one face for a
@@ -102,16 +105,14 @@ int sum_sets(const std::vector<std::string>& names, const std::vector<ConvexSet>
     for (std::size_t i = 0; i < names.size(); ++i)
       report << (i ? ", " : "") << "{\"name\": \"" << json_escape(names[i]) << "\", " << set_counts_json(operands[i])
              << "}";
-    report << "], \"output\": ";
-    if (!output) report << "null";
-    else report << "\"" << json_escape(output->to_stdout() ? "-" : output->path) << "\"";
-    report << ", \"rounding\": " << rounding_json(rounding) << "}\n";
+    report << "]" << output_json_tail(output, rounding) << "\n";
   } else {
     for (std::size_t i = 0; i < names.size(); ++i)
       report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << dimension_name(operands[i].dimension()) << ", "
              << operands[i].num_vertices() << " V)";
     report << "\n  = a " << dimension_name(s.dimension()) << ": " << s.num_vertices() << " vertices, "
-           << s.num_edges() << " edges, " << s.num_facets() << " facets\n"
+           << s.num_edges() << (s.num_edges() == 1 ? " edge, " : " edges, ") << s.num_facets()
+           << (s.num_facets() == 1 ? " facet\n" : " facets\n")
            << "  method " << method_name(r.method) << " (" << r.route << "), " << format_double(seconds) << " s\n";
     if (output)
       report << "  written to " << (output->to_stdout() ? std::string("standard output") : printable(output->path))
@@ -191,6 +192,41 @@ int view_sets(const std::string& output, const std::string& title, const std::ve
               << r.set.num_vertices() << " vertices, " << r.set.num_edges() << " edges, " << r.set.num_facets()
               << " facets (method " << method_name(r.method) << ", " << r.route << ")\n  page written to " << output
               << "\n";
+  return 0;
+}
+
+int query_sets(const std::string& kind, const ConvexSet& p, const ConvexSet& q, const Point3& u, const Point3& w,
+               const Point3& d, Method method, bool json) {
+  const SetObstacle ob(p, q, method);
+  const Point3 s = w - u;
+  const auto t0 = std::chrono::steady_clock::now();
+  const ContactStatus status = ob.contact(s);
+  std::string key, value;
+  double approx = 0;
+  if (kind == "distance") {
+    const Rational d2 = ob.squared_distance(s);
+    key = "squared_distance", value = format_exact(d2), approx = std::sqrt(to_double(d2));
+  } else if (kind == "depth") {
+    const Rational d2 = ob.squared_depth(s);
+    key = "squared_depth", value = format_exact(d2), approx = std::sqrt(to_double(d2));
+  } else if (kind == "ddepth") {
+    const Rational t = ob.directional_depth(s, d);
+    key = "t", value = format_exact(t), approx = to_double(t) * std::sqrt(to_double(dot(d, d)));
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const char* name = kind == "distance" ? "distance" : "depth";
+  if (json) {
+    std::cout << "{\"query\": \"" << kind << "\", \"status\": \"" << contact_status_name(status) << "\"";
+    if (!key.empty()) std::cout << ", \"" << key << "\": \"" << value << "\", \"" << name << "\": " << json_number(approx);
+    std::cout << ", \"obstacle\": {" << set_counts_json(ob.obstacle()) << "}, \"seconds\": " << json_number(seconds)
+              << "}\n";
+  } else {
+    std::cout << contact_status_name(status);
+    if (kind == "distance") std::cout << "  distance² = " << value << "  distance ≈ " << format_double(approx);
+    if (kind == "depth") std::cout << "  depth² = " << value << "  depth ≈ " << format_double(approx);
+    if (kind == "ddepth") std::cout << "  t = " << value << "  depth ≈ " << format_double(approx);
+    std::cout << "  [M = P ⊕ (−Q) is a " << dimension_name(ob.obstacle().dimension()) << "]\n";
+  }
   return 0;
 }
 

@@ -43,4 +43,11 @@ void append_set_json(std::string& out, const ConvexSet& s, const std::string& na
 int view_sets(const std::string& output, const std::string& title, const std::vector<std::string>& names,
               const std::vector<ConvexSet>& operands, Method method, bool json);
 
+// 'minksum query KIND P Q' when P or Q is not full-dimensional: one answer
+// by SetObstacle (<minksum/sweep_proximity.hpp>), as text or one JSON object
+// with "status", the exact value ("squared_distance", "squared_depth", "t")
+// and its double, and the obstacle's "dimension"; no witness.
+int query_sets(const std::string& kind, const ConvexSet& p, const ConvexSet& q, const Point3& u, const Point3& w,
+               const Point3& d, Method method, bool json);
+
 }  // namespace minksum::cli

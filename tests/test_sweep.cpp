@@ -10,6 +10,7 @@
 #include <minksum/minkowski.hpp>
 #include <minksum/operand.hpp>
 #include <minksum/sweep.hpp>
+#include <minksum/sweep_proximity.hpp>
 
 #include <array>
 #include <cstdio>
@@ -346,6 +347,95 @@ TEST(Sweep, OtherMethodsRefuseLowerDimensionalOperandsNamingWalk) {
 }
 
 // ---------------------------------------------------------------------------
+// Proximity: M = P ⊕ (−Q) with a lower-dimensional operand.
+
+namespace {
+// Where the segment a + t (b − a), 0 <= t <= 1, meets the cube [-1, 1]^3,
+// clipped exactly coordinate by coordinate (independent of M): penetrating
+// when some t has every |x_i| < 1, touching when only |x_i| <= 1 holds.
+ContactStatus segment_and_cube(const Point3& a, const Point3& b) {
+  auto meets = [&](bool strict) {
+    Rational lo(0), hi(1);
+    bool lo_open = false, hi_open = false;
+    for (int i = 0; i < 3; ++i) {
+      const Rational d = b[i] - a[i];
+      if (sgn(d) == 0) {
+        const int c = cmp(abs(a[i]), Rational(1));
+        if (c > 0 || (strict && c == 0)) return false;
+        continue;
+      }
+      Rational t1 = (Rational(-1) - a[i]) / d, t2 = (Rational(1) - a[i]) / d;
+      if (cmp(t1, t2) > 0) std::swap(t1, t2);
+      if (cmp(t1, lo) > 0 || (cmp(t1, lo) == 0 && strict)) lo = t1, lo_open = lo_open || strict;
+      if (cmp(t2, hi) < 0 || (cmp(t2, hi) == 0 && strict)) hi = t2, hi_open = hi_open || strict;
+    }
+    const int c = cmp(lo, hi);
+    return c < 0 || (c == 0 && !lo_open && !hi_open);
+  };
+  if (meets(true)) return ContactStatus::penetrating;
+  return meets(false) ? ContactStatus::touching : ContactStatus::separate;
+}
+}  // namespace
+
+TEST(SweepProximity, SegmentAgainstACubeInClosedForm) {
+  const ConvexSet cube = cat("cube");  // [-1, 1]^3
+  const Point3 o = P(0, 0, 0);
+  // Beside the cube: distance 2.
+  const SetObstacle beside(cube, cat("segment:3,0,0:3,5,0"));
+  EXPECT_EQ(beside.contact(o), ContactStatus::separate);
+  EXPECT_EQ(beside.squared_distance(o), Rational(4));
+  // Through it: M = [-6, 6] x [-1, 1]^2, depth 1, along z t = 1.
+  const SetObstacle through(cube, cat("segment:-5,0,0:5,0,0"));
+  EXPECT_EQ(through.contact(o), ContactStatus::penetrating);
+  EXPECT_EQ(through.squared_distance(o), Rational(0));
+  EXPECT_EQ(through.squared_depth(o), Rational(1));
+  EXPECT_EQ(through.directional_depth(o, P(0, 0, 2)), Rational(1, 2));
+  // Lying on the face x = 1: touching; P moved by u = (-1/2, 0, 0): 1/4 apart.
+  const SetObstacle on(cube, cat("segment:1,-3,0:1,3,0"));
+  EXPECT_EQ(on.contact(o), ContactStatus::touching);
+  EXPECT_EQ(on.squared_distance(P(0, 0, 0) - Point3(Rational(-1, 2), Rational(0), Rational(0))), Rational(1, 4));
+  // Two segments: skew at distance 1, crossing (touching: M is a polygon).
+  const SetObstacle skew(cat("segment:0,0,0:1,0,0"), cat("segment:0,1,1:0,1,-1"));
+  EXPECT_EQ(skew.obstacle().dimension(), 2);
+  EXPECT_EQ(skew.squared_distance(o), Rational(1));
+  EXPECT_EQ(skew.contact(o), ContactStatus::separate);
+  EXPECT_EQ(SetObstacle(cat("segment:0,0,0:1,0,0"), cat("segment:1/2,0,-1:1/2,0,1")).contact(o),
+            ContactStatus::touching);
+  // A point: the distance to P.
+  EXPECT_EQ(SetObstacle(cube, cat("point:2,2,0")).squared_distance(o), Rational(2));
+}
+
+TEST(SweepProximity, DoesTheCubeMeetTheSegmentRandomAndDegenerate) {
+  const std::uint64_t seed = 31;
+  std::mt19937_64 rng(seed);
+  const ConvexSet cube = cat("cube");
+  for (int trial = 0; trial < 200; ++trial) {
+    // Small integer ends: many segments through edges, along faces, ending on them.
+    Point3 a = random_point(rng, 3), b = random_point(rng, 3);
+    if (a == b) continue;
+    const SetObstacle ob(cube, ConvexSet::segment(a, b));
+    EXPECT_EQ(ob.contact(P(0, 0, 0)), segment_and_cube(a, b))
+        << "seed 31 trial " << trial << ": " << describe(ConvexSet::segment(a, b));
+  }
+}
+
+TEST(SweepProximity, ScansAgreeWithTheObstacleOnPolytopes) {
+  const std::uint64_t seed = 5;
+  std::mt19937_64 rng(seed);
+  const ConvexPolytope p = catalog_polytope("icosahedron"), q = catalog_polytope("cuboctahedron@rot:2");
+  TranslationalObstacle ob(p, q);
+  const SetObstacle sets{ConvexSet(p), ConvexSet(q)};
+  for (int trial = 0; trial < 60; ++trial) {
+    const Point3 s = (trial % 3 == 0 ? Rational(1) : Rational(1, 2)) * random_point(rng, 4);
+    const std::string at = "seed 5 trial " + std::to_string(trial);
+    EXPECT_EQ(sets.contact(s), ob.collide_point(s).status) << at;
+    EXPECT_EQ(sets.squared_distance(s), ob.distance_point(s).squared_distance) << at;
+    EXPECT_EQ(sets.squared_depth(s), ob.penetration_depth_point(s).squared_depth) << at;
+    EXPECT_EQ(sets.directional_depth(s, P(1, 2, 3)), ob.directional_depth_point(s, P(1, 2, 3)).t) << at;
+  }
+}
+
+// ---------------------------------------------------------------------------
 // The command.
 
 namespace {
@@ -476,6 +566,22 @@ TEST(SweepCli, ViewShowsAPolygonFromBothSides) {
 
 // minksum gen writes a polygon as one face and a segment as its two points;
 // both read back as what they were.
+TEST(SweepCli, QueryWithASegment) {
+  CmdRun r = run("query distance cube segment:3,0,0:3,5,0 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"squared_distance\": \"4\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"status\": \"separate\""), std::string::npos) << r.out;
+  r = run("query collide cube segment:-5,0,0:5,0,0 --translate-p 0,0,1");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("touching", 0), 0u) << r.out;
+  r = run("query ddepth cube segment:-5,0,0:5,0,0 --direction 0,0,1 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"t\": \"1\""), std::string::npos) << r.out;
+  r = run("query collide cube segment:-5,0,0:5,0,0 --rotate-p 1,1,0,0");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+}
+
 TEST(SweepCli, GenWritesLowerDimensionalSets) {
   const fs::path dir = fs::temp_directory_path() / ("minksum_sweep_gen_" + std::to_string(::getpid()));
   fs::create_directories(dir);

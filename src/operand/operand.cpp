@@ -37,61 +37,75 @@ Mesh read_file_operand(const std::string& spec, std::optional<Format> given) {
   return format_from_path(spec) || !given ? read_mesh(spec) : read_mesh(spec, *given);
 }
 
+// What differs between loading a polytope and loading a set of any
+// dimension: validating a mesh (or taking its points' hull), building a
+// catalog name, taking the hull of a catalog object's points.
+template <class T>
+struct Kind;
+template <>
+struct Kind<ConvexPolytope> {
+  static ConvexPolytope from_mesh(const Mesh& m, const std::string& name, bool hull) {
+    return hull ? ConvexPolytope::hull(m.points, name) : ConvexPolytope::from_mesh(m, name);
+  }
+  static ConvexPolytope catalog(const std::string& spec) { return catalog_polytope(spec); }
+  static ConvexPolytope hull_of(const ConvexPolytope& p, const std::string& spec) {
+    return ConvexPolytope::hull(p.coordinates(), spec);
+  }
+};
+template <>
+struct Kind<ConvexSet> {
+  static ConvexSet from_mesh(const Mesh& m, const std::string& name, bool hull) {
+    return hull ? ConvexSet::hull(m.points, name) : ConvexSet::from_mesh(m, name);
+  }
+  static ConvexSet catalog(const std::string& spec) { return catalog_convex_set(spec); }
+  static ConvexSet hull_of(const ConvexSet& s, const std::string& spec) { return ConvexSet::hull(s.vertices(), spec); }
+};
+
 // The mesh read (from t0 on) validated, or its hull taken; phases timed.
-ConvexPolytope validate(const Mesh& mesh, const std::string& name, bool hull, LoadPhases* phases,
-                        Clock::time_point t0) {
+template <class T>
+T validate(const Mesh& mesh, const std::string& name, bool hull, LoadPhases* phases, Clock::time_point t0) {
   const auto t1 = Clock::now();
-  ConvexPolytope p = hull ? ConvexPolytope::hull(mesh.points, name) : ConvexPolytope::from_mesh(mesh, name);
+  T p = Kind<T>::from_mesh(mesh, name, hull);
   if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
   return p;
 }
 
-// The same for a set of any dimension (load_convex_set).
-ConvexSet validate_set(const Mesh& mesh, const std::string& name, bool hull, LoadPhases* phases,
-                       Clock::time_point t0) {
+template <class T>
+T load_stream(std::istream& in, Format format, const std::string& name, bool hull, LoadPhases* phases) {
+  const auto t0 = Clock::now();
+  return validate<T>(read_mesh(in, format, name), name, hull, phases, t0);
+}
+
+template <class T>
+T load_named(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> given) {
+  if (is_file_operand(spec)) {
+    const auto t0 = Clock::now();
+    return validate<T>(read_file_operand(spec, given), spec, hull, phases, t0);
+  }
+  const auto t0 = Clock::now();
+  T p = Kind<T>::catalog(spec);
   const auto t1 = Clock::now();
-  ConvexSet s = hull ? ConvexSet::hull(mesh.points, name) : ConvexSet::from_mesh(mesh, name);
+  if (hull) p = Kind<T>::hull_of(p, spec);
   if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
-  return s;
+  return p;
 }
 }  // namespace
 
-ConvexSet load_convex_set(std::istream& in, Format format, const std::string& name, bool hull,
-                          LoadPhases* phases) {
-  const auto t0 = Clock::now();
-  return validate_set(read_mesh(in, format, name), name, hull, phases, t0);
-}
-
-ConvexSet load_convex_set(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> given) {
-  if (is_file_operand(spec)) {
-    const auto t0 = Clock::now();
-    return validate_set(read_file_operand(spec, given), spec, hull, phases, t0);
-  }
-  const auto t0 = Clock::now();
-  ConvexSet s = catalog_convex_set(spec);
-  const auto t1 = Clock::now();
-  if (hull) s = ConvexSet::hull(s.vertices(), spec);
-  if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
-  return s;
-}
-
 ConvexPolytope load_polytope(std::istream& in, Format format, const std::string& name, bool hull,
                              LoadPhases* phases) {
-  const auto t0 = Clock::now();
-  return validate(read_mesh(in, format, name), name, hull, phases, t0);
+  return load_stream<ConvexPolytope>(in, format, name, hull, phases);
 }
 
 ConvexPolytope load_polytope(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> given) {
-  if (is_file_operand(spec)) {
-    const auto t0 = Clock::now();
-    return validate(read_file_operand(spec, given), spec, hull, phases, t0);
-  }
-  const auto t0 = Clock::now();
-  ConvexPolytope p = catalog_polytope(spec);
-  const auto t1 = Clock::now();
-  if (hull) p = ConvexPolytope::hull(p.coordinates(), spec);
-  if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
-  return p;
+  return load_named<ConvexPolytope>(spec, hull, phases, given);
+}
+
+ConvexSet load_convex_set(std::istream& in, Format format, const std::string& name, bool hull, LoadPhases* phases) {
+  return load_stream<ConvexSet>(in, format, name, hull, phases);
+}
+
+ConvexSet load_convex_set(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> given) {
+  return load_named<ConvexSet>(spec, hull, phases, given);
 }
 
 }  // namespace minksum

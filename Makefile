@@ -39,6 +39,7 @@ demo: build
 	$(BUILD)/bin/minksum sum tube sphere:2@scale:1/4 --exact -o $(BUILD)/demo/tube+sphere2.off
 	$(BUILD)/bin/minksum cgm dioctagonal:17 dioctagonal:17@rot:100,0,0,99 --svg $(BUILD)/demo/cgm.svg
 	$(BUILD)/bin/minksum view truncated-cube sphere:3@rot:1 -o $(BUILD)/demo/scene.html
+	$(BUILD)/bin/minksum sum truncated-cube segment:0,0,0:3,1,2 -o $(BUILD)/demo/sweep.off
 	@echo "demo: open $(abspath $(BUILD))/demo/scene.html in a browser (one file, works offline): A, B and A ⊕ B in 3D"
 
 # Fig. 4 of Fogel and Halperin (2006): a robot grazing, then penetrating an obstacle, turning every

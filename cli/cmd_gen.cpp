@@ -7,6 +7,7 @@
 #include "common.hpp"
 #include "mesh_io.hpp"
 #include "nonconvex_sum.hpp"
+#include "sweep.hpp"
 
 namespace minksum::cli {
 
@@ -15,7 +16,9 @@ const char* kGenHelpHead = R"(Usage: minksum gen NAME -o OUT [--exact] [--binary
 
 Write a built-in polytope to OUT ({formats}), or to standard
 output for '-o -' (with --format {format_names}; the summary then
-goes to stderr).  Use --exact for rational coordinates (rotated solids have
+goes to stderr).  A point, a segment or a polygon is written exactly as
+'minksum sum' writes one (docs/sweeps.md): a polygon as one face, a point
+or a segment as its points without faces.  Use --exact for rational coordinates (rotated solids have
 them); without it coordinates are written as the nearest doubles, and the file
 still reads back as a valid convex polytope (see 'minksum sum --help',
 Rounding).
@@ -29,29 +32,39 @@ int run_gen(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "gen", {{"--output", "-o", true}, {"--exact"}, {"--binary"}, kFormatOption});
   if (a.help) {
     std::cout << expand_help(kGenHelpHead);
-    for (const auto& e : catalog_entries()) {
-      std::string syn = e.syntax;
-      if (syn.size() < 22) syn.resize(22, ' ');
-      std::cout << "  " << syn << " " << e.description << "\n";
-    }
+    auto list = [](const std::vector<CatalogEntry>& entries) {
+      for (const auto& e : entries) {
+        std::string syn = e.syntax;
+        if (syn.size() < 22) syn.resize(22, ' ');
+        std::cout << "  " << syn << " " << e.description << "\n";
+      }
+    };
+    list(catalog_entries());
+    std::cout << "\nPoints, segments and polygons (operands of sweeps, docs/sweeps.md):\n";
+    list(flat_catalog_entries());
     std::cout << "\nNon-convex solids (closed, for 'minksum sum'; docs/nonconvex.md):\n";
-    for (const auto& e : nonconvex_catalog_entries()) {
-      std::string syn = e.syntax;
-      if (syn.size() < 22) syn.resize(22, ' ');
-      std::cout << "  " << syn << " " << e.description << "\n";
-    }
+    list(nonconvex_catalog_entries());
     return 0;
   }
   if (a.positional.size() != 1) throw UsageError("'gen' needs one catalog name (see 'minksum gen --help')");
   const std::optional<MeshOutput> output = output_option(a);
   if (!output) throw UsageError("'gen' needs -o OUT");
-  // catalog_polytope names the closest catalog name when the name is unknown.
-  ConvexPolytope p;
+  // catalog_convex_set names the closest catalog name when the name is unknown.
+  ConvexSet set;
   try {
-    p = catalog_polytope(a.positional[0]);
+    set = catalog_convex_set(a.positional[0]);
   } catch (const NotConvexError&) {  // a non-convex solid of the catalog
     return write_nonconvex_catalog_solid(a.positional[0], *output);
   }
+  if (!set.full()) {  // a point, a segment, a polygon (docs/sweeps.md)
+    write_set_output(*output, set);
+    output->report_stream() << printable(a.positional[0]) << ": a " << dimension_name(set.dimension()) << ", "
+                            << set.num_vertices() << " vertices, written to "
+                            << (output->to_stdout() ? std::string("standard output") : printable(output->path))
+                            << "\n";
+    return 0;
+  }
+  const ConvexPolytope& p = set.polytope();
   write_mesh_output(*output, p);
   output->report_stream() << printable(a.positional[0]) << ": " << p.num_vertices() << " vertices, " << p.num_edges()
                           << " edges, " << p.num_facets() << " facets, written to "

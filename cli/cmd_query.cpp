@@ -18,6 +18,7 @@
 #include "mesh_io.hpp"
 #include "pose.hpp"
 #include "proximity_json.hpp"
+#include "sweep.hpp"
 
 namespace minksum::cli {
 
@@ -28,6 +29,10 @@ const char* kQueryHelp = R"(Usage: minksum query KIND P Q [options]
 Exact proximity queries between the convex polytopes P and Q (files or
 catalog names) under translation, through the configuration-space obstacle
 M = P ⊕ (−Q), which is computed once for the given orientations.
+P or Q may also be a point, a segment or a flat polygon (docs/sweeps.md):
+then M is computed by the sweep and each query answered exactly by a scan
+of M (no witness, no --trajectory or rotations); a segment Q asks whether P
+meets the path it stands for ("penetrating": it passes through P's inside).
 
 KIND:
   collide    separate, touching (boundaries meet, interiors disjoint) or
@@ -256,8 +261,16 @@ int run_query(const std::vector<std::string>& argv) {
 
   if (a.value("--trajectory") == "-") claim_stdin("the trajectory");
   const auto format = format_option(a);
-  const ConvexPolytope p0 = load_operand_from(a.positional[1], false, nullptr, format);
-  const ConvexPolytope q0 = load_operand_from(a.positional[2], false, nullptr, format);
+  const ConvexSet ps = load_set_operand(a.positional[1], false, nullptr, format);
+  const ConvexSet qs = load_set_operand(a.positional[2], false, nullptr, format);
+  if (!ps.full() || !qs.full()) {  // points, segments, polygons: docs/sweeps.md
+    if (rp || rq || a.value("--trajectory"))
+      throw UsageError("--rotate-p, --rotate-q and --trajectory take 3-dimensional polytopes only; P or Q is a point, "
+                       "a segment or a polygon");
+    return query_sets(kind_name, ps, qs, u, w, d, *method, json);
+  }
+  const ConvexPolytope& p0 = ps.polytope();
+  const ConvexPolytope& q0 = qs.polytope();
   TranslationalObstacle ob(rp ? rotated(p0, *rp) : p0, rq ? rotated(q0, *rq) : q0, *method);
 
   const auto trajectory = a.value("--trajectory");

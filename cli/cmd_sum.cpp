@@ -13,6 +13,7 @@
 #include "nonconvex_sum.hpp"
 #include "progress.hpp"
 #include "scene.hpp"
+#include "sweep.hpp"
 #include "text.hpp"
 
 namespace minksum::cli {
@@ -47,14 +48,28 @@ Options:
                      as for a .wrl file ('minksum view OUT.wrl -o page.html'
                      shows it)
   --hull             take the convex hull of each input file's points instead
-                     of requiring a valid convex mesh (point clouds)
-  --json             print one JSON object: vertices, edges, facets, method,
+                     of requiring a valid convex mesh (point clouds); points
+                     spanning fewer than 3 dimensions give a point, a
+                     segment or a polygon
+  --json             print one JSON object: dimension (3 for a polytope, 2,
+                     1, 0 for a polygon, segment, point), vertices, edges,
+                     facets, method,
                      seconds (the computation alone, not the I/O), phases
                      (seconds spent reading the operands, validating them,
                      computing the sum, making its explicit polytope, and
                      writing OUT), volume (exact rational as a string), the
                      operands' names and counts ("operands"; also "a" and "b"
                      for two), and "rounding" (below)
+
+Sweeps: an operand may be a point, a segment or a flat convex polygon: a
+catalog name (point:X,Y,Z, segment:X,Y,Z:X,Y,Z, polygon:N, square, with @
+transforms), a file holding one face, or points spanning fewer than 3
+dimensions with --hull.  A polytope ⊕ a segment is the solid the polytope
+sweeps along it; two lower-dimensional operands give a point, a segment, a
+polygon or a polytope ("dimension" in --json, "kind" its name, "route" how it
+was made).  Only walk (the default) and chms take them.  A polygon result is
+written as one face, a point or a segment as its points without faces
+(exactly: never rounded; not to STL).  See docs/sweeps.md.
 
 Rounding: the file written always reads back as a valid convex polytope.
 Without --exact, coordinates that are not doubles (binary STL: 32-bit floats)
@@ -191,27 +206,36 @@ int run_sum(const std::vector<std::string>& argv) {
   if (scene && (!output || output->format != Format::wrl))
     throw UsageError("--scene writes a VRML scene: it needs -o OUT.wrl (or -o - --format wrl)");
   const std::vector<std::string>& names = a.positional;
-  std::vector<ConvexPolytope> operands;
+  std::vector<ConvexSet> sets;
   LoadPhases load;
-  if (!hull) {  // operands that may be non-convex (docs/nonconvex.md)
+  if (!hull) {  // operands that may be non-convex (docs/nonconvex.md) or lower-dimensional (docs/sweeps.md)
     std::vector<AnyOperand> any;
-    bool convex = true;
+    bool convex = true, flat = false;
     for (const std::string& name : names) {
       LoadPhases l;
       any.push_back(load_any_operand_from(name, &l, format));
-      convex = convex && any.back().polytope;
+      convex = convex && (any.back().polytope || any.back().flat);
+      flat = flat || any.back().flat;
       load.read += l.read;
       load.validate += l.validate;
     }
+    if (!convex && flat)
+      throw UsageError("a point, segment or polygon operand is summed with convex operands only, not with a "
+                       "non-convex solid (docs/sweeps.md)");
     if (!convex) return run_nonconvex_sum(names, any, load, output, json, *method);
-    for (auto& o : any) operands.push_back(std::move(*o.polytope));
+    for (auto& o : any) sets.push_back(o.flat ? std::move(*o.flat) : ConvexSet(std::move(*o.polytope)));
   }
   for (std::size_t i = 0; hull && i < names.size(); ++i) {
     LoadPhases l;
-    operands.push_back(load_operand(names[i], hull, &l, format));
+    sets.push_back(load_set_operand(names[i], hull, &l, format));
     load.read += l.read;
     load.validate += l.validate;
   }
+  // Points, segments, polygons: docs/sweeps.md.
+  for (const ConvexSet& s : sets)
+    if (!s.full()) return sum_sets(names, sets, *method, output, json, load);
+  std::vector<ConvexPolytope> operands;
+  for (const ConvexSet& s : sets) operands.push_back(s.polytope());
   // A ⊕ B ⊕ C ... left to right; the times add up, the method's details are
   // those of the last step.
   SumResult r;
@@ -233,7 +257,7 @@ int run_sum(const std::vector<std::string>& argv) {
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
     Rational vol = s.volume();
-    report << "{" << counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
+    report << "{" << counts_json(s) << ", \"dimension\": 3, \"method\": \"" << method_name(r.method) << "\""
            << ", \"seconds\": " << json_number(seconds) << ", \"phases\": {\"read\": " << json_number(load.read)
            << ", \"validate\": " << json_number(load.validate)
            << ", \"sum\": " << json_number(seconds - explicit_seconds)
@@ -247,10 +271,7 @@ int run_sum(const std::vector<std::string>& argv) {
     report << ", \"operands\": [";
     for (std::size_t i = 0; i < names.size(); ++i)
       report << (i ? ", " : "") << "{\"name\": \"" << json_escape(names[i]) << "\", " << counts_json(operands[i]) << "}";
-    report << "], \"output\": ";
-    if (!output) report << "null";
-    else report << "\"" << json_escape(output->to_stdout() ? "-" : output->path) << "\"";
-    report << ", \"rounding\": " << rounding_json(rounding) << "}\n";
+    report << "]" << output_json_tail(output, rounding) << "\n";
   } else {
     for (std::size_t i = 0; i < names.size(); ++i)
       report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << operands[i].num_vertices() << " V, "

@@ -10,6 +10,7 @@
 #include "progress.hpp"
 #include "scene.hpp"
 #include "text.hpp"
+#include "sweep.hpp"
 
 namespace minksum::cli {
 
@@ -143,7 +144,19 @@ int run_view(const std::vector<std::string>& argv) {
     if (scene.shapes.size() != 1 || scene.shapes[0].kind != SceneShape::Kind::polytope)
       return view_scene(a, scene, *output);
   }
-  const ConvexPolytope pa = load_operand(a.positional[0], hull, nullptr);
+  // Points, segments, polygons (docs/sweeps.md): drawn by cmd_sweep.cpp.
+  std::vector<ConvexSet> sets;
+  {
+    for (const std::string& name : a.positional) sets.push_back(load_set_operand(name, hull, nullptr, std::nullopt));
+    bool lower = false;
+    for (const ConvexSet& s : sets) lower = lower || !s.full();
+    if (lower) {
+      std::string names = a.positional[0];
+      if (sets.size() == 2) names += " ⊕ " + a.positional[1];
+      return view_sets(*output, a.value_or("--title", names), a.positional, sets, *method, json);
+    }
+  }
+  const ConvexPolytope pa = sets[0].polytope();
   if (a.positional.size() == 1) {
     title = a.value_or("--title", a.positional[0]);
     data += "\"kind\": \"polytope\", \"title\": " + json_string(title) + ", \"solids\": [";
@@ -160,7 +173,7 @@ int run_view(const std::vector<std::string>& argv) {
     return 0;
   }
 
-  const ConvexPolytope pb = load_operand(a.positional[1], hull, nullptr);
+  const ConvexPolytope pb = sets[1].polytope();
   SumResult r = [&] {
     ProgressTicker ticker("minksum view");
     return minkowski_sum(pa, pb, *method, ticker.sum_options());

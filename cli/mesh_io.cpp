@@ -71,6 +71,13 @@ std::string rounding_json(const RoundingReport& r) {
   return o.str();
 }
 
+std::string output_json_tail(const std::optional<MeshOutput>& output, const RoundingReport& r) {
+  std::string o = ", \"output\": ";
+  if (!output) o += "null";
+  else o += "\"" + json_escape(output->to_stdout() ? "-" : output->path) + "\"";
+  return o + ", \"rounding\": " + rounding_json(r) + "}";
+}
+
 RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p, ConvexPolytope* written) {
   const std::string name = out.to_stdout() ? "<stdout>" : out.path;
   const bool floats = out.format == Format::stl && out.options.binary;

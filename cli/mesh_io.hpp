@@ -61,5 +61,8 @@ void print_rounding_note(const std::string& name, const RoundingReport& r, bool 
 // The report as JSON: null when nothing was rounded, else {"coordinates": N,
 // "max_displacement": D, "split": S, "hull": B, "merged": M, "dropped": K}.
 std::string rounding_json(const RoundingReport& r);
+// ", \"output\": OUT, \"rounding\": R}" closing a sum's JSON object: the
+// output's name ("-" for standard output) or null, and rounding_json(r).
+std::string output_json_tail(const std::optional<MeshOutput>& output, const RoundingReport& r);
 
 }  // namespace minksum::cli

@@ -32,6 +32,20 @@ const Form kFamilies[] = {
     {"box", "box:X:Y:Z", "axis-aligned box centred at the origin with side lengths X, Y, Z > 0"},
 };
 
+// Lower-dimensional sets (docs/sweeps.md): operands of sweeps, not solids.
+const Form kFlat[] = {
+    {"point", "point:X,Y,Z", "the point (X, Y, Z): a translation when summed"},
+    {"segment", "segment:X,Y,Z:X,Y,Z", "the segment between two distinct points: a sweep along it when summed"},
+    {"polygon", "polygon:N", "regular N-gon (3..100000) in the plane z=0, vertices on the unit circle (doubles)"},
+    {"square", "square", "the square [-1/2, 1/2]^2 in the plane z=0"},
+};
+
+bool is_flat(const std::string& name) {
+  for (const Form& f : kFlat)
+    if (name == f.name) return true;
+  return false;
+}
+
 const Form kTransforms[] = {
     {"rot", "@rot:SEED", "exact rational rotation of a pseudo-random integer quaternion (64-bit SEED)"},
     {"rot", "@rot:A,B,C,D", "exact rational rotation of the integer quaternion A+Bi+Cj+Dk (not all 0)"},
@@ -109,6 +123,7 @@ std::vector<std::string> all_base_names() {
     if (std::find(names.begin(), names.end(), f.name) == names.end()) names.push_back(f.name);
   for (const Form& f : kNonconvex)
     if (std::find(names.begin(), names.end(), f.name) == names.end()) names.push_back(f.name);
+  for (const Form& f : kFlat) names.push_back(f.name);
   return names;
 }
 
@@ -314,7 +329,63 @@ Transform parse_transform(const std::string& spec, const std::string& tr) {
                  "' (known: rot:SEED, rot:A,B,C,D, scale:S, scale:X,Y,Z, translate:X,Y,Z, neg)");
 }
 
+Point3 point_param(const std::string& spec, const std::string& form, const std::string& tok) {
+  const std::vector<std::string> c = split(tok, ',');
+  if (c.size() != 3) fail(spec, form + " needs each point as X,Y,Z, got '" + tok + "'");
+  return Point3(number(spec, form, "X", c[0]), number(spec, form, "Y", c[1]), number(spec, form, "Z", c[2]));
+}
+
+// The mesh of a lower-dimensional base: its points, and for a polygon its
+// loop as one face (counter-clockwise seen from +z).
+Mesh flat_base(const std::string& spec, const std::string& base) {
+  std::vector<std::string> parts = split(base, ':');
+  const std::string name = parts[0];
+  const std::vector<std::string> params(parts.begin() + 1, parts.end());
+  Mesh m;
+  if (name == "point") {
+    arity(spec, "point:X,Y,Z", params, 1);
+    m.points.push_back(point_param(spec, "point:X,Y,Z", params[0]));
+  } else if (name == "segment") {
+    const std::string form = "segment:X,Y,Z:X,Y,Z";
+    arity(spec, form, params, 2);
+    m.points.push_back(point_param(spec, form, params[0]));
+    m.points.push_back(point_param(spec, form, params[1]));
+    if (m.points.exact(0) == m.points.exact(1))
+      fail(spec, "zero-length segment (both endpoints are equal; a point is point:X,Y,Z)");
+  } else if (name == "polygon") {
+    const std::string form = "polygon:N";
+    arity(spec, form, params, 1);
+    const std::uint64_t n = bounded(spec, form, "N", params[0], 3, kDioctagonalMax);
+    std::vector<Index> face;
+    for (std::uint64_t k = 0; k < n; ++k) {
+      const auto p = unit_circle_point(k, n);
+      m.points.emplace_back(Rational(p[0]), Rational(p[1]), Rational(0));
+      face.push_back(Index(k));
+    }
+    m.faces.push_back(std::move(face));
+  } else {  // square
+    if (!params.empty()) fail(spec, "'square' takes no parameters");
+    const Rational h(1, 2);
+    m.points = PointList{Point3(-h, -h, Rational(0)), Point3(h, -h, Rational(0)), Point3(h, h, Rational(0)),
+                         Point3(-h, h, Rational(0))};
+    m.faces.push_back({0, 1, 2, 3});
+  }
+  return m;
+}
+
 }  // namespace
+
+ConvexSet catalog_convex_set(const std::string& spec) {
+  if (!is_flat(base_name(spec))) return ConvexSet(catalog_polytope(spec));
+  const std::vector<std::string> parts = split(spec, '@');
+  std::vector<Transform> transforms;
+  for (std::size_t i = 1; i < parts.size(); ++i) transforms.push_back(parse_transform(spec, parts[i]));
+  Mesh mesh = flat_base(spec, parts[0]);
+  for (const Transform& t : transforms) t(mesh);
+  if (mesh.points.size() == 1) return ConvexSet::point(mesh.points.exact(0));
+  if (mesh.points.size() == 2) return ConvexSet::segment(mesh.points.exact(0), mesh.points.exact(1), spec);
+  return ConvexSet::from_mesh(mesh, spec);
+}
 
 const std::vector<CatalogEntry>& catalog_entries() {
   static const std::vector<CatalogEntry> entries = [] {
@@ -342,6 +413,15 @@ const std::vector<CatalogEntry>& nonconvex_catalog_entries() {
   return entries;
 }
 
+const std::vector<CatalogEntry>& flat_catalog_entries() {
+  static const std::vector<CatalogEntry> entries = [] {
+    std::vector<CatalogEntry> e;
+    for (const Form& f : kFlat) e.push_back({f.syntax, f.description});
+    return e;
+  }();
+  return entries;
+}
+
 std::string closest_catalog_name(const std::string& spec) {
   // The closest name within two edits, else one the text begins.
   const std::string name = base_name(spec);
@@ -362,7 +442,7 @@ std::string closest_catalog_name(const std::string& spec) {
 
 bool is_catalog_spec(const std::string& spec) {
   const std::string name = base_name(spec);
-  return find_fixed_solid(name) != nullptr || is_family(name);
+  return find_fixed_solid(name) != nullptr || is_family(name) || is_flat(name);
 }
 
 Mesh catalog_mesh(const std::string& spec) {
@@ -385,6 +465,8 @@ ConvexPolytope catalog_polytope(const std::string& spec) {
   }
   std::vector<Transform> transforms;
   for (std::size_t i = 1; i < parts.size(); ++i) transforms.push_back(parse_transform(spec, parts[i]));
+  if (is_flat(base_name(spec)))
+    fail(spec, "'" + base_name(spec) + "' is not a solid; this command takes 3-dimensional polytopes only ('minksum sum' also takes points, segments and polygons)");
   ConvexPolytope p = build_base(spec, parts[0]);
   if (transforms.empty()) return p;
   Mesh mesh = p.to_mesh();

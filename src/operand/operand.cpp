@@ -13,11 +13,76 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
+// True when `spec` names a file to read: an existing file, unless its name
+// has no known extension and is a catalog spec (a stray file called "cube"
+// does not shadow the catalog).  False for a catalog spec; for neither, the
+// error: InputError "no such file" for a name with a known extension, else
+// UsageError with the closest catalog name.
+bool is_file_operand(const std::string& spec) {
+  const auto format = format_from_path(spec);
+  struct stat st{};
+  const bool exists = ::stat(spec.c_str(), &st) == 0;
+  if (exists && (format || !is_catalog_spec(spec))) return true;
+  if (is_catalog_spec(spec)) return false;
+  unknown_operand(spec, format);
+}
+
+// The file's mesh, in the format of its extension or else `given`: UsageError
+// for an unknown extension (and no format given); InputError for
+// directories, unreadable files, bad data.
+Mesh read_file_operand(const std::string& spec, std::optional<Format> given) {
+  return format_from_path(spec) || !given ? read_mesh(spec) : read_mesh(spec, *given);
+}
+
+// What differs between loading a polytope and loading a set of any
+// dimension: validating a mesh (or taking its points' hull), building a
+// catalog name, taking the hull of a catalog object's points.
+template <class T>
+struct Kind;
+template <>
+struct Kind<ConvexPolytope> {
+  static ConvexPolytope from_mesh(const Mesh& m, const std::string& name, bool hull) {
+    return hull ? ConvexPolytope::hull(m.points, name) : ConvexPolytope::from_mesh(m, name);
+  }
+  static ConvexPolytope catalog(const std::string& spec) { return catalog_polytope(spec); }
+  static ConvexPolytope hull_of(const ConvexPolytope& p, const std::string& spec) {
+    return ConvexPolytope::hull(p.coordinates(), spec);
+  }
+};
+template <>
+struct Kind<ConvexSet> {
+  static ConvexSet from_mesh(const Mesh& m, const std::string& name, bool hull) {
+    return hull ? ConvexSet::hull(m.points, name) : ConvexSet::from_mesh(m, name);
+  }
+  static ConvexSet catalog(const std::string& spec) { return catalog_convex_set(spec); }
+  static ConvexSet hull_of(const ConvexSet& s, const std::string& spec) { return ConvexSet::hull(s.vertices(), spec); }
+};
+
 // The mesh read (from t0 on) validated, or its hull taken; phases timed.
-ConvexPolytope validate(const Mesh& mesh, const std::string& name, bool hull, LoadPhases* phases,
-                        Clock::time_point t0) {
+template <class T>
+T validate(const Mesh& mesh, const std::string& name, bool hull, LoadPhases* phases, Clock::time_point t0) {
   const auto t1 = Clock::now();
-  ConvexPolytope p = hull ? ConvexPolytope::hull(mesh.points, name) : ConvexPolytope::from_mesh(mesh, name);
+  T p = Kind<T>::from_mesh(mesh, name, hull);
+  if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
+  return p;
+}
+
+template <class T>
+T load_stream(std::istream& in, Format format, const std::string& name, bool hull, LoadPhases* phases) {
+  const auto t0 = Clock::now();
+  return validate<T>(read_mesh(in, format, name), name, hull, phases, t0);
+}
+
+template <class T>
+T load_named(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> given) {
+  if (is_file_operand(spec)) {
+    const auto t0 = Clock::now();
+    return validate<T>(read_file_operand(spec, given), spec, hull, phases, t0);
+  }
+  const auto t0 = Clock::now();
+  T p = Kind<T>::catalog(spec);
+  const auto t1 = Clock::now();
+  if (hull) p = Kind<T>::hull_of(p, spec);
   if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
   return p;
 }
@@ -25,32 +90,19 @@ ConvexPolytope validate(const Mesh& mesh, const std::string& name, bool hull, Lo
 
 ConvexPolytope load_polytope(std::istream& in, Format format, const std::string& name, bool hull,
                              LoadPhases* phases) {
-  const auto t0 = Clock::now();
-  return validate(read_mesh(in, format, name), name, hull, phases, t0);
+  return load_stream<ConvexPolytope>(in, format, name, hull, phases);
 }
 
 ConvexPolytope load_polytope(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> given) {
-  const auto format = format_from_path(spec);
-  struct stat st{};
-  bool exists = ::stat(spec.c_str(), &st) == 0;
-  // An existing file is read, unless its name has no known extension and is
-  // a catalog spec (a stray file called "cube" does not shadow the catalog).
-  if (exists && (format || !is_catalog_spec(spec))) {
-    const auto t0 = Clock::now();
-    // UsageError for an unknown extension (and no format given); InputError
-    // for directories, unreadable files, bad data.
-    Mesh mesh = format || !given ? read_mesh(spec) : read_mesh(spec, *given);
-    return validate(mesh, spec, hull, phases, t0);
-  }
-  if (is_catalog_spec(spec)) {
-    const auto t0 = Clock::now();
-    ConvexPolytope p = catalog_polytope(spec);
-    const auto t1 = Clock::now();
-    if (hull) p = ConvexPolytope::hull(p.coordinates(), spec);
-    if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
-    return p;
-  }
-  unknown_operand(spec, format);
+  return load_named<ConvexPolytope>(spec, hull, phases, given);
+}
+
+ConvexSet load_convex_set(std::istream& in, Format format, const std::string& name, bool hull, LoadPhases* phases) {
+  return load_stream<ConvexSet>(in, format, name, hull, phases);
+}
+
+ConvexSet load_convex_set(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> given) {
+  return load_named<ConvexSet>(spec, hull, phases, given);
 }
 
 namespace {
@@ -59,8 +111,10 @@ AnyOperand convex_or_mesh(Mesh mesh, const std::string& name, LoadPhases* phases
   AnyOperand o;
   const auto t1 = Clock::now();
   try {
-    o.polytope = ConvexPolytope::from_mesh(mesh, name);
-  } catch (const InputError&) {  // not a convex polytope: validate_solid says what it is
+    ConvexSet set = ConvexSet::from_mesh(mesh, name);  // one face: a polygon
+    if (set.full()) o.polytope = set.polytope();
+    else o.flat = std::move(set);
+  } catch (const InputError&) {  // not a convex set: validate_solid says what it is
     o.mesh = std::move(mesh);
   }
   if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
@@ -74,23 +128,18 @@ AnyOperand load_any_operand(std::istream& in, Format format, const std::string& 
 }
 
 AnyOperand load_any_operand(const std::string& spec, LoadPhases* phases, std::optional<Format> given) {
-  const auto format = format_from_path(spec);
-  struct stat st{};
-  const bool exists = ::stat(spec.c_str(), &st) == 0;
   const auto t0 = Clock::now();
-  if (exists && (format || !is_catalog_spec(spec)))
-    return convex_or_mesh(format || !given ? read_mesh(spec) : read_mesh(spec, *given), spec, phases, t0);
-  if (is_catalog_spec(spec)) {
-    AnyOperand o;
-    try {
-      o.polytope = catalog_polytope(spec);
-    } catch (const NotConvexError&) {  // a non-convex solid of the catalog
-      o.mesh = catalog_mesh(spec);
-    }
-    if (phases) *phases = {seconds(t0, Clock::now()), 0};
-    return o;
+  if (is_file_operand(spec)) return convex_or_mesh(read_file_operand(spec, given), spec, phases, t0);
+  AnyOperand o;
+  try {
+    ConvexSet set = catalog_convex_set(spec);
+    if (set.full()) o.polytope = set.polytope();
+    else o.flat = std::move(set);
+  } catch (const NotConvexError&) {  // a non-convex solid of the catalog
+    o.mesh = catalog_mesh(spec);
   }
-  unknown_operand(spec, format);
+  if (phases) *phases = {seconds(t0, Clock::now()), 0};
+  return o;
 }
 
 void unknown_operand(const std::string& spec, std::optional<Format> format) {

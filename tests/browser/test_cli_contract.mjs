@@ -31,7 +31,8 @@ for (const args of [['view'], ['view', 'cube'], ['view', 'cube', '-o', join(o.ou
 
 // Bad input: exit 3, one line naming the file, no page.
 const bad = join(o.out, 'open.off');
-writeFileSync(bad, 'OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n');
+// Two triangles of an open surface (one face alone would be a flat polygon: docs/sweeps.md).
+writeFileSync(bad, 'OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 3 1\n');
 for (const args of [['view', bad, '-o', page], ['view', 'cube', bad, '-o', page], ['cgm', bad, '--html', page]]) {
   rmSync(page, { force: true });
   const r = run(args);

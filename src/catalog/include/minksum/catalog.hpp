@@ -13,6 +13,9 @@
 //             | box:X:Y:Z          axis-aligned box with sides X, Y, Z > 0
 //             | tube | tube:H | lshape | ring:N | star:N | gear:N
 //                                  non-convex solids (catalog_mesh only)
+//             | point:X,Y,Z        lower-dimensional sets (docs/sweeps.md):
+//             | segment:X,Y,Z:X,Y,Z  a point, a segment (distinct ends),
+//             | polygon:N | square   a regular N-gon or the unit square at z=0
 //   transform:= rot:SEED           a pseudo-random exact rational rotation
 //             | rot:A,B,C,D        the rotation of the integer quaternion (A,B,C,D)
 //             | scale:S | scale:X,Y,Z | translate:X,Y,Z | neg
@@ -25,6 +28,7 @@
 // is documented in catalog_entries() and docs/catalog.md.
 #pragma once
 
+#include <minksum/convex_set.hpp>
 #include <minksum/polytope.hpp>
 
 #include <string>
@@ -37,9 +41,12 @@ struct CatalogEntry {
   std::string description;  // one line, for --help and docs
 };
 
-// All names and parameterised forms the catalog understands for convex
-// polytopes, and its transforms.
+// All names and parameterised forms of solids the catalog understands, and
+// its transforms.
 const std::vector<CatalogEntry>& catalog_entries();
+// The lower-dimensional sets (point, segment, polygon, square): not solids,
+// listed apart so that every name of catalog_entries() is a polytope.
+const std::vector<CatalogEntry>& flat_catalog_entries();
 // The non-convex solids of the catalog (catalog_mesh), the same way.
 const std::vector<CatalogEntry>& nonconvex_catalog_entries();
 
@@ -58,12 +65,18 @@ std::string closest_catalog_name(const std::string& spec);
 // Build the polytope named by `spec`.  Throws UsageError for an unknown name
 // or a bad/out-of-range parameter (message says which and the allowed range).
 // Non-convex solids (tube, lshape, ring:N, star:N, gear:N) are refused with
-// a NotConvexError: catalog_mesh() gives them.
+// a NotConvexError: catalog_mesh() gives them.  A point, segment or polygon
+// spec is refused here (UsageError saying so).
 ConvexPolytope catalog_polytope(const std::string& spec);
 
 // The mesh named by `spec`, not validated: a convex polytope's facets, or a
 // non-convex solid's faces (polygons, counter-clockwise from outside), with
 // the transforms applied.  Throws UsageError like catalog_polytope().
 Mesh catalog_mesh(const std::string& spec);
+
+// Build the convex set named by `spec`: a point, a segment or a polygon for
+// those names (transforms applied to their points), else the polytope of
+// catalog_polytope().
+ConvexSet catalog_convex_set(const std::string& spec);
 
 }  // namespace minksum

@@ -3,6 +3,7 @@
 // one place that decides which a name is.
 #pragma once
 
+#include <minksum/convex_set.hpp>
 #include <minksum/io.hpp>
 #include <minksum/polytope.hpp>
 
@@ -36,14 +37,26 @@ ConvexPolytope load_polytope(const std::string& spec, bool hull = false, LoadPha
 ConvexPolytope load_polytope(std::istream& in, Format format, const std::string& name, bool hull = false,
                              LoadPhases* phases = nullptr);
 
-// An operand that may be non-convex, for sums of solids: the polytope when
-// the mesh (file or catalog_mesh) is a convex polytope, else the mesh as
-// read, not yet validated (validate_solid in <minksum/nonconvex.hpp> does
-// that, and says what is wrong with it).  Errors as load_polytope's, except
-// that a mesh that is not a convex polytope is no error here.
+// The same, for commands that also take lower-dimensional operands
+// (docs/sweeps.md): a catalog point, segment or polygon; a file holding one
+// face (a flat polygon); with `hull`, the hull of the points in whatever
+// dimension they span (0 to 3).  Everything else as load_polytope.
+ConvexSet load_convex_set(const std::string& spec, bool hull = false, LoadPhases* phases = nullptr,
+                          std::optional<Format> format = std::nullopt);
+ConvexSet load_convex_set(std::istream& in, Format format, const std::string& name, bool hull = false,
+                          LoadPhases* phases = nullptr);
+
+// An operand that may be non-convex or lower-dimensional, for sums: the
+// polytope when the mesh (file or catalog_mesh) is a convex polytope; the
+// point, segment or polygon (docs/sweeps.md: a catalog name, a file holding
+// one face) as `flat`; else the mesh as read, not yet validated
+// (validate_solid in <minksum/nonconvex.hpp> does that, and says what is
+// wrong with it).  Errors as load_polytope's, except that a mesh that is not
+// a convex polytope is no error here.
 struct AnyOperand {
   std::optional<ConvexPolytope> polytope;
-  Mesh mesh;  // when there is no polytope
+  std::optional<ConvexSet> flat;  // a point, a segment or a polygon
+  Mesh mesh;                      // when there is neither
 };
 AnyOperand load_any_operand(const std::string& spec, LoadPhases* phases = nullptr,
                             std::optional<Format> format = std::nullopt);

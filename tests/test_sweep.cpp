@@ -429,8 +429,8 @@ TEST(SweepProximity, ScansAgreeWithTheObstacleOnPolytopes) {
     const Point3 s = (trial % 3 == 0 ? Rational(1) : Rational(1, 2)) * random_point(rng, 4);
     const std::string at = "seed 5 trial " + std::to_string(trial);
     EXPECT_EQ(sets.contact(s), ob.collide_point(s).status) << at;
-    EXPECT_EQ(sets.squared_distance(s), ob.distance_point(s).squared_distance) << at;
-    EXPECT_EQ(sets.squared_depth(s), ob.penetration_depth_point(s).squared_depth) << at;
+    EXPECT_EQ(sets.squared_distance(s), ob.distance_point(s).squared_distance()) << at;
+    EXPECT_EQ(sets.squared_depth(s), ob.penetration_depth_point(s).squared_depth()) << at;
     EXPECT_EQ(sets.directional_depth(s, P(1, 2, 3)), ob.directional_depth_point(s, P(1, 2, 3)).t) << at;
   }
 }

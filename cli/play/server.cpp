@@ -134,15 +134,15 @@ class Session {
                     exact_vector_json(pose.u) + ", \"rotate_p\": " +
                     (pose.rp ? "\"" + quaternion_text(*pose.rp) + "\"" : std::string("null")) +
                     ", \"translate_q\": " + exact_vector_json(pose.w) + "}";
-    o += ", \"squared_distance\": \"" + format_exact(d.squared_distance) + "\", \"distance\": " +
-         json_number(d.distance);
-    o += ", \"squared_depth\": \"" + (depth ? format_exact(depth->squared_depth) : std::string("0")) +
-         "\", \"depth\": " + json_number(depth ? depth->depth : 0.0);
-    o += ", \"point_p\": " + double_vector_json(d.point_p) + ", \"point_p_exact\": " + exact_vector_json(d.point_p);
-    o += ", \"point_q\": " + double_vector_json(d.point_q) + ", \"point_q_exact\": " + exact_vector_json(d.point_q);
-    o += ", \"direction\": " + exact_vector_json(d.direction);
-    o += ", \"depth_direction\": " + exact_vector_json(depth ? depth->direction : zero) +
-         ", \"depth_direction_double\": " + double_vector_json(depth ? depth->direction : zero);
+    o += ", \"squared_distance\": \"" + format_exact(d.squared_distance()) + "\", \"distance\": " +
+         json_number(d.distance());
+    o += ", \"squared_depth\": \"" + (depth ? format_exact(depth->squared_depth()) : std::string("0")) +
+         "\", \"depth\": " + json_number(depth ? depth->depth() : 0.0);
+    o += ", \"point_p\": " + double_vector_json(d.point_p()) + ", \"point_p_exact\": " + exact_vector_json(d.point_p());
+    o += ", \"point_q\": " + double_vector_json(d.point_q()) + ", \"point_q_exact\": " + exact_vector_json(d.point_q());
+    o += ", \"direction\": " + exact_vector_json(d.direction());
+    o += ", \"depth_direction\": " + exact_vector_json(depth ? depth->direction() : zero) +
+         ", \"depth_direction_double\": " + double_vector_json(depth ? depth->direction() : zero);
     o += ", \"witness\": " + witness_json(d.witness);
     o += ", \"depth_witness\": " + (depth ? witness_json(depth->witness) : std::string("null"));
     o += ", \"features\": {\"p\": " + feature_points_json(obstacle_.p(), w.p, pose.u) +

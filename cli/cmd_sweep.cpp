@@ -159,8 +159,8 @@ int view_sets(const std::string& output, const std::string& title, const std::ve
     data += "]}";
     write_page(output, title, data);
     if (json)
-      std::cout << "{\"kind\": \"" << dimension_name(operands[0].dimension()) << "\", \"name\": \""
-                << json_escape(names[0]) << "\", " << set_counts_json(operands[0]) << ", \"output\": \""
+      std::cout << "{\"name\": \"" << json_escape(names[0]) << "\", " << set_counts_json(operands[0])
+                << ", \"output\": \""
                 << json_escape(output) << "\"}\n";
     else
       std::cout << names[0] << ": a " << dimension_name(operands[0].dimension()) << ", "

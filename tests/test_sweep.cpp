@@ -564,6 +564,21 @@ TEST(SweepCli, ViewShowsAPolygonFromBothSides) {
   fs::remove(page);
 }
 
+// 'view point:X,Y,Z --json' named the kind twice (one object, one key each).
+TEST(SweepCli, ViewJsonOfAPointHasEachKeyOnce) {
+  const fs::path page = fs::temp_directory_path() / ("minksum_sweep_point_" + std::to_string(::getpid()) + ".html");
+  CmdRun r = run("view point:1,2,3 -o " + page.string() + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json_int(r.out, "dimension"), 0) << r.out;
+  for (const char* key : {"\"kind\"", "\"name\"", "\"vertices\"", "\"output\""}) {
+    const std::size_t first = r.out.find(key);
+    EXPECT_NE(first, std::string::npos) << key << " in " << r.out;
+    EXPECT_EQ(r.out.find(key, first + 1), std::string::npos) << key << " twice in " << r.out;
+  }
+  EXPECT_NE(r.out.find("\"kind\": \"point\""), std::string::npos) << r.out;
+  fs::remove(page);
+}
+
 // minksum gen writes a polygon as one face and a segment as its two points;
 // both read back as what they were.
 TEST(SweepCli, QueryWithASegment) {

@@ -83,7 +83,7 @@ export async function open(context, file, timeoutMs = 120000) {
 // The checks every page gets: no console error, no request but the page's own
 // file,
 // a canvas that is not blank (variance of its pixels' grey levels).
-export async function checkPage(page, log, name) {
+export async function checkPage(page, log, name, minVariance = 20) {
   check(log.errors.length === 0, `${name}: console errors: ${log.errors.join(' | ')}`);
   check(log.blocked.length === 0, `${name}: the page asked for ${log.blocked.join(', ')}`);
   check(log.files.length === 1, `${name}: the page is not one file: it loaded ${log.files.join(', ')}`);
@@ -102,7 +102,7 @@ export async function checkPage(page, log, name) {
     }
     return s2 / n - (s / n) * (s / n);
   });
-  check(variance > 20, `${name}: the canvas looks blank (grey-level variance ${variance.toFixed(2)})`);
+  check(variance > minVariance, `${name}: the canvas looks blank (grey-level variance ${variance.toFixed(2)})`);
   return variance;
 }
 

@@ -200,6 +200,13 @@ function buildSolid(s, key) {
 
   const group = new THREE.Group();
   group.add(mesh, edges);
+  // A point (a sweep's operand or the sum of two points) has neither area
+  // nor edge: its vertex is drawn as a dot of constant size on the screen.
+  if (s.counts && s.counts.dimension === 0) {
+    const pg = new THREE.BufferGeometry();
+    pg.setAttribute('position', new THREE.Float32BufferAttribute(Array.from(xyz.slice(0, 3)), 3));
+    group.add(new THREE.Points(pg, new THREE.PointsMaterial({ color: 0x1d2430, size: 9, sizeAttenuation: false })));
+  }
   scene.add(group);
   const solid = { data: s, key, group, mesh, edges, triFacet, highlight: null };
   mesh.userData.solid = solid;

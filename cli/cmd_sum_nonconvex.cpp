@@ -90,13 +90,7 @@ std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh) {
     }
   }
   try {
-    if (out.to_stdout()) {
-      write_mesh(std::cout, written, out.format, out.options);
-      std::cout.flush();
-      if (!std::cout) throw OutputError("cannot write the mesh to standard output: write error");
-    } else {
-      write_mesh(out.path, written, out.options);
-    }
+    write_mesh_as_is(out, written);
   } catch (const UnrepresentableError& e) {
     throw OutputError("cannot write " + name + ": " + e.problem() + "; use --exact with " +
                       extension_list(", ", " or ", true) + " to write exact rationals");

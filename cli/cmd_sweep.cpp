@@ -42,13 +42,7 @@ void write_lower(const MeshOutput& out, const ConvexSet& s) {
                       " whose coordinates are not all doubles, and it is never rounded; use --exact with " +
                       extension_list(", ", " or ", true) + " to write exact rationals");
   try {
-    if (out.to_stdout()) {
-      write_mesh(std::cout, m, out.format, out.options);
-      std::cout.flush();
-      if (!std::cout) throw OutputError("cannot write the mesh to standard output: write error");
-    } else {
-      write_mesh(out.path, m, out.options);
-    }
+    write_mesh_as_is(out, m);
   } catch (const InputError& e) {
     throw OutputError(std::string("cannot write ") + e.what());
   }

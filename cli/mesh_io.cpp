@@ -78,6 +78,16 @@ std::string output_json_tail(const std::optional<MeshOutput>& output, const Roun
   return o + ", \"rounding\": " + rounding_json(r) + "}";
 }
 
+void write_mesh_as_is(const MeshOutput& out, const Mesh& m) {
+  if (out.to_stdout()) {
+    write_mesh(std::cout, m, out.format, out.options);
+    std::cout.flush();
+    if (!std::cout) throw OutputError("cannot write the mesh to standard output: write error");
+  } else {
+    write_mesh(out.path, m, out.options);
+  }
+}
+
 RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p, ConvexPolytope* written) {
   const std::string name = out.to_stdout() ? "<stdout>" : out.path;
   const bool floats = out.format == Format::stl && out.options.binary;

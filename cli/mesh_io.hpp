@@ -54,6 +54,10 @@ std::optional<MeshOutput> output_option(const Args& a);
 // naming the fix.  `written`, when given, receives the polytope written (p,
 // or what rounding made of it).
 RoundingReport write_mesh_output(const MeshOutput& out, const ConvexPolytope& p, ConvexPolytope* written = nullptr);
+// `m` written as it is (no rounding, no validation) to the output, standard
+// output included, with its write errors checked (OutputError); the
+// writers' own errors (InputError, UnrepresentableError) are the caller's.
+void write_mesh_as_is(const MeshOutput& out, const Mesh& m);
 // The note write_mesh_output prints on stderr when coordinates of `name`
 // were rounded (nothing otherwise); `floats`: binary STL, `exact_format`: the
 // format could have held them exactly (with --exact).

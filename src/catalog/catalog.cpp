@@ -404,21 +404,22 @@ const std::vector<CatalogEntry>& catalog_entries() {
   return entries;
 }
 
+namespace {
+template <std::size_t N>
+std::vector<CatalogEntry> entries_of(const Form (&forms)[N]) {
+  std::vector<CatalogEntry> e;
+  for (const Form& f : forms) e.push_back({f.syntax, f.description});
+  return e;
+}
+}  // namespace
+
 const std::vector<CatalogEntry>& nonconvex_catalog_entries() {
-  static const std::vector<CatalogEntry> entries = [] {
-    std::vector<CatalogEntry> e;
-    for (const Form& f : kNonconvex) e.push_back({f.syntax, f.description});
-    return e;
-  }();
+  static const std::vector<CatalogEntry> entries = entries_of(kNonconvex);
   return entries;
 }
 
 const std::vector<CatalogEntry>& flat_catalog_entries() {
-  static const std::vector<CatalogEntry> entries = [] {
-    std::vector<CatalogEntry> e;
-    for (const Form& f : kFlat) e.push_back({f.syntax, f.description});
-    return e;
-  }();
+  static const std::vector<CatalogEntry> entries = entries_of(kFlat);
   return entries;
 }
 

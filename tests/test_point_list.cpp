@@ -158,6 +158,43 @@ TEST(ExactText, NearestFloatOfPairsAtFloatMidpoints) {
   }
 }
 
+// Binary STL's floats are the nearest floats of the exact coordinates in
+// every rounding mode (the double -> float conversion rounds in the current
+// mode, so a directed mode gave the float beside the nearest one).
+TEST(ExactText, NearestFloatInEveryRoundingMode) {
+  std::mt19937_64 rng(11);
+  std::vector<double> xs = {0x1.000001p0, -0x1.000003p0, 0x1.0000018p-130, 3.4028234663852886e38, 1e-45, 0.1};
+  for (int i = 0; i < 2000; ++i)
+    xs.push_back(std::ldexp(std::uniform_real_distribution<double>(-2, 2)(rng), int(rng() % 270) - 150));
+  for (const double x : xs) {
+    const float want = static_cast<float>(x);  // to nearest: the mode of the tests
+    PointList doubles, pairs, rationals;
+    doubles.push_back(Vec3d{x, 0.0, 0.0});
+    pairs.push_pair(Vec3d{x, 1.0, 1.0}, Vec3d{0.0, 0.0, 0.0});
+    rationals.push_back(Point3(Rational(1, 3), Rational(0), Rational(0)));  // the list holds rationals
+    rationals.push_back(Point3(Rational(x), Rational(0), Rational(0)));
+    for (int mode : {FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+      struct Mode {  // restored even when a conversion throws
+        int old;
+        explicit Mode(int m) : old(std::fegetround()) { std::fesetround(m); }
+        ~Mode() { std::fesetround(old); }
+      };
+      float a, b, c, d;
+      {
+        const Mode directed(mode);
+        a = io_detail::coordinate_float(doubles, 0, 0);
+        b = io_detail::coordinate_float(pairs, 0, 0);
+        c = io_detail::coordinate_float(rationals, 1, 0);
+        d = to_float(Rational(x));
+      }
+      ASSERT_EQ(a, want) << "seed 11, x " << x << ", mode " << mode;
+      ASSERT_EQ(b, want) << "seed 11, x " << x << ", mode " << mode;
+      ASSERT_EQ(c, want) << "seed 11, x " << x << ", mode " << mode;
+      ASSERT_EQ(d, want) << "seed 11, x " << x << ", mode " << mode;
+    }
+  }
+}
+
 TEST(ReadCoordinate, CheapFormAgreesWithParseNumber) {
   const char* tokens[] = {"0",      "-0",     "-0.0",      "12",   "123456789012345", "9007199254740993",
                           "-9007199254740993",  "1e-400",    "5e-324", "0.1",   "-2.5e-3",

@@ -5,6 +5,7 @@
 #include <minksum/io.hpp>
 #include <minksum/scene.hpp>
 
+#include <cfenv>
 #include <cerrno>
 #include <charconv>
 #include <chrono>
@@ -204,11 +205,15 @@ double coordinate_double(const PointList& points, std::size_t i, int k) {
 }
 
 namespace {
-// Nearest float of a finite double (one correctly rounded conversion in the
-// default rounding mode); the range error of checked_float beyond it.
+// Nearest float of a finite double: one conversion when the rounding mode is
+// to nearest (it rounds in the current mode), else the exact rounding of
+// checked_float, which also gives the range error beyond the floats.
 float double_to_float(double d) {
-  const float f = static_cast<float>(d);
-  return std::isfinite(f) ? f : checked_float(Rational(d));
+  if (std::fegetround() == FE_TONEAREST) {
+    const float f = static_cast<float>(d);
+    if (std::isfinite(f)) return f;
+  }
+  return checked_float(Rational(d));
 }
 }  // namespace
 

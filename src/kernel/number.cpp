@@ -1,5 +1,6 @@
 // Exact numbers: point algebra, correctly rounded conversion to double,
 // parsing and printing.
+#include <cfenv>
 #include <minksum/kernel.hpp>
 
 #include <algorithm>
@@ -222,7 +223,9 @@ float to_float(const Rational& q) {
     // range).  Then one rounding, double -> float, is the correct one.
     const mpz_srcptr num = q.get_num_mpz_t(), den = q.get_den_mpz_t();
     const std::size_t den_bits = mpz_sizeinbase(den, 2);
-    if (mpz_sizeinbase(num, 2) <= 53 && den_bits <= 1000 && mpz_scan1(den, 0) == den_bits - 1)
+    // The conversion rounds in the current mode: only to nearest here.
+    if (mpz_sizeinbase(num, 2) <= 53 && den_bits <= 1000 && mpz_scan1(den, 0) == den_bits - 1 &&
+        std::fegetround() == FE_TONEAREST)
       return static_cast<float>(q.get_d());  // get_d exact here; +-inf beyond FLT_MAX
   }
   const float v = static_cast<float>(round_to_binary(abs(q.get_num()), q.get_den(), 24, -149, 127));

@@ -69,7 +69,7 @@ asan:
 # loaded cores.
 ASAN_FAST_TARGETS = minksum_cli test_catalog test_cgm test_chms test_cli test_difference test_io \
                     test_mesh_support test_point_list test_polytope test_predicates test_progress \
-                    test_proximity test_reliability test_rounded_predicates test_roundtrip test_walk
+                    test_proximity test_reliability test_rounded_predicates test_roundtrip test_sweep test_walk
 ASAN_FAST_EXCLUDE = ^((CgmSum|layers|package)[.]|PredicateTest[.](RandomUniform|Rationals|RandomSmallIntegers|RandomWideExponents)<)
 .PHONY: asan-fast
 asan-fast:

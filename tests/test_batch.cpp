@@ -3,6 +3,8 @@
 // failed pairs reported in place, malformed input refused before any work.
 #include <gtest/gtest.h>
 
+#include "shell.hpp"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -45,13 +47,10 @@ class Batch : public ::testing::Test {
     const fs::path in = write("stdin.txt", input), err = dir_ / "stderr.txt";
     const std::string cmd = std::string(MINKSUM_BIN) + " " + args + " <" + in.string() + " 2>" + err.string();
     CmdResult r;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-    const int st = ::pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    const ShellOutput o = shell_stdout(cmd);
+    if (o.status < 0) return r;
+    r.status = o.status;
+    r.out = o.out;
     std::ifstream e(err);
     std::stringstream s;
     s << e.rdbuf();

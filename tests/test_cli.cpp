@@ -3,6 +3,8 @@
 // the problem, no output file written).
 #include <gtest/gtest.h>
 
+#include "shell.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -70,13 +72,10 @@ class Cli : public ::testing::Test {
   CmdResult run_line(const std::string& cmd) {
     fs::path err = dir_ / "stderr.txt";
     CmdResult r;
-    FILE* p = ::popen(("{ " + cmd + " ; } 2>" + err.string()).c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-    int st = ::pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    const ShellOutput o = shell_stdout("{ " + cmd + " ; } 2>" + err.string());
+    if (o.status < 0) return r;
+    r.status = o.status;
+    r.out = o.out;
     r.err = slurp(err);
     return r;
   }

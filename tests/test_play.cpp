@@ -5,6 +5,8 @@
 // line; SIGINT and SIGTERM stop it with exit status 0.
 #include <gtest/gtest.h>
 
+#include "shell.hpp"
+
 #include <httplib.h>
 
 #include <fcntl.h>
@@ -49,23 +51,10 @@ std::string json_field(const std::string& json, const std::string& key) {
   return json.substr(i, j - i);
 }
 
-struct CmdRun {
-  int status = -1;
-  std::string out;
-};
+using CmdRun = ShellOutput;
 
 // A shell command line: its standard output and exit status.
-CmdRun run_line(const std::string& line) {
-  CmdRun r;
-  FILE* p = ::popen(line.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-  const int st = ::pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-  return r;
-}
+CmdRun run_line(const std::string& line) { return shell_stdout(line); }
 
 CmdRun run(const std::string& args) {
   return run_line(std::string(MINKSUM_BIN) + " " + args + " 2>/dev/null </dev/null");

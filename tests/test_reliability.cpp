@@ -5,6 +5,8 @@
 // inputs the fuzz targets found kept as regression files.
 #include <gtest/gtest.h>
 
+#include "shell.hpp"
+
 #include <minksum/error.hpp>
 #include <minksum/io.hpp>
 
@@ -76,12 +78,10 @@ class Reliability : public ::testing::Test {
     const fs::path err = dir_ / "stderr.txt";
     const std::string cmd = std::string(MINKSUM_BIN) + " " + args + " 2>" + err.string() + " </dev/null";
     Outcome r;
-    FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) r.out.append(buf.data(), n);
-    const int st = ::pclose(p);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    const ShellOutput o = shell_stdout(cmd);
+    if (o.status < 0) return r;
+    r.status = o.status;
+    r.out = o.out;
     r.err = read_file(err);
     return r;
   }

@@ -4,6 +4,8 @@
 // and closed forms (volume of a sweep, independent 2D sums), and the command.
 #include <gtest/gtest.h>
 
+#include "shell.hpp"
+
 #include <minksum/catalog.hpp>
 #include <minksum/convex_set.hpp>
 #include <minksum/error.hpp>
@@ -446,11 +448,9 @@ struct CmdRun {
 CmdRun run(const std::string& args) {
   const fs::path err = fs::temp_directory_path() / ("minksum_sweep_err_" + std::to_string(::getpid()));
   CmdRun r;
-  FILE* p = ::popen((std::string(MINKSUM_BIN) + " " + args + " </dev/null 2>" + err.string()).c_str(), "r");
-  std::array<char, 4096> buf;
-  for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), p)) > 0;) r.out.append(buf.data(), n);
-  const int st = ::pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+  const ShellOutput o = shell_stdout(std::string(MINKSUM_BIN) + " " + args + " </dev/null 2>" + err.string());
+  r.status = o.status;
+  r.out = o.out;
   std::ifstream in(err);
   std::stringstream s;
   s << in.rdbuf();

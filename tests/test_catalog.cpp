@@ -448,6 +448,47 @@ TEST(CatalogDioctagonal, BasePolygonIsExactlySymmetric) {
 }
 
 // ---------------------------------------------------------------------------
+// ball:N, prism:N
+
+TEST(CatalogBall, CountsDegreesUnitLengthAndSymmetry) {
+  // 2N(N - 1) + 2 vertices: 26, 114, 266 and 1106 for N = 4, 8, 12, 24.
+  for (Index n : {2u, 3u, 4u, 5u, 8u, 12u, 24u}) {
+    SCOPED_TRACE(n);
+    const ConvexPolytope p = catalog_polytope("ball:" + std::to_string(n));
+    expect_counts(p, 2 * n * (n - 1) + 2, 2 * n * (2 * n - 1), 2 * n * n, "ball");
+    // Every side quadrilateral stays one facet (exactly planar, not merged).
+    EXPECT_EQ(degree_histogram(p),
+              n == 2 ? "3:8" : "3:" + std::to_string(4 * n) + ",4:" + std::to_string(2 * n * (n - 2)));
+    // Central symmetry, exactly (the rings' angles are symmetric on the grid).
+    EXPECT_EQ(point_set(p), point_set(catalog_polytope("ball:" + std::to_string(n) + "@neg")));
+    // The products radius * direction are not doubles in general; on the unit
+    // sphere to within the rounding of the directions (a check of the
+    // generator, not a geometric decision).
+    for (Index v = 0; v < p.num_vertices(); ++v) {
+      const Vec3d& a = p.approx(v);
+      EXPECT_NEAR(std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z), 1.0, 1e-15);
+    }
+  }
+  EXPECT_EQ(catalog_polytope("ball:4").num_vertices(), 26u);
+  EXPECT_EQ(catalog_polytope("ball:24").num_vertices(), 1106u);
+  EXPECT_EQ(point_set(catalog_polytope("ball:2")), point_set(catalog_polytope("octahedron")));
+}
+
+TEST(CatalogPrism, CountsDegreesAndVolume) {
+  for (Index n : {3u, 4u, 5u, 16u, 1000u}) {
+    SCOPED_TRACE(n);
+    const ConvexPolytope p = catalog_polytope("prism:" + std::to_string(n));
+    expect_counts(p, 2 * n, 3 * n, n + 2, "prism");
+    const std::string caps = std::to_string(n) + ":2", sides = "4:" + std::to_string(n);
+    EXPECT_EQ(degree_histogram(p), n == 3 ? "3:2,4:3" : n == 4 ? "4:6" : sides + "," + caps);
+    EXPECT_TRUE(p.coordinates_are_doubles());
+  }
+  // The square of circumradius 1 (exact points (±1, 0), (0, ±1)) times height 2.
+  EXPECT_EQ(catalog_polytope("prism:4").volume(), Rational(4));
+  EXPECT_EQ(point_set(catalog_polytope("prism:4")), point_set(catalog_polytope("zonotope:1/2,1/2,0:1/2,-1/2,0:0,0,1")));
+}
+
+// ---------------------------------------------------------------------------
 // random:N:SEED
 
 TEST(CatalogRandom, DeterministicAndSeedDependent) {
@@ -571,6 +612,10 @@ TEST(CatalogSpec, BadSpecsThrowUsageErrorsThatNameTheSpecAndTheForm) {
       {"random:10:18446744073709551616", "random:N:SEED needs 0 <= SEED"},
       {"zonotope:2:1", "zonotope:N:SEED needs 3 <= N <= 256, got 2"},
       {"zonotope:1,2:0,0,1", "needs each generator as X,Y,Z"},
+      {"ball:1", "ball:N needs 2 <= N <= 1000, got 1"},
+      {"ball:1001", "ball:N needs 2 <= N <= 1000, got 1001"},
+      {"prism:2", "prism:N needs 3 <= N <= 100000, got 2"},
+      {"prism", "prism:N takes 1 parameter"},
       {"box:1:2", "box:X:Y:Z takes 3 parameters"},
       {"box:1:0:3", "box:X:Y:Z needs Y > 0, got 0"},
       {"box:1:-2:3", "box:X:Y:Z needs Y > 0"},
@@ -614,7 +659,7 @@ TEST(CatalogSpec, EntriesDescribeEveryNameAndTransform) {
   };
   for (const cd::FixedSolid& s : cd::fixed_solids()) EXPECT_TRUE(has(s.name)) << s.name;
   for (const char* s : {"sphere:L", "dioctagonal:N", "random:N:SEED", "zonotope:N:SEED", "zonotope:X,Y,Z",
-                        "box:X:Y:Z", "@rot:SEED", "@rot:A,B,C,D", "@scale:S", "@translate:X,Y,Z", "@neg"})
+                        "box:X:Y:Z", "ball:N", "prism:N", "@rot:SEED", "@rot:A,B,C,D", "@scale:S", "@translate:X,Y,Z", "@neg"})
     EXPECT_TRUE(has(s)) << s;
   for (const auto& e : entries) EXPECT_EQ(e.description.find('\n'), std::string::npos) << e.syntax;
 }

@@ -30,6 +30,9 @@ const Form kFamilies[] = {
      "sum of N (3..256) random integer segments in general position: N(N-1)+2 vertices, N(N-1) facets"},
     {"zonotope", "zonotope:X,Y,Z:...", "sum of the segments [-g,g] for 1..16 explicit generators g=(X,Y,Z)"},
     {"box", "box:X:Y:Z", "axis-aligned box centred at the origin with side lengths X, Y, Z > 0"},
+    {"ball", "ball:N",
+     "latitude/longitude ball (2..1000): N bands, 2N meridians, 2N(N-1)+2 vertices on the unit sphere"},
+    {"prism", "prism:N", "prism over the regular N-gon (3..100000) of circumradius 1, z in [-1, 1]: a cylinder"},
 };
 
 // Lower-dimensional sets (docs/sweeps.md): operands of sweeps, not solids.
@@ -224,6 +227,16 @@ ConvexPolytope build_base(const std::string& spec, const std::string& base) {
       gens.emplace_back(number(spec, form, "X", c[0]), number(spec, form, "Y", c[1]), number(spec, form, "Z", c[2]));
     }
     return make_zonotope(gens, spec);
+  }
+  if (name == "ball") {
+    const std::string form = "ball:N";
+    arity(spec, form, params, 1);
+    return make_ball(bounded(spec, form, "N", params[0], 2, kBallMax), spec);
+  }
+  if (name == "prism") {
+    const std::string form = "prism:N";
+    arity(spec, form, params, 1);
+    return make_prism(bounded(spec, form, "N", params[0], 3, kDioctagonalMax), spec);
   }
   if (name == "box") {
     const std::string form = "box:X:Y:Z";

@@ -1,5 +1,5 @@
 // Parameterised catalog families: sphere:L, dioctagonal:N, random:N:SEED,
-// zonotope:N:SEED (and explicit generators), box:X:Y:Z.
+// zonotope:N:SEED (and explicit generators), box:X:Y:Z, ball:N, prism:N.
 //
 // Floating point here is limited to + - * / and sqrt, one operation per
 // statement where a sum meets a product, so the results are bit-identical on
@@ -246,6 +246,70 @@ ConvexPolytope make_dioctagonal(std::uint64_t facets, const std::string& source)
   mesh.faces.push_back(std::move(base));
   for (std::uint64_t k = 0; k < m; ++k)
     mesh.faces.push_back({static_cast<Index>(k), static_cast<Index>((k + 1) % m), apex});
+  return ConvexPolytope::from_mesh(mesh, source);
+}
+
+// ---------------------------------------------------------------------------
+// ball:N and prism:N: rings of the regular polygon unit_circle_point(k, m),
+// each scaled exactly by its radius.  Two rings of the same polygon bound
+// quadrilaterals whose top and bottom edges are exactly parallel (both are
+// multiples of the same vector), so every side facet is exactly planar.
+
+namespace {
+
+// The ring of `m` points r·unit_circle_point(k, m) at height z (exact products).
+void add_ring(Mesh& mesh, std::uint64_t m, const Rational& r, const Rational& z) {
+  for (std::uint64_t k = 0; k < m; ++k) {
+    const auto p = unit_circle_point(k, m);
+    mesh.points.emplace_back(Rational(p[0]) * r, Rational(p[1]) * r, z);
+  }
+}
+
+// The quadrilaterals between the ring starting at `lo` and the ring above it
+// starting at `hi` (m points each), counter-clockwise seen from outside.
+void add_band(Mesh& mesh, std::uint64_t m, Index lo, Index hi) {
+  for (std::uint64_t k = 0; k < m; ++k) {
+    const Index j = static_cast<Index>((k + 1) % m), i = static_cast<Index>(k);
+    mesh.faces.push_back({lo + i, lo + j, hi + j, hi + i});
+  }
+}
+
+}  // namespace
+
+ConvexPolytope make_ball(std::uint64_t bands, const std::string& source) {
+  // Latitude j·π/N from the south pole: the point (sin, −cos) of the meridian,
+  // i.e. unit_circle_point(j, 2N) = (cos, sin) read as (−z, radius).
+  const std::uint64_t m = 2 * bands;  // meridians
+  Mesh mesh;
+  mesh.points.emplace_back(Rational(0), Rational(0), Rational(-1));  // south pole: 0
+  for (std::uint64_t j = 1; j < bands; ++j) {
+    const auto q = unit_circle_point(j, m);
+    add_ring(mesh, m, Rational(q[1]), Rational(-q[0]));  // ring j: 1 + (j − 1)·m ...
+  }
+  const Index north = static_cast<Index>(mesh.points.size());
+  mesh.points.emplace_back(Rational(0), Rational(0), Rational(1));
+  const auto ring = [&](std::uint64_t j) { return static_cast<Index>(1 + (j - 1) * m); };
+  for (std::uint64_t k = 0; k < m; ++k) {
+    const Index i = static_cast<Index>(k), n = static_cast<Index>((k + 1) % m);
+    mesh.faces.push_back({0, ring(1) + n, ring(1) + i});
+    mesh.faces.push_back({ring(bands - 1) + i, ring(bands - 1) + n, north});
+  }
+  for (std::uint64_t j = 1; j + 1 < bands; ++j) add_band(mesh, m, ring(j), ring(j + 1));
+  return ConvexPolytope::from_mesh(mesh, source);
+}
+
+ConvexPolytope make_prism(std::uint64_t sides, const std::string& source) {
+  Mesh mesh;
+  add_ring(mesh, sides, Rational(1), Rational(-1));
+  add_ring(mesh, sides, Rational(1), Rational(1));
+  add_band(mesh, sides, 0, static_cast<Index>(sides));
+  std::vector<Index> bottom, top;
+  for (std::uint64_t k = 0; k < sides; ++k) {
+    bottom.push_back(static_cast<Index>(sides - 1 - k));  // seen from below
+    top.push_back(static_cast<Index>(sides + k));
+  }
+  mesh.faces.push_back(std::move(bottom));
+  mesh.faces.push_back(std::move(top));
   return ConvexPolytope::from_mesh(mesh, source);
 }
 

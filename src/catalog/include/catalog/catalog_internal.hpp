@@ -94,6 +94,12 @@ Mesh sphere_mesh(int level);
 ConvexPolytope make_sphere(int level, const std::string& source);
 ConvexPolytope make_box(const Rational& x, const Rational& y, const Rational& z, const std::string& source);
 ConvexPolytope make_dioctagonal(std::uint64_t facets, const std::string& source);
+// The latitude/longitude ball of N bands and 2N meridians: poles (0, 0, ±1),
+// rings at the latitudes jπ/N − π/2 (0 < j < N), V = 2N(N − 1) + 2.
+inline constexpr std::uint64_t kBallMax = 1000;
+ConvexPolytope make_ball(std::uint64_t bands, const std::string& source);
+// The prism over the regular N-gon of unit circumradius, z in [−1, 1].
+ConvexPolytope make_prism(std::uint64_t sides, const std::string& source);
 std::vector<Point3> random_sphere_points(std::uint64_t n, std::uint64_t seed);
 ConvexPolytope make_random(std::uint64_t n, std::uint64_t seed, const std::string& source);
 // Generators of zonotope:N:SEED: N integer vectors, no two parallel and no

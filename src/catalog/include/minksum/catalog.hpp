@@ -11,6 +11,8 @@
 //             | zonotope:N:SEED    N random generators in general position, 3 <= N <= 256
 //             | zonotope:X,Y,Z:... 1..16 explicit generators
 //             | box:X:Y:Z          axis-aligned box with sides X, Y, Z > 0
+//             | ball:N             latitude/longitude ball, N bands, 2N meridians, 2 <= N <= 1000
+//             | prism:N            prism over the regular N-gon (a cylinder), 3 <= N <= 100000
 //             | tube | tube:H | lshape | ring:N | star:N | gear:N
 //                                  non-convex solids (catalog_mesh only)
 //             | point:X,Y,Z        lower-dimensional sets (docs/sweeps.md):

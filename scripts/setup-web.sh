@@ -3,9 +3,10 @@
 # bundle them, playwright-core for the browser tests), exactly as pinned in
 # web/package-lock.json, with 'npm ci'.  Does nothing when web/node_modules
 # already matches the lock file.  Needs node and npm (Debian's nodejs and npm);
-# as root it installs npm when it is missing.
+# as root it installs npm when it is missing.  With a directory argument, the
+# same for the npm packages of that directory (bench/nonconvex: Manifold).
 set -euo pipefail
-web=$(cd "$(dirname "$0")/../web" && pwd)
+web=$(cd "${1:-$(dirname "$0")/../web}" && pwd)
 stamp="$web/node_modules/.minksum-lock"
 if [ -f "$stamp" ] && cmp -s "$stamp" "$web/package-lock.json"; then
   exit 0

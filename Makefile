@@ -126,13 +126,17 @@ bench:
 E2E = /usr/bin/python3 bench/e2e.py --minksum $(BENCH_BUILD)/bin/minksum --work $(BENCH_BUILD)/e2e \
       --page docs/generated/benchmarks.md
 
-# Sums of non-convex solids against CGAL's minkowski_sum_3 (docs/nonconvex.md).
+# Sums of non-convex solids: minksum, CGAL's minkowski_sum_3 (stopped after
+# 120 s) and Manifold's minkowskiSum (npm manifold-3d under Node) in one run;
+# rewrites docs/generated/benchmarks-nonconvex.md (docs/nonconvex.md, "Speed").
 .PHONY: bench-nonconvex
 bench-nonconvex:
 	@$(MAKE) --no-print-directory setup
+	bash scripts/setup-web.sh bench/nonconvex
 	$(BENCH_CONFIGURE)
-	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target bench_nonconvex
-	$(BENCH_BUILD)/bin/bench_nonconvex
+	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target bench_nonconvex minksum_cli
+	/usr/bin/python3 bench/nonconvex/run.py --build $(BENCH_BUILD) --page docs/generated/benchmarks-nonconvex.md \
+	  --command "make bench-nonconvex"
 
 bench-e2e:
 	@$(MAKE) --no-print-directory setup

@@ -1,13 +1,25 @@
 // bench_nonconvex: A ⊕ B for non-convex A, minksum (minkowski_sum_nonconvex)
 // and CGAL's Nef minkowski_sum_3 on the same exact inputs, one after the
 // other in this process; prints a Markdown table (docs/nonconvex.md).
-// Usage: bench_nonconvex [A:B ...]   (catalog specs; default: the table's rows)
+//
+// Usage: bench_nonconvex [--json] [--side both|minksum|cgal] [--reps R] [A:B ...]
+//   A:B      catalog specs (default: the table's rows)
+//   --json   one JSON object per row and line instead of the table, with the
+//            exact volume and the boundary's counts (bench/nonconvex/run.py
+//            reads it)
+//   --side   time only minksum or only CGAL (run.py runs CGAL in a process of
+//            its own, under a time limit)
+//   --reps   minksum's sum R times, the median reported (default 1); CGAL
+//            runs once
 #include <minksum/catalog.hpp>
+#include <minksum/error.hpp>
 #include <minksum/nonconvex.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <thread>
 #include <vector>
@@ -20,41 +32,147 @@ using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// "A:B" where A is a catalog name without ':' parameters or with some; split
+// at the first ':' that starts a catalog name.
+bool split_row(const std::string& row, std::string& a, std::string& b) {
+  for (std::size_t at = row.find(':'); at != std::string::npos; at = row.find(':', at + 1))
+    if (is_catalog_spec(row.substr(at + 1)) && !std::isdigit(static_cast<unsigned char>(row[at + 1]))) {
+      a = row.substr(0, at);
+      b = row.substr(at + 1);
+      return true;
+    }
+  return false;
+}
+
+// The minksum side of one row: R sums, the one of median time.
+struct Ours {
+  NonconvexSum sum;
+  double seconds = 0;
+  std::vector<double> runs;
+};
+
+Ours run_minksum(const Solid& sa, const Solid& sb, int reps) {
+  std::vector<std::pair<double, NonconvexSum>> all;
+  for (int r = 0; r < reps; ++r) {
+    const auto t = Clock::now();
+    NonconvexSum s = minkowski_sum_nonconvex(sa, sb);
+    all.emplace_back(since(t), std::move(s));
+  }
+  Ours o;
+  for (const auto& [s, _] : all) o.runs.push_back(s);
+  std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  o.seconds = all[all.size() / 2].first;
+  o.sum = std::move(all[all.size() / 2].second);
+  return o;
+}
+
+void json_string(const std::string& s) {
+  std::putchar('"');
+  for (char c : s) {
+    if (c == '"' || c == '\\') std::putchar('\\');
+    std::putchar(c);
+  }
+  std::putchar('"');
+}
+
+[[noreturn]] void usage(const std::string& problem) {
+  std::fprintf(stderr,
+               "bench_nonconvex: %s\nusage: bench_nonconvex [--json] [--side both|minksum|cgal] [--reps R] [A:B ...]\n",
+               problem.c_str());
+  std::exit(2);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> rows;
-  for (int i = 1; i < argc; ++i) rows.push_back(argv[i]);
+  bool json = false, ours = true, theirs = true;
+  int reps = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--json") {
+      json = true;
+    } else if (arg == "--side") {
+      const std::string side = i + 1 < argc ? argv[++i] : "";
+      if (side != "both" && side != "minksum" && side != "cgal") usage("--side needs both, minksum or cgal");
+      ours = side != "cgal";
+      theirs = side != "minksum";
+    } else if (arg == "--reps") {
+      const std::string r = i + 1 < argc ? argv[++i] : "";
+      reps = r.size() >= 1 && r.size() <= 3 && std::all_of(r.begin(), r.end(), ::isdigit) ? std::stoi(r) : 0;
+      if (reps < 1) usage("--reps needs an integer 1..999, got '" + r + "'");
+    } else if (arg.rfind("--", 0) == 0) {
+      usage("unknown option '" + arg + "'");
+    } else {
+      rows.push_back(arg);
+    }
+  }
   if (rows.empty())
     rows = {"tube:sphere:1@scale:1/4", "tube:sphere:2@scale:1/4", "tube:sphere:3@scale:1/4",
             "lshape:sphere:2@scale:1/4", "gear:8:cube@scale:1/16@rot:3", "tube:lshape@scale:1/4@rot:7"};
-  std::printf("| A ⊕ B | V(B) | pieces | pairs | minksum s (decompose / pairs / union / boundary) | CGAL minkowski_sum_3 s | "
-              "ratio | same volume |\n|---|---|---|---|---|---|---|---|\n");
+  if (!json)
+    std::printf("| A ⊕ B | V(B) | pieces | pairs | minksum s (decompose / pairs / union / boundary) | CGAL minkowski_sum_3 s | "
+                "ratio | same volume |\n|---|---|---|---|---|---|---|---|\n");
   for (const std::string& row : rows) {
-    // "A:B" where A is a catalog name without ':' parameters or with one; split at the
-    // first ':' that starts a catalog name.
-    std::size_t cut = std::string::npos;
-    for (std::size_t at = row.find(':'); at != std::string::npos; at = row.find(':', at + 1))
-      if (is_catalog_spec(row.substr(at + 1)) && !std::isdigit(static_cast<unsigned char>(row[at + 1]))) {
-        cut = at;
-        break;
-      }
-    if (cut == std::string::npos) {
-      std::fprintf(stderr, "bench_nonconvex: '%s' is not A:B\n", row.c_str());
-      return 2;
+    std::string a, b;
+    if (!split_row(row, a, b)) usage("'" + row + "' is not A:B");
+    Solid sa, sb;
+    try {
+      sa = validate_solid(catalog_mesh(a), a);
+      sb = validate_solid(catalog_mesh(b), b);
+    } catch (const UsageError& e) {
+      usage(e.what());
     }
-    const std::string a = row.substr(0, cut), b = row.substr(cut + 1);
-    const Solid sa = validate_solid(catalog_mesh(a), a), sb = validate_solid(catalog_mesh(b), b);
-    auto t = Clock::now();
-    const NonconvexSum r = minkowski_sum_nonconvex(sa, sb);
-    const double ours = since(t);
+    Ours o;
+    if (ours) o = run_minksum(sa, sb, reps);
+    const NonconvexSum& r = o.sum;
     double cgal = 0;
-    const Mesh m = reference_minkowski_sum(sa, sb, &cgal);
-    std::printf("| %s ⊕ %s | %zu | %zu + %zu | %zu | %.3f (%.3f / %.3f / %.3f / %.3f) | %.3f | %.1f× | %s |\n", a.c_str(),
-                b.c_str(), sb.vertices, r.pieces_a, r.pieces_b, r.pairs, ours, r.seconds_decompose, r.seconds_pairs,
-                r.seconds_union, r.seconds_boundary, cgal, cgal / ours, mesh_volume(m) == r.volume ? "yes" : "NO");
-    std::fflush(stdout);
+    Mesh m;
+    if (theirs) m = reference_minkowski_sum(sa, sb, &cgal);
+    if (json) {
+      std::printf("{\"a\": ");
+      json_string(a);
+      std::printf(", \"b\": ");
+      json_string(b);
+      std::printf(", \"vertices_a\": %zu, \"vertices_b\": %zu, \"threads\": %u", sa.vertices, sb.vertices,
+                  std::thread::hardware_concurrency());
+      if (ours) {
+        std::printf(", \"minksum\": {\"seconds\": %.6f, \"runs\": [", o.seconds);
+        for (std::size_t k = 0; k < o.runs.size(); ++k) std::printf("%s%.6f", k ? ", " : "", o.runs[k]);
+        std::printf("], \"decompose\": %.6f, \"pairs_s\": %.6f, \"union\": %.6f, \"boundary\": %.6f, \"pieces_a\": %zu, "
+                    "\"pieces_b\": %zu, \"pairs\": %zu, \"volume\": ",
+                    r.seconds_decompose, r.seconds_pairs, r.seconds_union, r.seconds_boundary, r.pieces_a, r.pieces_b,
+                    r.pairs);
+        json_string(format_exact(r.volume));
+        std::printf(", \"volume_double\": %.17g, \"vertices\": %zu, \"faces\": %zu}", to_double(r.volume),
+                    r.mesh.points.size(), r.mesh.faces.size());
+      }
+      if (theirs) {
+        std::printf(", \"cgal\": {\"seconds\": %.6f, \"volume\": ", cgal);
+        json_string(format_exact(mesh_volume(m)));
+        std::printf(", \"vertices\": %zu, \"faces\": %zu}", m.points.size(), m.faces.size());
+      }
+      std::printf("}\n");
+    } else if (ours && theirs) {
+      std::printf("| %s ⊕ %s | %zu | %zu + %zu | %zu | %.3f (%.3f / %.3f / %.3f / %.3f) | %.3f | %.1f× | %s |\n",
+                  a.c_str(), b.c_str(), sb.vertices, r.pieces_a, r.pieces_b, r.pairs, o.seconds, r.seconds_decompose,
+                  r.seconds_pairs, r.seconds_union, r.seconds_boundary, cgal, cgal / o.seconds,
+                  mesh_volume(m) == r.volume ? "yes" : "NO");
+    } else {
+      std::printf("| %s ⊕ %s | %zu | %s | %s | %s | %s | | |\n", a.c_str(), b.c_str(), sb.vertices,
+                  ours ? (std::to_string(r.pieces_a) + " + " + std::to_string(r.pieces_b)).c_str() : "",
+                  ours ? std::to_string(r.pairs).c_str() : "", ours ? std::to_string(o.seconds).c_str() : "",
+                  theirs ? std::to_string(cgal).c_str() : "");
+    }
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+      std::fprintf(stderr, "bench_nonconvex: cannot write standard output\n");
+      return 1;
+    }
   }
-  std::printf("\n%u hardware threads.\n", std::thread::hardware_concurrency());
+  if (!json) std::printf("\n%u hardware threads.\n", std::thread::hardware_concurrency());
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::fprintf(stderr, "bench_nonconvex: cannot write standard output\n");
+    return 1;
+  }
   return 0;
 }

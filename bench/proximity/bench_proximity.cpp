@@ -183,6 +183,17 @@ __attribute__((noinline)) void count_ours_distance(TranslationalObstacle& ob, co
 __attribute__((noinline)) void count_ours_depth(TranslationalObstacle& ob, const Point3& s, int n) {
   for (int i = 0; i < n; ++i) ob.penetration_depth_point(s);
 }
+// The queries with their exact values (as the table's "+ exact" columns).
+__attribute__((noinline)) void count_ours_distance_exact(TranslationalObstacle& ob, const Point3& s, int n) {
+  for (int i = 0; i < n; ++i) {
+    const DistanceResult d = ob.distance_point(s);
+    d.squared_distance();
+    d.point_p();
+  }
+}
+__attribute__((noinline)) void count_ours_depth_exact(TranslationalObstacle& ob, const Point3& s, int n) {
+  for (int i = 0; i < n; ++i) ob.penetration_depth_point(s).squared_depth();
+}
 __attribute__((noinline)) int count_ccd_epa(Body& p, Body& q, ccd_t& c, int n) {
   int ret = 0;
   ccd_real_t depth;
@@ -254,6 +265,8 @@ int count_main(int argc, char** argv) {
   count_ours_distance(ob, s, n);
   count_ours_depth(ob, s, n);
   count_ours_collide(ob, s, n);
+  count_ours_distance_exact(ob, s, n);
+  count_ours_depth_exact(ob, s, n);
   const double fd = count_fcl_distance(fc, n);
   Body bp = body(p), bq = body(q);
   ccdVec3Set(&bq.t, sd.x, sd.y, sd.z);

@@ -111,6 +111,7 @@ void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q) {
   g->p_center = average(g->p.points());
   g->q_center = average(g->q.points());
   g->center = g->p_center - g->q_center;
+  g->prepare_exact();
   center_approx_ = to_double(g->center);
   facet_features_.assign(nf, {});
   facet_features_known_.assign(nf, 0);
@@ -605,8 +606,7 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
   if (r.geo_ != g_) r.geo_ = g_;
   keep_point(s, sd, r.sd_, r.s_exact_);
   if (r.exact_.use_count() == 1) {  // a result of an earlier batch: keep its storage
-    r.exact_->have_distance = r.exact_->have_points = false;
-    r.exact_->translated = false;
+    r.exact_->reset();
   } else {
     r.exact_.reset();
   }

@@ -66,10 +66,17 @@ struct CollisionResult {
   Witness witness;
 };
 
+class DistanceResult;
+class DepthResult;
 namespace detail {
 struct ObstacleGeometry;  // M, P, Q and their exact data, shared by an obstacle and its answers
 struct DistanceExact;     // a distance answer's exact values, allocated on first use
 struct DepthExact;        // a depth answer's
+struct ReferenceDistance;
+struct ReferenceDepth;
+// The exact values by rational arithmetic on every step (for tests).
+ReferenceDistance reference_values(const DistanceResult& r);
+ReferenceDepth reference_values(const DepthResult& r);
 }
 
 // A separation-distance answer.  The query decides `status` and `witness`
@@ -104,9 +111,12 @@ class DistanceResult {
 
  private:
   friend class TranslationalObstacle;
+  friend detail::ReferenceDistance detail::reference_values(const DistanceResult&);
   detail::DistanceExact& exact() const;
-  void compute_distance() const;
-  void compute_points() const;
+  // The offset s − x and |s − x|² (the squared distance's work), then the
+  // point of P (the split's).
+  detail::DistanceExact& compute_offset() const;
+  detail::DistanceExact& compute_p() const;
   Point3 point() const;  // s
   std::shared_ptr<const detail::ObstacleGeometry> geo_;
   // s = w − u: its doubles when it is exactly a double (no rational kept),
@@ -139,6 +149,7 @@ class DepthResult {
 
  private:
   friend class TranslationalObstacle;
+  friend detail::ReferenceDepth detail::reference_values(const DepthResult&);
   detail::DepthExact& exact() const;
   Point3 point() const;  // s
   std::shared_ptr<const detail::ObstacleGeometry> geo_;  // none unless penetrating

@@ -54,27 +54,38 @@ void set_ratio(Rational& r, const Integer& num, const Integer& den) {
   r.canonicalize();
 }
 
-// a ± b.
+// a ± b (products accumulated in place: no temporaries).
 HomPoint combine(const HomPoint& a, const HomPoint& b, bool subtract) {
   HomPoint r;
-  if (a.w == b.w) {
-    if (subtract) r.x = a.x - b.x, r.y = a.y - b.y, r.z = a.z - b.z;
-    else r.x = a.x + b.x, r.y = a.y + b.y, r.z = a.z + b.z;
-    r.w = a.w;
-    return r;
+  const Integer* ac[3] = {&a.x, &a.y, &a.z};
+  const Integer* bc[3] = {&b.x, &b.y, &b.z};
+  Integer* rc[3] = {&r.x, &r.y, &r.z};
+  const bool same = a.w == b.w;
+  for (int i = 0; i < 3; ++i) {
+    mpz_ptr o = rc[i]->get_mpz_t();
+    if (same) {
+      if (subtract) mpz_sub(o, ac[i]->get_mpz_t(), bc[i]->get_mpz_t());
+      else mpz_add(o, ac[i]->get_mpz_t(), bc[i]->get_mpz_t());
+      continue;
+    }
+    mpz_mul(o, ac[i]->get_mpz_t(), b.w.get_mpz_t());
+    if (subtract) mpz_submul(o, bc[i]->get_mpz_t(), a.w.get_mpz_t());
+    else mpz_addmul(o, bc[i]->get_mpz_t(), a.w.get_mpz_t());
   }
-  if (subtract) {
-    r.x = a.x * b.w - b.x * a.w, r.y = a.y * b.w - b.y * a.w, r.z = a.z * b.w - b.z * a.w;
-  } else {
-    r.x = a.x * b.w + b.x * a.w, r.y = a.y * b.w + b.y * a.w, r.z = a.z * b.w + b.z * a.w;
-  }
-  r.w = a.w * b.w;
+  if (same) r.w = a.w;
+  else mpz_mul(r.w.get_mpz_t(), a.w.get_mpz_t(), b.w.get_mpz_t());
   return r;
 }
 HomPoint operator+(const HomPoint& a, const HomPoint& b) { return combine(a, b, false); }
 HomPoint operator-(const HomPoint& a, const HomPoint& b) { return combine(a, b, true); }
 // The dot product of the numerators.
-Integer dot_num(const HomPoint& a, const HomPoint& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Integer dot_num(const HomPoint& a, const HomPoint& b) {
+  Integer r;
+  mpz_mul(r.get_mpz_t(), a.x.get_mpz_t(), b.x.get_mpz_t());
+  mpz_addmul(r.get_mpz_t(), a.y.get_mpz_t(), b.y.get_mpz_t());
+  mpz_addmul(r.get_mpz_t(), a.z.get_mpz_t(), b.z.get_mpz_t());
+  return r;
+}
 // a's numerators times k, its denominator times l (k, l > 0 for l).
 HomPoint scaled(const HomPoint& a, const Integer& k, const Integer& l) {
   return HomPoint{a.x * k, a.y * k, a.z * k, a.w * l};
@@ -229,8 +240,12 @@ HomPoint decompose_p(const ObstacleGeometry& g, const Feature& feat, const HomPo
 
 // The point p of P with x = p − q, q in Q, for x in the face w.m of M (as
 // split): a translate of x when Q's face is a vertex, P's vertex when P's
-// is, Cramer's rule on two skew edges, else decompose_p.
-HomPoint split_p(const ObstacleGeometry& g, const Witness& w, const HomPoint& x) {
+// is, Cramer's rule on two skew edges, else decompose_p.  Cramer's rule and
+// decompose_p read x only through ⟨x, e⟩ and ⟨x × e, n⟩ for vectors e
+// parallel to w.m and n normal to it, so they are given y instead, any point
+// with y − x orthogonal to w.m: for a closest point x of M, s itself (s − x
+// lies in w.m's normal cone), whose denominator is far smaller than x's.
+HomPoint split_p(const ObstacleGeometry& g, const Witness& w, const HomPoint& x, const HomPoint& y) {
   if (w.q.dim == FeatureDim::vertex) return x + g.q_hom[w.q.index];
   if (w.p.dim == FeatureDim::vertex) return g.p_hom[w.p.index];
   if (w.p.dim == FeatureDim::edge && w.q.dim == FeatureDim::edge) {
@@ -243,7 +258,7 @@ HomPoint split_p(const ObstacleGeometry& g, const Witness& w, const HomPoint& x)
     if (sgn(det) != 0) {
       // α = (⟨u,v⟩⟨w,v⟩ − ⟨v,v⟩⟨w,u⟩) / det on the numerators of u, v and
       // w = x − p0 + q0, over w's denominator: p = p0 + α·u.
-      const HomPoint wv = (x + q0) - p0;
+      const HomPoint wv = (y + q0) - p0;
       Integer num = uv * dot_num(wv, v) - vv * dot_num(wv, u);
       Integer den = wv.w * det;
       if (sgn(den) < 0) num = -num, den = -den;
@@ -252,7 +267,7 @@ HomPoint split_p(const ObstacleGeometry& g, const Witness& w, const HomPoint& x)
                       p0.w * den};
     }
   }
-  return decompose_p(g, w.m, x);
+  return decompose_p(g, w.m, y);
 }
 
 // The common point p = q + s of P and Q + s for s in M (common_point on
@@ -262,7 +277,7 @@ HomPoint split_p(const ObstacleGeometry& g, const Witness& w, const HomPoint& x)
 // s = (1 − λ)·c + λ·y with λ = w_c·b / (a·w_dir), so
 // p = ((a·w_dir − w_c·b)·p_c + w_c·b·p_y) / (a·w_dir).
 HomPoint common_p(const ObstacleGeometry& g, const Witness& w, ContactStatus status, const HomPoint& s) {
-  if (status == ContactStatus::touching) return split_p(g, w, s);
+  if (status == ContactStatus::touching) return split_p(g, w, s, s);
   const HomPoint& c = g.center_hom;
   const HomPoint dir = s - c;
   const Plane& n = g.m().plane(w.facet);
@@ -270,7 +285,7 @@ HomPoint common_p(const ObstacleGeometry& g, const Witness& w, ContactStatus sta
   if (sgn(b) <= 0) return g.p_center_hom;  // s == c
   const Integer a = n.d * c.w - (n.a * c.x + n.b * c.y + n.c * c.z);
   const HomPoint y{c.x * b + a * dir.x, c.y * b + a * dir.y, c.z * b + a * dir.z, c.w * b};
-  const HomPoint py = split_p(g, w, y);
+  const HomPoint py = split_p(g, w, y, y);
   const Integer total = a * dir.w, cb = c.w * b;
   return scaled(g.p_center_hom, total - cb, total) + scaled(py, cb, total);
 }
@@ -393,6 +408,11 @@ detail::HomPoint hom_of(const std::shared_ptr<Point3>& exact, const Vec3d& d) {
 }
 }  // namespace
 
+const detail::HomPoint& DistanceResult::s_hom(detail::DistanceExact& e) const {
+  if (!e.have_s) e.s = hom_of(s_exact_, sd_), e.have_s = true;
+  return e.s;
+}
+
 detail::DistanceExact& DistanceResult::exact() const {
   if (!exact_) exact_ = std::make_shared<detail::DistanceExact>();
   return *exact_;
@@ -407,7 +427,7 @@ detail::DistanceExact& DistanceResult::compute_offset() const {
     e.distance = 0;
   } else {
     Integer num, den;
-    e.offset = detail::closest_offset(*geo_, witness.m, hom_of(s_exact_, sd_), num, den);
+    e.offset = detail::closest_offset(*geo_, witness.m, s_hom(e), num, den);
     detail::set_ratio(e.squared_distance, num, den);
     e.distance = std::sqrt(to_double(e.squared_distance));
   }
@@ -423,9 +443,10 @@ detail::DistanceExact& DistanceResult::compute_p() const {
   if (!geo_) {
     e.p = detail::HomPoint{0, 0, 0, 1};
   } else {
-    const detail::HomPoint s = hom_of(s_exact_, sd_);
-    e.p = status == ContactStatus::separate ? detail::split_p(*geo_, witness, detail::operator-(s, e.offset))
-                                            : detail::common_p(*geo_, witness, status, s);
+    const detail::HomPoint& s = s_hom(e);
+    if (status != ContactStatus::separate) e.p = detail::common_p(*geo_, witness, status, s);
+    else if (witness.q.dim == FeatureDim::vertex) e.p = detail::split_p(*geo_, witness, detail::operator-(s, e.offset), s);
+    else e.p = detail::split_p(*geo_, witness, s, s);  // x is not read
     if (e.translated) e.p = detail::operator+(e.p, detail::hom_point(e.u));
   }
   e.have_p = true;

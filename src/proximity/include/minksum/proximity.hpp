@@ -74,6 +74,7 @@ struct DistanceExact;     // a distance answer's exact values, allocated on firs
 struct DepthExact;        // a depth answer's
 struct ReferenceDistance;
 struct ReferenceDepth;
+struct HomPoint;
 // The exact values by rational arithmetic on every step (for tests).
 ReferenceDistance reference_values(const DistanceResult& r);
 ReferenceDepth reference_values(const DepthResult& r);
@@ -117,6 +118,7 @@ class DistanceResult {
   // point of P (the split's).
   detail::DistanceExact& compute_offset() const;
   detail::DistanceExact& compute_p() const;
+  const detail::HomPoint& s_hom(detail::DistanceExact& e) const;  // s over one denominator, kept
   Point3 point() const;  // s
   std::shared_ptr<const detail::ObstacleGeometry> geo_;
   // s = w − u: its doubles when it is exactly a double (no rational kept),

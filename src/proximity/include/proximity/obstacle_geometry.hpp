@@ -81,8 +81,9 @@ ReferenceDepth reference_values(const DepthResult& r);
 struct DistanceExact {
   Point3 u;  // the translation of P, added to the closest points when `translated`
   bool translated = false;
-  bool have_offset = false, have_p = false;                             // the HomPoints
+  bool have_s = false, have_offset = false, have_p = false;                 // the HomPoints
   bool have_direction = false, have_point_p = false, have_point_q = false;  // the Point3s
+  HomPoint s;       // s
   HomPoint offset;  // s − x (zero unless separate)
   HomPoint p;       // the closest point of P + u
   Rational squared_distance;
@@ -91,7 +92,7 @@ struct DistanceExact {
 
   // Forget the values (the storage is kept for the next answer).
   void reset() {
-    translated = have_offset = have_p = have_direction = have_point_p = have_point_q = false;
+    translated = have_s = have_offset = have_p = have_direction = have_point_p = have_point_q = false;
   }
 };
 

@@ -480,7 +480,8 @@ const Point3& DistanceResult::point_q() const {
 Point3 DepthResult::point() const { return s_exact_ ? *s_exact_ : Point3(sd_.x, sd_.y, sd_.z); }
 
 // For the witness facet's plane n·x = d and s = S / w: g = d·w − ⟨n, S⟩ > 0,
-// the squared depth g² / (w²·|n|²) and the translation −g·n / (w·|n|²).
+// the squared depth g² / (w²·|n|²) and the translation −g·n / (w·|n|²),
+// each reduced when first asked for.
 detail::DepthExact& DepthResult::exact() const {
   if (!exact_) exact_ = std::make_shared<detail::DepthExact>();
   detail::DepthExact& e = *exact_;
@@ -489,23 +490,37 @@ detail::DepthExact& DepthResult::exact() const {
   if (status != ContactStatus::penetrating || !geo_) {
     e.squared_depth = 0;
     e.depth = 0;
-    e.direction = zero_point();
+    e.gap = 0;
+    e.w = 1;
     return e;
   }
-  const Index f = witness.facet;
-  const Plane& pl = geo_->m().plane(f);
-  const detail::HomPoint s = hom_of(s_exact_, sd_);
-  const Integer gap = pl.d * s.w - (pl.a * s.x + pl.b * s.y + pl.c * s.z);
-  const Integer w = s.w * geo_->n2[f];
-  detail::set_ratio(e.squared_depth, Integer(gap * gap), Integer(w * s.w));
+  const Plane& pl = geo_->m().plane(witness.facet);
+  const detail::HomPoint s = s_exact_ ? detail::hom_point(*s_exact_) : detail::hom_point(sd_);
+  e.gap = pl.d * s.w;
+  mpz_submul(e.gap.get_mpz_t(), pl.a.get_mpz_t(), s.x.get_mpz_t());
+  mpz_submul(e.gap.get_mpz_t(), pl.b.get_mpz_t(), s.y.get_mpz_t());
+  mpz_submul(e.gap.get_mpz_t(), pl.c.get_mpz_t(), s.z.get_mpz_t());
+  e.w = s.w * geo_->n2[witness.facet];
+  detail::set_ratio(e.squared_depth, Integer(e.gap * e.gap), Integer(e.w * s.w));
   e.depth = std::sqrt(to_double(e.squared_depth));
-  e.direction = detail::to_point(detail::HomPoint{-gap * pl.a, -gap * pl.b, -gap * pl.c, w});
   return e;
 }
 
 const Rational& DepthResult::squared_depth() const { return exact().squared_depth; }
 double DepthResult::depth() const { return exact().depth; }
-const Point3& DepthResult::direction() const { return exact().direction; }
+const Point3& DepthResult::direction() const {
+  detail::DepthExact& e = exact();
+  if (!e.have_direction) {
+    if (sgn(e.gap) == 0) {
+      e.direction = zero_point();
+    } else {
+      const Plane& pl = geo_->m().plane(witness.facet);
+      e.direction = detail::to_point(detail::HomPoint{-e.gap * pl.a, -e.gap * pl.b, -e.gap * pl.c, e.w});
+    }
+    e.have_direction = true;
+  }
+  return e.direction;
+}
 
 // ---------------------------------------------------------------------------
 // The reference: rational arithmetic on every step.

@@ -679,7 +679,7 @@ void TranslationalObstacle::depth_into(const Point3& s, DepthResult& r) {
   CollisionResult c = collide_rounded(s, sd);
   r.status = c.status;
   r.witness = c.witness;
-  if (r.exact_.use_count() == 1) r.exact_->have = false;  // keep the storage of an earlier batch's result
+  if (r.exact_.use_count() == 1) r.exact_->have = r.exact_->have_direction = false;  // keep an earlier batch's storage
   else r.exact_.reset();
   if (c.status != ContactStatus::penetrating) {  // the exact values are zeros: neither M nor s is needed
     r.geo_.reset();

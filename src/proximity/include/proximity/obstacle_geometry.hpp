@@ -96,9 +96,12 @@ struct DistanceExact {
   }
 };
 
-// The exact values of a DepthResult, computed on first use.
+// The exact values of a DepthResult, computed on first use: the gap
+// g = d·w − ⟨n, S⟩ over w·|n|² (s = S / w), the squared depth, and the
+// translation when asked for.
 struct DepthExact {
-  bool have = false;
+  bool have = false, have_direction = false;
+  Integer gap, w;
   Rational squared_depth;
   double depth = 0;
   Point3 direction;

@@ -139,10 +139,27 @@ Point3 to_point(const HomPoint& a) {
 }
 
 void ObstacleGeometry::prepare_exact() {
+  // Every vertex of a polytope over one denominator, the lcm of theirs,
+  // when it is not much longer than the longest of them (a double polytope
+  // whose exponents differ widely keeps one per vertex): differences of
+  // vertices (edge vectors) are then differences of numerators.
   auto fill = [](const ConvexPolytope& poly, std::vector<HomPoint>& out) {
     out.resize(poly.num_vertices());
-    for (Index v = 0; v < poly.num_vertices(); ++v)
+    Integer lcm = 1;
+    std::size_t longest = 1;
+    for (Index v = 0; v < poly.num_vertices(); ++v) {
       out[v] = poly.coordinates().is_double(v) ? hom_point(poly.approx(v)) : hom_point(poly.point(v));
+      mpz_lcm(lcm.get_mpz_t(), lcm.get_mpz_t(), out[v].w.get_mpz_t());
+      longest = std::max(longest, mpz_sizeinbase(out[v].w.get_mpz_t(), 2));
+    }
+    if (mpz_sizeinbase(lcm.get_mpz_t(), 2) > longest + 64) return;
+    Integer k;
+    for (HomPoint& h : out) {
+      if (h.w == lcm) continue;
+      mpz_divexact(k.get_mpz_t(), lcm.get_mpz_t(), h.w.get_mpz_t());
+      h.x *= k, h.y *= k, h.z *= k;
+      h.w = lcm;
+    }
   };
   fill(p, p_hom);
   fill(q, q_hom);

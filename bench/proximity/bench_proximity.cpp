@@ -13,7 +13,9 @@
 //            valgrind --tool=callgrind bench_proximity --count cube cube@rot:3 1.5 20
 //            then callgrind_annotate --inclusive=yes: count_ours_distance,
 //            count_ours_depth, count_ours_collide, count_fcl_distance, count_ccd_epa,
-//            count_ccd_gjk (divide by N).
+//            count_ccd_gjk, and count_ours_distance_exact / count_ours_depth_exact
+//            (the queries with their exact values: squared distance and closest
+//            point of P; squared depth) (divide by N).
 //        bench_proximity --count-trajectory P Q N   the coherent trajectory of N
 //            steps: count_ours_trajectory (distance_points), count_fcl_trajectory.
 #include <ccd/ccd.h>

@@ -335,7 +335,8 @@ int main(int argc, char** argv) {
               "Distance: a walk on M whose every move and final Voronoi-region certificate are filtered exact\n"
               "predicates on doubles; the answer holds the certified feature, and its exact squared distance\n"
               "and closest points (rationals) are computed on first use: 'ours distance' is the query,\n"
-              "'+ exact' the query and those rationals.  Depth: a scan of M's unit facet planes with a derived\n"
+              "'+ exact' the query, its squared distance and the closest point of P (integers over common\n"
+              "denominators, one gcd per returned rational).  Depth: a scan of M's unit facet planes with a derived\n"
               "error bound, exact comparisons among the planes it cannot rule out (the squared depth, a\n"
               "rational, on first use as well).\n",
               steps, reps, reps);

@@ -523,9 +523,14 @@ detail::DepthExact& DepthResult::exact() const {
   return e;
 }
 
-const Rational& DepthResult::squared_depth() const { return exact().squared_depth; }
-double DepthResult::depth() const { return exact().depth; }
+// Unless penetrating the values are zeros: no storage is made for them.
+const Rational& DepthResult::squared_depth() const {
+  static const Rational zero(0);
+  return status == ContactStatus::penetrating && geo_ ? exact().squared_depth : zero;
+}
+double DepthResult::depth() const { return status == ContactStatus::penetrating && geo_ ? exact().depth : 0; }
 const Point3& DepthResult::direction() const {
+  if (status != ContactStatus::penetrating || !geo_) return zero_point();
   detail::DepthExact& e = exact();
   if (!e.have_direction) {
     if (sgn(e.gap) == 0) {

@@ -34,7 +34,8 @@ struct ObstacleGeometry {
   std::vector<Rational> norm2;    // a² + b² + c²
   Point3 center, p_center, q_center;  // center = p_center − q_center (the vertex averages)
   // The same data over common denominators, for the exact values: P's and
-  // Q's vertices, the three centres, |n|² of each facet normal.
+  // Q's vertices (one denominator per polytope where it stays short), the
+  // interior point and its point of P, |n|² of each facet's integer normal.
   std::vector<HomPoint> p_hom, q_hom;
   HomPoint center_hom, p_center_hom;
   std::vector<Integer> n2;

@@ -98,6 +98,7 @@ Integer cross_dot(const HomPoint& a, const HomPoint& b, const Plane& n) {
 }  // namespace
 
 HomPoint hom_point(const Vec3d& a) {
+  static_assert(sizeof(long) >= sizeof(std::int64_t), "mpz_set_si takes the 53-bit mantissas as long");
   std::int64_t m[3];
   int e[3];
   split_double(a.x, m[0], e[0]);

@@ -23,6 +23,7 @@
 #include <regex>
 #include <string>
 
+#include "proximity/obstacle_geometry.hpp"  // detail::reference_values
 #include "test_support.hpp"
 
 using namespace minksum;
@@ -422,6 +423,79 @@ TEST(Proximity, FilteredDistanceWalkMatchesBruteForceOnRandomPoses) {
       ps[PredicateId::dot_sign].fallbacks + ps[PredicateId::edge_normal_side].fallbacks;
   EXPECT_GT(calls, std::uint64_t(separate));
   EXPECT_EQ(fallbacks, 0u) << "of " << calls << " filtered Voronoi tests";
+}
+
+// The exact values of an answer (integers over common denominators, one
+// reduction per output) equal the reference computed with a reduced rational
+// at every step (detail::reference_values), for distance answers (also
+// translated by u) and depth answers.
+void expect_values_match_reference(TranslationalObstacle& ob, const Point3& s, const Point3& u) {
+  const DistanceResult d = ob.distance_point(s);
+  const detail::ReferenceDistance ref = detail::reference_values(d);
+  EXPECT_EQ(d.squared_distance(), ref.squared_distance);
+  EXPECT_EQ(d.direction(), ref.direction);
+  EXPECT_EQ(d.point_p(), ref.point_p);
+  EXPECT_EQ(d.point_q(), ref.point_q);
+  EXPECT_EQ(d.distance(), std::sqrt(to_double(ref.squared_distance)));
+  // Accessors in the other order (point_q first) on a fresh answer.
+  const DistanceResult d2 = ob.distance_point(s);
+  EXPECT_EQ(d2.point_q(), ref.point_q);
+  EXPECT_EQ(d2.direction(), ref.direction);
+  const DistanceResult t = ob.distance(u, s + u);
+  const detail::ReferenceDistance tref = detail::reference_values(t);
+  EXPECT_EQ(t.point_p(), tref.point_p);
+  EXPECT_EQ(t.point_q(), tref.point_q);
+  EXPECT_EQ(t.point_p(), ref.point_p + u);
+  const DepthResult p = ob.penetration_depth_point(s);
+  const detail::ReferenceDepth pref = detail::reference_values(p);
+  EXPECT_EQ(p.squared_depth(), pref.squared_depth);
+  EXPECT_EQ(p.direction(), pref.direction);
+}
+
+// Random poses (fixed seed) around M of pairs with dyadic vertices (doubles:
+// M in double pairs), non-dyadic ones (exact rotations) and one of each; s
+// with double coordinates (dyadic) and with rational ones (p/q, q odd).
+TEST(ProximityExact, FastValuesEqualTheRationalReferenceOnRandomPoses) {
+  const std::uint64_t seed = 20261124;
+  std::mt19937_64 rng(seed);
+  const Pair pairs[] = {{"random:30:5", "random:20:6"},           // dyadic, dyadic
+                        {"cube", "cube@rot:3"},                   // dyadic, rational
+                        {"sphere:1@rot:1", "dodecahedron@rot:2"},  // rational, rational
+                        {"cube", "cube@scale:1/3"}};              // parallel facets: barycentric splits
+  for (const Pair& pr : pairs) {
+    TranslationalObstacle ob(catalog_polytope(pr.p), catalog_polytope(pr.q));
+    int count[3] = {};
+    for (int i = 0; i < 150; ++i) {
+      SCOPED_TRACE(std::string(pr.p) + " / " + pr.q + ", seed " + std::to_string(seed) + ", pose " +
+                   std::to_string(i));
+      std::uniform_real_distribution<double> coord(-3, 3);
+      Point3 s(coord(rng), coord(rng), coord(rng));
+      if (i % 3 == 2)
+        s = Point3(frac(std::uniform_int_distribution<long>(-3000, 3000)(rng), 1001),
+                   frac(std::uniform_int_distribution<long>(-3000, 3000)(rng), 999), Rational(s.z));
+      count[int(ob.collide_point(s).status)]++;
+      expect_values_match_reference(ob, s, R("1/3", "-2", "1/2"));
+    }
+    EXPECT_GT(count[int(ContactStatus::separate)], 10) << pr.p << " / " << pr.q;
+    EXPECT_GT(count[int(ContactStatus::penetrating)], 10) << pr.p << " / " << pr.q;
+  }
+}
+
+// Touching poses (vertices, edge midpoints, facet centroids of M: s on ∂M)
+// and poses just inside and outside them.
+TEST(ProximityExact, FastValuesEqualTheRationalReferenceOnTouchingPoses) {
+  for (const Pair& pr : {Pair{"cube", "cube@rot:3"}, Pair{"random:12:1", "random:9:2"},
+                         Pair{"cube", "cube@scale:1/2"}}) {
+    TranslationalObstacle ob(catalog_polytope(pr.p), catalog_polytope(pr.q));
+    int touching = 0;
+    for (const Point3& s : query_points(ob, false)) {
+      SCOPED_TRACE(std::string(pr.p) + " / " + pr.q + ", s = (" + format_exact(s.x) + ", " + format_exact(s.y) +
+                   ", " + format_exact(s.z) + ")");
+      touching += ob.collide_point(s).status == ContactStatus::touching;
+      expect_values_match_reference(ob, s, P(1, 2, 3));
+    }
+    EXPECT_GT(touching, 20) << pr.p << " / " << pr.q;
+  }
 }
 
 // Degenerate poses: s = x + n with x a vertex, an edge midpoint or a facet

@@ -13,7 +13,9 @@
 //            valgrind --tool=callgrind bench_proximity --count cube cube@rot:3 1.5 20
 //            then callgrind_annotate --inclusive=yes: count_ours_distance,
 //            count_ours_depth, count_ours_collide, count_fcl_distance, count_ccd_epa,
-//            count_ccd_gjk (divide by N).
+//            count_ccd_gjk, and count_ours_distance_exact / count_ours_depth_exact
+//            (the queries with their exact values: squared distance and closest
+//            point of P; squared depth) (divide by N).
 //        bench_proximity --count-trajectory P Q N   the coherent trajectory of N
 //            steps: count_ours_trajectory (distance_points), count_fcl_trajectory.
 #include <ccd/ccd.h>
@@ -183,6 +185,17 @@ __attribute__((noinline)) void count_ours_distance(TranslationalObstacle& ob, co
 __attribute__((noinline)) void count_ours_depth(TranslationalObstacle& ob, const Point3& s, int n) {
   for (int i = 0; i < n; ++i) ob.penetration_depth_point(s);
 }
+// The queries with their exact values (as the table's "+ exact" columns).
+__attribute__((noinline)) void count_ours_distance_exact(TranslationalObstacle& ob, const Point3& s, int n) {
+  for (int i = 0; i < n; ++i) {
+    const DistanceResult d = ob.distance_point(s);
+    d.squared_distance();
+    d.point_p();
+  }
+}
+__attribute__((noinline)) void count_ours_depth_exact(TranslationalObstacle& ob, const Point3& s, int n) {
+  for (int i = 0; i < n; ++i) ob.penetration_depth_point(s).squared_depth();
+}
 __attribute__((noinline)) int count_ccd_epa(Body& p, Body& q, ccd_t& c, int n) {
   int ret = 0;
   ccd_real_t depth;
@@ -254,6 +267,8 @@ int count_main(int argc, char** argv) {
   count_ours_distance(ob, s, n);
   count_ours_depth(ob, s, n);
   count_ours_collide(ob, s, n);
+  count_ours_distance_exact(ob, s, n);
+  count_ours_depth_exact(ob, s, n);
   const double fd = count_fcl_distance(fc, n);
   Body bp = body(p), bq = body(q);
   ccdVec3Set(&bq.t, sd.x, sd.y, sd.z);
@@ -320,7 +335,8 @@ int main(int argc, char** argv) {
               "Distance: a walk on M whose every move and final Voronoi-region certificate are filtered exact\n"
               "predicates on doubles; the answer holds the certified feature, and its exact squared distance\n"
               "and closest points (rationals) are computed on first use: 'ours distance' is the query,\n"
-              "'+ exact' the query and those rationals.  Depth: a scan of M's unit facet planes with a derived\n"
+              "'+ exact' the query, its squared distance and the closest point of P (integers over common\n"
+              "denominators, one gcd per returned rational).  Depth: a scan of M's unit facet planes with a derived\n"
               "error bound, exact comparisons among the planes it cannot rule out (the squared depth, a\n"
               "rational, on first use as well).\n",
               steps, reps, reps);

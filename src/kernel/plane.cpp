@@ -7,9 +7,25 @@
 
 namespace minksum {
 
+// The sign of a·x + b·y + c·z − d times the positive dx·dy·dz (x = nx/dx,
+// …): a·nx·dy·dz + b·ny·dx·dz + c·nz·dx·dy − d·dx·dy·dz, integer products
+// accumulated in place, no rational normalisation.
 int Plane::side(const Point3& p) const {
-  Rational s = Rational(a) * p.x + Rational(b) * p.y + Rational(c) * p.z - Rational(d);
-  return sgn(s);
+  mpz_srcptr nx = p.x.get_num_mpz_t(), ny = p.y.get_num_mpz_t(), nz = p.z.get_num_mpz_t();
+  mpz_srcptr dx = p.x.get_den_mpz_t(), dy = p.y.get_den_mpz_t(), dz = p.z.get_den_mpz_t();
+  Integer acc, t, u;
+  mpz_mul(t.get_mpz_t(), dy, dz);
+  mpz_mul(acc.get_mpz_t(), a.get_mpz_t(), nx);
+  acc *= t;  // a·nx·dy·dz
+  mpz_mul(t.get_mpz_t(), dx, dz);
+  mpz_mul(u.get_mpz_t(), b.get_mpz_t(), ny);
+  mpz_addmul(acc.get_mpz_t(), u.get_mpz_t(), t.get_mpz_t());
+  mpz_mul(t.get_mpz_t(), dx, dy);
+  mpz_mul(u.get_mpz_t(), c.get_mpz_t(), nz);
+  mpz_addmul(acc.get_mpz_t(), u.get_mpz_t(), t.get_mpz_t());
+  mpz_mul(u.get_mpz_t(), d.get_mpz_t(), t.get_mpz_t());
+  mpz_submul(acc.get_mpz_t(), u.get_mpz_t(), dz);
+  return sgn(acc);
 }
 
 bool operator<(const Plane& p, const Plane& q) {

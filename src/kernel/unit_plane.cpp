@@ -107,18 +107,42 @@ std::size_t nearest_plane_among(const Plane* const* planes, const std::vector<st
                                 const RoundedPoint3& s) {
   // Every minimiser is a candidate: a single candidate is the answer.
   if (candidates.size() == 1) return candidates[0];
+  // s = (X, Y, Z) / W over the lcm W of its denominators: every gap
+  // d − n·s is G / W with the integer G = d·W − n·(X, Y, Z), so
+  // gap_i² / |n_i|² < gap_j² / |n_j|² ⇔ G_i²·|n_j|² < G_j²·|n_i|² — integer
+  // products, no rational normalisation.
+  Integer w, x, y, z;
+  mpz_lcm(w.get_mpz_t(), s.exact.x.get_den_mpz_t(), s.exact.y.get_den_mpz_t());
+  mpz_lcm(w.get_mpz_t(), w.get_mpz_t(), s.exact.z.get_den_mpz_t());
+  mpz_divexact(x.get_mpz_t(), w.get_mpz_t(), s.exact.x.get_den_mpz_t());
+  mpz_divexact(y.get_mpz_t(), w.get_mpz_t(), s.exact.y.get_den_mpz_t());
+  mpz_divexact(z.get_mpz_t(), w.get_mpz_t(), s.exact.z.get_den_mpz_t());
+  x *= s.exact.x.get_num();
+  y *= s.exact.y.get_num();
+  z *= s.exact.z.get_num();
   std::size_t arg = std::size_t(-1);
-  Rational arg_gap, gap;
-  Integer arg_norm2, norm2;
+  Integer arg_gap2, arg_norm2, gap, norm2, lhs, rhs;
   for (std::size_t i : candidates) {
     const Plane& p = *planes[i];
-    gap = Rational(p.d) - (Rational(p.a) * s.exact.x + Rational(p.b) * s.exact.y + Rational(p.c) * s.exact.z);
-    norm2 = p.a * p.a + p.b * p.b + p.c * p.c;
-    // gap² / norm2 < arg_gap² / arg_norm2, strictly: the first index wins ties.
-    if (arg == std::size_t(-1) || gap * gap * Rational(arg_norm2) < arg_gap * arg_gap * Rational(norm2)) {
+    gap = p.d * w;
+    mpz_submul(gap.get_mpz_t(), p.a.get_mpz_t(), x.get_mpz_t());
+    mpz_submul(gap.get_mpz_t(), p.b.get_mpz_t(), y.get_mpz_t());
+    mpz_submul(gap.get_mpz_t(), p.c.get_mpz_t(), z.get_mpz_t());
+    gap *= gap;
+    norm2 = p.a * p.a;
+    mpz_addmul(norm2.get_mpz_t(), p.b.get_mpz_t(), p.b.get_mpz_t());
+    mpz_addmul(norm2.get_mpz_t(), p.c.get_mpz_t(), p.c.get_mpz_t());
+    // Strictly smaller: the first index wins ties.
+    bool better = arg == std::size_t(-1);
+    if (!better) {
+      lhs = gap * arg_norm2;
+      rhs = arg_gap2 * norm2;
+      better = lhs < rhs;
+    }
+    if (better) {
       arg = i;
-      arg_gap = gap;
-      arg_norm2 = norm2;
+      swap(arg_gap2, gap);
+      swap(arg_norm2, norm2);
     }
   }
   return arg;

@@ -111,6 +111,7 @@ void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q) {
   g->p_center = average(g->p.points());
   g->q_center = average(g->q.points());
   g->center = g->p_center - g->q_center;
+  g->prepare_exact();
   center_approx_ = to_double(g->center);
   facet_features_.assign(nf, {});
   facet_features_known_.assign(nf, 0);
@@ -605,8 +606,7 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
   if (r.geo_ != g_) r.geo_ = g_;
   keep_point(s, sd, r.sd_, r.s_exact_);
   if (r.exact_.use_count() == 1) {  // a result of an earlier batch: keep its storage
-    r.exact_->have_distance = r.exact_->have_points = false;
-    r.exact_->translated = false;
+    r.exact_->reset();
   } else {
     r.exact_.reset();
   }
@@ -679,7 +679,7 @@ void TranslationalObstacle::depth_into(const Point3& s, DepthResult& r) {
   CollisionResult c = collide_rounded(s, sd);
   r.status = c.status;
   r.witness = c.witness;
-  if (r.exact_.use_count() == 1) r.exact_->have = false;  // keep the storage of an earlier batch's result
+  if (r.exact_.use_count() == 1) r.exact_->have = r.exact_->have_direction = false;  // keep an earlier batch's storage
   else r.exact_.reset();
   if (c.status != ContactStatus::penetrating) {  // the exact values are zeros: neither M nor s is needed
     r.geo_.reset();

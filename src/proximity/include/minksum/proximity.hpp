@@ -66,17 +66,29 @@ struct CollisionResult {
   Witness witness;
 };
 
+class DistanceResult;
+class DepthResult;
 namespace detail {
 struct ObstacleGeometry;  // M, P, Q and their exact data, shared by an obstacle and its answers
 struct DistanceExact;     // a distance answer's exact values, allocated on first use
 struct DepthExact;        // a depth answer's
+struct ReferenceDistance;
+struct ReferenceDepth;
+struct HomPoint;
+// The exact values by rational arithmetic on every step (for tests).
+ReferenceDistance reference_values(const DistanceResult& r);
+ReferenceDepth reference_values(const DepthResult& r);
 }
 
 // A separation-distance answer.  The query decides `status` and `witness`
 // (filtered exact predicates, no rational arithmetic on the common path) and
 // keeps the configuration point; the exact values are computed from the
 // certified witness on the first call of their accessor and kept in the
-// result (later calls return them at no cost).  A result stays valid after
+// result (later calls return them at no cost).  They are formed in GMP
+// integers over common denominators (the vertices of P and Q are kept so by
+// the obstacle, s is read off its doubles with shifts) and each returned
+// rational is reduced once (one gcd), when its accessor first asks for it;
+// the costs below count those integer products and reductions.  A result stays valid after
 // its obstacle is rebuilt or destroyed: it shares the exact data of M, P and
 // Q it was answered on.  Reading the exact values of one result from two
 // threads at once is not safe (the first call fills the cache).
@@ -85,28 +97,37 @@ class DistanceResult {
   ContactStatus status = ContactStatus::separate;
   Witness witness;
 
-  // |s − x|², x the closest point of M: 0 unless separate.  First call: a
-  // dozen rational operations on the witness feature (a vertex, the
-  // projection on an edge's line or on a facet's plane).
+  // |s − x|², x the closest point of M: 0 unless separate.  First call:
+  // s − x on the witness feature (a vertex; the projection on an edge's
+  // line; on a facet's plane, t·n with one integer t) in about a dozen
+  // integer products, and one reduction.
   const Rational& squared_distance() const;
   // The nearest double of sqrt(squared_distance()) (computes it).
   double distance() const;
   // The closest points of P+u and of Q+w (equal when the bodies touch or
-  // overlap: then a common point).  First call: the squared distance's work,
-  // then the split of x into a point of P and a point of Q (a translate when
-  // one of the faces behind x is a vertex, Cramer's rule on two skew edges,
-  // else barycentric coordinates): a few dozen rational operations.
+  // overlap: then a common point).  First call: the squared distance's work
+  // (separate answers), then the point of P behind x (a translate when Q's
+  // face behind x is a vertex, P's vertex, Cramer's rule on two skew edges,
+  // else barycentric coordinates; for overlapping bodies the same on the
+  // exit point of the ray from the interior point): a few dozen integer
+  // products, and three reductions per point asked for (point_q() of a
+  // separate answer adds s − x to point_p()'s numerators first).
   const Point3& point_p() const;
   const Point3& point_q() const;
   // point_q() − point_p(): translating P by it brings the bodies into
-  // contact (zero unless separate).  Costs what squared_distance() costs.
+  // contact (zero unless separate).  squared_distance()'s work and three
+  // reductions.
   const Point3& direction() const;
 
  private:
   friend class TranslationalObstacle;
+  friend detail::ReferenceDistance detail::reference_values(const DistanceResult&);
   detail::DistanceExact& exact() const;
-  void compute_distance() const;
-  void compute_points() const;
+  // The offset s − x and |s − x|² (the squared distance's work), then the
+  // point of P (the split's).
+  detail::DistanceExact& compute_offset() const;
+  detail::DistanceExact& compute_p() const;
+  const detail::HomPoint& s_hom(detail::DistanceExact& e) const;  // s over one denominator, kept
   Point3 point() const;  // s
   std::shared_ptr<const detail::ObstacleGeometry> geo_;
   // s = w − u: its doubles when it is exactly a double (no rational kept),
@@ -127,18 +148,20 @@ class DepthResult {
   Witness witness;
 
   // (d − n·s)² / |n|² for the witness facet's plane n·x = d: 0 unless
-  // penetrating.  First call: about ten rational operations.
+  // penetrating.  First call: g = d·w − n·S for s = S / w (four integer
+  // products), g² over w²·|n|², one reduction.
   const Rational& squared_depth() const;
   // The nearest double of sqrt(squared_depth()) (computes it).
   double depth() const;
   // A minimal translation of P that makes the bodies touch (zero vector
   // unless penetrating); its squared length is squared_depth().  It is
   // parallel to the outer normal of the witness facet of M, pointing against
-  // it.  Costs what squared_depth() costs.
+  // it.  squared_depth()'s work and three reductions.
   const Point3& direction() const;
 
  private:
   friend class TranslationalObstacle;
+  friend detail::ReferenceDepth detail::reference_values(const DepthResult&);
   detail::DepthExact& exact() const;
   Point3 point() const;  // s
   std::shared_ptr<const detail::ObstacleGeometry> geo_;  // none unless penetrating

@@ -11,6 +11,20 @@
 
 namespace minksum::detail {
 
+// A rational point as integers over one positive denominator, (x, y, z) / w,
+// in no particular lowest terms.  The exact values of an answer are formed
+// in this form (integer products and sums, no gcd on the way) and reduced
+// once per output number, at the end (exact_values.cpp).
+struct HomPoint {
+  Integer x, y, z, w;
+};
+// The exact point (any rational point; the double form is read from the
+// doubles' mantissas and exponents, with shifts, no rational arithmetic).
+HomPoint hom_point(const Point3& a);
+HomPoint hom_point(const Vec3d& a);  // precondition: finite
+// x/w, y/w, z/w in lowest terms.
+Point3 to_point(const HomPoint& a);
+
 struct ObstacleGeometry {
   ConvexPolytope p, q, neg_q;
   SumResult sum;
@@ -19,6 +33,17 @@ struct ObstacleGeometry {
   std::vector<Rational> offset;   // d
   std::vector<Rational> norm2;    // a² + b² + c²
   Point3 center, p_center, q_center;  // center = p_center − q_center (the vertex averages)
+  // The same data over common denominators, for the exact values: P's and
+  // Q's vertices (one denominator per polytope where it stays short), the
+  // interior point and its point of P, |n|² of each facet's integer normal.
+  std::vector<HomPoint> p_hom, q_hom;
+  HomPoint center_hom, p_center_hom;
+  std::vector<Integer> n2;
+
+  // Fills p_hom … n2 (the rebuild, once M, P, Q and the centres are set).
+  void prepare_exact();
+  // Vertex v of M = p − q over one denominator.
+  HomPoint m_hom(Index v) const;
 
   const ConvexPolytope& m() const { return sum.polytope; }
 
@@ -37,19 +62,47 @@ struct ObstacleGeometry {
   std::pair<Point3, Point3> common_point(const Witness& w, ContactStatus status, const Point3& s) const;
 };
 
-// The exact values of a DistanceResult, computed on first use.
+// The exact values of an answer by rational arithmetic on every step
+// (closest_point, split, common_point above, each intermediate a reduced
+// rational): the reference the fast values are tested against.
+struct ReferenceDistance {
+  Rational squared_distance;
+  Point3 direction, point_p, point_q;
+};
+ReferenceDistance reference_values(const DistanceResult& r);
+struct ReferenceDepth {
+  Rational squared_depth;
+  Point3 direction;
+};
+ReferenceDepth reference_values(const DepthResult& r);
+
+// The exact values of a DistanceResult, each computed on first use: the
+// offset s − x and the point of P over common denominators, and each output
+// rational reduced only when its accessor asks for it.
 struct DistanceExact {
   Point3 u;  // the translation of P, added to the closest points when `translated`
   bool translated = false;
-  bool have_distance = false, have_points = false;
+  bool have_s = false, have_offset = false, have_p = false;                 // the HomPoints
+  bool have_direction = false, have_point_p = false, have_point_q = false;  // the Point3s
+  HomPoint s;       // s
+  HomPoint offset;  // s − x (zero unless separate)
+  HomPoint p;       // the closest point of P + u
   Rational squared_distance;
   double distance = 0;
   Point3 direction, point_p, point_q;
+
+  // Forget the values (the storage is kept for the next answer).
+  void reset() {
+    translated = have_s = have_offset = have_p = have_direction = have_point_p = have_point_q = false;
+  }
 };
 
-// The exact values of a DepthResult, computed on first use.
+// The exact values of a DepthResult, computed on first use: the gap
+// g = d·w − ⟨n, S⟩ over w·|n|² (s = S / w), the squared depth, and the
+// translation when asked for.
 struct DepthExact {
-  bool have = false;
+  bool have = false, have_direction = false;
+  Integer gap, w;
   Rational squared_depth;
   double depth = 0;
   Point3 direction;

@@ -584,14 +584,26 @@ void write_polytope(const std::string& path, const ConvexPolytope& p, const Writ
   if (!format) format = format_from_path(path);
   if (!format) unknown_extension(path, "write");
   check_exact_possible(*format, options);
-  // Rounded (and refused) before the file system is touched.
-  const ConvexPolytope q = writable_polytope(p, *format, options, report);
+  // Rounded (and refused) before the file system is touched; p itself when
+  // the format holds it (no copy).
+  std::optional<ConvexPolytope> rounded;
+  if (holds_exactly(p, *format, options)) {
+    if (report) *report = {};
+  } else {
+    rounded = writable_polytope(p, *format, options, report);
+  }
+  const ConvexPolytope& q = rounded ? *rounded : p;
   write_file_atomically(path, [&](std::ostream& out) { write_polytope_exactly(out, q, *format, options); });
 }
 
 void write_polytope(std::ostream& out, const ConvexPolytope& p, Format format, const WriteOptions& options,
                     RoundingReport* report) {
   check_exact_possible(format, options);
+  if (holds_exactly(p, format, options)) {
+    if (report) *report = {};
+    write_polytope_exactly(out, p, format, options);
+    return;
+  }
   write_polytope_exactly(out, writable_polytope(p, format, options, report), format, options);
 }
 

@@ -44,6 +44,10 @@ void write_stl(std::ostream& out, const Mesh& mesh, const WriteOptions& options)
 void write_wrl(std::ostream& out, const Mesh& mesh, const WriteOptions& options);
 // OFF straight from a polytope (the same text as write_off of its to_mesh()).
 void write_off(std::ostream& out, const ConvexPolytope& p, const WriteOptions& options);
+// True when the format holds every coordinate of p as it is (exact rationals
+// with options.exact, or doubles in a format of doubles): writable_polytope
+// would return p unchanged, so it is written without that copy.
+bool holds_exactly(const ConvexPolytope& p, Format format, const WriteOptions& options);
 
 // ---------------------------------------------------------------------------
 // Shared helpers.

@@ -420,11 +420,14 @@ std::string slurp(const std::string& path) {
   if (!S_ISREG(st.st_mode)) throw InputError(path, "", "is not a regular file");
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw InputError(path, "", "cannot open: " + lower_strerror(errno));
-  std::string data;
-  data.reserve(static_cast<std::size_t>(st.st_size));
-  char buf[1 << 16];
+  // Straight into the string, in as few reads as the kernel allows (one for
+  // a file in the page cache); a file that grew since the stat goes on
+  // growing the string.
+  std::string data(static_cast<std::size_t>(st.st_size) + 1, '\0');
+  std::size_t used = 0;
   for (;;) {
-    ssize_t got = ::read(fd, buf, sizeof buf);
+    if (used == data.size()) data.resize(2 * data.size());
+    ssize_t got = ::read(fd, data.data() + used, data.size() - used);
     if (got < 0) {
       if (errno == EINTR) continue;
       int err = errno;
@@ -432,9 +435,10 @@ std::string slurp(const std::string& path) {
       throw InputError(path, "", "read error: " + lower_strerror(err));
     }
     if (got == 0) break;
-    data.append(buf, static_cast<std::size_t>(got));
+    used += static_cast<std::size_t>(got);
   }
   ::close(fd);
+  data.resize(used);
   return data;
 }
 

@@ -167,6 +167,16 @@ class TextCursor {
   std::size_t line() const { return line_; }
   std::size_t pos() const { return pos_; }
 
+  // For a reader's fast path, which parses a whole line itself: the bytes
+  // from the current position to the end, and moving past what it parsed
+  // (`p`, after `lines` line ends).
+  const char* here() const { return data_.data() + pos_; }
+  const char* end() const { return data_.data() + data_.size(); }
+  void advance_to(const char* p, std::size_t lines) {
+    pos_ = std::size_t(p - data_.data());
+    line_ += lines;
+  }
+
  private:
   void skip_blanks_on_line();
   std::string_view take_token();

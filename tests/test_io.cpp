@@ -615,25 +615,26 @@ TEST(IoParse, OffLineFastPathAgreesWithTheTokenizer) {
 // Errors after lines read by the fast path keep their line numbers, and an
 // element the fast path refuses gets the tokenizer's message.
 TEST(IoBad, OffLineNumbersAfterFastLines) {
-  auto off = [](const std::string& s) { return read_from_string(s, Format::off); };
-  expect_input_error([&] { off("OFF\r\n3 1 0\r\n0 0 0\r\n1 0 0\r\n\r\n0 1 0\r\n3 0 1 3\r\n"); }, "mem",
-                     "face 0 refers to vertex 3 but there are 3 vertices", "line 7");
-  expect_input_error([&] { off("OFF\n4 1\n0\t0\t0\n1 0 0\n# a comment\n0 1 0\n0 0 x\n3 0 1 2\n"); }, "mem",
-                     "expected a number, got 'x'", "line 7");
-  expect_input_error([&] { off("OFF\n3 2\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2 x"); }, "mem",
-                     "unexpected token 'x' after face 1", "line 7");
-  expect_input_error([&] { off("OFF\n3 2\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n2 0 1\n"); }, "mem",
-                     "face 1 has 2 vertices (at least 3 needed)", "line 7");
-  expect_input_error([&] { off("OFF\n3 1\n0 0 0\n1 0 0\n0 1 nan\n3 0 1 2\n"); }, "mem", "coordinate is NaN",
-                     "line 5");
-  expect_input_error([&] { off("OFF\n3 1\n0 0 0\n1 0 0\n0 1 -inf\n3 0 1 2\n"); }, "mem",
-                     "coordinate is infinite", "line 5");
-  expect_input_error([&] { off("OFF\n3 2\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"); }, "mem",
-                     "file ends after 1 of 2 faces", "line 7");
-  expect_input_error([&] { off("OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0 0 0\n"); }, "mem",
-                     "unexpected token '0' after the last face", "line 7");
-  expect_input_error([&] { off("OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 4294967295\n"); }, "mem",
-                     "face 0 refers to vertex 4294967295 but there are 3 vertices", "line 6");
+  struct Case {
+    const char* text;
+    const char* problem;
+    const char* place;
+  };
+  const Case cases[] = {
+      {"OFF\r\n3 1 0\r\n0 0 0\r\n1 0 0\r\n\r\n0 1 0\r\n3 0 1 3\r\n",
+       "face 0 refers to vertex 3 but there are 3 vertices", "line 7"},
+      {"OFF\n4 1\n0\t0\t0\n1 0 0\n# a comment\n0 1 0\n0 0 x\n3 0 1 2\n", "expected a number, got 'x'", "line 7"},
+      {"OFF\n3 2\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2 x", "unexpected token 'x' after face 1", "line 7"},
+      {"OFF\n3 2\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n2 0 1\n", "face 1 has 2 vertices (at least 3 needed)", "line 7"},
+      {"OFF\n3 1\n0 0 0\n1 0 0\n0 1 nan\n3 0 1 2\n", "coordinate is NaN", "line 5"},
+      {"OFF\n3 1\n0 0 0\n1 0 0\n0 1 -inf\n3 0 1 2\n", "coordinate is infinite", "line 5"},
+      {"OFF\n3 2\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "file ends after 1 of 2 faces", "line 7"},
+      {"OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0 0 0\n", "unexpected token '0' after the last face", "line 7"},
+      {"OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 4294967295\n",
+       "face 0 refers to vertex 4294967295 but there are 3 vertices", "line 6"},
+  };
+  for (const Case& c : cases)
+    expect_input_error([&] { read_from_string(c.text, Format::off); }, "mem", c.problem, c.place);
 }
 
 // put_shortest is std::to_chars byte for byte: on every power of two and

@@ -235,7 +235,7 @@ int run_sum(const std::vector<std::string>& argv) {
   for (const ConvexSet& s : sets)
     if (!s.full()) return sum_sets(names, sets, *method, output, json, load);
   std::vector<ConvexPolytope> operands;
-  for (const ConvexSet& s : sets) operands.push_back(s.polytope());
+  for (ConvexSet& s : sets) operands.push_back(std::move(s).release_polytope());
   // A ⊕ B ⊕ C ... left to right; the times add up, the method's details are
   // those of the last step.
   SumResult r;

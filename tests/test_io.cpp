@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -545,6 +546,141 @@ TEST(IoParse, CoordinateFastPathAgreesWithParseNumber) {
       ASSERT_EQ(*fast, *ref) << t;
     }
   }
+}
+
+// The OFF reader reads plain vertex and face lines in place and every other
+// line through its tokenizer: both must give the same mesh.  Each random
+// mesh is written once in plain lines and once in renderings that the fast
+// path leaves (in whole or in part) to the tokenizer: a comment after every
+// element, every token on a line of its own, CRLF line ends, tabs, extra
+// blanks, no final newline.
+TEST(IoParse, OffLineFastPathAgreesWithTheTokenizer) {
+  const std::vector<std::string> samples = {
+      "0", "-0", "7", "-12", "0.5", "-0.0", ".5", "5.", "1e-3", "-2.5E+2", "123456789012345",
+      "1234567890123456", "-1234567890123456789", "12345678901234567890.5", "1/3", "-22/7", "0x1p-3",
+      "1e-400", "5e-324", "1.7976931348623157e308", "+1.5", "0.30000000000000004", "000012", "-.25"};
+  const unsigned seed = 20261123;
+  std::mt19937 rng(seed);
+  for (int round = 0; round < 60; ++round) {
+    const int nv = 3 + int(rng() % 6), nf = 1 + int(rng() % 5);
+    std::vector<std::array<std::string, 3>> pts(nv);
+    for (auto& p : pts)
+      for (auto& t : p) {
+        if (rng() % 3 == 0) {
+          t = samples[rng() % samples.size()];
+        } else {
+          std::uint64_t bits = (std::uint64_t(rng()) << 32) | rng();
+          double d;
+          std::memcpy(&d, &bits, 8);
+          if (!std::isfinite(d)) d = 1.25;
+          char buf[64];
+          std::snprintf(buf, sizeof buf, rng() % 2 ? "%.17g" : "%.6g", d);
+          t = buf;
+        }
+      }
+    std::vector<std::vector<std::string>> faces(nf);
+    for (auto& f : faces) {
+      const int k = 3 + int(rng() % 4);
+      f.push_back(std::to_string(k));
+      for (int j = 0; j < k; ++j) f.push_back((rng() % 8 == 0 ? "0" : "") + std::to_string(rng() % nv));
+    }
+    // sep: between numbers; eol: the line end; each: a token on a line of its own.
+    auto render = [&](const std::string& sep, const std::string& eol, const std::string& after, bool each,
+                      bool final_newline) {
+      std::string s = "OFF" + eol + std::to_string(nv) + " " + std::to_string(nf) + " 0" + eol;
+      auto line = [&](const std::vector<std::string>& toks) {
+        for (std::size_t i = 0; i < toks.size(); ++i) s += (i ? (each ? eol : sep) : "") + toks[i];
+        s += after + eol;
+      };
+      for (const auto& p : pts) line({p[0], p[1], p[2]});
+      for (const auto& f : faces) line(f);
+      if (!final_newline) s.erase(s.size() - eol.size());
+      return s;
+    };
+    const std::string plain = render(" ", "\n", "", false, true);
+    const Mesh ref = read_from_string(render(" ", "\n", " # c", false, true), Format::off);
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", round " + std::to_string(round) + ":\n" + plain);
+    ASSERT_EQ(ref.points.size(), std::size_t(nv));
+    for (int i = 0; i < nv; ++i)
+      for (int k = 0; k < 3; ++k) ASSERT_EQ(ref.points[i][k], *parse_number(pts[i][k])) << pts[i][k];
+    for (const std::string& variant :
+         {plain, render(" ", "\r\n", "", false, true), render("\t", "\n", "", false, true),
+          render("  \t ", "\n", " \t", false, true), render(" ", "\n", "", false, false),
+          render(" ", "\r\n", "", false, false), render(" ", "\n", "", true, true),
+          render(" ", "\n", "#", false, true)})
+      expect_same(read_from_string(variant, Format::off), ref);
+  }
+}
+
+// Errors after lines read by the fast path keep their line numbers, and an
+// element the fast path refuses gets the tokenizer's message.
+TEST(IoBad, OffLineNumbersAfterFastLines) {
+  struct Case {
+    const char* text;
+    const char* problem;
+    const char* place;
+  };
+  const Case cases[] = {
+      {"OFF\r\n3 1 0\r\n0 0 0\r\n1 0 0\r\n\r\n0 1 0\r\n3 0 1 3\r\n",
+       "face 0 refers to vertex 3 but there are 3 vertices", "line 7"},
+      {"OFF\n4 1\n0\t0\t0\n1 0 0\n# a comment\n0 1 0\n0 0 x\n3 0 1 2\n", "expected a number, got 'x'", "line 7"},
+      {"OFF\n3 2\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2 x", "unexpected token 'x' after face 1", "line 7"},
+      {"OFF\n3 2\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n2 0 1\n", "face 1 has 2 vertices (at least 3 needed)", "line 7"},
+      {"OFF\n3 1\n0 0 0\n1 0 0\n0 1 nan\n3 0 1 2\n", "coordinate is NaN", "line 5"},
+      {"OFF\n3 1\n0 0 0\n1 0 0\n0 1 -inf\n3 0 1 2\n", "coordinate is infinite", "line 5"},
+      {"OFF\n3 2\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "file ends after 1 of 2 faces", "line 7"},
+      {"OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0 0 0\n", "unexpected token '0' after the last face", "line 7"},
+      {"OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 4294967295\n",
+       "face 0 refers to vertex 4294967295 but there are 3 vertices", "line 6"},
+  };
+  for (const Case& c : cases)
+    expect_input_error([&] { read_from_string(c.text, Format::off); }, "mem", c.problem, c.place);
+}
+
+// put_shortest is std::to_chars byte for byte: on every power of two and
+// its neighbours, on short decimals and their neighbours, on integers and
+// powers of ten, and on random doubles around and inside the range of its
+// integer path (2^-9 <= |d| < 2^53), both signs.
+TEST(IoWrite, ShortestTextIsToChars) {
+  std::vector<double> values;
+  for (int e = -14; e <= 58; ++e) {
+    const double p2 = std::ldexp(1.0, e);
+    for (double x : {p2, std::nextafter(p2, 0.0), std::nextafter(p2, 1e300), 3 * p2, std::nextafter(3 * p2, 0.0)})
+      values.push_back(x);
+  }
+  for (int e = -5; e <= 17; ++e) {
+    const double p10 = std::pow(10.0, e);
+    for (double x : {p10, std::nextafter(p10, 0.0), std::nextafter(p10, 1e300), 2 * p10, 5 * p10, 9.5 * p10})
+      values.push_back(x);
+  }
+  for (int i = 0; i <= 100000; ++i) values.push_back(i);
+  const unsigned seed = 20261123;
+  std::mt19937_64 rng(seed);
+  for (int i = 0; i < 200000; ++i) {  // decimals of 1 to 17 digits, and their neighbours
+    const int n = 1 + int(rng() % 17);
+    std::string t = std::to_string(1 + rng() % 9);
+    for (int j = 1; j < n; ++j) t += char('0' + rng() % 10);
+    t += "e" + std::to_string(int(rng() % 25) - 5 - n);
+    double d = 0;
+    std::from_chars(t.data(), t.data() + t.size(), d);
+    for (double x : {d, std::nextafter(d, 0.0), std::nextafter(d, 1e300)}) values.push_back(x);
+  }
+  for (int i = 0; i < 600000; ++i) {  // random mantissas, biased exponents 1010 to 1080
+    const std::uint64_t bits = (std::uint64_t(1010 + rng() % 71) << 52) | (rng() & ((std::uint64_t(1) << 52) - 1));
+    double d;
+    std::memcpy(&d, &bits, 8);
+    values.push_back(d);
+  }
+  values.push_back(0.0);
+  values.push_back(5e-324);
+  values.push_back(1.7976931348623157e308);
+  for (double v : values)
+    for (double d : {v, -v}) {
+      char want[32], got[32];
+      const std::string w(want, std::to_chars(want, want + 24, d).ptr);
+      const std::string g(got, io_detail::put_shortest(got, d));
+      ASSERT_EQ(g, w) << "seed " << seed << ", " << std::hexfloat << d;
+    }
 }
 
 TEST(IoWrite, RationalToFloatIsCorrectlyRounded) {

@@ -241,8 +241,7 @@ float coordinate_float(const PointList& points, std::size_t i, int k) {
 void append_coordinate(std::string& out, const PointList& points, std::size_t i, int k, bool exact) {
   if (!exact) {
     char buf[32];
-    auto r = std::to_chars(buf, buf + sizeof buf, coordinate_double(points, i, k));
-    out.append(buf, r.ptr);
+    out.append(buf, put_shortest(buf, coordinate_double(points, i, k)));
     return;
   }
   switch (points.form()) {
@@ -274,11 +273,11 @@ void write_point_lines(std::ostream& out, const PointList& points, bool exact) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     char* p = buf.reserve(80);
     const Vec3d& a = points.approx(i);
-    p = std::to_chars(p, p + 24, a.x).ptr;
+    p = put_shortest(p, a.x);
     *p++ = ' ';
-    p = std::to_chars(p, p + 24, a.y).ptr;
+    p = put_shortest(p, a.y);
     *p++ = ' ';
-    p = std::to_chars(p, p + 24, a.z).ptr;
+    p = put_shortest(p, a.z);
     *p++ = '\n';
     buf.commit(p);
   }
@@ -420,11 +419,14 @@ std::string slurp(const std::string& path) {
   if (!S_ISREG(st.st_mode)) throw InputError(path, "", "is not a regular file");
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw InputError(path, "", "cannot open: " + lower_strerror(errno));
-  std::string data;
-  data.reserve(static_cast<std::size_t>(st.st_size));
-  char buf[1 << 16];
+  // Straight into the string, in as few reads as the kernel allows (one for
+  // a file in the page cache); a file that grew since the stat goes on
+  // growing the string.
+  std::string data(static_cast<std::size_t>(st.st_size) + 1, '\0');
+  std::size_t used = 0;
   for (;;) {
-    ssize_t got = ::read(fd, buf, sizeof buf);
+    if (used == data.size()) data.resize(2 * data.size());
+    ssize_t got = ::read(fd, data.data() + used, data.size() - used);
     if (got < 0) {
       if (errno == EINTR) continue;
       int err = errno;
@@ -432,9 +434,10 @@ std::string slurp(const std::string& path) {
       throw InputError(path, "", "read error: " + lower_strerror(err));
     }
     if (got == 0) break;
-    data.append(buf, static_cast<std::size_t>(got));
+    used += static_cast<std::size_t>(got);
   }
   ::close(fd);
+  data.resize(used);
   return data;
 }
 
@@ -584,14 +587,26 @@ void write_polytope(const std::string& path, const ConvexPolytope& p, const Writ
   if (!format) format = format_from_path(path);
   if (!format) unknown_extension(path, "write");
   check_exact_possible(*format, options);
-  // Rounded (and refused) before the file system is touched.
-  const ConvexPolytope q = writable_polytope(p, *format, options, report);
+  // Rounded (and refused) before the file system is touched; p itself when
+  // the format holds it (no copy).
+  std::optional<ConvexPolytope> rounded;
+  if (holds_exactly(p, *format, options)) {
+    if (report) *report = {};
+  } else {
+    rounded = writable_polytope(p, *format, options, report);
+  }
+  const ConvexPolytope& q = rounded ? *rounded : p;
   write_file_atomically(path, [&](std::ostream& out) { write_polytope_exactly(out, q, *format, options); });
 }
 
 void write_polytope(std::ostream& out, const ConvexPolytope& p, Format format, const WriteOptions& options,
                     RoundingReport* report) {
   check_exact_possible(format, options);
+  if (holds_exactly(p, format, options)) {
+    if (report) *report = {};
+    write_polytope_exactly(out, p, format, options);
+    return;
+  }
   write_polytope_exactly(out, writable_polytope(p, format, options, report), format, options);
 }
 

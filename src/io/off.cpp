@@ -20,6 +20,8 @@
 #include "io/readers.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <ostream>
 
 namespace minksum::io_detail {
@@ -58,6 +60,90 @@ Magic parse_magic(std::string_view t) {
 
 std::string plural(std::uint64_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// The fast paths below read the common lines in place, without tokens: a
+// vertex line of three plain numbers, a face line of a count and indices,
+// separated by spaces or tabs and ending the line.  They accept exactly
+// what the general path accepts and give the same values; on anything else
+// (a comment, a line break inside the element, extra numbers, a rational, a
+// long integer, an error) they return nullptr and the general path reads
+// the element, with its messages.
+
+inline bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+// After the last number of an element: blanks, an optional '\r', then the
+// line end (the pointer after it) or the end of the data; else nullptr.
+inline const char* line_end(const char* p, const char* end) {
+  while (p != end && is_blank(*p)) ++p;
+  if (p != end && *p == '\r') ++p;
+  if (p == end) return p;
+  return *p == '\n' ? p + 1 : nullptr;
+}
+
+// One coordinate at p, as read_coordinate's fast path takes it: a token
+// starting with a digit, '-' or '.', read whole by from_chars as a finite
+// double, not an integer of more than 15 digits (those are exact only on
+// the general path).  The end of the token, or nullptr.
+inline const char* fast_coordinate(const char* p, const char* end, double& d) {
+  if (p == end) return nullptr;
+  const char c0 = *p;
+  if (!((c0 >= '0' && c0 <= '9') || c0 == '-' || c0 == '.')) return nullptr;
+  const auto r = std::from_chars(p, end, d);
+  if (r.ec != std::errc() || !std::isfinite(d)) return nullptr;
+  const char* q = r.ptr;
+  if (q != end && !is_space(*q)) return nullptr;  // the token goes on ('#', a letter, '/'...)
+  if (std::size_t(q - p) - (c0 == '-') > 15 && std::find_if(p, q, [](char c) {
+                                                   return c == '.' || c == 'e' || c == 'E';
+                                                 }) == q)
+    return nullptr;
+  return q;
+}
+
+// "x y z" ending the line at p: the three doubles and the start of the
+// next line, or nullptr.
+const char* fast_vertex_line(const char* p, const char* end, Coordinate (&c)[3]) {
+  for (int k = 0; k < 3; ++k) {
+    if (k > 0) {
+      if (p == end || !is_blank(*p)) return nullptr;
+      while (p != end && is_blank(*p)) ++p;
+    }
+    double d;
+    p = fast_coordinate(p, end, d);
+    if (!p) return nullptr;
+    c[k].d = d;
+  }
+  return line_end(p, end);
+}
+
+// A decimal index (digits only, at most 9: below kNoIndex) at p; the end of
+// its digits, or nullptr.
+inline const char* fast_index(const char* p, const char* end, std::uint32_t& v) {
+  const char* const start = p;
+  std::uint32_t x = 0;
+  while (p != end && *p >= '0' && *p <= '9' && p - start < 10) x = x * 10 + std::uint32_t(*p++ - '0');
+  if (p == start || p - start > 9) return nullptr;
+  v = x;
+  return p;
+}
+
+// "k i0 ... i(k-1)" ending the line at p, with 3 <= k <= 64 and every
+// index below nv: the face in `face` and the start of the next line, or
+// nullptr.
+const char* fast_face_line(const char* p, const char* end, std::uint64_t nv, std::vector<Index>& face) {
+  std::uint32_t k = 0;
+  p = fast_index(p, end, k);
+  if (!p || k < 3 || k > 64) return nullptr;
+  face.resize(k);
+  for (std::uint32_t j = 0; j < k; ++j) {
+    if (p == end || !is_blank(*p)) return nullptr;
+    while (p != end && is_blank(*p)) ++p;
+    std::uint32_t idx = 0;
+    p = fast_index(p, end, idx);
+    if (!p || idx >= nv || (p != end && !is_space(*p))) return nullptr;
+    face[j] = idx;
+  }
+  return line_end(p, end);
 }
 
 }  // namespace
@@ -120,6 +206,13 @@ Mesh read_off(std::string_view data, const std::string& name) {
   mesh.points.reserve(nv);
   for (std::uint64_t i = 0; i < nv; ++i) {
     Coordinate c[3];
+    if (!cur.at_end()) {
+      if (const char* next = fast_vertex_line(cur.here(), cur.end(), c)) {
+        cur.advance_to(next, next[-1] == '\n');
+        push_point(mesh.points, c);
+        continue;
+      }
+    }
     for (int k = 0; k < 3; ++k) {
       if (!cur.next(tok))
         throw InputError(name, line_place(cur.line()),
@@ -136,6 +229,14 @@ Mesh read_off(std::string_view data, const std::string& name) {
 
   mesh.faces.reserve(nf);
   for (std::uint64_t f = 0; f < nf; ++f) {
+    if (!cur.at_end()) {
+      std::vector<Index> face;
+      if (const char* next = fast_face_line(cur.here(), cur.end(), nv, face)) {
+        cur.advance_to(next, next[-1] == '\n');
+        mesh.faces.push_back(std::move(face));
+        continue;
+      }
+    }
     if (!cur.next(tok))
       throw InputError(name, line_place(cur.line()),
                        "file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");

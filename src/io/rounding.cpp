@@ -30,6 +30,11 @@ namespace minksum {
 
 using namespace io_detail;
 
+bool io_detail::holds_exactly(const ConvexPolytope& p, Format format, const WriteOptions& options) {
+  if (options.exact && format_info(format).exact) return true;
+  return !(format == Format::stl && options.binary) && p.coordinates().all_doubles();
+}
+
 namespace {
 
 // Coordinate k of point i minus d, to double precision (for the report), or 0
@@ -117,10 +122,9 @@ ConvexPolytope writable_polytope(const ConvexPolytope& p, Format format, const W
                                  RoundingReport* report) {
   RoundingReport r;
   if (report) *report = r;
-  if (options.exact && format_info(format).exact) return p;
+  if (io_detail::holds_exactly(p, format, options)) return p;
   const bool floats = format == Format::stl && options.binary;
   const PointList& c = p.coordinates();
-  if (!floats && c.all_doubles()) return p;
 
   const std::size_t n = c.size();
   Mesh m;

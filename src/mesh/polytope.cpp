@@ -950,26 +950,42 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
   Vec3d c{0, 0, 0};
   for (Index i = 0; i < nv; ++i) c = Vec3d{c.x + v[i].x / nv, c.y + v[i].y / nv, c.z + v[i].z / nv};
   const bool c_ok = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
+  // The wedge of v in a triangle (v, u_j, u_j+1) is the triangle itself
+  // (orient3d is invariant under cyclic rotation of its first three
+  // points), so its sign is computed once per triangle, not once per corner.
+  std::vector<signed char> below(nf, -1);  // 1: c strictly below the triangle, 0: not, -1: not a triangle
+  if (c_ok)
+    for (Index f = 0; f < nf; ++f) {
+      const Index h0 = r.facet_he_[f], h1 = r.he_next_[h0], h2 = r.he_next_[h1];
+      if (r.he_next_[h2] == h0)
+        below[f] = orient3d(v[r.he_origin_[h0]], v[r.he_origin_[h1]], v[r.he_origin_[h2]], c) < 0;
+    }
   std::vector<Index> around, undecided;
   for (Index i = 0; i < nv; ++i) {
     around.clear();
     Index h = r.vertex_he_[i];
-    do {
+    bool ok = c_ok;
+    do {  // u_j is the head of h; the wedge (v, u_j, u_j+1) lies in h's facet
       around.push_back(r.he_origin_[h ^ 1u]);
+      const signed char b = below[r.he_facet_[h]];
+      if (b == 0) ok = false;
+      around.push_back(b < 0 ? 1u : 0u);  // its sign still to compute
       h = r.he_prev_[h] ^ 1u;
     } while (h != r.vertex_he_[i]);
-    const std::size_t k = around.size();
-    bool ok = c_ok;
+    const std::size_t k = around.size() / 2;
     for (std::size_t j = 0; j < k && ok; ++j)
-      ok = orient3d(v[i], v[around[j]], v[around[j + 1 == k ? 0 : j + 1]], c) < 0;
+      if (around[2 * j + 1]) ok = orient3d(v[i], v[around[2 * j]], v[around[j + 1 == k ? 0 : 2 * j + 2]], c) < 0;
     // Winding: the side of d_j of the reference ray d_0 (within (0, pi)
     // counter-clockwise, or within (pi, 2 pi)); each step turns by less than
     // pi, so it passes the ray exactly when it goes from the second side
-    // back to the first, or to d_0 itself at the end.
-    long winding = 0;
+    // back to the first, or to d_0 itself at the end.  The sides of d_1
+    // (first side) and d_k-1 (second side) are those of the first and the
+    // last wedge, known once every wedge has passed.  With k <= 4 wedges
+    // of less than pi each, the total turn is below 4 pi: it winds once.
+    long winding = k <= 4 ? 1 : 0;
     bool prev_second = false;
-    for (std::size_t j = 1; j < k && ok; ++j) {
-      const int side = -orient3d(v[i], v[around[0]], v[around[j]], c);
+    for (std::size_t j = 1; j < k && ok && k > 4; ++j) {
+      const int side = j == 1 ? 1 : j + 1 == k ? -1 : -orient3d(v[i], v[around[0]], v[around[2 * j]], c);
       if (side == 0) ok = false;  // along the ray or against it: step 8's test decides
       if (prev_second && side > 0) ++winding;
       prev_second = side < 0;
@@ -987,7 +1003,19 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
     for (Index i = 0; i < nv; ++i) ip[i] = {FastInterval(v[i].x), FastInterval(v[i].y), FastInterval(v[i].z)};
     FanScratch scratch;
     std::vector<Index> loop;
+    // The interval normals that the tests read: those of the polygons and
+    // of the facets around the undecided vertices (a triangle elsewhere
+    // needs none).
+    std::vector<unsigned char> needed(nf, 0);
+    for (Index i : undecided) {
+      Index h = r.vertex_he_[i];
+      do {
+        needed[r.he_facet_[h]] = 1;
+        h = r.he_prev_[h] ^ 1u;
+      } while (h != r.vertex_he_[i]);
+    }
     for (Index f = 0; f < nf; ++f) {
+      if (!needed[f] && r.he_next_[r.he_next_[r.he_next_[r.facet_he_[f]]]] == r.facet_he_[f]) continue;
       const Index h0 = r.facet_he_[f];
       const FastIPoint& o = ip[r.he_origin_[h0]];
       Index h = r.he_next_[h0];

@@ -112,7 +112,7 @@ AnyOperand convex_or_mesh(Mesh mesh, const std::string& name, LoadPhases* phases
   const auto t1 = Clock::now();
   try {
     ConvexSet set = ConvexSet::from_mesh(mesh, name);  // one face: a polygon
-    if (set.full()) o.polytope = set.polytope();
+    if (set.full()) o.polytope = std::move(set).release_polytope();
     else o.flat = std::move(set);
   } catch (const InputError&) {  // not a convex set: validate_solid says what it is
     o.mesh = std::move(mesh);
@@ -133,7 +133,7 @@ AnyOperand load_any_operand(const std::string& spec, LoadPhases* phases, std::op
   AnyOperand o;
   try {
     ConvexSet set = catalog_convex_set(spec);
-    if (set.full()) o.polytope = set.polytope();
+    if (set.full()) o.polytope = std::move(set).release_polytope();
     else o.flat = std::move(set);
   } catch (const NotConvexError&) {  // a non-convex solid of the catalog
     o.mesh = catalog_mesh(spec);

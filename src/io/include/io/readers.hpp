@@ -44,6 +44,10 @@ void write_stl(std::ostream& out, const Mesh& mesh, const WriteOptions& options)
 void write_wrl(std::ostream& out, const Mesh& mesh, const WriteOptions& options);
 // OFF straight from a polytope (the same text as write_off of its to_mesh()).
 void write_off(std::ostream& out, const ConvexPolytope& p, const WriteOptions& options);
+// True when the format holds every coordinate of p as it is (exact rationals
+// with options.exact, or doubles in a format of doubles): writable_polytope
+// would return p unchanged, so it is written without that copy.
+bool holds_exactly(const ConvexPolytope& p, Format format, const WriteOptions& options);
 
 // ---------------------------------------------------------------------------
 // Shared helpers.
@@ -119,6 +123,11 @@ class TextBuffer {
   char buf_[1 << 15];
 };
 
+// The shortest round-trip text of d, exactly as std::to_chars(p, p + 24, d)
+// writes it (at most 24 characters); returns the end.  Integer arithmetic
+// for most coordinates (shortest.cpp), std::to_chars for the others.
+char* put_shortest(char* p, double d);
+
 // A decimal index, written at p (at most 20 characters); returns the end.
 inline char* put_index(char* p, std::uint64_t v) { return std::to_chars(p, p + 20, v).ptr; }
 
@@ -162,6 +171,16 @@ class TextCursor {
   std::size_t token_line() const { return token_line_; }
   std::size_t line() const { return line_; }
   std::size_t pos() const { return pos_; }
+
+  // For a reader's fast path, which parses a whole line itself: the bytes
+  // from the current position to the end, and moving past what it parsed
+  // (`p`, after `lines` line ends).
+  const char* here() const { return data_.data() + pos_; }
+  const char* end() const { return data_.data() + data_.size(); }
+  void advance_to(const char* p, std::size_t lines) {
+    pos_ = std::size_t(p - data_.data());
+    line_ += lines;
+  }
 
  private:
   void skip_blanks_on_line();

@@ -52,6 +52,8 @@ class ConvexSet {
   bool full() const { return dim_ == 3; }
   // Dimension 3 only.
   const ConvexPolytope& polytope() const { return polytope_; }
+  // The same, moved out of a set about to be dropped (no copy).
+  ConvexPolytope release_polytope() && { return std::move(polytope_); }
   // Every vertex, exact (dimension 3: the polytope's points).
   const std::vector<Point3>& vertices() const { return dim_ == 3 ? polytope_.points() : vertices_; }
   // Dimension 2 only: a normal of the polygon's plane (not normalised), the

@@ -18,7 +18,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -635,52 +634,6 @@ TEST(IoBad, OffLineNumbersAfterFastLines) {
   };
   for (const Case& c : cases)
     expect_input_error([&] { read_from_string(c.text, Format::off); }, "mem", c.problem, c.place);
-}
-
-// put_shortest is std::to_chars byte for byte: on every power of two and
-// its neighbours, on short decimals and their neighbours, on integers and
-// powers of ten, and on random doubles around and inside the range of its
-// integer path (2^-9 <= |d| < 2^53), both signs.
-TEST(IoWrite, ShortestTextIsToChars) {
-  std::vector<double> values;
-  for (int e = -14; e <= 58; ++e) {
-    const double p2 = std::ldexp(1.0, e);
-    for (double x : {p2, std::nextafter(p2, 0.0), std::nextafter(p2, 1e300), 3 * p2, std::nextafter(3 * p2, 0.0)})
-      values.push_back(x);
-  }
-  for (int e = -5; e <= 17; ++e) {
-    const double p10 = std::pow(10.0, e);
-    for (double x : {p10, std::nextafter(p10, 0.0), std::nextafter(p10, 1e300), 2 * p10, 5 * p10, 9.5 * p10})
-      values.push_back(x);
-  }
-  for (int i = 0; i <= 100000; ++i) values.push_back(i);
-  const unsigned seed = 20261123;
-  std::mt19937_64 rng(seed);
-  for (int i = 0; i < 200000; ++i) {  // decimals of 1 to 17 digits, and their neighbours
-    const int n = 1 + int(rng() % 17);
-    std::string t = std::to_string(1 + rng() % 9);
-    for (int j = 1; j < n; ++j) t += char('0' + rng() % 10);
-    t += "e" + std::to_string(int(rng() % 25) - 5 - n);
-    double d = 0;
-    std::from_chars(t.data(), t.data() + t.size(), d);
-    for (double x : {d, std::nextafter(d, 0.0), std::nextafter(d, 1e300)}) values.push_back(x);
-  }
-  for (int i = 0; i < 600000; ++i) {  // random mantissas, biased exponents 1010 to 1080
-    const std::uint64_t bits = (std::uint64_t(1010 + rng() % 71) << 52) | (rng() & ((std::uint64_t(1) << 52) - 1));
-    double d;
-    std::memcpy(&d, &bits, 8);
-    values.push_back(d);
-  }
-  values.push_back(0.0);
-  values.push_back(5e-324);
-  values.push_back(1.7976931348623157e308);
-  for (double v : values)
-    for (double d : {v, -v}) {
-      char want[32], got[32];
-      const std::string w(want, std::to_chars(want, want + 24, d).ptr);
-      const std::string g(got, io_detail::put_shortest(got, d));
-      ASSERT_EQ(g, w) << "seed " << seed << ", " << std::hexfloat << d;
-    }
 }
 
 TEST(IoWrite, RationalToFloatIsCorrectlyRounded) {

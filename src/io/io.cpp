@@ -241,7 +241,8 @@ float coordinate_float(const PointList& points, std::size_t i, int k) {
 void append_coordinate(std::string& out, const PointList& points, std::size_t i, int k, bool exact) {
   if (!exact) {
     char buf[32];
-    out.append(buf, put_shortest(buf, coordinate_double(points, i, k)));
+    auto r = std::to_chars(buf, buf + sizeof buf, coordinate_double(points, i, k));
+    out.append(buf, r.ptr);
     return;
   }
   switch (points.form()) {
@@ -273,11 +274,11 @@ void write_point_lines(std::ostream& out, const PointList& points, bool exact) {
   for (std::size_t i = 0; i < points.size(); ++i) {
     char* p = buf.reserve(80);
     const Vec3d& a = points.approx(i);
-    p = put_shortest(p, a.x);
+    p = std::to_chars(p, p + 24, a.x).ptr;
     *p++ = ' ';
-    p = put_shortest(p, a.y);
+    p = std::to_chars(p, p + 24, a.y).ptr;
     *p++ = ' ';
-    p = put_shortest(p, a.z);
+    p = std::to_chars(p, p + 24, a.z).ptr;
     *p++ = '\n';
     buf.commit(p);
   }

@@ -123,11 +123,6 @@ class TextBuffer {
   char buf_[1 << 15];
 };
 
-// The shortest round-trip text of d, exactly as std::to_chars(p, p + 24, d)
-// writes it (at most 24 characters); returns the end.  Integer arithmetic
-// for most coordinates (shortest.cpp), std::to_chars for the others.
-char* put_shortest(char* p, double d);
-
 // A decimal index, written at p (at most 20 characters); returns the end.
 inline char* put_index(char* p, std::uint64_t v) { return std::to_chars(p, p + 20, v).ptr; }
 

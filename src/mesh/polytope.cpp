@@ -13,6 +13,7 @@
 // bounds a convex body (Hadamard; van Heijenoort), so (1)-(4) are equivalent
 // to the mesh being the boundary of a convex polytope.
 #include "mesh/builder.hpp"
+#include "kernel/big_array.hpp"
 #include "kernel/interval.hpp"
 #include "kernel/plane.hpp"
 
@@ -66,7 +67,7 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
            const std::vector<Index>& vname, const std::vector<Index>& fname) {
   const Index nf = Index(faces.size());
   // Corners in polygon order: corner c runs from co[c] to co[succ(c)].
-  std::vector<Index> face_start(std::size_t(nf) + 1);
+  std::vector<Index> face_start = big_array<Index>(std::size_t(nf) + 1);
   std::size_t total = 0;
   for (Index f = 0; f < nf; ++f) {
     face_start[f] = Index(total);
@@ -75,14 +76,14 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   if (total > std::size_t(kNoIndex) / 2)
     throw InputError(source, "", "too many polygon corners (" + std::to_string(total) + ")");
   face_start[nf] = Index(total);
-  std::vector<Index> co(total);
+  std::vector<Index> co = big_array<Index>(total);
   for (Index f = 0, c = 0; f < nf; ++f)
     for (Index v : faces[f]) co[c++] = v;
   auto face_of = [&](Index c) {
     return Index(std::upper_bound(face_start.begin(), face_start.end(), c) - face_start.begin() - 1);
   };
   // bucket u (the corners whose smaller endpoint is u) = [bucket[u], bucket[u + 1]).
-  std::vector<Index> bucket(std::size_t(nv) + 1, 0);
+  std::vector<Index> bucket = big_array<Index>(std::size_t(nv) + 1, 0);
   for (Index f = 0; f < nf; ++f)
     for (Index c = face_start[f], e = face_start[f + 1]; c < e; ++c) {
       const Index u = co[c], v = co[c + 1 == e ? face_start[f] : c + 1];
@@ -92,9 +93,11 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   struct Use {
     Index other, corner;  // the larger endpoint, the corner
   };
-  std::vector<Use> uses(total);
+  std::vector<Use> uses = big_array<Use>(total);
   {
-    std::vector<Index> fill(bucket.begin(), bucket.end() - 1);
+    std::vector<Index> fill;
+    reserve_big(fill, nv);
+    fill.assign(bucket.begin(), bucket.end() - 1);
     for (Index f = 0; f < nf; ++f)
       for (Index c = face_start[f], e = face_start[f + 1]; c < e; ++c) {
         const Index u = co[c], v = co[c + 1 == e ? face_start[f] : c + 1];
@@ -104,7 +107,7 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   // Each bucket sorted by (other, corner): a bucket holds about twice a
   // vertex's degree, so insertion sort (stable: corners stay increasing).
   // corner_edge[c] = the first corner of c's edge, then the edge's number.
-  std::vector<Index> corner_edge(total);
+  std::vector<Index> corner_edge = big_array<Index>(total);
   struct Failure {
     Index first = kNoIndex, u = 0, w = 0, count = 0, c0 = 0, c1 = 0;
     void note(Index f, Index uu, Index ww, Index n, Index a, Index b) {
@@ -154,12 +157,12 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
 
   Graph g;
   Index nh = Index(num_edges * 2);
-  g.origin.assign(nh, kNoIndex);
-  g.facet.assign(nh, kNoIndex);
-  g.next.assign(nh, kNoIndex);
-  g.prev.assign(nh, kNoIndex);
-  g.facet_he.assign(nf, kNoIndex);
-  g.vertex_he.assign(nv, kNoIndex);
+  g.origin = big_array(nh, kNoIndex);
+  g.facet = big_array(nh, kNoIndex);
+  g.next = big_array(nh, kNoIndex);
+  g.prev = big_array(nh, kNoIndex);
+  g.facet_he = big_array(nf, kNoIndex);
+  g.vertex_he = big_array(nv, kNoIndex);
   for (Index f = 0; f < nf; ++f) {
     const Index c0 = face_start[f], ce = face_start[f + 1];
     auto half = [&](Index c) {
@@ -181,7 +184,7 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
     g.facet_he[f] = h0;
   }
   // Vertex manifoldness: the facets around each vertex form a single fan.
-  std::vector<Index> outdeg(nv, 0);
+  std::vector<Index> outdeg = big_array<Index>(nv, 0);
   for (Index h = 0; h < nh; ++h) ++outdeg[g.origin[h]];
   for (Index v = 0; v < nv; ++v) {
     Index h = g.vertex_he[v], steps = 0;
@@ -503,9 +506,9 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   //    Points in the doubles / double-pairs forms are equal exactly when
   //    their bits are (zeros are stored unsigned), so they are welded by
   //    their bits; rationals by their exact value.
-  std::vector<Index> canon(n_in, kNoIndex);
+  std::vector<Index> canon = big_array(n_in, kNoIndex);
   {
-    std::vector<char> used(n_in, 0);
+    std::vector<char> used = big_array<char>(n_in, 0);
     for (const auto& poly : mesh.faces)
       for (Index v : poly) used[v] = 1;
     const PointList& mp = mesh.points;
@@ -541,7 +544,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
       };
       std::size_t n = 16;
       while (n < 2 * std::size_t(n_in) + 2) n *= 2;
-      std::vector<Index> slot(n, kNoIndex);
+      std::vector<Index> slot = big_array(n, kNoIndex);
       for (Index v = 0; v < n_in; ++v) {
         if (!used[v]) continue;
         for (std::size_t i = hash(v) & (n - 1);; i = (i + 1) & (n - 1)) {
@@ -558,13 +561,14 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
       }
     }
   }
-  std::vector<Index> new_id(n_in, kNoIndex), vname;
+  std::vector<Index> new_id = big_array(n_in, kNoIndex), vname;
   PointList pts;
   if (mesh.points.form() == PointList::Form::doubles &&
       std::all_of(canon.begin(), canon.end(), [v = Index(0)](Index c) mutable { return c == v++; })) {
     // Every point used, none welded: the list as it is.
     pts = mesh.points;
     std::iota(new_id.begin(), new_id.end(), 0);
+    reserve_big(vname, n_in);
     vname.resize(n_in);
     std::iota(vname.begin(), vname.end(), 0);
   } else {
@@ -791,7 +795,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   // Triangles on doubles: orient3d(p, q, c, d) per edge instead (see
   // triangle_pair_orient; the corner after q in f is c, after p in o is d).
   std::vector<FastIPoint> edge_cross(triangles_on_doubles ? 0 : g.num_halfedges() / 2);
-  std::vector<signed char> edge_orient(triangles_on_doubles ? g.num_halfedges() / 2 : 0);
+  std::vector<signed char> edge_orient = big_array<signed char>(triangles_on_doubles ? g.num_halfedges() / 2 : 0);
   for (Index h = 0; h < g.num_halfedges(); h += 2) {
     Index f = g.facet[h], o = g.facet[h + 1];
     if (triangles_on_doubles) {

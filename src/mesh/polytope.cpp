@@ -18,6 +18,7 @@
 #include "kernel/plane.hpp"
 
 #include <minksum/error.hpp>
+#include <minksum/parallel.hpp>
 #include <minksum/predicates.hpp>
 
 #include <algorithm>
@@ -28,6 +29,7 @@
 #include <mutex>
 #include <numeric>
 #include <optional>
+#include <thread>
 #include <unordered_map>
 
 namespace minksum {
@@ -469,6 +471,26 @@ bool convex_vertex_on_doubles(Index i, Index start, const Index* origin, const I
   return winding == 1;
 }
 
+// body(begin, end) over [0, n) in blocks of kValidationBlock items, on
+// several threads when there are two blocks or more (at least two threads,
+// one per hardware thread beyond).  Each block runs with the FPU rounding
+// upward, as the caller's loop.  A block stops at its first failure; of the
+// failures, parallel_for rethrows the one of the first block, so the error
+// is the first in input order, as on one thread.
+constexpr std::size_t kValidationBlock = 2048;
+template <class Body>
+void in_blocks(std::size_t n, Body&& body) {
+  const std::size_t blocks = (n + kValidationBlock - 1) / kValidationBlock;
+  if (blocks < 2) {
+    body(std::size_t(0), n);
+    return;
+  }
+  parallel_for(blocks, std::max(2u, std::thread::hardware_concurrency()), [&](std::size_t b) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    body(b * kValidationBlock, std::min(n, (b + 1) * kValidationBlock));
+  });
+}
+
 // The mean of the points, in doubles (any rounding), or nullopt when it is
 // not finite.
 std::optional<Vec3d> mean_point(const std::vector<Vec3d>& v) {
@@ -796,15 +818,20 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   // triangle_pair_orient; the corner after q in f is c, after p in o is d).
   std::vector<FastIPoint> edge_cross(triangles_on_doubles ? 0 : g.num_halfedges() / 2);
   std::vector<signed char> edge_orient = big_array<signed char>(triangles_on_doubles ? g.num_halfedges() / 2 : 0);
-  for (Index h = 0; h < g.num_halfedges(); h += 2) {
-    Index f = g.facet[h], o = g.facet[h + 1];
-    if (triangles_on_doubles) {
+  if (triangles_on_doubles)
+    in_blocks(edge_orient.size(), [&](std::size_t begin, std::size_t end) {
       const std::vector<Vec3d>& v = pts.approx();
-      const int t = orient3d(v[g.origin[h]], v[g.origin[h + 1]], v[g.origin[g.next[g.next[h]]]],
-                             v[g.origin[g.next[g.next[h + 1]]]]);
-      edge_orient[h / 2] = static_cast<signed char>(t);
-      if (t != 0) continue;
-    } else {
+      for (std::size_t e = begin; e < end; ++e) {
+        const Index h = Index(2 * e);
+        edge_orient[e] = static_cast<signed char>(orient3d(v[g.origin[h]], v[g.origin[h + 1]],
+                                                           v[g.origin[g.next[g.next[h]]]],
+                                                           v[g.origin[g.next[g.next[h + 1]]]]));
+      }
+    });
+  for (Index h = 0; h < g.num_halfedges(); h += 2) {
+    if (triangles_on_doubles && edge_orient[h / 2] != 0) continue;
+    Index f = g.facet[h], o = g.facet[h + 1];
+    if (!triangles_on_doubles) {
       FastIPoint c = cross(inrm[f], inrm[o]);
       edge_cross[h / 2] = c;
       auto certainly_nonzero = [](const FastInterval& x) { int s = sign_of(x); return s == 1 || s == -1; };
@@ -957,13 +984,16 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     // The test on doubles first; step 8's test where it does not accept.
     const std::optional<Vec3d> c = mean_point(pts.approx());
     const TriangleNormals<DoubleIntervals> tn{&dip, fg.origin.data(), fg.next.data(), fg.facet_he.data()};
-    std::vector<Index> around;
-    for (Index v = 0; v < fpts.size(); ++v)
-      if (!(c && convex_vertex_on_doubles(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), pts.approx(), *c,
-                                          around)) &&
-          !convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), dip, tn, fpts,
-                         scratch))
-        throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
+    in_blocks(fpts.size(), [&](std::size_t begin, std::size_t end) {
+      std::vector<Index> around;
+      FanScratch block_scratch;
+      for (Index v = Index(begin); v < end; ++v)
+        if (!(c && convex_vertex_on_doubles(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), pts.approx(),
+                                            *c, around)) &&
+            !convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), dip, tn, fpts,
+                           block_scratch))
+          throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
+    });
   } else {
     for (Index v = 0; v < fpts.size(); ++v)
       if (!convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), fip, finrm, fpts,

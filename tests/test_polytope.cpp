@@ -245,6 +245,23 @@ TEST(PolytopeBad, TwoComponents) {
   EXPECT_NE(build_error(m).find("more than one connected component"), std::string::npos);
 }
 
+// The facet named is the first one (in input order) not connected to facet
+// 0, wherever the components' facets are listed.
+TEST(PolytopeBad, TwoComponentsNameTheFirstFacetNotConnectedToTheFirst) {
+  const Mesh a = cube_mesh(1), b = box_mesh(5, 6, 5, 6, 5, 6);
+  for (std::size_t at : {1, 3, 6}) {
+    Mesh m = a;
+    for (const Point3& p : b.points) m.points.push_back(p);
+    std::vector<std::vector<Index>> moved = b.faces;
+    for (auto& f : moved)
+      for (auto& v : f) v += 8;
+    m.faces.insert(m.faces.begin() + long(at), moved.begin(), moved.end());
+    EXPECT_EQ(build_error(m), "case.off: facet " + std::to_string(at) +
+                                  ": the mesh has more than one connected component (this facet is not connected "
+                                  "to facet 0)");
+  }
+}
+
 TEST(PolytopeBad, FlatBackToBack) {
   Mesh m;
   m.points = {P(0, 0, 0), P(1, 0, 0), P(0, 1, 0)};

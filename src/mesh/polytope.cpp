@@ -48,6 +48,20 @@ inline std::uint64_t mix64(std::uint64_t h) {
   return h;
 }
 
+struct UnionFind {
+  std::vector<Index> parent;
+  explicit UnionFind(Index n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  Index find(Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(Index a, Index b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
 struct Graph {
   std::vector<Index> origin, facet, next, prev, facet_he, vertex_he;
   Index num_halfedges() const { return Index(origin.size()); }
@@ -198,30 +212,20 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
       throw InputError(source, vtx(vname[v]),
                        "non-manifold vertex: its facets form more than one fan");
   }
-  // Connected, sphere topology.
-  std::vector<char> seen(faces.size(), 0);
-  std::vector<Index> stack{0};
-  seen[0] = 1;
-  std::size_t reached = 1;
-  while (!stack.empty()) {
-    Index f = stack.back();
-    stack.pop_back();
-    Index h = g.facet_he[f];
-    do {
-      Index other = g.facet[h ^ 1u];
-      if (!seen[other]) {
-        seen[other] = 1;
-        ++reached;
-        stack.push_back(other);
-      }
-      h = g.next[h];
-    } while (h != g.facet_he[f]);
-  }
-  if (reached != faces.size()) {
-    Index first = Index(std::find(seen.begin(), seen.end(), 0) - seen.begin());
-    throw InputError(source, fct(fname[first]),
-                     "the mesh has more than one connected component (this facet is not connected to " +
-                         fct(fname[0]) + ")");
+  // Connected, sphere topology.  Every vertex now has one fan, so two
+  //    facets are connected across edges exactly when their vertices are
+  //    connected along edges (a path of edges passes from fan to fan), and
+  //    the facets connected to facet 0 are found by a union-find of the
+  //    vertices over the edges, in edge order, not by a search over facets.
+  {
+    UnionFind uf(nv);
+    for (Index h = 0; h < nh; h += 2) uf.unite(g.origin[h], g.origin[h + 1]);
+    const Index root = uf.find(co[0]);
+    for (Index f = 1; f < nf; ++f)
+      if (uf.find(co[face_start[f]]) != root)
+        throw InputError(source, fct(fname[f]),
+                         "the mesh has more than one connected component (this facet is not connected to " +
+                             fct(fname[0]) + ")");
   }
   long chi = long(nv) - long(num_edges) + long(faces.size());
   if (chi != 2)
@@ -247,19 +251,6 @@ Point3 polygon_normal(const PointList& pts, const std::vector<Index>& poly) {
   return n;
 }
 
-struct UnionFind {
-  std::vector<Index> parent;
-  explicit UnionFind(Index n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  Index find(Index x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(Index a, Index b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 }  // namespace
 

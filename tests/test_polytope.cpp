@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <set>
 
 #include "test_support.hpp"
 
@@ -632,4 +633,45 @@ TEST(Polytope, TrianglesOnDoublesAgreeWithRationals) {
   EXPECT_GE(seen["valid"], 30) << kinds;
   EXPECT_GE(seen["big valid"], 2) << kinds;
   EXPECT_GE(seen["big error"], 2) << kinds;
+}
+
+// Facets are checked in blocks on threads: of several facets with zero
+// area in different blocks, the error names the first in input order (the
+// reference: an exact scan of every facet).  Fixed seeds.
+TEST(PolytopeBad, ZeroAreaFacetsInSeveralBlocksNameTheFirst) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> g;
+    std::vector<Point3> cloud;
+    for (int i = 0; i < 7000; ++i) {
+      const double x = g(rng), y = g(rng), z = g(rng), r = std::sqrt(x * x + y * y + z * z);
+      cloud.push_back(Point3(x / r, y / r, z / r));
+    }
+    Mesh m = triangulated(ConvexPolytope::hull(cloud).to_mesh());
+    const std::size_t nf = m.faces.size();
+    ASSERT_GT(nf, 4 * 2048u);
+    // Three facets with no common vertex, made flat: their corners moved
+    // onto a line far outside the sphere (exactly collinear doubles).
+    std::vector<Index> flat;
+    std::set<Index> used;
+    while (flat.size() < 3) {
+      const Index f = Index(2048 + rng() % (nf - 2048));
+      const auto& poly = m.faces[f];
+      if (used.count(poly[0]) || used.count(poly[1]) || used.count(poly[2])) continue;
+      flat.push_back(f);
+      const double x = 10.0 * double(flat.size());
+      for (int k = 0; k < 3; ++k) {
+        used.insert(poly[k]);
+        m.points.set(poly[k], Point3(x + k, x + 2 * k, x + 3 * k));
+      }
+    }
+    Index first = kNoIndex;
+    for (Index f = 0; f < nf && first == kNoIndex; ++f) {
+      const Point3 a = m.points.exact(m.faces[f][0]);
+      if (is_zero(cross(m.points.exact(m.faces[f][1]) - a, m.points.exact(m.faces[f][2]) - a))) first = f;
+    }
+    ASSERT_EQ(first, *std::min_element(flat.begin(), flat.end()));
+    EXPECT_EQ(build_error(m), "case.off: facet " + std::to_string(first) + ": has zero area");
+  }
 }

@@ -739,34 +739,42 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     inrm.resize(nf);
     for (Index f = 0; f < nf; ++f) inrm[f] = newell(ip, f);
   };
-  // Six times the volume, for step 5: sum over the facets of <p_0(f) - p_0, n(f)>.
-  FastInterval six(0);
+  // Six times the volume, for step 5: sum over the facets of <p_0(f) - p_0, n(f)>,
+  // summed per block of facets, then the blocks in order (the same interval
+  // on any number of threads).
+  std::vector<FastInterval> six_part((nf + kValidationBlock - 1) / kValidationBlock, FastInterval(0));
   auto facets_pass = [&](const auto& ipa) {
     if (!triangles_on_doubles) inrm.resize(nf);
     const FastIPoint origin = ipa[0];
-    for (Index f = 0; f < nf; ++f) {
-      const auto& poly = faces[f];
-      const FastIPoint n = newell(ipa, f);
-      if (!triangles_on_doubles) inrm[f] = n;
-      auto certainly_nonzero = [](const FastInterval& c) { int s = sign_of(c); return s == 1 || s == -1; };
-      if (!certainly_nonzero(n.x) && !certainly_nonzero(n.y) && !certainly_nonzero(n.z) &&
-          is_zero(exact_normal(f)))
-        throw InputError(source, fct(fname[f]), "has zero area");
-      const FastIPoint o = ipa[poly[0]];
-      if (poly.size() > 3) {
-        for (Index v : poly) {
-          int s = sign_of(dot(n, ipa[v] - o));
-          if (s == kUncertain) s = sgn(dot(exact_normal(f), pts.exact(v) - pts.exact(poly[0])));
-          if (s != 0)
-            throw NotConvexError(source, fct(fname[f]),
-                                 "is not planar (" + vtx(vname[v]) + " is off the plane of the others)");
+    in_blocks(nf, [&](std::size_t begin, std::size_t end) {
+      FastInterval six(0);
+      for (Index f = Index(begin); f < end; ++f) {
+        const auto& poly = faces[f];
+        const FastIPoint n = newell(ipa, f);
+        if (!triangles_on_doubles) inrm[f] = n;
+        auto certainly_nonzero = [](const FastInterval& c) { int s = sign_of(c); return s == 1 || s == -1; };
+        if (!certainly_nonzero(n.x) && !certainly_nonzero(n.y) && !certainly_nonzero(n.z) &&
+            is_zero(exact_normal(f)))
+          throw InputError(source, fct(fname[f]), "has zero area");
+        const FastIPoint o = ipa[poly[0]];
+        if (poly.size() > 3) {
+          for (Index v : poly) {
+            int s = sign_of(dot(n, ipa[v] - o));
+            if (s == kUncertain) s = sgn(dot(exact_normal(f), pts.exact(v) - pts.exact(poly[0])));
+            if (s != 0)
+              throw NotConvexError(source, fct(fname[f]),
+                                   "is not planar (" + vtx(vname[v]) + " is off the plane of the others)");
+          }
         }
+        six += dot(o - origin, n);
       }
-      six += dot(o - origin, n);
-    }
+      six_part[begin / kValidationBlock] = six;
+    });
   };
   if (triangles_on_doubles) facets_pass(dip);
   else facets_pass(ip);
+  FastInterval six(0);
+  for (const FastInterval& part : six_part) six += part;
 
   // 5. Orientation from the sign of the volume; flip a consistently inward mesh.
   int vol_sign;

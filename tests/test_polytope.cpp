@@ -545,9 +545,9 @@ TEST(PolytopeBad, EdgeErrorsNameTheEdgeThatAppearsFirst) {
 // out, a facet reversed or dropped or repeated, every facet reversed, two
 // points made equal, a vertex put on a neighbour's plane (a merge), a
 // lattice with coplanar triangles (merges and dropped vertices).  Every
-// tenth mesh has several thousand vertices, so that the loops over edges
-// and vertices run in several blocks on threads: the same polytope and the
-// same first error as the rational mesh's single-threaded path.
+// twentieth mesh has some 18 000 vertices (36 000 facets), so that the
+// loops over facets, edges and vertices run in several blocks on threads:
+// the same polytope and the same first error as the rational mesh.
 TEST(Polytope, TrianglesOnDoublesAgreeWithRationals) {
   auto thirds = [](const Mesh& m) {
     Mesh t;
@@ -569,8 +569,8 @@ TEST(Polytope, TrianglesOnDoublesAgreeWithRationals) {
     std::mt19937_64 rng(seed);
     std::vector<Point3> cloud;
     const bool lattice = seed % 6 == 0;
-    const bool big = seed % 10 == 3;
-    const int n = big ? 6000 + int(rng() % 2000) : 8 + int(rng() % 60);
+    const bool big = seed % 20 == 3;
+    const int n = big ? 17000 + int(rng() % 2000) : 8 + int(rng() % 60);
     std::normal_distribution<double> g;
     for (int i = 0; i < n; ++i) {
       const double x = g(rng), y = g(rng), z = g(rng), r = big ? std::sqrt(x * x + y * y + z * z) : 1.0;
@@ -631,26 +631,27 @@ TEST(Polytope, TrianglesOnDoublesAgreeWithRationals) {
   for (const auto& [k, n] : seen) kinds += k + " x" + std::to_string(n) + "; ";
   EXPECT_GE(seen.size(), 5u) << kinds;
   EXPECT_GE(seen["valid"], 30) << kinds;
-  EXPECT_GE(seen["big valid"], 2) << kinds;
-  EXPECT_GE(seen["big error"], 2) << kinds;
+  EXPECT_GE(seen["big valid"], 1) << kinds;
+  EXPECT_GE(seen["big error"], 1) << kinds;
 }
 
 // Facets are checked in blocks on threads: of several facets with zero
 // area in different blocks, the error names the first in input order (the
-// reference: an exact scan of every facet).  Fixed seeds.
+// reference: an exact scan of every facet).  Fixed seeds; 36 000 facets,
+// enough for threads.
 TEST(PolytopeBad, ZeroAreaFacetsInSeveralBlocksNameTheFirst) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> g;
     std::vector<Point3> cloud;
-    for (int i = 0; i < 7000; ++i) {
+    for (int i = 0; i < 18000; ++i) {
       const double x = g(rng), y = g(rng), z = g(rng), r = std::sqrt(x * x + y * y + z * z);
       cloud.push_back(Point3(x / r, y / r, z / r));
     }
     Mesh m = triangulated(ConvexPolytope::hull(cloud).to_mesh());
     const std::size_t nf = m.faces.size();
-    ASSERT_GT(nf, 4 * 2048u);
+    ASSERT_GT(nf, 32768u);
     // Three facets with no common vertex, made flat: their corners moved
     // onto a line far outside the sphere (exactly collinear doubles).
     std::vector<Index> flat;

@@ -463,16 +463,20 @@ bool convex_vertex_on_doubles(Index i, Index start, const Index* origin, const I
 }
 
 // body(begin, end) over [0, n) in blocks of kValidationBlock items, on
-// several threads when there are two blocks or more (at least two threads,
-// one per hardware thread beyond).  Each block runs with the FPU rounding
-// upward, as the caller's loop.  A block stops at its first failure; of the
-// failures, parallel_for rethrows the one of the first block, so the error
-// is the first in input order, as on one thread.
+// several threads when `threads` and there are two blocks or more (at least
+// two threads, one per hardware thread beyond).  Each block runs with the
+// FPU rounding upward, as the caller's loop.  A block stops at its first
+// failure; of the failures, parallel_for rethrows the one of the first
+// block, so the error is the first in input order, as on one thread.
+// Validation uses threads for meshes of kThreadsFromFacets facets or more:
+// below, the whole validation takes a few milliseconds, and on a loaded
+// machine waiting for a started thread to be scheduled can cost as much.
 constexpr std::size_t kValidationBlock = 2048;
+constexpr std::size_t kThreadsFromFacets = 32768;
 template <class Body>
-void in_blocks(std::size_t n, Body&& body) {
+void in_blocks(std::size_t n, bool threads, Body&& body) {
   const std::size_t blocks = (n + kValidationBlock - 1) / kValidationBlock;
-  if (blocks < 2) {
+  if (!threads || blocks < 2) {
     body(std::size_t(0), n);
     return;
   }
@@ -687,6 +691,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   //    filtered predicate), and the intervals of points and normals that a
   //    fallback needs are made on demand (DoubleIntervals,
   //    TriangleNormals).  Every decision is the same as on stored intervals.
+  const bool threads = nf >= kThreadsFromFacets;
   const bool triangles_on_doubles =
       pts.form() == PointList::Form::doubles &&
       std::all_of(faces.begin(), faces.end(), [](const std::vector<Index>& poly) { return poly.size() == 3; });
@@ -746,7 +751,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   auto facets_pass = [&](const auto& ipa) {
     if (!triangles_on_doubles) inrm.resize(nf);
     const FastIPoint origin = ipa[0];
-    in_blocks(nf, [&](std::size_t begin, std::size_t end) {
+    in_blocks(nf, threads, [&](std::size_t begin, std::size_t end) {
       FastInterval six(0);
       for (Index f = Index(begin); f < end; ++f) {
         const auto& poly = faces[f];
@@ -818,7 +823,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   std::vector<FastIPoint> edge_cross(triangles_on_doubles ? 0 : g.num_halfedges() / 2);
   std::vector<signed char> edge_orient = big_array<signed char>(triangles_on_doubles ? g.num_halfedges() / 2 : 0);
   if (triangles_on_doubles)
-    in_blocks(edge_orient.size(), [&](std::size_t begin, std::size_t end) {
+    in_blocks(edge_orient.size(), threads, [&](std::size_t begin, std::size_t end) {
       const std::vector<Vec3d>& v = pts.approx();
       for (std::size_t e = begin; e < end; ++e) {
         const Index h = Index(2 * e);
@@ -983,7 +988,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     // The test on doubles first; step 8's test where it does not accept.
     const std::optional<Vec3d> c = mean_point(pts.approx());
     const TriangleNormals<DoubleIntervals> tn{&dip, fg.origin.data(), fg.next.data(), fg.facet_he.data()};
-    in_blocks(fpts.size(), [&](std::size_t begin, std::size_t end) {
+    in_blocks(fpts.size(), threads, [&](std::size_t begin, std::size_t end) {
       std::vector<Index> around;
       FanScratch block_scratch;
       for (Index v = Index(begin); v < end; ++v)

@@ -8,6 +8,7 @@
 #include <minksum/parallel.hpp>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -75,4 +76,32 @@ TEST(Parallel, SumsOnTwoThreadsEqualSumsOnOne) {
     return out;
   };
   EXPECT_EQ(run(1), run(2));
+}
+
+// A parallel_for inside a job runs its jobs on that job's thread, in order.
+TEST(Parallel, NestedLoopRunsOnTheJobsThread) {
+  std::atomic<int> inner_elsewhere{0}, out_of_order{0};
+  parallel_for(4, 2, [&](std::size_t) {
+    const std::thread::id me = std::this_thread::get_id();
+    std::size_t next = 0;
+    parallel_for(8, 4, [&](std::size_t j) {  // (jobs long enough for other threads to take some)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      if (std::this_thread::get_id() != me) ++inner_elsewhere;
+      if (j != next++) ++out_of_order;
+    });
+  });
+  EXPECT_EQ(inner_elsewhere.load(), 0);
+  EXPECT_EQ(out_of_order.load(), 0);
+  // Outside any job, the loop starts its threads again: two jobs that each
+  // wait for the other to start finish only on two threads.
+  std::atomic<int> started{0};
+  std::atomic<int> met{0};
+  parallel_for(2, 2, [&](std::size_t) {
+    ++started;
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (started.load() < 2 && std::chrono::steady_clock::now() < give_up)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (started.load() == 2) ++met;
+  });
+  EXPECT_EQ(met.load(), 2);
 }

@@ -4,7 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <map>
 #include <random>
+#include <set>
 
 #include "test_support.hpp"
 
@@ -242,6 +246,23 @@ TEST(PolytopeBad, TwoComponents) {
   EXPECT_NE(build_error(m).find("more than one connected component"), std::string::npos);
 }
 
+// The facet named is the first one (in input order) not connected to facet
+// 0, wherever the components' facets are listed.
+TEST(PolytopeBad, TwoComponentsNameTheFirstFacetNotConnectedToTheFirst) {
+  const Mesh a = cube_mesh(1), b = box_mesh(5, 6, 5, 6, 5, 6);
+  for (std::size_t at : {1, 3, 6}) {
+    Mesh m = a;
+    for (const Point3& p : b.points) m.points.push_back(p);
+    std::vector<std::vector<Index>> moved = b.faces;
+    for (auto& f : moved)
+      for (auto& v : f) v += 8;
+    m.faces.insert(m.faces.begin() + long(at), moved.begin(), moved.end());
+    EXPECT_EQ(build_error(m), "case.off: facet " + std::to_string(at) +
+                                  ": the mesh has more than one connected component (this facet is not connected "
+                                  "to facet 0)");
+  }
+}
+
 TEST(PolytopeBad, FlatBackToBack) {
   Mesh m;
   m.points = {P(0, 0, 0), P(1, 0, 0), P(0, 1, 0)};
@@ -439,5 +460,219 @@ TEST(Hull, DoublePointsOneUlpFromAFacetAreDecidedExactly) {
       const Rational volume = top == above ? 1 + apex / 3 : Rational(1);
       EXPECT_EQ(h.volume(), set == &pts ? volume : volume / 27);
     }
+  }
+}
+
+namespace {
+
+// The first edge error, as link reports it: every edge used by three or
+// more facets first, then edges traversed twice in one direction, then
+// edges of one facet; within a kind, the edge whose first use comes first
+// in facet order; named by its endpoints (smaller first) and its first two
+// facets.  A plain reference, quadratic, to check the sort-based matching.
+std::string reference_edge_error(const Mesh& m) {
+  struct Edge {
+    Index u, w, count = 0, f0 = 0, f1 = 0;
+    int same_direction = 0;
+    Index first_origin = 0;
+  };
+  std::vector<Edge> edges;  // in order of first use
+  for (Index f = 0; f < m.faces.size(); ++f) {
+    const auto& poly = m.faces[f];
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Index a = poly[i], b = poly[(i + 1) % poly.size()];
+      const Index u = std::min(a, b), w = std::max(a, b);
+      auto it = std::find_if(edges.begin(), edges.end(), [&](const Edge& e) { return e.u == u && e.w == w; });
+      if (it == edges.end()) {
+        edges.push_back({u, w, 1, f, 0, 0, a});
+        continue;
+      }
+      if (it->count == 1) {
+        it->f1 = f;
+        it->same_direction = a == it->first_origin;
+      }
+      ++it->count;
+    }
+  }
+  auto name = [](const Edge& e) { return "case.off: edge " + std::to_string(e.u) + "-" + std::to_string(e.w) + ": "; };
+  for (const Edge& e : edges)
+    if (e.count > 2) return name(e) + "non-manifold edge shared by " + std::to_string(e.count) + " facets";
+  for (const Edge& e : edges)
+    if (e.count == 2 && e.same_direction)
+      return name(e) + "inconsistent orientation: facet " + std::to_string(e.f0) + " and facet " +
+             std::to_string(e.f1) + " traverse this edge in the same direction";
+  for (const Edge& e : edges)
+    if (e.count == 1) return name(e) + "open mesh: the edge belongs to facet " + std::to_string(e.f0) + " only";
+  return "";
+}
+
+}  // namespace
+
+// Soups of triangles and quadrilaterals on a few distinct points, with
+// facets dropped, repeated and reversed: from_mesh's first topological error
+// is the reference's (several errors of each kind in one soup, so the order
+// matters).  Fixed seeds.
+TEST(PolytopeBad, EdgeErrorsNameTheEdgeThatAppearsFirst) {
+  int compared = 0;
+  for (std::uint64_t seed = 1; seed <= 400; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    Mesh m = rng() % 2 ? triangulated(octahedron_mesh()) : cube_mesh();
+    const std::size_t changes = 1 + rng() % 4;
+    for (std::size_t c = 0; c < changes; ++c) {
+      const std::size_t f = rng() % m.faces.size();
+      switch (rng() % 3) {
+        case 0: m.faces.erase(m.faces.begin() + long(f)); break;
+        case 1: m.faces.push_back(m.faces[f]); break;
+        default: std::reverse(m.faces[f].begin(), m.faces[f].end());
+      }
+      if (m.faces.empty()) m.faces.push_back({0, 1, 2});
+    }
+    const std::string expected = reference_edge_error(m);
+    if (expected.empty()) continue;
+    EXPECT_EQ(build_error(m), expected);
+    ++compared;
+  }
+  EXPECT_GT(compared, 300);
+}
+
+// A mesh of triangles with double coordinates is validated without stored
+// intervals (one orient3d per edge, a vertex test on doubles first); the
+// same mesh scaled by 1/3 has rational coordinates and takes the general
+// path, while every sign is the same.  Both must give the same polytope
+// (vertex for vertex, facet for facet) or the same error.  Random convex
+// meshes (fixed seeds) with one change each: none, a vertex pushed in or
+// out, a facet reversed or dropped or repeated, every facet reversed, two
+// points made equal, a vertex put on a neighbour's plane (a merge), a
+// lattice with coplanar triangles (merges and dropped vertices).  Every
+// twentieth mesh has some 18 000 vertices (36 000 facets), so that the
+// loops over facets, edges and vertices run in several blocks on threads:
+// the same polytope and the same first error as the rational mesh.
+TEST(Polytope, TrianglesOnDoublesAgreeWithRationals) {
+  auto thirds = [](const Mesh& m) {
+    Mesh t;
+    t.faces = m.faces;
+    for (const Point3& p : m.points) t.points.push_back(Point3(p.x / 3, p.y / 3, p.z / 3));
+    return t;
+  };
+  auto outcome = [](const Mesh& m, ConvexPolytope& p) {
+    try {
+      p = ConvexPolytope::from_mesh(m, "case.off");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::map<std::string, int> seen;
+  for (std::uint64_t seed = 1; seed <= 120; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    std::vector<Point3> cloud;
+    const bool lattice = seed % 6 == 0;
+    const bool big = seed % 20 == 3;
+    const int n = big ? 17000 + int(rng() % 2000) : 8 + int(rng() % 60);
+    std::normal_distribution<double> g;
+    for (int i = 0; i < n; ++i) {
+      const double x = g(rng), y = g(rng), z = g(rng), r = big ? std::sqrt(x * x + y * y + z * z) : 1.0;
+      cloud.push_back(lattice ? P(long(rng() % 4), long(rng() % 4), long(rng() % 4)) : Point3(x / r, y / r, z / r));
+    }
+    Mesh m = triangulated(ConvexPolytope::hull(cloud).to_mesh());
+    const Index nv = Index(m.points.size());
+    const Index v = Index(rng() % nv);
+    const Index f = Index(rng() % m.faces.size());
+    switch (lattice ? 0 : rng() % 9) {
+      case 0: break;
+      case 1: m.points.set(v, Point3(m.points.approx(v).x * 0.5, m.points.approx(v).y * 0.5, m.points.approx(v).z * 0.5)); break;
+      case 2: m.points.set(v, Point3(m.points.approx(v).x * 1.5, m.points.approx(v).y * 1.5, m.points.approx(v).z * 1.5)); break;
+      case 3: std::reverse(m.faces[f].begin(), m.faces[f].end()); break;
+      case 4: m.faces.erase(m.faces.begin() + f); break;
+      case 5: m.faces.push_back(m.faces[f]); break;
+      case 6:
+        for (auto& poly : m.faces) std::reverse(poly.begin(), poly.end());
+        break;
+      case 7: m.points.set(m.faces[f][0], m.points.exact(m.faces[f][1])); break;
+      default: {
+        // The apex of f's neighbour across f's first edge moved onto f's
+        // plane, along f's normal (exactly: a rational point, so this mesh
+        // is rational; its doubles counterpart is the rounded point).
+        const auto& poly = m.faces[f];
+        const Point3 a = m.points.exact(poly[0]), b = m.points.exact(poly[1]), c = m.points.exact(poly[2]);
+        Index apex = kNoIndex;
+        for (const auto& o : m.faces)
+          for (std::size_t i = 0; i < 3; ++i)
+            if (o[i] == poly[1] && o[(i + 1) % 3] == poly[0]) apex = o[(i + 2) % 3];
+        ASSERT_NE(apex, kNoIndex);
+        const Point3 n = cross(b - a, c - a), d = m.points.exact(apex);
+        const Rational t = dot(n, d - a) / dot(n, n);
+        const Point3 on(d.x - t * n.x, d.y - t * n.y, d.z - t * n.z);
+        m.points.set(apex, Point3(to_double(on.x), to_double(on.y), to_double(on.z)));
+      }
+    }
+    ASSERT_TRUE(m.points.all_doubles());
+    const Mesh t = thirds(m);
+    ASSERT_EQ(t.points.form(), PointList::Form::rationals);
+    ConvexPolytope a, b;
+    const std::string double_error = outcome(m, a), rational_error = outcome(t, b);
+    ASSERT_EQ(double_error, rational_error);
+    ++seen[double_error.empty() ? "valid" : double_error.substr(double_error.rfind(": ") + 2, 20)];
+    if (big) ++seen[double_error.empty() ? "big valid" : "big error"];
+    if (!double_error.empty()) continue;
+    ASSERT_EQ(a.num_vertices(), b.num_vertices());
+    ASSERT_EQ(a.num_facets(), b.num_facets());
+    EXPECT_EQ(a.check_invariants(), "");
+    for (Index i = 0; i < a.num_vertices(); ++i) {
+      EXPECT_EQ(Point3(a.point(i).x / 3, a.point(i).y / 3, a.point(i).z / 3), b.point(i));
+      EXPECT_EQ(a.source_vertex(i), b.source_vertex(i));
+    }
+    for (Index i = 0; i < a.num_facets(); ++i) EXPECT_EQ(a.facet_vertices(i), b.facet_vertices(i));
+  }
+  // The changes reach valid meshes and several kinds of error.
+  std::string kinds;
+  for (const auto& [k, n] : seen) kinds += k + " x" + std::to_string(n) + "; ";
+  EXPECT_GE(seen.size(), 5u) << kinds;
+  EXPECT_GE(seen["valid"], 30) << kinds;
+  EXPECT_GE(seen["big valid"], 1) << kinds;
+  EXPECT_GE(seen["big error"], 1) << kinds;
+}
+
+// Facets are checked in blocks on threads: of several facets with zero
+// area in different blocks, the error names the first in input order (the
+// reference: an exact scan of every facet).  Fixed seeds; 36 000 facets,
+// enough for threads.
+TEST(PolytopeBad, ZeroAreaFacetsInSeveralBlocksNameTheFirst) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> g;
+    std::vector<Point3> cloud;
+    for (int i = 0; i < 18000; ++i) {
+      const double x = g(rng), y = g(rng), z = g(rng), r = std::sqrt(x * x + y * y + z * z);
+      cloud.push_back(Point3(x / r, y / r, z / r));
+    }
+    Mesh m = triangulated(ConvexPolytope::hull(cloud).to_mesh());
+    const std::size_t nf = m.faces.size();
+    ASSERT_GT(nf, 32768u);
+    // Three facets with no common vertex, made flat: their corners moved
+    // onto a line far outside the sphere (exactly collinear doubles).
+    std::vector<Index> flat;
+    std::set<Index> used;
+    while (flat.size() < 3) {
+      const Index f = Index(2048 + rng() % (nf - 2048));
+      const auto& poly = m.faces[f];
+      if (used.count(poly[0]) || used.count(poly[1]) || used.count(poly[2])) continue;
+      flat.push_back(f);
+      const double x = 10.0 * double(flat.size());
+      for (int k = 0; k < 3; ++k) {
+        used.insert(poly[k]);
+        m.points.set(poly[k], Point3(x + k, x + 2 * k, x + 3 * k));
+      }
+    }
+    Index first = kNoIndex;
+    for (Index f = 0; f < nf && first == kNoIndex; ++f) {
+      const Point3 a = m.points.exact(m.faces[f][0]);
+      if (is_zero(cross(m.points.exact(m.faces[f][1]) - a, m.points.exact(m.faces[f][2]) - a))) first = f;
+    }
+    ASSERT_EQ(first, *std::min_element(flat.begin(), flat.end()));
+    EXPECT_EQ(build_error(m), "case.off: facet " + std::to_string(first) + ": has zero area");
   }
 }

@@ -10,13 +10,18 @@
 
 namespace minksum {
 
+namespace {
+// True on a thread while it runs a job of parallel_for.
+thread_local bool t_in_job = false;
+}  // namespace
+
 unsigned parallel_threads(unsigned threads, std::size_t n) {
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(threads, n)));
 }
 
 void parallel_for(std::size_t n, unsigned threads, const std::function<void(std::size_t)>& job) {
-  const unsigned t = parallel_threads(threads, n);
+  const unsigned t = t_in_job ? 1 : parallel_threads(threads, n);
   if (t == 1) {
     for (std::size_t i = 0; i < n; ++i) job(i);
     return;
@@ -27,6 +32,12 @@ void parallel_for(std::size_t n, unsigned threads, const std::function<void(std:
   std::size_t failed_at = n;
   std::exception_ptr failure;
   auto work = [&] {
+    const bool was_in_job = t_in_job;
+    t_in_job = true;
+    struct Restore {
+      bool value;
+      ~Restore() { t_in_job = value; }
+    } restore{was_in_job};
     for (;;) {
       const std::size_t i = next.fetch_add(1, std::memory_order_relaxed);
       if (i >= n || i >= stop.load(std::memory_order_relaxed)) return;

@@ -13,10 +13,12 @@
 // bounds a convex body (Hadamard; van Heijenoort), so (1)-(4) are equivalent
 // to the mesh being the boundary of a convex polytope.
 #include "mesh/builder.hpp"
+#include "kernel/big_array.hpp"
 #include "kernel/interval.hpp"
 #include "kernel/plane.hpp"
 
 #include <minksum/error.hpp>
+#include <minksum/parallel.hpp>
 #include <minksum/predicates.hpp>
 
 #include <algorithm>
@@ -27,6 +29,7 @@
 #include <mutex>
 #include <numeric>
 #include <optional>
+#include <thread>
 #include <unordered_map>
 
 namespace minksum {
@@ -45,39 +48,18 @@ inline std::uint64_t mix64(std::uint64_t h) {
   return h;
 }
 
-// Open-addressing map from 64-bit keys to indices, sized once for at most
-// `capacity` keys (load <= 1/2).  find_or_insert returns the value stored
-// for the key, inserting `value` first if the key is new.
-class FlatMap64 {
- public:
-  explicit FlatMap64(std::size_t capacity) {
-    std::size_t n = 16;
-    while (n < 2 * capacity + 2) n *= 2;
-    slots_.assign(n, Slot{0, kNoIndex});
-    mask_ = n - 1;
-    shift_ = 64 - __builtin_ctzll(n);
+struct UnionFind {
+  std::vector<Index> parent;
+  explicit UnionFind(Index n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  Index find(Index x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
   }
-  // (value, inserted)
-  std::pair<Index, bool> find_or_insert(std::uint64_t key, Index value) {
-    // Fibonacci hashing: the high bits of key * 2^64/phi.
-    for (std::size_t i = std::size_t((key * 0x9e3779b97f4a7c15ULL) >> shift_);; i = (i + 1) & mask_) {
-      Slot& s = slots_[i];
-      if (s.value == kNoIndex) {
-        s = {key, value};
-        return {value, true};
-      }
-      if (s.key == key) return {s.value, false};
-    }
+  void unite(Index a, Index b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
   }
-
- private:
-  struct Slot {
-    std::uint64_t key;
-    Index value;
-  };
-  std::vector<Slot> slots_;
-  std::size_t mask_ = 0;
-  int shift_ = 64;
 };
 
 struct Graph {
@@ -87,92 +69,138 @@ struct Graph {
 
 // Link polygons (vertex ids 0..nv-1, every id used) into half-edges.
 // `vname` / `fname` translate internal ids into the user's numbering.
+//
+// Edges are matched by sorting, not hashing: the corners (one per polygon
+// side, polygons in order) are distributed by a counting sort into one
+// bucket per smaller endpoint, each bucket is sorted by the other endpoint,
+// and a run of equal endpoints is one edge.  Every pass is sequential but
+// the distribution, and the arrays are a few words per corner, so a million
+// vertices stay in cache-sized strides.  Edges are numbered in the order of
+// their first corner (as they first appear in the polygons), and the first
+// error of each kind is the one on the edge that appears first: the
+// numbering and the messages do not depend on how edges are matched.
 Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::string& source,
            const std::vector<Index>& vname, const std::vector<Index>& fname) {
-  struct EdgeUse {
-    Index count = 0;
-    Index face0 = kNoIndex, face1 = kNoIndex;
-    unsigned dirs = 0;  // bit 0: min->max seen, bit 1: max->min seen
-    bool same_direction = false;
-  };
+  const Index nf = Index(faces.size());
+  // Corners in polygon order: corner c runs from co[c] to co[succ(c)].
+  std::vector<Index> face_start = big_array<Index>(std::size_t(nf) + 1);
   std::size_t total = 0;
-  for (const auto& f : faces) total += f.size();
-  FlatMap64 edge_id(total);
-  std::vector<EdgeUse> uses;
-  uses.reserve(total / 2 + 1);
-  std::vector<std::pair<Index, Index>> ends;  // (min, max) per edge
-  ends.reserve(total / 2 + 1);
-  auto key = [](Index u, Index v) {
-    return (std::uint64_t(std::min(u, v)) << 32) | std::uint64_t(std::max(u, v));
+  for (Index f = 0; f < nf; ++f) {
+    face_start[f] = Index(total);
+    total += faces[f].size();
+  }
+  if (total > std::size_t(kNoIndex) / 2)
+    throw InputError(source, "", "too many polygon corners (" + std::to_string(total) + ")");
+  face_start[nf] = Index(total);
+  std::vector<Index> co = big_array<Index>(total);
+  for (Index f = 0, c = 0; f < nf; ++f)
+    for (Index v : faces[f]) co[c++] = v;
+  auto face_of = [&](Index c) {
+    return Index(std::upper_bound(face_start.begin(), face_start.end(), c) - face_start.begin() - 1);
   };
-  std::vector<Index> corner_edge(total);  // edge of each corner, faces in order
-  std::size_t corner = 0;
-  for (Index f = 0; f < faces.size(); ++f) {
-    const auto& poly = faces[f];
-    const std::size_t k = poly.size();
-    for (std::size_t i = 0; i < k; ++i) {
-      Index u = poly[i], v = poly[i + 1 == k ? 0 : i + 1];
-      auto [id, inserted] = edge_id.find_or_insert(key(u, v), Index(uses.size()));
-      corner_edge[corner++] = id;
-      if (inserted) {
-        uses.emplace_back();
-        ends.emplace_back(std::min(u, v), std::max(u, v));
+  // bucket u (the corners whose smaller endpoint is u) = [bucket[u], bucket[u + 1]).
+  std::vector<Index> bucket = big_array<Index>(std::size_t(nv) + 1, 0);
+  for (Index f = 0; f < nf; ++f)
+    for (Index c = face_start[f], e = face_start[f + 1]; c < e; ++c) {
+      const Index u = co[c], v = co[c + 1 == e ? face_start[f] : c + 1];
+      ++bucket[std::min(u, v) + 1];
+    }
+  for (Index u = 0; u < nv; ++u) bucket[u + 1] += bucket[u];
+  struct Use {
+    Index other, corner;  // the larger endpoint, the corner
+  };
+  std::vector<Use> uses = big_array<Use>(total);
+  {
+    std::vector<Index> fill;
+    reserve_big(fill, nv);
+    fill.assign(bucket.begin(), bucket.end() - 1);
+    for (Index f = 0; f < nf; ++f)
+      for (Index c = face_start[f], e = face_start[f + 1]; c < e; ++c) {
+        const Index u = co[c], v = co[c + 1 == e ? face_start[f] : c + 1];
+        uses[fill[std::min(u, v)]++] = {std::max(u, v), c};
       }
-      EdgeUse& e = uses[id];
-      unsigned bit = u < v ? 1u : 2u;
-      if (e.dirs & bit) e.same_direction = true;
-      e.dirs |= bit;
-      if (e.count == 0) e.face0 = f; else if (e.count == 1) e.face1 = f;
-      ++e.count;
+  }
+  // Each bucket sorted by (other, corner): a bucket holds about twice a
+  // vertex's degree, so insertion sort (stable: corners stay increasing).
+  // corner_edge[c] = the first corner of c's edge, then the edge's number.
+  std::vector<Index> corner_edge = big_array<Index>(total);
+  struct Failure {
+    Index first = kNoIndex, u = 0, w = 0, count = 0, c0 = 0, c1 = 0;
+    void note(Index f, Index uu, Index ww, Index n, Index a, Index b) {
+      if (f < first) *this = {f, uu, ww, n, a, b};
+    }
+  } non_manifold, same_direction, open;
+  for (Index u = 0; u < nv; ++u) {
+    Use* b = uses.data() + bucket[u];
+    Use* e = uses.data() + bucket[u + 1];
+    for (Use* i = b + 1; i < e; ++i) {
+      const Use x = *i;
+      Use* j = i;
+      for (; j > b && j[-1].other > x.other; --j) *j = j[-1];
+      *j = x;
+    }
+    for (Use* i = b; i < e;) {
+      Use* j = i + 1;
+      while (j < e && j->other == i->other) ++j;
+      const Index count = Index(j - i), first = i->corner;
+      for (Use* k = i; k < j; ++k) corner_edge[k->corner] = first;
+      if (count > 2) non_manifold.note(first, u, i->other, count, first, i[1].corner);
+      else if (count == 2 && co[first] == co[i[1].corner])
+        same_direction.note(first, u, i->other, count, first, i[1].corner);
+      else if (count == 1) open.note(first, u, i->other, count, first, first);
+      i = j;
     }
   }
-  auto edge_name = [&](Index e) {
-    return "edge " + std::to_string(vname[ends[e].first]) + "-" + std::to_string(vname[ends[e].second]);
+  auto edge_name = [&](const Failure& x) {
+    return "edge " + std::to_string(vname[x.u]) + "-" + std::to_string(vname[x.w]);
   };
-  for (Index e = 0; e < uses.size(); ++e)
-    if (uses[e].count > 2)
-      throw InputError(source, edge_name(e),
-                       "non-manifold edge shared by " + std::to_string(uses[e].count) + " facets");
-  for (Index e = 0; e < uses.size(); ++e)
-    if (uses[e].same_direction)
-      throw InputError(source, edge_name(e),
-                       "inconsistent orientation: " + fct(fname[uses[e].face0]) + " and " +
-                           fct(fname[uses[e].face1]) + " traverse this edge in the same direction");
-  for (Index e = 0; e < uses.size(); ++e)
-    if (uses[e].count == 1)
-      throw InputError(source, edge_name(e),
-                       "open mesh: the edge belongs to " + fct(fname[uses[e].face0]) + " only");
+  if (non_manifold.first != kNoIndex)
+    throw InputError(source, edge_name(non_manifold),
+                     "non-manifold edge shared by " + std::to_string(non_manifold.count) + " facets");
+  if (same_direction.first != kNoIndex)
+    throw InputError(source, edge_name(same_direction),
+                     "inconsistent orientation: " + fct(fname[face_of(same_direction.c0)]) + " and " +
+                         fct(fname[face_of(same_direction.c1)]) + " traverse this edge in the same direction");
+  if (open.first != kNoIndex)
+    throw InputError(source, edge_name(open), "open mesh: the edge belongs to " + fct(fname[face_of(open.c0)]) + " only");
+  // Number the edges in the order of their first corners.
+  Index num_edges = 0;
+  for (Index c = 0; c < total; ++c) {
+    const Index first = corner_edge[c];
+    corner_edge[c] = first == c ? num_edges++ : corner_edge[first];
+  }
+  uses = {};
 
   Graph g;
-  Index nh = Index(uses.size() * 2);
-  g.origin.assign(nh, kNoIndex);
-  g.facet.assign(nh, kNoIndex);
-  g.next.assign(nh, kNoIndex);
-  g.prev.assign(nh, kNoIndex);
-  g.facet_he.assign(faces.size(), kNoIndex);
-  g.vertex_he.assign(nv, kNoIndex);
-  std::vector<Index> hs;
-  corner = 0;
-  for (Index f = 0; f < faces.size(); ++f) {
-    const auto& poly = faces[f];
-    hs.clear();
-    for (std::size_t i = 0; i < poly.size(); ++i) {
-      Index u = poly[i], v = poly[(i + 1) % poly.size()];
-      Index e = corner_edge[corner++];
-      Index h = 2 * e + (u < v ? 0u : 1u);
+  Index nh = Index(num_edges * 2);
+  g.origin = big_array(nh, kNoIndex);
+  g.facet = big_array(nh, kNoIndex);
+  g.next = big_array(nh, kNoIndex);
+  g.prev = big_array(nh, kNoIndex);
+  g.facet_he = big_array(nf, kNoIndex);
+  g.vertex_he = big_array(nv, kNoIndex);
+  for (Index f = 0; f < nf; ++f) {
+    const Index c0 = face_start[f], ce = face_start[f + 1];
+    auto half = [&](Index c) {
+      const Index u = co[c], v = co[c + 1 == ce ? c0 : c + 1];
+      return 2 * corner_edge[c] + (u < v ? 0u : 1u);
+    };
+    const Index h0 = half(c0);
+    Index h = h0;
+    for (Index c = c0; c < ce; ++c) {
+      const Index hn = c + 1 == ce ? h0 : half(c + 1);
+      const Index u = co[c];
       g.origin[h] = u;
       g.facet[h] = f;
       if (g.vertex_he[u] == kNoIndex) g.vertex_he[u] = h;
-      hs.push_back(h);
+      g.next[h] = hn;
+      g.prev[hn] = h;
+      h = hn;
     }
-    for (std::size_t i = 0; i < hs.size(); ++i) {
-      g.next[hs[i]] = hs[(i + 1) % hs.size()];
-      g.prev[hs[(i + 1) % hs.size()]] = hs[i];
-    }
-    g.facet_he[f] = hs[0];
+    g.facet_he[f] = h0;
   }
   // Vertex manifoldness: the facets around each vertex form a single fan.
-  std::vector<Index> outdeg(nv, 0);
+  std::vector<Index> outdeg = big_array<Index>(nv, 0);
   for (Index h = 0; h < nh; ++h) ++outdeg[g.origin[h]];
   for (Index v = 0; v < nv; ++v) {
     Index h = g.vertex_he[v], steps = 0;
@@ -184,32 +212,22 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
       throw InputError(source, vtx(vname[v]),
                        "non-manifold vertex: its facets form more than one fan");
   }
-  // Connected, sphere topology.
-  std::vector<char> seen(faces.size(), 0);
-  std::vector<Index> stack{0};
-  seen[0] = 1;
-  std::size_t reached = 1;
-  while (!stack.empty()) {
-    Index f = stack.back();
-    stack.pop_back();
-    Index h = g.facet_he[f];
-    do {
-      Index other = g.facet[h ^ 1u];
-      if (!seen[other]) {
-        seen[other] = 1;
-        ++reached;
-        stack.push_back(other);
-      }
-      h = g.next[h];
-    } while (h != g.facet_he[f]);
+  // Connected, sphere topology.  Every vertex now has one fan, so two
+  //    facets are connected across edges exactly when their vertices are
+  //    connected along edges (a path of edges passes from fan to fan), and
+  //    the facets connected to facet 0 are found by a union-find of the
+  //    vertices over the edges, in edge order, not by a search over facets.
+  {
+    UnionFind uf(nv);
+    for (Index h = 0; h < nh; h += 2) uf.unite(g.origin[h], g.origin[h + 1]);
+    const Index root = uf.find(co[0]);
+    for (Index f = 1; f < nf; ++f)
+      if (uf.find(co[face_start[f]]) != root)
+        throw InputError(source, fct(fname[f]),
+                         "the mesh has more than one connected component (this facet is not connected to " +
+                             fct(fname[0]) + ")");
   }
-  if (reached != faces.size()) {
-    Index first = Index(std::find(seen.begin(), seen.end(), 0) - seen.begin());
-    throw InputError(source, fct(fname[first]),
-                     "the mesh has more than one connected component (this facet is not connected to " +
-                         fct(fname[0]) + ")");
-  }
-  long chi = long(nv) - long(uses.size()) + long(faces.size());
+  long chi = long(nv) - long(num_edges) + long(faces.size());
   if (chi != 2)
     throw InputError(source, "",
                      "the surface is not a topological sphere (V - E + F = " + std::to_string(chi) +
@@ -233,19 +251,6 @@ Point3 polygon_normal(const PointList& pts, const std::vector<Index>& poly) {
   return n;
 }
 
-struct UnionFind {
-  std::vector<Index> parent;
-  explicit UnionFind(Index n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  Index find(Index x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(Index a, Index b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 }  // namespace
 
@@ -363,9 +368,11 @@ bool convex_polygon(const std::vector<Index>& poly, const std::vector<FastIPoint
 // of the outgoing half-edge h_i) has its outward normal along
 // d_i x d_(i+1) once every facet is a strictly convex polygon, so the
 // intervals of the facets' normals `facet_normal` serve for the turns.
+//    `ip[i]` and `facet_normal[f]` give intervals (vectors, or the views
+// below that make them on demand).
+template <class IPoints, class INormals>
 bool convex_vertex(Index v, Index start, const Index* origin, const Index* prev, const Index* facet,
-                   const std::vector<FastIPoint>& ip, const std::vector<FastIPoint>& facet_normal,
-                   const PointList& pts, FanScratch& s) {
+                   const IPoints& ip, const INormals& facet_normal, const PointList& pts, FanScratch& s) {
   s.idirs.clear();
   s.inormals.clear();
   FastIPoint isum{FastInterval(0), FastInterval(0), FastInterval(0)};
@@ -389,6 +396,126 @@ bool convex_vertex(Index v, Index start, const Index* origin, const Index* prev,
     r = is_zero(sum) ? 0 : check_fan_t(-sum, s.dirs);
   }
   return r < 0;
+}
+
+// Point intervals of a list of doubles, made on demand (exact: no rounding).
+struct DoubleIntervals {
+  const std::vector<Vec3d>* v;
+  FastIPoint operator[](Index i) const {
+    const Vec3d& a = (*v)[i];
+    return {FastInterval(a.x), FastInterval(a.y), FastInterval(a.z)};
+  }
+};
+
+// Interval normals of triangles, made on demand: (b - a) x (c - a) for the
+// corners a, b, c of facet f from its half-edge facet_he[f] on, as step 4
+// makes them.  Needs the rounding upward.
+template <class IPoints>
+struct TriangleNormals {
+  const IPoints* ip;
+  const Index *origin, *next, *facet_he;
+  FastIPoint operator[](Index f) const {
+    const Index h0 = facet_he[f], h1 = next[h0], h2 = next[h1];
+    const FastIPoint a = (*ip)[origin[h0]];
+    return cross((*ip)[origin[h1]] - a, (*ip)[origin[h2]] - a);
+  }
+};
+
+// A first vertex test on doubles, enough to accept most vertices of a
+// double mesh without intervals.  It holds for any axis a (once every facet
+// is a strictly convex polygon and every edge strictly convex: projected
+// along a, the facets around v are wedges of angle below pi; turning
+// strictly counter-clockwise and winding once, they cover a neighbourhood
+// of v's projection once, so the surface near v is a graph over the plane
+// orthogonal to a).  Here a = v - c for a double point c (the mean of the
+// points, whose rounding is irrelevant: any c gives some axis): then
+// det(a, d_i, d_j) = -orient3d(v, u_i, u_j, c), the kernel's filtered
+// orient3d, with u_i the neighbours of v counter-clockwise (outgoing
+// half-edges from `start`, next one twin(prev(h))).  True when the test
+// accepts v; false leaves v to step 8's test (axis minus the sum of the
+// edge directions, on intervals, exact when they cannot decide), which
+// decides: a sign zero or a failed test here proves nothing.
+// Signs already known of some wedges: for a triangle f, below[f] is 1 when
+// c lies strictly below it, 0 when not (the wedge test fails), -1 for a
+// polygon (its wedge is computed); facet[h] is the facet of half-edge h.
+struct WedgeSigns {
+  const signed char* below;
+  const Index* facet;
+};
+
+bool convex_vertex_on_doubles(Index i, Index start, const Index* origin, const Index* prev,
+                              const std::vector<Vec3d>& v, const Vec3d& c, std::vector<Index>& around,
+                              const WedgeSigns* known = nullptr) {
+  around.clear();
+  Index h = start;
+  do {
+    around.push_back(origin[h ^ 1u]);
+    if (known) {
+      const signed char b = known->below[known->facet[h]];
+      if (b == 0) return false;
+      around.push_back(b < 0);  // the wedge's sign still to compute
+    } else {
+      around.push_back(1);
+    }
+    h = prev[h] ^ 1u;
+  } while (h != start);
+  const std::size_t k = around.size() / 2;
+  auto u = [&](std::size_t j) { return v[around[2 * j]]; };
+  for (std::size_t j = 0; j < k; ++j)
+    if (around[2 * j + 1] && orient3d(v[i], u(j), u(j + 1 == k ? 0 : j + 1), c) >= 0) return false;
+  // Winding: the side of d_j of the reference ray d_0 (within (0, pi)
+  // counter-clockwise, or within (pi, 2 pi)); each step turns by less than
+  // pi, so it passes the ray exactly when it goes from the second side
+  // back to the first, or to d_0 itself at the end.  The sides of d_1
+  // (first side) and d_k-1 (second side) are those of the first and the
+  // last wedge, known once every wedge has passed.  With k <= 4 wedges of
+  // less than pi each, the total turn, a positive multiple of 2 pi, is below
+  // 4 pi: the fan winds once.
+  if (k <= 4) return true;
+  long winding = 0;
+  bool prev_second = false;
+  for (std::size_t j = 1; j < k; ++j) {
+    const int side = j == 1 ? 1 : j + 1 == k ? -1 : -orient3d(v[i], u(0), u(j), c);
+    if (side == 0) return false;  // along the ray or against it
+    if (prev_second && side > 0) ++winding;
+    prev_second = side < 0;
+  }
+  winding += prev_second;
+  return winding == 1;
+}
+
+// body(begin, end) over [0, n) in blocks of kValidationBlock items, on
+// several threads when `threads` and there are two blocks or more (at least
+// two threads, one per hardware thread beyond).  Each block runs with the
+// FPU rounding upward, as the caller's loop.  A block stops at its first
+// failure; of the failures, parallel_for rethrows the one of the first
+// block, so the error is the first in input order, as on one thread.
+// Validation uses threads for meshes of kThreadsFromFacets facets or more:
+// below, the whole validation takes a few milliseconds, and on a loaded
+// machine waiting for a started thread to be scheduled can cost as much.
+constexpr std::size_t kValidationBlock = 2048;
+constexpr std::size_t kThreadsFromFacets = 32768;
+template <class Body>
+void in_blocks(std::size_t n, bool threads, Body&& body) {
+  const std::size_t blocks = (n + kValidationBlock - 1) / kValidationBlock;
+  if (!threads || blocks < 2) {
+    body(std::size_t(0), n);
+    return;
+  }
+  parallel_for(blocks, std::max(2u, std::thread::hardware_concurrency()), [&](std::size_t b) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    body(b * kValidationBlock, std::min(n, (b + 1) * kValidationBlock));
+  });
+}
+
+// The mean of the points, in doubles (any rounding), or nullopt when it is
+// not finite.
+std::optional<Vec3d> mean_point(const std::vector<Vec3d>& v) {
+  const double n = double(v.size());
+  Vec3d c{0, 0, 0};
+  for (const Vec3d& p : v) c = Vec3d{c.x + p.x / n, c.y + p.y / n, c.z + p.z / n};
+  if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) return std::nullopt;
+  return c;
 }
 
 }  // namespace
@@ -418,9 +545,9 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   //    Points in the doubles / double-pairs forms are equal exactly when
   //    their bits are (zeros are stored unsigned), so they are welded by
   //    their bits; rationals by their exact value.
-  std::vector<Index> canon(n_in, kNoIndex);
+  std::vector<Index> canon = big_array(n_in, kNoIndex);
   {
-    std::vector<char> used(n_in, 0);
+    std::vector<char> used = big_array<char>(n_in, 0);
     for (const auto& poly : mesh.faces)
       for (Index v : poly) used[v] = 1;
     const PointList& mp = mesh.points;
@@ -456,7 +583,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
       };
       std::size_t n = 16;
       while (n < 2 * std::size_t(n_in) + 2) n *= 2;
-      std::vector<Index> slot(n, kNoIndex);
+      std::vector<Index> slot = big_array(n, kNoIndex);
       for (Index v = 0; v < n_in; ++v) {
         if (!used[v]) continue;
         for (std::size_t i = hash(v) & (n - 1);; i = (i + 1) & (n - 1)) {
@@ -473,14 +600,24 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
       }
     }
   }
-  std::vector<Index> new_id(n_in, kNoIndex), vname;
+  std::vector<Index> new_id = big_array(n_in, kNoIndex), vname;
   PointList pts;
-  for (Index v = 0; v < n_in; ++v)
-    if (canon[v] == v) {
-      new_id[v] = Index(pts.size());
-      pts.push_from(mesh.points, v);
-      vname.push_back(v);
-    }
+  if (mesh.points.form() == PointList::Form::doubles &&
+      std::all_of(canon.begin(), canon.end(), [v = Index(0)](Index c) mutable { return c == v++; })) {
+    // Every point used, none welded: the list as it is.
+    pts = mesh.points;
+    std::iota(new_id.begin(), new_id.end(), 0);
+    reserve_big(vname, n_in);
+    vname.resize(n_in);
+    std::iota(vname.begin(), vname.end(), 0);
+  } else {
+    for (Index v = 0; v < n_in; ++v)
+      if (canon[v] == v) {
+        new_id[v] = Index(pts.size());
+        pts.push_from(mesh.points, v);
+        vname.push_back(v);
+      }
+  }
   // After welding, a facet may repeat a vertex consecutively (a zero-length
   // edge): the repeat is dropped; a facet left with fewer than 3 distinct
   // corners (a collapsed sliver, common in exported STL) is dropped whole.
@@ -570,11 +707,25 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   //    Intervals of the exact coordinates: point intervals for doubles,
   //    hi + lo (rounded outward under the guard) for double pairs, the
   //    enclosing doubles of each rational.
-  std::vector<FastIPoint> ip(pts.size());
-  if (pts.form() == PointList::Form::rationals)  // (to_interval uses protected intervals)
+  //    Triangles on doubles (what most large files are) need no stored
+  //    intervals: a triangle is planar, the convexity of its edges and its
+  //    coplanarity with a neighbour are one orient3d each (the kernel's
+  //    filtered predicate), and the intervals of points and normals that a
+  //    fallback needs are made on demand (DoubleIntervals,
+  //    TriangleNormals).  Every decision is the same as on stored intervals.
+  const bool threads = nf >= kThreadsFromFacets;
+  const bool triangles_on_doubles =
+      pts.form() == PointList::Form::doubles &&
+      std::all_of(faces.begin(), faces.end(), [](const std::vector<Index>& poly) { return poly.size() == 3; });
+  std::vector<FastIPoint> ip;  // (triangles on doubles: made by fill_ip when needed)
+  if (pts.form() == PointList::Form::rationals) {  // (to_interval uses protected intervals)
+    ip.resize(pts.size());
     for (Index v = 0; v < pts.size(); ++v) ip[v] = to_fast(to_interval(pts.exact_ref(v)));
+  }
   CGAL::Protect_FPU_rounding<true> upward;
-  if (pts.form() != PointList::Form::rationals)
+  auto fill_ip = [&] {
+    if (!ip.empty()) return;
+    ip.resize(pts.size());
     for (Index v = 0; v < pts.size(); ++v) {
       const Vec3d& a = pts.approx(v);
       if (pts.form() == PointList::Form::doubles) {
@@ -585,7 +736,9 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
                  FastInterval(a.z) + FastInterval(l.z)};
       }
     }
-  std::vector<FastIPoint> inrm(nf);
+  };
+  if (!triangles_on_doubles) fill_ip();
+  const DoubleIntervals dip{&pts.approx()};
   // Exact normals, made only where a filter cannot decide (a default Point3
   // would cost three GMP rationals per facet).
   std::vector<std::unique_ptr<Point3>> xnrm(nf);
@@ -593,37 +746,66 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     if (!xnrm[f]) xnrm[f] = std::make_unique<Point3>(polygon_normal(pts, faces[f]));
     return *xnrm[f];
   };
-  for (Index f = 0; f < nf; ++f) {
+  // The interval Newell normal of facet f: sum (p_i - p_0) x (p_(i+1) - p_0).
+  auto newell = [&](const auto& ipa, Index f) {
     const auto& poly = faces[f];
     FastIPoint n{FastInterval(0), FastInterval(0), FastInterval(0)};
-    const FastIPoint& o = ip[poly[0]];
-    FastIPoint prev = ip[poly[1]] - o;
+    const FastIPoint o = ipa[poly[0]];
+    FastIPoint prev = ipa[poly[1]] - o;
     for (std::size_t i = 2; i < poly.size(); ++i) {
-      FastIPoint cur = ip[poly[i]] - o;
+      FastIPoint cur = ipa[poly[i]] - o;
       n = n + cross(prev, cur);
       prev = cur;
     }
-    inrm[f] = n;
-    auto certainly_nonzero = [](const FastInterval& c) { int s = sign_of(c); return s == 1 || s == -1; };
-    if (!certainly_nonzero(n.x) && !certainly_nonzero(n.y) && !certainly_nonzero(n.z) &&
-        is_zero(exact_normal(f)))
-      throw InputError(source, fct(fname[f]), "has zero area");
-    if (poly.size() > 3) {
-      for (Index v : poly) {
-        int s = sign_of(dot(n, ip[v] - o));
-        if (s == kUncertain) s = sgn(dot(exact_normal(f), pts.exact(v) - pts.exact(poly[0])));
-        if (s != 0)
-          throw NotConvexError(source, fct(fname[f]),
-                           "is not planar (" + vtx(vname[v]) + " is off the plane of the others)");
+    return n;
+  };
+  std::vector<FastIPoint> inrm;  // (triangles on doubles: made by fill_inrm when needed)
+  auto fill_inrm = [&] {
+    if (!inrm.empty()) return;
+    fill_ip();
+    inrm.resize(nf);
+    for (Index f = 0; f < nf; ++f) inrm[f] = newell(ip, f);
+  };
+  // Six times the volume, for step 5: sum over the facets of <p_0(f) - p_0, n(f)>,
+  // summed per block of facets, then the blocks in order (the same interval
+  // on any number of threads).
+  std::vector<FastInterval> six_part((nf + kValidationBlock - 1) / kValidationBlock, FastInterval(0));
+  auto facets_pass = [&](const auto& ipa) {
+    if (!triangles_on_doubles) inrm.resize(nf);
+    const FastIPoint origin = ipa[0];
+    in_blocks(nf, threads, [&](std::size_t begin, std::size_t end) {
+      FastInterval six(0);
+      for (Index f = Index(begin); f < end; ++f) {
+        const auto& poly = faces[f];
+        const FastIPoint n = newell(ipa, f);
+        if (!triangles_on_doubles) inrm[f] = n;
+        auto certainly_nonzero = [](const FastInterval& c) { int s = sign_of(c); return s == 1 || s == -1; };
+        if (!certainly_nonzero(n.x) && !certainly_nonzero(n.y) && !certainly_nonzero(n.z) &&
+            is_zero(exact_normal(f)))
+          throw InputError(source, fct(fname[f]), "has zero area");
+        const FastIPoint o = ipa[poly[0]];
+        if (poly.size() > 3) {
+          for (Index v : poly) {
+            int s = sign_of(dot(n, ipa[v] - o));
+            if (s == kUncertain) s = sgn(dot(exact_normal(f), pts.exact(v) - pts.exact(poly[0])));
+            if (s != 0)
+              throw NotConvexError(source, fct(fname[f]),
+                                   "is not planar (" + vtx(vname[v]) + " is off the plane of the others)");
+          }
+        }
+        six += dot(o - origin, n);
       }
-    }
-  }
+      six_part[begin / kValidationBlock] = six;
+    });
+  };
+  if (triangles_on_doubles) facets_pass(dip);
+  else facets_pass(ip);
+  FastInterval six(0);
+  for (const FastInterval& part : six_part) six += part;
 
   // 5. Orientation from the sign of the volume; flip a consistently inward mesh.
   int vol_sign;
   {
-    FastInterval six(0);
-    for (Index f = 0; f < nf; ++f) six += dot(ip[faces[f][0]] - ip[0], inrm[f]);
     vol_sign = sign_of(six);
     if (vol_sign == kUncertain) {
       Rational exact_six = 0;
@@ -658,14 +840,31 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   bool any_merge = false;
   // n(f) x n(o) per edge, kept for the edge convexity test below when the
   // structure stays unchanged.
-  std::vector<FastIPoint> edge_cross(g.num_halfedges() / 2);
+  // Triangles on doubles: orient3d(p, q, c, d) per edge instead (see
+  // triangle_pair_orient; the corner after q in f is c, after p in o is d).
+  std::vector<FastIPoint> edge_cross(triangles_on_doubles ? 0 : g.num_halfedges() / 2);
+  std::vector<signed char> edge_orient = big_array<signed char>(triangles_on_doubles ? g.num_halfedges() / 2 : 0);
+  if (triangles_on_doubles)
+    in_blocks(edge_orient.size(), threads, [&](std::size_t begin, std::size_t end) {
+      const std::vector<Vec3d>& v = pts.approx();
+      for (std::size_t e = begin; e < end; ++e) {
+        const Index h = Index(2 * e);
+        edge_orient[e] = static_cast<signed char>(orient3d(v[g.origin[h]], v[g.origin[h + 1]],
+                                                           v[g.origin[g.next[g.next[h]]]],
+                                                           v[g.origin[g.next[g.next[h + 1]]]]));
+      }
+    });
   for (Index h = 0; h < g.num_halfedges(); h += 2) {
+    if (triangles_on_doubles && edge_orient[h / 2] != 0) continue;
     Index f = g.facet[h], o = g.facet[h + 1];
-    FastIPoint c = cross(inrm[f], inrm[o]);
-    edge_cross[h / 2] = c;
-    auto certainly_nonzero = [](const FastInterval& x) { int s = sign_of(x); return s == 1 || s == -1; };
-    if (certainly_nonzero(c.x) || certainly_nonzero(c.y) || certainly_nonzero(c.z)) continue;
-    if (auto t = triangle_pair_orient(pts, faces[f], faces[o], g.origin[h], g.origin[h + 1]); t && *t != 0) continue;
+    if (!triangles_on_doubles) {
+      FastIPoint c = cross(inrm[f], inrm[o]);
+      edge_cross[h / 2] = c;
+      auto certainly_nonzero = [](const FastInterval& x) { int s = sign_of(x); return s == 1 || s == -1; };
+      if (certainly_nonzero(c.x) || certainly_nonzero(c.y) || certainly_nonzero(c.z)) continue;
+      if (auto t = triangle_pair_orient(pts, faces[f], faces[o], g.origin[h], g.origin[h + 1]); t && *t != 0)
+        continue;
+    }
     if (!is_zero(cross(exact_normal(f), exact_normal(o)))) continue;
     if (sgn(dot(exact_normal(f), exact_normal(o))) > 0) {
       uf.unite(f, o);
@@ -736,6 +935,8 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   std::vector<Index> fname_v_own;
   Graph fg_own;
   if (!unchanged) {
+    fill_ip();
+    fill_inrm();
     if (!any_merge) merged = faces;
     std::vector<Index> final_id(pts.size(), kNoIndex);
     fpts_own.reserve(pts.size());
@@ -788,8 +989,10 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   }
   for (Index h = 0; h < fg.num_halfedges(); h += 2) {
     Index f = fg.facet[h], o = fg.facet[h + 1];
-    int s = sign_of(dot(unchanged ? edge_cross[h / 2] : cross(finrm[f], finrm[o]),
-                        fip[fg.origin[h + 1]] - fip[fg.origin[h]]));
+    int s = unchanged && triangles_on_doubles
+                ? -edge_orient[h / 2]
+                : sign_of(dot(unchanged ? edge_cross[h / 2] : cross(finrm[f], finrm[o]),
+                              fip[fg.origin[h + 1]] - fip[fg.origin[h]]));
     if (s == kUncertain) {
       if (auto t = triangle_pair_orient(fpts, final_faces[f], final_faces[o], fg.origin[h], fg.origin[h + 1]))
         s = -*t;
@@ -803,10 +1006,26 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
                        "reflex edge between " + fct(merged_name[f]) + " and " + fct(merged_name[o]) +
                            " (the solid is not convex)");
   }
-  for (Index v = 0; v < fpts.size(); ++v)
-    if (!convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), fip, finrm, fpts,
-                       scratch))
-      throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
+  if (unchanged && triangles_on_doubles) {
+    // The test on doubles first; step 8's test where it does not accept.
+    const std::optional<Vec3d> c = mean_point(pts.approx());
+    const TriangleNormals<DoubleIntervals> tn{&dip, fg.origin.data(), fg.next.data(), fg.facet_he.data()};
+    in_blocks(fpts.size(), threads, [&](std::size_t begin, std::size_t end) {
+      std::vector<Index> around;
+      FanScratch block_scratch;
+      for (Index v = Index(begin); v < end; ++v)
+        if (!(c && convex_vertex_on_doubles(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), pts.approx(),
+                                            *c, around)) &&
+            !convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), dip, tn, fpts,
+                           block_scratch))
+          throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
+    });
+  } else {
+    for (Index v = 0; v < fpts.size(); ++v)
+      if (!convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), fip, finrm, fpts,
+                         scratch))
+        throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
+  }
 
   // 9. The polytope.
   ConvexPolytope p;
@@ -934,65 +1153,29 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
   }
   ConvexPolytope r = from_trusted_parts(points, std::move(origin), std::move(next), std::move(facet),
                                         std::move(facet_he));
-  // Point (4) on the doubles first.  The vertex test holds for any axis a
-  // (projected along a, the facets around v are wedges of angle below pi;
-  // turning strictly counter-clockwise and winding once, they cover a
-  // neighbourhood of v's projection once, so the surface near v is a graph
-  // over the plane orthogonal to a).  Here a = v - c, c the mean of the
-  // points computed in doubles (its rounding is irrelevant: c is some double
-  // point, inside a convex solid): then det(a, d_i, d_j) =
-  // -orient3d(v, u_i, u_j, c), the kernel's filtered orient3d.  A vertex
-  // where a sign is zero or the test fails is left to step 8's test (axis
-  // minus the sum of its edge directions, on intervals, exact when they
-  // cannot decide), which decides; it often cannot decide on intervals where
-  // opposite edges of a Minkowski sum make that axis's projection
-  // degenerate, and then computes in rationals.
-  Vec3d c{0, 0, 0};
-  for (Index i = 0; i < nv; ++i) c = Vec3d{c.x + v[i].x / nv, c.y + v[i].y / nv, c.z + v[i].z / nv};
-  const bool c_ok = std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
-  // The wedge of v in a triangle (v, u_j, u_j+1) is the triangle itself
-  // (orient3d is invariant under cyclic rotation of its first three
-  // points), so its sign is computed once per triangle, not once per corner.
+  // Point (4) on the doubles first (convex_vertex_on_doubles); a vertex it
+  // does not accept is left to step 8's test, which decides; that test
+  // often cannot decide on intervals where opposite edges of a Minkowski
+  // sum make its axis's projection degenerate, and then computes in
+  // rationals.  The wedge of a vertex in a triangle (v, u_j, u_j+1) is the
+  // triangle itself (orient3d is invariant under cyclic rotation of its
+  // first three points), so its sign is computed once per triangle, not
+  // once per corner.
+  const std::optional<Vec3d> c = mean_point(v);
   std::vector<signed char> below(nf, -1);  // 1: c strictly below the triangle, 0: not, -1: not a triangle
-  if (c_ok)
+  if (c)
     for (Index f = 0; f < nf; ++f) {
       const Index h0 = r.facet_he_[f], h1 = r.he_next_[h0], h2 = r.he_next_[h1];
       if (r.he_next_[h2] == h0)
-        below[f] = orient3d(v[r.he_origin_[h0]], v[r.he_origin_[h1]], v[r.he_origin_[h2]], c) < 0;
+        below[f] = orient3d(v[r.he_origin_[h0]], v[r.he_origin_[h1]], v[r.he_origin_[h2]], *c) < 0;
     }
-  std::vector<Index> around, undecided;
-  for (Index i = 0; i < nv; ++i) {
-    around.clear();
-    Index h = r.vertex_he_[i];
-    bool ok = c_ok;
-    do {  // u_j is the head of h; the wedge (v, u_j, u_j+1) lies in h's facet
-      around.push_back(r.he_origin_[h ^ 1u]);
-      const signed char b = below[r.he_facet_[h]];
-      if (b == 0) ok = false;
-      around.push_back(b < 0 ? 1u : 0u);  // its sign still to compute
-      h = r.he_prev_[h] ^ 1u;
-    } while (h != r.vertex_he_[i]);
-    const std::size_t k = around.size() / 2;
-    for (std::size_t j = 0; j < k && ok; ++j)
-      if (around[2 * j + 1]) ok = orient3d(v[i], v[around[2 * j]], v[around[j + 1 == k ? 0 : 2 * j + 2]], c) < 0;
-    // Winding: the side of d_j of the reference ray d_0 (within (0, pi)
-    // counter-clockwise, or within (pi, 2 pi)); each step turns by less than
-    // pi, so it passes the ray exactly when it goes from the second side
-    // back to the first, or to d_0 itself at the end.  The sides of d_1
-    // (first side) and d_k-1 (second side) are those of the first and the
-    // last wedge, known once every wedge has passed.  With k <= 4 wedges
-    // of less than pi each, the total turn is below 4 pi: it winds once.
-    long winding = k <= 4 ? 1 : 0;
-    bool prev_second = false;
-    for (std::size_t j = 1; j < k && ok && k > 4; ++j) {
-      const int side = j == 1 ? 1 : j + 1 == k ? -1 : -orient3d(v[i], v[around[0]], v[around[2 * j]], c);
-      if (side == 0) ok = false;  // along the ray or against it: step 8's test decides
-      if (prev_second && side > 0) ++winding;
-      prev_second = side < 0;
-    }
-    winding += prev_second;
-    if (!ok || winding != 1) undecided.push_back(i);
-  }
+  const WedgeSigns wedges{below.data(), r.he_facet_.data()};
+  std::vector<Index> around;
+  std::vector<Index> undecided;
+  for (Index i = 0; i < nv; ++i)
+    if (!c || !convex_vertex_on_doubles(i, r.vertex_he_[i], r.he_origin_.data(), r.he_prev_.data(), v, *c, around,
+                                        &wedges))
+      undecided.push_back(i);
   // Points (2) for polygons and (4) where the doubles did not decide, on
   // intervals (exact when undecided), as step 8 of build.
   bool polygons = false;

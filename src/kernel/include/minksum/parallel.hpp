@@ -2,7 +2,10 @@
 //
 // parallel_for(n, threads, job) calls job(i) once for every i in [0, n), on
 // `threads` threads (0: one per hardware thread; never more threads than
-// jobs; 1: on the calling thread, no thread started).  The jobs are handed
+// jobs; 1: on the calling thread, no thread started).  A parallel_for called
+// from inside a job of another runs on that job's thread (the outer loop
+// already keeps the threads busy: no threads times threads), e.g. the
+// validation of a large mesh inside a batch of sums.  The jobs are handed
 // out one at a time in index order, so a long job does not hold up the
 // others behind a fixed share.  Every computation of minksum is independent
 // of the others (no global state), so jobs may compute sums, hulls and loads

@@ -144,6 +144,41 @@ TEST(Union, PointContactInsideAnEdge) {
   EXPECT_EQ(r.shells, 2u);  // touching at a point: two volumes
 }
 
+// A prism lying on the top of a box along one of its edges, which ends inside
+// the top face: the face is triangulated with that edge as one of its edges
+// (four faces at it), and the two pieces stay two shells.
+TEST(Union, EdgeLyingInsideAFace) {
+  const ConvexPolytope prism = ConvexPolytope::hull(
+      std::vector<Point3>{Point3(1, 2, 1), Point3(3, 2, 1), Point3(1, 1, 2), Point3(3, 1, 2), Point3(1, 3, 2),
+                          Point3(3, 3, 2)},
+      "prism");
+  const NonconvexSum r = expect_like_nef({box(0, 4, 0, 4, 0, 1), prism});
+  EXPECT_EQ(r.volume, Rational(16) + prism.volume());
+  EXPECT_EQ(r.non_manifold_edges, 1u);
+  EXPECT_EQ(r.shells, 2u);
+  EXPECT_EQ(r.mesh.points.size(), 14u);
+}
+
+// The same prism longer than the box: its edge crosses the top face, which
+// is split into two faces along it, with new vertices where it leaves the face.
+TEST(Union, EdgeLyingAcrossAFace) {
+  const ConvexPolytope prism = ConvexPolytope::hull(
+      std::vector<Point3>{Point3(-1, 2, 1), Point3(5, 2, 1), Point3(-1, 1, 2), Point3(5, 1, 2), Point3(-1, 3, 2),
+                          Point3(5, 3, 2)},
+      "prism");
+  const NonconvexSum r = expect_like_nef({box(0, 4, 0, 4, 0, 1), prism});
+  EXPECT_EQ(r.volume, Rational(16) + prism.volume());
+  EXPECT_EQ(r.non_manifold_edges, 1u);  // (0,2,1)-(4,2,1); beyond the box the prism's edge is an ordinary one
+  EXPECT_EQ(r.mesh.points.size(), 8u + 6u + 2u);
+  std::size_t top = 0;
+  for (const auto& f : r.mesh.faces) {
+    bool on_top = true;
+    for (Index v : f) on_top = on_top && r.mesh.points[v].z == 1 && r.mesh.points[v].x >= 0 && r.mesh.points[v].x <= 4;
+    top += on_top;
+  }
+  EXPECT_EQ(top, 2u);  // the two halves of the box's top
+}
+
 // A piece inside another, and one inside touching its faces from within.
 TEST(Union, APieceInsideAnother) {
   for (const ConvexPolytope& inner : {box(1, 2, 1, 2, 1, 2), box(0, 1, 0, 1, 0, 1), box(0, 3, 1, 2, 0, 3)}) {

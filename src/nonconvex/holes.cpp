@@ -35,7 +35,7 @@ std::vector<std::array<Index, 3>> triangulate_region(const std::vector<std::vect
       it->second->info() = p.id;
     }
   for (const auto& loop : loops)
-    for (std::size_t i = 0; i < loop.size(); ++i)
+    for (std::size_t i = 0; i < (loop.size() == 2 ? 1 : loop.size()); ++i)
       cdt.insert_constraint(handle.at(loop[i].id), handle.at(loop[(i + 1) % loop.size()].id));
   // Nesting levels: the infinite faces' component is level 0; crossing a
   // constrained edge adds one.

@@ -44,162 +44,143 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // ---------------------------------------------------------------------------
-// The filter.  side(l, p) is the sign of a*u + b*v - c for integers a, b, c
-// and rationals u, v.  With â, û... the nearest doubles (relative error at
-// most 2^-53 each, u and v normal or zero) and the value evaluated in
-// doubles as s = (â*û + b̂*v̂) - ĉ, the error of s is at most about
-// 5 * 2^-53 * (|â*û| + |b̂*v̂| + |ĉ|) in round to nearest and twice that in a
-// directed rounding mode; the filter trusts the sign of s only when |s|
-// exceeds 2^-48 times that sum (more than 3x the bound in any mode), and
-// only for u, v that are zero or at least 2^-960 in magnitude (no underflow
-// in the products: |a|, |b| >= 1 when nonzero).  Otherwise the exact value.
+// The filter.  side(h, p) is the sign of a*x + b*y + c*z - d for the
+// rational coefficients of a half-space (integers for the pieces' facets)
+// and a point p of rationals.  With the nearest doubles of all seven
+// (relative error at most 2^-53 each, every one normal or zero) and the
+// value evaluated in doubles as s = ((â*x̂ + b̂*ŷ) + ĉ*ẑ) - d̂, the error of
+// s is at most about 7 * 2^-53 * (|â*x̂| + |b̂*ŷ| + |ĉ*ẑ| + |d̂|) in round to
+// nearest and twice that in a directed rounding mode; the filter trusts the
+// sign of s only when |s| exceeds 2^-48 times that sum (more than twice the
+// bound in any mode), and only for numbers that are zero or at least 2^-480
+// in magnitude (no underflow in the products).  Otherwise the exact value.
 constexpr double kFilterBound = 0x1p-48;
-constexpr double kTiny = 0x1p-960;
+constexpr double kTiny = 0x1p-480;
 
 bool filterable(double x, const Rational& q) {
-  return std::isfinite(x) && (x == 0 ? sgn(q) == 0 : std::fabs(x) >= kTiny);
+  return std::isfinite(x) && std::fabs(x) < 0x1p+480 && (x == 0 ? sgn(q) == 0 : std::fabs(x) >= kTiny);
 }
 
-// A point of a plane in its frame's two coordinates, with their doubles.
-struct V2 {
-  Rational u, v;
-  double du = 0, dv = 0;
+// A point of a facet's plane: exact, with its nearest doubles.
+struct V3 {
+  Point3 p;
+  Vec3d d;
   bool filtered = false;
 };
 
-V2 make_v2(Rational u, Rational v) {
-  V2 p;
-  p.du = to_double(u);
-  p.dv = to_double(v);
-  p.filtered = filterable(p.du, u) && filterable(p.dv, v);
-  p.u = std::move(u);
-  p.v = std::move(v);
-  return p;
+V3 make_v3(Point3 p) {
+  V3 v;
+  v.d = to_double(p);
+  v.filtered = filterable(v.d.x, p.x) && filterable(v.d.y, p.y) && filterable(v.d.z, p.z);
+  v.p = std::move(p);
+  return v;
 }
 
-// The half-plane a*u + b*v <= c (inside), (a, b) != 0.
-struct Line2 {
-  Rational a, b, c;
-  double da = 0, db = 0, dc = 0;
+// The half-space a*x + b*y + c*z <= d (inside).
+struct Half {
+  Rational a, b, c, d;
+  double da = 0, db = 0, dc = 0, dd = 0;
   bool filtered = false;
 };
 
-Rational value(const Line2& l, const V2& p) { return l.a * p.u + l.b * p.v - l.c; }
+Half make_half(Rational a, Rational b, Rational c, Rational d) {
+  Half h;
+  h.da = to_double(a);
+  h.db = to_double(b);
+  h.dc = to_double(c);
+  h.dd = to_double(d);
+  h.filtered = filterable(h.da, a) && filterable(h.db, b) && filterable(h.dc, c) && filterable(h.dd, d);
+  h.a = std::move(a);
+  h.b = std::move(b);
+  h.c = std::move(c);
+  h.d = std::move(d);
+  return h;
+}
 
-// > 0 outside, 0 on the line, < 0 inside.
-int side(const Line2& l, const V2& p) {
-  if (l.filtered && p.filtered) {
-    const double t1 = l.da * p.du, t2 = l.db * p.dv;
-    const double s = (t1 + t2) - l.dc;
-    const double e = kFilterBound * (std::fabs(t1) + std::fabs(t2) + std::fabs(l.dc));
+Half half_of(const Plane& q) { return make_half(Rational(q.a), Rational(q.b), Rational(q.c), Rational(q.d)); }
+
+Rational value(const Half& h, const V3& v) { return h.a * v.p.x + h.b * v.p.y + h.c * v.p.z - h.d; }
+
+// > 0 outside, 0 on the plane, < 0 inside.
+int side(const Half& h, const V3& v) {
+  if (h.filtered && v.filtered) {
+    const double t1 = h.da * v.d.x, t2 = h.db * v.d.y, t3 = h.dc * v.d.z;
+    const double s = ((t1 + t2) + t3) - h.dd;
+    const double e = kFilterBound * (std::fabs(t1) + std::fabs(t2) + std::fabs(t3) + std::fabs(h.dd));
     if (s > e) return 1;
     if (s < -e) return -1;
   }
-  return sgn(value(l, p));
+  return sgn(value(h, v));
 }
 
-// The frame of an oriented plane h: the coordinate k with the largest
-// |normal_k| is dropped, the other two (u, v) are ordered so that
-// counter-clockwise in (u, v) is counter-clockwise seen from outside
-// (from the side the normal points to).
+// The two coordinates of an oriented plane h's points: the coordinate k
+// with the largest |normal_k| is dropped, the other two (u, v) are ordered
+// so that counter-clockwise in (u, v) is counter-clockwise seen from
+// outside (from the side the normal points to).
 struct Frame {
-  Plane h;
-  Integer n[3];
-  int k = 2, iu = 0, iv = 1, s = 1;  // s: sign of n[k]
-
-  explicit Frame(const Plane& plane) : h(plane), n{plane.a, plane.b, plane.c} {
+  int iu = 0, iv = 1;
+  explicit Frame(const Plane& h) {
+    const Integer n[3] = {h.a, h.b, h.c};
+    int k = 2;
     for (int i = 0; i < 3; ++i)
       if (cmp(abs(n[i]), abs(n[k])) > 0) k = i;
-    s = sgn(n[k]);
     iu = (k + 1) % 3;
     iv = (k + 2) % 3;
-    if (s < 0) std::swap(iu, iv);
-  }
-  V2 project(const Point3& p) const { return make_v2(p[iu], p[iv]); }
-  Point3 lift(const Rational& u, const Rational& v) const {
-    Point3 p;
-    p[iu] = u;
-    p[iv] = v;
-    p[k] = (Rational(h.d) - Rational(n[iu]) * u - Rational(n[iv]) * v) / Rational(n[k]);
-    return p;
-  }
-  // The trace on this plane of the half-space inside the plane q:
-  // q.a x + q.b y + q.c z <= q.d with x_k eliminated and multiplied by
-  // |n_k|.  Returns 0 for a proper line in `out`, +1 when the whole plane
-  // is inside (q parallel to it, on or beyond it), -1 when it is wholly
-  // outside.
-  int trace(const Plane& q, Line2& out) const {
-    const Integer p[3] = {q.a, q.b, q.c};
-    Integer a = s * (p[iu] * n[k] - p[k] * n[iu]);
-    Integer b = s * (p[iv] * n[k] - p[k] * n[iv]);
-    Integer c = s * (q.d * n[k] - p[k] * h.d);
-    if (sgn(a) == 0 && sgn(b) == 0) return sgn(c) >= 0 ? 1 : -1;
-    out.da = a.get_d();
-    out.db = b.get_d();
-    out.dc = c.get_d();
-    out.filtered = std::isfinite(out.da) && std::isfinite(out.db) && std::isfinite(out.dc);
-    out.a = Rational(a);
-    out.b = Rational(b);
-    out.c = Rational(c);
-    return 0;
+    if (sgn(n[k]) < 0) std::swap(iu, iv);
   }
 };
 
-using Poly = std::vector<V2>;
+// A convex polygon of a facet's plane, counter-clockwise seen from outside.
+using Poly = std::vector<V3>;
 
-// A convex piece seen from one plane: the traces of its facets' half-spaces
-// (empty: it does not meet the plane).
-struct Trace {
-  bool meets = true;
-  std::vector<Line2> lines;
-};
-
-Trace trace_of(const Frame& frame, const ConvexPolytope& piece) {
-  Trace t;
-  for (Index f = 0; f < piece.num_facets(); ++f) {
-    Line2 l;
-    const int r = frame.trace(piece.plane(f), l);
-    if (r < 0) return Trace{false, {}};
-    if (r == 0) t.lines.push_back(std::move(l));
+// The convex polygon g cut by the plane of h, sg the signs of its vertices
+// (some > 0, some < 0): the part outside and the part inside.  The new
+// points are on g's edges, so in its plane, exactly.
+void cut(const Poly& g, const Half& h, const std::vector<int>& sg, Poly& outside, Poly& inside) {
+  const std::size_t n = g.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    if (sg[i] >= 0) outside.push_back(g[i]);
+    if (sg[i] <= 0) inside.push_back(g[i]);
+    if (sg[i] * sg[j] < 0) {
+      const Rational sp = value(h, g[i]), sq = value(h, g[j]);
+      V3 x = make_v3(g[i].p + Rational(sp / (sp - sq)) * (g[j].p - g[i].p));
+      outside.push_back(x);
+      inside.push_back(std::move(x));
+    }
   }
-  return t;
 }
 
-// g minus the convex region of `lines`: when their interiors meet, the convex
-// parts of g outside are appended to `out` and the result is true; when
-// they do not (the overlap has zero area), `out` is left as it was and the
-// result is false.
-bool subtract(const Poly& g, const std::vector<Line2>& lines, std::vector<Poly>& out) {
+// The signs of g's vertices for h; whether some are > 0 and some < 0.
+void signs(const Poly& g, const Half& h, std::vector<int>& sg, bool& pos, bool& neg) {
+  sg.resize(g.size());
+  pos = neg = false;
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    sg[i] = side(h, g[i]);
+    pos |= sg[i] > 0;
+    neg |= sg[i] < 0;
+  }
+}
+
+// g minus the convex piece bounded by `halves`: when their interiors meet
+// (in g's plane), the convex parts of g outside are appended to `out` and
+// the result is true; when they do not (the overlap has zero area), `out`
+// is left as it was and the result is false.  A facet plane of the piece
+// that contains g's plane has every sign 0 and cuts nothing.
+bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out) {
   const std::size_t mark = out.size();
   Poly rem = g;
   std::vector<int> sg;
-  for (const Line2& l : lines) {
-    const std::size_t n = rem.size();
-    sg.resize(n);
-    bool pos = false, neg = false;
-    for (std::size_t i = 0; i < n; ++i) {
-      sg[i] = side(l, rem[i]);
-      pos |= sg[i] > 0;
-      neg |= sg[i] < 0;
-    }
-    if (!pos) continue;  // rem inside this half-plane
+  bool pos = false, neg = false;
+  for (const Half& h : halves) {
+    signs(rem, h, sg, pos, neg);
+    if (!pos) continue;  // rem inside this half-space
     if (!neg) {          // rem outside: the overlap has no interior
       out.resize(mark);
       return false;
     }
     Poly outside, inside;
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t j = (i + 1) % n;
-      if (sg[i] >= 0) outside.push_back(rem[i]);
-      if (sg[i] <= 0) inside.push_back(rem[i]);
-      if (sg[i] * sg[j] < 0) {
-        const Rational sp = value(l, rem[i]), sq = value(l, rem[j]);
-        const Rational t = sp / (sp - sq);
-        V2 x = make_v2(rem[i].u + t * (rem[j].u - rem[i].u), rem[i].v + t * (rem[j].v - rem[i].v));
-        outside.push_back(x);
-        inside.push_back(std::move(x));
-      }
-    }
+    cut(rem, h, sg, outside, inside);
     out.push_back(std::move(outside));
     rem = std::move(inside);
   }
@@ -226,10 +207,13 @@ struct Box {
 
 // ---------------------------------------------------------------------------
 // Merging the fragments of one plane: along each line of the plane, a
-// fragment edge in the line's direction covers an interval with +1 (the
-// fragment lies to its left), one in the opposite direction with -1; the
-// fragments do not overlap, so where the sum is not zero one side only is
-// covered and that stretch is on the boundary, directed by the sign.
+// fragment edge in the line's direction covers an interval (the fragment
+// lies to its left), one in the opposite direction covers one backwards;
+// the fragments do not overlap, so where one direction is covered more than
+// the other only one side is in the region and that stretch is on the
+// boundary, directed by the side.  Along a slit (an edge of the union lying
+// in this plane, where the solid touches the face from outside: see
+// plane_boundary) both directions are kept, so the face is split there.
 
 struct LineKey {
   Integer a, b;  // primitive direction, first nonzero positive
@@ -241,12 +225,6 @@ struct LineKey {
   }
 };
 
-struct Event {
-  Rational t;
-  int delta;
-  const V2* point;
-};
-
 // The primitive integer vector with the direction of the rational (x, y) != 0.
 std::pair<Integer, Integer> primitive(const Rational& x, const Rational& y) {
   Integer l;
@@ -256,52 +234,77 @@ std::pair<Integer, Integer> primitive(const Rational& x, const Rational& y) {
   return {a / g, b / g};
 }
 
+// The segment p q on its line: the line, whether p -> q runs along the
+// line's direction, and the parameters of p and q along it.
+struct OnLine {
+  LineKey key;
+  bool forward;
+  Rational tp, tq;
+};
+
+OnLine on_line(const Frame& f, const Point3& p, const Point3& q) {
+  auto [a, b] = primitive(q[f.iu] - p[f.iu], q[f.iv] - p[f.iv]);
+  bool forward = true;
+  if (sgn(a) < 0 || (sgn(a) == 0 && sgn(b) < 0)) {
+    a = -a;
+    b = -b;
+    forward = false;
+  }
+  const Rational ra(a), rb(b);
+  return OnLine{LineKey{a, b, ra * p[f.iv] - rb * p[f.iu]}, forward, ra * p[f.iu] + rb * p[f.iv],
+                ra * q[f.iu] + rb * q[f.iv]};
+}
+
+struct Event {
+  Rational t;
+  int kind;   // 0: fragment edge along the line, 1: against it, 2: slit
+  int delta;  // +1 where the interval starts, -1 where it ends
+  const Point3* point;
+};
+
 // A boundary segment of a plane's region, lifted: from a to b, the region
 // on its left seen from outside.
 struct Segment {
   Point3 a, b;
 };
 
-std::vector<Segment> merge_fragments(const Frame& frame, const std::vector<Poly>& fragments) {
+std::vector<Segment> merge_fragments(const Frame& frame, const std::vector<Poly>& fragments,
+                                     const std::vector<Segment>& slits) {
   std::map<LineKey, std::vector<Event>> lines;
+  auto add = [&](const Point3& p, const Point3& q, int kind) {
+    OnLine o = on_line(frame, p, q);
+    const bool up = o.forward;  // p has the smaller parameter
+    if (kind == 0 && !o.forward) kind = 1;
+    auto& ev = lines[o.key];
+    ev.push_back(Event{up ? o.tp : o.tq, kind, 1, up ? &p : &q});
+    ev.push_back(Event{up ? o.tq : o.tp, kind, -1, up ? &q : &p});
+  };
   for (const Poly& g : fragments)
-    for (std::size_t i = 0; i < g.size(); ++i) {
-      const V2& p = g[i];
-      const V2& q = g[(i + 1) % g.size()];
-      auto [a, b] = primitive(q.u - p.u, q.v - p.v);
-      int dir = 1;
-      if (sgn(a) < 0 || (sgn(a) == 0 && sgn(b) < 0)) {
-        a = -a;
-        b = -b;
-        dir = -1;
-      }
-      Rational c = Rational(a) * p.v - Rational(b) * p.u;
-      const Rational tp = Rational(a) * p.u + Rational(b) * p.v, tq = Rational(a) * q.u + Rational(b) * q.v;
-      auto& ev = lines[LineKey{a, b, std::move(c)}];
-      // Along the direction: from the smaller parameter to the larger one.
-      const bool forward = dir > 0;
-      ev.push_back(Event{forward ? tp : tq, dir, forward ? &p : &q});
-      ev.push_back(Event{forward ? tq : tp, -dir, forward ? &q : &p});
-    }
+    for (std::size_t i = 0; i < g.size(); ++i) add(g[i].p, g[(i + 1) % g.size()].p, 0);
+  for (const Segment& sl : slits) add(sl.a, sl.b, 2);
   std::vector<Segment> out;
   for (auto& [key, ev] : lines) {
     std::sort(ev.begin(), ev.end(), [](const Event& x, const Event& y) { return cmp(x.t, y.t) < 0; });
-    int sum = 0;
-    const V2* start = nullptr;  // start of the current boundary stretch
-    int stretch = 0;            // its direction
+    int count[3] = {0, 0, 0};
+    bool along = false, against = false;  // the stretches under way
+    const Point3 *start_along = nullptr, *start_against = nullptr;
     for (std::size_t i = 0; i < ev.size();) {
-      std::size_t j = i;
-      int next = sum;
-      while (j < ev.size() && cmp(ev[j].t, ev[i].t) == 0) next += ev[j++].delta;
-      const int now = (next > 0) - (next < 0);
-      if (now != stretch) {
-        if (stretch > 0) out.push_back({frame.lift(start->u, start->v), frame.lift(ev[i].point->u, ev[i].point->v)});
-        if (stretch < 0) out.push_back({frame.lift(ev[i].point->u, ev[i].point->v), frame.lift(start->u, start->v)});
-        start = ev[i].point;
-        stretch = now;
+      const Point3* here = ev[i].point;
+      for (const std::size_t first = i; i < ev.size() && cmp(ev[i].t, ev[first].t) == 0; ++i)
+        count[ev[i].kind] += ev[i].delta;
+      const bool slit = count[2] > 0;
+      const bool now_along = slit ? count[0] > 0 : count[0] > count[1];
+      const bool now_against = slit ? count[1] > 0 : count[1] > count[0];
+      if (now_along != along) {
+        if (along) out.push_back({*start_along, *here});
+        start_along = here;
+        along = now_along;
       }
-      sum = next;
-      i = j;
+      if (now_against != against) {
+        if (against) out.push_back({*here, *start_against});
+        start_against = here;
+        against = now_against;
+      }
     }
   }
   return out;
@@ -319,12 +322,16 @@ struct PlaneResult {
   std::size_t clips = 0;
 };
 
+// The boundary of the union on one plane, from the facets there.  `slits`
+// are edges of the union found on the other planes that lie in this one
+// (where the solid touches this face from outside along a segment): the
+// fragments are cut along their lines and the face is split along them, so
+// that such an edge is an edge of this face too (a non-manifold edge).
 PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& facets,
-                           const std::vector<ConvexPolytope>& parts, const std::vector<Box>& boxes) {
-  const Frame frame(plane);
+                           const std::vector<ConvexPolytope>& parts, const std::vector<std::vector<Half>>& halves,
+                           const std::vector<Box>& boxes, const std::vector<Segment>& slits = {}) {
   PlaneResult r;
   std::vector<Poly> fragments;
-  std::unordered_map<Index, Trace> traces;
   std::vector<char> member(parts.size(), 0);
   for (const FacetRef& f : facets) member[f.piece] = 1;
   for (const FacetRef& f : facets) {
@@ -332,8 +339,8 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
     std::vector<Poly> frags(1);
     Box box;
     for (Index v : p.facet_vertices(f.facet)) {
-      frags[0].push_back(frame.project(p.point(v)));
-      box.add(to_double(p.point(v)));
+      frags[0].push_back(make_v3(p.point(v)));
+      box.add(frags[0].back().d);
     }
     for (Index j = 0; j < parts.size() && !frags.empty(); ++j) {
       // The pieces with a facet on this plane facing the same way lie below
@@ -341,12 +348,9 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
       // their facet's overlap with this one (so the plane's fragments do
       // not overlap).
       if (j == f.piece || (member[j] && j > f.piece) || !box.meets(boxes[j])) continue;
-      auto it = traces.find(j);
-      if (it == traces.end()) it = traces.emplace(j, trace_of(frame, parts[j])).first;
-      if (!it->second.meets) continue;
       std::vector<Poly> next;
       for (Poly& g : frags)
-        if (subtract(g, it->second.lines, next))
+        if (subtract(g, halves[j], next))
           ++r.clips;
         else
           next.push_back(std::move(g));
@@ -354,7 +358,28 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
     }
     for (Poly& g : frags) fragments.push_back(std::move(g));
   }
-  r.segments = merge_fragments(frame, fragments);
+  const Point3 n = plane.normal();
+  for (const Segment& sl : slits) {
+    // The plane through the slit, across this one.
+    const Point3 m = cross(sl.b - sl.a, n);
+    const Half h = make_half(m.x, m.y, m.z, dot(m, sl.a));
+    std::vector<Poly> next;
+    std::vector<int> sg;
+    bool pos = false, neg = false;
+    for (Poly& g : fragments) {
+      signs(g, h, sg, pos, neg);
+      if (!(pos && neg)) {
+        next.push_back(std::move(g));
+        continue;
+      }
+      Poly outside, inside;
+      cut(g, h, sg, outside, inside);
+      next.push_back(std::move(outside));
+      next.push_back(std::move(inside));
+    }
+    fragments = std::move(next);
+  }
+  r.segments = merge_fragments(Frame(plane), fragments, slits);
   return r;
 }
 
@@ -388,6 +413,11 @@ std::vector<Index> inner_vertices(Index a, Index b, const std::vector<Point3>& p
   for (auto& [t, m] : inside) out.push_back(m);
   return out;
 }
+
+// A vertex of a plane in the plane's two coordinates.
+struct V2 {
+  Rational u, v;
+};
 
 // The loops of one plane's directed edges (the region on their left, in
 // the frame's coordinates), each a simple cycle: at a vertex with several
@@ -493,8 +523,10 @@ bool encloses(const std::vector<Index>& loop, const std::vector<V2>& at, const R
 }
 
 // The faces of one plane from its traced loops: an outer loop alone is one
-// face; an outer loop with holes is triangulated.
+// face; an outer loop with holes or slits is triangulated.
 std::vector<std::vector<Index>> plane_faces(const std::vector<std::vector<Index>>& loops, const std::vector<V2>& at) {
+  // Counter-clockwise loops are outer boundaries, clockwise ones holes, and
+  // loops of two vertices (there and back) slits inside a face.
   std::vector<std::size_t> outer, hole;
   std::vector<Rational> area(loops.size());
   for (std::size_t i = 0; i < loops.size(); ++i) {
@@ -542,9 +574,13 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
   // Facets by oriented plane.
   std::map<Plane, std::vector<FacetRef>> by_plane;
   std::vector<Box> boxes(parts.size());
+  std::vector<std::vector<Half>> halves(parts.size());
   for (Index i = 0; i < parts.size(); ++i) {
     for (Index v = 0; v < parts[i].num_vertices(); ++v) boxes[i].add(to_double(parts[i].point(v)));
-    for (Index f = 0; f < parts[i].num_facets(); ++f) by_plane[parts[i].plane(f)].push_back(FacetRef{i, f});
+    for (Index f = 0; f < parts[i].num_facets(); ++f) {
+      by_plane[parts[i].plane(f)].push_back(FacetRef{i, f});
+      halves[i].push_back(half_of(parts[i].plane(f)));
+    }
   }
   std::vector<const std::pair<const Plane, std::vector<FacetRef>>*> planes;
   for (const auto& entry : by_plane) planes.push_back(&entry);
@@ -556,9 +592,72 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
     const std::size_t count = std::min(batch, n - start);
     parallel_for(count, workers, [&](std::size_t k) {
       const auto& [plane, facets] = *planes[start + k];
-      results[start + k] = plane_boundary(plane, facets, parts, boxes);
+      results[start + k] = plane_boundary(plane, facets, parts, halves, boxes);
     });
     options.report("union", double(start + count) / double(n));
+  }
+  // Slits: a boundary segment of one plane lying in another plane, inside
+  // that plane's face rather than along its boundary (the solid touching the
+  // face from outside along that segment); those planes are done again with
+  // their slits.
+  {
+    struct Item {
+      std::size_t plane;
+      const Segment* segment;
+      Box box;
+    };
+    std::vector<Item> items;
+    for (std::size_t g = 0; g < n; ++g)
+      for (const Segment& sg : results[g].segments) {
+        Item it{g, &sg, {}};
+        it.box.add(to_double(sg.a));
+        it.box.add(to_double(sg.b));
+        items.push_back(std::move(it));
+      }
+    std::sort(items.begin(), items.end(), [](const Item& x, const Item& y) { return x.box.lo[0] < y.box.lo[0]; });
+    std::vector<std::vector<Segment>> slits(n);
+    parallel_for(n, workers, [&](std::size_t g) {
+      const std::vector<Segment>& own = results[g].segments;
+      if (own.empty()) return;
+      Box region;
+      for (const Segment& sg : own) {
+        region.add(to_double(sg.a));
+        region.add(to_double(sg.b));
+      }
+      const Plane& h = planes[g]->first;
+      const Frame frame(h);
+      std::map<LineKey, std::vector<std::pair<Rational, Rational>>> along;  // own stretches by line
+      bool indexed = false;
+      for (const Item& it : items) {
+        if (it.box.lo[0] > region.hi[0]) break;
+        if (it.plane == g || !it.box.meets(region)) continue;
+        if (h.side(it.segment->a) != 0 || h.side(it.segment->b) != 0) continue;
+        if (!indexed) {
+          for (const Segment& sg : own) {
+            OnLine o = on_line(frame, sg.a, sg.b);
+            along[o.key].push_back(cmp(o.tp, o.tq) < 0 ? std::make_pair(o.tp, o.tq) : std::make_pair(o.tq, o.tp));
+          }
+          for (auto& [key, v] : along)
+            std::sort(v.begin(), v.end(), [](const auto& x, const auto& y) { return cmp(x.first, y.first) < 0; });
+          indexed = true;
+        }
+        // Covered by this plane's own boundary stretches: not a slit.
+        OnLine o = on_line(frame, it.segment->a, it.segment->b);
+        Rational from = cmp(o.tp, o.tq) < 0 ? o.tp : o.tq;
+        const Rational to = cmp(o.tp, o.tq) < 0 ? o.tq : o.tp;
+        auto found = along.find(o.key);
+        if (found != along.end())
+          for (const auto& [lo, hi] : found->second)
+            if (cmp(lo, from) <= 0 && cmp(hi, from) > 0) from = hi;
+        if (cmp(from, to) < 0) slits[g].push_back(*it.segment);
+      }
+    });
+    std::vector<PlaneResult> redone(n);
+    parallel_for(n, workers, [&](std::size_t g) {
+      if (!slits[g].empty()) redone[g] = plane_boundary(planes[g]->first, planes[g]->second, parts, halves, boxes, slits[g]);
+    });
+    for (std::size_t g = 0; g < n; ++g)
+      if (!slits[g].empty()) results[g] = std::move(redone[g]);
   }
   out.clips = 0;
   for (const auto& r : results) out.clips += r.clips;
@@ -610,7 +709,7 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
       for (Index* v : {&a, &b}) {
         auto [it, fresh] = id.emplace(*v, Index(at.size()));
         if (fresh) {
-          at.push_back(frame.project(pts[*v]));
+          at.push_back(V2{pts[*v][frame.iu], pts[*v][frame.iv]});
           local_id.push_back(*v);
         }
         *v = it->second;

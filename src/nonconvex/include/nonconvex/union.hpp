@@ -30,7 +30,8 @@ struct PlanePoint {
 
 // The triangles of a planar region bounded by simple loops that meet at most
 // in vertices: outer loops counter-clockwise, holes clockwise, in the (u, v)
-// coordinates.  Triangles are counter-clockwise, made of the loops' vertices
+// coordinates; a loop of two vertices is a slit, a segment inside the region
+// that becomes an edge of two triangles.  Triangles are counter-clockwise, made of the loops' vertices
 // only (ids), covering the region exactly once.  Exact (CGAL constrained
 // Delaunay triangulation, exact predicates; no point is constructed).
 std::vector<std::array<Index, 3>> triangulate_region(const std::vector<std::vector<PlanePoint>>& loops);

@@ -168,10 +168,16 @@ void signs(const Poly& g, const Half& h, std::vector<int>& sg, bool& pos, bool& 
 // is left as it was and the result is false.  A facet plane of the piece
 // that contains g's plane has every sign 0 and cuts nothing.
 bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out) {
-  const std::size_t mark = out.size();
-  Poly rem = g;
   std::vector<int> sg;
   bool pos = false, neg = false;
+  // First the signs only: a plane with all of g on or outside it rejects the
+  // piece before any cut is made.
+  for (const Half& h : halves) {
+    signs(g, h, sg, pos, neg);
+    if (pos && !neg) return false;
+  }
+  const std::size_t mark = out.size();
+  Poly rem = g;
   for (const Half& h : halves) {
     signs(rem, h, sg, pos, neg);
     if (!pos) continue;  // rem inside this half-space

@@ -15,14 +15,16 @@
 // pieces on H facing n may overlap: each facet is cut by the earlier pieces
 // with a facet there too, so the cut facets do not overlap.
 //
-// Each facet is cut in its plane's two coordinates by successive half-plane
-// splits (convex fragments); the fragments of one plane are merged back
-// into maximal faces by cancelling opposite edges along each line; the
-// faces of all planes are welded at exactly equal points, every vertex lying
-// inside an edge is inserted into it, and each plane's edges are traced
-// into loops (holes triangulated).  Every decision is the sign of an exact
-// polynomial, decided by a double filter with a proved bound when it can,
-// else in exact rationals.
+// Each facet is cut by the facet planes of the pieces that overlap it,
+// successively (convex fragments, exactly in the facet's plane); the
+// fragments of one plane are merged back into maximal faces by cancelling
+// opposite edges along each line of the plane (in its two coordinates); an
+// edge of the union lying across another plane's face splits that face
+// (a slit); the faces of all planes are welded at exactly equal points,
+// every vertex lying inside an edge is inserted into it, and each plane's
+// edges are traced into loops (faces with holes or slits triangulated).
+// Every decision is the sign of an exact polynomial, decided by a double
+// filter with a proved bound when it can, else in exact rationals.
 #include <minksum/error.hpp>
 #include <minksum/parallel.hpp>
 

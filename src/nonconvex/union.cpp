@@ -115,6 +115,9 @@ int side(const Half& h, const V3& v) {
   return sgn(value(h, v));
 }
 
+// Whether the point p lies on the plane of h.
+bool on_plane(const Half& h, const Point3& p) { return side(h, make_v3(p)) == 0; }
+
 // The two coordinates of an oriented plane h's points: the coordinate k
 // with the largest |normal_k| is dropped, the other two (u, v) are ordered
 // so that counter-clockwise in (u, v) is counter-clockwise seen from
@@ -175,8 +178,14 @@ bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>&
   // First the signs only: a plane with all of g on or outside it rejects the
   // piece before any cut is made.
   for (const Half& h : halves) {
-    signs(g, h, sg, pos, neg);
-    if (pos && !neg) return false;
+    pos = false;
+    std::size_t i = 0;
+    for (; i < g.size(); ++i) {
+      const int c = side(h, g[i]);
+      if (c < 0) break;
+      pos |= c > 0;
+    }
+    if (i == g.size() && pos) return false;
   }
   const std::size_t mark = out.size();
   Poly rem = g;
@@ -623,6 +632,8 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
         items.push_back(std::move(it));
       }
     std::sort(items.begin(), items.end(), [](const Item& x, const Item& y) { return x.box.lo[0] < y.box.lo[0]; });
+    double longest = 0;  // at least the largest x extent of a segment (rounded up)
+    for (const Item& it : items) longest = std::max(longest, std::nextafter(it.box.hi[0] - it.box.lo[0], INFINITY));
     std::vector<std::vector<Segment>> slits(n);
     parallel_for(n, workers, [&](std::size_t g) {
       const std::vector<Segment>& own = results[g].segments;
@@ -632,14 +643,18 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
         region.add(to_double(sg.a));
         region.add(to_double(sg.b));
       }
-      const Plane& h = planes[g]->first;
-      const Frame frame(h);
+      const Half h = half_of(planes[g]->first);
+      const Frame frame(planes[g]->first);
       std::map<LineKey, std::vector<std::pair<Rational, Rational>>> along;  // own stretches by line
       bool indexed = false;
-      for (const Item& it : items) {
+      // Only a segment starting at most `longest` before the region can reach it.
+      auto first = std::lower_bound(items.begin(), items.end(), std::nextafter(region.lo[0] - longest, -INFINITY),
+                                    [](const Item& it, double x) { return it.box.lo[0] < x; });
+      for (auto at = first; at != items.end(); ++at) {
+        const Item& it = *at;
         if (it.box.lo[0] > region.hi[0]) break;
         if (it.plane == g || !it.box.meets(region)) continue;
-        if (h.side(it.segment->a) != 0 || h.side(it.segment->b) != 0) continue;
+        if (!on_plane(h, it.segment->a) || !on_plane(h, it.segment->b)) continue;
         if (!indexed) {
           for (const Segment& sg : own) {
             OnLine o = on_line(frame, sg.a, sg.b);

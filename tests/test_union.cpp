@@ -179,6 +179,18 @@ TEST(Union, EdgeLyingAcrossAFace) {
   EXPECT_EQ(top, 2u);  // the two halves of the box's top
 }
 
+// An edge of a tetrahedron crossing an edge of a cube at its middle: the
+// crossing point becomes a vertex of both edges.
+TEST(Union, EdgesCrossingAtAPoint) {
+  const ConvexPolytope tetra = ConvexPolytope::hull(
+      std::vector<Point3>{Point3(1, 1, 3), Point3(1, 3, 1), Point3(0, 3, 3), Point3(2, 3, 3)}, "tetra");
+  const NonconvexSum r = expect_like_nef({box(0, 2, 0, 2, 0, 2), tetra});
+  EXPECT_EQ(r.volume, Rational(8) + tetra.volume());
+  EXPECT_EQ(r.mesh.points.size(), 8u + 4u + 1u);
+  EXPECT_EQ(vertex_set(r.mesh).count(Point3(1, 2, 2)), 1u);
+  EXPECT_EQ(r.shells, 2u);
+}
+
 // A piece inside another, and one inside touching its faces from within.
 TEST(Union, APieceInsideAnother) {
   for (const ConvexPolytope& inner : {box(1, 2, 1, 2, 1, 2), box(0, 1, 0, 1, 0, 1), box(0, 3, 1, 2, 0, 3)}) {

@@ -27,6 +27,7 @@
 // filter with a proved bound when it can, else in exact rationals.
 #include <minksum/error.hpp>
 #include <minksum/parallel.hpp>
+#include <minksum/predicates.hpp>
 
 #include "nonconvex/union.hpp"
 
@@ -436,6 +437,42 @@ struct V2 {
   Rational u, v;
 };
 
+// The points where two of the edges cross, inside both (not at an end of
+// either), found among the pairs whose rounded boxes meet.
+std::vector<Point3> crossings(const std::vector<std::vector<std::pair<Index, Index>>>& edges,
+                              const std::vector<Point3>& pts) {
+  std::vector<std::pair<Index, Index>> all;
+  for (const auto& plane : edges)
+    for (auto [a, b] : plane) all.emplace_back(std::min(a, b), std::max(a, b));
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  std::vector<Box> box(all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    box[i].add(to_double(pts[all[i].first]));
+    box[i].add(to_double(pts[all[i].second]));
+  }
+  std::vector<std::size_t> order(all.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return box[x].lo[0] < box[y].lo[0]; });
+  std::vector<Point3> out;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const auto [a, b] = all[order[i]];
+    for (std::size_t j = i + 1; j < order.size() && box[order[j]].lo[0] <= box[order[i]].hi[0]; ++j) {
+      const auto [c, d] = all[order[j]];
+      if (a == c || a == d || b == c || b == d || !box[order[i]].meets(box[order[j]])) continue;
+      if (orient3d(pts[a], pts[b], pts[c], pts[d]) != 0) continue;
+      const Point3 u = pts[b] - pts[a], v = pts[d] - pts[c], w = pts[c] - pts[a];
+      const Point3 uv = cross(u, v);
+      if (is_zero(uv)) continue;  // parallel: an end inside the other is a vertex already
+      // a + s u = c + t v: s = ((w x v) . (u x v)) / |u x v|^2, t = ((w x u) . (u x v)) / |u x v|^2.
+      const Rational n2 = dot(uv, uv), sn = dot(cross(w, v), uv), tn = dot(cross(w, u), uv);
+      if (sgn(sn) > 0 && cmp(sn, n2) < 0 && sgn(tn) > 0 && cmp(tn, n2) < 0)
+        out.push_back(pts[a] + Rational(sn / n2) * u);
+    }
+  }
+  return out;
+}
+
 // The loops of one plane's directed edges (the region on their left, in
 // the frame's coordinates), each a simple cycle: at a vertex with several
 // ways out, the loop takes the first one clockwise from the way it came
@@ -704,6 +741,10 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
       edges[g].emplace_back(ends[0], ends[1]);
     }
   results.clear();
+  // Two edges crossing at a point inside both (the solid touching itself at
+  // a point there): the point becomes a vertex of both.
+  for (Point3& x : crossings(edges, pts))
+    if (index.emplace(x, Index(pts.size())).second) pts.push_back(std::move(x));
   index.clear();
   std::vector<Vec3d> approx(pts.size());
   for (std::size_t v = 0; v < pts.size(); ++v) approx[v] = to_double(pts[v]);

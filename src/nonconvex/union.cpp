@@ -21,7 +21,8 @@
 // opposite edges along each line of the plane (in its two coordinates); an
 // edge of the union lying across another plane's face splits that face
 // (a slit); the faces of all planes are welded at exactly equal points,
-// every vertex lying inside an edge is inserted into it, and each plane's
+// points where two edges cross become vertices, every vertex lying inside
+// an edge is inserted into it, and each plane's
 // edges are traced into loops (faces with holes or slits triangulated).
 // Every decision is the sign of an exact polynomial, decided by a double
 // filter with a proved bound when it can, else in exact rationals.

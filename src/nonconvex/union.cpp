@@ -794,17 +794,32 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
       face_plane.push_back(Index(g));
     }
 
-  // Shells: faces linked across their edges.  Around an edge of more than
-  // two faces (the solid touching itself), each face is linked to the next
-  // one around the edge across the solid between them, so the shells are
-  // the boundaries of the union's separate volumes.
+  // Shells: the number of bounded volumes the boundary encloses (solid
+  // parts and cavities; by Alexander duality the dimension of its space of
+  // 2-cycles mod 2).  Faces are linked across each edge twice: across the
+  // solid between them and across the empty space between them (for an edge
+  // of two faces both links join the same pair; around an edge of more than
+  // two faces, each face to its neighbour on its solid side and on its empty
+  // side).  The classes of either linking are closed surfaces (2-cycles)
+  // that together span all of them, and the only relations are one per
+  // class of both linkings together: volumes = solid classes + empty
+  // classes - joint classes (for a 2-manifold boundary, its shells).
   const std::vector<std::vector<Index>>& mf = out.mesh.faces;
-  std::vector<std::size_t> parent(mf.size());
-  std::iota(parent.begin(), parent.end(), std::size_t(0));
-  auto find = [&](std::size_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
+  struct Classes {
+    std::vector<std::size_t> parent;
+    explicit Classes(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t(0)); }
+    std::size_t find(std::size_t i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    }
+    void join(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+    std::size_t count() {
+      std::size_t c = 0;
+      for (std::size_t i = 0; i < parent.size(); ++i) c += find(i) == i;
+      return c;
+    }
   };
+  Classes solid(mf.size()), empty(mf.size()), both(mf.size());
   std::map<std::pair<Index, Index>, std::vector<std::size_t>> around;  // undirected edge -> faces
   for (std::size_t f = 0; f < mf.size(); ++f)
     for (std::size_t i = 0; i < mf[f].size(); ++i) {
@@ -814,7 +829,9 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
   out.non_manifold_edges = 0;
   for (const auto& [e, fs] : around) {
     if (fs.size() == 2) {
-      parent[find(fs[0])] = find(fs[1]);
+      solid.join(fs[0], fs[1]);
+      empty.join(fs[0], fs[1]);
+      both.join(fs[0], fs[1]);
       continue;
     }
     ++out.non_manifold_edges;
@@ -850,12 +867,13 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
       auto [qx, qy] = coords(q.w);
       return sgn(px * qy - py * qx) > 0;
     });
-    for (std::size_t i = 0; i < list.size(); ++i)
-      if (list[i].solid_ccw) parent[find(list[i].face)] = find(list[(i + 1) % list.size()].face);
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::size_t f = list[i].face, next = list[(i + 1) % list.size()].face;
+      (list[i].solid_ccw ? solid : empty).join(f, next);
+      both.join(f, next);
+    }
   }
-  out.shells = 0;
-  for (std::size_t f = 0; f < mf.size(); ++f)
-    if (find(f) == f) ++out.shells;
+  out.shells = solid.count() + empty.count() - both.count();
   out.seconds_boundary = since(t0);
 }
 

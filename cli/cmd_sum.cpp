@@ -91,7 +91,7 @@ exact union of the pair sums is written (polygons of exact coordinates,
 cavities as inner shells; docs/nonconvex.md).  Without --exact, a coordinate
 that is not a double is rounded only when the rounded surface is still a valid
 solid, else the write is refused (exit 1) naming --exact.  --json then reports
-"pieces", "pairs", "pair_vertices", "pair_facets" and "union" (joins, shells,
+"pieces", "pairs", "pair_vertices", "pair_facets" and "union" (clips, shells,
 non-manifold edges) and the phases decompose, pairs, union and boundary.
 --method sums the pairs of convex pieces (walk by default); a sum with a
 non-convex operand takes exactly two operands.

@@ -166,7 +166,7 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
            << ", \"write\": " << json_number(write_seconds) << "}, \"volume\": \"" << format_exact(r.volume)
            << "\", \"volume_double\": " << json_number(to_double(r.volume)) << ", \"pieces\": {\"a\": " << r.pieces_a
            << ", \"b\": " << r.pieces_b << "}, \"pairs\": " << r.pairs << ", \"pair_vertices\": " << r.pair_vertices
-           << ", \"pair_facets\": " << r.pair_facets << ", \"union\": {\"joins\": " << r.unions
+           << ", \"pair_facets\": " << r.pair_facets << ", \"union\": {\"clips\": " << r.clips
            << ", \"shells\": " << r.shells << ", \"non_manifold_edges\": " << r.non_manifold_edges << "}"
            << ", \"a\": " << solid_json(names[0], solids[0], r.pieces_a)
            << ", \"b\": " << solid_json(names[1], solids[1], r.pieces_b) << ", \"output\": ";
@@ -182,7 +182,7 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
     report << "\n  = " << c.vertices << " vertices, " << c.edges << " edges, " << c.faces << " faces"
            << (r.shells > 1 ? ", " + std::to_string(r.shells) + " shells" : std::string())
            << (r.non_manifold_edges ? ", " + std::to_string(r.non_manifold_edges) + " non-manifold edges" : std::string())
-           << "\n  non-convex sum: " << r.pairs << " pair sums, " << r.unions << " unions, "
+           << "\n  non-convex sum: " << r.pairs << " pair sums, " << r.clips << " facet clips, "
            << format_double(r.seconds()) << " s\n";
     if (output) report << "  written to " << (output->to_stdout() ? std::string("standard output") : printable(output->path)) << "\n";
   }

@@ -1,10 +1,14 @@
 // Helpers of the non-convex sum suites (test_nonconvex*.cpp).
 #pragma once
 
+#include <minksum/nonconvex.hpp>
 #include <minksum/polytope.hpp>
 
 #include "kernel/plane.hpp"
 
+#include <gtest/gtest.h>
+
+#include <map>
 #include <set>
 
 namespace minksum::testing {
@@ -19,6 +23,51 @@ inline std::set<Plane> face_planes(const Mesh& m) {
     s.insert(canonical_plane(n, m.points[f[0]]));
   }
   return s;
+}
+
+inline std::set<Point3> vertex_set(const Mesh& m) {
+  std::set<Point3> s;
+  for (std::size_t i = 0; i < m.points.size(); ++i) s.insert(m.points[i]);
+  return s;
+}
+
+// Every directed edge is matched by as many opposite ones (closed, oriented,
+// non-manifold edges included), every face is exactly planar and the volume
+// is the one reported.
+inline void expect_closed_oriented(const NonconvexSum& r) {
+  std::map<std::pair<Index, Index>, int> d;
+  for (const auto& f : r.mesh.faces) {
+    ASSERT_GE(f.size(), 3u);
+    for (std::size_t i = 0; i < f.size(); ++i) ++d[{f[i], f[(i + 1) % f.size()]}];
+    Point3 n(Rational(0), Rational(0), Rational(0));
+    for (std::size_t i = 0; i < f.size(); ++i) n = n + cross(r.mesh.points[f[i]], r.mesh.points[f[(i + 1) % f.size()]]);
+    ASSERT_FALSE(is_zero(n));
+    for (Index v : f) EXPECT_EQ(sgn(dot(n, r.mesh.points[v] - r.mesh.points[f[0]])), 0);
+  }
+  for (const auto& [e, c] : d) EXPECT_EQ(c, (d.count({e.second, e.first}) ? d.at({e.second, e.first}) : 0));
+  EXPECT_EQ(mesh_volume(r.mesh), r.volume);
+  EXPECT_GT(sgn(r.volume), 0);
+}
+
+// No vertex of the mesh lies strictly inside one of its edges (every
+// T-junction resolved), and no face uses a vertex twice.
+inline void expect_no_vertex_inside_an_edge(const Mesh& m) {
+  std::set<std::pair<Index, Index>> edges;
+  for (const auto& f : m.faces) {
+    EXPECT_EQ(std::set<Index>(f.begin(), f.end()).size(), f.size());
+    for (std::size_t i = 0; i < f.size(); ++i)
+      edges.insert({std::min(f[i], f[(i + 1) % f.size()]), std::max(f[i], f[(i + 1) % f.size()])});
+  }
+  for (const auto& [a, b] : edges) {
+    const Point3 d = m.points[b] - m.points[a];
+    for (Index v = 0; v < m.points.size(); ++v) {
+      if (v == a || v == b) continue;
+      const Point3 av = m.points[v] - m.points[a];
+      if (!is_zero(cross(d, av))) continue;
+      const Rational t = dot(av, d);
+      EXPECT_FALSE(sgn(t) > 0 && t < dot(d, d)) << "vertex " << v << " inside edge " << a << "-" << b;
+    }
+  }
 }
 
 }  // namespace minksum::testing

@@ -1062,7 +1062,7 @@ TEST_F(Cli, NonConvexSumJsonAndExactOutput) {
   EXPECT_EQ(json_int(work, "b"), 1);  // "pieces": {"a": N, "b": 1}
   EXPECT_GE(json_int(work, "a"), 2);
   EXPECT_EQ(json_int(work, "pairs"), json_int(work, "a"));
-  EXPECT_EQ(json_int(work, "joins"), json_int(work, "pairs") - 1);
+  EXPECT_GE(json_int(work, "clips"), 1);  // the pieces around the hole overlap
   EXPECT_EQ(json_int(r.out, "shells"), 1);
   EXPECT_EQ(json_int(r.out, "non_manifold_edges"), 0);
   for (const char* key : {"decompose", "pairs", "union", "boundary", "pair_facets", "rounded_coordinates"})

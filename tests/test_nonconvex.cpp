@@ -47,30 +47,6 @@ Mesh join(Mesh a, const Mesh& b, bool flip = false) {
 // Hollow cube: [-2,2]^3 with the cavity [-1,1]^3 (inner shell facing in).
 Mesh hollow_cube() { return join(cube_mesh(2), cube_mesh(1), true); }
 
-std::set<Point3> vertex_set(const Mesh& m) {
-  std::set<Point3> s;
-  for (std::size_t i = 0; i < m.points.size(); ++i) s.insert(m.points[i]);
-  return s;
-}
-
-// Every directed edge is matched by as many opposite ones (closed, oriented,
-// non-manifold edges included), every face is exactly planar and the volume
-// is the one reported.
-void expect_closed_oriented(const NonconvexSum& r) {
-  std::map<std::pair<Index, Index>, int> d;
-  for (const auto& f : r.mesh.faces) {
-    ASSERT_GE(f.size(), 3u);
-    for (std::size_t i = 0; i < f.size(); ++i) ++d[{f[i], f[(i + 1) % f.size()]}];
-    Point3 n(Rational(0), Rational(0), Rational(0));
-    for (std::size_t i = 0; i < f.size(); ++i) n = n + cross(r.mesh.points[f[i]], r.mesh.points[f[(i + 1) % f.size()]]);
-    ASSERT_FALSE(is_zero(n));
-    for (Index v : f) EXPECT_EQ(sgn(dot(n, r.mesh.points[v] - r.mesh.points[f[0]])), 0);
-  }
-  for (const auto& [e, c] : d) EXPECT_EQ(c, (d.count({e.second, e.first}) ? d.at({e.second, e.first}) : 0));
-  EXPECT_EQ(mesh_volume(r.mesh), r.volume);
-  EXPECT_GT(sgn(r.volume), 0);
-}
-
 NonconvexSum sum(const std::string& a, const std::string& b) {
   Solid sa = solid(a), sb = solid(b);
   return minkowski_sum_nonconvex(sa, sb);

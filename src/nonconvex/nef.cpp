@@ -136,12 +136,12 @@ std::optional<std::pair<Index, Index>> first_self_intersection(const Mesh& trian
   return hit;
 }
 
-std::vector<ConvexPolytope> nef_convex_pieces(const Mesh& triangles) {
-  Nef nef = solid_nef(triangles);
+namespace {
+// The convex pieces of a Nef polyhedron: convex_decomposition_3, then every
+// marked volume but the first (the unbounded outside) is one convex piece.
+std::vector<ConvexPolytope> convex_pieces(Nef& nef) {
   CGAL::convex_decomposition_3(nef);
   std::vector<ConvexPolytope> pieces;
-  // The first volume is the unbounded outside; every other marked volume is
-  // one convex piece.
   for (auto c = std::next(nef.volumes_begin()); c != nef.volumes_end(); ++c) {
     if (!c->mark()) continue;
     Polyhedron piece;
@@ -151,6 +151,12 @@ std::vector<ConvexPolytope> nef_convex_pieces(const Mesh& triangles) {
     pieces.push_back(ConvexPolytope::hull(points, "convex piece"));
   }
   return pieces;
+}
+}  // namespace
+
+std::vector<ConvexPolytope> nef_convex_pieces(const Mesh& triangles) {
+  Nef nef = solid_nef(triangles);
+  return convex_pieces(nef);
 }
 
 namespace {
@@ -199,7 +205,6 @@ void nef_union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptio
     if (level.size() % 2) next.push_back(std::move(level.back()));
     level = std::move(next);
   }
-  out.unions = done;
   out.seconds_union = since(t0);
 
   t0 = Clock::now();
@@ -223,6 +228,14 @@ void nef_union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptio
   for (const auto& [e, c] : edge_faces)
     if (c > 2) ++out.non_manifold_edges;
   out.seconds_boundary = since(t0);
+}
+
+Rational nef_union_volume(const std::vector<ConvexPolytope>& parts) {
+  std::optional<Nef> u;
+  for (const auto& p : parts) u = u ? u->join(nef_of(p)) : nef_of(p);
+  Rational volume = 0;
+  for (const auto& piece : convex_pieces(*u)) volume += piece.volume();
+  return volume;
 }
 
 }  // namespace minksum::nonconvex_detail

@@ -6,6 +6,7 @@
 #include <minksum/parallel.hpp>
 
 #include "nonconvex/nef.hpp"
+#include "nonconvex/union.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -57,7 +58,7 @@ NonconvexSum minkowski_sum_nonconvex(const Solid& a, const Solid& b, const SumOp
   }
   out.seconds_pairs = since(t0);
 
-  nonconvex_detail::nef_union_boundary(sums, options, out);
+  nonconvex_detail::union_boundary(sums, options, out, threads);
   out.volume = mesh_volume(out.mesh);
   return out;
 }

@@ -12,8 +12,10 @@
 //      planes of the reflex edges); a convex operand is its own single piece;
 //   2. every pair of pieces is summed by the walk (<minksum/walk.hpp>), in
 //      parallel over the pairs;
-//   3. the union of the convex pair sums is taken exactly (regularised union
-//      of Nef polyhedra), and its boundary is returned as a closed mesh.
+//   3. the union of the convex pair sums is taken exactly: each facet of a
+//      pair sum is cut by the pair sums that reach over its plane where they
+//      meet it, the pieces left are merged into maximal faces, and the
+//      boundary is returned as a closed mesh.
 // Every decision is an exact predicate; there is no tolerance anywhere.
 #pragma once
 
@@ -75,7 +77,7 @@ struct NonconvexSum {
   std::size_t pieces_a = 0, pieces_b = 0;  // convex pieces of A and B
   std::size_t pairs = 0;                   // pair sums computed (pieces_a * pieces_b)
   std::size_t pair_vertices = 0, pair_facets = 0;  // over all pair sums
-  std::size_t unions = 0;                  // binary union operations
+  std::size_t clips = 0;                   // facets cut by a pair sum that overlaps them (the union's work)
   std::size_t shells = 0;                  // boundary shells (outer ones and cavities)
   std::size_t non_manifold_edges = 0;      // edges of the boundary shared by more than two faces
   // Seconds spent in each step.

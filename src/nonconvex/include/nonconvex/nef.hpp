@@ -18,10 +18,17 @@ std::optional<std::pair<Index, Index>> first_self_intersection(const Mesh& trian
 // The convex pieces of a validated solid (CGAL convex_decomposition_3).
 std::vector<ConvexPolytope> nef_convex_pieces(const Mesh& triangles);
 
-// The boundary of the union of convex polytopes (each a Nef polyhedron,
-// joined in a balanced tree).  Reports "union" with the fraction of joins
-// done, then "boundary"; fills the counts and seconds of `out` (mesh,
-// unions, shells, non_manifold_edges, seconds_union, seconds_boundary).
+// The boundary of the union of convex polytopes by CGAL's Nef polyhedra
+// (each a Nef polyhedron, joined in a balanced tree); the tests compare
+// minksum's union (union_boundary, nonconvex/union.hpp) with it.  Reports
+// "union" with the fraction of joins done, then "boundary"; fills mesh,
+// shells, non_manifold_edges, seconds_union and seconds_boundary of `out`.
 void nef_union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& options, NonconvexSum& out);
+
+// The exact volume of the union of convex polytopes by CGAL's Nef
+// polyhedra, without their boundary: the joined Nef polyhedron cut into
+// convex pieces (convex_decomposition_3), their volumes added.  For the
+// tests, where CGAL's conversion of a Nef boundary to polygons fails.
+Rational nef_union_volume(const std::vector<ConvexPolytope>& parts);
 
 }  // namespace minksum::nonconvex_detail

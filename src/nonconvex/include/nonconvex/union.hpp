@@ -1,0 +1,39 @@
+// Internal to src/nonconvex/: minksum's exact union of convex polytopes
+// (union.cpp, docs/nonconvex.md "Method") and the triangulation of a planar
+// face with holes (holes.cpp, CGAL's constrained Delaunay triangulation, in a
+// translation unit of its own).
+#pragma once
+
+#include <minksum/nonconvex.hpp>
+
+#include <array>
+#include <utility>
+#include <vector>
+
+namespace minksum::nonconvex_detail {
+
+// The boundary of the union of the convex polytopes `parts` (regularised:
+// the closure of the union of their interiors): maximal planar faces,
+// counter-clockwise seen from outside, a face with a hole triangulated,
+// cavities as inner shells, non-manifold edges kept.  Reports "union" with
+// the fraction of facet planes done, then "boundary"; fills mesh, clips,
+// shells, non_manifold_edges, seconds_union and seconds_boundary of `out`.
+// `threads` as parallel_for's.
+void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& options, NonconvexSum& out,
+                    unsigned threads = 0);
+
+// A point of a plane in two exact coordinates (the frame of union.cpp).
+struct PlanePoint {
+  Rational u, v;
+  Index id;  // the vertex it is in the mesh
+};
+
+// The triangles of a planar region bounded by simple loops that meet at most
+// in vertices: outer loops counter-clockwise, holes clockwise, in the (u, v)
+// coordinates; a loop of two vertices is a slit, a segment inside the region
+// that becomes an edge of two triangles.  Triangles are counter-clockwise, made of the loops' vertices
+// only (ids), covering the region exactly once.  Exact (CGAL constrained
+// Delaunay triangulation, exact predicates; no point is constructed).
+std::vector<std::array<Index, 3>> triangulate_region(const std::vector<std::vector<PlanePoint>>& loops);
+
+}  // namespace minksum::nonconvex_detail

@@ -1,0 +1,880 @@
+// minksum's exact union of convex polytopes, the third step of the
+// non-convex sum (docs/nonconvex.md, "Method").
+//
+// The boundary of the union U of convex polytopes C_1..C_n, facing n on an
+// oriented plane H (outward normal n), is the closure of
+//     R(H) = (union of the facets of the C_i on H facing n)
+//            minus (union of C_j ∩ H over the pieces C_j without a facet on H facing n).
+// A point p of a facet of C_i on H has U just below it (C_i); it is on the
+// boundary unless U is also just above it, which happens exactly when a
+// piece meets H in a region around p and reaches above H there: a piece
+// C_j ∩ H of positive area whose C_j has no facet on H facing n (such a
+// C_j lies below H).  A piece touching H face to face from above (its facet
+// on H facing −n) removes the contact from both sides; a contact along an
+// edge or at a vertex has zero area and removes nothing.  Facets of several
+// pieces on H facing n may overlap: each facet is cut by the earlier pieces
+// with a facet there too, so the cut facets do not overlap.
+//
+// Each facet is cut by the facet planes of the pieces that overlap it,
+// successively (convex fragments, exactly in the facet's plane); the
+// fragments of one plane are merged back into maximal faces by cancelling
+// opposite edges along each line of the plane (in its two coordinates); an
+// edge of the union lying across another plane's face splits that face
+// (a slit); the faces of all planes are welded at exactly equal points,
+// points where two edges cross become vertices, every vertex lying inside
+// an edge is inserted into it, and each plane's
+// edges are traced into loops (faces with holes or slits triangulated).
+// Every decision is the sign of an exact polynomial, decided by a double
+// filter with a proved bound when it can, else in exact rationals.
+#include <minksum/error.hpp>
+#include <minksum/parallel.hpp>
+#include <minksum/predicates.hpp>
+
+#include "nonconvex/union.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace minksum::nonconvex_detail {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// ---------------------------------------------------------------------------
+// The filter.  side(h, p) is the sign of a*x + b*y + c*z - d for the
+// rational coefficients of a half-space (integers for the pieces' facets)
+// and a point p of rationals.  With the nearest doubles of all seven
+// (relative error at most 2^-53 each, every one normal or zero) and the
+// value evaluated in doubles as s = ((â*x̂ + b̂*ŷ) + ĉ*ẑ) - d̂, the error of
+// s is at most about 7 * 2^-53 * (|â*x̂| + |b̂*ŷ| + |ĉ*ẑ| + |d̂|) in round to
+// nearest and twice that in a directed rounding mode; the filter trusts the
+// sign of s only when |s| exceeds 2^-48 times that sum (more than twice the
+// bound in any mode), and only for numbers that are zero or at least 2^-480
+// in magnitude (no underflow in the products).  Otherwise the exact value.
+constexpr double kFilterBound = 0x1p-48;
+constexpr double kTiny = 0x1p-480;
+
+bool filterable(double x, const Rational& q) {
+  return std::isfinite(x) && std::fabs(x) < 0x1p+480 && (x == 0 ? sgn(q) == 0 : std::fabs(x) >= kTiny);
+}
+
+// A point of a facet's plane: exact, with its nearest doubles.
+struct V3 {
+  Point3 p;
+  Vec3d d;
+  bool filtered = false;
+};
+
+V3 make_v3(Point3 p) {
+  V3 v;
+  v.d = to_double(p);
+  v.filtered = filterable(v.d.x, p.x) && filterable(v.d.y, p.y) && filterable(v.d.z, p.z);
+  v.p = std::move(p);
+  return v;
+}
+
+// The half-space a*x + b*y + c*z <= d (inside).
+struct Half {
+  Rational a, b, c, d;
+  double da = 0, db = 0, dc = 0, dd = 0;
+  bool filtered = false;
+};
+
+Half make_half(Rational a, Rational b, Rational c, Rational d) {
+  Half h;
+  h.da = to_double(a);
+  h.db = to_double(b);
+  h.dc = to_double(c);
+  h.dd = to_double(d);
+  h.filtered = filterable(h.da, a) && filterable(h.db, b) && filterable(h.dc, c) && filterable(h.dd, d);
+  h.a = std::move(a);
+  h.b = std::move(b);
+  h.c = std::move(c);
+  h.d = std::move(d);
+  return h;
+}
+
+Half half_of(const Plane& q) { return make_half(Rational(q.a), Rational(q.b), Rational(q.c), Rational(q.d)); }
+
+Rational value(const Half& h, const V3& v) { return h.a * v.p.x + h.b * v.p.y + h.c * v.p.z - h.d; }
+
+// > 0 outside, 0 on the plane, < 0 inside.
+int side(const Half& h, const V3& v) {
+  if (h.filtered && v.filtered) {
+    const double t1 = h.da * v.d.x, t2 = h.db * v.d.y, t3 = h.dc * v.d.z;
+    const double s = ((t1 + t2) + t3) - h.dd;
+    const double e = kFilterBound * (std::fabs(t1) + std::fabs(t2) + std::fabs(t3) + std::fabs(h.dd));
+    if (s > e) return 1;
+    if (s < -e) return -1;
+  }
+  return sgn(value(h, v));
+}
+
+// Whether the point p lies on the plane of h.
+bool on_plane(const Half& h, const Point3& p) { return side(h, make_v3(p)) == 0; }
+
+// The two coordinates of an oriented plane h's points: the coordinate k
+// with the largest |normal_k| is dropped, the other two (u, v) are ordered
+// so that counter-clockwise in (u, v) is counter-clockwise seen from
+// outside (from the side the normal points to).
+struct Frame {
+  int iu = 0, iv = 1;
+  explicit Frame(const Plane& h) {
+    const Integer n[3] = {h.a, h.b, h.c};
+    int k = 2;
+    for (int i = 0; i < 3; ++i)
+      if (cmp(abs(n[i]), abs(n[k])) > 0) k = i;
+    iu = (k + 1) % 3;
+    iv = (k + 2) % 3;
+    if (sgn(n[k]) < 0) std::swap(iu, iv);
+  }
+};
+
+// A convex polygon of a facet's plane, counter-clockwise seen from outside.
+using Poly = std::vector<V3>;
+
+// The convex polygon g cut by the plane of h, sg the signs of its vertices
+// (some > 0, some < 0): the part outside and the part inside.  The new
+// points are on g's edges, so in its plane, exactly.
+void cut(const Poly& g, const Half& h, const std::vector<int>& sg, Poly& outside, Poly& inside) {
+  const std::size_t n = g.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    if (sg[i] >= 0) outside.push_back(g[i]);
+    if (sg[i] <= 0) inside.push_back(g[i]);
+    if (sg[i] * sg[j] < 0) {
+      const Rational sp = value(h, g[i]), sq = value(h, g[j]);
+      V3 x = make_v3(g[i].p + Rational(sp / (sp - sq)) * (g[j].p - g[i].p));
+      outside.push_back(x);
+      inside.push_back(std::move(x));
+    }
+  }
+}
+
+// The signs of g's vertices for h; whether some are > 0 and some < 0.
+void signs(const Poly& g, const Half& h, std::vector<int>& sg, bool& pos, bool& neg) {
+  sg.resize(g.size());
+  pos = neg = false;
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    sg[i] = side(h, g[i]);
+    pos |= sg[i] > 0;
+    neg |= sg[i] < 0;
+  }
+}
+
+// g minus the convex piece bounded by `halves`: when their interiors meet
+// (in g's plane), the convex parts of g outside are appended to `out` and
+// the result is true; when they do not (the overlap has zero area), `out`
+// is left as it was and the result is false.  A facet plane of the piece
+// that contains g's plane has every sign 0 and cuts nothing.
+bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out) {
+  std::vector<int> sg;
+  bool pos = false, neg = false;
+  // First the signs only: a plane with all of g on or outside it rejects the
+  // piece before any cut is made.
+  for (const Half& h : halves) {
+    pos = false;
+    std::size_t i = 0;
+    for (; i < g.size(); ++i) {
+      const int c = side(h, g[i]);
+      if (c < 0) break;
+      pos |= c > 0;
+    }
+    if (i == g.size() && pos) return false;
+  }
+  const std::size_t mark = out.size();
+  Poly rem = g;
+  for (const Half& h : halves) {
+    signs(rem, h, sg, pos, neg);
+    if (!pos) continue;  // rem inside this half-space
+    if (!neg) {          // rem outside: the overlap has no interior
+      out.resize(mark);
+      return false;
+    }
+    Poly outside, inside;
+    cut(rem, h, sg, outside, inside);
+    out.push_back(std::move(outside));
+    rem = std::move(inside);
+  }
+  return true;
+}
+
+// Bounding boxes from the nearest doubles: rounding to nearest is monotone,
+// so boxes of rounded coordinates that do not meet prove that the exact ones
+// do not.
+struct Box {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  void add(const Vec3d& p) {
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], p[i]);
+      hi[i] = std::max(hi[i], p[i]);
+    }
+  }
+  bool meets(const Box& o) const {
+    for (int i = 0; i < 3; ++i)
+      if (lo[i] > o.hi[i] || o.lo[i] > hi[i]) return false;
+    return true;
+  }
+};
+
+// ---------------------------------------------------------------------------
+// Merging the fragments of one plane: along each line of the plane, a
+// fragment edge in the line's direction covers an interval (the fragment
+// lies to its left), one in the opposite direction covers one backwards;
+// the fragments do not overlap, so where one direction is covered more than
+// the other only one side is in the region and that stretch is on the
+// boundary, directed by the side.  Along a slit (an edge of the union lying
+// in this plane, where the solid touches the face from outside: see
+// plane_boundary) both directions are kept, so the face is split there.
+
+struct LineKey {
+  Integer a, b;  // primitive direction, first nonzero positive
+  Rational c;    // a*v - b*u of its points
+  friend bool operator<(const LineKey& x, const LineKey& y) {
+    if (int r = cmp(x.a, y.a)) return r < 0;
+    if (int r = cmp(x.b, y.b)) return r < 0;
+    return cmp(x.c, y.c) < 0;
+  }
+};
+
+// The primitive integer vector with the direction of the rational (x, y) != 0.
+std::pair<Integer, Integer> primitive(const Rational& x, const Rational& y) {
+  Integer l;
+  mpz_lcm(l.get_mpz_t(), x.get_den_mpz_t(), y.get_den_mpz_t());
+  Integer a = x.get_num() * (l / x.get_den()), b = y.get_num() * (l / y.get_den());
+  Integer g = gcd(a, b);
+  return {a / g, b / g};
+}
+
+// The segment p q on its line: the line, whether p -> q runs along the
+// line's direction, and the parameters of p and q along it.
+struct OnLine {
+  LineKey key;
+  bool forward;
+  Rational tp, tq;
+};
+
+OnLine on_line(const Frame& f, const Point3& p, const Point3& q) {
+  auto [a, b] = primitive(q[f.iu] - p[f.iu], q[f.iv] - p[f.iv]);
+  bool forward = true;
+  if (sgn(a) < 0 || (sgn(a) == 0 && sgn(b) < 0)) {
+    a = -a;
+    b = -b;
+    forward = false;
+  }
+  const Rational ra(a), rb(b);
+  return OnLine{LineKey{a, b, ra * p[f.iv] - rb * p[f.iu]}, forward, ra * p[f.iu] + rb * p[f.iv],
+                ra * q[f.iu] + rb * q[f.iv]};
+}
+
+struct Event {
+  Rational t;
+  int kind;   // 0: fragment edge along the line, 1: against it, 2: slit
+  int delta;  // +1 where the interval starts, -1 where it ends
+  const Point3* point;
+};
+
+// A boundary segment of a plane's region, lifted: from a to b, the region
+// on its left seen from outside.
+struct Segment {
+  Point3 a, b;
+};
+
+std::vector<Segment> merge_fragments(const Frame& frame, const std::vector<Poly>& fragments,
+                                     const std::vector<Segment>& slits) {
+  std::map<LineKey, std::vector<Event>> lines;
+  auto add = [&](const Point3& p, const Point3& q, int kind) {
+    OnLine o = on_line(frame, p, q);
+    const bool up = o.forward;  // p has the smaller parameter
+    if (kind == 0 && !o.forward) kind = 1;
+    auto& ev = lines[o.key];
+    ev.push_back(Event{up ? o.tp : o.tq, kind, 1, up ? &p : &q});
+    ev.push_back(Event{up ? o.tq : o.tp, kind, -1, up ? &q : &p});
+  };
+  for (const Poly& g : fragments)
+    for (std::size_t i = 0; i < g.size(); ++i) add(g[i].p, g[(i + 1) % g.size()].p, 0);
+  for (const Segment& sl : slits) add(sl.a, sl.b, 2);
+  std::vector<Segment> out;
+  for (auto& [key, ev] : lines) {
+    std::sort(ev.begin(), ev.end(), [](const Event& x, const Event& y) { return cmp(x.t, y.t) < 0; });
+    int count[3] = {0, 0, 0};
+    bool along = false, against = false;  // the stretches under way
+    const Point3 *start_along = nullptr, *start_against = nullptr;
+    for (std::size_t i = 0; i < ev.size();) {
+      const Point3* here = ev[i].point;
+      for (const std::size_t first = i; i < ev.size() && cmp(ev[i].t, ev[first].t) == 0; ++i)
+        count[ev[i].kind] += ev[i].delta;
+      const bool slit = count[2] > 0;
+      const bool now_along = slit ? count[0] > 0 : count[0] > count[1];
+      const bool now_against = slit ? count[1] > 0 : count[1] > count[0];
+      if (now_along != along) {
+        if (along) out.push_back({*start_along, *here});
+        start_along = here;
+        along = now_along;
+      }
+      if (now_against != against) {
+        if (against) out.push_back({*here, *start_against});
+        start_against = here;
+        against = now_against;
+      }
+    }
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------
+// One plane's boundary: its facets cut by the other pieces, merged.
+
+struct FacetRef {
+  Index piece, facet;
+};
+
+struct PlaneResult {
+  std::vector<Segment> segments;
+  std::size_t clips = 0;
+};
+
+// The boundary of the union on one plane, from the facets there.  `slits`
+// are edges of the union found on the other planes that lie in this one
+// (where the solid touches this face from outside along a segment): the
+// fragments are cut along their lines and the face is split along them, so
+// that such an edge is an edge of this face too (a non-manifold edge).
+PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& facets,
+                           const std::vector<ConvexPolytope>& parts, const std::vector<std::vector<Half>>& halves,
+                           const std::vector<Box>& boxes, const std::vector<Segment>& slits = {}) {
+  PlaneResult r;
+  std::vector<Poly> fragments;
+  std::vector<char> member(parts.size(), 0);
+  for (const FacetRef& f : facets) member[f.piece] = 1;
+  for (const FacetRef& f : facets) {
+    const ConvexPolytope& p = parts[f.piece];
+    std::vector<Poly> frags(1);
+    Box box;
+    for (Index v : p.facet_vertices(f.facet)) {
+      frags[0].push_back(make_v3(p.point(v)));
+      box.add(frags[0].back().d);
+    }
+    for (Index j = 0; j < parts.size() && !frags.empty(); ++j) {
+      // The pieces with a facet on this plane facing the same way lie below
+      // it: they never remove anything, except that the earlier ones remove
+      // their facet's overlap with this one (so the plane's fragments do
+      // not overlap).
+      if (j == f.piece || (member[j] && j > f.piece) || !box.meets(boxes[j])) continue;
+      std::vector<Poly> next;
+      for (Poly& g : frags)
+        if (subtract(g, halves[j], next))
+          ++r.clips;
+        else
+          next.push_back(std::move(g));
+      frags = std::move(next);
+    }
+    for (Poly& g : frags) fragments.push_back(std::move(g));
+  }
+  const Point3 n = plane.normal();
+  for (const Segment& sl : slits) {
+    // The plane through the slit, across this one.
+    const Point3 m = cross(sl.b - sl.a, n);
+    const Half h = make_half(m.x, m.y, m.z, dot(m, sl.a));
+    std::vector<Poly> next;
+    std::vector<int> sg;
+    bool pos = false, neg = false;
+    for (Poly& g : fragments) {
+      signs(g, h, sg, pos, neg);
+      if (!(pos && neg)) {
+        next.push_back(std::move(g));
+        continue;
+      }
+      Poly outside, inside;
+      cut(g, h, sg, outside, inside);
+      next.push_back(std::move(outside));
+      next.push_back(std::move(inside));
+    }
+    fragments = std::move(next);
+  }
+  r.segments = merge_fragments(Frame(plane), fragments, slits);
+  return r;
+}
+
+// ---------------------------------------------------------------------------
+// Assembly.
+
+// Every vertex lying strictly inside the segment a b, ordered from a to b.
+// `order` sorts the vertices by their rounded x.
+std::vector<Index> inner_vertices(Index a, Index b, const std::vector<Point3>& pts, const std::vector<Vec3d>& approx,
+                                  const std::vector<Index>& order) {
+  Box box;
+  box.add(approx[a]);
+  box.add(approx[b]);
+  auto first = std::lower_bound(order.begin(), order.end(), box.lo[0],
+                                [&](Index v, double x) { return approx[v].x < x; });
+  const Point3 d = pts[b] - pts[a];
+  const Rational len = dot(d, d);
+  std::vector<std::pair<Rational, Index>> inside;
+  for (auto it = first; it != order.end() && approx[*it].x <= box.hi[0]; ++it) {
+    const Index m = *it;
+    if (m == a || m == b) continue;
+    const Vec3d& q = approx[m];
+    if (q.y < box.lo[1] || q.y > box.hi[1] || q.z < box.lo[2] || q.z > box.hi[2]) continue;
+    const Point3 am = pts[m] - pts[a];
+    if (!is_zero(cross(d, am))) continue;
+    Rational t = dot(am, d);
+    if (sgn(t) > 0 && cmp(t, len) < 0) inside.emplace_back(std::move(t), m);
+  }
+  std::sort(inside.begin(), inside.end(), [](const auto& x, const auto& y) { return cmp(x.first, y.first) < 0; });
+  std::vector<Index> out;
+  for (auto& [t, m] : inside) out.push_back(m);
+  return out;
+}
+
+// A vertex of a plane in the plane's two coordinates.
+struct V2 {
+  Rational u, v;
+};
+
+// The points where two of the edges cross, inside both (not at an end of
+// either), found among the pairs whose rounded boxes meet.
+std::vector<Point3> crossings(const std::vector<std::vector<std::pair<Index, Index>>>& edges,
+                              const std::vector<Point3>& pts) {
+  std::vector<std::pair<Index, Index>> all;
+  for (const auto& plane : edges)
+    for (auto [a, b] : plane) all.emplace_back(std::min(a, b), std::max(a, b));
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  std::vector<Box> box(all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    box[i].add(to_double(pts[all[i].first]));
+    box[i].add(to_double(pts[all[i].second]));
+  }
+  std::vector<std::size_t> order(all.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return box[x].lo[0] < box[y].lo[0]; });
+  std::vector<Point3> out;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const auto [a, b] = all[order[i]];
+    for (std::size_t j = i + 1; j < order.size() && box[order[j]].lo[0] <= box[order[i]].hi[0]; ++j) {
+      const auto [c, d] = all[order[j]];
+      if (a == c || a == d || b == c || b == d || !box[order[i]].meets(box[order[j]])) continue;
+      if (orient3d(pts[a], pts[b], pts[c], pts[d]) != 0) continue;
+      const Point3 u = pts[b] - pts[a], v = pts[d] - pts[c], w = pts[c] - pts[a];
+      const Point3 uv = cross(u, v);
+      if (is_zero(uv)) continue;  // parallel: an end inside the other is a vertex already
+      // a + s u = c + t v: s = ((w x v) . (u x v)) / |u x v|^2, t = ((w x u) . (u x v)) / |u x v|^2.
+      const Rational n2 = dot(uv, uv), sn = dot(cross(w, v), uv), tn = dot(cross(w, u), uv);
+      if (sgn(sn) > 0 && cmp(sn, n2) < 0 && sgn(tn) > 0 && cmp(tn, n2) < 0)
+        out.push_back(pts[a] + Rational(sn / n2) * u);
+    }
+  }
+  return out;
+}
+
+// The loops of one plane's directed edges (the region on their left, in
+// the frame's coordinates), each a simple cycle: at a vertex with several
+// ways out, the loop takes the first one clockwise from the way it came
+// back, and a loop through a vertex twice is cut there.
+std::vector<std::vector<Index>> trace_loops(const std::vector<std::pair<Index, Index>>& edges,
+                                            const std::vector<V2>& at) {
+  std::unordered_map<Index, std::vector<std::size_t>> out_of;
+  for (std::size_t e = 0; e < edges.size(); ++e) out_of[edges[e].first].push_back(e);
+  std::vector<char> used(edges.size(), 0);
+  std::vector<std::vector<Index>> loops;
+  auto dir = [&](std::size_t e) {
+    const V2& p = at[edges[e].first];
+    const V2& q = at[edges[e].second];
+    return std::make_pair(Rational(q.u - p.u), Rational(q.v - p.v));
+  };
+  auto crs = [](const std::pair<Rational, Rational>& x, const std::pair<Rational, Rational>& y) {
+    return sgn(x.first * y.second - x.second * y.first);
+  };
+  auto dt = [](const std::pair<Rational, Rational>& x, const std::pair<Rational, Rational>& y) {
+    return sgn(x.first * y.first + x.second * y.second);
+  };
+  for (std::size_t start = 0; start < edges.size(); ++start) {
+    if (used[start]) continue;
+    std::vector<Index> walk;
+    std::size_t e = start;
+    while (true) {
+      used[e] = 1;
+      walk.push_back(edges[e].first);
+      const auto& outs = out_of[edges[e].second];
+      std::size_t best = SIZE_MAX;
+      if (outs.size() == 1) {
+        best = outs[0];
+      } else {
+        // Counter-clockwise order from r (the way back); the last one is the
+        // first clockwise.
+        auto [du, dv] = dir(e);
+        const std::pair<Rational, Rational> r(-du, -dv);
+        auto half = [&](const std::pair<Rational, Rational>& w) {
+          const int c = crs(r, w);
+          return (c > 0 || (c == 0 && dt(r, w) > 0)) ? 0 : 1;
+        };
+        std::pair<Rational, Rational> wb;
+        int hb = 0;
+        for (std::size_t o : outs) {
+          if (used[o] && o != start) continue;
+          auto w = dir(o);
+          const int h = half(w);
+          if (best == SIZE_MAX || h > hb || (h == hb && crs(wb, w) > 0)) {
+            best = o;
+            wb = std::move(w);
+            hb = h;
+          }
+        }
+      }
+      if (best == SIZE_MAX || (used[best] && best != start))
+        throw std::logic_error("union boundary: a loop of a plane does not close");
+      if (best == start) break;
+      e = best;
+    }
+    // Cut at repeated vertices.
+    std::vector<Index> stack;
+    std::unordered_map<Index, std::size_t> pos;
+    for (Index v : walk) {
+      auto it = pos.find(v);
+      if (it != pos.end()) {
+        const std::size_t p = it->second;
+        loops.emplace_back(stack.begin() + std::ptrdiff_t(p), stack.end());
+        for (std::size_t i = p + 1; i < stack.size(); ++i) pos.erase(stack[i]);
+        stack.resize(p + 1);
+      } else {
+        pos.emplace(v, stack.size());
+        stack.push_back(v);
+      }
+    }
+    loops.push_back(std::move(stack));
+  }
+  return loops;
+}
+
+Rational twice_area(const std::vector<Index>& loop, const std::vector<V2>& at) {
+  Rational s = 0;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const V2& p = at[loop[i]];
+    const V2& q = at[loop[(i + 1) % loop.size()]];
+    s += p.u * q.v - p.v * q.u;
+  }
+  return s;
+}
+
+// Whether m lies inside the loop (m on none of its edges).
+bool encloses(const std::vector<Index>& loop, const std::vector<V2>& at, const Rational& mu, const Rational& mv) {
+  bool in = false;
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const V2& p = at[loop[i]];
+    const V2& q = at[loop[(i + 1) % loop.size()]];
+    if ((cmp(p.v, mv) > 0) == (cmp(q.v, mv) > 0)) continue;
+    // The crossing is right of m when (q - p) x (m - p) has the sign of q.v - p.v's opposite.
+    const int c = sgn((q.u - p.u) * (mv - p.v) - (mu - p.u) * (q.v - p.v));
+    if (c * sgn(q.v - p.v) > 0) in = !in;
+  }
+  return in;
+}
+
+// The faces of one plane from its traced loops: an outer loop alone is one
+// face; an outer loop with holes or slits is triangulated.
+std::vector<std::vector<Index>> plane_faces(const std::vector<std::vector<Index>>& loops, const std::vector<V2>& at) {
+  // Counter-clockwise loops are outer boundaries, clockwise ones holes, and
+  // loops of two vertices (there and back) slits inside a face.
+  std::vector<std::size_t> outer, hole;
+  std::vector<Rational> area(loops.size());
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    area[i] = twice_area(loops[i], at);
+    (sgn(area[i]) > 0 ? outer : hole).push_back(i);
+  }
+  std::vector<std::vector<std::size_t>> holes_of(loops.size());
+  for (std::size_t h : hole) {
+    const V2& p = at[loops[h][0]];
+    const V2& q = at[loops[h][1]];
+    const Rational mu = (p.u + q.u) / 2, mv = (p.v + q.v) / 2;
+    std::size_t best = SIZE_MAX;
+    for (std::size_t o : outer)
+      if ((best == SIZE_MAX || cmp(area[o], area[best]) < 0) && encloses(loops[o], at, mu, mv)) best = o;
+    if (best == SIZE_MAX) throw std::logic_error("union boundary: a hole outside every face");
+    holes_of[best].push_back(h);
+  }
+  std::vector<std::vector<Index>> faces;
+  for (std::size_t o : outer) {
+    if (holes_of[o].empty()) {
+      faces.push_back(loops[o]);
+      continue;
+    }
+    std::vector<std::vector<PlanePoint>> region;
+    for (std::size_t l : [&] {
+           std::vector<std::size_t> all{o};
+           all.insert(all.end(), holes_of[o].begin(), holes_of[o].end());
+           return all;
+         }()) {
+      std::vector<PlanePoint> loop;
+      for (Index v : loops[l]) loop.push_back(PlanePoint{at[v].u, at[v].v, v});
+      region.push_back(std::move(loop));
+    }
+    for (const auto& t : triangulate_region(region)) faces.push_back({t[0], t[1], t[2]});
+  }
+  return faces;
+}
+
+}  // namespace
+
+void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& options, NonconvexSum& out,
+                    unsigned threads) {
+  auto t0 = Clock::now();
+  options.report("union", 0.0);
+  // Facets by oriented plane.
+  std::map<Plane, std::vector<FacetRef>> by_plane;
+  std::vector<Box> boxes(parts.size());
+  std::vector<std::vector<Half>> halves(parts.size());
+  for (Index i = 0; i < parts.size(); ++i) {
+    for (Index v = 0; v < parts[i].num_vertices(); ++v) boxes[i].add(to_double(parts[i].point(v)));
+    for (Index f = 0; f < parts[i].num_facets(); ++f) {
+      by_plane[parts[i].plane(f)].push_back(FacetRef{i, f});
+      halves[i].push_back(half_of(parts[i].plane(f)));
+    }
+  }
+  std::vector<const std::pair<const Plane, std::vector<FacetRef>>*> planes;
+  for (const auto& entry : by_plane) planes.push_back(&entry);
+  const std::size_t n = planes.size();
+  std::vector<PlaneResult> results(n);
+  const unsigned workers = parallel_threads(threads, n);
+  const std::size_t batch = std::max<std::size_t>(64, std::size_t(workers) * 16);
+  for (std::size_t start = 0; start < n; start += batch) {
+    const std::size_t count = std::min(batch, n - start);
+    parallel_for(count, workers, [&](std::size_t k) {
+      const auto& [plane, facets] = *planes[start + k];
+      results[start + k] = plane_boundary(plane, facets, parts, halves, boxes);
+    });
+    options.report("union", double(start + count) / double(n));
+  }
+  // Slits: a boundary segment of one plane lying in another plane, inside
+  // that plane's face rather than along its boundary (the solid touching the
+  // face from outside along that segment); those planes are done again with
+  // their slits.
+  {
+    struct Item {
+      std::size_t plane;
+      const Segment* segment;
+      Box box;
+    };
+    std::vector<Item> items;
+    for (std::size_t g = 0; g < n; ++g)
+      for (const Segment& sg : results[g].segments) {
+        Item it{g, &sg, {}};
+        it.box.add(to_double(sg.a));
+        it.box.add(to_double(sg.b));
+        items.push_back(std::move(it));
+      }
+    std::sort(items.begin(), items.end(), [](const Item& x, const Item& y) { return x.box.lo[0] < y.box.lo[0]; });
+    double longest = 0;  // at least the largest x extent of a segment (rounded up)
+    for (const Item& it : items) longest = std::max(longest, std::nextafter(it.box.hi[0] - it.box.lo[0], INFINITY));
+    std::vector<std::vector<Segment>> slits(n);
+    parallel_for(n, workers, [&](std::size_t g) {
+      const std::vector<Segment>& own = results[g].segments;
+      if (own.empty()) return;
+      Box region;
+      for (const Segment& sg : own) {
+        region.add(to_double(sg.a));
+        region.add(to_double(sg.b));
+      }
+      const Half h = half_of(planes[g]->first);
+      const Frame frame(planes[g]->first);
+      std::map<LineKey, std::vector<std::pair<Rational, Rational>>> along;  // own stretches by line
+      bool indexed = false;
+      // Only a segment starting at most `longest` before the region can reach it.
+      auto first = std::lower_bound(items.begin(), items.end(), std::nextafter(region.lo[0] - longest, -INFINITY),
+                                    [](const Item& it, double x) { return it.box.lo[0] < x; });
+      for (auto at = first; at != items.end(); ++at) {
+        const Item& it = *at;
+        if (it.box.lo[0] > region.hi[0]) break;
+        if (it.plane == g || !it.box.meets(region)) continue;
+        if (!on_plane(h, it.segment->a) || !on_plane(h, it.segment->b)) continue;
+        if (!indexed) {
+          for (const Segment& sg : own) {
+            OnLine o = on_line(frame, sg.a, sg.b);
+            along[o.key].push_back(cmp(o.tp, o.tq) < 0 ? std::make_pair(o.tp, o.tq) : std::make_pair(o.tq, o.tp));
+          }
+          for (auto& [key, v] : along)
+            std::sort(v.begin(), v.end(), [](const auto& x, const auto& y) { return cmp(x.first, y.first) < 0; });
+          indexed = true;
+        }
+        // Covered by this plane's own boundary stretches: not a slit.
+        OnLine o = on_line(frame, it.segment->a, it.segment->b);
+        Rational from = cmp(o.tp, o.tq) < 0 ? o.tp : o.tq;
+        const Rational to = cmp(o.tp, o.tq) < 0 ? o.tq : o.tp;
+        auto found = along.find(o.key);
+        if (found != along.end())
+          for (const auto& [lo, hi] : found->second)
+            if (cmp(lo, from) <= 0 && cmp(hi, from) > 0) from = hi;
+        if (cmp(from, to) < 0) slits[g].push_back(*it.segment);
+      }
+    });
+    std::vector<PlaneResult> redone(n);
+    parallel_for(n, workers, [&](std::size_t g) {
+      if (!slits[g].empty()) redone[g] = plane_boundary(planes[g]->first, planes[g]->second, parts, halves, boxes, slits[g]);
+    });
+    for (std::size_t g = 0; g < n; ++g)
+      if (!slits[g].empty()) results[g] = std::move(redone[g]);
+  }
+  out.clips = 0;
+  for (const auto& r : results) out.clips += r.clips;
+  out.seconds_union = since(t0);
+
+  t0 = Clock::now();
+  options.report("boundary", -1.0);
+  // Weld exactly equal points.
+  std::map<Point3, Index> index;
+  std::vector<Point3> pts;
+  std::vector<std::vector<std::pair<Index, Index>>> edges(n);
+  for (std::size_t g = 0; g < n; ++g)
+    for (Segment& s : results[g].segments) {
+      Index ends[2];
+      for (int e = 0; e < 2; ++e) {
+        Point3& p = e ? s.b : s.a;
+        auto [it, fresh] = index.emplace(p, Index(pts.size()));
+        if (fresh) pts.push_back(std::move(p));
+        ends[e] = it->second;
+      }
+      edges[g].emplace_back(ends[0], ends[1]);
+    }
+  results.clear();
+  // Two edges crossing at a point inside both (the solid touching itself at
+  // a point there): the point becomes a vertex of both.
+  for (Point3& x : crossings(edges, pts))
+    if (index.emplace(x, Index(pts.size())).second) pts.push_back(std::move(x));
+  index.clear();
+  std::vector<Vec3d> approx(pts.size());
+  for (std::size_t v = 0; v < pts.size(); ++v) approx[v] = to_double(pts[v]);
+  std::vector<Index> order(pts.size());
+  std::iota(order.begin(), order.end(), Index(0));
+  std::sort(order.begin(), order.end(), [&](Index x, Index y) { return approx[x].x < approx[y].x; });
+
+  // Per plane: every vertex inside an edge inserted into it, loops, faces.
+  std::vector<std::vector<std::vector<Index>>> faces(n);
+  parallel_for(n, workers, [&](std::size_t g) {
+    const Frame frame(planes[g]->first);
+    std::vector<std::pair<Index, Index>> split;
+    for (auto [a, b] : edges[g]) {
+      Index prev = a;
+      for (Index m : inner_vertices(a, b, pts, approx, order)) {
+        split.emplace_back(prev, m);
+        prev = m;
+      }
+      split.emplace_back(prev, b);
+    }
+    // The loops' coordinates in the plane's frame, by vertex.
+    std::vector<V2> at;
+    std::vector<Index> local_id;
+    std::unordered_map<Index, Index> id;
+    for (auto& [a, b] : split)
+      for (Index* v : {&a, &b}) {
+        auto [it, fresh] = id.emplace(*v, Index(at.size()));
+        if (fresh) {
+          at.push_back(V2{pts[*v][frame.iu], pts[*v][frame.iv]});
+          local_id.push_back(*v);
+        }
+        *v = it->second;
+      }
+    for (auto& f : plane_faces(trace_loops(split, at), at)) {
+      for (Index& v : f) v = local_id[v];
+      faces[g].push_back(std::move(f));
+    }
+  });
+
+  out.mesh = Mesh{};
+  for (const Point3& p : pts) out.mesh.points.push_back(p);
+  std::vector<Index> face_plane;
+  for (std::size_t g = 0; g < n; ++g)
+    for (auto& f : faces[g]) {
+      out.mesh.faces.push_back(std::move(f));
+      face_plane.push_back(Index(g));
+    }
+
+  // Shells: the number of bounded volumes the boundary encloses (solid
+  // parts and cavities; by Alexander duality the dimension of its space of
+  // 2-cycles mod 2).  Faces are linked across each edge twice: across the
+  // solid between them and across the empty space between them (for an edge
+  // of two faces both links join the same pair; around an edge of more than
+  // two faces, each face to its neighbour on its solid side and on its empty
+  // side).  The classes of either linking are closed surfaces (2-cycles)
+  // that together span all of them, and the only relations are one per
+  // class of both linkings together: volumes = solid classes + empty
+  // classes - joint classes (for a 2-manifold boundary, its shells).
+  const std::vector<std::vector<Index>>& mf = out.mesh.faces;
+  struct Classes {
+    std::vector<std::size_t> parent;
+    explicit Classes(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), std::size_t(0)); }
+    std::size_t find(std::size_t i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    }
+    void join(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+    std::size_t count() {
+      std::size_t c = 0;
+      for (std::size_t i = 0; i < parent.size(); ++i) c += find(i) == i;
+      return c;
+    }
+  };
+  Classes solid(mf.size()), empty(mf.size()), both(mf.size());
+  std::map<std::pair<Index, Index>, std::vector<std::size_t>> around;  // undirected edge -> faces
+  for (std::size_t f = 0; f < mf.size(); ++f)
+    for (std::size_t i = 0; i < mf[f].size(); ++i) {
+      const Index a = mf[f][i], b = mf[f][(i + 1) % mf[f].size()];
+      around[{std::min(a, b), std::max(a, b)}].push_back(f);
+    }
+  out.non_manifold_edges = 0;
+  for (const auto& [e, fs] : around) {
+    if (fs.size() == 2) {
+      solid.join(fs[0], fs[1]);
+      empty.join(fs[0], fs[1]);
+      both.join(fs[0], fs[1]);
+      continue;
+    }
+    ++out.non_manifold_edges;
+    // The edge's direction D = b - a; each face's way into itself from the
+    // edge, w = n x (its direction of the edge); angles about D.
+    const Point3 d = pts[e.second] - pts[e.first];
+    struct Around {
+      std::size_t face;
+      Point3 w;
+      bool solid_ccw;  // the solid lies on its counter-clockwise side about D
+    };
+    std::vector<Around> list;
+    for (std::size_t f : fs) {
+      const Plane& h = planes[face_plane[f]]->first;
+      const Point3 nrm = h.normal();
+      // The face runs a -> b or b -> a.
+      bool forward = false;
+      for (std::size_t i = 0; i < mf[f].size(); ++i)
+        if (mf[f][i] == e.first && mf[f][(i + 1) % mf[f].size()] == e.second) forward = true;
+      const Point3 w = cross(nrm, forward ? d : -d);
+      list.push_back({f, w, sgn(dot(cross(d, w), nrm)) < 0});
+    }
+    const Point3 e1 = list[0].w, e2 = cross(d, e1);
+    auto coords = [&](const Point3& w) { return std::make_pair(dot(w, e1), dot(w, e2)); };
+    auto half = [&](const Point3& w) {
+      auto [x, y] = coords(w);
+      return (sgn(y) > 0 || (sgn(y) == 0 && sgn(x) > 0)) ? 0 : 1;
+    };
+    std::sort(list.begin(), list.end(), [&](const Around& p, const Around& q) {
+      const int hp = half(p.w), hq = half(q.w);
+      if (hp != hq) return hp < hq;
+      auto [px, py] = coords(p.w);
+      auto [qx, qy] = coords(q.w);
+      return sgn(px * qy - py * qx) > 0;
+    });
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::size_t f = list[i].face, next = list[(i + 1) % list.size()].face;
+      (list[i].solid_ccw ? solid : empty).join(f, next);
+      both.join(f, next);
+    }
+  }
+  out.shells = solid.count() + empty.count() - both.count();
+  out.seconds_boundary = since(t0);
+}
+
+}  // namespace minksum::nonconvex_detail

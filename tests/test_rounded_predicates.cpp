@@ -1,5 +1,6 @@
 // Tests of the kernel predicates on rational points with cached roundings
-// (RoundedPoint3: orient3d, plane_side, nearest_plane; src/kernel/rounded.cpp).
+// (RoundedPoint3: orient3d, plane_side, nearest_plane; src/kernel/rounded.cpp)
+// and of half_space_side (<minksum/half_space_side.hpp>).
 //
 // Oracles: the polynomials in mpq arithmetic on the exact inputs.  Every
 // filter answer must equal the oracle's sign, every approximation must keep
@@ -11,10 +12,13 @@
 #include <array>
 #include <cfenv>
 #include <cstdint>
+#include <limits>
+#include <minksum/half_space_side.hpp>
 #include <minksum/kernel.hpp>
 #include <minksum/polytope.hpp>
 #include <minksum/predicates.hpp>
 #include <minksum/unit_plane.hpp>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -286,4 +290,179 @@ TEST(UnitPlanes, UnusablePlanesStayCandidates) {
   const UnitPlane unit[] = {unit_plane(near), unit_plane(huge)};
   EXPECT_EQ(detail::nearest_unit_plane_candidates(unit, 2, s).size(), 2u);
   EXPECT_EQ(nearest_plane(planes, unit, 2, s), 1u);
+}
+
+// ---------------------------------------------------------------------------
+// half_space_side (<minksum/half_space_side.hpp>): the sign of
+// a·x + b·y + c·z − d for rational coefficients and a rational point,
+// filtered on their nearest doubles.  Oracle: the value in mpq.
+
+namespace {
+
+struct HalfCase {
+  Rational a, b, c, d;
+  Point3 p;
+};
+
+struct HalfCheck {
+  int cases = 0, usable = 0, decided = 0, separated = 0;
+};
+
+// The doubles, once (in round to nearest, as a caller caches them).
+struct HalfDoubles {
+  double v[7];
+  bool usable = true;
+  explicit HalfDoubles(const HalfCase& h) {
+    const Rational* q[7] = {&h.a, &h.b, &h.c, &h.d, &h.p.x, &h.p.y, &h.p.z};
+    for (int i = 0; i < 7; ++i) {
+      v[i] = to_double(*q[i]);
+      usable = usable && half_space_filter_usable(v[i], *q[i]);
+    }
+  }
+};
+
+// The filter's own arithmetic, redone through volatiles so that it runs in
+// the current rounding mode: |s − P| < 2^-48 S̃ must hold exactly.
+void check_half_bound(const HalfDoubles& hd, const Rational& P, std::uint64_t seed, int mode) {
+  volatile double a = hd.v[0], b = hd.v[1], c = hd.v[2], d = hd.v[3], x = hd.v[4], y = hd.v[5], z = hd.v[6];
+  volatile double t1 = a * x, t2 = b * y, t3 = c * z;
+  volatile double s1 = t1 + t2;
+  volatile double s2 = s1 + t3;
+  volatile double s = s2 - d;
+  const Rational S = abs(Rational(double(t1))) + abs(Rational(double(t2))) + abs(Rational(double(t3))) +
+                     abs(Rational(double(d)));
+  if (S == 0) {
+    ASSERT_EQ(sgn(P), 0) << "seed " << seed << " mode " << mode;
+    return;
+  }
+  ASSERT_LT(abs(Rational(double(s)) - P), Rational(kHalfSpaceFilterBound) * S)
+      << "seed " << seed << " mode " << mode;
+}
+
+// Checks one case in all four rounding modes: every decided sign is the
+// exact sign, the bound holds, and a case with |P| > 2^-40 Σ|terms| (exact)
+// and usable doubles is decided.
+void check_half(const HalfCase& h, std::uint64_t seed, HalfCheck& count) {
+  const Rational P = h.a * h.p.x + h.b * h.p.y + h.c * h.p.z - h.d;
+  const Rational mag = abs(Rational(h.a * h.p.x)) + abs(Rational(h.b * h.p.y)) +
+                       abs(Rational(h.c * h.p.z)) + abs(h.d);
+  const bool separated = abs(P) > Rational(0x1p-40) * mag;
+  const HalfDoubles hd(h);
+  ++count.cases;
+  count.usable += hd.usable;
+  count.separated += hd.usable && separated;
+  in_all_modes([&](int mode) {
+    ASSERT_EQ(half_space_side_exact(h.a, h.b, h.c, h.d, h.p), sgn(P)) << "seed " << seed;
+    if (!hd.usable) return;
+    check_half_bound(hd, P, seed, mode);
+    if (::testing::Test::HasFatalFailure()) return;
+    const auto f = half_space_side_filter(hd.v[0], hd.v[1], hd.v[2], hd.v[3], hd.v[4], hd.v[5], hd.v[6]);
+    if (f) {
+      ASSERT_EQ(*f, sgn(P)) << "seed " << seed << " mode " << mode;
+      count.decided += mode == FE_TONEAREST;
+    }
+    if (separated) {
+      ASSERT_TRUE(f.has_value()) << "seed " << seed << " mode " << mode << ": well separated, undecided";
+    }
+  });
+}
+
+Rational pow2(int e) {
+  return e >= 0 ? Rational(mpz_class(1) << e) : Rational(mpz_class(1), mpz_class(1) << -e);
+}
+
+}  // namespace
+
+TEST(HalfSpaceSide, UsableInputs) {
+  EXPECT_TRUE(half_space_filter_usable(0.0, Rational(0)));
+  EXPECT_TRUE(half_space_filter_usable(0x1p-480, pow2(-480)));
+  EXPECT_FALSE(half_space_filter_usable(0x1p-481, pow2(-481)));
+  EXPECT_TRUE(half_space_filter_usable(0x1.fffffffffffffp479, Rational(0x1.fffffffffffffp479)));
+  EXPECT_FALSE(half_space_filter_usable(0x1p480, pow2(480)));
+  const Rational below = pow2(-1100);  // rounds to zero, but is not zero
+  EXPECT_EQ(to_double(below), 0.0);
+  EXPECT_FALSE(half_space_filter_usable(to_double(below), below));
+  EXPECT_FALSE(half_space_filter_usable(std::numeric_limits<double>::infinity(), pow2(1100)));
+  EXPECT_FALSE(half_space_filter_usable(std::numeric_limits<double>::quiet_NaN(), Rational(1)));
+}
+
+TEST(HalfSpaceSide, ZeroTermsAreExactZeroAndEasyCasesDecided) {
+  EXPECT_EQ(half_space_side_filter(0, 0, 0, 0, 1, 2, 3), std::optional<int>(0));
+  EXPECT_EQ(half_space_side_filter(1, 0, 0, 0, 1.0 / 3, 5, 7), std::optional<int>(1));
+  EXPECT_EQ(half_space_side_filter(1, 1, 1, 3, 1, 1, 1), std::nullopt);  // exactly on the plane
+  EXPECT_EQ(half_space_side_filter(0, 0, 2, 1, 0, 0, 0), std::optional<int>(-1));
+}
+
+// Random rationals of varied sizes (huge, tiny, zero), generic points.
+TEST(HalfSpaceSide, RandomAgreesWithExactInAllRoundingModes) {
+  HalfCheck count;
+  for (std::uint64_t seed = 1; seed <= 3000; ++seed) {
+    Gen g(seed);
+    HalfCase h{g.rational(), g.rational(), g.rational(), g.rational(), g.point()};
+    check_half(h, seed, count);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(count.usable, count.cases * 9 / 10);
+  EXPECT_GT(count.separated, count.usable * 9 / 10);
+  EXPECT_GE(count.decided, count.separated);
+}
+
+// Points exactly on the plane (d = a·x + b·y + c·z: exact zeros, never
+// decided non-zero) and near it (d moved by a relative 2^-k, k = 20..120,
+// or the point moved by 2^-k in one coordinate), with cancellation between
+// large opposite terms.
+TEST(HalfSpaceSide, OnAndNearThePlane) {
+  HalfCheck count;
+  int zeros = 0;
+  for (std::uint64_t seed = 1; seed <= 2000; ++seed) {
+    Gen g(seed);
+    HalfCase h{g.rational(), g.rational(), g.rational(), Rational(0), g.point()};
+    if (seed % 4 == 0) {  // cancellation: b·y ≈ −a·x, both large
+      h.p.y = h.p.x;
+      h.b = -h.a + Rational(mpz_class(1), mpz_class(long(g.integer(1, 1000))));
+    }
+    const Rational on = h.a * h.p.x + h.b * h.p.y + h.c * h.p.z;
+    const int k = int(g.integer(20, 120));
+    switch (seed % 3) {
+      case 0:
+        h.d = on;
+        ++zeros;
+        break;
+      case 1: h.d = on + (g.integer(0, 1) ? 1 : -1) * (abs(on) + 1) * pow2(-k); break;
+      default:
+        h.d = on;
+        h.p.z += (g.integer(0, 1) ? 1 : -1) * pow2(-k);
+        break;
+    }
+    check_half(h, seed, count);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(zeros, 600);
+  EXPECT_GT(count.usable, count.cases / 2);
+}
+
+// Magnitudes near both ends of the usable range 2^-480 .. 2^480 (products
+// down to 2^-960 and up to 2^960), and beyond it (unusable: exact only).
+TEST(HalfSpaceSide, TinyAndHugeMagnitudes) {
+  HalfCheck count;
+  for (std::uint64_t seed = 1; seed <= 2000; ++seed) {
+    Gen g(seed);
+    auto scaled = [&]() -> Rational {  // -> Rational: not a gmpxx expression of temporaries
+      Rational q(mpz_class(long(g.integer(-1000000, 1000000))), mpz_class(long(g.integer(1, 999))));
+      q.canonicalize();
+      const int e = int(g.integer(0, 1) ? g.integer(-500, -440) : g.integer(440, 500));
+      return q * pow2(e);
+    };
+    HalfCase h{scaled(), scaled(), scaled(), Rational(0), Point3(scaled(), scaled(), scaled())};
+    const Rational on = h.a * h.p.x + h.b * h.p.y + h.c * h.p.z;
+    switch (seed % 3) {
+      case 0: h.d = on; break;                                           // exactly on the plane
+      case 1: h.d = on * (1 + pow2(-int(g.integer(10, 90)))); break;    // near it
+      default: h.d = scaled() * scaled(); break;                         // generic
+    }
+    check_half(h, seed, count);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(count.usable, 0);
+  EXPECT_LT(count.usable, count.cases);  // some beyond the range: exact only
 }

@@ -27,6 +27,7 @@
 // Every decision is the sign of an exact polynomial, decided by a double
 // filter with a proved bound when it can, else in exact rationals.
 #include <minksum/error.hpp>
+#include <minksum/half_space_side.hpp>
 #include <minksum/parallel.hpp>
 #include <minksum/predicates.hpp>
 
@@ -48,22 +49,11 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // ---------------------------------------------------------------------------
-// The filter.  side(h, p) is the sign of a*x + b*y + c*z - d for the
-// rational coefficients of a half-space (integers for the pieces' facets)
-// and a point p of rationals.  With the nearest doubles of all seven
-// (relative error at most 2^-53 each, every one normal or zero) and the
-// value evaluated in doubles as s = ((â*x̂ + b̂*ŷ) + ĉ*ẑ) - d̂, the error of
-// s is at most about 7 * 2^-53 * (|â*x̂| + |b̂*ŷ| + |ĉ*ẑ| + |d̂|) in round to
-// nearest and twice that in a directed rounding mode; the filter trusts the
-// sign of s only when |s| exceeds 2^-48 times that sum (more than twice the
-// bound in any mode), and only for numbers that are zero or at least 2^-480
-// in magnitude (no underflow in the products).  Otherwise the exact value.
-constexpr double kFilterBound = 0x1p-48;
-constexpr double kTiny = 0x1p-480;
-
-bool filterable(double x, const Rational& q) {
-  return std::isfinite(x) && std::fabs(x) < 0x1p+480 && (x == 0 ? sgn(q) == 0 : std::fabs(x) >= kTiny);
-}
+// side(h, p) is the sign of a*x + b*y + c*z - d for the rational
+// coefficients of a half-space (integers for the pieces' facets) and a point
+// p of rationals: the kernel's filter on the nearest doubles of all seven
+// (<minksum/half_space_side.hpp>, bound and derivation there), else the
+// exact value.
 
 // A point of a facet's plane: exact, with its nearest doubles.
 struct V3 {
@@ -75,7 +65,8 @@ struct V3 {
 V3 make_v3(Point3 p) {
   V3 v;
   v.d = to_double(p);
-  v.filtered = filterable(v.d.x, p.x) && filterable(v.d.y, p.y) && filterable(v.d.z, p.z);
+  v.filtered = half_space_filter_usable(v.d.x, p.x) && half_space_filter_usable(v.d.y, p.y) &&
+               half_space_filter_usable(v.d.z, p.z);
   v.p = std::move(p);
   return v;
 }
@@ -93,7 +84,8 @@ Half make_half(Rational a, Rational b, Rational c, Rational d) {
   h.db = to_double(b);
   h.dc = to_double(c);
   h.dd = to_double(d);
-  h.filtered = filterable(h.da, a) && filterable(h.db, b) && filterable(h.dc, c) && filterable(h.dd, d);
+  h.filtered = half_space_filter_usable(h.da, a) && half_space_filter_usable(h.db, b) &&
+               half_space_filter_usable(h.dc, c) && half_space_filter_usable(h.dd, d);
   h.a = std::move(a);
   h.b = std::move(b);
   h.c = std::move(c);
@@ -107,13 +99,8 @@ Rational value(const Half& h, const V3& v) { return h.a * v.p.x + h.b * v.p.y + 
 
 // > 0 outside, 0 on the plane, < 0 inside.
 int side(const Half& h, const V3& v) {
-  if (h.filtered && v.filtered) {
-    const double t1 = h.da * v.d.x, t2 = h.db * v.d.y, t3 = h.dc * v.d.z;
-    const double s = ((t1 + t2) + t3) - h.dd;
-    const double e = kFilterBound * (std::fabs(t1) + std::fabs(t2) + std::fabs(t3) + std::fabs(h.dd));
-    if (s > e) return 1;
-    if (s < -e) return -1;
-  }
+  if (h.filtered && v.filtered)
+    if (const auto s = half_space_side_filter(h.da, h.db, h.dc, h.dd, v.d.x, v.d.y, v.d.z)) return *s;
   return sgn(value(h, v));
 }
 

@@ -2,6 +2,8 @@
 #include <minksum/error.hpp>
 #include <minksum/polytope.hpp>
 
+#include "mesh/builder.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -372,39 +374,52 @@ TEST(Hull, OutputIsCanonicalWhateverTheTriangulation) {
   }
 }
 
-// The hull of points that are all doubles (Epick: exact predicates, no
-// constructions) is the same polytope, vertex for vertex and facet for
-// facet, as the hull of the same points as rationals; degenerate sets get the
-// same messages.  Fixed seeds; sets with many coplanar and duplicate points,
-// extreme magnitudes and points one ulp off a plane.
-TEST(Hull, DoublesAgreeWithRationals) {
-  auto same = [](const std::vector<Point3>& pts, const std::string& what) {
-    SCOPED_TRACE(what);
-    const PointList list(pts);
-    ASSERT_TRUE(list.all_doubles());
-    std::string rational_error, double_error;
-    ConvexPolytope a, b;
+namespace {
+// The three hulls of points that are all doubles agree with the hull of the
+// same points as rationals (Epeck), vertex for vertex (source vertices
+// included) and facet for facet, planes included; degenerate sets get the
+// same messages: quickhull on doubles (ConvexPolytope::hull of a PointList)
+// and the incremental triangulation (PolytopeBuilder::hull_of_extreme_points).
+void expect_same_hulls(const std::vector<Point3>& pts, const std::string& what) {
+  SCOPED_TRACE(what);
+  const PointList list(pts);
+  ASSERT_TRUE(list.all_doubles());
+  auto error_of = [](auto build, ConvexPolytope& out) {
     try {
-      a = ConvexPolytope::hull(pts, "cloud");
+      out = build();
     } catch (const InputError& e) {
-      rational_error = e.what();
+      return std::string(e.what());
     }
-    try {
-      b = ConvexPolytope::hull(list, "cloud");
-    } catch (const InputError& e) {
-      double_error = e.what();
-    }
-    ASSERT_EQ(double_error, rational_error);
-    if (!rational_error.empty()) return;
-    ASSERT_EQ(b.num_vertices(), a.num_vertices());
-    ASSERT_EQ(b.num_facets(), a.num_facets());
-    EXPECT_EQ(b.check_invariants(), "");
-    for (Index v = 0; v < a.num_vertices(); ++v) {
-      EXPECT_EQ(b.point(v), a.point(v));
-      EXPECT_EQ(b.source_vertex(v), a.source_vertex(v));
-    }
-    for (Index f = 0; f < a.num_facets(); ++f) EXPECT_EQ(b.facet_vertices(f), a.facet_vertices(f));
+    return std::string();
   };
+  ConvexPolytope a, b, c;
+  const std::string rational_error = error_of([&] { return ConvexPolytope::hull(pts, "cloud"); }, a);
+  const std::string double_error = error_of([&] { return ConvexPolytope::hull(list, "cloud"); }, b);
+  const std::string extreme_error =
+      error_of([&] { return PolytopeBuilder::hull_of_extreme_points(list, "cloud"); }, c);
+  ASSERT_EQ(double_error, rational_error);
+  ASSERT_EQ(extreme_error, rational_error);
+  if (!rational_error.empty()) return;
+  for (const ConvexPolytope* q : {&b, &c}) {
+    SCOPED_TRACE(q == &b ? "quickhull on doubles" : "incremental triangulation");
+    ASSERT_EQ(q->num_vertices(), a.num_vertices());
+    ASSERT_EQ(q->num_facets(), a.num_facets());
+    EXPECT_EQ(q->check_invariants(), "");
+    for (Index v = 0; v < a.num_vertices(); ++v) {
+      EXPECT_EQ(q->point(v), a.point(v));
+      EXPECT_EQ(q->source_vertex(v), a.source_vertex(v));
+    }
+    for (Index f = 0; f < a.num_facets(); ++f) {
+      EXPECT_EQ(q->facet_vertices(f), a.facet_vertices(f));
+      EXPECT_EQ(q->plane(f), a.plane(f));
+    }
+  }
+}
+}  // namespace
+
+// Fixed seeds; sets with many coplanar and duplicate points, extreme
+// magnitudes and points one ulp off a plane.
+TEST(Hull, DoublesAgreeWithRationals) {
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
     std::mt19937_64 rng(seed);
     std::vector<Point3> pts;
@@ -426,13 +441,62 @@ TEST(Hull, DoublesAgreeWithRationals) {
         }
       }
     }
-    same(pts, "seed " + std::to_string(seed));
+    expect_same_hulls(pts, "seed " + std::to_string(seed));
   }
-  same({}, "empty");
-  same({P(1, 2, 3), P(1, 2, 3)}, "coincide");
-  same({P(0, 0, 0), P(1, 1, 1), P(2, 2, 2), P(-5, -5, -5)}, "collinear");
-  same({P(0, 0, 0), P(1, 0, 0), P(0, 1, 0), P(3, 7, 0), P(1, 1, 0)}, "coplanar");
-  same({P(0, 0, 0), P(1, 0, 0), P(0, 1, 0), Point3(0.5, 0.5, 4.9406564584124654e-324)}, "one ulp thick");
+  expect_same_hulls({}, "empty");
+  expect_same_hulls({P(1, 2, 3), P(1, 2, 3)}, "coincide");
+  expect_same_hulls({P(0, 0, 0), P(1, 1, 1), P(2, 2, 2), P(-5, -5, -5)}, "collinear");
+  expect_same_hulls({P(0, 0, 0), P(1, 0, 0), P(0, 1, 0), P(3, 7, 0), P(1, 1, 0)}, "coplanar");
+  expect_same_hulls({P(0, 0, 0), P(1, 0, 0), P(0, 1, 0), Point3(0.5, 0.5, 4.9406564584124654e-324)}, "one ulp thick");
+}
+
+// The incremental triangulation on the sets it is meant for (points spread
+// over a sphere, nearly all extreme) and on the boundary cases where its
+// triangulated surface has vertices quickhull never makes: points inside the
+// facets and edges of the hull, repeated points, cospherical points with
+// many coplanar ones.  Fixed seeds.
+TEST(Hull, ExtremePointsPathAgreesOnSpheresAndBoundaryPoints) {
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> g;
+    std::vector<Point3> pts;
+    const int n = 4 + int(rng() % 1500);
+    for (int i = 0; i < n; ++i) {
+      const double x = g(rng), y = g(rng), z = g(rng), r = std::sqrt(x * x + y * y + z * z);
+      pts.push_back(Point3(x / r, y / r, z / r));
+      if (seed % 3 == 0 && i % 7 == 0) pts.push_back(pts[rng() % pts.size()]);  // repeats
+    }
+    if (seed % 4 == 0) pts.push_back(P(0, 0, 0));  // the centre, inside
+    expect_same_hulls(pts, "sphere, seed " + std::to_string(seed));
+  }
+  // The integer points of the sphere of radius 5 and of radius^2 50 (the
+  // latter: 12 + 24 + 48 points, with coplanar sets on many facets).
+  for (long r2 : {25L, 50L}) {
+    std::vector<Point3> pts;
+    for (long x = -7; x <= 7; ++x)
+      for (long y = -7; y <= 7; ++y)
+        for (long z = -7; z <= 7; ++z)
+          if (x * x + y * y + z * z == r2) pts.push_back(P(x, y, z));
+    expect_same_hulls(pts, "integer sphere " + std::to_string(r2));
+  }
+  // A cube with points in the middle of every edge and facet, and inside:
+  // the triangulated surface has the edge and facet points as vertices.
+  std::vector<Point3> cube;
+  for (long x = -2; x <= 2; x += 2)
+    for (long y = -2; y <= 2; y += 2)
+      for (long z = -2; z <= 2; z += 2) cube.push_back(P(x, y, z));
+  cube.push_back(P(1, 1, 1));
+  expect_same_hulls(cube, "cube with edge and facet midpoints");
+  std::reverse(cube.begin(), cube.end());
+  expect_same_hulls(cube, "the same, reversed");
+  // An octahedron whose first points are repeated at the end.
+  std::vector<Point3> octa = {P(1, 0, 0), P(-1, 0, 0), P(0, 1, 0), P(0, -1, 0), P(0, 0, 1), P(0, 0, -1)};
+  for (int i = 0; i < 6; ++i) octa.push_back(octa[i]);
+  expect_same_hulls(octa, "octahedron, every point twice");
+  // Sets that are flat after the first points, or flat except one point
+  // coming last.
+  expect_same_hulls({P(0, 0, 0), P(1, 0, 0), P(0, 1, 0), P(1, 1, 0), P(2, 3, 0), P(1, 1, 1)}, "apex last");
+  expect_same_hulls({P(0, 0, 0), P(0, 0, 0), P(0, 0, 0), P(1, 0, 0)}, "a segment with repeats");
 }
 
 TEST(Hull, DoublePointsOneUlpFromAFacetAreDecidedExactly) {

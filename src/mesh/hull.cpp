@@ -1,7 +1,9 @@
 // The exact convex hull of a point cloud: CGAL's convex_hull_3 on exact
 // points (Epeck, whose exact number type is mpq_class here), then the
 // triangulated hull goes through the validating builder, which merges
-// coplanar triangles and drops points in the middle of edges.
+// coplanar triangles and drops points in the middle of edges.  Points that
+// are all doubles use CGAL's Epick kernel instead, by quickhull or, for
+// points that are nearly all extreme, by an incremental triangulation.
 //
 // This is the only translation unit of src/mesh that includes CGAL.
 #include "mesh/builder.hpp"
@@ -10,10 +12,17 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Triangulation_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
 #include <CGAL/convex_hull_3.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
 
 #include <algorithm>
+#include <array>
+#include <numeric>
 #include <unordered_map>
 
 namespace minksum {
@@ -86,6 +95,33 @@ Mesh canonical_mesh(const SurfaceMesh& sm, InputOf input_of, Push push, std::vec
   throw std::logic_error("convex hull produced a point that is not an input point");
 }
 
+// The polytope of a triangulated hull: validated (coplanar triangles
+// merged, points inside facets and edges dropped), facets in canonical
+// order.  The caller numbers its source vertices as the input points.
+ConvexPolytope validated_hull(const Mesh& m, const std::string& source) {
+  ConvexPolytope result = PolytopeBuilder::build(m, source);
+  // CGAL may triangulate a coplanar facet differently from call to call,
+  // which changes the merged facets' order and first vertices: fix both.
+  PolytopeBuilder::canonicalize_facets(result);
+  return result;
+}
+
+using E = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// The points of a list that are all doubles, as Epick points, after the
+// exact check that they span 3 dimensions.
+std::vector<E::Point_3> epick_points(const PointList& points, const std::string& source) {
+  std::vector<E::Point_3> ep;
+  ep.reserve(points.size());
+  for (const Vec3d& v : points.approx()) ep.emplace_back(v.x, v.y, v.z);
+  check_dimension(
+      ep.size(), [&](std::size_t i) { return ep[i] == ep[0]; },
+      [&](std::size_t i1, std::size_t i) { return CGAL::collinear(ep[0], ep[i1], ep[i]); },
+      [&](std::size_t i1, std::size_t i2, std::size_t i) { return CGAL::coplanar(ep[0], ep[i1], ep[i2], ep[i]); },
+      source);
+  return ep;
+}
+
 Point3 to_point3(const KPoint& p) {
   const auto& e = CGAL::exact(p);
   return Point3(Rational(e.x()), Rational(e.y()), Rational(e.z()));
@@ -114,10 +150,7 @@ ConvexPolytope ConvexPolytope::hull(const std::vector<Point3>& points, const std
         return it->second;
       },
       [&](PointList& out, Index i) { out.push_back(points[i]); }, input_index);
-  ConvexPolytope result = PolytopeBuilder::build(m, source);
-  // CGAL may triangulate a coplanar facet differently from call to call,
-  // which changes the merged facets' order and first vertices: fix both.
-  PolytopeBuilder::canonicalize_facets(result);
+  ConvexPolytope result = validated_hull(m, source);
   for (auto& s : result.source_vertex_) s = input_index[s];
   return result;
 }
@@ -128,15 +161,7 @@ ConvexPolytope ConvexPolytope::hull(const std::vector<Point3>& points, const std
 // hull is the exact one, without a rational per coordinate.
 ConvexPolytope ConvexPolytope::hull(const PointList& points, const std::string& source) {
   if (!points.all_doubles()) return hull(points.to_points(), source);
-  using E = CGAL::Exact_predicates_inexact_constructions_kernel;
-  std::vector<E::Point_3> ep;
-  ep.reserve(points.size());
-  for (const Vec3d& v : points.approx()) ep.emplace_back(v.x, v.y, v.z);
-  check_dimension(
-      ep.size(), [&](std::size_t i) { return ep[i] == ep[0]; },
-      [&](std::size_t i1, std::size_t i) { return CGAL::collinear(ep[0], ep[i1], ep[i]); },
-      [&](std::size_t i1, std::size_t i2, std::size_t i) { return CGAL::coplanar(ep[0], ep[i1], ep[i2], ep[i]); },
-      source);
+  const std::vector<E::Point_3> ep = epick_points(points, source);
 
   CGAL::Surface_mesh<E::Point_3> sm;
   CGAL::convex_hull_3(ep.begin(), ep.end(), sm);
@@ -159,8 +184,84 @@ ConvexPolytope ConvexPolytope::hull(const PointList& points, const std::string& 
         return it->second;
       },
       [&](PointList& out, Index i) { out.push_back(points.approx(i)); }, input_index);
-  ConvexPolytope result = PolytopeBuilder::build(m, source);
-  PolytopeBuilder::canonicalize_facets(result);
+  ConvexPolytope result = validated_hull(m, source);
+  for (auto& s : result.source_vertex_) s = input_index[s];
+  return result;
+}
+
+// Points that are nearly all extreme (spread over a sphere): quickhull
+// spends its time redistributing the outside sets of points that all end on
+// the hull.  CGAL's Triangulation_3 builds the same hull incrementally
+// instead: the points are inserted in spatial order (Amenta, Choi and Rote,
+// "Incremental constructions con BRIO", SoCG 2003), each located from the
+// cell of the previous one, and a point outside the current hull is joined to
+// the hull facets it sees.  Every decision is an orientation sign of Epick,
+// exact (filtered, exact fallback); no point is constructed.  The hull is then
+// the link of the infinite vertex: the finite facet of every infinite cell,
+// oriented by CGAL's convention so that its normal points to the infinite
+// vertex, i.e. outwards.  Points on the boundary that are not extreme (inside
+// a facet or an edge of the hull) may be vertices of that triangulated
+// surface, where quickhull leaves them out; the builder drops them as it
+// drops them from any mesh (degree 2, or vanished inside a merged facet), so
+// the polytope is the same, vertex for vertex: the surviving vertices keep
+// the order of their input points.
+ConvexPolytope PolytopeBuilder::hull_of_extreme_points(const PointList& points, const std::string& source) {
+  if (!points.all_doubles()) return ConvexPolytope::hull(points, source);
+  const std::size_t n = points.size();
+  std::vector<std::array<Index, 3>> triangles;  // input points, counter-clockwise seen from outside
+  {
+    std::vector<E::Point_3> ep = epick_points(points, source);
+    using Vb = CGAL::Triangulation_vertex_base_with_info_3<Index, E>;
+    using Tds = CGAL::Triangulation_data_structure_3<Vb, CGAL::Triangulation_cell_base_3<E>>;
+    using Triangulation = CGAL::Triangulation_3<E, Tds>;
+    std::vector<std::size_t> order(n);
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    using Map = CGAL::Pointer_property_map<E::Point_3>::type;
+    CGAL::spatial_sort(order.begin(), order.end(),
+                       CGAL::Spatial_sort_traits_adapter_3<E, Map>(CGAL::make_property_map(ep)));
+    Triangulation tr;
+    Triangulation::Cell_handle hint;
+    for (std::size_t i : order) {
+      const std::size_t before = tr.number_of_vertices();
+      const Triangulation::Vertex_handle v = tr.insert(ep[i], hint);
+      // A repeated point is the vertex of its first copy.
+      v->info() = tr.number_of_vertices() != before ? Index(i) : std::min(v->info(), Index(i));
+      hint = v->cell();
+    }
+    // The hull's triangles, as input points: the finite facet of each
+    // infinite cell.
+    const Triangulation::Vertex_handle infinite = tr.infinite_vertex();
+    triangles.reserve(2 * n);
+    for (auto c = tr.all_cells_begin(); c != tr.all_cells_end(); ++c) {
+      int i = 0;
+      if (!c->has_vertex(infinite, i)) continue;
+      std::array<Index, 3> t;
+      for (int k = 0; k < 3; ++k) t[k] = c->vertex(Triangulation::vertex_triple_index(i, k))->info();
+      triangles.push_back(t);
+    }
+  }  // the triangulation is freed before the mesh and the polytope are built
+  // Hull vertices numbered in the order of their input points.
+  std::vector<Index> local(n, kNoIndex);  // input point -> mesh vertex
+  for (const auto& t : triangles)
+    for (Index i : t) local[i] = 0;
+  std::vector<Index> input_index;  // mesh vertex -> input point
+  for (std::size_t i = 0; i < n; ++i)
+    if (local[i] == 0) {
+      local[i] = Index(input_index.size());
+      input_index.push_back(Index(i));
+    }
+  Mesh m;
+  m.points.reserve(input_index.size());
+  for (Index i : input_index) m.points.push_back(points.approx(i));
+  m.faces.reserve(triangles.size());
+  for (const auto& t : triangles) {
+    std::vector<Index> tri{local[t[0]], local[t[1]], local[t[2]]};
+    std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
+    m.faces.push_back(std::move(tri));
+  }
+  triangles = {};
+  local = {};
+  ConvexPolytope result = validated_hull(m, source);
   for (auto& s : result.source_vertex_) s = input_index[s];
   return result;
 }

@@ -538,6 +538,35 @@ TEST(CatalogRandom, SmallCases) {
   }
 }
 
+// random:N:SEED is the hull of random_sphere_points(N, SEED) as the generic
+// exact hull computes it (the points as rationals, CGAL's Epeck kernel): the
+// same vertices in the same order with the same source points, the same
+// facet loops in the same order, the same planes.  Small N (4: a
+// tetrahedron; 5) and the largest seed included.
+TEST(CatalogRandom, SameAsTheGenericHullOfItsPoints) {
+  const std::pair<std::uint64_t, std::uint64_t> cases[] = {
+      {4, 0}, {4, 1}, {4, 18446744073709551615ull}, {5, 0}, {5, 1}, {5, 2}, {5, 3}, {6, 7}, {10, 42}, {300, 5},
+      {3000, 7}};
+  for (const auto& [n, seed] : cases) {
+    const std::string spec = "random:" + std::to_string(n) + ":" + std::to_string(seed);
+    SCOPED_TRACE(spec);
+    const ConvexPolytope p = catalog_polytope(spec);
+    const ConvexPolytope q = ConvexPolytope::hull(cd::random_sphere_points(n, seed), spec);
+    ASSERT_EQ(p.num_vertices(), q.num_vertices());
+    ASSERT_EQ(p.num_facets(), q.num_facets());
+    EXPECT_EQ(p.num_edges(), q.num_edges());
+    EXPECT_TRUE(p.coordinates_are_doubles());
+    for (Index v = 0; v < q.num_vertices(); ++v) {
+      EXPECT_EQ(p.point(v), q.point(v));
+      EXPECT_EQ(p.source_vertex(v), q.source_vertex(v));
+    }
+    for (Index f = 0; f < q.num_facets(); ++f) {
+      EXPECT_EQ(p.facet_vertices(f), q.facet_vertices(f));
+      EXPECT_EQ(p.plane(f), q.plane(f));
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------
 // zonotope
 

@@ -5,6 +5,7 @@
 // statement where a sum meets a product, so the results are bit-identical on
 // every IEEE-754 platform (see catalog_internal.hpp).
 #include "catalog/catalog_internal.hpp"
+#include "mesh/builder.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -316,9 +317,9 @@ ConvexPolytope make_prism(std::uint64_t sides, const std::string& source) {
 // ---------------------------------------------------------------------------
 // random:N:SEED
 
-std::vector<Point3> random_sphere_points(std::uint64_t n, std::uint64_t seed) {
+std::vector<Vec3d> random_sphere_directions(std::uint64_t n, std::uint64_t seed) {
   SplitMix64 rng = make_rng(seed, kStreamRandomPoints);
-  std::vector<Point3> pts;
+  std::vector<Vec3d> pts;
   pts.reserve(n);
   while (pts.size() < n) {
     // Uniform in the cube [-1, 1)^3 (exact: 2u - 1 of a multiple of 2^-53),
@@ -334,13 +335,21 @@ std::vector<Point3> random_sphere_points(std::uint64_t n, std::uint64_t seed) {
     r2 = r2 + zz;
     if (r2 > 1.0 || r2 < 1.0 / 64.0) continue;
     const Vec u = normalised({x, y, z});
-    pts.push_back(to_point(u));
+    pts.push_back({u[0], u[1], u[2]});
   }
   return pts;
 }
 
+std::vector<Point3> random_sphere_points(std::uint64_t n, std::uint64_t seed) {
+  std::vector<Point3> pts;
+  for (const Vec3d& v : random_sphere_directions(n, seed)) pts.emplace_back(v.x, v.y, v.z);
+  return pts;
+}
+
 ConvexPolytope make_random(std::uint64_t n, std::uint64_t seed, const std::string& source) {
-  return exact_hull(random_sphere_points(n, seed), source);
+  PointList pts;
+  for (const Vec3d& v : random_sphere_directions(n, seed)) pts.push_back(v);
+  return PolytopeBuilder::hull_of_extreme_points(pts, source);
 }
 
 // ---------------------------------------------------------------------------

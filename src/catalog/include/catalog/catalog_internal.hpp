@@ -100,6 +100,7 @@ inline constexpr std::uint64_t kBallMax = 1000;
 ConvexPolytope make_ball(std::uint64_t bands, const std::string& source);
 // The prism over the regular N-gon of unit circumradius, z in [−1, 1].
 ConvexPolytope make_prism(std::uint64_t sides, const std::string& source);
+std::vector<Vec3d> random_sphere_directions(std::uint64_t n, std::uint64_t seed);
 std::vector<Point3> random_sphere_points(std::uint64_t n, std::uint64_t seed);
 ConvexPolytope make_random(std::uint64_t n, std::uint64_t seed, const std::string& source);
 // Generators of zonotope:N:SEED: N integer vectors, no two parallel and no

@@ -160,6 +160,20 @@ void plane_dot(Integer& r, const Plane& n, const HomPoint& a) {
   mpz_addmul(z(r), z(n.b), z(a.y));
   mpz_addmul(z(r), z(n.c), z(a.z));
 }
+// out = (ka·a ± kb·b on the numerators) / (ka·a.w): a/a.w ± (kb / ka)·b's
+// numerators (out aliases none of the arguments).
+void scale_add(HomPoint& out, const HomPoint& a, const Integer& ka, const Integer& kb, const HomPoint& b,
+               bool subtract) {
+  const Integer* ac[3] = {&a.x, &a.y, &a.z};
+  const Integer* bc[3] = {&b.x, &b.y, &b.z};
+  Integer* oc[3] = {&out.x, &out.y, &out.z};
+  for (int i = 0; i < 3; ++i) {
+    mpz_mul(z(*oc[i]), z(*ac[i]), z(ka));
+    if (subtract) mpz_submul(z(*oc[i]), z(kb), z(*bc[i]));
+    else mpz_addmul(z(*oc[i]), z(kb), z(*bc[i]));
+  }
+  mpz_mul(z(out.w), z(a.w), z(ka));
+}
 // r = ⟨(a × b), n⟩ for the numerators of a and b and the integer normal n
 // (t: scratch).
 void cross_dot(Integer& r, const HomPoint& a, const HomPoint& b, const Plane& n, Integer& t) {
@@ -335,13 +349,7 @@ void closest_offset(const ObstacleGeometry& g, const Feature& feat, const HomPoi
       mpz_submul(z(d2.num), z(re), z(re));
       mpz_mul(z(d2.den), z(r.w), z(r.w));
       mpz_mul(z(d2.den), z(d2.den), z(ee));
-      mpz_mul(z(out.x), z(r.x), z(ee));
-      mpz_submul(z(out.x), z(re), z(e.x));
-      mpz_mul(z(out.y), z(r.y), z(ee));
-      mpz_submul(z(out.y), z(re), z(e.y));
-      mpz_mul(z(out.z), z(r.z), z(ee));
-      mpz_submul(z(out.z), z(re), z(e.z));
-      mpz_mul(z(out.w), z(r.w), z(ee));
+      scale_add(out, r, ee, re, e, true);
       return;
     }
     case FeatureDim::facet: {
@@ -462,14 +470,7 @@ void split_p(const ObstacleGeometry& g, const Witness& w, const HomPoint& x, con
       // p0 + (num / den)·u_numerators = (p0·den + p0.w·num·u) / (p0.w·den)
       Integer& k = sc.k[7];
       mpz_mul(z(k), z(p0.w), z(num));
-      mpz_mul(z(out.x), z(p0.x), z(den));
-      mpz_addmul(z(out.x), z(k), z(u.x));
-      mpz_mul(z(out.y), z(p0.y), z(den));
-      mpz_addmul(z(out.y), z(k), z(u.y));
-      mpz_mul(z(out.z), z(p0.z), z(den));
-      mpz_addmul(z(out.z), z(k), z(u.z));
-      mpz_mul(z(out.w), z(p0.w), z(den));
-      return;
+      return scale_add(out, p0, den, k, u, false);
     }
   }
   decompose_p(g, w.m, y, out, sc);
@@ -495,13 +496,7 @@ void common_p(const ObstacleGeometry& g, const Witness& w, ContactStatus status,
   plane_dot(a, n, c);
   mpz_neg(z(a), z(a));
   mpz_addmul(z(a), z(n.d), z(c.w));
-  mpz_mul(z(y.x), z(c.x), z(b));
-  mpz_addmul(z(y.x), z(a), z(dir.x));
-  mpz_mul(z(y.y), z(c.y), z(b));
-  mpz_addmul(z(y.y), z(a), z(dir.y));
-  mpz_mul(z(y.z), z(c.z), z(b));
-  mpz_addmul(z(y.z), z(a), z(dir.z));
-  mpz_mul(z(y.w), z(c.w), z(b));
+  scale_add(y, c, b, a, dir, false);
   split_p(g, w, y, y, py, sc);
   mpz_mul(z(total), z(a), z(dir.w));
   mpz_mul(z(cb), z(c.w), z(b));
@@ -636,6 +631,16 @@ const QuotientPoint& zero_quotient_point() {
   static const QuotientPoint z;
   return z;
 }
+// q in lowest terms, kept in r (computed once: `have`).
+const Rational& lowest_terms(const Quotient& q, Rational& r, bool& have) {
+  if (!have) detail::set_ratio(r, q.num, q.den), have = true;
+  return r;
+}
+// The nearest double of sqrt(q), kept in d.
+double root(const Quotient& q, double& d, bool& have) {
+  if (!have) d = std::sqrt(q.to_double()), have = true;
+  return d;
+}
 }  // namespace
 
 const detail::HomPoint& DistanceResult::s_hom(detail::DistanceExact& e) const {
@@ -691,16 +696,11 @@ detail::DistanceExact& DistanceResult::compute_p() const {
 const Quotient& DistanceResult::squared_distance_quotient() const { return compute_offset().squared_distance_q; }
 const Rational& DistanceResult::squared_distance() const {
   detail::DistanceExact& e = compute_offset();
-  if (!e.have_squared_distance) {
-    detail::set_ratio(e.squared_distance, e.squared_distance_q.num, e.squared_distance_q.den);
-    e.have_squared_distance = true;
-  }
-  return e.squared_distance;
+  return lowest_terms(e.squared_distance_q, e.squared_distance, e.have_squared_distance);
 }
 double DistanceResult::distance() const {
   detail::DistanceExact& e = compute_offset();
-  if (!e.have_distance) e.distance = std::sqrt(e.squared_distance_q.to_double()), e.have_distance = true;
-  return e.distance;
+  return root(e.squared_distance_q, e.distance, e.have_distance);
 }
 const QuotientPoint& DistanceResult::direction_quotient() const { return compute_offset().offset; }
 const Point3& DistanceResult::direction() const {
@@ -766,17 +766,12 @@ const Rational& DepthResult::squared_depth() const {
   static const Rational zero(0);
   if (status != ContactStatus::penetrating || !geo_) return zero;
   detail::DepthExact& e = exact();
-  if (!e.have_squared_depth) {
-    detail::set_ratio(e.squared_depth, e.squared_depth_q.num, e.squared_depth_q.den);
-    e.have_squared_depth = true;
-  }
-  return e.squared_depth;
+  return lowest_terms(e.squared_depth_q, e.squared_depth, e.have_squared_depth);
 }
 double DepthResult::depth() const {
   if (status != ContactStatus::penetrating || !geo_) return 0;
   detail::DepthExact& e = exact();
-  if (!e.have_depth) e.depth = std::sqrt(e.squared_depth_q.to_double()), e.have_depth = true;
-  return e.depth;
+  return root(e.squared_depth_q, e.depth, e.have_depth);
 }
 const QuotientPoint& DepthResult::direction_quotient() const {
   if (status != ContactStatus::penetrating || !geo_) return zero_quotient_point();

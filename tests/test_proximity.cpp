@@ -648,6 +648,9 @@ TEST(ProximityExact, QuotientArithmetic) {
   EXPECT_TRUE(a == Rational(-3, 2));
   EXPECT_FALSE(a == Rational(-3, 4));
   EXPECT_TRUE(a < Quotient(Integer(-1), Integer(1)));
+  EXPECT_TRUE(Quotient(Integer(-1), Integer(1)) > a);
+  EXPECT_TRUE(a <= Quotient(Integer(3), Integer(-2)));
+  EXPECT_FALSE(a >= Quotient(Integer(-2), Integer(2)));
   EXPECT_EQ(cmp(Quotient(Integer(2), Integer(6)), Quotient(Integer(1), Integer(3))), 0);
   EXPECT_EQ(cmp(Quotient(Integer(2), Integer(7)), Quotient(Integer(1), Integer(3))), -1);
   EXPECT_EQ(Quotient().sign(), 0);

@@ -33,6 +33,7 @@
 #include <minksum/unit_plane.hpp>
 
 #include <array>
+#include <compare>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -95,7 +96,7 @@ class Quotient {
   // Exact comparisons by cross-multiplication (two products, no gcd).
   friend int cmp(const Quotient& a, const Quotient& b);
   friend bool operator==(const Quotient& a, const Quotient& b) { return cmp(a, b) == 0; }
-  friend bool operator<(const Quotient& a, const Quotient& b) { return cmp(a, b) < 0; }
+  friend std::strong_ordering operator<=>(const Quotient& a, const Quotient& b) { return cmp(a, b) <=> 0; }
   friend bool operator==(const Quotient& a, const Rational& b);
 };
 

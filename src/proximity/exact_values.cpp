@@ -17,6 +17,7 @@
 #include <minksum/proximity.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -95,20 +96,27 @@ namespace detail {
 
 namespace {
 
-// v = m·2^e with m odd (or v = 0, m = 0).  Every finite double is such a
-// product with |m| < 2^53: frexp's fraction times 2^53 is an integer.
+// v = m·2^e with m odd (or v = 0, m = 0), read off v's bits: a normal
+// double is (2^52 + fraction)·2^(exponent field − 1075), a subnormal one
+// fraction·2^−1074, so |m| < 2^53.
 void split_double(double v, std::int64_t& m, int& e) {
-  if (v == 0) {
+  const std::uint64_t b = std::bit_cast<std::uint64_t>(v);
+  const int field = int((b >> 52) & 0x7ff);
+  std::uint64_t mant = b & ((std::uint64_t(1) << 52) - 1);
+  if (field == 0 && mant == 0) {
     m = 0, e = 0;
     return;
   }
-  int ex = 0;
-  const double f = std::frexp(v, &ex);
-  m = std::int64_t(std::ldexp(f, 53));
-  e = ex - 53;
-  const int tz = __builtin_ctzll(std::uint64_t(m));
-  m >>= tz;
+  if (field == 0) {
+    e = -1074;
+  } else {
+    mant |= std::uint64_t(1) << 52;
+    e = field - 1075;
+  }
+  const int tz = __builtin_ctzll(mant);
+  mant >>= tz;
   e += tz;
+  m = (b >> 63) ? -std::int64_t(mant) : std::int64_t(mant);
 }
 
 void set_ratio(Rational& r, const Integer& num, const Integer& den) {

@@ -608,8 +608,9 @@ TEST(ProximityExact, FastValuesEqualTheRationalReferenceForLargeAndTinyCoordinat
 
 // The obstacle hands its spare storage to one answer after another: an
 // answer kept alive (or copied) keeps its values while later answers are
-// computed in fresh storage, and recycled storage forgets a translated
-// answer's u and an earlier answer's values.
+// computed in other storage (another spare set, or their own once every set
+// is held), and recycled storage forgets a translated answer's u and an
+// earlier answer's values.
 TEST(ProximityExact, RecycledStorageKeepsLiveAnswersAndForgetsDeadOnes) {
   TranslationalObstacle ob(catalog_polytope("cube"), catalog_polytope("cube@rot:3"));
   const Point3 far = P(5, 1, 2), near = R("5/2", "1/3", "0"), inside = R("1/5", "0", "1/7");
@@ -624,6 +625,19 @@ TEST(ProximityExact, RecycledStorageKeepsLiveAnswersAndForgetsDeadOnes) {
     if (i == 1) copy = d;  // shares d's storage past d's end
     const DepthResult p = ob.penetration_depth_point(s);
     EXPECT_TRUE(p.squared_depth_quotient() == detail::reference_values(p).squared_depth);
+  }
+  // More answers kept alive than the obstacle has spare sets: the later ones
+  // compute in storage of their own, every one keeps its values.
+  std::vector<DistanceResult> alive;
+  std::vector<Point3> poses;
+  for (int i = 0; i < 7; ++i) {
+    poses.push_back(far + Point3(Rational(i), Rational(0), frac(i, 3)));
+    alive.push_back(ob.distance_point(poses.back()));
+    if (i % 2 == 0) alive.back().point_p_quotient();  // some computed now, some after the others
+  }
+  for (std::size_t i = 0; i < alive.size(); ++i) {
+    expect_quotients_match(alive[i], detail::reference_values(alive[i]));
+    EXPECT_EQ(alive[i].squared_distance(), ob.squared_distance_by_scan(poses[i]));
   }
   EXPECT_EQ(kept.point_p(), kept_p);
   EXPECT_TRUE(kept.squared_distance_quotient() == kept_d2);

@@ -594,27 +594,33 @@ void TranslationalObstacle::keep_point(const Point3& s, const Vec3d& sd, Vec3d& 
 }
 
 namespace {
-// The obstacle's spare storage for exact values, attached to a new answer:
-// a caller that asks for the exact values of one answer at a time reuses the
-// same integers, whose limbs are already allocated.  When an earlier answer
-// still holds the spare, a single query (`renew`) makes a new spare for the
-// next answers (the held one stays with its answer); a batch leaves the
-// answer to allocate its own on first use, so that a batch whose exact
-// values are never asked for allocates nothing.  use_count() is a relaxed
-// read: the acquire fence orders it after the releasing decrement of the
-// last other holder, so that holder's writes into the storage happen before
-// this answer's.
-template <class E>
-void attach_spare(std::shared_ptr<E>& spare, std::shared_ptr<E>& out, bool renew) {
-  if (spare && spare.use_count() == 1) {
-    std::atomic_thread_fence(std::memory_order_acquire);
-    spare->reset();
-  } else if (renew || !spare) {
-    spare = std::make_shared<E>();
-  } else {
-    return;
+// The obstacle's spare storage for exact values (a few sets), attached to a
+// new answer: a caller that asks for the exact values of one answer at a
+// time reuses the same integers, whose limbs are already allocated.  A set
+// no answer holds any more is reused; when every set is held, a single query
+// (`make`) adds one while there are fewer than spare.size(), else (a batch,
+// or answers kept alive) the answer allocates its own on first use: answers
+// whose exact values are never asked for allocate at most those few sets.
+// use_count() is a relaxed read: the acquire fence orders it after the
+// releasing decrement of the last other holder, so that holder's writes
+// into the storage happen before this answer's.
+template <class E, std::size_t N>
+void attach_spare(std::array<std::shared_ptr<E>, N>& spare, std::shared_ptr<E>& out, bool make) {
+  std::shared_ptr<E>* empty = nullptr;
+  for (std::shared_ptr<E>& e : spare) {
+    if (!e) {
+      if (!empty) empty = &e;
+    } else if (e.use_count() == 1) {
+      std::atomic_thread_fence(std::memory_order_acquire);
+      e->reset();
+      out = e;
+      return;
+    }
   }
-  out = spare;
+  if (make && empty) {
+    *empty = std::make_shared<E>();
+    out = *empty;
+  }
 }
 }  // namespace
 

@@ -199,7 +199,7 @@ class DistanceResult {
   std::shared_ptr<Point3> s_exact_;
   // The translation u of P (added to the closest points) and the values
   // computed so far; copies of a result share them.  The obstacle attaches
-  // storage it recycles (see TranslationalObstacle::spare_distance_).
+  // storage it recycles (TranslationalObstacle::spare_distance_).
   mutable std::shared_ptr<detail::DistanceExact> exact_;
 };
 
@@ -370,11 +370,11 @@ class TranslationalObstacle {
   std::optional<Feature> last_closest_;  // none before the first distance query
   bool last_separate_ = false;           // the last distance answer was separate
   std::uint64_t rng_ = 0x9e3779b97f4a7c15ull;
-  // Storage for the exact values of the answers, handed to the next single
-  // answer once no answer holds it any more (its integers keep their limbs:
-  // no allocation per query); see attach_spare in obstacle.cpp.
-  std::shared_ptr<detail::DistanceExact> spare_distance_;
-  std::shared_ptr<detail::DepthExact> spare_depth_;
+  // Storage for the exact values of the answers, handed to a new answer
+  // when no answer holds it any more (its integers keep their limbs: no
+  // allocation per query); see attach_spare in obstacle.cpp.
+  std::array<std::shared_ptr<detail::DistanceExact>, 4> spare_distance_;
+  std::array<std::shared_ptr<detail::DepthExact>, 4> spare_depth_;
   ProximityStats stats_;
 };
 

@@ -429,7 +429,34 @@ TEST(Proximity, FilteredDistanceWalkMatchesBruteForceOnRandomPoses) {
 // reduction per output) equal the reference computed with a reduced rational
 // at every step (detail::reference_values), for distance answers (also
 // translated by u) and depth answers.
+// The unreduced quotients of an answer equal the reference values: by
+// exact comparison (cross-multiplication), in lowest terms, and as doubles.
+void expect_quotients_match(const DistanceResult& d, const detail::ReferenceDistance& ref) {
+  EXPECT_GT(sgn(d.squared_distance_quotient().den), 0);
+  EXPECT_TRUE(d.squared_distance_quotient() == ref.squared_distance);
+  EXPECT_EQ(d.squared_distance_quotient().to_rational(), ref.squared_distance);
+  EXPECT_EQ(d.squared_distance_quotient().to_double(), to_double(ref.squared_distance));
+  EXPECT_TRUE(d.direction_quotient() == ref.direction);
+  EXPECT_TRUE(d.point_p_quotient() == ref.point_p);
+  EXPECT_TRUE(d.point_q_quotient() == ref.point_q);
+  EXPECT_EQ(d.point_p_quotient().to_point(), ref.point_p);
+  const Vec3d qd = d.point_q_quotient().to_double(), qr = to_double(ref.point_q);
+  EXPECT_TRUE(qd.x == qr.x && qd.y == qr.y && qd.z == qr.z);
+  for (const QuotientPoint* x : {&d.direction_quotient(), &d.point_p_quotient(), &d.point_q_quotient()})
+    EXPECT_GT(sgn(x->w), 0);
+}
+
 void expect_values_match_reference(TranslationalObstacle& ob, const Point3& s, const Point3& u) {
+  {  // the quotients first, on a fresh answer (no lowest-terms value asked before)
+    const DistanceResult d = ob.distance_point(s);
+    expect_quotients_match(d, detail::reference_values(d));
+    const DepthResult p = ob.penetration_depth_point(s);
+    const detail::ReferenceDepth pref = detail::reference_values(p);
+    EXPECT_TRUE(p.squared_depth_quotient() == pref.squared_depth);
+    EXPECT_TRUE(p.direction_quotient() == pref.direction);
+    EXPECT_EQ(p.direction_quotient().to_point(), pref.direction);
+    EXPECT_EQ(p.depth(), std::sqrt(to_double(pref.squared_depth)));
+  }
   const DistanceResult d = ob.distance_point(s);
   const detail::ReferenceDistance ref = detail::reference_values(d);
   EXPECT_EQ(d.squared_distance(), ref.squared_distance);
@@ -446,6 +473,7 @@ void expect_values_match_reference(TranslationalObstacle& ob, const Point3& s, c
   EXPECT_EQ(t.point_p(), tref.point_p);
   EXPECT_EQ(t.point_q(), tref.point_q);
   EXPECT_EQ(t.point_p(), ref.point_p + u);
+  expect_quotients_match(t, tref);
   const DepthResult p = ob.penetration_depth_point(s);
   const detail::ReferenceDepth pref = detail::reference_values(p);
   EXPECT_EQ(p.squared_depth(), pref.squared_depth);
@@ -496,6 +524,167 @@ TEST(ProximityExact, FastValuesEqualTheRationalReferenceOnTouchingPoses) {
     }
     EXPECT_GT(touching, 20) << pr.p << " / " << pr.q;
   }
+}
+
+// Degenerate pairs: parallel facets and coincident edges (cube / cube,
+// cube / box), a vertex on a facet (tetra / cube), edges crossing edges
+// (octahedron / cube): touching poses, poses just inside and outside them and
+// poses k/4 of the way from the interior point.
+TEST(ProximityExact, FastValuesEqualTheRationalReferenceOnDegeneratePairs) {
+  for (const Pair& pr : {Pair{"cube", "cube"}, Pair{"cube", "box:1:2:3"}, Pair{"tetra", "cube"},
+                         Pair{"octahedron", "cube@scale:1/2"}}) {
+    TranslationalObstacle ob(catalog_polytope(pr.p), catalog_polytope(pr.q));
+    int count[3] = {};
+    for (const Point3& s : query_points(ob, false)) {
+      SCOPED_TRACE(std::string(pr.p) + " / " + pr.q + ", s = (" + format_exact(s.x) + ", " + format_exact(s.y) +
+                   ", " + format_exact(s.z) + ")");
+      count[int(ob.collide_point(s).status)]++;
+      expect_values_match_reference(ob, s, R("1/7", "0", "-5"));
+    }
+    for (int c : count) EXPECT_GT(c, 10) << pr.p << " / " << pr.q;
+  }
+}
+
+// Coordinates at the ends of the double range: operands scaled by 2^±500,
+// a polytope whose vertices' exponents differ by hundreds (one power of two
+// as common denominator, numerators of hundreds of bits), s with subnormal
+// and huge coordinates; and a rational polytope whose vertices' denominators
+// are distinct primes (their lcm too long to share: one denominator per
+// vertex, the general combination of points).
+TEST(ProximityExact, FastValuesEqualTheRationalReferenceForLargeAndTinyCoordinates) {
+  const std::uint64_t seed = 20261123;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::uniform_int_distribution<int> spread(-300, 300);
+  auto cloud = [&](int n, int exponent, bool mixed) {
+    std::vector<Point3> pts;
+    for (int i = 0; i < n; ++i) {
+      const int e = mixed ? spread(rng) : exponent;
+      pts.emplace_back(std::ldexp(unit(rng), e), std::ldexp(unit(rng), e), std::ldexp(unit(rng), e));
+    }
+    return ConvexPolytope::hull(pts);
+  };
+  struct Case {
+    const char* name;
+    int exponent;  // the scale of the operands and of s
+    bool mixed;    // P's vertices with exponents in [-300, 300]
+  };
+  auto primes_cloud = [&](int n) {
+    std::vector<Point3> pts;
+    long prime = 1000003;
+    auto next_prime = [&] {
+      for (prime += 2;; prime += 2) {
+        bool is = true;
+        for (long d = 3; d * d <= prime && is; d += 2) is = prime % d != 0;
+        if (is) return prime;
+      }
+    };
+    std::uniform_int_distribution<long> num(-1000000, 1000000);
+    for (int i = 0; i < n; ++i) {
+      const long d = next_prime();
+      pts.emplace_back(frac(num(rng), d), frac(num(rng), d), frac(num(rng), d));
+    }
+    return ConvexPolytope::hull(pts);
+  };
+  for (const Case& c : {Case{"2^-500", -500, false}, Case{"2^500", 500, false}, Case{"mixed exponents", 0, true},
+                        Case{"prime denominators", 0, false}}) {
+    const bool primes = std::string(c.name) == "prime denominators";
+    const ConvexPolytope p = primes ? primes_cloud(12) : cloud(12, c.exponent, c.mixed);
+    const ConvexPolytope q = cloud(9, c.exponent, false);
+    TranslationalObstacle ob(p, q);
+    const double scale = c.mixed ? std::ldexp(1, 300) : std::ldexp(1, c.exponent);
+    int count[3] = {};
+    for (int i = 0; i < 40; ++i) {
+      SCOPED_TRACE(std::string(c.name) + ", seed " + std::to_string(seed) + ", pose " + std::to_string(i));
+      Point3 s(3 * scale * unit(rng), 3 * scale * unit(rng), 3 * scale * unit(rng));
+      if (i % 4 == 3) s.z = Rational(std::ldexp(unit(rng), -1060));  // subnormal
+      count[int(ob.collide_point(s).status)]++;
+      expect_values_match_reference(ob, s, Point3(std::ldexp(1, -1070), 1e300, 0.5));
+    }
+    for (const Point3& s : query_points(ob, false)) expect_values_match_reference(ob, s, P(0, 0, 1));
+    EXPECT_GT(count[int(ContactStatus::separate)], 5) << c.name;
+  }
+}
+
+// The obstacle hands its spare storage to one answer after another: an
+// answer kept alive (or copied) keeps its values while later answers are
+// computed in other storage (another spare set, or their own once every set
+// is held), and recycled storage forgets a translated answer's u and an
+// earlier answer's values.
+TEST(ProximityExact, RecycledStorageKeepsLiveAnswersAndForgetsDeadOnes) {
+  TranslationalObstacle ob(catalog_polytope("cube"), catalog_polytope("cube@rot:3"));
+  const Point3 far = P(5, 1, 2), near = R("5/2", "1/3", "0"), inside = R("1/5", "0", "1/7");
+  const DistanceResult kept = ob.distance(P(1, 1, 1), far + P(1, 1, 1));
+  const Point3 kept_p = kept.point_p();
+  const Quotient kept_d2 = kept.squared_distance_quotient();
+  DistanceResult copy;
+  for (int i = 0; i < 6; ++i) {
+    const Point3& s = i % 3 == 0 ? far : i % 3 == 1 ? near : inside;
+    const DistanceResult d = ob.distance_point(s);
+    expect_quotients_match(d, detail::reference_values(d));
+    if (i == 1) copy = d;  // shares d's storage past d's end
+    const DepthResult p = ob.penetration_depth_point(s);
+    EXPECT_TRUE(p.squared_depth_quotient() == detail::reference_values(p).squared_depth);
+  }
+  // More answers kept alive than the obstacle has spare sets: the later ones
+  // compute in storage of their own, every one keeps its values.
+  std::vector<DistanceResult> alive;
+  std::vector<Point3> poses;
+  for (int i = 0; i < 7; ++i) {
+    poses.push_back(far + Point3(Rational(i), Rational(0), frac(i, 3)));
+    alive.push_back(ob.distance_point(poses.back()));
+    if (i % 2 == 0) alive.back().point_p_quotient();  // some computed now, some after the others
+  }
+  for (std::size_t i = 0; i < alive.size(); ++i) {
+    expect_quotients_match(alive[i], detail::reference_values(alive[i]));
+    EXPECT_EQ(alive[i].squared_distance(), ob.squared_distance_by_scan(poses[i]));
+  }
+  EXPECT_EQ(kept.point_p(), kept_p);
+  EXPECT_TRUE(kept.squared_distance_quotient() == kept_d2);
+  EXPECT_EQ(kept.point_p(), detail::reference_values(kept).point_p);
+  EXPECT_TRUE(copy.point_q_quotient() == detail::reference_values(copy).point_q);
+  EXPECT_EQ(copy.squared_distance(), ob.squared_distance_by_scan(near));
+}
+
+// Quotient: sign normalised into the numerator, exact comparisons without
+// reduction, lowest terms only in to_rational / to_string, the nearest
+// double of num/den as they are.
+TEST(ProximityExact, QuotientArithmetic) {
+  EXPECT_THROW(Quotient(Integer(1), Integer(0)), std::invalid_argument);
+  const Quotient a(Integer(6), Integer(-4));  // −3/2
+  EXPECT_EQ(a.num, Integer(-6));
+  EXPECT_EQ(a.den, Integer(4));
+  EXPECT_EQ(a.sign(), -1);
+  EXPECT_EQ(a.to_rational(), Rational(-3, 2));
+  EXPECT_EQ(a.to_string(), "-3/2");
+  EXPECT_EQ(Quotient(Integer(10), Integer(5)).to_string(), "2");
+  EXPECT_TRUE(a == Quotient(Integer(-3), Integer(2)));
+  EXPECT_TRUE(a == Rational(-3, 2));
+  EXPECT_FALSE(a == Rational(-3, 4));
+  EXPECT_TRUE(a < Quotient(Integer(-1), Integer(1)));
+  EXPECT_TRUE(Quotient(Integer(-1), Integer(1)) > a);
+  EXPECT_TRUE(a <= Quotient(Integer(3), Integer(-2)));
+  EXPECT_FALSE(a >= Quotient(Integer(-2), Integer(2)));
+  EXPECT_EQ(cmp(Quotient(Integer(2), Integer(6)), Quotient(Integer(1), Integer(3))), 0);
+  EXPECT_EQ(cmp(Quotient(Integer(2), Integer(7)), Quotient(Integer(1), Integer(3))), -1);
+  EXPECT_EQ(Quotient().sign(), 0);
+  // 1/3 as 7/21: the nearest double of 1/3; 2^-1074 as 2/2^1075 (subnormal),
+  // a tie between two doubles (1 + 2^-53, ties to even: 1).
+  EXPECT_EQ(Quotient(Integer(7), Integer(21)).to_double(), 1.0 / 3);
+  Integer big = 1;
+  mpz_mul_2exp(big.get_mpz_t(), big.get_mpz_t(), 1075);
+  EXPECT_EQ(Quotient(Integer(2), big).to_double(), std::ldexp(1, -1074));
+  Integer two53 = 1;
+  mpz_mul_2exp(two53.get_mpz_t(), two53.get_mpz_t(), 53);
+  const Integer two54 = 2 * two53;
+  EXPECT_EQ(Quotient(Integer(two54 + 2), two54).to_double(), 1.0);                         // tie: even
+  EXPECT_EQ(Quotient(Integer(two54 + 6), two54).to_double(), 1.0 + std::ldexp(1, -51));   // tie: even
+  EXPECT_EQ(Quotient(Integer(two54 + 3), two54).to_double(), 1.0 + std::ldexp(1, -52));   // nearest
+  const QuotientPoint x{Integer(2), Integer(-4), Integer(0), Integer(6)};
+  EXPECT_EQ(x.to_point(), R("1/3", "-2/3", "0"));
+  EXPECT_TRUE(x == (QuotientPoint{Integer(1), Integer(-2), Integer(0), Integer(3)}));
+  EXPECT_FALSE(x == (QuotientPoint{Integer(1), Integer(-2), Integer(1), Integer(3)}));
+  EXPECT_TRUE(x == R("1/3", "-2/3", "0"));
 }
 
 // Degenerate poses: s = x + n with x a vertex, an edge midpoint or a facet

@@ -23,9 +23,9 @@ per() {
 pairs=("cube cube@rot:3" "sphere:2 sphere:2@rot:1" "random:50:1 random:50:2" "random:500:1 random:350:2"
        "sphere:4 sphere:4@rot:1")
 configs=("separated 1.5" "touching 1" "near-touching out 1.000000001" "near-touching in 0.999999999" "penetrating 0.5")
-echo "| pair | configuration | status | ours collide | GJK | ours distance | ours distance + exact | FCL distance |" \
-     "ours depth | ours depth + exact | GJK+EPA |"
-echo "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| pair | configuration | status | ours collide | GJK | ours distance | ours distance + exact |" \
+     "+ lowest terms | FCL distance | ours depth | ours depth + exact | GJK+EPA |"
+echo "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for pr in "${pairs[@]}"; do
   set -- $pr
   for cf in "${configs[@]}"; do
@@ -35,6 +35,7 @@ for pr in "${pairs[@]}"; do
     status=$(echo "$out" | sed -n 's/.*: \(separate\|touching\|penetrating\), .*/\1/p')
     echo "| $1 / $2 | $name | $status | $(per "$tmp/cg" count_ours_collide "$N") | $(per "$tmp/cg" count_ccd_gjk "$N") |" \
          "$(per "$tmp/cg" count_ours_distance "$N") | $(per "$tmp/cg" count_ours_distance_exact "$N") |" \
+         "$(per "$tmp/cg" count_ours_distance_lowest "$N") |" \
          "$(per "$tmp/cg" count_fcl_distance "$N") |" \
          "$(per "$tmp/cg" count_ours_depth "$N") | $(per "$tmp/cg" count_ours_depth_exact "$N") |" \
          "$(per "$tmp/cg" count_ccd_epa "$N") |"

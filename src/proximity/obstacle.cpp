@@ -24,6 +24,7 @@
 #include <minksum/unit_plane.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cfloat>
 #include <cmath>
 #include <unordered_map>
@@ -592,16 +593,47 @@ void TranslationalObstacle::keep_point(const Point3& s, const Vec3d& sd, Vec3d& 
   }
 }
 
+namespace {
+// The obstacle's spare storage for exact values (a few sets), attached to a
+// new answer: a caller that asks for the exact values of one answer at a
+// time reuses the same integers, whose limbs are already allocated.  A set
+// no answer holds any more is reused; when every set is held, a single query
+// (`make`) adds one while there are fewer than spare.size(), else (a batch,
+// or answers kept alive) the answer allocates its own on first use: answers
+// whose exact values are never asked for allocate at most those few sets.
+// use_count() is a relaxed read: the acquire fence orders it after the
+// releasing decrement of the last other holder, so that holder's writes
+// into the storage happen before this answer's.
+template <class E, std::size_t N>
+void attach_spare(std::array<std::shared_ptr<E>, N>& spare, std::shared_ptr<E>& out, bool make) {
+  std::shared_ptr<E>* empty = nullptr;
+  for (std::shared_ptr<E>& e : spare) {
+    if (!e) {
+      if (!empty) empty = &e;
+    } else if (e.use_count() == 1) {
+      std::atomic_thread_fence(std::memory_order_acquire);
+      e->reset();
+      out = e;
+      return;
+    }
+  }
+  if (make && empty) {
+    *empty = std::make_shared<E>();
+    out = *empty;
+  }
+}
+}  // namespace
+
 DistanceResult TranslationalObstacle::distance_point(const Point3& s) {
   DistanceResult r;
-  distance_into(s, r);
+  distance_into(s, r, true);
   return r;
 }
 
 // The distance query written into r: its status and witness, and what its
 // accessors need to compute the exact values (the geometry and s, assigned
 // into r's storage; no rational arithmetic).
-void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
+void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r, bool single) {
   const Vec3d sd = to_double(s);
   if (r.geo_ != g_) r.geo_ = g_;
   keep_point(s, sd, r.sd_, r.s_exact_);
@@ -609,6 +641,7 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r) {
     r.exact_->reset();
   } else {
     r.exact_.reset();
+    attach_spare(spare_distance_, r.exact_, single);
   }
   Index facet = kNoIndex;
   Feature feat = Feature::vertex(kNoIndex);
@@ -649,12 +682,12 @@ void TranslationalObstacle::collide_points(std::span<const Point3> s, std::vecto
 
 void TranslationalObstacle::distance_points(std::span<const Point3> s, std::vector<DistanceResult>& out) {
   out.resize(s.size());
-  for (std::size_t i = 0; i < s.size(); ++i) distance_into(s[i], out[i]);
+  for (std::size_t i = 0; i < s.size(); ++i) distance_into(s[i], out[i], false);
 }
 
 void TranslationalObstacle::penetration_depth_points(std::span<const Point3> s, std::vector<DepthResult>& out) {
   out.resize(s.size());
-  for (std::size_t i = 0; i < s.size(); ++i) depth_into(s[i], out[i]);
+  for (std::size_t i = 0; i < s.size(); ++i) depth_into(s[i], out[i], false);
 }
 
 DistanceResult TranslationalObstacle::distance(const Point3& u, const Point3& w) {
@@ -670,21 +703,22 @@ DistanceResult TranslationalObstacle::distance(const Point3& u, const Point3& w)
 
 DepthResult TranslationalObstacle::penetration_depth_point(const Point3& s) {
   DepthResult r;
-  depth_into(s, r);
+  depth_into(s, r, true);
   return r;
 }
 
-void TranslationalObstacle::depth_into(const Point3& s, DepthResult& r) {
+void TranslationalObstacle::depth_into(const Point3& s, DepthResult& r, bool single) {
   const Vec3d sd = to_double(s);
   CollisionResult c = collide_rounded(s, sd);
   r.status = c.status;
   r.witness = c.witness;
-  if (r.exact_.use_count() == 1) r.exact_->have = r.exact_->have_direction = false;  // keep an earlier batch's storage
+  if (r.exact_.use_count() == 1) r.exact_->reset();  // keep an earlier batch's storage
   else r.exact_.reset();
   if (c.status != ContactStatus::penetrating) {  // the exact values are zeros: neither M nor s is needed
     r.geo_.reset();
     return;
   }
+  if (!r.exact_) attach_spare(spare_depth_, r.exact_, single);
   if (r.geo_ != g_) r.geo_ = g_;
   keep_point(s, sd, r.sd_, r.s_exact_);
   // The facet nearest to s, the first on ties (kernel: nearest_plane on unit

@@ -33,6 +33,7 @@
 #include <minksum/unit_plane.hpp>
 
 #include <array>
+#include <compare>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -66,15 +67,63 @@ struct CollisionResult {
   Witness witness;
 };
 
+// An exact rational number as an integer numerator over a positive integer
+// denominator, not necessarily in lowest terms (in the spirit of CGAL's
+// Quotient): the form in which the exact values of the answers below are
+// computed.  Its value is exact; lowest terms are a presentation, paid for
+// (one gcd) only by to_rational() and to_string().
+class Quotient {
+ public:
+  Integer num = 0, den = 1;  // den > 0
+
+  Quotient() = default;
+  // Throws std::invalid_argument when d is zero; a negative d moves its sign
+  // to the numerator.
+  Quotient(Integer n, Integer d);
+  explicit Quotient(const Rational& q) : num(q.get_num()), den(q.get_den()) {}
+
+  // −1, 0 or 1 (the numerator's sign).
+  int sign() const { return sgn(num); }
+  // The value in lowest terms (one gcd).
+  Rational to_rational() const;
+  // The nearest double (ties to even), from num and den as they are (a
+  // division of the integers; no gcd).
+  double to_double() const;
+  // "p/q" in lowest terms, or "p" for an integer (format_exact of
+  // to_rational()).
+  std::string to_string() const;
+
+  // Exact comparisons by cross-multiplication (two products, no gcd).
+  friend int cmp(const Quotient& a, const Quotient& b);
+  friend bool operator==(const Quotient& a, const Quotient& b) { return cmp(a, b) == 0; }
+  friend std::strong_ordering operator<=>(const Quotient& a, const Quotient& b) { return cmp(a, b) <=> 0; }
+  friend bool operator==(const Quotient& a, const Rational& b);
+};
+
+// An exact rational point as integer numerators over one positive common
+// denominator, (x/w, y/w, z/w), not necessarily in lowest terms.
+struct QuotientPoint {
+  Integer x = 0, y = 0, z = 0, w = 1;  // w > 0
+
+  // Each coordinate in lowest terms (three gcds).
+  Point3 to_point() const;
+  // The nearest double of each coordinate.
+  Vec3d to_double() const;
+  // Exact equality by cross-multiplication (no gcd).
+  friend bool operator==(const QuotientPoint& a, const QuotientPoint& b);
+  friend bool operator==(const QuotientPoint& a, const Point3& b);
+};
+
 class DistanceResult;
 class DepthResult;
+class TranslationalObstacle;
 namespace detail {
 struct ObstacleGeometry;  // M, P, Q and their exact data, shared by an obstacle and its answers
 struct DistanceExact;     // a distance answer's exact values, allocated on first use
 struct DepthExact;        // a depth answer's
 struct ReferenceDistance;
 struct ReferenceDepth;
-struct HomPoint;
+using HomPoint = QuotientPoint;  // the exact values' working form
 // The exact values by rational arithmetic on every step (for tests).
 ReferenceDistance reference_values(const DistanceResult& r);
 ReferenceDepth reference_values(const DepthResult& r);
@@ -83,40 +132,54 @@ ReferenceDepth reference_values(const DepthResult& r);
 // A separation-distance answer.  The query decides `status` and `witness`
 // (filtered exact predicates, no rational arithmetic on the common path) and
 // keeps the configuration point; the exact values are computed from the
-// certified witness on the first call of their accessor and kept in the
-// result (later calls return them at no cost).  They are formed in GMP
-// integers over common denominators (the vertices of P and Q are kept so by
-// the obstacle, s is read off its doubles with shifts) and each returned
-// rational is reduced once (one gcd), when its accessor first asks for it;
-// the costs below count those integer products and reductions.  A result stays valid after
-// its obstacle is rebuilt or destroyed: it shares the exact data of M, P and
-// Q it was answered on.  Reading the exact values of one result from two
-// threads at once is not safe (the first call fills the cache).
+// certified witness on the first call of an accessor and kept in the result
+// (later calls return them at no cost).
+//
+// Two forms of each value:
+//   * the *_quotient() accessors give it as integers over a common positive
+//     denominator (Quotient, QuotientPoint), exact but not in lowest terms:
+//     the integer products named below and nothing else (no gcd).  The
+//     vertices of P and Q are kept over one denominator each by the obstacle,
+//     s is read off its doubles with shifts, and the integers live in storage
+//     the obstacle recycles from one answer to the next (no allocation per
+//     query once the answers it recycles are gone);
+//   * the Rational / Point3 accessors give the same values in lowest terms:
+//     the quotient's work plus one gcd per number (three per point).
+// A result stays valid after its obstacle is rebuilt or destroyed: it shares
+// the exact data of M, P and Q it was answered on.  Reading the exact values
+// of one result from two threads at once is not safe (the first call fills
+// the cache).
 class DistanceResult {
  public:
   ContactStatus status = ContactStatus::separate;
   Witness witness;
 
-  // |s − x|², x the closest point of M: 0 unless separate.  First call:
-  // s − x on the witness feature (a vertex; the projection on an edge's
-  // line; on a facet's plane, t·n with one integer t) in about a dozen
-  // integer products, and one reduction.
+  // |s − x|², x the closest point of M: 0 unless separate.  s − x on the
+  // witness feature (a vertex; the projection on an edge's line; on a
+  // facet's plane, t·n with one integer t): about a dozen integer products.
+  const Quotient& squared_distance_quotient() const;
+  // The same in lowest terms: the quotient and one gcd.
   const Rational& squared_distance() const;
-  // The nearest double of sqrt(squared_distance()) (computes it).
+  // The nearest double of sqrt(squared_distance()): the quotient's work, a
+  // division to the nearest double and a square root.
   double distance() const;
   // The closest points of P+u and of Q+w (equal when the bodies touch or
-  // overlap: then a common point).  First call: the squared distance's work
-  // (separate answers), then the point of P behind x (a translate when Q's
-  // face behind x is a vertex, P's vertex, Cramer's rule on two skew edges,
-  // else barycentric coordinates; for overlapping bodies the same on the
-  // exit point of the ray from the interior point): a few dozen integer
-  // products, and three reductions per point asked for (point_q() of a
-  // separate answer adds s − x to point_p()'s numerators first).
+  // overlap: then a common point).  The squared distance's work (separate
+  // answers), then the point of P behind x (a translate when Q's face behind
+  // x is a vertex, P's vertex, Cramer's rule on two skew edges, else
+  // barycentric coordinates; for overlapping bodies the same on the exit
+  // point of the ray from the interior point): a few dozen integer products.
+  // point_q of a separate answer adds s − x to the point of P (three more
+  // products when their denominators differ).
+  const QuotientPoint& point_p_quotient() const;
+  const QuotientPoint& point_q_quotient() const;
+  // The same in lowest terms: the quotient's work and three gcds.
   const Point3& point_p() const;
   const Point3& point_q() const;
   // point_q() − point_p(): translating P by it brings the bodies into
-  // contact (zero unless separate).  squared_distance()'s work and three
-  // reductions.
+  // contact (zero unless separate).  The squared distance's work; three gcds
+  // for the Point3.
+  const QuotientPoint& direction_quotient() const;
   const Point3& direction() const;
 
  private:
@@ -135,28 +198,34 @@ class DistanceResult {
   Vec3d sd_;
   std::shared_ptr<Point3> s_exact_;
   // The translation u of P (added to the closest points) and the values
-  // computed so far; copies of a result share them.
+  // computed so far; copies of a result share them.  The obstacle attaches
+  // storage it recycles (TranslationalObstacle::spare_distance_).
   mutable std::shared_ptr<detail::DistanceExact> exact_;
 };
 
 // A penetration-depth answer: `status` and `witness` (the nearest facet of M
 // and the smallest face of M holding the foot of s on it) are decided by the
-// query; the exact values are computed on first use, like DistanceResult's.
+// query; the exact values are computed on first use, in the two forms of
+// DistanceResult's.
 class DepthResult {
  public:
   ContactStatus status = ContactStatus::separate;
   Witness witness;
 
   // (d − n·s)² / |n|² for the witness facet's plane n·x = d: 0 unless
-  // penetrating.  First call: g = d·w − n·S for s = S / w (four integer
-  // products), g² over w²·|n|², one reduction.
+  // penetrating.  g = d·w − n·S for s = S / w (four integer products), g²
+  // over w²·|n|² (three more).
+  const Quotient& squared_depth_quotient() const;
+  // The same in lowest terms (one gcd more).
   const Rational& squared_depth() const;
   // The nearest double of sqrt(squared_depth()) (computes it).
   double depth() const;
   // A minimal translation of P that makes the bodies touch (zero vector
   // unless penetrating); its squared length is squared_depth().  It is
   // parallel to the outer normal of the witness facet of M, pointing against
-  // it.  squared_depth()'s work and three reductions.
+  // it.  The squared depth's work and three products; three gcds for the
+  // Point3.
+  const QuotientPoint& direction_quotient() const;
   const Point3& direction() const;
 
  private:
@@ -252,8 +321,9 @@ class TranslationalObstacle {
 
  private:
   void rebuild(ConvexPolytope p, ConvexPolytope q);
-  void distance_into(const Point3& s, DistanceResult& r);
-  void depth_into(const Point3& s, DepthResult& r);
+  // `single`: a single query (not a batch), see spare_distance_.
+  void distance_into(const Point3& s, DistanceResult& r, bool single);
+  void depth_into(const Point3& s, DepthResult& r, bool single);
   // Collision on s with its rounding sd (computed once per query).
   CollisionResult collide_rounded(const Point3& s, const Vec3d& sd);
   // Facet of M whose cone from `apex` (strictly inside M) contains the ray
@@ -300,6 +370,11 @@ class TranslationalObstacle {
   std::optional<Feature> last_closest_;  // none before the first distance query
   bool last_separate_ = false;           // the last distance answer was separate
   std::uint64_t rng_ = 0x9e3779b97f4a7c15ull;
+  // Storage for the exact values of the answers, handed to a new answer
+  // when no answer holds it any more (its integers keep their limbs: no
+  // allocation per query); see attach_spare in obstacle.cpp.
+  std::array<std::shared_ptr<detail::DistanceExact>, 4> spare_distance_;
+  std::array<std::shared_ptr<detail::DepthExact>, 4> spare_depth_;
   ProximityStats stats_;
 };
 

@@ -12,18 +12,27 @@
 namespace minksum::detail {
 
 // A rational point as integers over one positive denominator, (x, y, z) / w,
-// in no particular lowest terms.  The exact values of an answer are formed
-// in this form (integer products and sums, no gcd on the way) and reduced
-// once per output number, at the end (exact_values.cpp).
-struct HomPoint {
-  Integer x, y, z, w;
-};
+// in no particular lowest terms: HomPoint, the public QuotientPoint.  The
+// exact values of an answer are formed in this form (integer products and
+// sums, no gcd on the way) and reduced only when a lowest-terms accessor
+// asks (exact_values.cpp).
 // The exact point (any rational point; the double form is read from the
-// doubles' mantissas and exponents, with shifts, no rational arithmetic).
+// doubles' mantissas and exponents, with shifts, no rational arithmetic),
+// written into h's storage.
+void hom_point(HomPoint& h, const Point3& a);
+void hom_point(HomPoint& h, const Vec3d& a);  // precondition: finite
 HomPoint hom_point(const Point3& a);
-HomPoint hom_point(const Vec3d& a);  // precondition: finite
+HomPoint hom_point(const Vec3d& a);
 // x/w, y/w, z/w in lowest terms.
 Point3 to_point(const HomPoint& a);
+
+// Integers the exact values are computed in, kept from one answer to the
+// next (GMP integers keep their limbs when assigned): no allocation once
+// they have grown to the sizes of an obstacle's values.
+struct ExactScratch {
+  HomPoint h[8];
+  Integer k[12];
+};
 
 struct ObstacleGeometry {
   ConvexPolytope p, q, neg_q;
@@ -44,6 +53,7 @@ struct ObstacleGeometry {
   void prepare_exact();
   // Vertex v of M = p − q over one denominator.
   HomPoint m_hom(Index v) const;
+  void m_hom(HomPoint& out, Index v) const;  // the same into out's storage
 
   const ConvexPolytope& m() const { return sum.polytope; }
 
@@ -77,23 +87,27 @@ struct ReferenceDepth {
 ReferenceDepth reference_values(const DepthResult& r);
 
 // The exact values of a DistanceResult, each computed on first use: the
-// offset s − x and the point of P over common denominators, and each output
-// rational reduced only when its accessor asks for it.
+// offset s − x and the points over common denominators, and each
+// lowest-terms value only when its accessor asks for it.
 struct DistanceExact {
   Point3 u;  // the translation of P, added to the closest points when `translated`
   bool translated = false;
-  bool have_s = false, have_offset = false, have_p = false;                 // the HomPoints
-  bool have_direction = false, have_point_p = false, have_point_q = false;  // the Point3s
+  bool have_s = false, have_offset = false, have_p = false, have_q = false;  // the HomPoints
+  bool have_distance = false;
+  bool have_squared_distance = false, have_direction = false, have_point_p = false, have_point_q = false;  // lowest terms
   HomPoint s;       // s
   HomPoint offset;  // s − x (zero unless separate)
-  HomPoint p;       // the closest point of P + u
+  HomPoint p, q;    // the closest points of P + u and of Q + w
+  Quotient squared_distance_q;
   Rational squared_distance;
   double distance = 0;
   Point3 direction, point_p, point_q;
+  ExactScratch scratch;
 
   // Forget the values (the storage is kept for the next answer).
   void reset() {
-    translated = have_s = have_offset = have_p = have_direction = have_point_p = have_point_q = false;
+    translated = have_s = have_offset = have_p = have_q = have_distance = false;
+    have_squared_distance = have_direction = have_point_p = have_point_q = false;
   }
 };
 
@@ -101,11 +115,16 @@ struct DistanceExact {
 // g = d·w − ⟨n, S⟩ over w·|n|² (s = S / w), the squared depth, and the
 // translation when asked for.
 struct DepthExact {
-  bool have = false, have_direction = false;
+  bool have = false, have_depth = false, have_direction_q = false, have_squared_depth = false, have_direction = false;
+  HomPoint s;
   Integer gap, w;
+  Quotient squared_depth_q;
+  HomPoint direction_q;
   Rational squared_depth;
   double depth = 0;
   Point3 direction;
+
+  void reset() { have = have_depth = have_direction_q = have_squared_depth = have_direction = false; }
 };
 
 }  // namespace minksum::detail

@@ -326,6 +326,28 @@ inline bool semi_static_decides(const Approx3& a) {
   return false;
 }
 
+// The semi-static step alone, for the common case of a filter call: every
+// group maximum already in [lo, hi] (no rescaling) and the value clear of
+// the bound.  Returns the certified sign, or 0 when it does not decide
+// (a group out of range or exactly zero, or |value| ≤ bound): the caller
+// then runs approx_vec, whose first step computes the same value and the same
+// bound (same expression tree, same product order), so the answer is the
+// one approx_vec would certify.
+template <class Shape>
+[[gnu::always_inline]] inline int semi_static_sign(const std::array<V, Shape::K>& g) {
+  constexpr const FilterShape& s = Shape::shape;
+  double bound = s.c_vec;
+  for (std::size_t k = 0; k < Shape::K; ++k) {
+    const double m = maxabs(g[k]);
+    if (!(m >= s.lo && m <= s.hi)) return 0;
+    bound *= m;
+  }
+  const double value = Shape::eval(g);
+  if (value > bound) return 1;
+  if (value < -bound) return -1;
+  return 0;
+}
+
 // The approximation on exact-double group vectors.  `lazy`: skip the dynamic
 // step when the semi-static bound already decides (the filter); otherwise
 // run both (the tests).

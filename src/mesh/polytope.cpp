@@ -490,11 +490,14 @@ bool convex_vertex_on_doubles(Index i, Index start, const Index* origin, const I
 // FPU rounding upward, as the caller's loop.  A block stops at its first
 // failure; of the failures, parallel_for rethrows the one of the first
 // block, so the error is the first in input order, as on one thread.
-// Validation uses threads for meshes of kThreadsFromFacets facets or more:
-// below, the whole validation takes a few milliseconds, and on a loaded
-// machine waiting for a started thread to be scheduled can cost as much.
+// Validation (and the rounding certificate, moved) use threads from
+// kThreadsFromFacets facets on: two blocks or more, a millisecond or more
+// of work, against some tens of microseconds to start and join a thread.
+// On a loaded machine a started thread may wait to be scheduled; the jobs
+// are handed out one block at a time, so the calling thread then does the
+// blocks itself and only the last block may wait.
 constexpr std::size_t kValidationBlock = 2048;
-constexpr std::size_t kThreadsFromFacets = 32768;
+constexpr std::size_t kThreadsFromFacets = 4096;
 template <class Body>
 void in_blocks(std::size_t n, bool threads, Body&& body) {
   const std::size_t blocks = (n + kValidationBlock - 1) / kValidationBlock;
@@ -1008,14 +1011,26 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   }
   if (unchanged && triangles_on_doubles) {
     // The test on doubles first; step 8's test where it does not accept.
+    // Every facet is a triangle, the wedge of each of its corners: its sign
+    // is computed once per triangle, not once per corner (as in moved).
     const std::optional<Vec3d> c = mean_point(pts.approx());
+    std::vector<signed char> below = big_array<signed char>(c ? final_faces.size() : 0);
+    if (c)
+      in_blocks(below.size(), threads, [&](std::size_t begin, std::size_t end) {
+        const std::vector<Vec3d>& v = pts.approx();
+        for (std::size_t f = begin; f < end; ++f) {
+          const Index h0 = fg.facet_he[f], h1 = fg.next[h0], h2 = fg.next[h1];
+          below[f] = orient3d(v[fg.origin[h0]], v[fg.origin[h1]], v[fg.origin[h2]], *c) < 0;
+        }
+      });
+    const WedgeSigns wedges{below.data(), fg.facet.data()};
     const TriangleNormals<DoubleIntervals> tn{&dip, fg.origin.data(), fg.next.data(), fg.facet_he.data()};
     in_blocks(fpts.size(), threads, [&](std::size_t begin, std::size_t end) {
       std::vector<Index> around;
       FanScratch block_scratch;
       for (Index v = Index(begin); v < end; ++v)
         if (!(c && convex_vertex_on_doubles(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), pts.approx(),
-                                            *c, around)) &&
+                                            *c, around, &wedges)) &&
             !convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), dip, tn, fpts,
                            block_scratch))
           throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
@@ -1092,21 +1107,31 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
   // Facets still planar; a quadrilateral that is not is cut along the
   // diagonal that folds outwards (1: a-c, when d lies below the plane of
   // a, b, c; 2: b-d), as writable_polytope's full path cuts it.
+  // The loops over facets, edges and vertices below run in blocks, on
+  // threads for large polytopes (as the validation's); a block that finds
+  // the surface not certified clears `certified` and the others stop early.
+  const bool threads = nf0 >= kThreadsFromFacets;
+  std::atomic<bool> certified{true};
   std::vector<unsigned char> cut(nf0, 0);
-  std::size_t cuts = 0;
-  for (Index f = 0; f < nf0; ++f) {
-    const Index h0 = p.facet_he_[f], h1 = p.he_next_[h0], h2 = p.he_next_[h1];
-    Index h = p.he_next_[h2];
-    if (h == h0) continue;  // a triangle
-    const Vec3d &a = v[p.he_origin_[h0]], &b = v[p.he_origin_[h1]], &c = v[p.he_origin_[h2]];
-    bool planar = true;
-    for (; h != h0 && planar; h = p.he_next_[h]) planar = orient3d(a, b, c, v[p.he_origin_[h]]) == 0;
-    if (planar) continue;
-    const Index h3 = p.he_next_[h2];
-    if (p.he_next_[h3] != h0) return std::nullopt;  // a larger polygon: the full path cuts it by a hull
-    cut[f] = orient3d(a, b, c, v[p.he_origin_[h3]]) < 0 ? 1 : 2;
-    ++cuts;
-  }
+  in_blocks(nf0, threads, [&](std::size_t begin, std::size_t end) {
+    for (Index f = Index(begin); f < end && certified.load(std::memory_order_relaxed); ++f) {
+      const Index h0 = p.facet_he_[f], h1 = p.he_next_[h0], h2 = p.he_next_[h1];
+      Index h = p.he_next_[h2];
+      if (h == h0) continue;  // a triangle
+      const Vec3d &a = v[p.he_origin_[h0]], &b = v[p.he_origin_[h1]], &c = v[p.he_origin_[h2]];
+      bool planar = true;
+      for (; h != h0 && planar; h = p.he_next_[h]) planar = orient3d(a, b, c, v[p.he_origin_[h]]) == 0;
+      if (planar) continue;
+      const Index h3 = p.he_next_[h2];
+      if (p.he_next_[h3] != h0) {  // a larger polygon: the full path cuts it by a hull
+        certified = false;
+        return;
+      }
+      cut[f] = orient3d(a, b, c, v[p.he_origin_[h3]]) < 0 ? 1 : 2;
+    }
+  });
+  if (!certified) return std::nullopt;
+  const std::size_t cuts = std::size_t(std::count_if(cut.begin(), cut.end(), [](unsigned char x) { return x != 0; }));
   // The structure: p's half-edges, then one edge per cut quadrilateral.
   // Facets are numbered as the full path's mesh lists them: a cut facet's
   // two pieces take consecutive numbers, each starting where that mesh's
@@ -1146,11 +1171,12 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
     }
   }
   // Point (3): every edge strictly convex, by the kernel's filtered orient3d.
-  for (Index h = 0; h < nh; h += 2) {
-    const Index q = origin[h + 1];
-    if (orient3d(v[origin[h]], v[q], v[origin[next[next[h]]]], v[origin[next[next[h + 1]]]]) >= 0)
-      return std::nullopt;
-  }
+  in_blocks(nh / 2, threads, [&](std::size_t begin, std::size_t end) {
+    for (Index h = Index(2 * begin); h < 2 * end && certified.load(std::memory_order_relaxed); h += 2)
+      if (orient3d(v[origin[h]], v[origin[h + 1]], v[origin[next[next[h]]]], v[origin[next[next[h + 1]]]]) >= 0)
+        certified = false;
+  });
+  if (!certified) return std::nullopt;
   ConvexPolytope r = from_trusted_parts(points, std::move(origin), std::move(next), std::move(facet),
                                         std::move(facet_he));
   // Point (4) on the doubles first (convex_vertex_on_doubles); a vertex it
@@ -1164,18 +1190,26 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
   const std::optional<Vec3d> c = mean_point(v);
   std::vector<signed char> below(nf, -1);  // 1: c strictly below the triangle, 0: not, -1: not a triangle
   if (c)
-    for (Index f = 0; f < nf; ++f) {
-      const Index h0 = r.facet_he_[f], h1 = r.he_next_[h0], h2 = r.he_next_[h1];
-      if (r.he_next_[h2] == h0)
-        below[f] = orient3d(v[r.he_origin_[h0]], v[r.he_origin_[h1]], v[r.he_origin_[h2]], *c) < 0;
-    }
+    in_blocks(nf, threads, [&](std::size_t begin, std::size_t end) {
+      for (Index f = Index(begin); f < end; ++f) {
+        const Index h0 = r.facet_he_[f], h1 = r.he_next_[h0], h2 = r.he_next_[h1];
+        if (r.he_next_[h2] == h0)
+          below[f] = orient3d(v[r.he_origin_[h0]], v[r.he_origin_[h1]], v[r.he_origin_[h2]], *c) < 0;
+      }
+    });
   const WedgeSigns wedges{below.data(), r.he_facet_.data()};
-  std::vector<Index> around;
+  // 1: accepted on the doubles; the others go to the interval test below.
+  std::vector<unsigned char> accepted(nv, 0);
+  if (c)
+    in_blocks(nv, threads, [&](std::size_t begin, std::size_t end) {
+      std::vector<Index> around;
+      for (Index i = Index(begin); i < end; ++i)
+        accepted[i] = convex_vertex_on_doubles(i, r.vertex_he_[i], r.he_origin_.data(), r.he_prev_.data(), v, *c,
+                                               around, &wedges);
+    });
   std::vector<Index> undecided;
   for (Index i = 0; i < nv; ++i)
-    if (!c || !convex_vertex_on_doubles(i, r.vertex_he_[i], r.he_origin_.data(), r.he_prev_.data(), v, *c, around,
-                                        &wedges))
-      undecided.push_back(i);
+    if (!accepted[i]) undecided.push_back(i);
   // Points (2) for polygons and (4) where the doubles did not decide, on
   // intervals (exact when undecided), as step 8 of build.
   bool polygons = false;

@@ -696,6 +696,51 @@ TEST(IoBad, OffLineNumbersAfterFastLines) {
     expect_input_error([&] { read_from_string(c.text, Format::off); }, "mem", c.problem, c.place);
 }
 
+// Lists of 8192 points or more are formatted on threads in chunks: the
+// lines must come out in order, each the shortest round-trip form, in the
+// text formats that print points as lines (OFF, OBJ, PLY).
+TEST(IoWrite, ManyPointsAreFormattedInOrder) {
+  const unsigned seed = 20261125;
+  std::mt19937_64 rng(seed);
+  Mesh m;
+  const std::size_t n = 3 * 4096 * 3 + 17;  // more than one round of chunks on two threads
+  std::vector<Vec3d> want(n);
+  for (Vec3d& v : want) {
+    auto coord = [&] {
+      std::uint64_t bits = rng();
+      double d;
+      std::memcpy(&d, &bits, 8);
+      return std::isfinite(d) ? d : 0.5;
+    };
+    v = {coord(), coord(), coord()};
+    m.points.push_back(v);
+  }
+  m.faces = {{0, 1, 2}};
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  for (Format f : {Format::off, Format::obj, Format::ply}) {
+    std::ostringstream out;
+    write_mesh(out, m, f);
+    const Mesh back = read_from_string(out.str(), f);
+    ASSERT_EQ(back.points.size(), n);
+    for (std::size_t i = 0; i < n; ++i)
+      ASSERT_EQ(back.points[i], m.points[i]) << "point " << i;
+    if (f == Format::off) {
+      std::string lines;
+      for (const Vec3d& v : want) {
+        char buf[96];
+        char* p = std::to_chars(buf, buf + 32, v.x).ptr;
+        *p++ = ' ';
+        p = std::to_chars(p, p + 32, v.y).ptr;
+        *p++ = ' ';
+        p = std::to_chars(p, p + 32, v.z).ptr;
+        *p++ = '\n';
+        lines.append(buf, p);
+      }
+      EXPECT_NE(out.str().find(lines), std::string::npos);
+    }
+  }
+}
+
 TEST(IoWrite, RationalToFloatIsCorrectlyRounded) {
   // Ties and near-ties that a double rounding (rational -> double -> float) gets wrong.
   const Rational one(1);

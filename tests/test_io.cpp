@@ -741,6 +741,33 @@ TEST(IoWrite, ManyPointsAreFormattedInOrder) {
   }
 }
 
+// A facet whose line is longer than the writer's buffer (a prism over a
+// 3000-gon: two lines of 3001 indices) is written whole, in its place,
+// whether the facet lines are formatted on one thread or in chunks.
+TEST(IoWrite, FacetLinesLongerThanTheBufferAreWrittenWhole) {
+  const ConvexPolytope prism = catalog_polytope("prism:3000");
+  ASSERT_EQ(prism.num_facets(), 3002u);
+  for (Format f : {Format::off, Format::ply}) {
+    std::ostringstream out;
+    write_polytope(out, prism, f);
+    const Mesh back = read_from_string(out.str(), f);
+    ASSERT_EQ(back.faces.size(), 3002u);
+    std::size_t big = 0;
+    for (const auto& face : back.faces) big += face.size() == 3000;
+    EXPECT_EQ(big, 2u);
+    EXPECT_EQ(ConvexPolytope::from_mesh(back, "back").num_facets(), 3002u);
+  }
+  Mesh many;  // more than two chunks of face lines, one of them long
+  for (int i = 0; i < 3000; ++i) many.points.push_back(Vec3d{double(i), 0, 0});
+  for (int f = 0; f < 9000; ++f) many.faces.push_back({Index(f % 3000), Index((f + 1) % 3000), Index((f + 2) % 3000)});
+  many.faces[5000].clear();
+  for (Index v = 0; v < 3000; ++v) many.faces[5000].push_back(v);
+  std::ostringstream out;
+  write_mesh(out, many, Format::off);
+  const Mesh back = read_from_string(out.str(), Format::off);
+  EXPECT_EQ(back.faces, many.faces);
+}
+
 TEST(IoWrite, RationalToFloatIsCorrectlyRounded) {
   // Ties and near-ties that a double rounding (rational -> double -> float) gets wrong.
   const Rational one(1);

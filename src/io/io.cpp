@@ -3,7 +3,6 @@
 #include "io/readers.hpp"
 
 #include <minksum/io.hpp>
-#include <minksum/parallel.hpp>
 #include <minksum/scene.hpp>
 
 #include <cfenv>
@@ -270,56 +269,34 @@ void write_point_lines(std::ostream& out, const PointList& points, bool exact) {
     }
     return;
   }
-  // Doubles and pairs printed as their nearest doubles: straight into a
-  // buffer (a line is at most 3 * 24 + 3 characters).
-  constexpr std::size_t kLine = 80, kPointChunk = 4096;
-  auto put_line = [&](char* p, std::size_t i) {
-    const Vec3d& a = points.approx(i);
-    p = std::to_chars(p, p + 24, a.x).ptr;
-    *p++ = ' ';
-    p = std::to_chars(p, p + 24, a.y).ptr;
-    *p++ = ' ';
-    p = std::to_chars(p, p + 24, a.z).ptr;
-    *p++ = '\n';
-    return p;
-  };
-  const std::size_t n = points.size();
-  if (n < 2 * kPointChunk) {
-    TextBuffer buf(out);
-    for (std::size_t i = 0; i < n; ++i) buf.commit(put_line(buf.reserve(kLine), i));
-    return;
-  }
-  // Many points: shortest round-trip printing is most of the writing, so
-  // chunks of kPointChunk lines are formatted on threads, a round of a few
-  // chunks per thread at a time (bounded memory), and written in order.
-  const std::size_t chunks_per_round = 4 * std::size_t(parallel_threads(0, n));
-  std::vector<std::string> text(chunks_per_round);
-  for (std::size_t first = 0; first < n; first += chunks_per_round * kPointChunk) {
-    const std::size_t chunks = std::min(chunks_per_round, (n - first + kPointChunk - 1) / kPointChunk);
-    parallel_for(chunks, 0, [&](std::size_t c) {
-      const std::size_t begin = first + c * kPointChunk, end = std::min(n, begin + kPointChunk);
-      std::string& t = text[c];
-      t.resize((end - begin) * kLine);
-      char* p = t.data();
-      for (std::size_t i = begin; i < end; ++i) p = put_line(p, i);
-      t.resize(std::size_t(p - t.data()));
-    });
-    for (std::size_t c = 0; c < chunks; ++c) out.write(text[c].data(), std::streamsize(text[c].size()));
-  }
+  // Doubles and pairs printed as their nearest doubles (a line is at most
+  // 3 * 24 + 3 characters).
+  write_lines(
+      out, points.size(), [](std::size_t) { return std::size_t(80); },
+      [&](char* p, std::size_t i) {
+        const Vec3d& a = points.approx(i);
+        p = std::to_chars(p, p + 24, a.x).ptr;
+        *p++ = ' ';
+        p = std::to_chars(p, p + 24, a.y).ptr;
+        *p++ = ' ';
+        p = std::to_chars(p, p + 24, a.z).ptr;
+        *p++ = '\n';
+        return p;
+      });
 }
 
 void write_counted_face_lines(std::ostream& out, const std::vector<std::vector<Index>>& faces) {
-  std::string line;
-  for (const auto& f : faces) {
-    line.clear();
-    append_index(line, f.size());
-    for (Index v : f) {
-      line += ' ';
-      append_index(line, v);
-    }
-    line += '\n';
-    out.write(line.data(), std::streamsize(line.size()));
-  }
+  write_lines(
+      out, faces.size(), [&](std::size_t f) { return 21 * (faces[f].size() + 1); },
+      [&](char* p, std::size_t f) {
+        p = put_index(p, faces[f].size());
+        for (Index v : faces[f]) {
+          *p++ = ' ';
+          p = put_index(p, v);
+        }
+        *p++ = '\n';
+        return p;
+      });
 }
 
 void append_point(std::string& out, const PointList& points, std::size_t i, bool exact, char sep, const char* end) {

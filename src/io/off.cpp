@@ -390,36 +390,20 @@ void write_off(std::ostream& out, const ConvexPolytope& p, const WriteOptions& o
   if (options.exact) out << "# coordinates are exact rationals (integers or p/q)\n";
   out << p.num_vertices() << ' ' << p.num_facets() << ' ' << p.num_edges() << '\n';
   write_point_lines(out, p.coordinates(), options.exact);
-  TextBuffer buf(out);
-  for (Index f = 0; f < p.num_facets(); ++f) {
-    const Index k = p.facet_degree(f);
-    if (21 * (std::size_t(k) + 1) > 1 << 14) {  // a huge facet: through a string
-      std::string line;
-      append_index(line, k);
-      const Index h0 = p.facet_halfedge(f);
-      Index h = h0;
-      do {
-        line += ' ';
-        append_index(line, p.origin(h));
-        h = p.next(h);
-      } while (h != h0);
-      line += '\n';
-      buf.flush();
-      out.write(line.data(), std::streamsize(line.size()));
-      continue;
-    }
-    char* c = buf.reserve(21 * (std::size_t(k) + 1));
-    c = put_index(c, k);
-    const Index h0 = p.facet_halfedge(f);
-    Index h = h0;
-    do {
-      *c++ = ' ';
-      c = put_index(c, p.origin(h));
-      h = p.next(h);
-    } while (h != h0);
-    *c++ = '\n';
-    buf.commit(c);
-  }
+  write_lines(
+      out, p.num_facets(), [&](std::size_t f) { return 21 * (std::size_t(p.facet_degree(Index(f))) + 1); },
+      [&](char* c, std::size_t f) {
+        c = put_index(c, p.facet_degree(Index(f)));
+        const Index h0 = p.facet_halfedge(Index(f));
+        Index h = h0;
+        do {
+          *c++ = ' ';
+          c = put_index(c, p.origin(h));
+          h = p.next(h);
+        } while (h != h0);
+        *c++ = '\n';
+        return c;
+      });
 }
 
 }  // namespace minksum::io_detail

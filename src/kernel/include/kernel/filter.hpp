@@ -107,6 +107,8 @@
 #include <cfloat>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <minksum/kernel.hpp>
 #include <optional>
 #include <type_traits>
@@ -273,9 +275,20 @@ using ApproxOf = std::conditional_t<std::is_same_v<typename Shape::Value, V>, Ap
 // Semi-static and dynamic steps on exact doubles.
 
 // Multiplies the group vector g by 2^-e, e = ilogb(m), bringing its maximum
-// m into [1, 2); returns e.
+// m into [1, 2); returns e.  For |e| ≤ 1022 the factor 2^-e is a normal
+// double and the product is what ldexp gives (exact, or one rounding when
+// the result is subnormal), at the cost of a multiplication instead of a
+// library call; beyond, ldexp.
 inline int rescale(V& g, double& m) {
   const int e = std::ilogb(m);
+  if (e >= -1022 && e <= 1022) {
+    const std::uint64_t bits = std::uint64_t(1023 - e) << 52;
+    double f;
+    std::memcpy(&f, &bits, sizeof f);
+    for (double& x : g) x *= f;
+    m *= f;
+    return e;
+  }
   for (double& x : g) x = std::ldexp(x, -e);
   m = std::ldexp(m, -e);
   return e;

@@ -62,6 +62,33 @@ struct UnionFind {
   }
 };
 
+// body(begin, end) over [0, n) in blocks of kValidationBlock items, on
+// several threads when `threads` and there are two blocks or more (at least
+// two threads, one per hardware thread beyond).  Each block runs with the
+// FPU rounding upward, as the caller's loop.  A block stops at its first
+// failure; of the failures, parallel_for rethrows the one of the first
+// block, so the error is the first in input order, as on one thread.
+// Validation (and the rounding certificate, moved) use threads from
+// kThreadsFromFacets facets on: two blocks or more, a millisecond or more
+// of work, against some tens of microseconds to start and join a thread.
+// On a loaded machine a started thread may wait to be scheduled; the jobs
+// are handed out one block at a time, so the calling thread then does the
+// blocks itself and only the last block may wait.
+constexpr std::size_t kValidationBlock = 2048;
+constexpr std::size_t kThreadsFromFacets = 4096;
+template <class Body>
+void in_blocks(std::size_t n, bool threads, Body&& body) {
+  const std::size_t blocks = (n + kValidationBlock - 1) / kValidationBlock;
+  if (!threads || blocks < 2) {
+    body(std::size_t(0), n);
+    return;
+  }
+  parallel_for(blocks, std::max(2u, std::thread::hardware_concurrency()), [&](std::size_t b) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    body(b * kValidationBlock, std::min(n, (b + 1) * kValidationBlock));
+  });
+}
+
 struct Graph {
   std::vector<Index> origin, facet, next, prev, facet_he, vertex_he;
   Index num_halfedges() const { return Index(origin.size()); }
@@ -130,26 +157,45 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
       if (f < first) *this = {f, uu, ww, n, a, b};
     }
   } non_manifold, same_direction, open;
-  for (Index u = 0; u < nv; ++u) {
-    Use* b = uses.data() + bucket[u];
-    Use* e = uses.data() + bucket[u + 1];
-    for (Use* i = b + 1; i < e; ++i) {
-      const Use x = *i;
-      Use* j = i;
-      for (; j > b && j[-1].other > x.other; --j) *j = j[-1];
-      *j = x;
+  // Buckets in blocks of vertices (on threads for large meshes); each block
+  // keeps its own first failures, merged after: the one on the edge that
+  // appears first, as on one thread.
+  const bool threads = nf >= kThreadsFromFacets;
+  struct Failures {
+    Failure non_manifold, same_direction, open;
+  };
+  std::vector<Failures> block_failures((std::size_t(nv) + kValidationBlock - 1) / kValidationBlock);
+  in_blocks(nv, threads, [&](std::size_t ubegin, std::size_t uend) {
+    Failures& fail = block_failures[ubegin / kValidationBlock];
+    for (Index u = Index(ubegin); u < uend; ++u) {
+      Use* b = uses.data() + bucket[u];
+      Use* e = uses.data() + bucket[u + 1];
+      for (Use* i = b + 1; i < e; ++i) {
+        const Use x = *i;
+        Use* j = i;
+        for (; j > b && j[-1].other > x.other; --j) *j = j[-1];
+        *j = x;
+      }
+      for (Use* i = b; i < e;) {
+        Use* j = i + 1;
+        while (j < e && j->other == i->other) ++j;
+        const Index count = Index(j - i), first = i->corner;
+        for (Use* k = i; k < j; ++k) corner_edge[k->corner] = first;
+        if (count > 2) fail.non_manifold.note(first, u, i->other, count, first, i[1].corner);
+        else if (count == 2 && co[first] == co[i[1].corner])
+          fail.same_direction.note(first, u, i->other, count, first, i[1].corner);
+        else if (count == 1) fail.open.note(first, u, i->other, count, first, first);
+        i = j;
+      }
     }
-    for (Use* i = b; i < e;) {
-      Use* j = i + 1;
-      while (j < e && j->other == i->other) ++j;
-      const Index count = Index(j - i), first = i->corner;
-      for (Use* k = i; k < j; ++k) corner_edge[k->corner] = first;
-      if (count > 2) non_manifold.note(first, u, i->other, count, first, i[1].corner);
-      else if (count == 2 && co[first] == co[i[1].corner])
-        same_direction.note(first, u, i->other, count, first, i[1].corner);
-      else if (count == 1) open.note(first, u, i->other, count, first, first);
-      i = j;
-    }
+  });
+  for (const Failures& b : block_failures) {
+    const Failure& x = b.non_manifold;
+    non_manifold.note(x.first, x.u, x.w, x.count, x.c0, x.c1);
+    const Failure& y = b.same_direction;
+    same_direction.note(y.first, y.u, y.w, y.count, y.c0, y.c1);
+    const Failure& z = b.open;
+    open.note(z.first, z.u, z.w, z.count, z.c0, z.c1);
   }
   auto edge_name = [&](const Failure& x) {
     return "edge " + std::to_string(vname[x.u]) + "-" + std::to_string(vname[x.w]);
@@ -179,39 +225,48 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   g.prev = big_array(nh, kNoIndex);
   g.facet_he = big_array(nf, kNoIndex);
   g.vertex_he = big_array(nv, kNoIndex);
-  for (Index f = 0; f < nf; ++f) {
-    const Index c0 = face_start[f], ce = face_start[f + 1];
-    auto half = [&](Index c) {
-      const Index u = co[c], v = co[c + 1 == ce ? c0 : c + 1];
-      return 2 * corner_edge[c] + (u < v ? 0u : 1u);
-    };
-    const Index h0 = half(c0);
-    Index h = h0;
-    for (Index c = c0; c < ce; ++c) {
-      const Index hn = c + 1 == ce ? h0 : half(c + 1);
-      const Index u = co[c];
-      g.origin[h] = u;
-      g.facet[h] = f;
-      if (g.vertex_he[u] == kNoIndex) g.vertex_he[u] = h;
-      g.next[h] = hn;
-      g.prev[hn] = h;
-      h = hn;
+  // The half-edges of each facet (in blocks of facets: each half-edge
+  // belongs to one corner), then each vertex's first outgoing half-edge in
+  // facet order.
+  in_blocks(nf, threads, [&](std::size_t fbegin, std::size_t fend) {
+    for (Index f = Index(fbegin); f < fend; ++f) {
+      const Index c0 = face_start[f], ce = face_start[f + 1];
+      auto half = [&](Index c) {
+        const Index u = co[c], v = co[c + 1 == ce ? c0 : c + 1];
+        return 2 * corner_edge[c] + (u < v ? 0u : 1u);
+      };
+      const Index h0 = half(c0);
+      Index h = h0;
+      for (Index c = c0; c < ce; ++c) {
+        const Index hn = c + 1 == ce ? h0 : half(c + 1);
+        g.origin[h] = co[c];
+        g.facet[h] = f;
+        g.next[h] = hn;
+        g.prev[hn] = h;
+        h = hn;
+      }
+      g.facet_he[f] = h0;
     }
-    g.facet_he[f] = h0;
-  }
+  });
+  for (Index f = 0; f < nf; ++f)
+    for (Index h = g.facet_he[f], h0 = h;;) {
+      if (g.vertex_he[g.origin[h]] == kNoIndex) g.vertex_he[g.origin[h]] = h;
+      if ((h = g.next[h]) == h0) break;
+    }
   // Vertex manifoldness: the facets around each vertex form a single fan.
   std::vector<Index> outdeg = big_array<Index>(nv, 0);
   for (Index h = 0; h < nh; ++h) ++outdeg[g.origin[h]];
-  for (Index v = 0; v < nv; ++v) {
-    Index h = g.vertex_he[v], steps = 0;
-    do {
-      h = g.prev[h] ^ 1u;
-      ++steps;
-    } while (h != g.vertex_he[v] && steps <= outdeg[v]);
-    if (steps != outdeg[v])
-      throw InputError(source, vtx(vname[v]),
-                       "non-manifold vertex: its facets form more than one fan");
-  }
+  in_blocks(nv, threads, [&](std::size_t vbegin, std::size_t vend) {
+    for (Index v = Index(vbegin); v < vend; ++v) {
+      Index h = g.vertex_he[v], steps = 0;
+      do {
+        h = g.prev[h] ^ 1u;
+        ++steps;
+      } while (h != g.vertex_he[v] && steps <= outdeg[v]);
+      if (steps != outdeg[v])
+        throw InputError(source, vtx(vname[v]), "non-manifold vertex: its facets form more than one fan");
+    }
+  });
   // Connected, sphere topology.  Every vertex now has one fan, so two
   //    facets are connected across edges exactly when their vertices are
   //    connected along edges (a path of edges passes from fan to fan), and
@@ -484,32 +539,6 @@ bool convex_vertex_on_doubles(Index i, Index start, const Index* origin, const I
   return winding == 1;
 }
 
-// body(begin, end) over [0, n) in blocks of kValidationBlock items, on
-// several threads when `threads` and there are two blocks or more (at least
-// two threads, one per hardware thread beyond).  Each block runs with the
-// FPU rounding upward, as the caller's loop.  A block stops at its first
-// failure; of the failures, parallel_for rethrows the one of the first
-// block, so the error is the first in input order, as on one thread.
-// Validation (and the rounding certificate, moved) use threads from
-// kThreadsFromFacets facets on: two blocks or more, a millisecond or more
-// of work, against some tens of microseconds to start and join a thread.
-// On a loaded machine a started thread may wait to be scheduled; the jobs
-// are handed out one block at a time, so the calling thread then does the
-// blocks itself and only the last block may wait.
-constexpr std::size_t kValidationBlock = 2048;
-constexpr std::size_t kThreadsFromFacets = 4096;
-template <class Body>
-void in_blocks(std::size_t n, bool threads, Body&& body) {
-  const std::size_t blocks = (n + kValidationBlock - 1) / kValidationBlock;
-  if (!threads || blocks < 2) {
-    body(std::size_t(0), n);
-    return;
-  }
-  parallel_for(blocks, std::max(2u, std::thread::hardware_concurrency()), [&](std::size_t b) {
-    CGAL::Protect_FPU_rounding<true> upward;
-    body(b * kValidationBlock, std::min(n, (b + 1) * kValidationBlock));
-  });
-}
 
 // The mean of the points, in doubles (any rounding), or nullopt when it is
 // not finite.

@@ -127,14 +127,14 @@ class TextBuffer {
 };
 
 // Lines 0 .. n-1 written in order: size(i) bounds the length of line i,
-// put(p, i) writes it at p and returns its end.  From 2 * kLinesChunk lines
+// put(p, i) writes it at p and returns its end.  From kLinesOnThreads lines
 // on, chunks of kLinesChunk lines are formatted on threads, a few chunks per
 // thread at a time (the memory stays bounded), then written in order: in a
 // large text file, formatting numbers is most of the writing.
-inline constexpr std::size_t kLinesChunk = 4096;
+inline constexpr std::size_t kLinesOnThreads = 8192, kLinesChunk = 1024;
 template <class Size, class Put>
 void write_lines(std::ostream& out, std::size_t n, Size&& size, Put&& put) {
-  if (n < 2 * kLinesChunk) {
+  if (n < kLinesOnThreads) {
     TextBuffer buf(out);
     std::string long_line;
     for (std::size_t i = 0; i < n; ++i) {
@@ -150,7 +150,7 @@ void write_lines(std::ostream& out, std::size_t n, Size&& size, Put&& put) {
     }
     return;
   }
-  const std::size_t per_round = 4 * std::size_t(parallel_threads(0, n));
+  const std::size_t per_round = 8 * std::size_t(parallel_threads(0, n));
   std::vector<std::string> text(per_round);
   for (std::size_t first = 0; first < n; first += per_round * kLinesChunk) {
     const std::size_t chunks = std::min(per_round, (n - first + kLinesChunk - 1) / kLinesChunk);

@@ -147,8 +147,15 @@ Pool& pool() {
 }
 }  // namespace
 
+unsigned hardware_threads() {
+  // (std::thread::hardware_concurrency reads /sys on every call in a static
+  // glibc: once is enough.)
+  static const unsigned n = std::max(1u, std::thread::hardware_concurrency());
+  return n;
+}
+
 unsigned parallel_threads(unsigned threads, std::size_t n) {
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  if (threads == 0) threads = hardware_threads();
   return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(threads, n)));
 }
 

@@ -83,7 +83,7 @@ void in_blocks(std::size_t n, bool threads, Body&& body) {
     body(std::size_t(0), n);
     return;
   }
-  parallel_for(blocks, std::max(2u, std::thread::hardware_concurrency()), [&](std::size_t b) {
+  parallel_for(blocks, std::max(2u, hardware_threads()), [&](std::size_t b) {
     CGAL::Protect_FPU_rounding<true> upward;
     body(b * kValidationBlock, std::min(n, (b + 1) * kValidationBlock));
   });

@@ -28,6 +28,9 @@
 
 namespace minksum {
 
+// The number of hardware threads (at least 1), read once.
+unsigned hardware_threads();
+
 // The number of threads parallel_for runs for `threads` (0: hardware) and n jobs.
 unsigned parallel_threads(unsigned threads, std::size_t n);
 

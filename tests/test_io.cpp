@@ -611,6 +611,66 @@ TEST(IoParse, OffLineFastPathAgreesWithTheTokenizer) {
   }
 }
 
+// Files of 8192 faces or more have their faces read ahead on a second
+// thread while the vertices are read; the reader uses them only when the
+// vertices end where the faces were read from.  Every layout must give the
+// tokenizer's mesh, and errors keep their lines and messages.
+TEST(IoParse, OffFacesReadAheadAgreeWithTheTokenizer) {
+  const unsigned seed = 20261124;
+  std::mt19937 rng(seed);
+  const int nv = 3000, nf = 9000;
+  std::vector<std::string> vlines(nv), flines(nf);
+  for (auto& l : vlines)
+    l = std::to_string(int(rng() % 2001) - 1000) + " " + std::to_string(double(rng() % 100000) / 64) + " " +
+        std::to_string(int(rng() % 7));
+  for (auto& l : flines) {
+    const int k = 3 + int(rng() % 4);
+    l = std::to_string(k);
+    for (int j = 0; j < k; ++j) l += " " + std::to_string(rng() % nv);
+  }
+  auto render = [&](const std::string& eol, const std::string& after, const std::string& between,
+                    std::size_t blank_after_vertex, std::size_t coloured_face) {
+    std::string s = "OFF" + eol + std::to_string(nv) + " " + std::to_string(nf) + " 0" + eol;
+    for (std::size_t i = 0; i < vlines.size(); ++i) {
+      s += vlines[i] + after + eol;
+      if (i == blank_after_vertex) s += eol;
+    }
+    s += between;
+    for (std::size_t f = 0; f < flines.size(); ++f) s += flines[f] + (f == coloured_face ? " 255 0 0" : "") + after + eol;
+    return s;
+  };
+  constexpr std::size_t kNone = std::size_t(-1);
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  const Mesh ref = read_from_string(render("\n", " # c", "", kNone, kNone), Format::off);
+  ASSERT_EQ(ref.points.size(), std::size_t(nv));
+  ASSERT_EQ(ref.faces.size(), std::size_t(nf));
+  for (const std::string& variant :
+       {render("\n", "", "", kNone, kNone), render("\r\n", "", "", kNone, kNone), render("\n", "\t ", "", kNone, kNone),
+        render("\n", "", "# the faces\n", kNone, kNone), render("\n", "", "\n\n", kNone, kNone),
+        render("\n", "", "", 1500, kNone), render("\n", "", "", kNone, 4000)}) {
+    const Mesh m = read_from_string(variant, Format::off);
+    expect_same(m, ref);
+  }
+  // Errors: in a face far down (line 2 + nv + 8001), in a vertex while the
+  // faces are read ahead, and a face section cut short.
+  const std::string face8000 = flines[8000];
+  flines[8000] = "3 0 1 " + std::to_string(nv);
+  const std::string bad_face = render("\n", "", "", kNone, kNone);
+  flines[8000] = face8000;
+  expect_input_error([&] { read_from_string(bad_face, Format::off); }, "mem",
+                     "face 8000 refers to vertex 3000 but there are 3000 vertices",
+                     "line " + std::to_string(2 + nv + 8001));
+  const std::string vertex2000 = vlines[2000];
+  vlines[2000] = "0 0 x";
+  const std::string bad_vertex = render("\n", "", "", kNone, kNone);
+  vlines[2000] = vertex2000;
+  expect_input_error([&] { read_from_string(bad_vertex, Format::off); }, "mem", "expected a number, got 'x'",
+                     "line " + std::to_string(2 + 2001));
+  const std::string cut = render("\n", "", "", kNone, kNone);
+  expect_input_error([&] { read_from_string(cut.substr(0, cut.rfind(flines[nf - 1])), Format::off); }, "mem",
+                     "file ends after 8999 of 9000 faces", "line " + std::to_string(2 + nv + nf));
+}
+
 // Errors after lines read by the fast path keep their line numbers, and an
 // element the fast path refuses gets the tokenizer's message.
 TEST(IoBad, OffLineNumbersAfterFastLines) {
@@ -634,6 +694,78 @@ TEST(IoBad, OffLineNumbersAfterFastLines) {
   };
   for (const Case& c : cases)
     expect_input_error([&] { read_from_string(c.text, Format::off); }, "mem", c.problem, c.place);
+}
+
+// Lists of 8192 points or more are formatted on threads in chunks: the
+// lines must come out in order, each the shortest round-trip form, in the
+// text formats that print points as lines (OFF, OBJ, PLY).
+TEST(IoWrite, ManyPointsAreFormattedInOrder) {
+  const unsigned seed = 20261125;
+  std::mt19937_64 rng(seed);
+  Mesh m;
+  const std::size_t n = 3 * 4096 * 3 + 17;  // more than one round of chunks on two threads
+  std::vector<Vec3d> want(n);
+  for (Vec3d& v : want) {
+    auto coord = [&] {
+      std::uint64_t bits = rng();
+      double d;
+      std::memcpy(&d, &bits, 8);
+      return std::isfinite(d) ? d : 0.5;
+    };
+    v = {coord(), coord(), coord()};
+    m.points.push_back(v);
+  }
+  m.faces = {{0, 1, 2}};
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  for (Format f : {Format::off, Format::obj, Format::ply}) {
+    std::ostringstream out;
+    write_mesh(out, m, f);
+    const Mesh back = read_from_string(out.str(), f);
+    ASSERT_EQ(back.points.size(), n);
+    for (std::size_t i = 0; i < n; ++i)
+      ASSERT_EQ(back.points[i], m.points[i]) << "point " << i;
+    if (f == Format::off) {
+      std::string lines;
+      for (const Vec3d& v : want) {
+        char buf[96];
+        char* p = std::to_chars(buf, buf + 32, v.x).ptr;
+        *p++ = ' ';
+        p = std::to_chars(p, p + 32, v.y).ptr;
+        *p++ = ' ';
+        p = std::to_chars(p, p + 32, v.z).ptr;
+        *p++ = '\n';
+        lines.append(buf, p);
+      }
+      EXPECT_NE(out.str().find(lines), std::string::npos);
+    }
+  }
+}
+
+// A facet whose line is longer than the writer's buffer (a prism over a
+// 3000-gon: two lines of 3001 indices) is written whole, in its place,
+// whether the facet lines are formatted on one thread or in chunks.
+TEST(IoWrite, FacetLinesLongerThanTheBufferAreWrittenWhole) {
+  const ConvexPolytope prism = catalog_polytope("prism:3000");
+  ASSERT_EQ(prism.num_facets(), 3002u);
+  for (Format f : {Format::off, Format::ply}) {
+    std::ostringstream out;
+    write_polytope(out, prism, f);
+    const Mesh back = read_from_string(out.str(), f);
+    ASSERT_EQ(back.faces.size(), 3002u);
+    std::size_t big = 0;
+    for (const auto& face : back.faces) big += face.size() == 3000;
+    EXPECT_EQ(big, 2u);
+    EXPECT_EQ(ConvexPolytope::from_mesh(back, "back").num_facets(), 3002u);
+  }
+  Mesh many;  // more than two chunks of face lines, one of them long
+  for (int i = 0; i < 3000; ++i) many.points.push_back(Vec3d{double(i), 0, 0});
+  for (int f = 0; f < 9000; ++f) many.faces.push_back({Index(f % 3000), Index((f + 1) % 3000), Index((f + 2) % 3000)});
+  many.faces[5000].clear();
+  for (Index v = 0; v < 3000; ++v) many.faces[5000].push_back(v);
+  std::ostringstream out;
+  write_mesh(out, many, Format::off);
+  const Mesh back = read_from_string(out.str(), Format::off);
+  EXPECT_EQ(back.faces, many.faces);
 }
 
 TEST(IoWrite, RationalToFloatIsCorrectlyRounded) {

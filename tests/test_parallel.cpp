@@ -1,6 +1,7 @@
 // parallel_for (<minksum/parallel.hpp>): every job once, the thread count as
-// documented, the first failure in index order rethrown, and sums on several
-// threads equal to the same sums on one.
+// documented, the first failure in index order rethrown, sums on several
+// threads equal to the same sums on one, and the pool: threads reused, loops
+// from two threads at once, a forked child.
 #include <gtest/gtest.h>
 
 #include <minksum/catalog.hpp>
@@ -15,6 +16,9 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 using namespace minksum;
 
@@ -104,4 +108,70 @@ TEST(Parallel, NestedLoopRunsOnTheJobsThread) {
     if (started.load() == 2) ++met;
   });
   EXPECT_EQ(met.load(), 2);
+}
+
+// The threads are started once and reused: twenty loops that each need a
+// helper (two jobs waiting for each other) run on a few kernel threads, at
+// most as many as the largest loop of this process asked for (seven), where
+// threads started per loop would be twenty distinct ones.
+TEST(Parallel, PoolThreadsAreReused) {
+  std::mutex m;
+  std::set<pid_t> helpers;
+  for (int round = 0; round < 20; ++round) {
+    std::atomic<int> started{0};
+    parallel_for(2, 2, [&](std::size_t) {
+      ++started;
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+      while (started.load() < 2 && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+      std::lock_guard<std::mutex> lock(m);
+      if (gettid() != getpid()) helpers.insert(gettid());
+    });
+    ASSERT_EQ(started.load(), 2);
+  }
+  EXPECT_GE(helpers.size(), 1u);
+  EXPECT_LE(helpers.size(), 7u);
+}
+
+// Two threads of an application running loops at the same time: one uses
+// the pool, the other its own threads; every job of each runs once.
+TEST(Parallel, ConcurrentLoopsFromTwoThreads) {
+  std::vector<std::atomic<int>> a(20000), b(20000);
+  auto loops = [](std::vector<std::atomic<int>>& count) {
+    for (std::size_t round = 0; round < 200; ++round)
+      parallel_for(100, 2, [&](std::size_t i) { ++count[round * 100 + i]; });
+  };
+  std::thread other([&] { loops(b); });
+  loops(a);
+  other.join();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].load(), 1) << i;
+    ASSERT_EQ(b[i].load(), 1) << i;
+  }
+}
+
+// A child process forked after the pool has started has none of its
+// threads: its loops start a pool of their own and finish.
+TEST(Parallel, ForkedChildRunsItsLoops) {
+  std::atomic<int> warm{0};
+  parallel_for(4, 2, [&](std::size_t) { ++warm; });
+  ASSERT_EQ(warm.load(), 4);
+  const pid_t child = fork();
+  ASSERT_NE(child, -1);
+  if (child == 0) {
+    std::vector<std::atomic<int>> count(1000);
+    std::atomic<int> started{0};
+    parallel_for(2, 2, [&](std::size_t) {  // needs two threads to finish
+      ++started;
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+      while (started.load() < 2 && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+    });
+    parallel_for(count.size(), 2, [&](std::size_t i) { ++count[i]; });
+    bool ok = started.load() == 2;
+    for (auto& c : count) ok = ok && c.load() == 1;
+    _exit(ok ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
 }

@@ -21,6 +21,7 @@
 #include <random>
 #include <sstream>
 #include <streambuf>
+#include <string>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -268,34 +269,34 @@ void write_point_lines(std::ostream& out, const PointList& points, bool exact) {
     }
     return;
   }
-  // Doubles and pairs printed as their nearest doubles: straight into a
-  // buffer (a line is at most 3 * 24 + 3 characters).
-  TextBuffer buf(out);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    char* p = buf.reserve(80);
-    const Vec3d& a = points.approx(i);
-    p = std::to_chars(p, p + 24, a.x).ptr;
-    *p++ = ' ';
-    p = std::to_chars(p, p + 24, a.y).ptr;
-    *p++ = ' ';
-    p = std::to_chars(p, p + 24, a.z).ptr;
-    *p++ = '\n';
-    buf.commit(p);
-  }
+  // Doubles and pairs printed as their nearest doubles (a line is at most
+  // 3 * 24 + 3 characters).
+  write_lines(
+      out, points.size(), [](std::size_t) { return std::size_t(80); },
+      [&](char* p, std::size_t i) {
+        const Vec3d& a = points.approx(i);
+        p = std::to_chars(p, p + 24, a.x).ptr;
+        *p++ = ' ';
+        p = std::to_chars(p, p + 24, a.y).ptr;
+        *p++ = ' ';
+        p = std::to_chars(p, p + 24, a.z).ptr;
+        *p++ = '\n';
+        return p;
+      });
 }
 
 void write_counted_face_lines(std::ostream& out, const std::vector<std::vector<Index>>& faces) {
-  std::string line;
-  for (const auto& f : faces) {
-    line.clear();
-    append_index(line, f.size());
-    for (Index v : f) {
-      line += ' ';
-      append_index(line, v);
-    }
-    line += '\n';
-    out.write(line.data(), std::streamsize(line.size()));
-  }
+  write_lines(
+      out, faces.size(), [&](std::size_t f) { return 21 * (faces[f].size() + 1); },
+      [&](char* p, std::size_t f) {
+        p = put_index(p, faces[f].size());
+        for (Index v : faces[f]) {
+          *p++ = ' ';
+          p = put_index(p, v);
+        }
+        *p++ = '\n';
+        return p;
+      });
 }
 
 void append_point(std::string& out, const PointList& points, std::size_t i, bool exact, char sep, const char* end) {

@@ -22,6 +22,8 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstring>
+#include <minksum/parallel.hpp>
 #include <ostream>
 
 namespace minksum::io_detail {
@@ -146,6 +148,49 @@ const char* fast_face_line(const char* p, const char* end, std::uint64_t nv, std
   return line_end(p, end);
 }
 
+// The faces read ahead, on a second thread while the vertices are read, for
+// the common layout: one vertex per line, then the faces, one per line, all
+// on the fast path.  Their section is assumed to start after nv line ends
+// from the first vertex; read_off uses them only when its own reading of
+// the vertices ends exactly there, and reads the faces itself otherwise
+// (any other layout, a comment, an error: the messages are its own).
+struct FacesAhead {
+  bool ok = false;
+  const char* start = nullptr;  // the first face's first character
+  const char* end = nullptr;    // after the last face's line
+  std::size_t lines = 0;        // line ends from start to end
+  std::vector<std::vector<Index>> faces;
+};
+
+FacesAhead read_faces_ahead(const char* p, const char* end, std::uint64_t nv, std::uint64_t nf) {
+  FacesAhead a;
+  for (std::uint64_t i = 0; i < nv; ++i) {
+    const void* nl = std::memchr(p, '\n', std::size_t(end - p));
+    if (!nl) return a;
+    p = static_cast<const char*>(nl) + 1;
+  }
+  while (p != end && is_space(*p)) ++p;
+  a.start = p;
+  a.faces.reserve(nf);
+  for (std::uint64_t f = 0; f < nf; ++f) {
+    for (; p != end && is_space(*p); ++p) a.lines += *p == '\n';
+    if (p == end) return a;
+    std::vector<Index> face;
+    const char* next = fast_face_line(p, end, nv, face);
+    if (!next) return a;
+    a.lines += next[-1] == '\n';
+    a.faces.push_back(std::move(face));
+    p = next;
+  }
+  a.end = p;
+  a.ok = true;
+  return a;
+}
+
+// Files from this many faces on read their faces ahead (a few milliseconds
+// of parsing and more: worth a thread).
+constexpr std::uint64_t kFacesAheadFrom = 8192;
+
 }  // namespace
 
 Mesh read_off(std::string_view data, const std::string& name) {
@@ -204,31 +249,49 @@ Mesh read_off(std::string_view data, const std::string& name) {
 
   Mesh mesh;
   mesh.points.reserve(nv);
-  for (std::uint64_t i = 0; i < nv; ++i) {
-    Coordinate c[3];
-    if (!cur.at_end()) {
-      if (const char* next = fast_vertex_line(cur.here(), cur.end(), c)) {
-        cur.advance_to(next, next[-1] == '\n');
-        push_point(mesh.points, c);
-        continue;
+  auto read_vertices = [&] {
+    for (std::uint64_t i = 0; i < nv; ++i) {
+      Coordinate c[3];
+      if (!cur.at_end()) {
+        if (const char* next = fast_vertex_line(cur.here(), cur.end(), c)) {
+          cur.advance_to(next, next[-1] == '\n');
+          push_point(mesh.points, c);
+          continue;
+        }
       }
+      for (int k = 0; k < 3; ++k) {
+        if (!cur.next(tok))
+          throw InputError(name, line_place(cur.line()),
+                           "file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
+        c[k] = read_coordinate(tok, name, cur.token_line());
+      }
+      while (cur.next_on_line(tok)) {
+        if (!magic.extras || !looks_numeric(tok))
+          throw InputError(name, line_place(cur.token_line()),
+                           "unexpected token " + quote(tok) + " after vertex " + std::to_string(i));
+      }
+      push_point(mesh.points, c);
     }
-    for (int k = 0; k < 3; ++k) {
-      if (!cur.next(tok))
-        throw InputError(name, line_place(cur.line()),
-                         "file ends after " + std::to_string(i) + " of " + std::to_string(nv) + " vertices");
-      c[k] = read_coordinate(tok, name, cur.token_line());
-    }
-    while (cur.next_on_line(tok)) {
-      if (!magic.extras || !looks_numeric(tok))
-        throw InputError(name, line_place(cur.token_line()),
-                         "unexpected token " + quote(tok) + " after vertex " + std::to_string(i));
-    }
-    push_point(mesh.points, c);
+  };
+  FacesAhead ahead;
+  if (nf >= kFacesAheadFrom && nv > 0) {
+    const char* first_vertex = cur.here();
+    parallel_for(2, 2, [&](std::size_t job) {
+      if (job == 0) read_vertices();
+      else ahead = read_faces_ahead(first_vertex, cur.end(), nv, nf);
+    });
+  } else {
+    read_vertices();
   }
 
+  cur.at_end();  // (skips to the first face token)
+  if (ahead.ok && cur.here() == ahead.start) {
+    mesh.faces = std::move(ahead.faces);
+    cur.advance_to(ahead.end, ahead.lines);
+  }
+  ahead = {};
   mesh.faces.reserve(nf);
-  for (std::uint64_t f = 0; f < nf; ++f) {
+  for (std::uint64_t f = mesh.faces.size(); f < nf; ++f) {
     if (!cur.at_end()) {
       std::vector<Index> face;
       if (const char* next = fast_face_line(cur.here(), cur.end(), nv, face)) {
@@ -327,36 +390,20 @@ void write_off(std::ostream& out, const ConvexPolytope& p, const WriteOptions& o
   if (options.exact) out << "# coordinates are exact rationals (integers or p/q)\n";
   out << p.num_vertices() << ' ' << p.num_facets() << ' ' << p.num_edges() << '\n';
   write_point_lines(out, p.coordinates(), options.exact);
-  TextBuffer buf(out);
-  for (Index f = 0; f < p.num_facets(); ++f) {
-    const Index k = p.facet_degree(f);
-    if (21 * (std::size_t(k) + 1) > 1 << 14) {  // a huge facet: through a string
-      std::string line;
-      append_index(line, k);
-      const Index h0 = p.facet_halfedge(f);
-      Index h = h0;
-      do {
-        line += ' ';
-        append_index(line, p.origin(h));
-        h = p.next(h);
-      } while (h != h0);
-      line += '\n';
-      buf.flush();
-      out.write(line.data(), std::streamsize(line.size()));
-      continue;
-    }
-    char* c = buf.reserve(21 * (std::size_t(k) + 1));
-    c = put_index(c, k);
-    const Index h0 = p.facet_halfedge(f);
-    Index h = h0;
-    do {
-      *c++ = ' ';
-      c = put_index(c, p.origin(h));
-      h = p.next(h);
-    } while (h != h0);
-    *c++ = '\n';
-    buf.commit(c);
-  }
+  write_lines(
+      out, p.num_facets(), [&](std::size_t f) { return 21 * (std::size_t(p.facet_degree(Index(f))) + 1); },
+      [&](char* c, std::size_t f) {
+        c = put_index(c, p.facet_degree(Index(f)));
+        const Index h0 = p.facet_halfedge(Index(f));
+        Index h = h0;
+        do {
+          *c++ = ' ';
+          c = put_index(c, p.origin(h));
+          h = p.next(h);
+        } while (h != h0);
+        *c++ = '\n';
+        return c;
+      });
 }
 
 }  // namespace minksum::io_detail

@@ -62,6 +62,33 @@ struct UnionFind {
   }
 };
 
+// body(begin, end) over [0, n) in blocks of kValidationBlock items, on
+// several threads when `threads` and there are two blocks or more (at least
+// two threads, one per hardware thread beyond).  Each block runs with the
+// FPU rounding upward, as the caller's loop.  A block stops at its first
+// failure; of the failures, parallel_for rethrows the one of the first
+// block, so the error is the first in input order, as on one thread.
+// Validation (and the rounding certificate, moved) use threads from
+// kThreadsFromFacets facets on: two blocks or more, a millisecond or more
+// of work, against some tens of microseconds to start and join a thread.
+// On a loaded machine a started thread may wait to be scheduled; the jobs
+// are handed out one block at a time, so the calling thread then does the
+// blocks itself and only the last block may wait.
+constexpr std::size_t kValidationBlock = 2048;
+constexpr std::size_t kThreadsFromFacets = 4096;
+template <class Body>
+void in_blocks(std::size_t n, bool threads, Body&& body) {
+  const std::size_t blocks = (n + kValidationBlock - 1) / kValidationBlock;
+  if (!threads || blocks < 2) {
+    body(std::size_t(0), n);
+    return;
+  }
+  parallel_for(blocks, std::max(2u, hardware_threads()), [&](std::size_t b) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    body(b * kValidationBlock, std::min(n, (b + 1) * kValidationBlock));
+  });
+}
+
 struct Graph {
   std::vector<Index> origin, facet, next, prev, facet_he, vertex_he;
   Index num_halfedges() const { return Index(origin.size()); }
@@ -130,26 +157,45 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
       if (f < first) *this = {f, uu, ww, n, a, b};
     }
   } non_manifold, same_direction, open;
-  for (Index u = 0; u < nv; ++u) {
-    Use* b = uses.data() + bucket[u];
-    Use* e = uses.data() + bucket[u + 1];
-    for (Use* i = b + 1; i < e; ++i) {
-      const Use x = *i;
-      Use* j = i;
-      for (; j > b && j[-1].other > x.other; --j) *j = j[-1];
-      *j = x;
+  // Buckets in blocks of vertices (on threads for large meshes); each block
+  // keeps its own first failures, merged after: the one on the edge that
+  // appears first, as on one thread.
+  const bool threads = nf >= kThreadsFromFacets;
+  struct Failures {
+    Failure non_manifold, same_direction, open;
+  };
+  std::vector<Failures> block_failures((std::size_t(nv) + kValidationBlock - 1) / kValidationBlock);
+  in_blocks(nv, threads, [&](std::size_t ubegin, std::size_t uend) {
+    Failures& fail = block_failures[ubegin / kValidationBlock];
+    for (Index u = Index(ubegin); u < uend; ++u) {
+      Use* b = uses.data() + bucket[u];
+      Use* e = uses.data() + bucket[u + 1];
+      for (Use* i = b + 1; i < e; ++i) {
+        const Use x = *i;
+        Use* j = i;
+        for (; j > b && j[-1].other > x.other; --j) *j = j[-1];
+        *j = x;
+      }
+      for (Use* i = b; i < e;) {
+        Use* j = i + 1;
+        while (j < e && j->other == i->other) ++j;
+        const Index count = Index(j - i), first = i->corner;
+        for (Use* k = i; k < j; ++k) corner_edge[k->corner] = first;
+        if (count > 2) fail.non_manifold.note(first, u, i->other, count, first, i[1].corner);
+        else if (count == 2 && co[first] == co[i[1].corner])
+          fail.same_direction.note(first, u, i->other, count, first, i[1].corner);
+        else if (count == 1) fail.open.note(first, u, i->other, count, first, first);
+        i = j;
+      }
     }
-    for (Use* i = b; i < e;) {
-      Use* j = i + 1;
-      while (j < e && j->other == i->other) ++j;
-      const Index count = Index(j - i), first = i->corner;
-      for (Use* k = i; k < j; ++k) corner_edge[k->corner] = first;
-      if (count > 2) non_manifold.note(first, u, i->other, count, first, i[1].corner);
-      else if (count == 2 && co[first] == co[i[1].corner])
-        same_direction.note(first, u, i->other, count, first, i[1].corner);
-      else if (count == 1) open.note(first, u, i->other, count, first, first);
-      i = j;
-    }
+  });
+  for (const Failures& b : block_failures) {
+    const Failure& x = b.non_manifold;
+    non_manifold.note(x.first, x.u, x.w, x.count, x.c0, x.c1);
+    const Failure& y = b.same_direction;
+    same_direction.note(y.first, y.u, y.w, y.count, y.c0, y.c1);
+    const Failure& z = b.open;
+    open.note(z.first, z.u, z.w, z.count, z.c0, z.c1);
   }
   auto edge_name = [&](const Failure& x) {
     return "edge " + std::to_string(vname[x.u]) + "-" + std::to_string(vname[x.w]);
@@ -179,39 +225,48 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   g.prev = big_array(nh, kNoIndex);
   g.facet_he = big_array(nf, kNoIndex);
   g.vertex_he = big_array(nv, kNoIndex);
-  for (Index f = 0; f < nf; ++f) {
-    const Index c0 = face_start[f], ce = face_start[f + 1];
-    auto half = [&](Index c) {
-      const Index u = co[c], v = co[c + 1 == ce ? c0 : c + 1];
-      return 2 * corner_edge[c] + (u < v ? 0u : 1u);
-    };
-    const Index h0 = half(c0);
-    Index h = h0;
-    for (Index c = c0; c < ce; ++c) {
-      const Index hn = c + 1 == ce ? h0 : half(c + 1);
-      const Index u = co[c];
-      g.origin[h] = u;
-      g.facet[h] = f;
-      if (g.vertex_he[u] == kNoIndex) g.vertex_he[u] = h;
-      g.next[h] = hn;
-      g.prev[hn] = h;
-      h = hn;
+  // The half-edges of each facet (in blocks of facets: each half-edge
+  // belongs to one corner), then each vertex's first outgoing half-edge in
+  // facet order.
+  in_blocks(nf, threads, [&](std::size_t fbegin, std::size_t fend) {
+    for (Index f = Index(fbegin); f < fend; ++f) {
+      const Index c0 = face_start[f], ce = face_start[f + 1];
+      auto half = [&](Index c) {
+        const Index u = co[c], v = co[c + 1 == ce ? c0 : c + 1];
+        return 2 * corner_edge[c] + (u < v ? 0u : 1u);
+      };
+      const Index h0 = half(c0);
+      Index h = h0;
+      for (Index c = c0; c < ce; ++c) {
+        const Index hn = c + 1 == ce ? h0 : half(c + 1);
+        g.origin[h] = co[c];
+        g.facet[h] = f;
+        g.next[h] = hn;
+        g.prev[hn] = h;
+        h = hn;
+      }
+      g.facet_he[f] = h0;
     }
-    g.facet_he[f] = h0;
-  }
+  });
+  for (Index f = 0; f < nf; ++f)
+    for (Index h = g.facet_he[f], h0 = h;;) {
+      if (g.vertex_he[g.origin[h]] == kNoIndex) g.vertex_he[g.origin[h]] = h;
+      if ((h = g.next[h]) == h0) break;
+    }
   // Vertex manifoldness: the facets around each vertex form a single fan.
   std::vector<Index> outdeg = big_array<Index>(nv, 0);
   for (Index h = 0; h < nh; ++h) ++outdeg[g.origin[h]];
-  for (Index v = 0; v < nv; ++v) {
-    Index h = g.vertex_he[v], steps = 0;
-    do {
-      h = g.prev[h] ^ 1u;
-      ++steps;
-    } while (h != g.vertex_he[v] && steps <= outdeg[v]);
-    if (steps != outdeg[v])
-      throw InputError(source, vtx(vname[v]),
-                       "non-manifold vertex: its facets form more than one fan");
-  }
+  in_blocks(nv, threads, [&](std::size_t vbegin, std::size_t vend) {
+    for (Index v = Index(vbegin); v < vend; ++v) {
+      Index h = g.vertex_he[v], steps = 0;
+      do {
+        h = g.prev[h] ^ 1u;
+        ++steps;
+      } while (h != g.vertex_he[v] && steps <= outdeg[v]);
+      if (steps != outdeg[v])
+        throw InputError(source, vtx(vname[v]), "non-manifold vertex: its facets form more than one fan");
+    }
+  });
   // Connected, sphere topology.  Every vertex now has one fan, so two
   //    facets are connected across edges exactly when their vertices are
   //    connected along edges (a path of edges passes from fan to fan), and
@@ -484,29 +539,6 @@ bool convex_vertex_on_doubles(Index i, Index start, const Index* origin, const I
   return winding == 1;
 }
 
-// body(begin, end) over [0, n) in blocks of kValidationBlock items, on
-// several threads when `threads` and there are two blocks or more (at least
-// two threads, one per hardware thread beyond).  Each block runs with the
-// FPU rounding upward, as the caller's loop.  A block stops at its first
-// failure; of the failures, parallel_for rethrows the one of the first
-// block, so the error is the first in input order, as on one thread.
-// Validation uses threads for meshes of kThreadsFromFacets facets or more:
-// below, the whole validation takes a few milliseconds, and on a loaded
-// machine waiting for a started thread to be scheduled can cost as much.
-constexpr std::size_t kValidationBlock = 2048;
-constexpr std::size_t kThreadsFromFacets = 32768;
-template <class Body>
-void in_blocks(std::size_t n, bool threads, Body&& body) {
-  const std::size_t blocks = (n + kValidationBlock - 1) / kValidationBlock;
-  if (!threads || blocks < 2) {
-    body(std::size_t(0), n);
-    return;
-  }
-  parallel_for(blocks, std::max(2u, std::thread::hardware_concurrency()), [&](std::size_t b) {
-    CGAL::Protect_FPU_rounding<true> upward;
-    body(b * kValidationBlock, std::min(n, (b + 1) * kValidationBlock));
-  });
-}
 
 // The mean of the points, in doubles (any rounding), or nullopt when it is
 // not finite.
@@ -1008,14 +1040,26 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   }
   if (unchanged && triangles_on_doubles) {
     // The test on doubles first; step 8's test where it does not accept.
+    // Every facet is a triangle, the wedge of each of its corners: its sign
+    // is computed once per triangle, not once per corner (as in moved).
     const std::optional<Vec3d> c = mean_point(pts.approx());
+    std::vector<signed char> below = big_array<signed char>(c ? final_faces.size() : 0);
+    if (c)
+      in_blocks(below.size(), threads, [&](std::size_t begin, std::size_t end) {
+        const std::vector<Vec3d>& v = pts.approx();
+        for (std::size_t f = begin; f < end; ++f) {
+          const Index h0 = fg.facet_he[f], h1 = fg.next[h0], h2 = fg.next[h1];
+          below[f] = orient3d(v[fg.origin[h0]], v[fg.origin[h1]], v[fg.origin[h2]], *c) < 0;
+        }
+      });
+    const WedgeSigns wedges{below.data(), fg.facet.data()};
     const TriangleNormals<DoubleIntervals> tn{&dip, fg.origin.data(), fg.next.data(), fg.facet_he.data()};
     in_blocks(fpts.size(), threads, [&](std::size_t begin, std::size_t end) {
       std::vector<Index> around;
       FanScratch block_scratch;
       for (Index v = Index(begin); v < end; ++v)
         if (!(c && convex_vertex_on_doubles(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), pts.approx(),
-                                            *c, around)) &&
+                                            *c, around, &wedges)) &&
             !convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), dip, tn, fpts,
                            block_scratch))
           throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
@@ -1092,21 +1136,31 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
   // Facets still planar; a quadrilateral that is not is cut along the
   // diagonal that folds outwards (1: a-c, when d lies below the plane of
   // a, b, c; 2: b-d), as writable_polytope's full path cuts it.
+  // The loops over facets, edges and vertices below run in blocks, on
+  // threads for large polytopes (as the validation's); a block that finds
+  // the surface not certified clears `certified` and the others stop early.
+  const bool threads = nf0 >= kThreadsFromFacets;
+  std::atomic<bool> certified{true};
   std::vector<unsigned char> cut(nf0, 0);
-  std::size_t cuts = 0;
-  for (Index f = 0; f < nf0; ++f) {
-    const Index h0 = p.facet_he_[f], h1 = p.he_next_[h0], h2 = p.he_next_[h1];
-    Index h = p.he_next_[h2];
-    if (h == h0) continue;  // a triangle
-    const Vec3d &a = v[p.he_origin_[h0]], &b = v[p.he_origin_[h1]], &c = v[p.he_origin_[h2]];
-    bool planar = true;
-    for (; h != h0 && planar; h = p.he_next_[h]) planar = orient3d(a, b, c, v[p.he_origin_[h]]) == 0;
-    if (planar) continue;
-    const Index h3 = p.he_next_[h2];
-    if (p.he_next_[h3] != h0) return std::nullopt;  // a larger polygon: the full path cuts it by a hull
-    cut[f] = orient3d(a, b, c, v[p.he_origin_[h3]]) < 0 ? 1 : 2;
-    ++cuts;
-  }
+  in_blocks(nf0, threads, [&](std::size_t begin, std::size_t end) {
+    for (Index f = Index(begin); f < end && certified.load(std::memory_order_relaxed); ++f) {
+      const Index h0 = p.facet_he_[f], h1 = p.he_next_[h0], h2 = p.he_next_[h1];
+      Index h = p.he_next_[h2];
+      if (h == h0) continue;  // a triangle
+      const Vec3d &a = v[p.he_origin_[h0]], &b = v[p.he_origin_[h1]], &c = v[p.he_origin_[h2]];
+      bool planar = true;
+      for (; h != h0 && planar; h = p.he_next_[h]) planar = orient3d(a, b, c, v[p.he_origin_[h]]) == 0;
+      if (planar) continue;
+      const Index h3 = p.he_next_[h2];
+      if (p.he_next_[h3] != h0) {  // a larger polygon: the full path cuts it by a hull
+        certified = false;
+        return;
+      }
+      cut[f] = orient3d(a, b, c, v[p.he_origin_[h3]]) < 0 ? 1 : 2;
+    }
+  });
+  if (!certified) return std::nullopt;
+  const std::size_t cuts = std::size_t(std::count_if(cut.begin(), cut.end(), [](unsigned char x) { return x != 0; }));
   // The structure: p's half-edges, then one edge per cut quadrilateral.
   // Facets are numbered as the full path's mesh lists them: a cut facet's
   // two pieces take consecutive numbers, each starting where that mesh's
@@ -1146,11 +1200,12 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
     }
   }
   // Point (3): every edge strictly convex, by the kernel's filtered orient3d.
-  for (Index h = 0; h < nh; h += 2) {
-    const Index q = origin[h + 1];
-    if (orient3d(v[origin[h]], v[q], v[origin[next[next[h]]]], v[origin[next[next[h + 1]]]]) >= 0)
-      return std::nullopt;
-  }
+  in_blocks(nh / 2, threads, [&](std::size_t begin, std::size_t end) {
+    for (Index h = Index(2 * begin); h < 2 * end && certified.load(std::memory_order_relaxed); h += 2)
+      if (orient3d(v[origin[h]], v[origin[h + 1]], v[origin[next[next[h]]]], v[origin[next[next[h + 1]]]]) >= 0)
+        certified = false;
+  });
+  if (!certified) return std::nullopt;
   ConvexPolytope r = from_trusted_parts(points, std::move(origin), std::move(next), std::move(facet),
                                         std::move(facet_he));
   // Point (4) on the doubles first (convex_vertex_on_doubles); a vertex it
@@ -1164,18 +1219,26 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
   const std::optional<Vec3d> c = mean_point(v);
   std::vector<signed char> below(nf, -1);  // 1: c strictly below the triangle, 0: not, -1: not a triangle
   if (c)
-    for (Index f = 0; f < nf; ++f) {
-      const Index h0 = r.facet_he_[f], h1 = r.he_next_[h0], h2 = r.he_next_[h1];
-      if (r.he_next_[h2] == h0)
-        below[f] = orient3d(v[r.he_origin_[h0]], v[r.he_origin_[h1]], v[r.he_origin_[h2]], *c) < 0;
-    }
+    in_blocks(nf, threads, [&](std::size_t begin, std::size_t end) {
+      for (Index f = Index(begin); f < end; ++f) {
+        const Index h0 = r.facet_he_[f], h1 = r.he_next_[h0], h2 = r.he_next_[h1];
+        if (r.he_next_[h2] == h0)
+          below[f] = orient3d(v[r.he_origin_[h0]], v[r.he_origin_[h1]], v[r.he_origin_[h2]], *c) < 0;
+      }
+    });
   const WedgeSigns wedges{below.data(), r.he_facet_.data()};
-  std::vector<Index> around;
+  // 1: accepted on the doubles; the others go to the interval test below.
+  std::vector<unsigned char> accepted(nv, 0);
+  if (c)
+    in_blocks(nv, threads, [&](std::size_t begin, std::size_t end) {
+      std::vector<Index> around;
+      for (Index i = Index(begin); i < end; ++i)
+        accepted[i] = convex_vertex_on_doubles(i, r.vertex_he_[i], r.he_origin_.data(), r.he_prev_.data(), v, *c,
+                                               around, &wedges);
+    });
   std::vector<Index> undecided;
   for (Index i = 0; i < nv; ++i)
-    if (!c || !convex_vertex_on_doubles(i, r.vertex_he_[i], r.he_origin_.data(), r.he_prev_.data(), v, *c, around,
-                                        &wedges))
-      undecided.push_back(i);
+    if (!accepted[i]) undecided.push_back(i);
   // Points (2) for polygons and (4) where the doubles did not decide, on
   // intervals (exact when undecided), as step 8 of build.
   bool polygons = false;

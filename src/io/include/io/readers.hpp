@@ -10,9 +10,11 @@
 #include <minksum/error.hpp>
 #include <minksum/io.hpp>
 #include <minksum/kernel.hpp>
+#include <minksum/parallel.hpp>
 #include <minksum/polytope.hpp>
 #include <minksum/scene.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cstddef>
 #include <cstdint>
@@ -20,6 +22,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace minksum::io_detail {
 
@@ -122,6 +125,48 @@ class TextBuffer {
   std::size_t used_ = 0;
   char buf_[1 << 15];
 };
+
+// Lines 0 .. n-1 written in order: size(i) bounds the length of line i,
+// put(p, i) writes it at p and returns its end.  From kLinesOnThreads lines
+// on, chunks of kLinesChunk lines are formatted on threads, a few chunks per
+// thread at a time (the memory stays bounded), then written in order: in a
+// large text file, formatting numbers is most of the writing.
+inline constexpr std::size_t kLinesOnThreads = 8192, kLinesChunk = 1024;
+template <class Size, class Put>
+void write_lines(std::ostream& out, std::size_t n, Size&& size, Put&& put) {
+  if (n < kLinesOnThreads) {
+    TextBuffer buf(out);
+    std::string long_line;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t m = size(i);
+      if (m <= 1 << 14) {
+        buf.commit(put(buf.reserve(m), i));
+        continue;
+      }
+      long_line.resize(m);
+      long_line.resize(std::size_t(put(long_line.data(), i) - long_line.data()));
+      buf.flush();
+      out.write(long_line.data(), std::streamsize(long_line.size()));
+    }
+    return;
+  }
+  const std::size_t per_round = 8 * std::size_t(parallel_threads(0, n));
+  std::vector<std::string> text(per_round);
+  for (std::size_t first = 0; first < n; first += per_round * kLinesChunk) {
+    const std::size_t chunks = std::min(per_round, (n - first + kLinesChunk - 1) / kLinesChunk);
+    parallel_for(chunks, 0, [&](std::size_t c) {
+      const std::size_t begin = first + c * kLinesChunk, end = std::min(n, begin + kLinesChunk);
+      std::size_t room = 0;
+      for (std::size_t i = begin; i < end; ++i) room += size(i);
+      std::string& t = text[c];
+      t.resize(room);
+      char* p = t.data();
+      for (std::size_t i = begin; i < end; ++i) p = put(p, i);
+      t.resize(std::size_t(p - t.data()));
+    });
+    for (std::size_t c = 0; c < chunks; ++c) out.write(text[c].data(), std::streamsize(text[c].size()));
+  }
+}
 
 // A decimal index, written at p (at most 20 characters); returns the end.
 inline char* put_index(char* p, std::uint64_t v) { return std::to_chars(p, p + 20, v).ptr; }

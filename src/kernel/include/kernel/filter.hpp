@@ -107,6 +107,8 @@
 #include <cfloat>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <minksum/kernel.hpp>
 #include <optional>
 #include <type_traits>
@@ -273,9 +275,20 @@ using ApproxOf = std::conditional_t<std::is_same_v<typename Shape::Value, V>, Ap
 // Semi-static and dynamic steps on exact doubles.
 
 // Multiplies the group vector g by 2^-e, e = ilogb(m), bringing its maximum
-// m into [1, 2); returns e.
+// m into [1, 2); returns e.  For |e| ≤ 1022 the factor 2^-e is a normal
+// double and the product is what ldexp gives (exact, or one rounding when
+// the result is subnormal), at the cost of a multiplication instead of a
+// library call; beyond, ldexp.
 inline int rescale(V& g, double& m) {
   const int e = std::ilogb(m);
+  if (e >= -1022 && e <= 1022) {
+    const std::uint64_t bits = std::uint64_t(1023 - e) << 52;
+    double f;
+    std::memcpy(&f, &bits, sizeof f);
+    for (double& x : g) x *= f;
+    m *= f;
+    return e;
+  }
   for (double& x : g) x = std::ldexp(x, -e);
   m = std::ldexp(m, -e);
   return e;
@@ -324,6 +337,28 @@ inline bool semi_static_decides(const Approx3& a) {
   for (double x : a.value)
     if (std::fabs(x) > a.bound) return true;
   return false;
+}
+
+// The semi-static step alone, for the common case of a filter call: every
+// group maximum already in [lo, hi] (no rescaling) and the value clear of
+// the bound.  Returns the certified sign, or 0 when it does not decide
+// (a group out of range or exactly zero, or |value| ≤ bound): the caller
+// then runs approx_vec, whose first step computes the same value and the same
+// bound (same expression tree, same product order), so the answer is the
+// one approx_vec would certify.
+template <class Shape>
+[[gnu::always_inline]] inline int semi_static_sign(const std::array<V, Shape::K>& g) {
+  constexpr const FilterShape& s = Shape::shape;
+  double bound = s.c_vec;
+  for (std::size_t k = 0; k < Shape::K; ++k) {
+    const double m = maxabs(g[k]);
+    if (!(m >= s.lo && m <= s.hi)) return 0;
+    bound *= m;
+  }
+  const double value = Shape::eval(g);
+  if (value > bound) return 1;
+  if (value < -bound) return -1;
+  return 0;
 }
 
 // The approximation on exact-double group vectors.  `lazy`: skip the dynamic

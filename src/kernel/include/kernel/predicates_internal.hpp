@@ -43,6 +43,7 @@
 #include <cstddef>
 #include <minksum/predicates.hpp>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "kernel/exact.hpp"
@@ -72,15 +73,21 @@ concept KernelPoint = std::same_as<Pt, Vec3d> || std::same_as<Pt, Point3>;
 template <class D, class Pt>
 using PointsOf = std::array<const Pt*, D::arity>;
 
-// Stage 1 on exact doubles.
+// The group vectors of D on exact doubles (rounded differences).
 template <class D>
-ApproxOf<typename D::Shape> approx_points(const PointsOf<D, Vec3d>& p, bool lazy) {
+[[gnu::always_inline]] inline std::array<V, D::Shape::K> groups_vec(const PointsOf<D, Vec3d>& p) {
   std::array<V, D::Shape::K> g;
   for (std::size_t k = 0; k < g.size(); ++k) {
     const GroupIndex i = D::groups[k];
     g[k] = i.q == kVector ? vof(*p[i.p]) : vsub(*p[i.p], *p[i.q]);
   }
-  return approx_vec<typename D::Shape>(g, lazy);
+  return g;
+}
+
+// Stage 1 on exact doubles.
+template <class D>
+ApproxOf<typename D::Shape> approx_points(const PointsOf<D, Vec3d>& p, bool lazy) {
+  return approx_vec<typename D::Shape>(groups_vec<D>(p), lazy);
 }
 
 // Stage 1 on rationals: the Vec3d form when every coordinate is a double,
@@ -108,13 +115,24 @@ ApproxOf<typename D::Shape> approx_points(const PointsOf<D, Point3>& p, bool laz
   }
 }
 
-// Stage 1': the answer the approximation certifies.
+struct SignPredicate;
+
+// Stage 1': the answer the approximation certifies.  For a sign predicate on
+// doubles, the semi-static step runs first on its own (semi_static_sign,
+// filter.hpp: the same value and bound as approx_vec's first step, without
+// building an Approx); only what it leaves undecided goes through approx_vec.
 template <class D, KernelPoint Pt>
 auto filter_points(const PointsOf<D, Pt>& p) {
-  if constexpr (requires { D::filter(p); })
+  if constexpr (requires { D::filter(p); }) {
     return D::filter(p);
-  else
+  } else {
+    if constexpr (std::same_as<Pt, Vec3d> && std::is_base_of_v<SignPredicate, D> &&
+                  std::same_as<typename D::Shape::Value, double>) {
+      if (const int s = semi_static_sign<typename D::Shape>(groups_vec<D>(p)))
+        return std::optional<int>(s);
+    }
     return D::decide(approx_points<D>(p, true));
+  }
 }
 
 // Stage 2.

@@ -12,6 +12,11 @@
 // concurrently; they must not write shared data without their own
 // synchronisation (writing slot i of a pre-sized vector is fine).
 //
+// The threads are a pool started on first use and reused by later loops
+// (kernel/parallel.cpp), so a loop of a few milliseconds does not pay for
+// starting threads; two loops running at once from different threads of an
+// application each get their threads.
+//
 // An exception thrown by a job is not lost: the first one (in index order)
 // is rethrown by parallel_for once every thread has stopped; after a job has
 // thrown, no job with a larger index starts.  Callers that want one outcome
@@ -22,6 +27,9 @@
 #include <functional>
 
 namespace minksum {
+
+// The number of hardware threads (at least 1), read once.
+unsigned hardware_threads();
 
 // The number of threads parallel_for runs for `threads` (0: hardware) and n jobs.
 unsigned parallel_threads(unsigned threads, std::size_t n);

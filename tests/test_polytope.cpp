@@ -573,6 +573,21 @@ std::string reference_edge_error(const Mesh& m) {
   return "";
 }
 
+// One to four random changes: a facet dropped, repeated or reversed (a
+// mesh left without facets gets one triangle back).
+void drop_repeat_or_reverse_facets(Mesh& m, std::mt19937_64& rng) {
+  const std::size_t changes = 1 + rng() % 4;
+  for (std::size_t c = 0; c < changes; ++c) {
+    const std::size_t f = rng() % m.faces.size();
+    switch (rng() % 3) {
+      case 0: m.faces.erase(m.faces.begin() + long(f)); break;
+      case 1: m.faces.push_back(m.faces[f]); break;
+      default: std::reverse(m.faces[f].begin(), m.faces[f].end());
+    }
+    if (m.faces.empty()) m.faces.push_back({0, 1, 2});
+  }
+}
+
 }  // namespace
 
 // Soups of triangles and quadrilaterals on a few distinct points, with
@@ -585,16 +600,7 @@ TEST(PolytopeBad, EdgeErrorsNameTheEdgeThatAppearsFirst) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
     Mesh m = rng() % 2 ? triangulated(octahedron_mesh()) : cube_mesh();
-    const std::size_t changes = 1 + rng() % 4;
-    for (std::size_t c = 0; c < changes; ++c) {
-      const std::size_t f = rng() % m.faces.size();
-      switch (rng() % 3) {
-        case 0: m.faces.erase(m.faces.begin() + long(f)); break;
-        case 1: m.faces.push_back(m.faces[f]); break;
-        default: std::reverse(m.faces[f].begin(), m.faces[f].end());
-      }
-      if (m.faces.empty()) m.faces.push_back({0, 1, 2});
-    }
+    drop_repeat_or_reverse_facets(m, rng);
     const std::string expected = reference_edge_error(m);
     if (expected.empty()) continue;
     EXPECT_EQ(build_error(m), expected);
@@ -622,15 +628,7 @@ TEST(PolytopeBad, EdgeErrorsInBlocksNameTheEdgeThatAppearsFirst) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);
     Mesh m = big;
-    const std::size_t changes = 1 + rng() % 4;
-    for (std::size_t c = 0; c < changes; ++c) {
-      const std::size_t f = rng() % m.faces.size();
-      switch (rng() % 3) {
-        case 0: m.faces.erase(m.faces.begin() + long(f)); break;
-        case 1: m.faces.push_back(m.faces[f]); break;
-        default: std::reverse(m.faces[f].begin(), m.faces[f].end());
-      }
-    }
+    drop_repeat_or_reverse_facets(m, rng);
     const std::string expected = reference_edge_error(m);
     if (expected.empty()) continue;
     EXPECT_EQ(build_error(m), expected);

@@ -19,6 +19,13 @@ using namespace minksum::testing;
 
 namespace {
 
+// A point on the unit sphere: a normal-distributed vector, normalised (the
+// direction is uniform; the coordinates are rounded doubles of it).
+Point3 on_unit_sphere(std::mt19937_64& rng, std::normal_distribution<double>& g) {
+  const double x = g(rng), y = g(rng), z = g(rng), r = std::sqrt(x * x + y * y + z * z);
+  return Point3(x / r, y / r, z / r);
+}
+
 // The problem text of the InputError thrown by from_mesh(m), or "" if none.
 std::string build_error(const Mesh& m) {
   try {
@@ -462,8 +469,7 @@ TEST(Hull, ExtremePointsPathAgreesOnSpheresAndBoundaryPoints) {
     std::vector<Point3> pts;
     const int n = 4 + int(rng() % 1500);
     for (int i = 0; i < n; ++i) {
-      const double x = g(rng), y = g(rng), z = g(rng), r = std::sqrt(x * x + y * y + z * z);
-      pts.push_back(Point3(x / r, y / r, z / r));
+      pts.push_back(on_unit_sphere(rng, g));
       if (seed % 3 == 0 && i % 7 == 0) pts.push_back(pts[rng() % pts.size()]);  // repeats
     }
     if (seed % 4 == 0) pts.push_back(P(0, 0, 0));  // the centre, inside
@@ -588,6 +594,25 @@ void drop_repeat_or_reverse_facets(Mesh& m, std::mt19937_64& rng) {
   }
 }
 
+// For seeds 1..seeds: the mesh of make(rng), changed by
+// drop_repeat_or_reverse_facets; where the reference finds an edge error,
+// from_mesh must report that one.  Returns how many meshes had one.
+template <class Make>
+int compare_first_edge_errors(std::uint64_t seeds, Make&& make) {
+  int compared = 0;
+  for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    Mesh m = make(rng);
+    drop_repeat_or_reverse_facets(m, rng);
+    const std::string expected = reference_edge_error(m);
+    if (expected.empty()) continue;
+    EXPECT_EQ(build_error(m), expected);
+    ++compared;
+  }
+  return compared;
+}
+
 }  // namespace
 
 // Soups of triangles and quadrilaterals on a few distinct points, with
@@ -595,17 +620,9 @@ void drop_repeat_or_reverse_facets(Mesh& m, std::mt19937_64& rng) {
 // is the reference's (several errors of each kind in one soup, so the order
 // matters).  Fixed seeds.
 TEST(PolytopeBad, EdgeErrorsNameTheEdgeThatAppearsFirst) {
-  int compared = 0;
-  for (std::uint64_t seed = 1; seed <= 400; ++seed) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    std::mt19937_64 rng(seed);
-    Mesh m = rng() % 2 ? triangulated(octahedron_mesh()) : cube_mesh();
-    drop_repeat_or_reverse_facets(m, rng);
-    const std::string expected = reference_edge_error(m);
-    if (expected.empty()) continue;
-    EXPECT_EQ(build_error(m), expected);
-    ++compared;
-  }
+  const int compared = compare_first_edge_errors(400, [](std::mt19937_64& rng) {
+    return rng() % 2 ? triangulated(octahedron_mesh()) : cube_mesh();
+  });
   EXPECT_GT(compared, 300);
 }
 
@@ -616,24 +633,11 @@ TEST(PolytopeBad, EdgeErrorsInBlocksNameTheEdgeThatAppearsFirst) {
   std::mt19937_64 cloud_rng(7);
   std::normal_distribution<double> g;
   std::vector<Point3> cloud;
-  for (int i = 0; i < 3000; ++i) {
-    const double x = g(cloud_rng), y = g(cloud_rng), z = g(cloud_rng), r = std::sqrt(x * x + y * y + z * z);
-    cloud.push_back(Point3(x / r, y / r, z / r));
-  }
+  for (int i = 0; i < 3000; ++i) cloud.push_back(on_unit_sphere(cloud_rng, g));
   const Mesh big = triangulated(ConvexPolytope::hull(cloud).to_mesh());
   ASSERT_GT(big.faces.size(), 4096u);
   EXPECT_EQ(ConvexPolytope::from_mesh(big, "case.off").num_facets(), big.faces.size());
-  int compared = 0;
-  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    std::mt19937_64 rng(seed);
-    Mesh m = big;
-    drop_repeat_or_reverse_facets(m, rng);
-    const std::string expected = reference_edge_error(m);
-    if (expected.empty()) continue;
-    EXPECT_EQ(build_error(m), expected);
-    ++compared;
-  }
+  const int compared = compare_first_edge_errors(60, [&](std::mt19937_64&) { return big; });
   EXPECT_GT(compared, 50);
 }
 
@@ -746,10 +750,7 @@ TEST(PolytopeBad, ZeroAreaFacetsInSeveralBlocksNameTheFirst) {
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> g;
     std::vector<Point3> cloud;
-    for (int i = 0; i < 18000; ++i) {
-      const double x = g(rng), y = g(rng), z = g(rng), r = std::sqrt(x * x + y * y + z * z);
-      cloud.push_back(Point3(x / r, y / r, z / r));
-    }
+    for (int i = 0; i < 18000; ++i) cloud.push_back(on_unit_sphere(rng, g));
     Mesh m = triangulated(ConvexPolytope::hull(cloud).to_mesh());
     const std::size_t nf = m.faces.size();
     ASSERT_GT(nf, 32768u);

@@ -29,6 +29,10 @@
 
 namespace minksum::cli {
 
+namespace {
+void* volatile heap_filler = nullptr;  // see tune_memory
+}  // namespace
+
 void tune_memory() {
   constexpr std::size_t kPad = std::size_t(64) << 20;
   constexpr std::uintptr_t kHuge = std::uintptr_t(2) << 20;
@@ -44,6 +48,13 @@ void tune_memory() {
   const auto hi = reinterpret_cast<std::uintptr_t>(sbrk(0)) & ~(kHuge - 1);
   if (hi > lo) (void)madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);
   std::free(first);
+  // The heap from where `first` started up to lo (up to 2 MiB) is not in
+  // the advised region, and it is where the next blocks would go: the first
+  // file read (a megabyte of text) would fault there 4 KiB at a time (about
+  // 3 ms for 1 MB here, against 0.2 ms for a huge page).  A block that is
+  // never used and never freed takes that stretch; it costs address space,
+  // not memory (its pages are never touched).
+  if (hi > lo) heap_filler = std::malloc(lo - reinterpret_cast<std::uintptr_t>(first));
 }
 
 }  // namespace minksum::cli

@@ -6,6 +6,7 @@
 #include <minksum/error.hpp>
 #include <minksum/io.hpp>
 #include <minksum/minkowski.hpp>
+#include <minksum/parallel.hpp>
 #include <minksum/operand.hpp>
 #include <minksum/predicates.hpp>
 #include <minksum/scene.hpp>
@@ -739,6 +740,31 @@ TEST(IoWrite, ManyPointsAreFormattedInOrder) {
       EXPECT_NE(out.str().find(lines), std::string::npos);
     }
   }
+}
+
+// The chunks of a long file are formatted on threads and written in order
+// while the next ones are formatted, at most a window of chunks ahead of the
+// writer.  Written from inside jobs of a parallel_for (a batch), where the
+// chunks run on the job's own thread, and from several jobs at once, every
+// text is the one written on the calling thread alone, line for line.
+TEST(IoWrite, LinesWrittenFromParallelJobsAreTheSame) {
+  Mesh m;
+  const std::size_t n = 40 * 1024 + 5;  // 41 chunks: more than the window of two threads
+  for (std::size_t i = 0; i < n; ++i) m.points.push_back(Vec3d{double(i) / 7, -double(i) / 3, double(i % 11) + 0.1});
+  for (std::size_t f = 0; f + 2 < n; f += 3) m.faces.push_back({Index(f), Index(f + 1), Index(f + 2)});
+  std::ostringstream alone;
+  write_mesh(alone, m, Format::off);
+  std::vector<std::string> texts(4);
+  parallel_for(texts.size(), 0, [&](std::size_t j) {
+    std::ostringstream out;
+    write_mesh(out, m, Format::off);
+    texts[j] = out.str();
+  });
+  for (const std::string& t : texts) EXPECT_EQ(t, alone.str());
+  const Mesh back = read_from_string(alone.str(), Format::off);
+  ASSERT_EQ(back.points.size(), n);
+  EXPECT_EQ(back.points[n - 1], m.points[n - 1]);
+  EXPECT_EQ(back.faces, m.faces);
 }
 
 // A facet whose line is longer than the writer's buffer (a prism over a

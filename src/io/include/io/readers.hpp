@@ -16,8 +16,10 @@
 
 #include <algorithm>
 #include <charconv>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <mutex>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -128,10 +130,16 @@ class TextBuffer {
 
 // Lines 0 .. n-1 written in order: size(i) bounds the length of line i,
 // put(p, i) writes it at p and returns its end.  From kLinesOnThreads lines
-// on, chunks of kLinesChunk lines are formatted on threads, a few chunks per
-// thread at a time (the memory stays bounded), then written in order: in a
-// large text file, formatting numbers is most of the writing.
-inline constexpr std::size_t kLinesOnThreads = 8192, kLinesChunk = 1024;
+// on, chunks of kLinesChunk lines are formatted on threads and written in
+// order while the next ones are being formatted: the thread that completes
+// the chunk next in line writes it, and every chunk already formatted after
+// it, with the lock released, while the other threads go on formatting (in a
+// large text file, formatting numbers is most of the writing; the system
+// calls of the writes are most of the rest).  No chunk is formatted more
+// than kLinesWindow chunks per thread ahead of the last one written, so the
+// memory stays bounded.  On one thread (or inside a job of another
+// parallel_for) the chunks are formatted and written one after the other.
+inline constexpr std::size_t kLinesOnThreads = 8192, kLinesChunk = 1024, kLinesWindow = 8;
 template <class Size, class Put>
 void write_lines(std::ostream& out, std::size_t n, Size&& size, Put&& put) {
   if (n < kLinesOnThreads) {
@@ -150,22 +158,53 @@ void write_lines(std::ostream& out, std::size_t n, Size&& size, Put&& put) {
     }
     return;
   }
-  const std::size_t per_round = 8 * std::size_t(parallel_threads(0, n));
-  std::vector<std::string> text(per_round);
-  for (std::size_t first = 0; first < n; first += per_round * kLinesChunk) {
-    const std::size_t chunks = std::min(per_round, (n - first + kLinesChunk - 1) / kLinesChunk);
-    parallel_for(chunks, 0, [&](std::size_t c) {
-      const std::size_t begin = first + c * kLinesChunk, end = std::min(n, begin + kLinesChunk);
-      std::size_t room = 0;
-      for (std::size_t i = begin; i < end; ++i) room += size(i);
-      std::string& t = text[c];
-      t.resize(room);
+  const std::size_t chunks = (n + kLinesChunk - 1) / kLinesChunk;
+  const std::size_t window = kLinesWindow * std::size_t(parallel_threads(0, chunks));
+  std::vector<std::string> text(chunks);
+  std::vector<unsigned char> ready(chunks, 0);
+  std::size_t written = 0;  // chunks [0, written) are written or being written
+  bool writing = false;     // a thread is writing
+  bool failed = false;      // a chunk threw (no memory): the waiting jobs stop
+  std::mutex m;
+  std::condition_variable room;
+  parallel_for(chunks, 0, [&](std::size_t c) {
+    {
+      std::unique_lock<std::mutex> lock(m);
+      room.wait(lock, [&] { return failed || c < written + window; });
+      if (failed) return;
+    }
+    std::string t;
+    try {
+      const std::size_t begin = c * kLinesChunk, end = std::min(n, begin + kLinesChunk);
+      std::size_t bound = 0;
+      for (std::size_t i = begin; i < end; ++i) bound += size(i);
+      t.resize(bound);
       char* p = t.data();
       for (std::size_t i = begin; i < end; ++i) p = put(p, i);
       t.resize(std::size_t(p - t.data()));
-    });
-    for (std::size_t c = 0; c < chunks; ++c) out.write(text[c].data(), std::streamsize(text[c].size()));
-  }
+    } catch (...) {
+      {
+        std::lock_guard<std::mutex> lock(m);
+        failed = true;
+      }
+      room.notify_all();
+      throw;  // rethrown by parallel_for
+    }
+    std::unique_lock<std::mutex> lock(m);
+    if (failed) return;
+    text[c] = std::move(t);
+    ready[c] = 1;
+    if (writing) return;  // the writing thread takes this chunk when its turn comes
+    writing = true;
+    while (written < chunks && ready[written]) {
+      const std::string chunk = std::move(text[written++]);
+      lock.unlock();
+      room.notify_all();
+      out.write(chunk.data(), std::streamsize(chunk.size()));
+      lock.lock();
+    }
+    writing = false;
+  });
 }
 
 // A decimal index, written at p (at most 20 characters); returns the end.

@@ -401,8 +401,8 @@ struct FanScratch {
 // `pts`) turns strictly counter-clockwise about its normal, whose interval
 // is `n`, and winds once.  `exact_normal()` gives the exact normal when the
 // intervals cannot decide.
-template <class ExactNormal>
-bool convex_polygon(const std::vector<Index>& poly, const std::vector<FastIPoint>& ip, const PointList& pts,
+template <class IPoints, class ExactNormal>
+bool convex_polygon(const std::vector<Index>& poly, const IPoints& ip, const PointList& pts,
                     const FastIPoint& n, ExactNormal&& exact_normal, FanScratch& s) {
   const std::size_t k = poly.size();
   s.idirs.clear();
@@ -1241,9 +1241,44 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
     if (!accepted[i]) undecided.push_back(i);
   // Points (2) for polygons and (4) where the doubles did not decide, on
   // intervals (exact when undecided), as step 8 of build.
-  bool polygons = false;
-  for (Index f = 0; f < nf && !polygons; ++f) polygons = r.facet_degree(f) > 3;
-  if (polygons || !undecided.empty()) {
+  std::vector<Index> polygons;
+  for (Index f = 0; f < nf; ++f)
+    if (r.he_next_[r.he_next_[r.he_next_[r.facet_he_[f]]]] != r.facet_he_[f]) polygons.push_back(f);
+  if (undecided.empty()) {
+    // The common case: only the polygons' test, on intervals of their own
+    // corners made on demand (no interval array of every point and facet).
+    if (polygons.empty()) {
+      if (split) *split = cuts;
+      return r;
+    }
+    CGAL::Protect_FPU_rounding<true> upward;
+    const DoubleIntervals dip{&v};
+    FanScratch scratch;
+    std::vector<Index> loop;
+    for (Index f : polygons) {
+      loop.clear();
+      const Index h0 = r.facet_he_[f];
+      Index h = h0;
+      do {
+        loop.push_back(r.he_origin_[h]);
+        h = r.he_next_[h];
+      } while (h != h0);
+      const FastIPoint o = dip[loop[0]];
+      FastIPoint prev = dip[loop[1]] - o, n{FastInterval(0), FastInterval(0), FastInterval(0)};
+      for (std::size_t i = 2; i < loop.size(); ++i) {
+        const FastIPoint cur = dip[loop[i]] - o;
+        n = n + cross(prev, cur);
+        prev = cur;
+      }
+      Point3 exact;
+      if (!convex_polygon(loop, dip, points, n,
+                          [&]() -> const Point3& { return exact = polygon_normal(points, loop); }, scratch))
+        return std::nullopt;
+    }
+    if (split) *split = cuts;
+    return r;
+  }
+  {
     std::vector<FastIPoint> ip(nv), nrm(nf);
     CGAL::Protect_FPU_rounding<true> upward;
     for (Index i = 0; i < nv; ++i) ip[i] = {FastInterval(v[i].x), FastInterval(v[i].y), FastInterval(v[i].z)};

@@ -86,15 +86,13 @@ std::vector<Entry> contenders() {
       // Timed: the walk alone, whose result is the exact sum as a half-edge
       // structure with implicit coordinates (vertex = pair of input vertices);
       // counts from it.  The second timing is to_polytope(), the conversion to
-      // explicit exact rational coordinates and canonical planes (what
-      // minkowski_sum(a, b, Method::walk) adds), run once, after the cell's
-      // first walk: the walk's runs follow each other like every other
-      // contender's, without the conversion's allocations in between.  (Each
-      // cell is a fresh child process: the counter starts at 0 in each.)
+      // explicit exact coordinates (planes on demand), what
+      // minkowski_sum(a, b, Method::walk) adds, timed in every run right after
+      // the walk, as minkowski_sum runs them: each figure is a median over the
+      // cell's runs, and walk + conversion is what minkowski_sum costs.
       c.sub_label = "+ conversion";
       c.sub_extra = true;
       out.push_back({c, [](const ConvexPolytope& a, const ConvexPolytope& b) {
-                       static int runs = 0;
                        Outcome o;
                        Stopwatch sw;
                        WalkSum w = minkowski_walk(a, b);
@@ -102,7 +100,6 @@ std::vector<Entry> contenders() {
                        o.v = w.num_vertices();
                        o.e = w.num_edges();
                        o.f = w.num_facets();
-                       if (runs++ > 0) return o;
                        Stopwatch conv;
                        ConvexPolytope p = to_polytope(w, a, b);
                        o.sub_seconds = conv.seconds();

@@ -1240,22 +1240,29 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
   for (Index i = 0; i < nv; ++i)
     if (!accepted[i]) undecided.push_back(i);
   // Points (2) for polygons and (4) where the doubles did not decide, on
-  // intervals (exact when undecided), as step 8 of build.
-  std::vector<Index> polygons;
+  // intervals of the points made on demand (exact when undecided), as step 8
+  // of build.  The interval normals the tests read: those of the polygons
+  // and of the facets around the undecided vertices (a triangle elsewhere
+  // needs none).
+  std::vector<unsigned char> needed(nf, 0);
+  bool any = false;
   for (Index f = 0; f < nf; ++f)
-    if (r.he_next_[r.he_next_[r.he_next_[r.facet_he_[f]]]] != r.facet_he_[f]) polygons.push_back(f);
-  if (undecided.empty()) {
-    // The common case: only the polygons' test, on intervals of their own
-    // corners made on demand (no interval array of every point and facet).
-    if (polygons.empty()) {
-      if (split) *split = cuts;
-      return r;
-    }
+    if (r.he_next_[r.he_next_[r.he_next_[r.facet_he_[f]]]] != r.facet_he_[f]) needed[f] = 1, any = true;
+  for (Index i : undecided) {
+    Index h = r.vertex_he_[i];
+    do {
+      needed[r.he_facet_[h]] = 1, any = true;
+      h = r.he_prev_[h] ^ 1u;
+    } while (h != r.vertex_he_[i]);
+  }
+  if (any) {
     CGAL::Protect_FPU_rounding<true> upward;
     const DoubleIntervals dip{&v};
+    std::vector<FastIPoint> nrm(undecided.empty() ? 0 : nf);  // read by the vertex test only
     FanScratch scratch;
     std::vector<Index> loop;
-    for (Index f : polygons) {
+    for (Index f = 0; f < nf; ++f) {
+      if (!needed[f]) continue;
       loop.clear();
       const Index h0 = r.facet_he_[f];
       Index h = h0;
@@ -1270,58 +1277,15 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
         n = n + cross(prev, cur);
         prev = cur;
       }
+      if (!nrm.empty()) nrm[f] = n;
+      if (loop.size() == 3) continue;
       Point3 exact;
       if (!convex_polygon(loop, dip, points, n,
                           [&]() -> const Point3& { return exact = polygon_normal(points, loop); }, scratch))
         return std::nullopt;
     }
-    if (split) *split = cuts;
-    return r;
-  }
-  {
-    std::vector<FastIPoint> ip(nv), nrm(nf);
-    CGAL::Protect_FPU_rounding<true> upward;
-    for (Index i = 0; i < nv; ++i) ip[i] = {FastInterval(v[i].x), FastInterval(v[i].y), FastInterval(v[i].z)};
-    FanScratch scratch;
-    std::vector<Index> loop;
-    // The interval normals that the tests read: those of the polygons and
-    // of the facets around the undecided vertices (a triangle elsewhere
-    // needs none).
-    std::vector<unsigned char> needed(nf, 0);
-    for (Index i : undecided) {
-      Index h = r.vertex_he_[i];
-      do {
-        needed[r.he_facet_[h]] = 1;
-        h = r.he_prev_[h] ^ 1u;
-      } while (h != r.vertex_he_[i]);
-    }
-    for (Index f = 0; f < nf; ++f) {
-      if (!needed[f] && r.he_next_[r.he_next_[r.he_next_[r.facet_he_[f]]]] == r.facet_he_[f]) continue;
-      const Index h0 = r.facet_he_[f];
-      const FastIPoint& o = ip[r.he_origin_[h0]];
-      Index h = r.he_next_[h0];
-      FastIPoint prev = ip[r.he_origin_[h]] - o, n{FastInterval(0), FastInterval(0), FastInterval(0)};
-      std::size_t k = 2;
-      for (h = r.he_next_[h]; h != h0; h = r.he_next_[h], ++k) {
-        FastIPoint cur = ip[r.he_origin_[h]] - o;
-        n = n + cross(prev, cur);
-        prev = cur;
-      }
-      nrm[f] = n;
-      if (k == 3) continue;
-      loop.clear();
-      h = h0;
-      do {
-        loop.push_back(r.he_origin_[h]);
-        h = r.he_next_[h];
-      } while (h != h0);
-      Point3 exact;
-      if (!convex_polygon(loop, ip, points, n,
-                          [&]() -> const Point3& { return exact = polygon_normal(points, loop); }, scratch))
-        return std::nullopt;
-    }
     for (Index i : undecided)
-      if (!convex_vertex(i, r.vertex_he_[i], r.he_origin_.data(), r.he_prev_.data(), r.he_facet_.data(), ip, nrm,
+      if (!convex_vertex(i, r.vertex_he_[i], r.he_origin_.data(), r.he_prev_.data(), r.he_facet_.data(), dip, nrm,
                          points, scratch))
         return std::nullopt;
   }

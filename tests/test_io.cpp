@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 using namespace minksum;
@@ -612,11 +613,12 @@ TEST(IoParse, OffLineFastPathAgreesWithTheTokenizer) {
   }
 }
 
-// Files of 8192 faces or more have their faces read ahead on a second
-// thread while the vertices are read; the reader uses them only when the
-// vertices end where the faces were read from.  Every layout must give the
-// tokenizer's mesh, and errors keep their lines and messages.
+// Files of parallel_items() faces or more (4096 here) have their faces read
+// ahead on a second thread while the vertices are read; the reader uses them
+// only when the vertices end where the faces were read from.  Every layout
+// must give the tokenizer's mesh, and errors keep their lines and messages.
 TEST(IoParse, OffFacesReadAheadAgreeWithTheTokenizer) {
+  const minksum::testing::ParallelItems threads(4096);
   const unsigned seed = 20261124;
   std::mt19937 rng(seed);
   const int nv = 3000, nf = 9000;
@@ -697,10 +699,55 @@ TEST(IoBad, OffLineNumbersAfterFastLines) {
     expect_input_error([&] { read_from_string(c.text, Format::off); }, "mem", c.problem, c.place);
 }
 
-// Lists of 8192 points or more are formatted on threads in chunks: the
-// lines must come out in order, each the shortest round-trip form, in the
-// text formats that print points as lines (OFF, OBJ, PLY).
+// minksum's loops over one mesh or one text run on threads from
+// parallel_items() items on (kParallelItems unless set; at least 1).  In a
+// child process (which starts with one thread and no pool), reading,
+// validating and writing a 20 480-facet sphere starts no thread by default,
+// and starts the pool's threads once the threshold is 4096: the kernel
+// threads of the process, counted in /proc/self/task, tell.
+TEST(IoParallel, LoopsUseThreadsFromParallelItemsOn) {
+  EXPECT_EQ(parallel_items(), kParallelItems);
+  {
+    const minksum::testing::ParallelItems zero(0);
+    EXPECT_EQ(parallel_items(), 1u);
+  }
+  EXPECT_EQ(parallel_items(), kParallelItems);
+  const std::string text = write_to_string(catalog_polytope("sphere:6").to_mesh(), Format::off, {});
+  const pid_t child = fork();
+  ASSERT_NE(child, -1);
+  if (child == 0) {
+    auto tasks = [] {
+      int n = 0;
+      for ([[maybe_unused]] const auto& e : fs::directory_iterator("/proc/self/task")) ++n;
+      return n;
+    };
+    auto round_trip = [&] {
+      const Mesh m = read_from_string(text, Format::off);
+      const ConvexPolytope p = ConvexPolytope::from_mesh(m, "sphere6.off");
+      return m.faces.size() == 20480 && p.num_facets() == 20480 && write_to_string(m, Format::off, {}) == text;
+    };
+    int code = 0;
+    if (tasks() != 1) code |= 1;
+    if (!round_trip()) code |= 2;
+    if (tasks() != 1) code |= 4;  // below the threshold: the calling thread alone
+    set_parallel_items(4096);
+    if (!round_trip()) code |= 8;
+    if (tasks() < 2) code |= 16;  // the pool started
+    _exit(code);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: threads before, 2/8: a round trip failed, 4: a thread started below the "
+                                       "threshold, 16: no thread above it";
+}
+
+// Lists of parallel_items() points or more (8192 here) are formatted on
+// threads in chunks: the lines must come out in order, each the shortest
+// round-trip form, in the text formats that print points as lines (OFF,
+// OBJ, PLY).
 TEST(IoWrite, ManyPointsAreFormattedInOrder) {
+  const minksum::testing::ParallelItems threads(8192);
   const unsigned seed = 20261125;
   std::mt19937_64 rng(seed);
   Mesh m;
@@ -746,8 +793,10 @@ TEST(IoWrite, ManyPointsAreFormattedInOrder) {
 // while the next ones are formatted, at most a window of chunks ahead of the
 // writer.  Written from inside jobs of a parallel_for (a batch), where the
 // chunks run on the job's own thread, and from several jobs at once, every
-// text is the one written on the calling thread alone, line for line.
+// text is the one written on the calling thread alone, line for line
+// (threads from 8192 lines here).
 TEST(IoWrite, LinesWrittenFromParallelJobsAreTheSame) {
+  const minksum::testing::ParallelItems threads(8192);
   Mesh m;
   const std::size_t n = 40 * 1024 + 5;  // 41 chunks: more than the window of two threads
   for (std::size_t i = 0; i < n; ++i) m.points.push_back(Vec3d{double(i) / 7, -double(i) / 3, double(i % 11) + 0.1});
@@ -769,8 +818,10 @@ TEST(IoWrite, LinesWrittenFromParallelJobsAreTheSame) {
 
 // A facet whose line is longer than the writer's buffer (a prism over a
 // 3000-gon: two lines of 3001 indices) is written whole, in its place,
-// whether the facet lines are formatted on one thread or in chunks.
+// whether the facet lines are formatted on one thread or in chunks
+// (threads from 8192 lines here).
 TEST(IoWrite, FacetLinesLongerThanTheBufferAreWrittenWhole) {
+  const minksum::testing::ParallelItems threads(8192);
   const ConvexPolytope prism = catalog_polytope("prism:3000");
   ASSERT_EQ(prism.num_facets(), 3002u);
   for (Format f : {Format::off, Format::ply}) {
@@ -1513,7 +1564,8 @@ TEST(VrmlScene, MalformedNodesNameTheLine) {
 // flatten some, and keep most convex): whenever the certificate accepts, full
 // validation of the same mesh builds the same polytope, facet by facet;
 // whenever it declines, full validation refuses the mesh or changes it
-// (merges coplanar facets, welds points).
+// (merges coplanar facets, welds points).  Odd trials run the loops of both
+// on threads (parallel_items() 1: every loop of two blocks or more).
 TEST(IoRounding, LocalCertificateAgreesWithFullValidation) {
   const unsigned seed = 20261123;
   std::mt19937 rng(seed);
@@ -1565,6 +1617,8 @@ TEST(IoRounding, LocalCertificateAgreesWithFullValidation) {
           large_cut = true;
         }
       }
+      std::optional<minksum::testing::ParallelItems> threads;
+      if (trial % 2 == 1) threads.emplace(1);
       std::size_t split = 0;
       const std::optional<ConvexPolytope> fast = PolytopeBuilder::moved(s, pts, &split);
       if (large_cut) {

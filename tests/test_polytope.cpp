@@ -627,9 +627,11 @@ TEST(PolytopeBad, EdgeErrorsNameTheEdgeThatAppearsFirst) {
 }
 
 // The same in a mesh large enough for the edge matching, the linking and
-// the fan test to run in blocks on threads (6 000 facets): the error named
-// is still the one on the edge (or vertex) that appears first.
+// the fan test to run in blocks (6 000 facets), on threads (from 4096
+// facets here): the error named is still the one on the edge (or vertex)
+// that appears first.
 TEST(PolytopeBad, EdgeErrorsInBlocksNameTheEdgeThatAppearsFirst) {
+  const ParallelItems threads(4096);
   std::mt19937_64 cloud_rng(7);
   std::normal_distribution<double> g;
   std::vector<Point3> cloud;
@@ -651,9 +653,11 @@ TEST(PolytopeBad, EdgeErrorsInBlocksNameTheEdgeThatAppearsFirst) {
 // points made equal, a vertex put on a neighbour's plane (a merge), a
 // lattice with coplanar triangles (merges and dropped vertices).  Every
 // twentieth mesh has some 18 000 vertices (36 000 facets), so that the
-// loops over facets, edges and vertices run in several blocks on threads:
-// the same polytope and the same first error as the rational mesh.
+// loops over facets, edges and vertices run in several blocks on threads
+// (from 4096 facets here): the same polytope and the same first error as
+// the rational mesh.
 TEST(Polytope, TrianglesOnDoublesAgreeWithRationals) {
+  const ParallelItems threads(4096);
   auto thirds = [](const Mesh& m) {
     Mesh t;
     t.faces = m.faces;
@@ -743,8 +747,9 @@ TEST(Polytope, TrianglesOnDoublesAgreeWithRationals) {
 // Facets are checked in blocks on threads: of several facets with zero
 // area in different blocks, the error names the first in input order (the
 // reference: an exact scan of every facet).  Fixed seeds; 36 000 facets,
-// enough for threads.
+// on threads from 4096 facets here.
 TEST(PolytopeBad, ZeroAreaFacetsInSeveralBlocksNameTheFirst) {
+  const ParallelItems threads(4096);
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937_64 rng(seed);

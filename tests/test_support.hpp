@@ -1,7 +1,9 @@
 // Small helpers shared by the test suites: hand-built meshes whose facts are
-// known in closed form, and exact comparison of polytopes.
+// known in closed form, exact comparison of polytopes, and the size from
+// which minksum's loops run on threads, set for a scope.
 #pragma once
 
+#include <minksum/parallel.hpp>
 #include <minksum/polytope.hpp>
 
 #include <algorithm>
@@ -9,6 +11,20 @@
 #include <vector>
 
 namespace minksum::testing {
+
+// parallel_items() set for the scope: a small value runs the threaded loops
+// of validation, of the rounding certificate, of the OFF reader and of the
+// text writers on inputs small enough for a test.
+class ParallelItems {
+ public:
+  explicit ParallelItems(std::size_t items) : old_(parallel_items()) { set_parallel_items(items); }
+  ~ParallelItems() { set_parallel_items(old_); }
+  ParallelItems(const ParallelItems&) = delete;
+  ParallelItems& operator=(const ParallelItems&) = delete;
+
+ private:
+  std::size_t old_;
+};
 
 inline Point3 P(long x, long y, long z) { return Point3(Rational(x), Rational(y), Rational(z)); }
 inline Point3 Q(const char* x, const char* y, const char* z) {

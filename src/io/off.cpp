@@ -148,12 +148,13 @@ const char* fast_face_line(const char* p, const char* end, std::uint64_t nv, std
   return line_end(p, end);
 }
 
-// The faces read ahead, on a second thread while the vertices are read, for
-// the common layout: one vertex per line, then the faces, one per line, all
-// on the fast path.  Their section is assumed to start after nv line ends
-// from the first vertex; read_off uses them only when its own reading of
-// the vertices ends exactly there, and reads the faces itself otherwise
-// (any other layout, a comment, an error: the messages are its own).
+// The faces of files of parallel_items() faces or more, read ahead on a
+// second thread while the vertices are read, for the common layout: one
+// vertex per line, then the faces, one per line, all on the fast path.
+// Their section is assumed to start after nv line ends from the first
+// vertex; read_off uses them only when its own reading of the vertices ends
+// exactly there, and reads the faces itself otherwise (any other layout, a
+// comment, an error: the messages are its own).
 struct FacesAhead {
   bool ok = false;
   const char* start = nullptr;  // the first face's first character
@@ -186,10 +187,6 @@ FacesAhead read_faces_ahead(const char* p, const char* end, std::uint64_t nv, st
   a.ok = true;
   return a;
 }
-
-// Files from this many faces on read their faces ahead (a few milliseconds
-// of parsing and more: worth a thread).
-constexpr std::uint64_t kFacesAheadFrom = 8192;
 
 }  // namespace
 
@@ -274,7 +271,7 @@ Mesh read_off(std::string_view data, const std::string& name) {
     }
   };
   FacesAhead ahead;
-  if (nf >= kFacesAheadFrom && nv > 0) {
+  if (nf >= parallel_items() && nv > 0) {
     const char* first_vertex = cur.here();
     parallel_for(2, 2, [&](std::size_t job) {
       if (job == 0) read_vertices();

@@ -69,13 +69,12 @@ struct UnionFind {
 // failure; of the failures, parallel_for rethrows the one of the first
 // block, so the error is the first in input order, as on one thread.
 // Validation (and the rounding certificate, moved) use threads from
-// kThreadsFromFacets facets on: two blocks or more, a millisecond or more
-// of work, against some tens of microseconds to start and join a thread.
-// On a loaded machine a started thread may wait to be scheduled; the jobs
-// are handed out one block at a time, so the calling thread then does the
-// blocks itself and only the last block may wait.
+// parallel_items() facets on (<minksum/parallel.hpp>: below, a loop is too
+// short to gain from a second thread).  On a loaded machine a started
+// thread may wait to be scheduled; the jobs are handed out one block at a
+// time, so the calling thread then does the blocks itself and only the last
+// block may wait.
 constexpr std::size_t kValidationBlock = 2048;
-constexpr std::size_t kThreadsFromFacets = 4096;
 template <class Body>
 void in_blocks(std::size_t n, bool threads, Body&& body) {
   const std::size_t blocks = (n + kValidationBlock - 1) / kValidationBlock;
@@ -160,7 +159,7 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   // Buckets in blocks of vertices (on threads for large meshes); each block
   // keeps its own first failures, merged after: the one on the edge that
   // appears first, as on one thread.
-  const bool threads = nf >= kThreadsFromFacets;
+  const bool threads = nf >= parallel_items();
   struct Failures {
     Failure non_manifold, same_direction, open;
   };
@@ -745,7 +744,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   //    filtered predicate), and the intervals of points and normals that a
   //    fallback needs are made on demand (DoubleIntervals,
   //    TriangleNormals).  Every decision is the same as on stored intervals.
-  const bool threads = nf >= kThreadsFromFacets;
+  const bool threads = nf >= parallel_items();
   const bool triangles_on_doubles =
       pts.form() == PointList::Form::doubles &&
       std::all_of(faces.begin(), faces.end(), [](const std::vector<Index>& poly) { return poly.size() == 3; });
@@ -1139,7 +1138,7 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
   // The loops over facets, edges and vertices below run in blocks, on
   // threads for large polytopes (as the validation's); a block that finds
   // the surface not certified clears `certified` and the others stop early.
-  const bool threads = nf0 >= kThreadsFromFacets;
+  const bool threads = nf0 >= parallel_items();
   std::atomic<bool> certified{true};
   std::vector<unsigned char> cut(nf0, 0);
   in_blocks(nf0, threads, [&](std::size_t begin, std::size_t end) {

@@ -129,20 +129,21 @@ class TextBuffer {
 };
 
 // Lines 0 .. n-1 written in order: size(i) bounds the length of line i,
-// put(p, i) writes it at p and returns its end.  From kLinesOnThreads lines
-// on, chunks of kLinesChunk lines are formatted on threads and written in
-// order while the next ones are being formatted: the thread that completes
-// the chunk next in line writes it, and every chunk already formatted after
-// it, with the lock released, while the other threads go on formatting (in a
-// large text file, formatting numbers is most of the writing; the system
-// calls of the writes are most of the rest).  No chunk is formatted more
-// than kLinesWindow chunks per thread ahead of the last one written, so the
-// memory stays bounded.  On one thread (or inside a job of another
-// parallel_for) the chunks are formatted and written one after the other.
-inline constexpr std::size_t kLinesOnThreads = 8192, kLinesChunk = 1024, kLinesWindow = 8;
+// put(p, i) writes it at p and returns its end.  From parallel_items() lines
+// on (<minksum/parallel.hpp>), chunks of kLinesChunk lines are formatted on
+// threads and written in order while the next ones are being formatted: the
+// thread that completes the chunk next in line writes it, and every chunk
+// already formatted after it, with the lock released, while the other
+// threads go on formatting (in a large text file, formatting numbers is most
+// of the writing; the system calls of the writes are most of the rest).  No
+// chunk is formatted more than kLinesWindow chunks per thread ahead of the
+// last one written, so the memory stays bounded.  On one thread (or inside a
+// job of another parallel_for) the chunks are formatted and written one
+// after the other.
+inline constexpr std::size_t kLinesChunk = 1024, kLinesWindow = 8;
 template <class Size, class Put>
 void write_lines(std::ostream& out, std::size_t n, Size&& size, Put&& put) {
-  if (n < kLinesOnThreads) {
+  if (n < parallel_items()) {
     TextBuffer buf(out);
     std::string long_line;
     for (std::size_t i = 0; i < n; ++i) {

@@ -36,4 +36,21 @@ unsigned parallel_threads(unsigned threads, std::size_t n);
 
 void parallel_for(std::size_t n, unsigned threads, const std::function<void(std::size_t)>& job);
 
+// minksum's own loops over one mesh or one text (validating a mesh, the
+// certificate of rounded coordinates, reading the faces of an OFF file,
+// formatting lines of text) run on threads from this many items (facets,
+// faces, lines) on, and on the calling thread below.  A loop below it is a
+// few milliseconds or less; with two hardware threads that share a core (a
+// virtual machine's vCPUs, SMT siblings) waking the second and waiting for
+// its share costs about what it saves on the median and much more on a bad
+// run: measured on a 2-vCPU machine, `minksum sum` of a 20 000-facet pair
+// end to end took 18.1 ms on one thread against 23.8 ms on two (medians of
+// 40 interleaved runs, the two-thread runs spread from 17 to 43 ms;
+// docs/data-model.md).  The default is kParallelItems; set_parallel_items
+// changes it for the whole process (tests use small values to run the
+// threaded paths on small inputs; 1 puts every such loop on threads).
+inline constexpr std::size_t kParallelItems = std::size_t(1) << 17;
+std::size_t parallel_items();
+void set_parallel_items(std::size_t items);
+
 }  // namespace minksum

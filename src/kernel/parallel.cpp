@@ -160,7 +160,9 @@ std::atomic<std::size_t> g_parallel_items{kParallelItems};
 
 std::size_t parallel_items() { return g_parallel_items.load(std::memory_order_relaxed); }
 
-void set_parallel_items(std::size_t items) { g_parallel_items.store(std::max<std::size_t>(1, items), std::memory_order_relaxed); }
+void set_parallel_items(std::size_t items) {
+  g_parallel_items.store(std::max<std::size_t>(1, items), std::memory_order_relaxed);
+}
 
 unsigned parallel_threads(unsigned threads, std::size_t n) {
   if (threads == 0) threads = hardware_threads();

@@ -19,7 +19,12 @@ wait4's ru_maxrss.  Then the load row (`minksum stats` on a 10 000-vertex
 file) and the million row: `minksum gen random:1000000:7` (untimed, about
 30 s), then `minksum sum r1m.off cube -o S.off --json` over the memory
 rounds, with its phases (read, validate, sum, ...).  `--only` takes the row
-keys a, b, c1, c2, load, million.  The section "End to end: file to file" of
+keys a, b, c1, c2, load, million.  `--baseline PATH` adds another minksum
+build (an earlier commit, say) to the rounds of the rows Qhull takes, as a
+third contender interleaved with the two (minksum, qconvex, baseline, ...,
+its output to a file of its own), reported in a line with its median and
+quartiles beside minksum's: two builds compared under the same conditions.
+The section "End to end: file to file" of
 the page is replaced (or inserted before "## Machine and software", or
 appended).
 """
@@ -134,6 +139,7 @@ def main():
     ap.add_argument("--page", default="docs/generated/benchmarks.md")
     ap.add_argument("--command", default="make bench-e2e")
     ap.add_argument("--only", default="", help="comma-separated row keys (a,b,c1,c2,load,million)")
+    ap.add_argument("--baseline", default="", help="another minksum build, run as a third contender (rows a, b)")
     args = ap.parse_args()
     ms = os.path.abspath(args.minksum)
     os.makedirs(args.work, exist_ok=True)
@@ -190,6 +196,9 @@ def main():
             log("writing %d pairwise sums to %s" % (pairs, pts))
             write_qhull_points(pa, pb, pts)
             contenders.append(("qconvex", [args.qconvex, "o", "TI", pts, "TO", W("qconvex-%s.off" % row["key"])]))
+            if args.baseline:
+                contenders.append(("baseline", [args.baseline, "sum", fa, fb, "-o", W("baseline-%s.off" % row["key"])] +
+                                    (["--hull"] if hull else [])))
         del pa, pb
         # One untimed run of each (files in the page cache, binaries loaded), then the rounds, interleaved.
         for name, cmd in contenders:
@@ -347,6 +356,14 @@ def section(args, results, load, million, load_start, wall):
                 row["a"], row["b"], fmt_s(min(r["times"]["minksum"])), fmt_s(max(r["times"]["minksum"])),
                 ("; qconvex range %s–%s s" % (fmt_s(min(r["times"]["qconvex"])), fmt_s(max(r["times"]["qconvex"]))))
                 if row["qhull"] else ""))
+        if r["times"].get("baseline"):
+            def quartiles(ts):
+                q = statistics.quantiles(ts, n=4)
+                return "median %s s, quartiles %s–%s s" % (fmt_s(statistics.median(ts)), fmt_s(q[0]), fmt_s(q[2]))
+            notes.append("`%s` ⊕ `%s`, against the baseline build `%s` (`--baseline`, interleaved in the same "
+                         "rounds): minksum %s; baseline %s." % (
+                             row["a"], row["b"], r["cmds"]["baseline"][0], quartiles(r["times"]["minksum"]),
+                             quartiles(r["times"]["baseline"])))
     add("")
     add("Peak RSS is the largest over the rounds. V/F: the vertices used by the output file's facets, and its "
         "facets (Qhull's `o` lists every input point; its facets are its merged facets).")

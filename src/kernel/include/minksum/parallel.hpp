@@ -44,11 +44,12 @@ void parallel_for(std::size_t n, unsigned threads, const std::function<void(std:
 // virtual machine's vCPUs, SMT siblings) waking the second and waiting for
 // its share costs about what it saves on the median and much more on a bad
 // run: measured on a 2-vCPU machine, `minksum sum` of a cube and a
-// 20 480-facet sphere, file to file, took 17.3 ms on one thread against
-// 22.1 ms on two (medians of 40 interleaved runs; quartiles 16.8-17.7 ms
-// against 17.9-29.7 ms; docs/data-model.md).  The default is kParallelItems; set_parallel_items
-// changes it for the whole process (tests use small values to run the
-// threaded paths on small inputs; 1 puts every such loop on threads).
+// 20 480-facet sphere, file to file, took 16.7 ms on one thread against
+// 21.6 ms on two (medians of 40 interleaved runs; quartiles 16.5-17.1 ms
+// against 17.3-26.8 ms; bench/e2e.py --baseline, docs/data-model.md).
+// The default is kParallelItems; set_parallel_items changes it for the
+// whole process (tests use small values to run the threaded paths on small
+// inputs; 1 puts every such loop on threads).
 inline constexpr std::size_t kParallelItems = std::size_t(1) << 17;
 std::size_t parallel_items();
 void set_parallel_items(std::size_t items);

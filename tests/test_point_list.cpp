@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "io/readers.hpp"
+#include "kernel/big_array.hpp"
 #include "kernel/plane.hpp"
 #include "test_support.hpp"
 
@@ -285,6 +286,19 @@ TEST(LazyVolume, DyadicEqualsRational) {
   EXPECT_EQ(s.volume(), six / 6);
   const ConvexPolytope big = catalog_polytope("cube@scale:1e300");
   EXPECT_EQ(big.volume(), Rational(8) * Rational(1e300) * Rational(1e300) * Rational(1e300));
+}
+
+// release(v) frees v's buffer; `v = {}` would not (it picks the
+// initializer_list assignment, which keeps the capacity): the case of the
+// edge-sorting array that validation meant to free before making the
+// half-edge arrays, and held to the end instead.
+TEST(BigArray, ReleaseFreesTheBufferWhereAssigningBracesDoesNot) {
+  std::vector<Index> v = big_array<Index>(100000, 7);
+  v = {};
+  EXPECT_TRUE(v.empty());
+  EXPECT_GE(v.capacity(), 100000u);  // still held
+  release(v);
+  EXPECT_EQ(v.capacity(), 0u);
 }
 
 TEST(LazyCache, ConcurrentReadersGetTheSameAnswers) {

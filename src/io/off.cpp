@@ -18,6 +18,7 @@
 // charged 2 (its count and a separator), so that a short or truncated face
 // is reported as such rather than as an implausible count.
 #include "io/readers.hpp"
+#include "kernel/big_array.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -373,7 +374,7 @@ void write_off(std::ostream& out, const Mesh& mesh, const WriteOptions& options)
         }
       }
     }
-  set = {};
+  release(set);
 
   out << "OFF\n";
   if (options.exact) out << "# coordinates are exact rationals (integers or p/q)\n";

@@ -24,6 +24,7 @@
 // "list uchar int vertex_indices" (uint counts when a face has more than 255
 // vertices, uint indices beyond 2^31 - 1 vertices); binary is little-endian.
 #include "io/readers.hpp"
+#include "kernel/big_array.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -150,7 +151,7 @@ void finish_points(PointList& points, std::vector<std::array<Coordinate, 3>>& co
     Coordinate t[3] = {std::move(c[0]), std::move(c[1]), std::move(c[2])};
     push_point(points, t);
   }
-  coords = {};
+  release(coords);
 }
 }  // namespace
 

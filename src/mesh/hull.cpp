@@ -7,6 +7,7 @@
 //
 // This is the only translation unit of src/mesh that includes CGAL.
 #include "mesh/builder.hpp"
+#include "kernel/big_array.hpp"
 
 #include <minksum/error.hpp>
 
@@ -259,8 +260,8 @@ ConvexPolytope PolytopeBuilder::hull_of_extreme_points(const PointList& points, 
     std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
     m.faces.push_back(std::move(tri));
   }
-  triangles = {};
-  local = {};
+  release(triangles);
+  release(local);
   ConvexPolytope result = validated_hull(m, source);
   for (auto& s : result.source_vertex_) s = input_index[s];
   return result;

@@ -132,6 +132,23 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
       ++bucket[std::min(u, v) + 1];
     }
   for (Index u = 0; u < nv; ++u) bucket[u + 1] += bucket[u];
+  struct Failure {
+    Index first = kNoIndex, u = 0, w = 0, count = 0, c0 = 0, c1 = 0;
+    void note(Index f, Index uu, Index ww, Index n, Index a, Index b) {
+      if (f < first) *this = {f, uu, ww, n, a, b};
+    }
+  } non_manifold, same_direction, open;
+  const bool threads = nf >= parallel_items();
+  struct Failures {
+    Failure non_manifold, same_direction, open;
+  };
+  std::vector<Failures> block_failures((std::size_t(nv) + kValidationBlock - 1) / kValidationBlock);
+  // corner_edge[c] = the first corner of c's edge, then the edge's number.
+  // Made before `uses`, the largest array here and the first freed, which
+  // is then the last block of the heap: its memory goes back to the top,
+  // where the graph's arrays are taken from next (the peak is lower by an
+  // array than with `uses` freed below other blocks).
+  std::vector<Index> corner_edge = big_array<Index>(total);
   struct Use {
     Index other, corner;  // the larger endpoint, the corner
   };
@@ -148,22 +165,10 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   }
   // Each bucket sorted by (other, corner): a bucket holds about twice a
   // vertex's degree, so insertion sort (stable: corners stay increasing).
-  // corner_edge[c] = the first corner of c's edge, then the edge's number.
-  std::vector<Index> corner_edge = big_array<Index>(total);
-  struct Failure {
-    Index first = kNoIndex, u = 0, w = 0, count = 0, c0 = 0, c1 = 0;
-    void note(Index f, Index uu, Index ww, Index n, Index a, Index b) {
-      if (f < first) *this = {f, uu, ww, n, a, b};
-    }
-  } non_manifold, same_direction, open;
   // Buckets in blocks of vertices (on threads for large meshes); each block
-  // keeps its own first failures, merged after: the one on the edge that
-  // appears first, as on one thread.
-  const bool threads = nf >= parallel_items();
-  struct Failures {
-    Failure non_manifold, same_direction, open;
-  };
-  std::vector<Failures> block_failures((std::size_t(nv) + kValidationBlock - 1) / kValidationBlock);
+  // keeps its own first failures (block_failures, made with the other
+  // arrays above), merged after: the one on the edge that appears first, as
+  // on one thread.
   in_blocks(nv, threads, [&](std::size_t ubegin, std::size_t uend) {
     Failures& fail = block_failures[ubegin / kValidationBlock];
     for (Index u = Index(ubegin); u < uend; ++u) {
@@ -214,7 +219,7 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
     const Index first = corner_edge[c];
     corner_edge[c] = first == c ? num_edges++ : corner_edge[first];
   }
-  uses = {};
+  release(uses);
 
   Graph g;
   Index nh = Index(num_edges * 2);

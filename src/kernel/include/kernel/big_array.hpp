@@ -43,4 +43,11 @@ std::vector<T> big_array(std::size_t n, const T& value = T()) {
   return v;
 }
 
+// Free v's memory now.  (`v = {}` does not: for a std::vector it picks the
+// initializer_list assignment, which empties v but keeps its capacity.)
+template <class T>
+void release(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
+
 }  // namespace minksum

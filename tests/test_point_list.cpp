@@ -301,6 +301,21 @@ TEST(BigArray, ReleaseFreesTheBufferWhereAssigningBracesDoesNot) {
   EXPECT_EQ(v.capacity(), 0u);
 }
 
+// The array of plane slots is made on the first plane asked for: a
+// polytope copied before any plane, then asked from both copies at once.
+TEST(LazyCache, PlanesFirstAskedFromTwoCopiesAtOnce) {
+  const ConvexPolytope p = catalog_polytope("sphere:3@rot:2"), q = p;
+  std::vector<Plane> planes[2];
+  std::thread t([&] {
+    for (Index f = 0; f < q.num_facets(); ++f) planes[1].push_back(q.plane(f));
+  });
+  for (Index f = 0; f < p.num_facets(); ++f) planes[0].push_back(p.plane(f));
+  t.join();
+  EXPECT_EQ(planes[0], planes[1]);
+  const ConvexPolytope fresh = catalog_polytope("sphere:3@rot:2");
+  for (Index f = 0; f < fresh.num_facets(); ++f) ASSERT_EQ(planes[0][f], fresh.plane(f)) << f;
+}
+
 TEST(LazyCache, ConcurrentReadersGetTheSameAnswers) {
   const SumResult sum = minkowski_sum(catalog_polytope("sphere:3"), catalog_polytope("sphere:3@rot:1"), Method::walk);
   const ConvexPolytope copy = sum.polytope;  // copies share the cache

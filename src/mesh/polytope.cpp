@@ -1372,19 +1372,29 @@ std::vector<Index> ConvexPolytope::vertex_neighbours(Index v) const {
 // polytope are safe; two threads racing on one plane both compute it and one
 // result is kept (they are equal).
 
+// The array of plane slots is itself made on the first plane asked for: a
+// polytope only read, summed and written (the command line's usual path)
+// never holds it, 8 bytes a facet.
 struct ConvexPolytope::Cache {
-  explicit Cache(Index nf) : planes(new std::atomic<const Plane*>[nf]), num_facets(nf) {
-    for (Index f = 0; f < nf; ++f) planes[f].store(nullptr, std::memory_order_relaxed);
-  }
+  explicit Cache(Index nf) : num_facets(nf) {}
   ~Cache() {
-    for (Index f = 0; f < num_facets; ++f) delete planes[f].load(std::memory_order_relaxed);
+    if (planes)
+      for (Index f = 0; f < num_facets; ++f) delete planes[f].load(std::memory_order_relaxed);
   }
   Cache(const Cache&) = delete;
   Cache& operator=(const Cache&) = delete;
 
-  std::once_flag points_once;
+  std::atomic<const Plane*>& plane_slot(Index f) {
+    std::call_once(planes_once, [this] {
+      planes.reset(new std::atomic<const Plane*>[num_facets]);
+      for (Index g = 0; g < num_facets; ++g) planes[g].store(nullptr, std::memory_order_relaxed);
+    });
+    return planes[f];
+  }
+
+  std::once_flag points_once, planes_once;
   std::vector<Point3> points;
-  std::unique_ptr<std::atomic<const Plane*>[]> planes;
+  std::unique_ptr<std::atomic<const Plane*>[]> planes;  // once planes_once has run
   Index num_facets;
 };
 
@@ -1402,7 +1412,7 @@ const Point3& ConvexPolytope::point(Index v) const {
 }
 
 const Plane& ConvexPolytope::plane(Index f) const {
-  std::atomic<const Plane*>& slot = cache_->planes[f];
+  std::atomic<const Plane*>& slot = cache_->plane_slot(f);
   if (const Plane* p = slot.load(std::memory_order_acquire)) return *p;
   // Three consecutive corners of a strictly convex facet are never collinear;
   // counter-clockwise seen from outside, so (v1 - v0) x (v2 - v0) points out.

@@ -41,6 +41,29 @@ TEST(Walk, CubeOctahedronProvenance) {
   EXPECT_EQ(counter(minkowski_sum(cat("cube"), cat("octahedron"), Method::walk), "crossings"), 12);
 }
 
+// to_polytope(std::move(w), ...) takes w's half-edges instead of copying
+// them: the same polytope as from a copy, array for array.
+TEST(Walk, ToPolytopeFromAMovedWalkSumIsTheSame) {
+  const ConvexPolytope a = cat("cube@rot:2"), b = cat("sphere:2");
+  WalkSum w = minkowski_walk(a, b);
+  const ConvexPolytope copied = to_polytope(w, a, b);
+  const std::vector<std::pair<Index, Index>> origin = w.vertex_origin;
+  const ConvexPolytope moved = to_polytope(std::move(w), a, b);
+  EXPECT_EQ(w.vertex_origin, origin);  // kept
+  ASSERT_EQ(moved.num_vertices(), copied.num_vertices());
+  ASSERT_EQ(moved.num_halfedges(), copied.num_halfedges());
+  ASSERT_EQ(moved.num_facets(), copied.num_facets());
+  for (Index h = 0; h < moved.num_halfedges(); ++h) {
+    ASSERT_EQ(moved.origin(h), copied.origin(h)) << h;
+    ASSERT_EQ(moved.next(h), copied.next(h)) << h;
+    ASSERT_EQ(moved.prev(h), copied.prev(h)) << h;
+    ASSERT_EQ(moved.facet(h), copied.facet(h)) << h;
+  }
+  for (Index v = 0; v < moved.num_vertices(); ++v) ASSERT_EQ(moved.point(v), copied.point(v)) << v;
+  for (Index f = 0; f < moved.num_facets(); ++f) ASSERT_EQ(moved.plane(f), copied.plane(f)) << f;
+  EXPECT_EQ(moved.check_invariants(), "");
+}
+
 TEST(Walk, IdenticalOperands) {
   // A = B: every facet of A meets its parallel twin, every arc runs along an
   // arc of B (the walk's overlap state all the way): no crossing.

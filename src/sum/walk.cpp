@@ -653,19 +653,24 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const S
   options.report("walk", 0);
   Stats st;
   st.round_to_nearest = round_to_nearest();
-  const Operand A(a), B(b);
   std::vector<std::pair<Index, Index>> crossings;
   const double fa = a.num_facets(), fb = b.num_facets();
   // The operand with fewer edges walks all its arcs and records the
   // crossings; the other walks a spanning tree of its facets only.
   const bool a_records = a.num_edges() <= b.num_edges();
   std::vector<Feature> SA, SB;
-  if (a_records) {
-    SB = Walker(A, B, st).run(&crossings, options, 0, 0.8 * fa / (fa + fb));
-    SA = Walker(B, A, st).run(nullptr, options, 0.8 * fa / (fa + fb), 0.8 * fb / (fa + fb));
-  } else {
-    SA = Walker(B, A, st).run(&crossings, options, 0, 0.8 * fb / (fa + fb));
-    SB = Walker(A, B, st).run(nullptr, options, 0.8 * fb / (fa + fb), 0.8 * fa / (fa + fb));
+  {
+    // The walkers' per-facet filter data (about 80 bytes a facet) is freed
+    // before the output's arrays are made: the peak memory of a sum is then
+    // that of the operands and the output, not the three together.
+    const Operand A(a), B(b);
+    if (a_records) {
+      SB = Walker(A, B, st).run(&crossings, options, 0, 0.8 * fa / (fa + fb));
+      SA = Walker(B, A, st).run(nullptr, options, 0.8 * fa / (fa + fb), 0.8 * fb / (fa + fb));
+    } else {
+      SA = Walker(B, A, st).run(&crossings, options, 0, 0.8 * fb / (fa + fb));
+      SB = Walker(A, B, st).run(nullptr, options, 0.8 * fb / (fa + fb), 0.8 * fa / (fa + fb));
+    }
   }
   options.report("walk", 0.8);
 
@@ -706,6 +711,8 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const S
       facet_plus_edge(b, g, a, s.index, false, L);
     }
   }
+  std::vector<Feature>().swap(SA);
+  std::vector<Feature>().swap(SB);
   // An edge facet e_a ⊕ e_b, crossed from the region of x into that of y
   // while walking u → v: its loop is (v,x) (u,x) (u,y) (v,y) — the side
   // e_a ⊕ x borders the output facet met before on the arc, so it runs
@@ -809,6 +816,12 @@ ConvexPolytope to_polytope(const WalkSum& w, const ConvexPolytope& a, const Conv
                                              w.he_origin, w.he_next, w.he_facet, w.facet_he);
 }
 
+ConvexPolytope to_polytope(WalkSum&& w, const ConvexPolytope& a, const ConvexPolytope& b) {
+  return PolytopeBuilder::from_trusted_parts(sum_coordinates(w.vertex_origin, a.coordinates(), b.coordinates()),
+                                             std::move(w.he_origin), std::move(w.he_next), std::move(w.he_facet),
+                                             std::move(w.facet_he));
+}
+
 SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
@@ -817,7 +830,7 @@ SumResult minkowski_sum_walk(const ConvexPolytope& a, const ConvexPolytope& b, c
   options.report("convert", -1);
   SumResult r;
   r.method = Method::walk;
-  r.polytope = to_polytope(w, a, b);
+  r.polytope = to_polytope(std::move(w), a, b);
   const auto t2 = clock::now();
   r.vertex_origin = std::move(w.vertex_origin);
   r.facet_provenance = std::move(w.provenance);

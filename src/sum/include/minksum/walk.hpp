@@ -71,6 +71,9 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const S
 // re-validation (ConvexPolytope::check_invariants() re-checks everything from
 // scratch).  Vertex v of the result is vertex v of w; its source_vertex is v.
 ConvexPolytope to_polytope(const WalkSum& w, const ConvexPolytope& a, const ConvexPolytope& b);
+// The same, taking w's half-edge arrays instead of copying them (w keeps its
+// vertex_origin, provenance and counters; its half-edges are left empty).
+ConvexPolytope to_polytope(WalkSum&& w, const ConvexPolytope& a, const ConvexPolytope& b);
 
 // The exact points a_i + b_j for the given index pairs, in the cheapest exact
 // form (PointList::sums): exact pairs of doubles (TwoSum, no allocation) when

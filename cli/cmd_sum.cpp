@@ -248,6 +248,19 @@ int run_sum(const std::vector<std::string>& argv) {
       explicit_seconds += r.explicit_seconds;
     }
   }
+  // The report needs only the operands' counts; without --scene the
+  // operands are freed before the sum is rounded and written, so that the
+  // process's peak memory is the sum's, not the sum's plus the operands'.
+  std::vector<std::string> operand_counts, operand_summary;
+  for (const ConvexPolytope& p : operands) {
+    operand_counts.push_back(counts_json(p));
+    operand_summary.push_back(std::to_string(p.num_vertices()) + " V, " + std::to_string(p.num_facets()) + " F");
+  }
+  if (!scene) std::vector<ConvexPolytope>().swap(operands);
+  // Likewise the per-facet and per-vertex records, once summed up for --json.
+  const std::string details = names.size() == 2 ? facet_types_json(r) + method_detail_json(r) : "";
+  std::vector<FacetProvenance>().swap(r.facet_provenance);
+  std::vector<std::pair<Index, Index>>().swap(r.vertex_origin);
   const auto w0 = std::chrono::steady_clock::now();
   RoundingReport rounding;
   if (output && scene) rounding = write_scene_of_sum(*output, names, operands, r.polytope);
@@ -264,18 +277,17 @@ int run_sum(const std::vector<std::string>& argv) {
            << ", \"explicit\": " << json_number(explicit_seconds) << ", \"write\": " << json_number(write_seconds)
            << "}, \"volume\": \"" << format_exact(vol) << "\", \"volume_double\": " << json_number(to_double(vol));
     if (names.size() == 2) {
-      report << facet_types_json(r) << method_detail_json(r) << ", \"a\": {\"name\": \"" << json_escape(names[0])
-             << "\", " << counts_json(operands[0]) << "}, \"b\": {\"name\": \"" << json_escape(names[1]) << "\", "
-             << counts_json(operands[1]) << "}";
+      report << details << ", \"a\": {\"name\": \"" << json_escape(names[0])
+             << "\", " << operand_counts[0] << "}, \"b\": {\"name\": \"" << json_escape(names[1]) << "\", "
+             << operand_counts[1] << "}";
     }
     report << ", \"operands\": [";
     for (std::size_t i = 0; i < names.size(); ++i)
-      report << (i ? ", " : "") << "{\"name\": \"" << json_escape(names[i]) << "\", " << counts_json(operands[i]) << "}";
+      report << (i ? ", " : "") << "{\"name\": \"" << json_escape(names[i]) << "\", " << operand_counts[i] << "}";
     report << "]" << output_json_tail(output, rounding) << "\n";
   } else {
     for (std::size_t i = 0; i < names.size(); ++i)
-      report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << operands[i].num_vertices() << " V, "
-             << operands[i].num_facets() << " F)";
+      report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << operand_summary[i] << ")";
     report << "\n  = " << s.num_vertices() << " vertices, " << s.num_edges() << " edges, " << s.num_facets()
            << " facets\n"
            << "  method " << method_name(r.method) << ", " << format_double(seconds) << " s\n";

@@ -720,6 +720,33 @@ TEST_F(Cli, SumOfThreeOrMoreOperands) {
   EXPECT_EQ(run("sum cube").status, 2);
 }
 
+// The operands are freed before the sum is written (without --scene): the
+// report still names them with their counts, and --json's facet types are
+// those of the sum written.
+TEST_F(Cli, SumReportAfterTheOperandsAreFreed) {
+  CmdResult r = run("sum cube sphere:2 -o " + path("cs.off") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"a\": {\"name\": \"cube\", \"vertices\": 8, \"edges\": 12, \"facets\": 6}, "
+                       "\"b\": {\"name\": \"sphere:2\", \"vertices\": 42, \"edges\": 120, \"facets\": 80}"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\"facet_types\": {\"translated\": 6, \"corner\": 56, \"edge\": 12, \"facet_edge\": 24, "
+                       "\"facet_facet\": 0}"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\"facets\": 98"), std::string::npos) << r.out;
+  CmdResult text = run("sum cube sphere:2 -o " + path("cs2.off"));
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_EQ(text.out.rfind("cube (8 V, 6 F) ⊕ sphere:2 (42 V, 80 F)\n", 0), 0u) << text.out;
+  // --scene keeps them: A and B are written beside S.
+  CmdResult scene = run("sum cube sphere:2 --scene -o " + path("cs.wrl") + " --json");
+  ASSERT_EQ(scene.status, 0) << scene.err;
+  const std::string wrl = slurp(path("cs.wrl"));
+  for (const char* node : {"DEF A ExactPolyhedron", "DEF B ExactPolyhedron", "DEF S ExactPolyhedron"})
+    EXPECT_NE(wrl.find(node), std::string::npos) << node;
+  EXPECT_NE(scene.out.find("\"b\": {\"name\": \"sphere:2\", \"vertices\": 42"), std::string::npos) << scene.out;
+}
+
 // minksum sum A B -o s.EXT && minksum sum s.EXT C, for every format.
 TEST_F(Cli, ChainingThroughEveryFormat) {
   for (const auto& o : kEveryOutput) {

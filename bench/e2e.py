@@ -2,7 +2,7 @@
 """minksum bench, end to end: whole processes, file to file.
 
     python3 bench/e2e.py [--minksum build-bench/bin/minksum] [--work build-bench/e2e]
-                         [--rounds 7] [--memory-rounds 3] [--page docs/generated/benchmarks.md]
+                         [--rounds 21] [--memory-rounds 3] [--page docs/generated/benchmarks.md]
                          [--command "make bench-e2e"]
 
 For each row the operands are written as double OFF files with `minksum gen`
@@ -134,7 +134,7 @@ def main():
     ap.add_argument("--minksum", default="build-bench/bin/minksum")
     ap.add_argument("--qconvex", default="qconvex")
     ap.add_argument("--work", default="build-bench/e2e")
-    ap.add_argument("--rounds", type=int, default=7)
+    ap.add_argument("--rounds", type=int, default=21)
     ap.add_argument("--memory-rounds", type=int, default=3)
     ap.add_argument("--page", default="docs/generated/benchmarks.md")
     ap.add_argument("--command", default="make bench-e2e")
@@ -351,15 +351,20 @@ def section(args, results, load, million, load_start, wall):
         if r.get("phases"):
             notes.append("`%s` ⊕ `%s`, phases of one `minksum sum --json` run: %s." % (
                 row["a"], row["b"], ", ".join("%s %s s" % (k, fmt_s(float(v))) for k, v in r["phases"].items())))
+        def spread(ts):
+            # quartiles need two rounds or more
+            q = statistics.quantiles(ts, n=4) if len(ts) > 1 else [ts[0], ts[0], ts[0]]
+            return "quartiles %s–%s s, range %s–%s s" % (fmt_s(q[0]), fmt_s(q[2]), fmt_s(min(ts)), fmt_s(max(ts)))
+
+        def quartiles(ts):
+            q = statistics.quantiles(ts, n=4) if len(ts) > 1 else [ts[0], ts[0], ts[0]]
+            return "median %s s, quartiles %s–%s s" % (fmt_s(statistics.median(ts)), fmt_s(q[0]), fmt_s(q[2]))
+
         if r["times"]["minksum"]:
-            notes.append("`%s` ⊕ `%s`: minksum range %s–%s s%s." % (
-                row["a"], row["b"], fmt_s(min(r["times"]["minksum"])), fmt_s(max(r["times"]["minksum"])),
-                ("; qconvex range %s–%s s" % (fmt_s(min(r["times"]["qconvex"])), fmt_s(max(r["times"]["qconvex"]))))
-                if row["qhull"] else ""))
+            notes.append("`%s` ⊕ `%s`: minksum %s%s." % (
+                row["a"], row["b"], spread(r["times"]["minksum"]),
+                ("; qconvex %s" % spread(r["times"]["qconvex"])) if row["qhull"] else ""))
         if r["times"].get("baseline"):
-            def quartiles(ts):
-                q = statistics.quantiles(ts, n=4)
-                return "median %s s, quartiles %s–%s s" % (fmt_s(statistics.median(ts)), fmt_s(q[0]), fmt_s(q[2]))
             notes.append("`%s` ⊕ `%s`, against the baseline build `%s` (`--baseline`, interleaved in the same "
                          "rounds): minksum %s; baseline %s." % (
                              row["a"], row["b"], r["cmds"]["baseline"][0], quartiles(r["times"]["minksum"]),

@@ -292,6 +292,20 @@ def shown(cmd):
     return " ".join(rel(c) if os.path.sep in c else c for c in cmd)
 
 
+def quartile_text(ts):
+    """"quartiles A–B s" of a list of times (one time: both quartiles are it)."""
+    q = statistics.quantiles(ts, n=4) if len(ts) > 1 else [ts[0]] * 3
+    return "quartiles %s–%s s" % (fmt_s(q[0]), fmt_s(q[2]))
+
+
+def spread(ts):
+    return "%s, range %s–%s s" % (quartile_text(ts), fmt_s(min(ts)), fmt_s(max(ts)))
+
+
+def quartiles(ts):
+    return "median %s s, %s" % (fmt_s(statistics.median(ts)), quartile_text(ts))
+
+
 def section(args, results, load, million, load_start, wall):
     L = []
     add = L.append
@@ -351,15 +365,6 @@ def section(args, results, load, million, load_start, wall):
         if r.get("phases"):
             notes.append("`%s` ⊕ `%s`, phases of one `minksum sum --json` run: %s." % (
                 row["a"], row["b"], ", ".join("%s %s s" % (k, fmt_s(float(v))) for k, v in r["phases"].items())))
-        def spread(ts):
-            # quartiles need two rounds or more
-            q = statistics.quantiles(ts, n=4) if len(ts) > 1 else [ts[0], ts[0], ts[0]]
-            return "quartiles %s–%s s, range %s–%s s" % (fmt_s(q[0]), fmt_s(q[2]), fmt_s(min(ts)), fmt_s(max(ts)))
-
-        def quartiles(ts):
-            q = statistics.quantiles(ts, n=4) if len(ts) > 1 else [ts[0], ts[0], ts[0]]
-            return "median %s s, quartiles %s–%s s" % (fmt_s(statistics.median(ts)), fmt_s(q[0]), fmt_s(q[2]))
-
         if r["times"]["minksum"]:
             notes.append("`%s` ⊕ `%s`: minksum %s%s." % (
                 row["a"], row["b"], spread(r["times"]["minksum"]),

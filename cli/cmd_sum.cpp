@@ -15,6 +15,7 @@
 #include "scene.hpp"
 #include "sweep.hpp"
 #include "text.hpp"
+#include "kernel/big_array.hpp"
 
 namespace minksum::cli {
 
@@ -256,11 +257,11 @@ int run_sum(const std::vector<std::string>& argv) {
     operand_counts.push_back(counts_json(p));
     operand_summary.push_back(std::to_string(p.num_vertices()) + " V, " + std::to_string(p.num_facets()) + " F");
   }
-  if (!scene) std::vector<ConvexPolytope>().swap(operands);
+  if (!scene) release(operands);
   // Likewise the per-facet and per-vertex records, once summed up for --json.
   const std::string details = names.size() == 2 ? facet_types_json(r) + method_detail_json(r) : "";
-  std::vector<FacetProvenance>().swap(r.facet_provenance);
-  std::vector<std::pair<Index, Index>>().swap(r.vertex_origin);
+  release(r.facet_provenance);
+  release(r.vertex_origin);
   const auto w0 = std::chrono::steady_clock::now();
   RoundingReport rounding;
   if (output && scene) rounding = write_scene_of_sum(*output, names, operands, r.polytope);

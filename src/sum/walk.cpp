@@ -40,6 +40,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "kernel/big_array.hpp"
 #include "kernel/difference.hpp"
 #include "kernel/predicates_internal.hpp"
 #include "mesh/builder.hpp"
@@ -711,8 +712,8 @@ WalkSum minkowski_walk(const ConvexPolytope& a, const ConvexPolytope& b, const S
       facet_plus_edge(b, g, a, s.index, false, L);
     }
   }
-  std::vector<Feature>().swap(SA);
-  std::vector<Feature>().swap(SB);
+  release(SA);
+  release(SB);
   // An edge facet e_a ⊕ e_b, crossed from the region of x into that of y
   // while walking u → v: its loop is (v,x) (u,x) (u,y) (v,y) — the side
   // e_a ⊕ x borders the output facet met before on the arc, so it runs

@@ -462,7 +462,7 @@ void check_writable(const Mesh& mesh, Format format, const WriteOptions& options
 // A streambuf writing to a file descriptor, remembering the first errno.
 class FdBuf : public std::streambuf {
  public:
-  explicit FdBuf(int fd) : fd_(fd) { setp(buf_, buf_ + sizeof buf_); }
+  explicit FdBuf(int fd) : fd_(fd) { setp(buf_.get(), buf_.get() + kSize); }
   int error() const { return err_; }
 
  protected:
@@ -491,13 +491,14 @@ class FdBuf : public std::streambuf {
       p += w;
       n -= static_cast<std::size_t>(w);
     }
-    setp(buf_, buf_ + sizeof buf_);
+    setp(buf_.get(), buf_.get() + kSize);
     return true;
   }
 
+  static constexpr std::size_t kSize = std::size_t(1) << 16;
   int fd_;
   int err_ = 0;
-  char buf_[1 << 16];
+  std::unique_ptr<char[]> buf_ = std::make_unique_for_overwrite<char[]>(kSize);  // (not on the stack: TextBuffer)
 };
 
 std::string random_suffix() {

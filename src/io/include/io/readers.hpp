@@ -19,6 +19,7 @@
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <ostream>
@@ -113,19 +114,22 @@ class TextBuffer {
   TextBuffer(const TextBuffer&) = delete;
   TextBuffer& operator=(const TextBuffer&) = delete;
   char* reserve(std::size_t n) {
-    if (used_ + n > sizeof buf_) flush();
-    return buf_ + used_;
+    if (used_ + n > kSize) flush();
+    return buf_.get() + used_;
   }
-  void commit(char* end) { used_ = std::size_t(end - buf_); }
+  void commit(char* end) { used_ = std::size_t(end - buf_.get()); }
   void flush() {
-    if (used_) out_.write(buf_, std::streamsize(used_));
+    if (used_) out_.write(buf_.get(), std::streamsize(used_));
     used_ = 0;
   }
 
  private:
+  // On the heap, not the stack: a stack this deep is fresh memory that
+  // faults a page at a time, the heap's blocks are mostly reused.
+  static constexpr std::size_t kSize = std::size_t(1) << 15;
   std::ostream& out_;
   std::size_t used_ = 0;
-  char buf_[1 << 15];
+  std::unique_ptr<char[]> buf_ = std::make_unique_for_overwrite<char[]>(kSize);
 };
 
 // Lines 0 .. n-1 written in order: size(i) bounds the length of line i,

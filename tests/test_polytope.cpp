@@ -1,6 +1,8 @@
 // ConvexPolytope: validation, coplanar merging, half-edge connectivity, hull.
+#include <minksum/catalog.hpp>
 #include <minksum/error.hpp>
 #include <minksum/polytope.hpp>
+#include <minksum/predicates.hpp>
 
 #include "mesh/builder.hpp"
 
@@ -742,6 +744,25 @@ TEST(Polytope, TrianglesOnDoublesAgreeWithRationals) {
   EXPECT_GE(seen["valid"], 30) << kinds;
   EXPECT_GE(seen["big valid"], 1) << kinds;
   EXPECT_GE(seen["big error"], 1) << kinds;
+}
+
+// Regression (validating the 10 242-vertex geodesic sphere of `minksum gen
+// sphere:6`, double coordinates): the vertex test on doubles looks at each
+// vertex's fan along the axis from a reference point, which was the mean
+// of the points.  That is the centre of a symmetric solid, on all its mirror
+// planes, and so were the fans of the vertices on those planes: 1 669 of
+// the test's orient3d calls were nearly zero and went to exact arithmetic.
+// The reference point now lies off them and the filter decides every call.
+TEST(Polytope, SymmetricSphereVertexTestsNeedNoExactArithmetic) {
+  const Mesh m = catalog_polytope("sphere:6").to_mesh();
+  ASSERT_TRUE(m.points.all_doubles());
+  reset_predicate_stats();
+  const ConvexPolytope p = ConvexPolytope::from_mesh(m);
+  const PredicateStats stats = predicate_stats();
+  EXPECT_EQ(p.num_vertices(), 10242u);
+  EXPECT_EQ(p.num_facets(), 20480u);
+  EXPECT_GT(stats[PredicateId::orient3d].calls, 3u * 20480u);
+  EXPECT_EQ(stats[PredicateId::orient3d].fallbacks, 0u);
 }
 
 // Facets are checked in blocks on threads: of several facets with zero

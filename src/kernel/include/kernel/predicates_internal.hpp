@@ -121,8 +121,14 @@ struct SignPredicate;
 // doubles, the semi-static step runs first on its own (semi_static_sign,
 // filter.hpp: the same value and bound as approx_vec's first step, without
 // building an Approx); only what it leaves undecided goes through approx_vec.
+// (The semi-static step is inlined into the caller, the rest is not: most
+// calls end there, and a call saved is a good part of their cost.)
 template <class D, KernelPoint Pt>
-auto filter_points(const PointsOf<D, Pt>& p) {
+[[gnu::noinline]] auto filter_points_rest(const PointsOf<D, Pt>& p) {
+  return D::decide(approx_points<D>(p, true));
+}
+template <class D, KernelPoint Pt>
+[[gnu::always_inline]] inline auto filter_points(const PointsOf<D, Pt>& p) {
   if constexpr (requires { D::filter(p); }) {
     return D::filter(p);
   } else {
@@ -131,7 +137,7 @@ auto filter_points(const PointsOf<D, Pt>& p) {
       if (const int s = semi_static_sign<typename D::Shape>(groups_vec<D>(p)))
         return std::optional<int>(s);
     }
-    return D::decide(approx_points<D>(p, true));
+    return filter_points_rest<D>(p);
   }
 }
 

@@ -1215,6 +1215,35 @@ TEST(IoRounding, RoundedSphereSumReadsBack) {
                     {Format::off, {}}, "random:300:4 + sphere:3");
 }
 
+// The report of a sum of double polytopes (exact double pairs, whose
+// rounding skips the per-coordinate path of rationals): the coordinates
+// that are not doubles and the largest displacement, as computed from the
+// exact points in rationals.
+TEST(IoRounding, DoublePairReportIsTheExactDifference) {
+  for (const auto& [a, b] : {std::pair{"random:300:4", "sphere:3"}, std::pair{"cube", "sphere:4@rot:5"}}) {
+    SCOPED_TRACE(std::string(a) + " + " + b);
+    // The operands as a file of doubles gives them.
+    auto doubles = [](const char* spec) { return writable_polytope(catalog_polytope(spec), Format::off, {}, nullptr); };
+    const ConvexPolytope s = minkowski_sum(doubles(a), doubles(b)).polytope;
+    ASSERT_EQ(s.coordinates().form(), PointList::Form::double_pairs);
+    std::size_t coordinates = 0;
+    double largest = 0;
+    for (Index i = 0; i < s.num_vertices(); ++i) {
+      const Point3 x = s.point(i);
+      const Vec3d d = s.approx(i);
+      const double e[3] = {to_double(x.x - Rational(d.x)), to_double(x.y - Rational(d.y)), to_double(x.z - Rational(d.z))};
+      for (double c : e) coordinates += c != 0;
+      largest = std::max(largest, std::hypot(e[0], e[1], e[2]));
+    }
+    ASSERT_GT(coordinates, 0u);
+    RoundingReport r;
+    const ConvexPolytope w = writable_polytope(s, Format::off, {}, &r);
+    EXPECT_EQ(r.coordinates, coordinates);
+    EXPECT_EQ(r.max_displacement, largest);
+    for (Index i = 0; i < w.num_vertices(); ++i) EXPECT_TRUE(w.coordinates().is_double(i));
+  }
+}
+
 // When splitting the facets is not enough, the hull of the rounded points:
 // a prism over a pentagon whose vertex P3 lies 2^-80 outside the line of its
 // neighbours, at a height (1 + 2^-54) that is not a double; rounded, P3

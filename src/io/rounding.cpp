@@ -129,7 +129,25 @@ ConvexPolytope writable_polytope(const ConvexPolytope& p, Format format, const W
   const std::size_t n = c.size();
   Mesh m;
   m.points.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  if (!floats && c.form() != PointList::Form::rationals) {
+    // The same on doubles and double pairs, without the per-coordinate
+    // dispatch: the nearest double is approx(i), the difference low(i).
+    const bool pairs = c.form() == PointList::Form::double_pairs;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3d& h = c.approx(i);
+      m.points.push_back(Vec3d{h.x + 0.0, h.y + 0.0, h.z + 0.0});
+      if (!pairs) continue;
+      const Vec3d& e = c.low(i);
+      const int moved = (e.x != 0) + (e.y != 0) + (e.z != 0);
+      if (moved == 0) continue;
+      r.coordinates += std::size_t(moved);
+      // hypot(e) ≤ √3 · max |e_k| < 2 · max |e_k|: no larger than the
+      // largest displacement so far when twice that is not.
+      if (2 * std::max({std::abs(e.x), std::abs(e.y), std::abs(e.z)}) > r.max_displacement)
+        r.max_displacement = std::max(r.max_displacement, std::hypot(e.x, e.y, e.z));
+    }
+  }
+  for (std::size_t i = m.points.size(); i < n; ++i) {
     double v[3], e[3];
     for (int k = 0; k < 3; ++k) {
       // + 0.0: a coordinate that rounds to -0 is written as 0.

@@ -129,14 +129,13 @@ ConvexPolytope writable_polytope(const ConvexPolytope& p, Format format, const W
   const std::size_t n = c.size();
   Mesh m;
   m.points.reserve(n);
-  if (!floats && c.form() != PointList::Form::rationals) {
-    // The same on doubles and double pairs, without the per-coordinate
-    // dispatch: the nearest double is approx(i), the difference low(i).
-    const bool pairs = c.form() == PointList::Form::double_pairs;
+  if (!floats && c.form() == PointList::Form::double_pairs) {
+    // A sum of double operands (doubles themselves are written as they
+    // are, above), without the per-coordinate dispatch below: the nearest
+    // double is approx(i), the displacement low(i).
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3d& h = c.approx(i);
       m.points.push_back(Vec3d{h.x + 0.0, h.y + 0.0, h.z + 0.0});
-      if (!pairs) continue;
       const Vec3d& e = c.low(i);
       const int moved = (e.x != 0) + (e.y != 0) + (e.z != 0);
       if (moved == 0) continue;
@@ -146,17 +145,18 @@ ConvexPolytope writable_polytope(const ConvexPolytope& p, Format format, const W
       if (2 * std::max({std::abs(e.x), std::abs(e.y), std::abs(e.z)}) > r.max_displacement)
         r.max_displacement = std::max(r.max_displacement, std::hypot(e.x, e.y, e.z));
     }
-  }
-  for (std::size_t i = m.points.size(); i < n; ++i) {
-    double v[3], e[3];
-    for (int k = 0; k < 3; ++k) {
-      // + 0.0: a coordinate that rounds to -0 is written as 0.
-      v[k] = (floats ? double(coordinate_float(c, i, k)) : coordinate_double(c, i, k)) + 0.0;
-      e[k] = difference(c, i, k, v[k]);
-      if (e[k] != 0) ++r.coordinates;
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      double v[3], e[3];
+      for (int k = 0; k < 3; ++k) {
+        // + 0.0: a coordinate that rounds to -0 is written as 0.
+        v[k] = (floats ? double(coordinate_float(c, i, k)) : coordinate_double(c, i, k)) + 0.0;
+        e[k] = difference(c, i, k, v[k]);
+        if (e[k] != 0) ++r.coordinates;
+      }
+      r.max_displacement = std::max(r.max_displacement, std::hypot(e[0], e[1], e[2]));
+      m.points.push_back(Vec3d{v[0], v[1], v[2]});
     }
-    r.max_displacement = std::max(r.max_displacement, std::hypot(e[0], e[1], e[2]));
-    m.points.push_back(Vec3d{v[0], v[1], v[2]});
   }
   if (r.coordinates == 0) {
     if (report) *report = r;

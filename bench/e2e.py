@@ -8,21 +8,28 @@
 For each row the operands are written as double OFF files with `minksum gen`
 (untimed); for the rows Qhull can take, the pairwise sums of the files'
 coordinates (added in double arithmetic) are written in qhull's input format
-(untimed).  Then, interleaved over the rounds (minksum, qconvex, minksum,
-qconvex, ...), each contender runs as a whole process:
+(untimed).  Then, interleaved over the rounds, each contender runs as a
+whole process:
 
     minksum sum A.off B.off -o S.off
     qconvex o TI pts.txt TO out.off
 
 timed from spawn to exit (wall clock) with its peak resident memory from
-wait4's ru_maxrss.  Then the load row (`minksum stats` on a 10 000-vertex
+wait4's ru_maxrss.  The order of the contenders is reversed every other
+round (minksum, qconvex, qconvex, minksum, minksum, ...), so each runs half
+its rounds right after the other contender and half right after itself:
+on a virtual machine the process run just before can slow the next one by
+milliseconds (bench/predecessor.py measures it; docs/data-model.md), and a
+fixed order would charge that to one contender only.
+Each contender's times are also reported by the contender that ran just
+before.  Then the load row (`minksum stats` on a 10 000-vertex
 file) and the million row: `minksum gen random:1000000:7` (untimed, about
 30 s), then `minksum sum r1m.off cube -o S.off --json` over the memory
 rounds, with its phases (read, validate, sum, ...).  `--only` takes the row
 keys a, b, c1, c2, load, million.  `--baseline PATH` adds another minksum
 build (an earlier commit, say) to the rounds of the rows Qhull takes, as a
-third contender interleaved with the two (minksum, qconvex, baseline, ...,
-its output to a file of its own), reported in a line with its median and
+third contender interleaved with the two (minksum, qconvex, baseline, then
+baseline, qconvex, minksum, ..., its output to a file of its own), reported in a line with its median and
 quartiles beside minksum's: two builds compared under the same conditions.
 The section "End to end: file to file" of
 the page is replaced (or inserted before "## Machine and software", or
@@ -207,15 +214,20 @@ def main():
                 raise SystemExit("e2e: %s failed (%d): %s" % (" ".join(cmd), rc, err.strip()))
         times = {name: [] for name, _ in contenders}
         rsss = {name: [] for name, _ in contenders}
+        after = {name: {} for name, _ in contenders}  # name -> the contender run just before -> times
+        last = contenders[-1][0]
         for r in range(row["rounds"]):
-            for name, cmd in contenders:
+            for name, cmd in (contenders if r % 2 == 0 else contenders[::-1]):
                 t, rss, rc, out, err = run_process(cmd)
                 if rc != 0:
                     raise SystemExit("e2e: %s failed (%d): %s" % (" ".join(cmd), rc, err.strip()))
                 times[name].append(t)
                 rsss[name].append(rss)
+                after[name].setdefault(last, []).append(t)
+                last = name
                 log("  round %d %s: %.3f s, %s" % (r + 1, name, t, fmt_mib(rss)))
-        res = dict(row=row, hull=hull, notes=notes, pairs=pairs, cmds=dict(contenders), times=times, rss=rsss)
+        res = dict(row=row, hull=hull, notes=notes, pairs=pairs, cmds=dict(contenders), times=times, rss=rsss,
+                   after=after)
         res["counts"] = {"minksum": off_counts(W("sum-%s.off" % row["key"]))}
         if row["qhull"]:
             res["counts"]["qconvex"] = off_counts(W("qconvex-%s.off" % row["key"]))
@@ -327,9 +339,13 @@ def section(args, results, load, million, load_start, wall):
     add("* Timed, each as a process from spawn to exit (wall clock): `minksum sum A.off B.off -o S.off` and "
         "`qconvex o TI pts.txt TO out.off` (Qhull's command-line hull, default pre-merge `C-0`, output as OFF). "
         "Peak memory: the process's maximum resident set (`ru_maxrss` from `wait4`).")
-    add("* After one untimed run of each, the contenders of a row alternate (minksum, qconvex, minksum, "
-        "qconvex, ...) for the row's rounds; a figure is the **median** over the rounds, the ratio is "
-        "qconvex's median ÷ minksum's median.")
+    add("* After one untimed run of each, the contenders of a row alternate for the row's rounds, in an order "
+        "reversed every other round (minksum, qconvex, qconvex, minksum, minksum, ...): each runs half its "
+        "rounds right after the other and half right after itself. On this machine the process run just "
+        "before can slow the next one by milliseconds (`bench/predecessor.py` measures it; see "
+        "[data-model.md](../data-model.md)), so a fixed order would charge that to one contender; the notes below give each contender's median by the contender run just "
+        "before. A figure is the **median** over all the rounds, the ratio is qconvex's median ÷ minksum's "
+        "median.")
     add("")
     add("| A ⊕ B | files | rounds | minksum sum: time | peak RSS | V/F | qconvex o: time | peak RSS | V/F | "
         "qconvex ÷ minksum | target | verdict |")
@@ -369,6 +385,19 @@ def section(args, results, load, million, load_start, wall):
             notes.append("`%s` ⊕ `%s`: minksum %s%s." % (
                 row["a"], row["b"], spread(r["times"]["minksum"]),
                 ("; qconvex %s" % spread(r["times"]["qconvex"])) if row["qhull"] else ""))
+        if row["qhull"] and len(r["after"]) > 1:
+            def by_before(name):
+                return ", ".join("after %s %s s (%d round%s)" % ("itself" if b == name else b,
+                                                                  fmt_s(statistics.median(ts)), len(ts),
+                                                                  "" if len(ts) == 1 else "s")
+                                 for b, ts in sorted(r["after"][name].items()))
+            line = "`%s` ⊕ `%s`, medians by the contender run just before: minksum %s; qconvex %s" % (
+                row["a"], row["b"], by_before("minksum"), by_before("qconvex"))
+            mq = r["after"]["minksum"].get("qconvex")
+            if mq:
+                line += "; qconvex's median ÷ minksum's median after qconvex: %.2f×" % (
+                    statistics.median(r["times"]["qconvex"]) / statistics.median(mq))
+            notes.append(line + ".")
         if r["times"].get("baseline"):
             notes.append("`%s` ⊕ `%s`, against the baseline build `%s` (`--baseline`, interleaved in the same "
                          "rounds): minksum %s; baseline %s." % (

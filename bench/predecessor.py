@@ -1,0 +1,72 @@
+#!/usr/bin/python3
+"""How the process run just before changes a `minksum sum` run, file to file.
+
+    /usr/bin/python3 bench/predecessor.py [--minksum build-bench/bin/minksum] [--work build-bench/e2e]
+                                          [--rounds 12]
+
+Times `minksum sum cube.off sphere6.off -o S.off` (the first row of bench/e2e.py, whose files it
+expects in --work: run `make bench-e2e` or bench/e2e.py once first) right after each of these,
+interleaved over the rounds:
+
+    qconvex o TI pts-a.txt TO FILE    Qhull's hull of the row's pairwise sums, written to a file
+    qconvex o TI pts-a.txt TO /dev/null   the same, nothing written
+    the same minksum sum              itself
+    cp sphere6.off FILE               a 1 MB file written, nothing computed
+    sleep 0.2                         nothing
+
+FILE already exists (as in the benchmark's rounds, where each contender writes over its output of the
+round before).  Each `minksum sum` is timed as bench/e2e.py times a contender (spawn to exit, wall
+clock); the medians and quartiles are printed per predecessor.  That is what makes bench/e2e.py
+reverse the order of its contenders every other round.
+"""
+
+import argparse
+import os
+import statistics
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from e2e import run_process  # noqa: E402
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--minksum", default="build-bench/bin/minksum")
+    ap.add_argument("--qconvex", default="qconvex")
+    ap.add_argument("--work", default="build-bench/e2e")
+    ap.add_argument("--rounds", type=int, default=12)
+    args = ap.parse_args()
+    W = lambda name: os.path.join(args.work, name)  # noqa: E731
+    for need in ("cube.off", "sphere6.off", "pts-a.txt"):
+        if not os.path.exists(W(need)):
+            raise SystemExit("predecessor: %s is missing: run `make bench-e2e` first" % W(need))
+    out = W("predecessor-out")
+    os.makedirs(out, exist_ok=True)
+    ms = [args.minksum, "sum", W("cube.off"), W("sphere6.off"), "-o", os.path.join(out, "sum.off")]
+    before = [
+        ("qconvex TO a file", [args.qconvex, "o", "TI", W("pts-a.txt"), "TO", os.path.join(out, "qconvex.off")]),
+        ("qconvex TO /dev/null", [args.qconvex, "o", "TI", W("pts-a.txt"), "TO", "/dev/null"]),
+        ("itself", ms),
+        ("cp of a 1 MB file", ["cp", W("sphere6.off"), os.path.join(out, "copy.off")]),
+        ("sleep 0.2", ["sleep", "0.2"]),
+    ]
+    for _, cmd in before + [("", ms)]:  # every output file exists before the first timed round
+        if run_process(cmd)[2] != 0:
+            raise SystemExit("predecessor: %s failed" % " ".join(cmd))
+    times = {name: [] for name, _ in before}
+    for r in range(args.rounds):
+        for name, cmd in before:
+            run_process(cmd)
+            t, rss, rc, _, err = run_process(ms)
+            if rc != 0:
+                raise SystemExit("predecessor: %s failed (%d): %s" % (" ".join(ms), rc, err.strip()))
+            times[name].append(t)
+    print("minksum sum cube.off sphere6.off -o S.off, %d rounds, by the process run just before:" % args.rounds)
+    for name, ts in times.items():
+        q = statistics.quantiles(ts, n=4) if len(ts) > 1 else [ts[0]] * 3
+        print("  after %-22s median %6.2f ms, quartiles %6.2f-%6.2f ms"
+              % (name, 1e3 * statistics.median(ts), 1e3 * q[0], 1e3 * q[2]))
+
+
+if __name__ == "__main__":
+    main()

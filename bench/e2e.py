@@ -136,12 +136,19 @@ def fmt_mib(kb):
     return "%.0f MiB" % (kb / 1024.0)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def contender_args(description, rounds):
+    """The options bench/e2e.py and bench/predecessor.py share: the two programs, the work directory and
+    the number of rounds."""
+    ap = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--minksum", default="build-bench/bin/minksum")
     ap.add_argument("--qconvex", default="qconvex")
     ap.add_argument("--work", default="build-bench/e2e")
-    ap.add_argument("--rounds", type=int, default=21)
+    ap.add_argument("--rounds", type=int, default=rounds)
+    return ap
+
+
+def main():
+    ap = contender_args(__doc__, 21)
     ap.add_argument("--memory-rounds", type=int, default=3)
     ap.add_argument("--page", default="docs/generated/benchmarks.md")
     ap.add_argument("--command", default="make bench-e2e")

@@ -20,22 +20,16 @@ clock); the medians and quartiles are printed per predecessor.  That is what mak
 reverse the order of its contenders every other round.
 """
 
-import argparse
 import os
 import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from e2e import run_process  # noqa: E402
+from e2e import contender_args, run_process  # noqa: E402
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--minksum", default="build-bench/bin/minksum")
-    ap.add_argument("--qconvex", default="qconvex")
-    ap.add_argument("--work", default="build-bench/e2e")
-    ap.add_argument("--rounds", type=int, default=12)
-    args = ap.parse_args()
+    args = contender_args(__doc__, 12).parse_args()
     W = lambda name: os.path.join(args.work, name)  # noqa: E731
     for need in ("cube.off", "sphere6.off", "pts-a.txt"):
         if not os.path.exists(W(need)):

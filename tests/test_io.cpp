@@ -1683,6 +1683,40 @@ TEST(IoRounding, LocalCertificateAgreesWithFullValidation) {
   EXPECT_GT(declined, 5) << accepted;
 }
 
+// Regression (writing sphere:4 ⊕ sphere:4@rot:5, both rounded to doubles,
+// the end-to-end benchmark's second row): the rounding certificate's facet
+// test counted the turns of a polygon by a reference ray along its first
+// side, and a parallelogram's opposite side lies along that ray: a zero
+// the intervals could not decide, so each of the 224 parallelograms still
+// planar after rounding went to rational arithmetic (more than half of the
+// write).  The ray now lies between the first two sides, and intervals
+// decide every fan of this sum, in the certificate and when the written
+// file is read back.
+TEST(IoWrite, RoundedSumOfRotatedSpheresNeedsNoExactFanTests) {
+  auto as_doubles = [](const ConvexPolytope& p) {
+    Mesh m = writable_polytope(p, Format::off, {}, nullptr).to_mesh();
+    EXPECT_TRUE(m.points.all_doubles());
+    return ConvexPolytope::from_mesh(m);
+  };
+  const ConvexPolytope a = as_doubles(catalog_polytope("sphere:4")), b = as_doubles(catalog_polytope("sphere:4@rot:5"));
+  const ConvexPolytope s = minkowski_sum(a, b).polytope;
+  ASSERT_EQ(s.coordinates().form(), PointList::Form::double_pairs);
+  const std::uint64_t before = exact_fan_tests();
+  RoundingReport report;
+  const ConvexPolytope w = writable_polytope(s, Format::off, {}, &report);
+  EXPECT_EQ(exact_fan_tests(), before);
+  EXPECT_EQ(s.num_vertices(), 2738u);
+  EXPECT_EQ(s.num_facets(), 4016u);
+  EXPECT_EQ(report.split, 1210u);
+  EXPECT_FALSE(report.hull);
+  EXPECT_EQ(w.num_facets(), 4016u + 1210u);
+  // Read back: the same polytope, and no exact fan test either.
+  const ConvexPolytope r = ConvexPolytope::from_mesh(w.to_mesh());
+  EXPECT_EQ(exact_fan_tests(), before);
+  EXPECT_EQ(r.num_vertices(), w.num_vertices());
+  EXPECT_EQ(r.num_facets(), w.num_facets());
+}
+
 namespace {
 // A box [0,1] x [0,2] x [-1, top] whose top is two triangles A B C and
 // A C D folding along A-C, D given exactly (not a double).

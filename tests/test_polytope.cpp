@@ -1,6 +1,7 @@
 // ConvexPolytope: validation, coplanar merging, half-edge connectivity, hull.
 #include <minksum/catalog.hpp>
 #include <minksum/error.hpp>
+#include <minksum/minkowski.hpp>
 #include <minksum/polytope.hpp>
 #include <minksum/predicates.hpp>
 
@@ -9,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <random>
@@ -26,6 +28,24 @@ namespace {
 Point3 on_unit_sphere(std::mt19937_64& rng, std::normal_distribution<double>& g) {
   const double x = g(rng), y = g(rng), z = g(rng), r = std::sqrt(x * x + y * y + z * z);
   return Point3(x / r, y / r, z / r);
+}
+
+// m with every point divided by 3: the same solid in rationals.
+Mesh thirds(const Mesh& m) {
+  Mesh t;
+  t.faces = m.faces;
+  for (const Point3& p : m.points) t.points.push_back(Point3(p.x / 3, p.y / 3, p.z / 3));
+  return t;
+}
+
+// The error from_mesh(m) throws ("" when none); the polytope in p otherwise.
+std::string outcome(const Mesh& m, ConvexPolytope& p) {
+  try {
+    p = ConvexPolytope::from_mesh(m, "case.off");
+  } catch (const InputError& e) {
+    return std::string(e.what());
+  }
+  return std::string();
 }
 
 // The problem text of the InputError thrown by from_mesh(m), or "" if none.
@@ -660,20 +680,6 @@ TEST(PolytopeBad, EdgeErrorsInBlocksNameTheEdgeThatAppearsFirst) {
 // the rational mesh.
 TEST(Polytope, TrianglesOnDoublesAgreeWithRationals) {
   const ParallelItems threads(4096);
-  auto thirds = [](const Mesh& m) {
-    Mesh t;
-    t.faces = m.faces;
-    for (const Point3& p : m.points) t.points.push_back(Point3(p.x / 3, p.y / 3, p.z / 3));
-    return t;
-  };
-  auto outcome = [](const Mesh& m, ConvexPolytope& p) {
-    try {
-      p = ConvexPolytope::from_mesh(m, "case.off");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
   std::map<std::string, int> seen;
   for (std::uint64_t seed = 1; seed <= 120; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
@@ -746,6 +752,73 @@ TEST(Polytope, TrianglesOnDoublesAgreeWithRationals) {
   EXPECT_GE(seen["big error"], 1) << kinds;
 }
 
+// Polygons on doubles against the same meshes scaled by 1/3 (rationals):
+// the planarity test decides an exactly planar polygon on doubles at once
+// (its first three corners not collinear, every other corner on their
+// plane by orient3d) and every other polygon vertex by vertex as on
+// rationals.  Untriangulated hulls of lattice points (exactly planar
+// polygons), with: the start of every polygon rotated; an edge's midpoint
+// inserted into both its facets (three collinear corners, first in some
+// polygons); one vertex lifted off its facets' planes by 1/4 or by 2^-30
+// (the error names the same vertex); the Minkowski sum of two such hulls
+// (parallelograms).  Fixed seeds.
+TEST(Polytope, PolygonsOnDoublesAgreeWithRationals) {
+  auto lattice_hull = [](std::mt19937_64& rng) {
+    std::vector<Point3> cloud;
+    const int n = 8 + int(rng() % 40);
+    for (int i = 0; i < n; ++i) cloud.push_back(P(long(rng() % 5), long(rng() % 5), long(rng() % 5)));
+    return ConvexPolytope::hull(cloud);
+  };
+  std::map<std::string, int> seen;
+  for (std::uint64_t seed = 1; seed <= 150; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937_64 rng(seed);
+    const int change = int(seed % 5);
+    Mesh m = change == 4 ? minkowski_sum(lattice_hull(rng), lattice_hull(rng)).polytope.to_mesh()
+                         : lattice_hull(rng).to_mesh();
+    std::size_t polygons = 0;
+    for (const auto& poly : m.faces) polygons += poly.size() > 3;
+    if (change == 2) {  // a midpoint into both facets of an edge of the first polygon
+      std::size_t f = 0;
+      while (m.faces[f].size() < 4 && f + 1 < m.faces.size()) ++f;
+      const Index a = m.faces[f][0], b = m.faces[f][1];
+      const Index mid = Index(m.points.size());
+      m.points.push_back(Point3((m.points.exact(a).x + m.points.exact(b).x) / 2,
+                                (m.points.exact(a).y + m.points.exact(b).y) / 2,
+                                (m.points.exact(a).z + m.points.exact(b).z) / 2));
+      for (auto& poly : m.faces)
+        for (std::size_t i = 0; i < poly.size(); ++i) {
+          const Index u = poly[i], w = poly[(i + 1) % poly.size()];
+          if ((u == a && w == b) || (u == b && w == a)) {
+            poly.insert(poly.begin() + std::ptrdiff_t(i + 1), mid);
+            break;
+          }
+        }
+    }
+    if (change == 1 || change == 2)
+      for (auto& poly : m.faces) std::rotate(poly.begin(), poly.begin() + std::ptrdiff_t(rng() % poly.size()), poly.end());
+    if (change == 3) {
+      const Index v = Index(rng() % m.points.size());
+      const Vec3d a = m.points.approx(v);
+      m.points.set(v, Point3(a.x, a.y, a.z + (seed % 2 ? 0.25 : std::ldexp(1.0, -30))));
+    }
+    ASSERT_TRUE(m.points.all_doubles());
+    ConvexPolytope a, b;
+    const std::string double_error = outcome(m, a), rational_error = outcome(thirds(m), b);
+    ASSERT_EQ(double_error, rational_error);
+    ++seen[double_error.empty() ? (polygons ? "valid with polygons" : "valid")
+                                : double_error.substr(double_error.rfind(": ") + 2, 16)];
+    if (!double_error.empty()) continue;
+    ASSERT_EQ(a.num_vertices(), b.num_vertices());
+    ASSERT_EQ(a.num_facets(), b.num_facets());
+    for (Index i = 0; i < a.num_facets(); ++i) EXPECT_EQ(a.facet_vertices(i), b.facet_vertices(i));
+  }
+  std::string kinds;
+  for (const auto& [k, n] : seen) kinds += k + " x" + std::to_string(n) + "; ";
+  EXPECT_GE(seen["valid with polygons"], 60) << kinds;
+  EXPECT_GE(seen["is not planar (v"], 10) << kinds;
+}
+
 // Regression (validating the 10 242-vertex geodesic sphere of `minksum gen
 // sphere:6`, double coordinates): the vertex test on doubles looks at each
 // vertex's fan along the axis from a reference point, which was the mean
@@ -763,6 +836,92 @@ TEST(Polytope, SymmetricSphereVertexTestsNeedNoExactArithmetic) {
   EXPECT_EQ(p.num_facets(), 20480u);
   EXPECT_GT(stats[PredicateId::orient3d].calls, 3u * 20480u);
   EXPECT_EQ(stats[PredicateId::orient3d].fallbacks, 0u);
+}
+
+namespace {
+// The answer check_fan must give for directions d in the plane, seen along
+// +z: the first step i with d[i] x d[i+1] <= 0, else -1 when the turns add
+// up to one full turn and k otherwise.  Integer directions of at most a few
+// units: each turn's angle (atan2) is off by far less than the half turn
+// that would change the rounded total.
+long fan_by_angles(const std::vector<std::array<long, 2>>& d) {
+  const std::size_t k = d.size();
+  for (std::size_t i = 0; i < k; ++i) {
+    const auto &p = d[i], &q = d[(i + 1) % k];
+    if (p[0] * q[1] - p[1] * q[0] <= 0) return long(i);
+  }
+  const double pi = std::acos(-1.0);
+  double total = 0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const auto &p = d[i], &q = d[(i + 1) % k];
+    double t = std::atan2(double(q[1]), double(q[0])) - std::atan2(double(p[1]), double(p[0]));
+    if (t <= 0) t += 2 * pi;
+    total += t;
+  }
+  return std::lround(total / (2 * pi)) == 1 ? -1 : long(k);
+}
+}  // namespace
+
+// check_fan (validation's facet and vertex test) against the turns'
+// angles, on fans in the plane lifted off it along the axis by random
+// amounts and mapped by a random integer matrix of positive determinant:
+// neither changes the answer.  Degenerate fans first: parallelograms (the
+// facets a Minkowski sum has most of), a side along -(d0 + d1) or landing
+// on d0 + d1 (the reference ray the test counts the turns by), stars and
+// double turns.  Fixed seed.
+TEST(PolytopeFan, CheckFanAgreesWithTheAnglesOfTheTurns) {
+  using Fan = std::vector<std::array<long, 2>>;
+  std::vector<Fan> fans = {
+      {{1, 0}, {0, 1}, {-1, 0}, {0, -1}},
+      {{2, 1}, {-1, 3}, {-2, -1}, {1, -3}},
+      {{1, 0}, {0, 1}, {-1, -1}},
+      {{1, 0}, {1, 1}, {-1, 0}, {-1, -1}},
+      {{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {1, 1}, {-1, 0}, {0, -1}},
+      {{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {1, 0}, {0, 1}, {-1, 0}, {0, -1}},
+      {{3, 0}, {-2, 2}, {1, -3}, {1, 3}, {-2, -2}},
+      {{1, 0}, {-1, 0}, {0, 1}},
+      {{1, 0}, {0, 1}, {-1, 0}, {1, -1}},
+  };
+  std::mt19937_64 rng(20261124);
+  auto small = [&](int r) { return long(rng() % std::uint64_t(2 * r + 1)) - r; };
+  for (int n = 0; n < 3000; ++n) {
+    const std::size_t k = 3 + rng() % 6;
+    Fan d(k);
+    for (auto& v : d) do v = {small(4), small(4)}; while (v[0] == 0 && v[1] == 0);
+    auto angle = [](const std::array<long, 2>& v) { return std::atan2(double(v[1]), double(v[0])); };
+    if (n % 3 != 2) std::sort(d.begin(), d.end(), [&](const auto& p, const auto& q) { return angle(p) < angle(q); });
+    if (n % 3 == 1) {  // every second one: a star when k is odd
+      Fan e;
+      for (std::size_t i = 0; i < k; ++i) e.push_back(d[(2 * i) % k]);
+      d = e;
+    }
+    fans.push_back(d);
+  }
+  std::map<long, int> answers;
+  for (std::size_t n = 0; n < fans.size(); ++n) {
+    const Fan& d = fans[n];
+    const long expected = fan_by_angles(d);
+    ++answers[expected < 0 ? -1 : expected == long(d.size()) ? 1 : 0];
+    long m[3][3];
+    long det = 0;
+    do {
+      for (auto& row : m)
+        for (long& x : row) x = small(3);
+      det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+            m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    } while (det <= 0);
+    auto map = [&](long x, long y, long z) {
+      return Point3(Rational(m[0][0] * x + m[0][1] * y + m[0][2] * z), Rational(m[1][0] * x + m[1][1] * y + m[1][2] * z),
+                    Rational(m[2][0] * x + m[2][1] * y + m[2][2] * z));
+    };
+    std::vector<Point3> lifted;
+    for (const auto& v : d) lifted.push_back(map(v[0], v[1], small(3)));
+    EXPECT_EQ(check_fan(map(0, 0, 1), lifted), expected) << "fan " << n;
+  }
+  // Every kind of answer occurs: one turn, a failed step, a wrong winding.
+  EXPECT_GT(answers[-1], 100);
+  EXPECT_GT(answers[0], 100);
+  EXPECT_GT(answers[1], 20);
 }
 
 // Facets are checked in blocks on threads: of several facets with zero

@@ -361,38 +361,59 @@ long check_fan_t(const V& a, const std::vector<V>& d, const std::vector<V>* turn
     if (s == kUncertain) return kFanUncertain;
     if (s <= 0) return long(i);
   }
-  // Regions relative to the reference ray R = d[0], seen along a:
-  // Z same direction as R, P counter-clockwise within (0, pi), O opposite, N within (pi, 2pi).
-  const V ra = cross(a, d[0]);  // det(a, R, x) = <a x R, x>
-  const auto aa = dot(a, a);
-  const auto Ra = dot(d[0], a);
+  // The winding number, counted by a reference ray R, seen along a.
+  // Regions relative to R: Z same direction as R, P counter-clockwise
+  // within (0, pi), O opposite, N within (pi, 2pi).  Each step turns by an
+  // angle in (0, pi); it passes (or lands on) R exactly when it goes from N
+  // into Z or P (from O or P it cannot reach R in less than pi, and it
+  // enters Z only from N), so the winding number is the number of such
+  // steps, cyclically.  Two rays serve: R = d[0] (d[0] in Z), and
+  // R = d[0] + d[1], strictly between d[0] and d[1] (the turn from one to
+  // the other is in (0, pi), just checked; d[0] in N, d[1] in P).  On
+  // intervals the first cannot decide a side exactly opposite to d[0] (a
+  // parallelogram's, and a Minkowski sum has many): a zero; the second
+  // cannot decide a direction along d[0] + d[1], which a vertex's fan of a
+  // symmetric sum can have.  Each is tried while the other cannot decide.
   enum Region { Z, P, O, N, U };
-  auto region = [&](const V& x) {
-    int c = sign_any(dot(ra, x));
-    if (c == kUncertain) return U;
-    if (c > 0) return P;
-    if (c < 0) return N;
-    // Collinear with R in projection: same or opposite direction.
-    int s = sign_any(dot(x, d[0]) * aa - dot(x, a) * Ra);
-    if (s == kUncertain) return U;
-    return s > 0 ? Z : O;
+  auto winding = [&](const V& R, bool between) -> long {
+    const V ra = cross(a, R);  // det(a, R, x) = <a x R, x>
+    const auto aa = dot(a, a);
+    const auto Ra = dot(R, a);
+    auto region = [&](const V& x) {
+      int c = sign_any(dot(ra, x));
+      if (c == kUncertain) return U;
+      if (c > 0) return P;
+      if (c < 0) return N;
+      // Collinear with R in projection: same or opposite direction.
+      int s = sign_any(dot(x, R) * aa - dot(x, a) * Ra);
+      if (s == kUncertain) return U;
+      return s > 0 ? Z : O;
+    };
+    const Region first = between ? N : Z;
+    long w = between ? 1 : 0;  // the step from d[0] to d[1] when R is between them
+    Region prev = between ? P : first;
+    for (std::size_t j = between ? 2 : 1; j <= k; ++j) {
+      const Region r = j == k ? first : region(d[j]);  // back to d[0]
+      if (r == U) return kFanUncertain;
+      if (prev == N && (r == Z || r == P)) ++w;
+      prev = r;
+    }
+    return w;
   };
-  // Each step turns by an angle in (0, pi); it passes (or lands on) the
-  // reference ray exactly when it goes from N into Z or P.
-  long winding = 0;
-  Region prev = Z;
-  for (std::size_t j = 1; j <= k; ++j) {
-    Region r = j == k ? Z : region(d[j]);
-    if (r == U) return kFanUncertain;
-    if (prev == N && (r == Z || r == P)) ++winding;
-    if (j < k && r == Z) ++winding;  // landing on R before the end: a second turn
-    prev = r;
-  }
-  return winding == 1 ? -1 : long(k);
+  long w = winding(d[0], false);
+  if (w == kFanUncertain) w = winding(d[0] + d[1], true);
+  if (w == kFanUncertain) return kFanUncertain;
+  return w == 1 ? -1 : long(k);
 }
 }  // namespace
 
 long check_fan(const Point3& a, const std::vector<Point3>& d) { return check_fan_t(a, d); }
+
+namespace {
+std::atomic<std::uint64_t> g_exact_fan_tests{0};
+}  // namespace
+
+std::uint64_t exact_fan_tests() { return g_exact_fan_tests.load(std::memory_order_relaxed); }
 
 namespace {
 
@@ -413,6 +434,7 @@ bool convex_polygon(const std::vector<Index>& poly, const IPoints& ip, const Poi
   for (std::size_t i = 0; i < k; ++i) s.idirs.push_back(ip[poly[(i + 1) % k]] - ip[poly[i]]);
   long r = check_fan_t(n, s.idirs);
   if (r == kFanUncertain) {
+    g_exact_fan_tests.fetch_add(1, std::memory_order_relaxed);
     s.dirs.clear();
     for (std::size_t i = 0; i < k; ++i) s.dirs.push_back(pts.exact(poly[(i + 1) % k]) - pts.exact(poly[i]));
     r = check_fan_t(exact_normal(), s.dirs);
@@ -444,6 +466,7 @@ bool convex_vertex(Index v, Index start, const Index* origin, const Index* prev,
   } while (h != start);
   long r = check_fan_t(-isum, s.idirs, &s.inormals);
   if (r == kFanUncertain) {
+    g_exact_fan_tests.fetch_add(1, std::memory_order_relaxed);
     s.dirs.clear();
     Point3 sum(Rational(0), Rational(0), Rational(0));
     const Point3 pv = pts.exact(v);
@@ -815,6 +838,24 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     }
     return n;
   };
+  // An exactly planar polygon (a parallelogram of a Minkowski sum, written
+  // rounded) leaves every vertex's sign above at an exact zero that
+  // intervals cannot decide.  On doubles one decision covers the polygon:
+  // when its first three corners are not collinear and every other corner
+  // lies on their plane (the kernel's orient3d, exact), all its points are
+  // coplanar, the Newell normal is normal to that plane, and every sign is
+  // 0.  When that is not shown, each vertex is decided exactly as before
+  // (and the error names the same vertex).
+  auto planar_on_doubles = [&](const std::vector<Index>& poly) {
+    if (pts.form() != PointList::Form::doubles) return false;
+    const FastIPoint e = cross(dip[poly[1]] - dip[poly[0]], dip[poly[2]] - dip[poly[0]]);
+    auto nonzero = [](const FastInterval& c) { const int s = sign_of(c); return s == 1 || s == -1; };
+    if (!nonzero(e.x) && !nonzero(e.y) && !nonzero(e.z)) return false;
+    const std::vector<Vec3d>& v = pts.approx();
+    for (std::size_t i = 3; i < poly.size(); ++i)
+      if (orient3d(v[poly[0]], v[poly[1]], v[poly[2]], v[poly[i]]) != 0) return false;
+    return true;
+  };
   std::vector<FastIPoint> inrm;  // (triangles on doubles: made by fill_inrm when needed)
   auto fill_inrm = [&] {
     if (!inrm.empty()) return;
@@ -841,9 +882,11 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
           throw InputError(source, fct(fname[f]), "has zero area");
         const FastIPoint o = ipa[poly[0]];
         if (poly.size() > 3) {
+          int planar = 0;  // 1: exactly planar (planar_on_doubles), -1: not shown, 0: not asked yet
           for (Index v : poly) {
             int s = sign_of(dot(n, ipa[v] - o));
-            if (s == kUncertain) s = sgn(dot(exact_normal(f), pts.exact(v) - pts.exact(poly[0])));
+            if (s == kUncertain && planar == 0) planar = planar_on_doubles(poly) ? 1 : -1;
+            if (s == kUncertain) s = planar == 1 ? 0 : sgn(dot(exact_normal(f), pts.exact(v) - pts.exact(poly[0])));
             if (s != 0)
               throw NotConvexError(source, fct(fname[f]),
                                    "is not planar (" + vtx(vname[v]) + " is off the plane of the others)");
@@ -1232,10 +1275,8 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
   ConvexPolytope r = from_trusted_parts(points, std::move(origin), std::move(next), std::move(facet),
                                         std::move(facet_he));
   // Point (4) on the doubles first (convex_vertex_on_doubles); a vertex it
-  // does not accept is left to step 8's test, which decides; that test
-  // often cannot decide on intervals where opposite edges of a Minkowski
-  // sum make its axis's projection degenerate, and then computes in
-  // rationals.  The wedge of a vertex in a triangle (v, u_j, u_j+1) is the
+  // does not accept is left to step 8's test, which decides (on intervals,
+  // exactly where they cannot).  The wedge of a vertex in a triangle (v, u_j, u_j+1) is the
   // triangle itself (orient3d is invariant under cyclic rotation of its
   // first three points), so its sign is computed once per triangle, not
   // once per corner.

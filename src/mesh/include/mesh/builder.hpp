@@ -3,6 +3,7 @@
 
 #include <minksum/polytope.hpp>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -63,5 +64,10 @@ int sign_det(const Point3& a, const Point3& b, const Point3& c);
 // exactly once.  Returns -1 on success, else the index i of the first step
 // that fails (k if only the winding number is wrong).
 long check_fan(const Point3& a, const std::vector<Point3>& d);
+
+// How many facet and vertex fans (step 8 of validation, and the rounding
+// certificate) intervals could not decide, so that check_fan ran on exact
+// points, since the process started (all threads).
+std::uint64_t exact_fan_tests();
 
 }  // namespace minksum

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
@@ -257,6 +258,11 @@ int run_sum(const std::vector<std::string>& argv) {
     operand_counts.push_back(counts_json(p));
     operand_summary.push_back(std::to_string(p.num_vertices()) + " V, " + std::to_string(p.num_facets()) + " F");
   }
+  // --json reports the exact volume: by mixed volumes from the two operands
+  // while they are here (sum_volume), a fraction of what the sum's own
+  // triangles cost.
+  std::optional<Rational> volume;
+  if (json && operands.size() == 2) volume = sum_volume(operands[0], operands[1], r);
   if (!scene) release(operands);
   // Likewise the per-facet and per-vertex records, once summed up for --json.
   const std::string details = names.size() == 2 ? facet_types_json(r) + method_detail_json(r) : "";
@@ -270,7 +276,7 @@ int run_sum(const std::vector<std::string>& argv) {
   const ConvexPolytope& s = r.polytope;
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
-    Rational vol = s.volume();
+    const Rational vol = volume ? *volume : s.volume();
     report << "{" << counts_json(s) << ", \"dimension\": 3, \"method\": \"" << method_name(r.method) << "\""
            << ", \"seconds\": " << json_number(seconds) << ", \"phases\": {\"read\": " << json_number(load.read)
            << ", \"validate\": " << json_number(load.validate)

@@ -288,6 +288,51 @@ TEST(LazyVolume, DyadicEqualsRational) {
   EXPECT_EQ(big.volume(), Rational(8) * Rational(1e300) * Rational(1e300) * Rational(1e300));
 }
 
+// sum_volume (mixed volumes from the operands and the facets' provenance)
+// against the sum's own volume, for every method's provenance: pairs with
+// parallel facets (facet ⊕ facet), parallel edges, translated facets and
+// corners; random hulls of doubles at scales 2^-40 to 2^30; and operands
+// with rational coordinates (it returns the sum's own volume then).  Fixed
+// seed.
+TEST(LazyVolume, SumVolumeByMixedVolumesEqualsTheSumsOwn) {
+  std::mt19937_64 rng(20261124);
+  std::normal_distribution<double> g;
+  auto random_hull = [&](int n, int scale) {
+    PointList pts;
+    for (int i = 0; i < n; ++i)
+      pts.push_back(Vec3d{std::ldexp(g(rng), scale), std::ldexp(g(rng), scale), std::ldexp(g(rng), scale)});
+    return ConvexPolytope::hull(pts);
+  };
+  std::vector<std::pair<ConvexPolytope, ConvexPolytope>> pairs = {
+      {catalog_polytope("cube"), catalog_polytope("cube")},
+      {catalog_polytope("cube"), catalog_polytope("octahedron")},
+      {catalog_polytope("tetrahedron"), catalog_polytope("tetrahedron").negated()},
+      {catalog_polytope("cube"), catalog_polytope("sphere:3")},
+      {catalog_polytope("box:1:2:3"), catalog_polytope("sphere:2@translate:5,-7,1")},
+      {catalog_polytope("cube"), catalog_polytope("box:1:2:3@rot:1")},
+      {catalog_polytope("sphere:2"), catalog_polytope("sphere:2@rot:1")},
+  };
+  for (int i = 0; i < 6; ++i) pairs.push_back({random_hull(10 + i * 7, -40 + 14 * i), random_hull(30, 2 * i)});
+  int fast = 0, with_provenance = 0;
+  for (std::size_t n = 0; n < pairs.size(); ++n) {
+    const auto& [a, b] = pairs[n];
+    const bool doubles = a.coordinates().all_doubles() && b.coordinates().all_doubles();
+    for (Method m : {Method::walk, Method::chms, Method::cvms, Method::essdms, Method::mssd, Method::cgm}) {
+      const SumResult r = minkowski_sum(a, b, m);
+      const bool tracked = r.facet_provenance.size() == r.polytope.num_facets();
+      with_provenance += tracked;
+      fast += tracked && doubles;
+      EXPECT_EQ(sum_volume(a, b, r), r.polytope.volume()) << "pair " << n << ", " << method_name(m);
+    }
+  }
+  EXPECT_GE(with_provenance, int(2 * pairs.size()));  // walk's and at least one other method's
+  EXPECT_GE(fast, 20);
+  // Without provenance: the sum's own volume.
+  SumResult r = minkowski_sum(pairs[3].first, pairs[3].second);
+  r.facet_provenance.clear();
+  EXPECT_EQ(sum_volume(pairs[3].first, pairs[3].second, r), r.polytope.volume());
+}
+
 // release(v) frees v's buffer; `v = {}` would not (it picks the
 // initializer_list assignment, which keeps the capacity): the case of the
 // edge-sorting array that validation meant to free before making the

@@ -61,6 +61,16 @@ struct FacetProvenance {
 std::vector<FacetProvenance> facet_provenance(const ConvexPolytope& a, const ConvexPolytope& b,
                                               const ConvexPolytope& s);
 
+struct SumResult;
+// The exact volume of r.polytope = a ⊕ b, from a, b and r.facet_provenance
+// (as minkowski_sum returns them) by mixed volumes: a cross product per
+// corner of a's and b's facets, in integers when both operands' coordinates
+// are doubles, instead of a determinant per triangle of the sum on its
+// coordinates (src/sum/shared/sum_volume.cpp).  Equal to
+// r.polytope.volume(), which it returns when the provenance is missing or
+// an operand has rational coordinates.
+Rational sum_volume(const ConvexPolytope& a, const ConvexPolytope& b, const SumResult& r);
+
 struct SumResult {
   ConvexPolytope polytope;
   Method method = Method::chms;

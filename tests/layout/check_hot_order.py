@@ -27,23 +27,22 @@ def main():
     wanted = set(names)
     out = subprocess.run(["nm", "-S", "--defined-only", binary], check=True,
                          capture_output=True, text=True).stdout
-    # One function can have several names (aliases): keep one per address.
-    spans = {}
+    # One function can have several names (aliases): one span per address.
+    spans, defined = {}, set()
     for line in out.splitlines():
         parts = line.split()
         if len(parts) != 4 or parts[2] not in "tTwW" or parts[3] not in wanted:
             continue
         addr, size = int(parts[0], 16), int(parts[1], 16)
-        spans[addr] = (max(size, spans.get(addr, (0, None))[0]), parts[3])
-    defined = {p.split()[3] for p in out.splitlines()
-               if len(p.split()) == 4 and p.split()[3] in wanted}
+        spans[addr] = max(size, spans.get(addr, 0))
+        defined.add(parts[3])
     share = len(defined) / len(wanted)
-    total = sum(size for size, _ in spans.values())
+    total = sum(spans.values())
     # The 64 KiB stretches of the text holding listed code: a first touch of
     # code faults in one such stretch at a time (the kernel's fault-around),
     # so their number is what the order is for.
     windows = set()
-    for addr, (size, _) in spans.items():
+    for addr, size in spans.items():
         windows.update(range(addr >> 16, ((addr + max(size, 1) - 1) >> 16) + 1))
     least = -(-total // 65536)
     allowed = least + least // 4 + 2

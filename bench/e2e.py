@@ -2,7 +2,7 @@
 """minksum bench, end to end: whole processes, file to file.
 
     python3 bench/e2e.py [--minksum build-bench/bin/minksum] [--work build-bench/e2e]
-                         [--rounds 21] [--memory-rounds 3] [--page docs/generated/benchmarks.md]
+                         [--rounds 22] [--memory-rounds 3] [--page docs/generated/benchmarks.md]
                          [--command "make bench-e2e"]
 
 For each row the operands are written as double OFF files with `minksum gen`
@@ -16,8 +16,10 @@ whole process:
 
 timed from spawn to exit (wall clock) with its peak resident memory from
 wait4's ru_maxrss.  The order of the contenders is reversed every other
-round (minksum, qconvex, qconvex, minksum, minksum, ...), so each runs half
-its rounds right after the other contender and half right after itself:
+round (minksum, qconvex, qconvex, minksum, minksum, ...), and the untimed
+first run of each goes in the reverse order of the first round, so over an
+even number of rounds each runs exactly half its rounds right after the
+other contender and half right after itself:
 on a virtual machine the process run just before can slow the next one by
 milliseconds (bench/predecessor.py measures it; docs/data-model.md), and a
 fixed order would charge that to one contender only.
@@ -148,7 +150,7 @@ def contender_args(description, rounds):
 
 
 def main():
-    ap = contender_args(__doc__, 21)
+    ap = contender_args(__doc__, 22)
     ap.add_argument("--memory-rounds", type=int, default=3)
     ap.add_argument("--page", default="docs/generated/benchmarks.md")
     ap.add_argument("--command", default="make bench-e2e")
@@ -215,14 +217,17 @@ def main():
                                     (["--hull"] if hull else [])))
         del pa, pb
         # One untimed run of each (files in the page cache, binaries loaded), then the rounds, interleaved.
-        for name, cmd in contenders:
+        # The untimed runs go in the reverse order of round 1, so that round 1 starts with its first
+        # contender right after itself: over an even number of rounds each contender then runs exactly
+        # half its rounds after itself and half after another.
+        for name, cmd in contenders[::-1]:
             t, rss, rc, out, err = run_process(cmd)
             if rc != 0:
                 raise SystemExit("e2e: %s failed (%d): %s" % (" ".join(cmd), rc, err.strip()))
         times = {name: [] for name, _ in contenders}
         rsss = {name: [] for name, _ in contenders}
         after = {name: {} for name, _ in contenders}  # name -> the contender run just before -> times
-        last = contenders[-1][0]
+        last = contenders[0][0]  # the last untimed run
         for r in range(row["rounds"]):
             for name, cmd in (contenders if r % 2 == 0 else contenders[::-1]):
                 t, rss, rc, out, err = run_process(cmd)
@@ -346,9 +351,10 @@ def section(args, results, load, million, load_start, wall):
     add("* Timed, each as a process from spawn to exit (wall clock): `minksum sum A.off B.off -o S.off` and "
         "`qconvex o TI pts.txt TO out.off` (Qhull's command-line hull, default pre-merge `C-0`, output as OFF). "
         "Peak memory: the process's maximum resident set (`ru_maxrss` from `wait4`).")
-    add("* After one untimed run of each, the contenders of a row alternate for the row's rounds, in an order "
-        "reversed every other round (minksum, qconvex, qconvex, minksum, minksum, ...): each runs half its "
-        "rounds right after the other and half right after itself. On this machine the process run just "
+    add("* After one untimed run of each (in the reverse order of the first round), the contenders of a row "
+        "alternate for the row's rounds, in an order reversed every other round (minksum, qconvex, qconvex, "
+        "minksum, minksum, ...): over an even number of rounds each runs exactly half its rounds right after "
+        "the other and half right after itself. On this machine the process run just "
         "before can slow the next one by milliseconds (`bench/predecessor.py` measures it; see "
         "[data-model.md](../data-model.md)), so a fixed order would charge that to one contender; the notes below give each contender's median by the contender run just "
         "before. A figure is the **median** over all the rounds, the ratio is qconvex's median ÷ minksum's "

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Two builds of the command, alternated, as whole processes.
 
-    /usr/bin/python3 bench/ab.py NEW OLD [--rounds 60] [--cwd DIR] [--faults] -- ARGS...
+    /usr/bin/python3 bench/ab.py NEW OLD [--rounds 60] [--cwd DIR] [--after CMD] [--faults] -- ARGS...
 
 Runs `NEW ARGS...` and `OLD ARGS...` (two minksum executables, say a build
 of the working tree and one of an earlier commit) alternately, the order
@@ -9,6 +9,13 @@ reversed every other round (NEW, OLD, OLD, NEW, ...), each timed from spawn
 to exit (wall clock, output to /dev/null), and prints the quartiles of
 each in milliseconds and the ratio of the medians.  Neither is charged for
 running after the other only.  Both must succeed on the first round.
+
+With --after CMD, CMD (split as a shell would, run in --cwd, untimed, its
+output discarded) runs before every timed run: both builds are then timed
+right after the same other program, say `--after "qconvex o TI pts-a.txt TO
+qconvex-a.off"` in build-bench/e2e, the program bench/e2e.py alternates them
+with (on a virtual machine the program run just before can change the next
+one's time: docs/data-model.md).
 
 With --faults, also prints what a first touch costs on this machine, from
 inside this process: one byte read per 64 KiB of OLD's file through mmap
@@ -20,6 +27,7 @@ byte written per 4 KiB of fresh anonymous memory.  docs/data-model.md
 import argparse
 import mmap
 import os
+import shlex
 import statistics
 import subprocess
 import sys
@@ -60,6 +68,7 @@ def main():
     ap.add_argument("old")
     ap.add_argument("--rounds", type=int, default=60)
     ap.add_argument("--cwd", default=None, help="run the commands in this directory")
+    ap.add_argument("--after", default=None, help="a command run (untimed) before every timed run")
     ap.add_argument("--faults", action="store_true", help="also time first touches (see above)")
     argv = sys.argv[1:]
     if "--" not in argv:
@@ -70,10 +79,15 @@ def main():
     o.new, o.old = os.path.abspath(o.new), os.path.abspath(o.old)  # --cwd may move elsewhere
     if o.rounds < 2:
         ap.error("--rounds must be at least 2")
+    after = shlex.split(o.after) if o.after else None
     times = {o.new: [], o.old: []}
     for r in range(o.rounds):
         order = [o.new, o.old] if r % 2 == 0 else [o.old, o.new]
         for exe in order:
+            if after:
+                q = subprocess.run(after, cwd=o.cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                if r == 0 and q.returncode != 0:
+                    sys.exit(f"ab: {o.after} exited with {q.returncode}: {q.stderr.decode(errors='replace').strip()}")
             t0 = time.perf_counter()
             p = subprocess.run([exe] + args, cwd=o.cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
             times[exe].append(time.perf_counter() - t0)
@@ -81,7 +95,8 @@ def main():
                 sys.exit(f"ab: {exe} {' '.join(args)} exited with {p.returncode}: "
                          f"{p.stderr.decode(errors='replace').strip()}")
     qn, qo = quartiles(times[o.new]), quartiles(times[o.old])
-    print(f"ab: {' '.join(args)} ({o.rounds} rounds each, alternated)")
+    print(f"ab: {' '.join(args)} ({o.rounds} rounds each, alternated"
+          + (f", each right after {o.after}" if after else "") + ")")
     print(f"  new {o.new}: quartiles {qn[0]:.2f} {qn[1]:.2f} {qn[2]:.2f} ms")
     print(f"  old {o.old}: quartiles {qo[0]:.2f} {qo[1]:.2f} {qo[2]:.2f} ms")
     print(f"  old median / new median: {qo[1] / qn[1]:.3f}")

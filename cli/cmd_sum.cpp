@@ -45,7 +45,8 @@ Options:
   --binary           binary {binary_formats} output
   --scene            with -o OUT.wrl: write a VRML scene (docs/vrml.md) that
                      holds the operands and the sum, each an ExactPolyhedron
-                     node (DEF A, B, C, ... and S), instead of the sum alone;
+                     node (DEF A, B, C, ... and S; operands after R are
+                     T to Z, then P26, P27, ...), instead of the sum alone;
                      exact coordinates with --exact, else the nearest doubles
                      as for a .wrl file ('minksum view OUT.wrl -o page.html'
                      shows it)
@@ -141,9 +142,9 @@ std::string method_detail_json(const SumResult& r) {
   return o.str();
 }
 
-// --scene: the operands and the sum as ExactPolyhedron nodes A, B, ... and S,
-// each rounded as write_mesh_output would round it alone; the report adds up
-// what was rounded.
+// --scene: the operands and the sum as ExactPolyhedron nodes A, B, ... (no
+// operand is named S) and S, each rounded as write_mesh_output would round it
+// alone; the report adds up what was rounded.
 RoundingReport write_scene_of_sum(const MeshOutput& out, const std::vector<std::string>& names,
                                   const std::vector<ConvexPolytope>& operands, const ConvexPolytope& sum) {
   const std::string name = out.to_stdout() ? "<stdout>" : out.path;
@@ -167,7 +168,9 @@ RoundingReport write_scene_of_sum(const MeshOutput& out, const std::vector<std::
   };
   std::string sum_text;
   for (std::size_t i = 0; i < operands.size(); ++i) {
-    const std::string node = i < 26 ? std::string(1, char('A' + i)) : "P" + std::to_string(i + 1);
+    // A, B, ..., Z without S (the sum's node), then P26, P27, ...
+    const std::string node =
+        i < 25 ? std::string(1, char('A' + i + (i >= 18))) : std::string("P").append(std::to_string(i + 1));
     add(operands[i], node, node + " = " + printable(names[i]));
     sum_text += (i ? " ⊕ " : "") + node;
   }

@@ -1028,6 +1028,32 @@ TEST_F(SceneCli, SumSceneWritesOperandsAndSumThatReadBackExactly) {
   EXPECT_NE(o.out.find("DEF S ExactPolyhedron"), std::string::npos);
 }
 
+// Regression: the 19th operand was node S, as the sum is (two DEF S).
+TEST_F(SceneCli, SumSceneOfNineteenOrMoreOperandsNamesEveryNodeOnce) {
+  std::string cmd = "sum";
+  for (int i = 0; i < 27; ++i) cmd += " tetrahedron";
+  CmdResult w = run(cmd + " --scene -o " + path("many.wrl") + " --json");
+  ASSERT_EQ(w.status, 0) << w.err;
+  const std::string text = slurp(path("many.wrl"));
+  std::vector<std::string> names;
+  for (std::size_t at = text.find("DEF "); at != std::string::npos; at = text.find("DEF ", at + 4))
+    names.push_back(text.substr(at + 4, text.find(' ', at + 4) - at - 4));
+  std::vector<std::string> expected;
+  for (char c = 'A'; c <= 'Z'; ++c)
+    if (c != 'S') expected.push_back(std::string(1, c));
+  expected.push_back("P26");
+  expected.push_back("P27");
+  expected.push_back("S");
+  EXPECT_EQ(names, expected);
+  EXPECT_NE(text.find("# T = tetrahedron"), std::string::npos);
+  EXPECT_NE(text.find("# S = A ⊕ B ⊕ C"), std::string::npos);
+  EXPECT_NE(text.find("⊕ Z ⊕ P26 ⊕ P27\n"), std::string::npos);
+  // view reads it back: 28 polytopes, the last the sum (27 tetrahedra: the tetrahedron scaled by 27).
+  CmdResult v = run("view " + path("many.wrl") + " -o " + path("many.html") + " --json");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_EQ(json_int(v.out.substr(v.out.find("\"name\": \"S\"")), "facets"), json_int(w.out, "facets")) << v.out;
+}
+
 TEST_F(SceneCli, UsageErrors) {
   EXPECT_EQ(run("sum cube cube --scene").status, 2);
   EXPECT_EQ(run("sum cube cube --scene -o " + path("s.off")).status, 2);

@@ -84,6 +84,14 @@ ScaledIntegers::ScaledIntegers(const double* values, std::size_t n) {
   }
 }
 
+Rational ScaledIntegers::unscale(const Integer& v, int degree) const {
+  Rational r(v);
+  const long e = long(degree) * exponent;
+  if (e >= 0) mpq_mul_2exp(r.get_mpq_t(), r.get_mpq_t(), mp_bitcnt_t(e));
+  else mpq_div_2exp(r.get_mpq_t(), r.get_mpq_t(), mp_bitcnt_t(-e));
+  return r;
+}
+
 Plane canonical_plane_of_dyadic_triangle(const Vec3d hi[3], const Vec3d lo[3]) {
   double raw[18];
   for (int i = 0; i < 3; ++i)

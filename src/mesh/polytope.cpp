@@ -1551,11 +1551,7 @@ Rational ConvexPolytope::volume() const {
       mpz_addmul(six.get_mpz_t(), D[pa + k].get_mpz_t(), t.get_mpz_t());
     }
   });
-  Rational vol(six);
-  const long e = 3L * si.exponent;
-  if (e >= 0) mpq_mul_2exp(vol.get_mpq_t(), vol.get_mpq_t(), mp_bitcnt_t(e));
-  else mpq_div_2exp(vol.get_mpq_t(), vol.get_mpq_t(), mp_bitcnt_t(-e));
-  return vol / 6;
+  return si.unscale(six, 3) / 6;
 }
 
 Mesh ConvexPolytope::to_mesh() const {

@@ -81,11 +81,7 @@ Rational sum_volume(const ConvexPolytope& a, const ConvexPolytope& b, const SumR
   };
   part(a, 0, na, support_a);
   part(b, na, 0, support_b);
-  Rational vol(six);
-  const long ex = 3L * si.exponent;
-  if (ex >= 0) mpq_mul_2exp(vol.get_mpq_t(), vol.get_mpq_t(), mp_bitcnt_t(ex));
-  else mpq_div_2exp(vol.get_mpq_t(), vol.get_mpq_t(), mp_bitcnt_t(-ex));
-  return vol / 6;
+  return si.unscale(six, 3) / 6;
 }
 
 }  // namespace minksum

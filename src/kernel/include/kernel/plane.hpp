@@ -22,6 +22,10 @@ Plane canonical_plane_of_dyadic_triangle(const Vec3d hi[3], const Vec3d lo[3]);
 // nonzero values' last mantissa bits).
 struct ScaledIntegers {
   ScaledIntegers(const double* values, std::size_t n);
+  // v * 2^(degree * exponent), exactly: the value of a homogeneous
+  // polynomial of that degree in the doubles, from its value v on the
+  // integers (a determinant of three points: degree 3).
+  Rational unscale(const Integer& v, int degree) const;
   std::vector<Integer> value;
   int exponent = 0;
 };

@@ -122,21 +122,24 @@ void append_set_json(std::string& out, const ConvexSet& s, const std::string& na
          set_counts_json(s) + "}, \"volume\": \"0\", \"xyz\": [";
   for (std::size_t i = 0; i < v.size(); ++i) {
     const Vec3d a = to_double(v[i]);
-    out += (i ? "," : "") + json_number(a.x) + "," + json_number(a.y) + "," + json_number(a.z);
+    out.append(i ? "," : "").append(json_number(a.x)).append(",").append(json_number(a.y)).append(",");
+    out.append(json_number(a.z));
   }
   out += "], \"exact\": [";
   for (std::size_t i = 0; i < v.size(); ++i)
-    out += (i ? ",\"" : "\"") + format_exact(v[i].x) + " " + format_exact(v[i].y) + " " + format_exact(v[i].z) + "\"";
+    out.append(i ? ",\"" : "\"").append(format_exact(v[i].x)).append(" ").append(format_exact(v[i].y)).append(" ")
+        .append(format_exact(v[i].z)).append("\"");
   out += "], \"facets\": [";
   if (s.dimension() == 2) {
     std::string front, back;
     for (std::size_t i = 0; i < v.size(); ++i) {
-      front += (i ? "," : "") + std::to_string(i);
-      back += (i ? "," : "") + std::to_string(v.size() - 1 - i);
+      front.append(i ? "," : "").append(std::to_string(i));
+      back.append(i ? "," : "").append(std::to_string(v.size() - 1 - i));
     }
     const Plane up = canonical_plane(s.normal(), v[0]), down = canonical_plane(-s.normal(), v[0]);
     auto text = [](const Plane& p) {
-      return "\"" + p.a.get_str() + " " + p.b.get_str() + " " + p.c.get_str() + " " + p.d.get_str() + "\"";
+      return std::string(1, '"').append(p.a.get_str()).append(" ").append(p.b.get_str()).append(" ")
+          .append(p.c.get_str()).append(" ").append(p.d.get_str()).append("\"");
     };
     out += "[" + front + "],[" + back + "]], \"planes\": [" + text(up) + "," + text(down) + "]}";
   } else {

@@ -118,7 +118,7 @@ BENCH_CONFIGURE = cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DMINK
 bench:
 	@$(MAKE) --no-print-directory setup
 	$(BENCH_CONFIGURE)
-	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target minksum_bench bench_proximity minksum_cli
+	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target minksum_bench bench_proximity minksum_cli bench_spawn
 	$(BENCH_BUILD)/bin/minksum_bench --suite full --out docs/generated --command "make bench"
 	bash bench/proximity/run.sh $(BENCH_BUILD)
 	$(E2E) --command "make bench"
@@ -141,7 +141,7 @@ bench-nonconvex:
 bench-e2e:
 	@$(MAKE) --no-print-directory setup
 	$(BENCH_CONFIGURE)
-	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target minksum_cli
+	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target minksum_cli bench_spawn
 	$(E2E) --command "make bench-e2e"
 
 # The Python package against its C++ calls and against scipy.spatial.ConvexHull

@@ -14,8 +14,11 @@ whole process:
     minksum sum A.off B.off -o S.off
     qconvex o TI pts.txt TO out.off
 
-timed from spawn to exit (wall clock) with its peak resident memory from
-wait4's ru_maxrss.  The order of the contenders is reversed every other
+started by bench_spawn (bench/spawn.cpp, built beside the minksum it
+times, or --spawn PATH), which reports its wall time from fork to exit and
+its own peak resident memory (wait4's ru_maxrss; started from this Python
+process directly, a program's ru_maxrss would include Python's own).
+The order of the contenders is reversed every other
 round (minksum, qconvex, qconvex, minksum, minksum, ...), and the untimed
 first run of each goes in the reverse order of the first round, so over an
 even number of rounds each runs exactly half its rounds right after the
@@ -51,16 +54,41 @@ BEGIN = "<!-- e2e:begin -->"
 END = "<!-- e2e:end -->"
 
 
+# bench_spawn (bench/spawn.cpp), set by use_spawn: every timed program is started through it.
+SPAWN = None
+
+
+def use_spawn(args):
+    """Find bench_spawn: --spawn, else beside --minksum (both built by `make bench-e2e`)."""
+    global SPAWN
+    path = args.spawn or os.path.join(os.path.dirname(os.path.abspath(args.minksum)), "bench_spawn")
+    if not os.access(path, os.X_OK):
+        raise SystemExit("e2e: %s not found: `make bench-e2e` builds it (target bench_spawn of a build "
+                         "configured with -DMINKSUM_BENCH=ON), or give --spawn PATH" % path)
+    SPAWN = path
+
+
 def run_process(argv, stdout=subprocess.DEVNULL):
-    """Run argv to completion: (wall seconds, peak RSS KiB, exit status, stdout text or None)."""
-    t0 = time.perf_counter()
-    p = subprocess.Popen(argv, stdout=stdout, stderr=subprocess.PIPE)
+    """Run argv to completion: (wall seconds, peak RSS KiB, exit status, stdout text or None, stderr text).
+
+    The seconds and the peak memory are bench_spawn's report of the program alone: the clock from just
+    before its fork to just after its wait4, and the program's own ru_maxrss.  (Measured from this
+    process instead, ru_maxrss would be at least this Python process's own peak: Linux charges the
+    address space a vfork'ed child leaves at exec to the child; bench/spawn.cpp.)"""
+    r, w = os.pipe()
+    try:
+        p = subprocess.Popen([SPAWN, str(w)] + list(argv), stdout=stdout, stderr=subprocess.PIPE, pass_fds=(w,))
+    finally:
+        os.close(w)
     out = p.stdout.read() if stdout == subprocess.PIPE else None
     err = p.stderr.read()
-    _, status, ru = os.wait4(p.pid, 0)
-    t = time.perf_counter() - t0
-    p.returncode = os.waitstatus_to_exitcode(status)
-    return t, ru.ru_maxrss, p.returncode, (out.decode() if out is not None else None), err.decode()
+    p.wait()
+    with os.fdopen(r) as f:
+        report = f.read().split()
+    if p.returncode != 0 or len(report) != 3:
+        raise SystemExit("e2e: %s failed (%d): %s" % (SPAWN, p.returncode, err.decode(errors="replace").strip()))
+    return (float(report[0]), int(report[1]), int(report[2]), (out.decode() if out is not None else None),
+            err.decode())
 
 
 def check(argv):
@@ -146,6 +174,7 @@ def contender_args(description, rounds):
     ap.add_argument("--qconvex", default="qconvex")
     ap.add_argument("--work", default="build-bench/e2e")
     ap.add_argument("--rounds", type=int, default=rounds)
+    ap.add_argument("--spawn", default="", help="bench_spawn (default: beside --minksum)")
     return ap
 
 
@@ -157,6 +186,7 @@ def main():
     ap.add_argument("--only", default="", help="comma-separated row keys (a,b,c1,c2,load,million)")
     ap.add_argument("--baseline", default="", help="another minksum build, run as a third contender (rows a, b)")
     args = ap.parse_args()
+    use_spawn(args)
     ms = os.path.abspath(args.minksum)
     os.makedirs(args.work, exist_ok=True)
     W = lambda name: os.path.join(args.work, name)
@@ -348,9 +378,11 @@ def section(args, results, load, million, load_start, wall):
     add("* The operands are written as double OFF files with `minksum gen SPEC -o FILE` (rotated solids are "
         "rounded to the nearest doubles). For Qhull, the pairwise sums a_i + b_j of the files' coordinates "
         "(added in double arithmetic) are written beforehand in qhull's input format; neither step is timed.")
-    add("* Timed, each as a process from spawn to exit (wall clock): `minksum sum A.off B.off -o S.off` and "
+    add("* Timed, each as a process from fork to exit (wall clock, started by `bench_spawn`, bench/spawn.cpp): "
+        "`minksum sum A.off B.off -o S.off` and "
         "`qconvex o TI pts.txt TO out.off` (Qhull's command-line hull, default pre-merge `C-0`, output as OFF). "
-        "Peak memory: the process's maximum resident set (`ru_maxrss` from `wait4`).")
+        "Peak memory: the process's own maximum resident set (`ru_maxrss` from `wait4` in `bench_spawn`; "
+        "a program started from the Python script directly would report at least the script's own).")
     add("* After one untimed run of each (in the reverse order of the first round), the contenders of a row "
         "alternate for the row's rounds, in an order reversed every other round (minksum, qconvex, qconvex, "
         "minksum, minksum, ...): over an even number of rounds each runs exactly half its rounds right after "

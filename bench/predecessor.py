@@ -33,7 +33,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from e2e import contender_args, run_process  # noqa: E402
+from e2e import contender_args, run_process, use_spawn  # noqa: E402
 
 
 # The probes: Python programs that print the seconds of what they time.
@@ -76,6 +76,7 @@ def main():
     ap = contender_args(__doc__, 12)
     ap.add_argument("--probes", action="store_true", help="also time the huge-page and cpu probes after each")
     args = ap.parse_args()
+    use_spawn(args)
     W = lambda name: os.path.join(args.work, name)  # noqa: E731
     for need in ("cube.off", "sphere6.off", "pts-a.txt"):
         if not os.path.exists(W(need)):

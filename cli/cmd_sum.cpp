@@ -88,16 +88,26 @@ Non-convex operands: a file or catalog solid (tube, lshape, ring:N, star:N,
 gear:N) that is not convex must be a closed solid: a closed, consistently
 oriented 2-manifold surface of planar faces, without self-intersection, facing
 outwards (else exit status 3 and one line naming the problem).  The sum of two
-operands, one or both non-convex, is exact: each non-convex operand is cut
-into convex pieces, the pieces are summed pairwise (walk, in parallel) and the
-exact union of the pair sums is written (polygons of exact coordinates,
-cavities as inner shells; docs/nonconvex.md).  Without --exact, a coordinate
-that is not a double is rounded only when the rounded surface is still a valid
-solid, else the write is refused (exit 1) naming --exact.  --json then reports
-"pieces", "pairs", "pair_vertices", "pair_facets" and "union" (clips, shells,
-non-manifold edges) and the phases decompose, pairs, union and boundary.
---method sums the pairs of convex pieces (walk by default); a sum with a
-non-convex operand takes exactly two operands.
+operands, one or both non-convex, is exact (docs/nonconvex.md): by default the
+boundary sweep, which sums each triangle of the non-convex operand's surface
+with the other operand (walk, in parallel; a non-convex other operand is cut
+into convex pieces first), keeps only the facets that can be on the boundary
+and writes the exact union (polygons of exact coordinates, cavities as inner
+shells).  Without --exact, a coordinate that is not a double is rounded only
+when the rounded surface is still a valid solid, else the write is refused
+(exit 1) naming --exact.  --json then reports "nonconvex_method", "swept",
+"pieces", "pairs", "pair_vertices", "pair_facets", "candidate_facets",
+"culled_facets" and "union" (clips, shells, non-manifold edges, dropped
+components) and the phases decompose, pairs, union and boundary.
+  --nonconvex-method sweep|decomposition
+                     sweep (default), or Hachenberger's decomposition: both
+                     operands cut into convex pieces (CGAL), every pair of
+                     pieces summed, then the same union; slower on solids
+                     with many reflex edges, the same exact result
+--method sums the convex pieces (walk by default; the sweep's pieces, a
+triangle and a polytope, by walk or chms, the others falling back to walk:
+"pair_method" in --json names the method used); a sum with a non-convex
+operand takes exactly two operands.
 
 Progress: when stderr is a terminal and the sum takes more than a second, one
 line is rewritten in place on stderr every 0.2 s and erased when the sum is
@@ -191,7 +201,7 @@ RoundingReport write_scene_of_sum(const MeshOutput& out, const std::vector<std::
 int run_sum(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "sum",
                             {{"--output", "-o", true}, {"--method", "", true}, {"--exact"}, {"--binary"},
-                             {"--json"}, {"--hull"}, {"--scene"}, kFormatOption});
+                             {"--json"}, {"--hull"}, {"--scene"}, {"--nonconvex-method", "", true}, kFormatOption});
   if (a.help) {
     std::cout << expand_help(kSumHelp);
     return 0;
@@ -205,6 +215,12 @@ int run_sum(const std::vector<std::string>& argv) {
     throw UsageError("unknown method '" + method_text + "' (" + method_list() + ")");
   if (!method_available(*method))
     throw UsageError(std::string("method '") + method_name(*method) + "' is not implemented in this version of minksum");
+  const std::string nonconvex_text = a.value_or("--nonconvex-method", "sweep");
+  NonconvexMethod nonconvex_method = NonconvexMethod::sweep;
+  if (nonconvex_text == "decomposition")
+    nonconvex_method = NonconvexMethod::decomposition;
+  else if (nonconvex_text != "sweep")
+    throw UsageError("unknown --nonconvex-method '" + nonconvex_text + "' (sweep, decomposition)");
   const auto format = format_option(a);
   const std::optional<MeshOutput> output = output_option(a);
   const bool scene = a.flag("--scene");
@@ -227,7 +243,7 @@ int run_sum(const std::vector<std::string>& argv) {
     if (!convex && flat)
       throw UsageError("a point, segment or polygon operand is summed with convex operands only, not with a "
                        "non-convex solid (docs/sweeps.md)");
-    if (!convex) return run_nonconvex_sum(names, any, load, output, json, *method);
+    if (!convex) return run_nonconvex_sum(names, any, load, output, json, *method, nonconvex_method);
     for (auto& o : any) sets.push_back(o.flat ? std::move(*o.flat) : ConvexSet(std::move(*o.polytope)));
   }
   for (std::size_t i = 0; hull && i < names.size(); ++i) {

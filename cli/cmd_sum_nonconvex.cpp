@@ -12,6 +12,7 @@
 
 #include "common.hpp"
 #include "mesh_io.hpp"
+#include "memory.hpp"
 #include "nonconvex_sum.hpp"
 #include "progress.hpp"
 #include "text.hpp"
@@ -125,10 +126,12 @@ AnyOperand load_any_operand_from(const std::string& spec, LoadPhases* phases, st
 }
 
 int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<AnyOperand>& operands,
-                      const LoadPhases& load, const std::optional<MeshOutput>& output, bool json, Method method) {
+                      const LoadPhases& load, const std::optional<MeshOutput>& output, bool json, Method method,
+                      NonconvexMethod how) {
   if (operands.size() != 2)
     throw UsageError("a sum with a non-convex operand takes exactly two operands A B (" +
                      std::to_string(operands.size()) + " given)");
+  allow_thread_arenas();
   const auto v0 = std::chrono::steady_clock::now();
   std::vector<Solid> solids;
   for (std::size_t i = 0; i < 2; ++i) {
@@ -148,7 +151,7 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
   {
     ProgressTicker ticker("minksum sum");
     r = minkowski_sum_nonconvex(solids[0], solids[1], ticker.sum_options(), 0,
-                                method == Method::automatic ? Method::walk : method);
+                                method == Method::automatic ? Method::walk : method, how);
   }
   const auto w0 = std::chrono::steady_clock::now();
   std::size_t rounded = 0;
@@ -159,15 +162,19 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
   if (json) {
     report << "{\"vertices\": " << c.vertices << ", \"edges\": " << c.edges << ", \"facets\": " << c.faces
            << ", \"method\": \"nonconvex\", \"pair_method\": \""
-           << method_name(method == Method::automatic ? Method::walk : method) << "\", \"seconds\": " << json_number(r.seconds())
+           << method_name(r.pair_method) << "\", \"seconds\": " << json_number(r.seconds())
            << ", \"phases\": {\"read\": " << json_number(load.read) << ", \"validate\": " << json_number(validate_seconds)
            << ", \"decompose\": " << json_number(r.seconds_decompose) << ", \"pairs\": " << json_number(r.seconds_pairs)
            << ", \"union\": " << json_number(r.seconds_union) << ", \"boundary\": " << json_number(r.seconds_boundary)
            << ", \"write\": " << json_number(write_seconds) << "}, \"volume\": \"" << format_exact(r.volume)
-           << "\", \"volume_double\": " << json_number(to_double(r.volume)) << ", \"pieces\": {\"a\": " << r.pieces_a
+           << "\", \"volume_double\": " << json_number(to_double(r.volume)) << ", \"nonconvex_method\": \"" << r.method
+           << "\", \"swept\": " << (r.swept ? std::string("\"") + r.swept + "\"" : std::string("null"))
+           << ", \"pieces\": {\"a\": " << r.pieces_a
            << ", \"b\": " << r.pieces_b << "}, \"pairs\": " << r.pairs << ", \"pair_vertices\": " << r.pair_vertices
-           << ", \"pair_facets\": " << r.pair_facets << ", \"union\": {\"clips\": " << r.clips
-           << ", \"shells\": " << r.shells << ", \"non_manifold_edges\": " << r.non_manifold_edges << "}"
+           << ", \"pair_facets\": " << r.pair_facets << ", \"candidate_facets\": " << r.candidate_facets
+           << ", \"culled_facets\": " << r.culled_facets << ", \"union\": {\"clips\": " << r.clips
+           << ", \"shells\": " << r.shells << ", \"non_manifold_edges\": " << r.non_manifold_edges
+           << ", \"dropped_components\": " << r.dropped_components << "}"
            << ", \"a\": " << solid_json(names[0], solids[0], r.pieces_a)
            << ", \"b\": " << solid_json(names[1], solids[1], r.pieces_b) << ", \"output\": ";
     if (!output) report << "null";
@@ -176,13 +183,19 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
   } else {
     for (std::size_t i = 0; i < 2; ++i)
       report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << solids[i].vertices << " V, " << solids[i].faces
-             << " F, " << (solids[i].convex ? "convex" : std::to_string(r.pieces_a * (i == 0) + r.pieces_b * (i == 1)) +
-                                                             " convex pieces")
+             << " F, "
+             << (solids[i].convex ? std::string("convex")
+                 : r.swept == "ab"[i] ? std::to_string(i ? r.pieces_b : r.pieces_a) + " triangles swept"
+                                      : std::to_string(i ? r.pieces_b : r.pieces_a) + " convex pieces")
              << ")";
     report << "\n  = " << c.vertices << " vertices, " << c.edges << " edges, " << c.faces << " faces"
            << (r.shells > 1 ? ", " + std::to_string(r.shells) + " shells" : std::string())
            << (r.non_manifold_edges ? ", " + std::to_string(r.non_manifold_edges) + " non-manifold edges" : std::string())
-           << "\n  non-convex sum: " << r.pairs << " pair sums, " << r.clips << " facet clips, "
+           << "\n  non-convex sum (" << r.method << "): " << r.pairs << " convex pieces, "
+           << (r.culled_facets ? std::to_string(r.culled_facets) + " of " + std::to_string(r.pair_facets) +
+                                     " facets culled, "
+                               : std::string())
+           << r.clips << " facet clips, "
            << format_double(r.seconds()) << " s\n";
     if (output) report << "  written to " << (output->to_stdout() ? std::string("standard output") : printable(output->path)) << "\n";
   }

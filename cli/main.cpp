@@ -21,7 +21,7 @@ const char* kMainHelp = R"(minksum — exact Minkowski sums of convex polyhedra 
 
 Usage:
   minksum sum A B [C ...] [-o OUT] [--method M] [--exact] [--binary] [--json]
-                [--hull] [--scene] [--format F]
+                [--hull] [--scene] [--nonconvex-method sweep|decomposition] [--format F]
   minksum stats P [--json] [--hull] [--format F]
   minksum gen NAME -o OUT [--exact] [--binary] [--format F]
   minksum convert IN -o OUT [--hull] [--exact] [--binary] [--format F]

@@ -20,10 +20,13 @@
 // library does not do it: an application embedding it keeps its own policy.
 #include "memory.hpp"
 
+#include <minksum/parallel.hpp>
+
 #include <malloc.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 
@@ -56,5 +59,7 @@ void tune_memory() {
   // not memory (its pages are never touched).
   if (hi > lo) heap_filler = std::malloc(lo - reinterpret_cast<std::uintptr_t>(first));
 }
+
+void allow_thread_arenas() { mallopt(M_ARENA_MAX, int(std::max(2u, hardware_threads()))); }
 
 }  // namespace minksum::cli

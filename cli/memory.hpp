@@ -8,4 +8,12 @@ namespace minksum::cli {
 // fresh pages.  Best effort: any call that fails leaves the defaults.
 void tune_memory();
 
+// Give each worker thread a malloc arena of its own (up to one per hardware
+// thread) instead of tune_memory's single shared one.  For long work whose
+// threads allocate constantly (the non-convex sum's exact rationals): on one
+// shared arena the threads wait on its lock and two threads ran slower than
+// one.  glibc fixes the number of arenas the first time a thread other than
+// the main one allocates, so call it before any worker thread has run.
+void allow_thread_arenas();
+
 }  // namespace minksum::cli

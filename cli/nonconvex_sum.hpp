@@ -2,6 +2,7 @@
 #pragma once
 
 #include <minksum/minkowski.hpp>
+#include <minksum/nonconvex.hpp>
 #include <minksum/operand.hpp>
 
 #include <optional>
@@ -17,7 +18,8 @@ namespace minksum::cli {
 // and prints the summary or JSON.  Returns the exit status.
 // `method` sums the pairs of convex pieces.
 int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<AnyOperand>& operands,
-                      const LoadPhases& load, const std::optional<MeshOutput>& output, bool json, Method method);
+                      const LoadPhases& load, const std::optional<MeshOutput>& output, bool json, Method method,
+                      NonconvexMethod how = NonconvexMethod::sweep);
 
 // minksum gen for a non-convex solid of the catalog: validated, written like
 // a sum's boundary, one summary line.

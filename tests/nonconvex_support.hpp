@@ -5,9 +5,11 @@
 #include <minksum/polytope.hpp>
 
 #include "kernel/plane.hpp"
+#include "test_support.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -24,6 +26,21 @@ inline std::set<Plane> face_planes(const Mesh& m) {
   }
   return s;
 }
+
+// The surfaces of a and b as one mesh, b's faces reversed when `flip`.
+inline Mesh join(Mesh a, const Mesh& b, bool flip = false) {
+  const Index offset = Index(a.points.size());
+  for (std::size_t i = 0; i < b.points.size(); ++i) a.points.push_back(b.points[i]);
+  for (auto f : b.faces) {
+    if (flip) std::reverse(f.begin(), f.end());
+    for (auto& v : f) v += offset;
+    a.faces.push_back(f);
+  }
+  return a;
+}
+
+// Hollow cube: [-2,2]^3 with the cavity [-1,1]^3 (inner shell facing in).
+inline Mesh hollow_cube() { return join(cube_mesh(2), cube_mesh(1), true); }
 
 inline std::set<Point3> vertex_set(const Mesh& m) {
   std::set<Point3> s;

@@ -1132,11 +1132,25 @@ TEST_F(Cli, NonConvexSumJsonAndExactOutput) {
   ASSERT_EQ(back.status, 0) << back.err;
   EXPECT_NE(back.out.find("\"volume\": \"27\""), std::string::npos) << back.out;
   EXPECT_EQ(json_int(back.out, "facets"), 6);
-  // A ⊕ B = B ⊕ A, with the pairs summed by another method.
-  CmdResult ba = run("sum box:1/2:1/2:1/2 tube --method cvms --json");
+  // A ⊕ B = B ⊕ A, with the pairs of the decomposition summed by another
+  // method; the sweep's pieces (a triangle and a box) by chms, or by the walk
+  // when another method is asked for (pair_method says which).
+  CmdResult ba = run("sum box:1/2:1/2:1/2 tube --method cvms --nonconvex-method decomposition --json");
   ASSERT_EQ(ba.status, 0) << ba.err;
   EXPECT_NE(ba.out.find("\"volume\": \"15\""), std::string::npos) << ba.out;
   EXPECT_NE(ba.out.find("\"pair_method\": \"cvms\""), std::string::npos) << ba.out;
+  EXPECT_NE(ba.out.find("\"nonconvex_method\": \"decomposition\""), std::string::npos) << ba.out;
+  CmdResult chms = run("sum box:1/2:1/2:1/2 tube --method chms --json");
+  ASSERT_EQ(chms.status, 0) << chms.err;
+  EXPECT_NE(chms.out.find("\"volume\": \"15\""), std::string::npos) << chms.out;
+  EXPECT_NE(chms.out.find("\"pair_method\": \"chms\""), std::string::npos) << chms.out;
+  EXPECT_NE(chms.out.find("\"nonconvex_method\": \"sweep\", \"swept\": \"b\""), std::string::npos) << chms.out;
+  CmdResult cvms = run("sum box:1/2:1/2:1/2 tube --method cvms --json");
+  ASSERT_EQ(cvms.status, 0) << cvms.err;
+  EXPECT_NE(cvms.out.find("\"pair_method\": \"walk\""), std::string::npos) << cvms.out;
+  CmdResult bad = run("sum box:1/2:1/2:1/2 tube --nonconvex-method hull");
+  EXPECT_EQ(bad.status, 2) << bad.err;
+  EXPECT_NE(bad.err.find("unknown --nonconvex-method 'hull' (sweep, decomposition)"), std::string::npos) << bad.err;
   EXPECT_NE(r.out.find("\"pair_method\": \"walk\""), std::string::npos) << r.out;
 }
 

@@ -67,6 +67,7 @@ const Form kNonconvex[] = {
     {"ring", "ring:N", "prism of height 1/2 over the ring between regular N-gons (3..10000) of radii 1 and 1/2"},
     {"star", "star:N", "prism of height 1/2 over an N-pointed star (3..10000), radii 1 and 1/2"},
     {"gear", "gear:N", "prism of height 1/2 over a gear of N teeth (3..10000), radii 3/4 and 1, bore 1/4"},
+    {"torus", "torus:M:N", "triangulated torus, core radius 1, tube radius 1/3: M x N vertices (3..1024 each), 2MN triangles"},
 };
 
 bool is_nonconvex_name(const std::string& name) {
@@ -263,6 +264,11 @@ Mesh nonconvex_base(const std::string& spec, const std::string& base) {
   if (name == "lshape") {
     if (!params.empty()) fail(spec, "'lshape' takes no parameters");
     return make_lshape();
+  }
+  if (name == "torus") {
+    const std::string form = "torus:M:N";
+    arity(spec, form, params, 2);
+    return make_torus(bounded(spec, form, "M", params[0], 3, 1024), bounded(spec, form, "N", params[1], 3, 1024));
   }
   const std::string form = name + ":N";
   arity(spec, form, params, 1);

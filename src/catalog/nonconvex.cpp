@@ -1,5 +1,6 @@
 // Non-convex catalog solids: tube, lshape, ring:N, star:N, gear:N — prisms
-// over a plane profile, for the sums of docs/nonconvex.md.
+// over a plane profile — and torus:M:N, a triangulated torus, for the sums
+// of docs/nonconvex.md.
 #include "catalog/catalog_internal.hpp"
 
 namespace minksum::catalog_detail {
@@ -92,6 +93,30 @@ Mesh make_gear(std::uint64_t n) {
     inner.push_back(circle(k, 4 * n, Rational(1, 4)));
   }
   return prism(outer, inner, Rational(-1, 4), Rational(1, 4));
+}
+
+Mesh make_torus(std::uint64_t m, std::uint64_t n) {
+  // Point (i, j): angle i of m about the z axis, angle j of n about the
+  // tube's core circle (radius 1), tube radius 1/3; each coordinate the
+  // double that IEEE arithmetic gives from the circle's doubles (the same on
+  // every machine), as a mesh read from a file has.
+  Mesh t;
+  for (std::uint64_t i = 0; i < m; ++i) {
+    const auto a = unit_circle_point(i, m);
+    for (std::uint64_t j = 0; j < n; ++j) {
+      const auto b = unit_circle_point(j, n);
+      const double radius = 1.0 + b[0] / 3.0;
+      t.points.push_back(Vec3d{a[0] * radius, a[1] * radius, b[1] / 3.0});
+    }
+  }
+  auto at = [&](std::uint64_t i, std::uint64_t j) { return Index((i % m) * n + j % n); };
+  for (std::uint64_t i = 0; i < m; ++i)
+    for (std::uint64_t j = 0; j < n; ++j) {
+      // The quadrilateral (i, j) (i+1, j) (i+1, j+1) (i, j+1), outward, as two triangles.
+      t.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      t.faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  return t;
 }
 
 }  // namespace minksum::catalog_detail

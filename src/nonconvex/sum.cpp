@@ -4,8 +4,10 @@
 #include <minksum/minkowski.hpp>
 #include <minksum/nonconvex.hpp>
 #include <minksum/parallel.hpp>
+#include <minksum/sweep.hpp>
 
 #include "nonconvex/nef.hpp"
+#include "nonconvex/sweep.hpp"
 #include "nonconvex/union.hpp"
 
 #include <algorithm>
@@ -23,9 +25,15 @@ std::vector<ConvexPolytope> convex_decomposition(const Solid& s) {
   return nonconvex_detail::nef_convex_pieces(s.triangles);
 }
 
-NonconvexSum minkowski_sum_nonconvex(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads,
-                                     Method method) {
+namespace {
+
+// Hachenberger's method: both operands decomposed, every pair of pieces
+// summed, the union of the pair sums.
+NonconvexSum sum_by_decomposition(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads,
+                                  Method method) {
   NonconvexSum out;
+  out.method = "decomposition";
+  out.pair_method = method;
   auto t0 = Clock::now();
   options.report("decompose", -1.0);
   const std::vector<ConvexPolytope> pa = convex_decomposition(a);
@@ -56,11 +64,90 @@ NonconvexSum minkowski_sum_nonconvex(const Solid& a, const Solid& b, const SumOp
     out.pair_vertices += s.num_vertices();
     out.pair_facets += s.num_facets();
   }
+  out.candidate_facets = out.pair_facets;
   out.seconds_pairs = since(t0);
 
   nonconvex_detail::union_boundary(sums, options, out, threads);
   out.volume = mesh_volume(out.mesh);
   return out;
+}
+
+// The boundary sweep (docs/nonconvex.md, "Method"): S the swept solid, O the
+// other, b a point inside O.  A point x of S ⊕ O has x - O meeting S; x - O
+// is connected, so it either meets the surface of S (x is in ∂S ⊕ O, the
+// union of the pieces t ⊕ O_j) or lies inside S (x - b is in S).  So
+// S ⊕ O = (S + b) ∪ ⋃ (t ⊕ O_j), and as b is inside O the surface of S + b
+// lies inside the pieces' union: the boundary of S ⊕ O is the part of the
+// union's boundary that is not inside S + b.
+NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads,
+                          Method method) {
+  NonconvexSum out;
+  out.method = "sweep";
+  const bool sweep_a = !a.convex && (b.convex || a.triangles.faces.size() >= b.triangles.faces.size());
+  const Solid& s = sweep_a ? a : b;
+  const Solid& o = sweep_a ? b : a;
+  out.swept = sweep_a ? 'a' : 'b';
+  auto t0 = Clock::now();
+  options.report("decompose", -1.0);
+  const std::vector<ConvexPolytope> po = convex_decomposition(o);
+  std::vector<ConvexSet> pieces;
+  pieces.reserve(po.size());
+  for (const ConvexPolytope& p : po) pieces.emplace_back(p);
+  const nonconvex_detail::SurfaceCones cones(s.triangles);
+  // b: the centroid of the first piece's vertices, inside it (a full-dimensional convex polytope).
+  Point3 inner(Rational(0), Rational(0), Rational(0));
+  for (const Point3& p : po.front().points()) inner = inner + p;
+  inner = Rational(1, long(po.front().num_vertices())) * inner;
+  const std::size_t nt = cones.triangles();
+  out.pieces_a = sweep_a ? nt : po.size();
+  out.pieces_b = sweep_a ? po.size() : nt;
+  out.seconds_decompose = since(t0);
+
+  t0 = Clock::now();
+  const std::size_t n = nt * po.size();
+  std::vector<ConvexPolytope> sums(n);
+  std::vector<std::vector<char>> candidate(n);
+  const Method piece_method = method == Method::chms ? Method::chms : Method::walk;
+  out.pair_method = piece_method;
+  const unsigned workers = parallel_threads(threads, n);
+  const std::size_t batch = std::max<std::size_t>(64, std::size_t(workers) * 64);
+  options.report("pairs", 0.0);
+  for (std::size_t start = 0; start < n; start += batch) {
+    const std::size_t count = std::min(batch, n - start);
+    parallel_for(count, workers, [&](std::size_t k) {
+      const std::size_t i = start + k;
+      const Index t = Index(i / po.size());
+      const auto& c = cones.triangle(t);
+      const ConvexSet tri = ConvexSet::polygon({cones.point(c[0]), cones.point(c[1]), cones.point(c[2])});
+      ConvexPolytope sum = minkowski_sum_sets(tri, pieces[i % po.size()], piece_method).set.release_polytope();
+      std::vector<char>& flags = candidate[i];
+      flags.resize(sum.num_facets());
+      for (Index f = 0; f < sum.num_facets(); ++f) flags[f] = cones.candidate(t, sum.plane(f).normal()) ? 1 : 0;
+      sums[i] = std::move(sum);
+    });
+    options.report("pairs", double(start + count) / double(n));
+  }
+  out.pairs = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    out.pair_vertices += sums[i].num_vertices();
+    out.pair_facets += sums[i].num_facets();
+    for (char f : candidate[i]) (f ? out.candidate_facets : out.culled_facets) += 1;
+  }
+  out.seconds_pairs = since(t0);
+
+  nonconvex_detail::union_boundary(sums, options, out, threads, &candidate,
+                                   [&](const Point3& p) { return cones.strictly_inside(p - inner); });
+  out.volume = mesh_volume(out.mesh);
+  return out;
+}
+
+}  // namespace
+
+NonconvexSum minkowski_sum_nonconvex(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads,
+                                     Method method, NonconvexMethod how) {
+  if (how == NonconvexMethod::decomposition || (a.convex && b.convex))
+    return sum_by_decomposition(a, b, options, threads, method);
+  return sum_by_sweep(a, b, options, threads, method);
 }
 
 }  // namespace minksum

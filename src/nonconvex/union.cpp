@@ -211,6 +211,105 @@ struct Box {
   }
 };
 
+// The pieces' boxes in a uniform grid, so that a facet is compared with the
+// pieces near it only.  The cell of a coordinate is floor((x - lo) / size),
+// a non-decreasing function of x in floating point (subtraction and division
+// by a positive number round monotonically), so two boxes that meet share a
+// cell; the boxes are then compared themselves.
+class PieceGrid {
+ public:
+  explicit PieceGrid(const std::vector<Box>& boxes) : boxes_(boxes) {
+    Box all;
+    std::vector<double> extent;
+    for (const Box& b : boxes) {
+      if (b.lo[0] > b.hi[0]) continue;  // empty piece
+      for (int i = 0; i < 3; ++i) {
+        all.lo[i] = std::min(all.lo[i], b.lo[i]);
+        all.hi[i] = std::max(all.hi[i], b.hi[i]);
+      }
+      extent.push_back(std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]}));
+    }
+    double cell = 0;
+    if (!extent.empty()) {
+      std::nth_element(extent.begin(), extent.begin() + std::ptrdiff_t(extent.size() / 2), extent.end());
+      cell = extent[extent.size() / 2];
+    }
+    bool usable = std::isfinite(cell) && cell > 0;
+    for (int i = 0; i < 3 && usable; ++i) usable = std::isfinite(all.lo[i]) && std::isfinite(all.hi[i]);
+    const double limit = 8.0 * double(boxes.size()) + 64.0;
+    for (int i = 0; i < 3; ++i) {
+      lo_[i] = usable ? all.lo[i] : 0;
+      n_[i] = 1;
+    }
+    if (usable) {
+      for (;;) {
+        double total = 1;
+        for (int i = 0; i < 3; ++i) {
+          n_[i] = std::max<std::size_t>(1, std::size_t(std::min(1e6, std::floor((all.hi[i] - all.lo[i]) / cell)) + 1));
+          total *= double(n_[i]);
+        }
+        if (total <= limit) break;
+        cell *= 1.25;
+      }
+      size_ = cell;
+    }
+    std::vector<std::size_t> count(n_[0] * n_[1] * n_[2] + 1, 0);
+    for_each_piece_cell([&](std::size_t c, Index) { ++count[c + 1]; });
+    for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
+    start_ = count;
+    items_.resize(count.back());
+    for_each_piece_cell([&](std::size_t c, Index j) { items_[count[c]++] = j; });
+  }
+
+  // The pieces whose boxes meet `box`, ascending.
+  void query(const Box& box, std::vector<Index>& out) const {
+    out.clear();
+    std::size_t lo[3], hi[3];
+    range(box, lo, hi);
+    for (std::size_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::size_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::size_t z = lo[2]; z <= hi[2]; ++z) {
+          const std::size_t c = (x * n_[1] + y) * n_[2] + z;
+          for (std::size_t k = start_[c]; k < start_[c + 1]; ++k)
+            if (box.meets(boxes_[items_[k]])) out.push_back(items_[k]);
+        }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
+
+ private:
+  std::size_t cell_of(double x, int i) const {
+    if (size_ <= 0) return 0;
+    const double c = std::floor((x - lo_[i]) / size_);
+    if (!(c > 0)) return 0;
+    return std::min(n_[i] - 1, std::size_t(std::min(c, 1e15)));
+  }
+  void range(const Box& b, std::size_t lo[3], std::size_t hi[3]) const {
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = cell_of(b.lo[i], i);
+      hi[i] = cell_of(b.hi[i], i);
+    }
+  }
+  template <class F>
+  void for_each_piece_cell(F&& f) const {
+    for (Index j = 0; j < boxes_.size(); ++j) {
+      const Box& b = boxes_[j];
+      if (b.lo[0] > b.hi[0]) continue;
+      std::size_t lo[3], hi[3];
+      range(b, lo, hi);
+      for (std::size_t x = lo[0]; x <= hi[0]; ++x)
+        for (std::size_t y = lo[1]; y <= hi[1]; ++y)
+          for (std::size_t z = lo[2]; z <= hi[2]; ++z) f((x * n_[1] + y) * n_[2] + z, j);
+    }
+  }
+
+  const std::vector<Box>& boxes_;
+  double lo_[3] = {0, 0, 0}, size_ = 0;
+  std::size_t n_[3] = {1, 1, 1};
+  std::vector<std::size_t> start_;
+  std::vector<Index> items_;
+};
+
 // ---------------------------------------------------------------------------
 // Merging the fragments of one plane: along each line of the plane, a
 // fragment edge in the line's direction covers an interval (the fragment
@@ -333,13 +432,21 @@ struct PlaneResult {
 // (where the solid touches this face from outside along a segment): the
 // fragments are cut along their lines and the face is split along them, so
 // that such an edge is an edge of this face too (a non-manifold edge).
-PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& facets,
+// `facets` are the candidate facets on the plane, `below` the other pieces
+// with a facet on it facing the same way (not candidates), ascending.
+PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& facets, const std::vector<Index>& below,
                            const std::vector<ConvexPolytope>& parts, const std::vector<std::vector<Half>>& halves,
-                           const std::vector<Box>& boxes, const std::vector<Segment>& slits = {}) {
+                           const PieceGrid& grid, const std::vector<Segment>& slits = {}) {
   PlaneResult r;
   std::vector<Poly> fragments;
-  std::vector<char> member(parts.size(), 0);
-  for (const FacetRef& f : facets) member[f.piece] = 1;
+  std::vector<Index> near;
+  auto member = [&](Index j) {
+    // facets are in ascending piece order, as is below
+    if (std::binary_search(below.begin(), below.end(), j)) return true;
+    auto it = std::lower_bound(facets.begin(), facets.end(), j,
+                               [](const FacetRef& f, Index x) { return f.piece < x; });
+    return it != facets.end() && it->piece == j;
+  };
   for (const FacetRef& f : facets) {
     const ConvexPolytope& p = parts[f.piece];
     std::vector<Poly> frags(1);
@@ -348,12 +455,15 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
       frags[0].push_back(make_v3(p.point(v)));
       box.add(frags[0].back().d);
     }
-    for (Index j = 0; j < parts.size() && !frags.empty(); ++j) {
+    grid.query(box, near);
+    for (std::size_t k = 0; k < near.size() && !frags.empty(); ++k) {
+      const Index j = near[k];
       // The pieces with a facet on this plane facing the same way lie below
-      // it: they never remove anything, except that the earlier ones remove
-      // their facet's overlap with this one (so the plane's fragments do
-      // not overlap).
-      if (j == f.piece || (member[j] && j > f.piece) || !box.meets(boxes[j])) continue;
+      // it: they never remove anything, except that the earlier ones with a
+      // candidate facet there remove their facet's overlap with this one (so
+      // the plane's fragments do not overlap).
+      if (j == f.piece) continue;
+      if (member(j) && (j > f.piece || std::binary_search(below.begin(), below.end(), j))) continue;
       std::vector<Poly> next;
       for (Poly& g : frags)
         if (subtract(g, halves[j], next))
@@ -610,22 +720,63 @@ std::vector<std::vector<Index>> plane_faces(const std::vector<std::vector<Index>
 }  // namespace
 
 void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& options, NonconvexSum& out,
-                    unsigned threads) {
+                    unsigned threads, const std::vector<std::vector<char>>* candidate,
+                    const std::function<bool(const Point3&)>& interior) {
   auto t0 = Clock::now();
   options.report("union", 0.0);
-  // Facets by oriented plane.
-  std::map<Plane, std::vector<FacetRef>> by_plane;
+  const unsigned all_workers = parallel_threads(threads, parts.size());
+  // Boxes and half-spaces of the pieces (in parallel: exact planes).
   std::vector<Box> boxes(parts.size());
   std::vector<std::vector<Half>> halves(parts.size());
-  for (Index i = 0; i < parts.size(); ++i) {
-    for (Index v = 0; v < parts[i].num_vertices(); ++v) boxes[i].add(to_double(parts[i].point(v)));
-    for (Index f = 0; f < parts[i].num_facets(); ++f) {
-      by_plane[parts[i].plane(f)].push_back(FacetRef{i, f});
-      halves[i].push_back(half_of(parts[i].plane(f)));
+  parallel_for(parts.size(), all_workers, [&](std::size_t i) {
+    // approx(v): the nearest doubles of the exact point.
+    for (Index v = 0; v < parts[i].num_vertices(); ++v) boxes[i].add(parts[i].approx(v));
+    halves[i].reserve(parts[i].num_facets());
+    for (Index f = 0; f < parts[i].num_facets(); ++f) halves[i].push_back(half_of(parts[i].plane(f)));
+  });
+  const PieceGrid grid(boxes);
+  // Candidate facets by oriented plane; then the other facets on those
+  // planes (their pieces lie below the plane and remove nothing there).
+  struct Group {
+    const Plane* plane;
+    std::vector<FacetRef> facets;
+    std::vector<Index> below;
+  };
+  struct PlaneHash {
+    std::size_t operator()(const Plane* p) const {
+      std::size_t h = 0;
+      for (const Integer* x : {&p->a, &p->b, &p->c, &p->d})
+        h = h * 1000003u ^ (std::size_t(mpz_get_ui(x->get_mpz_t())) + std::size_t(mpz_sgn(x->get_mpz_t()) + 1));
+      return h;
     }
-  }
-  std::vector<const std::pair<const Plane, std::vector<FacetRef>>*> planes;
-  for (const auto& entry : by_plane) planes.push_back(&entry);
+  };
+  struct PlaneEq {
+    bool operator()(const Plane* p, const Plane* q) const { return *p == *q; }
+  };
+  std::unordered_map<const Plane*, std::size_t, PlaneHash, PlaneEq> group_of;
+  std::vector<Group> groups;
+  auto is_candidate = [&](Index i, Index f) { return !candidate || (*candidate)[i][f]; };
+  for (Index i = 0; i < parts.size(); ++i)
+    for (Index f = 0; f < parts[i].num_facets(); ++f) {
+      if (!is_candidate(i, f)) continue;
+      const Plane* pl = &parts[i].plane(f);
+      auto [it, fresh] = group_of.emplace(pl, groups.size());
+      if (fresh) groups.push_back(Group{pl, {}, {}});
+      groups[it->second].facets.push_back(FacetRef{i, f});
+    }
+  if (candidate)
+    for (Index i = 0; i < parts.size(); ++i)
+      for (Index f = 0; f < parts[i].num_facets(); ++f) {
+        if (is_candidate(i, f)) continue;
+        auto it = group_of.find(&parts[i].plane(f));
+        if (it != group_of.end()) groups[it->second].below.push_back(i);
+      }
+  group_of.clear();
+  // In the order of the planes, so that the output does not depend on the
+  // order of the pieces' facets.
+  std::sort(groups.begin(), groups.end(), [](const Group& x, const Group& y) { return *x.plane < *y.plane; });
+  std::vector<const Group*> planes;
+  for (const auto& entry : groups) planes.push_back(&entry);
   const std::size_t n = planes.size();
   std::vector<PlaneResult> results(n);
   const unsigned workers = parallel_threads(threads, n);
@@ -633,8 +784,8 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
   for (std::size_t start = 0; start < n; start += batch) {
     const std::size_t count = std::min(batch, n - start);
     parallel_for(count, workers, [&](std::size_t k) {
-      const auto& [plane, facets] = *planes[start + k];
-      results[start + k] = plane_boundary(plane, facets, parts, halves, boxes);
+      const Group& g = *planes[start + k];
+      results[start + k] = plane_boundary(*g.plane, g.facets, g.below, parts, halves, grid);
     });
     options.report("union", double(start + count) / double(n));
   }
@@ -668,8 +819,8 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
         region.add(to_double(sg.a));
         region.add(to_double(sg.b));
       }
-      const Half h = half_of(planes[g]->first);
-      const Frame frame(planes[g]->first);
+      const Half h = half_of(*planes[g]->plane);
+      const Frame frame(*planes[g]->plane);
       std::map<LineKey, std::vector<std::pair<Rational, Rational>>> along;  // own stretches by line
       bool indexed = false;
       // Only a segment starting at most `longest` before the region can reach it.
@@ -702,7 +853,8 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
     });
     std::vector<PlaneResult> redone(n);
     parallel_for(n, workers, [&](std::size_t g) {
-      if (!slits[g].empty()) redone[g] = plane_boundary(planes[g]->first, planes[g]->second, parts, halves, boxes, slits[g]);
+      if (!slits[g].empty())
+        redone[g] = plane_boundary(*planes[g]->plane, planes[g]->facets, planes[g]->below, parts, halves, grid, slits[g]);
     });
     for (std::size_t g = 0; g < n; ++g)
       if (!slits[g].empty()) results[g] = std::move(redone[g]);
@@ -743,7 +895,7 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
   // Per plane: every vertex inside an edge inserted into it, loops, faces.
   std::vector<std::vector<std::vector<Index>>> faces(n);
   parallel_for(n, workers, [&](std::size_t g) {
-    const Frame frame(planes[g]->first);
+    const Frame frame(*planes[g]->plane);
     std::vector<std::pair<Index, Index>> split;
     for (auto [a, b] : edges[g]) {
       Index prev = a;
@@ -772,6 +924,47 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
     }
   });
 
+  if (interior) {
+    // The connected components of the boundary (faces sharing a vertex);
+    // those whose vertex the caller calls interior are dropped, then the
+    // points no face uses.
+    std::vector<Index> parent(pts.size());
+    std::iota(parent.begin(), parent.end(), Index(0));
+    auto find = [&](Index v) {
+      while (parent[v] != v) v = parent[v] = parent[parent[v]];
+      return v;
+    };
+    for (const auto& plane_faces : faces)
+      for (const auto& f : plane_faces)
+        for (Index v : f) parent[find(v)] = find(f[0]);
+    std::vector<signed char> drop(pts.size(), -1);  // by root: -1 not asked yet
+    for (const auto& plane_faces : faces)
+      for (const auto& f : plane_faces) {
+        const Index r = find(f[0]);
+        if (drop[r] < 0) {
+          drop[r] = interior(pts[f[0]]) ? 1 : 0;
+          out.dropped_components += std::size_t(drop[r]);
+        }
+      }
+    std::vector<Index> renumber(pts.size(), Index(-1));
+    std::vector<Point3> kept;
+    for (auto& plane_faces : faces) {
+      std::vector<std::vector<Index>> keep;
+      for (auto& f : plane_faces) {
+        if (drop[find(f[0])] == 1) continue;
+        for (Index& v : f) {
+          if (renumber[v] == Index(-1)) {
+            renumber[v] = Index(kept.size());
+            kept.push_back(pts[v]);
+          }
+          v = renumber[v];
+        }
+        keep.push_back(std::move(f));
+      }
+      plane_faces = std::move(keep);
+    }
+    pts = std::move(kept);
+  }
   out.mesh = Mesh{};
   for (const Point3& p : pts) out.mesh.points.push_back(p);
   std::vector<Index> face_plane;
@@ -832,7 +1025,7 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
     };
     std::vector<Around> list;
     for (std::size_t f : fs) {
-      const Plane& h = planes[face_plane[f]]->first;
+      const Plane& h = *planes[face_plane[f]]->plane;
       const Point3 nrm = h.normal();
       // The face runs a -> b or b -> a.
       bool forward = false;

@@ -129,6 +129,8 @@ Mesh make_ring(std::uint64_t n);
 Mesh make_star(std::uint64_t n);
 // Prism of height 1/2 over a gear of N teeth (radii 3/4 and 1) with a bore of radius 1/4.
 Mesh make_gear(std::uint64_t n);
+// The torus of core radius 1 and tube radius 1/3, m x n vertices, 2 m n triangles.
+Mesh make_torus(std::uint64_t m, std::uint64_t n);
 
 // ---------------------------------------------------------------------------
 // Rotations (rotation.cpp; the matrices are in <minksum/transform.hpp>).

@@ -5,17 +5,23 @@
 // outwards (positive volume).  validate_solid() checks all of it exactly and
 // throws InputError(source, place, problem) for the first violation.
 //
-// minkowski_sum_nonconvex(A, B) computes the exact boundary of A ⊕ B in three
-// steps:
-//   1. each non-convex operand is cut into convex pieces (CGAL's
-//      convex_decomposition_3 on an exact Nef polyhedron: cuts along the
-//      planes of the reflex edges); a convex operand is its own single piece;
-//   2. every pair of pieces is summed by the walk (<minksum/walk.hpp>), in
-//      parallel over the pairs;
-//   3. the union of the convex pair sums is taken exactly: each facet of a
-//      pair sum is cut by the pair sums that reach over its plane where they
-//      meet it, the pieces left are merged into maximal faces, and the
-//      boundary is returned as a closed mesh.
+// minkowski_sum_nonconvex(A, B) computes the exact boundary of A ⊕ B by the
+// boundary sweep (docs/nonconvex.md, "Method"):
+//   1. A ⊕ B = (A + b) ∪ ⋃ (t ⊕ B_j) over the triangles t of the surface of
+//      the non-convex operand A and the convex pieces B_j of B (B itself when
+//      convex), b a point inside B; every piece t ⊕ B_j is summed by the walk,
+//      in parallel;
+//   2. only the facets of the pieces whose normal lies in the local normal
+//      cone of A at the feature of t they come from can hold points of the
+//      boundary: the others are culled (they still cut);
+//   3. the union of the pieces is taken exactly over the remaining facets:
+//      each is cut by the pieces that reach over its plane where they meet
+//      it, the pieces left are merged into maximal faces, the parts of that
+//      boundary inside A + b are dropped, and the boundary is returned as a
+//      closed mesh.
+// Hachenberger's method (both operands cut into convex pieces by CGAL's
+// convex_decomposition_3, every pair summed, the same union) is kept as
+// NonconvexMethod::decomposition.
 // Every decision is an exact predicate; there is no tolerance anywhere.
 #pragma once
 
@@ -59,9 +65,11 @@ Solid validate_solid(const Mesh& mesh, const std::string& source);
 // A convex polytope as a Solid (no validation needed).
 Solid solid_of(const ConvexPolytope& p);
 
-// The exact convex decomposition of a solid: convex polytopes with exact
-// coordinates whose union is the solid and whose interiors are disjoint.  A
-// convex solid gives itself.
+// The exact convex decomposition of a solid (CGAL's convex_decomposition_3
+// on its Nef polyhedron: cuts along the planes of the reflex edges, O(r^2)
+// pieces for r reflex edges): convex polytopes with exact coordinates whose
+// union is the solid and whose interiors are disjoint.  A convex solid gives
+// itself.
 std::vector<ConvexPolytope> convex_decomposition(const Solid& s);
 
 // The boundary of A ⊕ B and what computing it took.
@@ -74,8 +82,20 @@ struct NonconvexSum {
   // vertex where it touches itself to several fans (docs/nonconvex.md).
   Mesh mesh;
   Rational volume;  // exact volume of A ⊕ B
-  std::size_t pieces_a = 0, pieces_b = 0;  // convex pieces of A and B
-  std::size_t pairs = 0;                   // pair sums computed (pieces_a * pieces_b)
+  // The method (NonconvexMethod) and, for the boundary sweep, which operand's
+  // surface was swept ('a' or 'b'; 0 for the decomposition).
+  const char* method = "sweep";
+  char swept = 0;
+  Method pair_method = Method::walk;       // the method that summed the convex pieces
+  // Decomposition: the convex pieces of A and B.  Sweep: the triangles of
+  // the swept operand's surface and the convex pieces of the other.
+  std::size_t pieces_a = 0, pieces_b = 0;
+  std::size_t pairs = 0;                   // convex pieces summed (pieces_a * pieces_b)
+  // Facets of those sums that can lie on the boundary (the union's input)
+  // and facets culled as unable to (the sweep's normal-cone test; 0 for the
+  // decomposition).
+  std::size_t candidate_facets = 0, culled_facets = 0;
+  std::size_t dropped_components = 0;      // parts of the sweep's boundary inside A + b, dropped
   std::size_t pair_vertices = 0, pair_facets = 0;  // over all pair sums
   std::size_t clips = 0;                   // facets cut by a pair sum that overlaps them (the union's work)
   std::size_t shells = 0;                  // boundary shells (outer ones and cavities)
@@ -85,14 +105,31 @@ struct NonconvexSum {
   double seconds() const { return seconds_decompose + seconds_pairs + seconds_union + seconds_boundary; }
 };
 
+// How A ⊕ B is computed (docs/nonconvex.md, "Method"); both give the same
+// exact boundary.
+enum class NonconvexMethod {
+  // The boundary sweep: A ⊕ B = (A + b) ∪ ⋃ (t ⊕ B_j) over the triangles t
+  // of A's surface and the convex pieces B_j of B (b inside B); only the
+  // facets whose normal is in the local normal cone of A are candidates,
+  // and the parts of the union's boundary inside A + b are dropped.  The
+  // swept operand is the non-convex one (of two non-convex ones, the one with
+  // more triangles; the other is decomposed).
+  sweep,
+  // Hachenberger's method: both operands cut into convex pieces (CGAL's
+  // convex_decomposition_3), every pair summed, the union of the pair sums.
+  decomposition,
+};
+
 // A ⊕ B for two solids (either or both non-convex).  `threads` (0: all
-// hardware threads) sum the pairs of pieces with `method` (any method of
-// <minksum/minkowski.hpp>; all give the same exact pair sums); `options`
-// reports progress (phases "decompose", "pairs", "union", "boundary";
-// fractions for pairs and union) and is checked for cancellation between
-// steps.
+// hardware threads) sum the pieces with `method` (any method of
+// <minksum/minkowski.hpp> for the decomposition's pairs of polytopes; the
+// sweep's pieces t ⊕ B_j, a triangle and a polytope, by walk or chms, and
+// by walk for the other methods); `options` reports progress (phases
+// "decompose", "pairs", "union", "boundary"; fractions for pairs and union)
+// and is checked for cancellation between steps.
 NonconvexSum minkowski_sum_nonconvex(const Solid& a, const Solid& b, const SumOptions& options = {},
-                                     unsigned threads = 0, Method method = Method::walk);
+                                     unsigned threads = 0, Method method = Method::walk,
+                                     NonconvexMethod how = NonconvexMethod::sweep);
 
 // The reference: A ⊕ B by CGAL's minkowski_sum_3 on the solids' Nef
 // polyhedra (Hachenberger's implementation: its own decomposition, pair sums

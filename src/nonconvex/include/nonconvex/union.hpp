@@ -7,6 +7,7 @@
 #include <minksum/nonconvex.hpp>
 
 #include <array>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -19,8 +20,17 @@ namespace minksum::nonconvex_detail {
 // the fraction of facet planes done, then "boundary"; fills mesh, clips,
 // shells, non_manifold_edges, seconds_union and seconds_boundary of `out`.
 // `threads` as parallel_for's.
+//
+// `candidate`, when given, holds one flag per facet of each part: only the
+// flagged facets are taken as the boundary's candidates (every part still
+// removes what it covers); the caller guarantees that the boundary of the
+// union, within the region it cares about, lies on flagged facets.
+// `interior`, when given, is asked for one vertex of each connected
+// component of the resulting boundary, and the components whose vertex it
+// calls interior are dropped (with their points).
 void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& options, NonconvexSum& out,
-                    unsigned threads = 0);
+                    unsigned threads = 0, const std::vector<std::vector<char>>* candidate = nullptr,
+                    const std::function<bool(const Point3&)>& interior = {});
 
 // A point of a plane in two exact coordinates (the frame of union.cpp).
 struct PlanePoint {

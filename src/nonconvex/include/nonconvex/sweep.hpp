@@ -1,0 +1,54 @@
+// Internal to src/nonconvex/: the boundary sweep's view of a solid's surface
+// (sweep_pieces.cpp, docs/nonconvex.md "Method").
+#pragma once
+
+#include <minksum/nonconvex.hpp>
+
+#include <array>
+#include <vector>
+
+namespace minksum::nonconvex_detail {
+
+// The triangulated closed surface of a solid A (Solid::triangles), with what
+// decides which facets of a piece t ⊕ C (t a triangle of A, C convex) can
+// lie on the boundary of A ⊕ B.
+class SurfaceCones {
+ public:
+  explicit SurfaceCones(const Mesh& triangles);
+
+  // Whether a facet with outward normal u of t ⊕ C (any convex C) can hold
+  // points of the boundary of A ⊕ B.  Such a point is a + c with a on t
+  // and u in the local normal cone of A at a (A lies below the plane
+  // through a normal to u near a).  With the face of t extreme in u:
+  //   * t itself: u must be t's outward normal;
+  //   * an edge of t: u in the edge's cone (convex edges: the arc between
+  //     the normals of its two faces; flat and reflex edges: none) or in a
+  //     cone of one of its two vertices;
+  //   * a vertex v: u in v's cone, over-approximated by u . (w - v) <= 0
+  //     for every neighbour w of v (exact for a convex vertex; a superset
+  //     elsewhere, whose extra facets lie inside A + b and are dropped with
+  //     the pockets of the sweep).
+  // Exact (rational dot products).
+  bool candidate(Index t, const Point3& u) const;
+
+  // Whether q lies in the interior of the solid (q must not lie on its
+  // surface): the parity of the crossings of an exact ray that meets no
+  // edge or vertex of the surface.
+  bool strictly_inside(const Point3& q) const;
+
+  std::size_t triangles() const { return tri_.size(); }
+  const std::array<Index, 3>& triangle(Index t) const { return tri_[t]; }
+  const Point3& point(Index v) const { return points_[v]; }
+
+ private:
+  bool below_all_neighbours(Index v, const Point3& u) const;
+
+  std::vector<Point3> points_;
+  std::vector<std::array<Index, 3>> tri_;
+  std::vector<Point3> normal_;                     // (p1 - p0) x (p2 - p0), outward
+  std::vector<std::array<Index, 3>> opposite_;     // edge k = (c[k], c[k+1]): the far vertex of the face across it
+  std::vector<std::array<signed char, 3>> kind_;   // edge k: -1 convex, 0 flat, +1 reflex
+  std::vector<std::vector<Index>> neighbours_;     // per vertex
+};
+
+}  // namespace minksum::nonconvex_detail

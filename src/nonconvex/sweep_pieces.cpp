@@ -1,0 +1,127 @@
+// The boundary sweep of the non-convex sum (docs/nonconvex.md, "Method"):
+// the local normal cones of a solid's surface, which decide which facets of
+// a piece t ⊕ B_j can be on the boundary of A ⊕ B, and the exact
+// point-in-solid test that tells the pockets of the sweep inside A + b from
+// the boundary of A ⊕ B.
+#include <minksum/predicates.hpp>
+
+#include "nonconvex/sweep.hpp"
+
+#include <map>
+#include <stdexcept>
+
+namespace minksum::nonconvex_detail {
+
+SurfaceCones::SurfaceCones(const Mesh& triangles) {
+  const std::size_t nv = triangles.points.size();
+  points_.reserve(nv);
+  for (std::size_t v = 0; v < nv; ++v) points_.push_back(triangles.points[v]);
+  tri_.reserve(triangles.faces.size());
+  for (const auto& f : triangles.faces) {
+    if (f.size() != 3) throw std::logic_error("SurfaceCones: a face that is not a triangle");
+    tri_.push_back({f[0], f[1], f[2]});
+  }
+  std::map<std::pair<Index, Index>, std::pair<Index, int>> directed;  // (a, b) -> (triangle, edge)
+  for (Index t = 0; t < tri_.size(); ++t)
+    for (int k = 0; k < 3; ++k) directed[{tri_[t][k], tri_[t][(k + 1) % 3]}] = {t, k};
+  normal_.resize(tri_.size());
+  opposite_.resize(tri_.size());
+  kind_.resize(tri_.size());
+  neighbours_.resize(nv);
+  for (Index t = 0; t < tri_.size(); ++t) {
+    const auto& c = tri_[t];
+    normal_[t] = cross(points_[c[1]] - points_[c[0]], points_[c[2]] - points_[c[0]]);
+    for (int k = 0; k < 3; ++k) {
+      const Index a = c[k], b = c[(k + 1) % 3];
+      neighbours_[a].push_back(b);
+      auto it = directed.find({b, a});
+      if (it == directed.end()) throw std::logic_error("SurfaceCones: an edge with one triangle");
+      const auto& o = tri_[it->second.first];
+      const Index w = o[(it->second.second + 2) % 3];
+      opposite_[t][k] = w;
+      // The neighbour's far vertex below this triangle's plane: a convex
+      // edge; on it: flat; above: reflex.
+      kind_[t][k] = static_cast<signed char>(sgn(dot(normal_[t], points_[w] - points_[a])));
+    }
+  }
+}
+
+bool SurfaceCones::below_all_neighbours(Index v, const Point3& u) const {
+  const Point3& p = points_[v];
+  for (Index w : neighbours_[v])
+    if (sgn(dot(u, points_[w] - p)) > 0) return false;
+  return true;
+}
+
+bool SurfaceCones::candidate(Index t, const Point3& u) const {
+  const auto& c = tri_[t];
+  const Rational s[3] = {dot(u, points_[c[0]]), dot(u, points_[c[1]]), dot(u, points_[c[2]])};
+  int top = 0;
+  for (int k = 1; k < 3; ++k)
+    if (cmp(s[k], s[top]) > 0) top = k;
+  bool at_top[3];
+  int count = 0;
+  for (int k = 0; k < 3; ++k) count += (at_top[k] = cmp(s[k], s[top]) == 0);
+  if (count == 3) return sgn(dot(u, normal_[t])) > 0;  // the triangle itself: its outward normal only
+  if (count == 2) {
+    // The edge k = (c[k], c[k+1]) at the top.
+    int k = 0;
+    while (!(at_top[k] && at_top[(k + 1) % 3])) ++k;
+    const Index a = c[k], b = c[(k + 1) % 3];
+    // Inside the edge: a convex edge's normals are the arc between its two
+    // faces' normals, u . (far vertex of either face - a) <= 0 (this face's
+    // holds, as its far vertex is below the top); a flat or reflex edge has
+    // no outward normal at its inner points.
+    if (kind_[t][k] < 0 && sgn(dot(u, points_[opposite_[t][k]] - points_[a])) <= 0) return true;
+    return below_all_neighbours(a, u) || below_all_neighbours(b, u);
+  }
+  return below_all_neighbours(c[top], u);
+}
+
+namespace {
+
+// Exact line/triangle test for the ray from q through q + d: 1 when the
+// line crosses the triangle's interior, 0 when it misses the closed
+// triangle, -1 when it meets its boundary or lies in its plane (the
+// direction is then not generic for this triangle).
+int line_meets(const Point3& q, const Point3& r, const Point3& a, const Point3& b, const Point3& c) {
+  const int o1 = orient3d(q, r, a, b), o2 = orient3d(q, r, b, c), o3 = orient3d(q, r, c, a);
+  const bool pos = o1 > 0 || o2 > 0 || o3 > 0, neg = o1 < 0 || o2 < 0 || o3 < 0;
+  if (pos && neg) return 0;
+  if (o1 == 0 || o2 == 0 || o3 == 0) return -1;
+  return 1;
+}
+
+}  // namespace
+
+bool SurfaceCones::strictly_inside(const Point3& q) const {
+  // Rays in fixed directions with large co-prime integer components, tried in
+  // turn until one meets no edge or vertex of the surface (a finite set of
+  // directions is excluded for each triangle, so one of the first few does).
+  static const long kDirections[][3] = {{1000003, 7919, 104729},    {-7927, 1000033, 130363},
+                                        {15485863, -2750159, 7},   {-104723, -5381, 1299709},
+                                        {611953, 1000037, -49979687}, {3, -32452843, 86028121},
+                                        {-982451653, 67867967, 1},  {2038074743, 3, -179424673}};
+  for (const auto& dir : kDirections) {
+    const Point3 d{Rational(dir[0]), Rational(dir[1]), Rational(dir[2])};
+    const Point3 r = q + d;
+    bool inside = false, generic = true;
+    for (std::size_t t = 0; t < tri_.size() && generic; ++t) {
+      const auto& c = tri_[t];
+      const int m = line_meets(q, r, points_[c[0]], points_[c[1]], points_[c[2]]);
+      if (m < 0) {
+        generic = false;
+      } else if (m > 0) {
+        // The crossing is ahead of q (along d) iff n . (q - a) and n . d
+        // have opposite signs.
+        const int sq = sgn(dot(normal_[t], q - points_[c[0]]));
+        if (sq == 0) throw std::logic_error("strictly_inside: the point is on the surface");
+        if (sq * sgn(dot(normal_[t], d)) < 0) inside = !inside;
+      }
+    }
+    if (generic) return inside;
+  }
+  throw std::logic_error("strictly_inside: no generic ray direction");
+}
+
+}  // namespace minksum::nonconvex_detail

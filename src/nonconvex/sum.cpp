@@ -4,6 +4,7 @@
 #include <minksum/minkowski.hpp>
 #include <minksum/nonconvex.hpp>
 #include <minksum/parallel.hpp>
+#include <minksum/predicates.hpp>
 #include <minksum/sweep.hpp>
 
 #include "nonconvex/nef.hpp"
@@ -122,7 +123,12 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
       ConvexPolytope sum = minkowski_sum_sets(tri, pieces[i % po.size()], piece_method).set.release_polytope();
       std::vector<char>& flags = candidate[i];
       flags.resize(sum.num_facets());
-      for (Index f = 0; f < sum.num_facets(); ++f) flags[f] = cones.candidate(t, sum.plane(f).normal()) ? 1 : 0;
+      for (Index f = 0; f < sum.num_facets(); ++f) {
+        const Plane& h = sum.plane(f);
+        const Point3 u(Rational(h.a), Rational(h.b), Rational(h.c));
+        const Vec3d approx = to_double(u);
+        flags[f] = cones.candidate(t, RoundedPoint3{u, approx}) ? 1 : 0;
+      }
       sums[i] = std::move(sum);
     });
     options.report("pairs", double(start + count) / double(n));

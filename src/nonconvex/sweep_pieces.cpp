@@ -15,7 +15,10 @@ namespace minksum::nonconvex_detail {
 SurfaceCones::SurfaceCones(const Mesh& triangles) {
   const std::size_t nv = triangles.points.size();
   points_.reserve(nv);
-  for (std::size_t v = 0; v < nv; ++v) points_.push_back(triangles.points[v]);
+  for (std::size_t v = 0; v < nv; ++v) {
+    points_.push_back(triangles.points[v]);
+    approx_.push_back(to_double(points_.back()));
+  }
   tri_.reserve(triangles.faces.size());
   for (const auto& f : triangles.faces) {
     if (f.size() != 3) throw std::logic_error("SurfaceCones: a face that is not a triangle");
@@ -25,12 +28,14 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
   for (Index t = 0; t < tri_.size(); ++t)
     for (int k = 0; k < 3; ++k) directed[{tri_[t][k], tri_[t][(k + 1) % 3]}] = {t, k};
   normal_.resize(tri_.size());
+  normal_approx_.resize(tri_.size());
   opposite_.resize(tri_.size());
   kind_.resize(tri_.size());
   neighbours_.resize(nv);
   for (Index t = 0; t < tri_.size(); ++t) {
     const auto& c = tri_[t];
     normal_[t] = cross(points_[c[1]] - points_[c[0]], points_[c[2]] - points_[c[0]]);
+    normal_approx_[t] = to_double(normal_[t]);
     for (int k = 0; k < 3; ++k) {
       const Index a = c[k], b = c[(k + 1) % 3];
       neighbours_[a].push_back(b);
@@ -46,23 +51,36 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
   }
 }
 
-bool SurfaceCones::below_all_neighbours(Index v, const Point3& u) const {
-  const Point3& p = points_[v];
+namespace {
+
+const Point3& origin() {
+  static const Point3 o(Rational(0), Rational(0), Rational(0));
+  return o;
+}
+const Vec3d kOriginApprox{0, 0, 0};
+
+}  // namespace
+
+// sign(u . (w - v)) = dot_sign(0, u, v, w).
+bool SurfaceCones::below_all_neighbours(Index v, const RoundedPoint3& u) const {
+  const RoundedPoint3 o{origin(), kOriginApprox};
   for (Index w : neighbours_[v])
-    if (sgn(dot(u, points_[w] - p)) > 0) return false;
+    if (dot_sign(o, u, at(v), at(w)) > 0) return false;
   return true;
 }
 
-bool SurfaceCones::candidate(Index t, const Point3& u) const {
+bool SurfaceCones::candidate(Index t, const RoundedPoint3& u) const {
+  const RoundedPoint3 o{origin(), kOriginApprox};
   const auto& c = tri_[t];
-  const Rational s[3] = {dot(u, points_[c[0]]), dot(u, points_[c[1]]), dot(u, points_[c[2]])};
+  // The vertices of t highest along u: compare u . p_k with u . p_top.
   int top = 0;
   for (int k = 1; k < 3; ++k)
-    if (cmp(s[k], s[top]) > 0) top = k;
+    if (dot_sign(o, u, at(c[top]), at(c[k])) > 0) top = k;
   bool at_top[3];
   int count = 0;
-  for (int k = 0; k < 3; ++k) count += (at_top[k] = cmp(s[k], s[top]) == 0);
-  if (count == 3) return sgn(dot(u, normal_[t])) > 0;  // the triangle itself: its outward normal only
+  for (int k = 0; k < 3; ++k) count += (at_top[k] = k == top || dot_sign(o, u, at(c[top]), at(c[k])) == 0);
+  if (count == 3)  // the triangle itself: its outward normal only
+    return dot_sign(o, u, o, RoundedPoint3{normal_[t], normal_approx_[t]}) > 0;
   if (count == 2) {
     // The edge k = (c[k], c[k+1]) at the top.
     int k = 0;
@@ -72,7 +90,7 @@ bool SurfaceCones::candidate(Index t, const Point3& u) const {
     // faces' normals, u . (far vertex of either face - a) <= 0 (this face's
     // holds, as its far vertex is below the top); a flat or reflex edge has
     // no outward normal at its inner points.
-    if (kind_[t][k] < 0 && sgn(dot(u, points_[opposite_[t][k]] - points_[a])) <= 0) return true;
+    if (kind_[t][k] < 0 && dot_sign(o, u, at(a), at(opposite_[t][k])) <= 0) return true;
     return below_all_neighbours(a, u) || below_all_neighbours(b, u);
   }
   return below_all_neighbours(c[top], u);

@@ -31,6 +31,7 @@
 #include <minksum/parallel.hpp>
 #include <minksum/predicates.hpp>
 
+#include "kernel/plane.hpp"
 #include "nonconvex/union.hpp"
 
 #include <algorithm>
@@ -71,31 +72,36 @@ V3 make_v3(Point3 p) {
   return v;
 }
 
-// The half-space a*x + b*y + c*z <= d (inside).
+// The half-space a*x + b*y + c*z <= d (inside) of an integer plane (kept
+// by reference: the pieces' planes, or planes the caller keeps alive), with
+// the nearest doubles of its four integers.
 struct Half {
-  Rational a, b, c, d;
+  const Plane* plane = nullptr;
   double da = 0, db = 0, dc = 0, dd = 0;
   bool filtered = false;
 };
 
-Half make_half(Rational a, Rational b, Rational c, Rational d) {
+// mpz_get_d truncates towards zero: a faithful rounding (within relative
+// 2^-52), which the filter's bound allows (<minksum/half_space_side.hpp>);
+// usable below 2^480, as every non-zero integer is at least 1.
+bool integer_to_filter_double(const Integer& x, double& out) {
+  if (mpz_sizeinbase(x.get_mpz_t(), 2) >= 480) return false;
+  out = mpz_get_d(x.get_mpz_t());
+  return true;
+}
+
+Half half_of(const Plane& q) {
   Half h;
-  h.da = to_double(a);
-  h.db = to_double(b);
-  h.dc = to_double(c);
-  h.dd = to_double(d);
-  h.filtered = half_space_filter_usable(h.da, a) && half_space_filter_usable(h.db, b) &&
-               half_space_filter_usable(h.dc, c) && half_space_filter_usable(h.dd, d);
-  h.a = std::move(a);
-  h.b = std::move(b);
-  h.c = std::move(c);
-  h.d = std::move(d);
+  h.plane = &q;
+  h.filtered = integer_to_filter_double(q.a, h.da) && integer_to_filter_double(q.b, h.db) &&
+               integer_to_filter_double(q.c, h.dc) && integer_to_filter_double(q.d, h.dd);
   return h;
 }
 
-Half half_of(const Plane& q) { return make_half(Rational(q.a), Rational(q.b), Rational(q.c), Rational(q.d)); }
-
-Rational value(const Half& h, const V3& v) { return h.a * v.p.x + h.b * v.p.y + h.c * v.p.z - h.d; }
+Rational value(const Half& h, const V3& v) {
+  const Plane& q = *h.plane;
+  return q.a * v.p.x + q.b * v.p.y + q.c * v.p.z - q.d;
+}
 
 // > 0 outside, 0 on the plane, < 0 inside.
 int side(const Half& h, const V3& v) {
@@ -104,8 +110,6 @@ int side(const Half& h, const V3& v) {
   return sgn(value(h, v));
 }
 
-// Whether the point p lies on the plane of h.
-bool on_plane(const Half& h, const Point3& p) { return side(h, make_v3(p)) == 0; }
 
 // The two coordinates of an oriented plane h's points: the coordinate k
 // with the largest |normal_k| is dropped, the other two (u, v) are ordered
@@ -477,8 +481,8 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
   const Point3 n = plane.normal();
   for (const Segment& sl : slits) {
     // The plane through the slit, across this one.
-    const Point3 m = cross(sl.b - sl.a, n);
-    const Half h = make_half(m.x, m.y, m.z, dot(m, sl.a));
+    const Plane across = canonical_plane(cross(sl.b - sl.a, n), sl.a);
+    const Half h = half_of(across);
     std::vector<Poly> next;
     std::vector<int> sg;
     bool pos = false, neg = false;
@@ -798,13 +802,14 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
       std::size_t plane;
       const Segment* segment;
       Box box;
+      V3 a, b;  // the ends with their nearest doubles, for the plane tests
     };
     std::vector<Item> items;
     for (std::size_t g = 0; g < n; ++g)
       for (const Segment& sg : results[g].segments) {
-        Item it{g, &sg, {}};
-        it.box.add(to_double(sg.a));
-        it.box.add(to_double(sg.b));
+        Item it{g, &sg, {}, make_v3(sg.a), make_v3(sg.b)};
+        it.box.add(it.a.d);
+        it.box.add(it.b.d);
         items.push_back(std::move(it));
       }
     std::sort(items.begin(), items.end(), [](const Item& x, const Item& y) { return x.box.lo[0] < y.box.lo[0]; });
@@ -830,7 +835,7 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
         const Item& it = *at;
         if (it.box.lo[0] > region.hi[0]) break;
         if (it.plane == g || !it.box.meets(region)) continue;
-        if (!on_plane(h, it.segment->a) || !on_plane(h, it.segment->b)) continue;
+        if (side(h, it.a) != 0 || side(h, it.b) != 0) continue;
         if (!indexed) {
           for (const Segment& sg : own) {
             OnLine o = on_line(frame, sg.a, sg.b);

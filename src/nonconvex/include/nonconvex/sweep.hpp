@@ -3,6 +3,7 @@
 #pragma once
 
 #include <minksum/nonconvex.hpp>
+#include <minksum/predicates.hpp>
 
 #include <array>
 #include <vector>
@@ -28,8 +29,11 @@ class SurfaceCones {
   //     for every neighbour w of v (exact for a convex vertex; a superset
   //     elsewhere, whose extra facets lie inside A + b and are dropped with
   //     the pockets of the sweep).
-  // Exact (rational dot products).
-  bool candidate(Index t, const Point3& u) const;
+  // Exact: signs of dot products by the kernel's filtered dot_sign on the
+  // exact points and their cached roundings (u given with a faithful
+  // rounding of each coordinate, as to_double gives).
+  bool candidate(Index t, const RoundedPoint3& u) const;
+  bool candidate(Index t, const Point3& u) const { const Vec3d a = to_double(u); return candidate(t, RoundedPoint3{u, a}); }
 
   // Whether q lies in the interior of the solid (q must not lie on its
   // surface): the parity of the crossings of an exact ray that meets no
@@ -41,9 +45,12 @@ class SurfaceCones {
   const Point3& point(Index v) const { return points_[v]; }
 
  private:
-  bool below_all_neighbours(Index v, const Point3& u) const;
+  bool below_all_neighbours(Index v, const RoundedPoint3& u) const;
+  RoundedPoint3 at(Index v) const { return RoundedPoint3{points_[v], approx_[v]}; }
 
   std::vector<Point3> points_;
+  std::vector<Vec3d> approx_;                      // nearest doubles of points_
+  std::vector<Vec3d> normal_approx_;               // of normal_
   std::vector<std::array<Index, 3>> tri_;
   std::vector<Point3> normal_;                     // (p1 - p0) x (p2 - p0), outward
   std::vector<std::array<Index, 3>> opposite_;     // edge k = (c[k], c[k+1]): the far vertex of the face across it

@@ -43,67 +43,48 @@ Counts counts(const Mesh& m) {
 }
 
 // The mesh as `out`'s format holds it: itself when every coordinate is
-// representable; else its faces triangulated exactly, the points rounded to
-// the nearest representable ones, and written only when the rounded mesh is
-// still a valid solid (validate_solid: closed, oriented, 2-manifold, without
-// self-intersection, positive volume); else OutputError naming --exact.
-// Returns the number of coordinates rounded.
+// representable (or with --exact); else round_solid's valid solid (faces
+// triangulated exactly, points rounded, merged and, if need be, snapped to a
+// coarser grid), with a note naming the largest displacement; OutputError
+// naming --exact when it cannot be represented.  Returns the number of
+// coordinates rounded.
 std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh) {
   const std::string name = out.to_stdout() ? "<stdout>" : out.path;
   const bool floats = out.format == Format::stl && out.options.binary;
-  // The coordinates the format cannot hold.
-  std::size_t rounded = 0;
-  const auto representable = [&](const Rational& q) {
-    return floats ? Rational(double(to_float(q))) == q : is_double(q);
-  };
-  if (!out.options.exact)
-    for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-      const Point3 p = mesh.points[i];
-      for (int k = 0; k < 3; ++k) rounded += !representable(p[k]);
-    }
-  // Faces cut into triangles exactly when the format holds triangles only
-  // (STL: an L-shaped cap fanned from a corner would cover its notch), or
-  // before rounding (a rounded triangle stays planar, a rounded polygon not).
-  Mesh written = out.format == Format::stl || rounded ? triangulate(mesh, name) : mesh;
-  if (rounded) {
-    PointList pts;
-    for (std::size_t i = 0; i < written.points.size(); ++i) {
-      const Point3 p = written.points[i];
-      Point3 q;
-      for (int k = 0; k < 3; ++k) {
-        const double d = floats ? double(to_float(p[k])) : to_double(p[k]);
-        if (!std::isfinite(d))
-          throw OutputError("cannot write " + name + ": a coordinate is beyond the range of " +
-                            (floats ? "32-bit floats" : "doubles") + "; use --exact with " +
-                            extension_list(", ", " or ", true) + " to write exact rationals");
-        q[k] = Rational(d);
-      }
-      pts.push_back(q);
-    }
-    written.points = std::move(pts);
+  const std::string exact_hint = "; use --exact with " + extension_list(", ", " or ", true) + " to write exact rationals";
+  // Without --exact: coordinates that are not doubles (binary STL: floats)
+  // rounded, the surface kept a valid solid (round_solid, docs/nonconvex.md).
+  RoundedSolid rounded;
+  if (!out.options.exact) {
     try {
-      validate_solid(written, name);
+      rounded = round_solid(mesh, floats, name);
+    } catch (const RoundingError& e) {
+      throw OutputError("cannot write " + name + ": " + e.what() + exact_hint);
     } catch (const InputError& e) {
-      throw OutputError("cannot write " + name + ": " + std::to_string(rounded) + " coordinates are not " +
-                        (floats ? "32-bit floats" : "doubles") + " and the rounded surface is no longer a valid solid (" +
-                        e.problem() + "); use --exact with " + extension_list(", ", " or ", true) +
-                        " to write exact rationals");
+      throw OutputError(std::string("cannot write ") + e.what());
     }
   }
+  // STL holds triangles only: faces cut exactly (an L-shaped cap fanned from
+  // a corner would cover its notch).
+  Mesh written = rounded.rounded_coordinates ? std::move(rounded.mesh)
+                 : out.format == Format::stl  ? triangulate(mesh, name)
+                                              : mesh;
   try {
     write_mesh_as_is(out, written);
   } catch (const UnrepresentableError& e) {
-    throw OutputError("cannot write " + name + ": " + e.problem() + "; use --exact with " +
-                      extension_list(", ", " or ", true) + " to write exact rationals");
+    throw OutputError("cannot write " + name + ": " + e.problem() + exact_hint);
   } catch (const InputError& e) {
     throw OutputError(std::string("cannot write ") + e.what());
   }
-  if (rounded)
-    std::cerr << "minksum: note: " << printable(name) << ": " << rounded << " coordinates are not "
-              << (floats ? "32-bit floats" : "doubles")
-              << ", written rounded to the nearest ones, the faces as triangles (the rounded surface is still a "
-                 "closed solid without self-intersection; --exact writes the exact sum)\n";
-  return rounded;
+  if (rounded.rounded_coordinates) {
+    std::cerr << "minksum: note: " << printable(name) << ": " << rounded.rounded_coordinates << " coordinates are not "
+              << (floats ? "32-bit floats" : "doubles") << ", written rounded (largest displacement "
+              << format_double(rounded.max_displacement);
+    if (rounded.grid > 0) std::cerr << ", points snapped to multiples of " << format_double(rounded.grid);
+    std::cerr << "), the faces as triangles; the written surface is a closed solid without self-intersection "
+                 "(checked exactly); --exact writes the exact sum\n";
+  }
+  return rounded.rounded_coordinates;
 }
 
 }  // namespace

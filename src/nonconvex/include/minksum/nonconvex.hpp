@@ -31,6 +31,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -143,6 +144,34 @@ Mesh reference_minkowski_sum(const Solid& a, const Solid& b, double* seconds = n
 // that hold triangles only.  Throws InputError(source, face, ...) for a face
 // that is not a simple polygon.
 Mesh triangulate(const Mesh& mesh, const std::string& source);
+
+// A solid boundary in the numbers of a file format: every coordinate a double
+// (or a 32-bit float), the surface a valid solid (validate_solid passes).
+struct RoundedSolid {
+  Mesh mesh;                            // triangles (the exact mesh itself when nothing was rounded)
+  std::size_t rounded_coordinates = 0;  // coordinates that were not doubles (floats)
+  double max_displacement = 0;          // the largest distance a point moved (rounded up to a double)
+  double grid = 0;                      // 0: each coordinate to the nearest; else the grid snapped to
+};
+
+// round_solid could not represent the solid: a coordinate beyond the range of
+// the format's numbers, a surface that touches itself (non-manifold edges),
+// or no rounding up to 2^-20 of the largest coordinate that is a valid solid.
+class RoundingError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// `exact` (a NonconvexSum's mesh: planar polygons, a closed solid) with
+// every coordinate that is not a double (with `floats`, a 32-bit float)
+// rounded, as a valid solid: the faces cut into triangles exactly, the
+// coordinates rounded to the nearest, points that round together merged,
+// the triangles that became degenerate removed (the surface kept closed);
+// when that is not a valid solid (rounding made faces cross), the same on
+// grids of 2^e, e from the format's spacing at the largest coordinate up to
+// 2^-20 of it, the first valid one kept (docs/nonconvex.md, "Output").
+// Throws RoundingError.
+RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name);
 
 // Exact signed volume enclosed by a closed mesh whose faces are planar
 // polygons (sum of the signed tetrahedra of the fan of each face).

@@ -61,6 +61,33 @@ std::vector<Point3> thickening(const ConvexSet& s) {
   return {axis((k + 1) % 3), axis((k + 2) % 3)};
 }
 
+// The prism of a strictly convex polygon (loop counter-clockwise about n) and
+// the segment [0, g], g not parallel to the polygon's plane: its faces are
+// known, so it is built from its mesh (validated) rather than by a hull.
+// Point 2i is loop[i], point 2i + 1 is loop[i] + g (the order the hull of
+// `prism` below would number them).
+ConvexPolytope polygon_prism(const std::vector<Point3>& loop, const Point3& n, const Point3& g) {
+  const std::size_t k = loop.size();
+  Mesh m;
+  for (const Point3& p : loop) {
+    m.points.push_back(p);
+    m.points.push_back(p + g);
+  }
+  // Walk the loop counter-clockwise about the side g points to.
+  const bool up = sgn(dot(g, n)) > 0;
+  auto at = [&](std::size_t i) { return Index(up ? i % k : (k - i % k) % k); };
+  std::vector<Index> bottom, top;
+  for (std::size_t i = 0; i < k; ++i) {
+    const Index a = at(i), b = at(i + 1);
+    m.faces.push_back({2 * a, 2 * b, 2 * b + 1, 2 * a + 1});
+    top.push_back(2 * a + 1);
+    bottom.push_back(2 * at(k - 1 - i));
+  }
+  m.faces.push_back(top);
+  m.faces.push_back(bottom);
+  return ConvexPolytope::from_mesh(m, "sweep");
+}
+
 ConvexPolytope sweep(const ConvexPolytope& a, const ConvexSet& s, const SumOptions& options) {
   // Z's vertices: the sums of subsets of its generators.
   std::vector<Point3> z{Point3(Rational(0), Rational(0), Rational(0))};
@@ -73,7 +100,7 @@ ConvexPolytope sweep(const ConvexPolytope& a, const ConvexSet& s, const SumOptio
   prism.reserve(sv.size() * z.size());
   for (const Point3& p : sv)
     for (const Point3& q : z) prism.push_back(p + q);
-  const ConvexPolytope p = ConvexPolytope::hull(prism, "sweep");
+  const ConvexPolytope p = s.dimension() == 2 ? polygon_prism(sv, s.normal(), z[1]) : ConvexPolytope::hull(prism, "sweep");
   const SumResult x = minkowski_sum_walk(a, p, options);
   options.report("sweep", -1);
 

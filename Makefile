@@ -136,7 +136,7 @@ bench-nonconvex:
 	$(BENCH_CONFIGURE)
 	cmake --build $(BENCH_BUILD) -j $(BENCH_JOBS) --target bench_nonconvex minksum_cli
 	/usr/bin/python3 bench/nonconvex/run.py --build $(BENCH_BUILD) --page docs/generated/benchmarks-nonconvex.md \
-	  --command "make bench-nonconvex"
+	  $(if $(MESHES),--meshes $(MESHES)) --command "make bench-nonconvex$(if $(MESHES), MESHES=<a directory of meshes>)"
 
 bench-e2e:
 	@$(MAKE) --no-print-directory setup

@@ -1188,6 +1188,21 @@ TEST_F(Cli, NonConvexSumWrittenWithoutExact) {
   EXPECT_EQ(json_int(back.out, "vertices"), 20);
 }
 
+// A solid beyond the range of 32-bit floats, written as binary STL: exit 1,
+// one line naming --exact, no file (it was SIGFPE in the solid writer).
+TEST_F(Cli, NonConvexWriteBeyondFloatRangeExitsOne) {
+  for (const std::string cmd : {"gen tube@scale:1e300 -o " + path("x.stl") + " --binary",
+                                "sum tube@scale:1e39 cube -o " + path("x.stl") + " --binary"}) {
+    CmdResult r = run(cmd);
+    EXPECT_EQ(r.status, 1) << cmd << ": " << r.err;
+    EXPECT_EQ(r.err, "minksum: cannot write " + path("x.stl") +
+                         ": a coordinate is beyond the range of 32-bit floats; use --exact with .off, .obj or .wrl "
+                         "to write exact rationals\n")
+        << cmd;
+    EXPECT_FALSE(std::filesystem::exists(path("x.stl"))) << cmd;
+  }
+}
+
 // Bad solids: exit 3, one line naming the file, the place and the problem.
 TEST_F(Cli, NonConvexBadSolidsExitThree) {
   auto write = [&](const std::string& name, const std::string& text) {

@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 using namespace minksum;
 using namespace minksum::testing;
 
@@ -167,4 +169,34 @@ TEST(NonconvexSweep, PointInSolidIsExact) {
   EXPECT_TRUE(cones.strictly_inside(p(Rational(-199, 100), Rational(199, 100), 0)));  // near an edge
   EXPECT_FALSE(cones.strictly_inside(p(Rational(201, 100), Rational(2), Rational(2))));
   EXPECT_THROW(cones.strictly_inside(p(2, 0, 0)), std::logic_error);    // on the surface
+}
+
+// ---------------------------------------------------------------------------
+// Properties on a larger case (the decomposition would take minutes here).
+
+// torus:32:16 (1 024 triangles) ⊕ a small ball: one closed genus-1 surface
+// (V - E + F = 0), the sum contains the torus (larger volume), and
+// translating the torus translates the sum exactly.
+TEST(NonconvexSweep, LargeTorusPlusBallProperties) {
+  const Solid t = solid("torus:32:16");
+  const Solid b = solid("sphere:1@scale:1/20");
+  const NonconvexSum r = minkowski_sum_nonconvex(t, b);
+  expect_closed_oriented(r);
+  EXPECT_EQ(r.shells, 1u);
+  EXPECT_EQ(r.non_manifold_edges, 0u);
+  std::set<std::pair<Index, Index>> edges;
+  for (const auto& f : r.mesh.faces)
+    for (std::size_t i = 0; i < f.size(); ++i)
+      edges.insert({std::min(f[i], f[(i + 1) % f.size()]), std::max(f[i], f[(i + 1) % f.size()])});
+  EXPECT_EQ(long(r.mesh.points.size()) - long(edges.size()) + long(r.mesh.faces.size()), 0L);
+  EXPECT_GT(r.volume, t.volume);
+  EXPECT_GT(r.culled_facets, 10 * r.candidate_facets);
+
+  const Solid moved = solid("torus:32:16@translate:1/3,-2,5/7");
+  const NonconvexSum m = minkowski_sum_nonconvex(moved, b);
+  const Point3 shift(Rational(1, 3), Rational(-2), Rational(5, 7));
+  std::set<Point3> expected;
+  for (const Point3& p : vertex_set(r.mesh)) expected.insert(p + shift);
+  EXPECT_EQ(vertex_set(m.mesh), expected);
+  EXPECT_EQ(m.volume, r.volume);
 }

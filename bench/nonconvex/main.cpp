@@ -2,8 +2,10 @@
 // and CGAL's Nef minkowski_sum_3 on the same exact inputs, one after the
 // other in this process; prints a Markdown table (docs/nonconvex.md).
 //
-// Usage: bench_nonconvex [--json] [--side both|minksum|cgal] [--reps R] [A:B ...]
+// Usage: bench_nonconvex [--json] [--side both|minksum|cgal] [--reps R] [A:B | A|B ...]
+//          bench_nonconvex --check FILE
 //   A:B      catalog specs (default: the table's rows)
+//   A|B      each a catalog spec or a mesh file (.off .obj .ply .stl .wrl)
 //   --json   one JSON object per row and line instead of the table, with the
 //            exact volume and the boundary's counts (bench/nonconvex/run.py
 //            reads it)
@@ -11,9 +13,27 @@
 //            its own, under a time limit)
 //   --reps   minksum's sum R times, the median reported (default 1); CGAL
 //            runs once
+//   --check  the independent check of a written sum: FILE read by minksum's
+//            reader, then CGAL's Polygon_mesh_processing on a Surface_mesh of
+//            exact points (is_closed, does_self_intersect,
+//            is_outward_oriented, volume); one JSON line:
+//            {"closed": ..., "self_intersects": ..., "outward": ...,
+//             "volume": "p/q", "vertices": V, "triangles": F}
 #include <minksum/catalog.hpp>
 #include <minksum/error.hpp>
+#include <minksum/io.hpp>
 #include <minksum/nonconvex.hpp>
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <filesystem>
 
 #include <algorithm>
 #include <cctype>
@@ -42,6 +62,54 @@ bool split_row(const std::string& row, std::string& a, std::string& b) {
       return true;
     }
   return false;
+}
+
+void json_string(const std::string& s);
+
+// "A|B": each side a catalog spec or a file.
+bool split_files(const std::string& row, std::string& a, std::string& b) {
+  const std::size_t at = row.find('|');
+  if (at == std::string::npos || row.find('|', at + 1) != std::string::npos) return false;
+  a = row.substr(0, at);
+  b = row.substr(at + 1);
+  return !a.empty() && !b.empty();
+}
+
+Mesh operand_mesh(const std::string& spec) {
+  if (std::filesystem::is_regular_file(spec)) return read_mesh(spec);
+  return catalog_mesh(spec);
+}
+
+// --check FILE (see the usage above).
+int check(const std::string& path) {
+  using K = CGAL::Exact_predicates_exact_constructions_kernel;
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  const Mesh m = read_mesh(path);
+  std::vector<K::Point_3> points;
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    const Point3 p = m.points[i];
+    points.emplace_back(K::FT(p.x), K::FT(p.y), K::FT(p.z));
+  }
+  std::vector<std::vector<std::size_t>> polygons;
+  for (const auto& f : m.faces) polygons.emplace_back(f.begin(), f.end());
+  CGAL::Surface_mesh<K::Point_3> sm;
+  const bool soup_ok = PMP::is_polygon_soup_a_polygon_mesh(polygons);
+  if (soup_ok) PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
+  const bool closed = soup_ok && CGAL::is_closed(sm);
+  const bool triangles = soup_ok && CGAL::is_triangle_mesh(sm);
+  const bool intersects = !triangles || PMP::does_self_intersect(sm);
+  const bool outward = closed && PMP::is_outward_oriented(sm);
+  std::printf("{\"closed\": %s, \"self_intersects\": %s, \"outward\": %s, \"volume\": ", closed ? "true" : "false",
+              intersects ? "true" : "false", outward ? "true" : "false");
+  if (closed && triangles) {
+    const K::FT v = PMP::volume(sm);
+    const auto& e = CGAL::exact(v);
+    json_string(format_exact(Rational(e)));
+  } else {
+    std::printf("null");
+  }
+  std::printf(", \"vertices\": %zu, \"triangles\": %zu}\n", m.points.size(), m.faces.size());
+  return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : 1;
 }
 
 // The minksum side of one row: R sums, the one of median time.
@@ -101,6 +169,14 @@ int main(int argc, char** argv) {
       const std::string r = i + 1 < argc ? argv[++i] : "";
       reps = r.size() >= 1 && r.size() <= 3 && std::all_of(r.begin(), r.end(), ::isdigit) ? std::stoi(r) : 0;
       if (reps < 1) usage("--reps needs an integer 1..999, got '" + r + "'");
+    } else if (arg == "--check") {
+      if (i + 2 != argc) usage("--check takes one file and nothing else");
+      try {
+        return check(argv[i + 1]);
+      } catch (const InputError& e) {
+        std::fprintf(stderr, "bench_nonconvex: %s\n", e.what());
+        return 3;
+      }
     } else if (arg.rfind("--", 0) == 0) {
       usage("unknown option '" + arg + "'");
     } else {
@@ -115,13 +191,16 @@ int main(int argc, char** argv) {
                 "ratio | same volume |\n|---|---|---|---|---|---|---|---|\n");
   for (const std::string& row : rows) {
     std::string a, b;
-    if (!split_row(row, a, b)) usage("'" + row + "' is not A:B");
+    if (!split_files(row, a, b) && !split_row(row, a, b)) usage("'" + row + "' is not A:B or A|B");
     Solid sa, sb;
     try {
-      sa = validate_solid(catalog_mesh(a), a);
-      sb = validate_solid(catalog_mesh(b), b);
+      sa = validate_solid(operand_mesh(a), a);
+      sb = validate_solid(operand_mesh(b), b);
     } catch (const UsageError& e) {
       usage(e.what());
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "bench_nonconvex: %s\n", e.what());
+      return 3;
     }
     Ours o;
     if (ours) o = run_minksum(sa, sb, reps);

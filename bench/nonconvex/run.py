@@ -1,31 +1,42 @@
 #!/usr/bin/python3
-"""Non-convex sums, three programs in one run: minksum, CGAL, Manifold.
+"""Non-convex sums, three programs in one run: minksum, Manifold, CGAL.
 
     /usr/bin/python3 bench/nonconvex/run.py [--build build-bench] [--reps 3] [--timeout 120]
-        [--work DIR] [--page docs/generated/benchmarks-nonconvex.md] [--command "make bench-nonconvex"]
-        [A:B ...]
+        [--meshes DIR] [--work DIR] [--resume] [--minksum-timeout S] [--manifold-timeout S]
+        [--page docs/generated/benchmarks-nonconvex.md]
+        [--command "make bench-nonconvex"] [A:B ...]
 
-For each row A:B (catalog specs; default: the rows of docs/nonconvex.md):
+Rows: A:B catalog specs (default: a triangulated torus family ⊕ a level-2
+geodesic ball, a torus ⊕ a torus, and the catalog rows of docs/nonconvex.md),
+then, with --meshes DIR, every mesh file of DIR ⊕ a level-2 geodesic ball
+(`sphere:2`, radius 1) scaled to 2 % of the mesh's bounding-box diagonal.
 
-1. minksum: `bench_nonconvex --json --side minksum --reps R A:B`, i.e.
-   minkowski_sum_nonconvex on the exact operands, R times, the median (and
-   its phases: decomposition, pair sums, union, boundary);
-2. CGAL: `bench_nonconvex --json --side cgal A:B`, minkowski_sum_3 on the
-   same exact operands as Nef polyhedra, once, in a process of its own that
-   is killed after --timeout seconds ("> 120 s" in the table); its exact
-   volume is compared with minksum's;
-3. Manifold: the operands written by `minksum gen SPEC -o X.stl --binary`
-   (exact triangulation, each coordinate the nearest float, which is what
-   Manifold's JavaScript API takes), then `node bench/nonconvex/manifold.mjs
-   A.stl B.stl --reps R`: Manifold.minkowskiSum (npm manifold-3d, the version
-   pinned in bench/nonconvex/package-lock.json), the median of R runs;
-4. untimed, `minksum sum A.stl B.stl --json`: the exact sum of the float
-   operands Manifold was given, to tell its own error from its input's.
+For each row:
 
-The table (Markdown) goes to standard output and, with --page, to that file
-with the command, the machine and its load in the header.  Needs the
-targets bench_nonconvex and minksum_cli built in --build and the npm
-packages of bench/nonconvex installed (`make bench-nonconvex` does all).
+1. minksum, as a user runs it: the whole process
+   `minksum sum A B -o OUT.stl --binary --json` (A a catalog spec or the
+   file as given), wall clock and CPU time (user + system, from wait4) and
+   peak memory; the median wall time of --reps runs (one run when the first
+   takes more than 2 s);
+2. the written OUT.stl checked independently: `bench_nonconvex --check`,
+   CGAL's Polygon_mesh_processing on exact points (closed, no
+   self-intersection, outward), and its exact volume against the exact sum's;
+3. Manifold: `node bench/nonconvex/manifold.mjs A.stl B.stl`,
+   Manifold.minkowskiSum (npm manifold-3d, pinned in
+   bench/nonconvex/package-lock.json) on the operands as binary STL (its
+   JavaScript API takes floats: catalog solids written by `minksum gen
+   --binary`, files converted here with each coordinate the nearest float),
+   the median of the same number of runs; only the call is timed;
+4. CGAL: `bench_nonconvex --json --side cgal 'A|B'`, minkowski_sum_3 on the
+   exact operands as Nef polyhedra, once, in a process of its own stopped
+   after --timeout seconds; its exact volume is compared with minksum's.
+
+A mesh that minksum refuses (not a closed solid: exit status 3) is listed
+with minksum's message, and not given to the others.  The table (Markdown)
+goes to standard output and, with --page, to that file with the command,
+the machine, its load and a summary of the targets of docs/nonconvex.md.
+Needs the targets bench_nonconvex and minksum_cli built in --build and the
+npm packages of bench/nonconvex installed (`make bench-nonconvex` does all).
 """
 
 import argparse
@@ -34,23 +45,31 @@ import json
 import os
 import platform
 import re
+import struct
 import subprocess
 import sys
 import time
 from fractions import Fraction
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+BALL = "sphere:2@scale:1/10"
 
-# tube ⊕ ball series (26, 114, 266, 1106 vertices), an L-bracket ⊕ a ball, a
-# gear ⊕ a cylinder.
+# The torus family (256 ... 65 536 triangles) ⊕ a ball of 80 facets, a torus
+# ⊕ a torus (1 024 ⊕ 256 triangles), and the catalog rows: tube ⊕ balls of 114
+# and 1 106 vertices, an L-bracket ⊕ a ball, a gear ⊕ a cylinder.
 DEFAULT_ROWS = [
-    "tube:ball:4@scale:1/4",
+    "torus:16:8:" + BALL,
+    "torus:32:16:" + BALL,
+    "torus:64:32:" + BALL,
+    "torus:128:64:" + BALL,
+    "torus:256:128:" + BALL,
+    "torus:32:16:torus:16:8@scale:1/4",
     "tube:ball:8@scale:1/4",
-    "tube:ball:12@scale:1/4",
     "tube:ball:24@scale:1/4",
     "lshape:ball:8@scale:1/4",
     "gear:8:prism:16@scale:1/8",
 ]
+MESH_EXTENSIONS = (".off", ".obj", ".stl", ".ply")
 
 
 def fail(message, status=1):
@@ -58,17 +77,41 @@ def fail(message, status=1):
     raise SystemExit(status)
 
 
-def run(argv, timeout=None):
-    """(stdout, stderr, seconds) of argv; None for stdout when it timed out."""
+def run(argv, timeout=None, allow=(0,)):
+    """(status, stdout, stderr, seconds) of argv; status None when it timed out."""
     t0 = time.perf_counter()
     try:
         p = subprocess.run(argv, capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
-        return None, "", time.perf_counter() - t0
-    if p.returncode != 0:
+        return None, None, "", time.perf_counter() - t0
+    if p.returncode not in allow:
         fail("%s exited with %d: %s" % (" ".join(argv), p.returncode, p.stderr.strip()),
              p.returncode if p.returncode in (2, 3) else 1)
-    return p.stdout, p.stderr, time.perf_counter() - t0
+    return p.returncode, p.stdout, p.stderr, time.perf_counter() - t0
+
+
+def timed(argv, out_path, timeout=None):
+    """Runs argv with stdout to out_path: (status, wall s, cpu s, peak MiB, stderr); status None when it
+    was stopped after `timeout` seconds."""
+    err_path = out_path + ".err"
+    with open(out_path, "w") as out, open(err_path, "w") as err:
+        t0 = time.perf_counter()
+        p = subprocess.Popen(argv, stdout=out, stderr=err)
+        while True:
+            pid, status, usage = os.wait4(p.pid, os.WNOHANG)
+            if pid:
+                break
+            if timeout is not None and time.perf_counter() - t0 > timeout:
+                p.kill()
+                os.wait4(p.pid, 0)
+                p.returncode = -9
+                return None, time.perf_counter() - t0, 0.0, 0.0, ""
+            time.sleep(0.005)
+        wall = time.perf_counter() - t0
+    p.returncode = os.waitstatus_to_exitcode(status)
+    with open(err_path) as f:
+        stderr = f.read()
+    return p.returncode, wall, usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024.0, stderr
 
 
 def one_json(text, argv):
@@ -78,37 +121,160 @@ def one_json(text, argv):
     return json.loads(lines[0])
 
 
-def write_stl(minksum, spec, path):
-    """minksum gen SPEC -o path --binary; the largest displacement of a vertex when rounded to floats (0 if none)."""
-    _, err, _ = run([minksum, "gen", spec, "-o", path, "--binary"])
-    m = re.search(r"largest vertex displacement ([0-9.eE+-]+)", err)
-    return float(m.group(1)) if m else 0.0
+# ---------------------------------------------------------------------------
+# Mesh files: triangles and bounding box, and binary STL for Manifold.
+
+def read_triangles(path):
+    """The triangles of an OFF, OBJ, ASCII or binary STL or ASCII PLY file (faces fanned)."""
+    data = open(path, "rb").read()
+    ext = os.path.splitext(path)[1].lower()
+    pts, faces = [], []
+    if ext == ".stl":
+        if not data[:5].lower() == b"solid" or b"facet" not in data[:1000]:
+            (n,) = struct.unpack_from("<I", data, 80)
+            tris = []
+            for i in range(n):
+                v = struct.unpack_from("<12f", data, 84 + 50 * i)
+                tris.append((v[3:6], v[6:9], v[9:12]))
+            return tris
+        verts = [tuple(float(x) for x in l.split()[1:4]) for l in data.decode("latin-1").splitlines()
+                 if l.strip().lower().startswith("vertex")]
+        return [tuple(verts[i:i + 3]) for i in range(0, len(verts), 3)]
+    text = data.decode("latin-1")
+    if ext == ".off":
+        tokens = []
+        for line in text.splitlines():
+            line = line.split("#")[0]
+            tokens.extend(line.split())
+        if tokens and tokens[0].upper().endswith("OFF"):
+            tokens = tokens[1:]
+        nv, nf = int(tokens[0]), int(tokens[1])
+        at = 3
+        for _ in range(nv):
+            pts.append(tuple(float(x) for x in tokens[at:at + 3]))
+            at += 3
+        for _ in range(nf):
+            k = int(tokens[at])
+            faces.append([int(x) for x in tokens[at + 1:at + 1 + k]])
+            at += 1 + k
+    elif ext == ".obj":
+        for line in text.splitlines():
+            p = line.split()
+            if not p:
+                continue
+            if p[0] == "v":
+                pts.append(tuple(float(x) for x in p[1:4]))
+            elif p[0] == "f":
+                faces.append([int(x.split("/")[0]) - 1 for x in p[1:]])
+    elif ext == ".ply":
+        lines = text.splitlines()
+        nv = nf = 0
+        i = 0
+        while lines[i].strip() != "end_header":
+            w = lines[i].split()
+            if w[:2] == ["element", "vertex"]:
+                nv = int(w[2])
+            if w[:2] == ["element", "face"]:
+                nf = int(w[2])
+            i += 1
+        i += 1
+        for k in range(nv):
+            pts.append(tuple(float(x) for x in lines[i + k].split()[:3]))
+        for k in range(nf):
+            w = lines[i + nv + k].split()
+            faces.append([int(x) for x in w[1:1 + int(w[0])]])
+    tris = []
+    for f in faces:
+        for j in range(1, len(f) - 1):
+            tris.append((pts[f[0]], pts[f[j]], pts[f[j + 1]]))
+    return tris
 
 
-def bench_row(args, row, index):
-    bench = os.path.join(args.build, "bin", "bench_nonconvex")
+def diagonal(tris):
+    lo = [min(p[k] for t in tris for p in t) for k in range(3)]
+    hi = [max(p[k] for t in tris for p in t) for k in range(3)]
+    return sum((hi[k] - lo[k]) ** 2 for k in range(3)) ** 0.5
+
+
+def write_binary_stl(tris, path):
+    with open(path, "wb") as f:
+        f.write(b"minksum bench: binary STL for Manifold".ljust(80, b" "))
+        f.write(struct.pack("<I", len(tris)))
+        for t in tris:
+            f.write(struct.pack("<12fH", 0.0, 0.0, 0.0, *t[0], *t[1], *t[2], 0))
+
+
+def split_row(row):
+    """A:B at the first ':' that starts a catalog name (a letter after it)."""
+    for m in re.finditer(":", row):
+        rest = row[m.start() + 1:]
+        if rest[:1].isalpha() and not re.match(r"^(scale|rot|translate|neg)\b", rest):
+            head = row[:m.start()]
+            if head:
+                return head, rest
+    fail("'%s' is not A:B" % row, 2)
+
+
+# ---------------------------------------------------------------------------
+
+def bench_row(args, a, b, index, label, triangles):
     minksum = os.path.join(args.build, "bin", "minksum")
-    argv = [bench, "--json", "--side", "minksum", "--reps", str(args.reps), row]
-    mine = one_json(run(argv)[0], argv)
-    ours = dict(mine["minksum"], threads=mine["threads"])
-    a, b = mine["a"], mine["b"]  # the row split as bench_nonconvex splits it
-    argv = [bench, "--json", "--side", "cgal", row]
-    out, _, wall = run(argv, timeout=args.timeout)
-    cgal = one_json(out, argv)["cgal"] if out is not None else None
-    stl_a = os.path.join(args.work, "row%d-a.stl" % index)
-    stl_b = os.path.join(args.work, "row%d-b.stl" % index)
-    moved = max(write_stl(minksum, a, stl_a), write_stl(minksum, b, stl_b))
-    argv = ["node", os.path.join(HERE, "manifold.mjs"), stl_a, stl_b, "--reps", str(args.reps)]
-    theirs = one_json(run(argv)[0], argv)
-    # The exact sum of the float operands Manifold was given (untimed).
-    argv = [minksum, "sum", stl_a, stl_b, "--json"]
-    floats = one_json(run(argv)[0], argv)
-    exact = Fraction(ours["volume"])
-    return {
-        "row": row, "a": a, "b": b, "vertices_b": mine["vertices_b"],
-        "minksum": ours, "cgal": cgal, "cgal_wall": wall, "manifold": theirs, "exact": exact, "moved": moved,
-        "floats": {"volume": Fraction(floats["volume"]), "vertices": floats["vertices"]},
-    }
+    bench = os.path.join(args.build, "bin", "bench_nonconvex")
+    work = args.work
+    out_stl = os.path.join(work, "row%d-sum.stl" % index)
+    argv = [minksum, "sum", a, b, "-o", out_stl, "--binary", "--json"]
+    runs = []
+    report = None
+    for r in range(args.reps):
+        status, wall, cpu, peak, err = timed(argv, os.path.join(work, "row%d-minksum.json" % index),
+                                             args.minksum_timeout)
+        if status is None:
+            return {"label": label, "refused": "minksum stopped after %d s" % args.minksum_timeout}
+        if status in (1, 3):  # not a solid (3), or a sum that could not be written (1): reported as is
+            return {"label": label, "refused": err.strip().splitlines()[-1] if err.strip() else "exit %d" % status}
+        if status != 0:
+            fail("%s exited with %d: %s" % (" ".join(argv), status, err.strip()))
+        runs.append((wall, cpu, peak))
+        with open(os.path.join(work, "row%d-minksum.json" % index)) as f:
+            report = report or one_json(f.read(), argv)
+        m = re.search(r"largest displacement ([0-9.eE+-]+)", err)
+        moved = float(m.group(1)) if m else 0.0
+        if wall > 2:
+            break
+    runs.sort()
+    wall, cpu, peak = runs[len(runs) // 2]
+    peak = max(r[2] for r in runs)
+    reps = len(runs)
+    # The written file, checked by CGAL.
+    argv = [bench, "--check", out_stl]
+    _, out, _, _ = run(argv)
+    chk = one_json(out, argv)
+    exact = Fraction(report["volume"])
+    # Manifold on float operands.
+    stl = []
+    for k, spec in enumerate((a, b)):
+        path = os.path.join(work, "row%d-%s.stl" % (index, "ab"[k]))
+        if os.path.isfile(spec):
+            write_binary_stl(read_triangles(spec), path)
+        else:
+            run([minksum, "gen", spec, "-o", path, "--binary"])
+        stl.append(path)
+    argv = ["node", os.path.join(HERE, "manifold.mjs"), stl[0], stl[1], "--reps", str(reps)]
+    status, out, err, _ = run(argv, timeout=args.manifold_timeout, allow=(0, 3))
+    theirs = None
+    if status == 0:
+        theirs = one_json(out, argv)
+    elif status is None:
+        theirs = {"timeout": args.manifold_timeout}
+    else:
+        theirs = {"error": err.strip()}
+    # CGAL on the exact operands.
+    argv = [bench, "--json", "--side", "cgal", a + "|" + b]
+    status, out, _, cgal_wall = run(argv, timeout=args.timeout)
+    cgal = one_json(out, argv)["cgal"] if status == 0 else None
+    return {"label": label, "a": a, "b": b, "triangles": triangles, "wall": wall, "cpu": cpu, "peak": peak,
+            "reps": reps, "report": report, "check": chk, "exact": exact, "moved": moved, "manifold": theirs,
+            "cgal": cgal, "cgal_wall": cgal_wall}
 
 
 def fmt_s(x):
@@ -116,39 +282,89 @@ def fmt_s(x):
 
 
 def relative(value, exact):
-    """(value − exact) / exact for a double value and an exact Fraction, "0" when equal."""
     d = (Fraction(value) - exact) / exact
     return "0" if d == 0 else "%+.1e" % float(d)
 
 
 def table(results, timeout):
-    head = ("| A ⊕ B | V(B) | minksum s (decompose / pairs / union / boundary) | CGAL minkowski_sum_3 s | CGAL / minksum "
-            "| Manifold minkowskiSum s | Manifold / minksum | exact volume | Manifold volume | relative difference "
-            "| relative difference, float operands | vertices: exact / float operands / Manifold "
-            "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n")
+    head = ("| A ⊕ B | triangles of A | minksum wall s (CPU s) | pairs / union / boundary s | pieces kept facets / culled "
+            "| peak MiB | Manifold s | Manifold / minksum | CGAL s | CGAL / minksum | exact volume "
+            "| written STL: closed, no self-intersection; volume − exact (relative); largest displacement "
+            "| Manifold volume − exact (relative) |\n"
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n")
     rows = []
+    refused = []
     for r in results:
-        o, c, m = r["minksum"], r["cgal"], r["manifold"]
+        if "refused" in r:
+            refused.append("* %s: %s" % (r["label"], r["refused"] if r["refused"].startswith("minksum stopped")
+                                         else "minksum: `%s`" % r["refused"]))
+            continue
+        o, m, c = r["report"], r["manifold"], r["cgal"]
+        ph = o.get("phases", {})
+        phases = "%s / %s / %s" % (fmt_s(ph.get("pairs", 0)), fmt_s(ph.get("union", 0)), fmt_s(ph.get("boundary", 0))) \
+            if "union" in ph else "convex path"
+        kept = "%d / %d" % (o.get("candidate_facets", 0), o.get("culled_facets", 0)) if "culled_facets" in o else "—"
+        if m is None or "error" in m:
+            man, mratio, mvol = "failed: %s" % (m or {}).get("error", "?")[:80], "—", "—"
+        elif m.get("timeout"):
+            man, mratio, mvol = "> %d" % m["timeout"], "> %.1f×" % (m["timeout"] / r["wall"]), "—"
+        else:
+            man = fmt_s(m["seconds"])
+            mratio = "%.2f×" % (m["seconds"] / r["wall"])
+            mvol = relative(m["volume"], r["exact"])
         if c is None:
-            cgal, ratio = "> %d" % timeout, "> %.1f×" % (timeout / o["seconds"])
+            q = timeout / r["wall"]
+            cg, cratio = "> %d" % timeout, ("> %.0f×" if q >= 10 else "> %.1f×") % q
         else:
             same = Fraction(c["volume"]) == r["exact"]
-            cgal = fmt_s(c["seconds"]) + ("" if same else " (volume DIFFERS)")
-            ratio = "%.1f×" % (c["seconds"] / o["seconds"])
-        rows.append("| %s ⊕ %s | %d | %s (%s / %s / %s / %s) | %s | %s | %s | %.2f× | %.9g | %.9g | %s | %s | %d / %d / %d |" % (
-            r["a"], r["b"], r["vertices_b"], fmt_s(o["seconds"]), fmt_s(o["decompose"]), fmt_s(o["pairs_s"]),
-            fmt_s(o["union"]), fmt_s(o["boundary"]), cgal, ratio, fmt_s(m["seconds"]), m["seconds"] / o["seconds"],
-            float(r["exact"]), m["volume"], relative(m["volume"], r["exact"]), relative(m["volume"], r["floats"]["volume"]),
-            o["vertices"], r["floats"]["vertices"], m["vertices"]))
-    return head + "\n".join(rows) + "\n"
+            cg = fmt_s(c["seconds"]) + ("" if same else " (volume DIFFERS)")
+            cratio = "%.1f×" % (c["seconds"] / r["wall"])
+        k = r["check"]
+        ok = "yes" if k["closed"] and not k["self_intersects"] and k["outward"] else "NO (%s)" % json.dumps(k)
+        wvol = relative(Fraction(k["volume"]), r["exact"]) if k["volume"] else "—"
+        rows.append("| %s | %d | %s (%s) | %s | %s | %.0f | %s | %s | %s | %s | %.9g | %s; %s; %.2g | %s |" % (
+            r["label"], r["triangles"], fmt_s(r["wall"]), fmt_s(r["cpu"]), phases, kept, r["peak"], man, mratio, cg,
+            cratio, float(r["exact"]), ok, wvol, r["moved"], mvol))
+    return head + "\n".join(rows) + "\n" + ("\n" + "\n".join(refused) + "\n" if refused else "")
+
+
+def targets(results, timeout):
+    ok = [r for r in results if "refused" not in r]
+    lines = []
+    big = [r for r in ok if r["triangles"] >= 1024 and r["manifold"] and "seconds" in r["manifold"]]
+    met = [r for r in big if r["manifold"]["seconds"] >= 10 * r["wall"]]
+    lines.append("* ≥ 10× faster than Manifold on every row of ≥ 1 024 triangles: %d of %d rows%s." % (
+        len(met), len(big), "" if len(met) == len(big) else " (not met)"))
+    timed_rows = [r for r in ok if r["manifold"] and "seconds" in r["manifold"]]
+    faster = [r for r in timed_rows if r["manifold"]["seconds"] > r["wall"]]
+    lines.append("* faster than Manifold: %d of %d rows." % (len(faster), len(timed_rows)))
+    finished = [r for r in ok if r["cgal"] is not None]
+    hundred = [r for r in finished if r["cgal"]["seconds"] >= 100 * r["wall"]]
+    lines.append("* ≥ 100× faster than CGAL where CGAL finished within %d s: %d of %d rows; CGAL's volume equal to "
+                 "minksum's on %d of them." % (timeout, len(hundred), len(finished),
+                                               sum(Fraction(r["cgal"]["volume"]) == r["exact"] for r in finished)))
+    largest = [r for r in ok if r["label"].startswith("torus:256:128")]
+    for r in largest:
+        lines.append("* the 65 536-triangle torus: %s s wall, %.0f MiB peak (targets ≤ 10 s, ≤ 4 096 MiB)." % (
+            fmt_s(r["wall"]), r["peak"]))
+    valid = [r for r in ok if r["check"]["closed"] and not r["check"]["self_intersects"] and r["check"]["outward"]]
+    lines.append("* written STL closed, outward and without self-intersection (CGAL): %d of %d rows." % (len(valid), len(ok)))
+    return "\n".join(lines) + "\n"
 
 
 def main():
+    if hasattr(sys, "set_int_max_str_digits"):
+        sys.set_int_max_str_digits(0)  # exact volumes of thousands of digits
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("rows", nargs="*", default=DEFAULT_ROWS, help="A:B catalog specs")
+    ap.add_argument("rows", nargs="*", help="A:B catalog specs (default: the torus family and the catalog rows)")
     ap.add_argument("--build", default="build-bench", help="build directory with bin/bench_nonconvex and bin/minksum")
     ap.add_argument("--reps", type=int, default=3, help="runs of minksum and of Manifold per row (median)")
     ap.add_argument("--timeout", type=int, default=120, help="seconds after which CGAL's run is stopped")
+    ap.add_argument("--manifold-timeout", type=int, default=1800, help="seconds after which Manifold's run is stopped")
+    ap.add_argument("--resume", action="store_true",
+                    help="reuse the rows a previous run with the same --work finished (their saved results)")
+    ap.add_argument("--minksum-timeout", type=int, default=1800, help="seconds after which minksum's run is stopped")
+    ap.add_argument("--meshes", help="a directory of mesh files: each ⊕ a ball of 2 %% of its bounding-box diagonal")
     ap.add_argument("--work", help="directory for the operands' STL files (default BUILD/nonconvex)")
     ap.add_argument("--page", help="write the page here (e.g. docs/generated/benchmarks-nonconvex.md)")
     ap.add_argument("--command", default="/usr/bin/python3 bench/nonconvex/run.py",
@@ -156,55 +372,97 @@ def main():
     args = ap.parse_args()
     if args.reps < 1 or args.timeout < 1:
         fail("--reps and --timeout need positive integers", 2)
+    if args.meshes and not os.path.isdir(args.meshes):
+        fail("--meshes: %s is not a directory" % args.meshes, 2)
     args.work = args.work or os.path.join(args.build, "nonconvex")
     os.makedirs(args.work, exist_ok=True)
+    args.reused = 0
+    jobs = []
+    for row in args.rows or DEFAULT_ROWS:
+        a, b = split_row(row)
+        m = re.match(r"^torus:(\d+):(\d+)", a)
+        tri = 2 * int(m.group(1)) * int(m.group(2)) if m else 0
+        jobs.append((a, b, "%s ⊕ %s" % (a, b), tri))
+    if args.meshes:
+        for name in sorted(os.listdir(args.meshes)):
+            path = os.path.join(args.meshes, name)
+            if not name.lower().endswith(MESH_EXTENSIONS) or not os.path.isfile(path):
+                continue
+            try:
+                tris = read_triangles(path)
+            except (ValueError, IndexError, struct.error) as e:
+                jobs.append((path, None, name, 0, "not read by this script: %s" % e))
+                continue
+            r = 0.02 * diagonal(tris)
+            ball = "sphere:2@scale:%.4g" % r
+            jobs.append((path, ball, "%s ⊕ %s" % (name, ball), len(tris)))
     load_start = " ".join(open("/proc/loadavg").read().split()[:3])
     started = time.perf_counter()
     results = []
-    for i, row in enumerate(args.rows):
-        sys.stderr.write("run.py: %s\n" % row)
-        results.append(bench_row(args, row, i))
+    for i, job in enumerate(jobs):
+        sys.stderr.write("run.py: %s\n" % job[2])
+        if job[1] is None:
+            results.append({"label": job[2], "refused": job[4]})
+            continue
+        a, b, label, tri = job
+        cache = os.path.join(args.work, "result-%s.json" % re.sub(r"[^A-Za-z0-9.@:_-]+", "_", label))
+        if args.resume and os.path.isfile(cache):
+            args.reused += 1
+            with open(cache) as f:
+                r = json.load(f)
+            if "exact" in r:
+                r["exact"] = Fraction(r["exact"])
+            results.append(r)
+            continue
+        if not tri:
+            # A catalog solid: its triangles as minksum writes them.
+            path = os.path.join(args.work, "count%d.stl" % i)
+            run([os.path.join(args.build, "bin", "minksum"), "gen", a, "-o", path, "--binary"])
+            tri = len(read_triangles(path))
+        results.append(bench_row(args, a, b, i, label, tri))
+        with open(cache, "w") as f:
+            json.dump(results[-1], f, default=str)
     wall = time.perf_counter() - started
     load_end = " ".join(open("/proc/loadavg").read().split()[:3])
     md = table(results, args.timeout)
-    sys.stdout.write(md)
+    sys.stdout.write(md + "\n" + targets(results, args.timeout))
     sys.stdout.flush()
     if args.page:
         write_page(args, results, md, load_start, load_end, wall)
 
 
 def write_page(args, results, md, load_start, load_end, wall):
-    manifold = results[0]["manifold"]["manifold"] if results else "?"
+    done = [r for r in results if "refused" not in r and r["manifold"] and "manifold" in r["manifold"]]
+    manifold = done[0]["manifold"]["manifold"] if done else "?"
     node = subprocess.run(["node", "--version"], capture_output=True, text=True).stdout.strip()
-    threads = results[0]["minksum"].get("threads", os.cpu_count()) if results else os.cpu_count()
-    moved = max((r["moved"] for r in results), default=0.0)
-    text = """# Non-convex sums: minksum, CGAL's minkowski_sum_3 and Manifold's minkowskiSum
+    text = """# Non-convex sums: minksum, Manifold's minkowskiSum and CGAL's minkowski_sum_3
 
 <!-- Generated by `{command}` (bench/nonconvex/run.py, bench/nonconvex/main.cpp, bench/nonconvex/manifold.mjs). Do not edit by hand: every figure below comes from that command. -->
 
-Generated by `{command}` on {date}, {wall:.0f} s in all, on {machine} with {cpus} hardware threads,
-load average {load_start} at the start and {load_end} at the end (other builds ran beside it:
-absolute times are inflated, the three columns alike).
+Generated by `{command}` on {date}, {wall:.0f} s in all{reused}, on {machine} with {cpus} hardware threads,
+load average {load_start} at the start and {load_end} at the end.
 Method and reading of the columns: [docs/nonconvex.md](../nonconvex.md), "Speed".
 
-* minksum: `minkowski_sum_nonconvex` on the exact operands, the median of {reps} runs in one process
-  (`bench_nonconvex --side minksum --reps {reps}`), pairs summed on every hardware thread; the phases are those of
-  the median run.
-* CGAL: `minkowski_sum_3` on the same exact operands as Nef polyhedra, once, in a process of its own stopped
-  after {timeout} s; every row it finished has exactly minksum's volume unless the cell says otherwise.
-* Manifold: `Manifold.minkowskiSum` of manifold-3d {manifold} (WebAssembly, one thread) under Node {node},
-  the median of {reps} runs on operands built afresh each time (`bench/nonconvex/manifold.mjs`). Its operands
-  are the exact ones rounded to the nearest floats (its JavaScript API takes `Float32Array` vertices): no vertex
-  moved by more than {moved:.2g}.
-* exact volume: minksum's exact rational volume rounded to a double; relative difference:
-  (Manifold − exact) / exact. The next column compares Manifold's volume with the exact volume of the sum of
-  the float operands it was given (`minksum sum A.stl B.stl`, untimed), which separates Manifold's own error
-  from the rounding of its input; the vertex counts are those of the exact boundary (merged coplanar
-  facets), the same for the float operands, and Manifold's triangle mesh.
+* minksum: the whole process `minksum sum A B -o OUT.stl --binary --json` as a user runs it (reading,
+  validation, the sum on every hardware thread, the rounded write), the median wall time of up to {reps}
+  runs (one when a run takes over 2 s), its CPU time (user + system) and peak memory; the phases are the
+  sum's own.
+* the written STL: read back and checked by CGAL's Polygon_mesh_processing on exact points (closed, outward,
+  no self-intersection), its exact volume against the exact sum's, and the largest displacement minksum's
+  rounding reported.
+* Manifold: `Manifold.minkowskiSum` of manifold-3d {manifold} (WebAssembly, one thread) under Node {node}, on
+  the operands as float STL, only the call timed, the median of as many runs as minksum's.
+* CGAL: `minkowski_sum_3` on the same exact operands as Nef polyhedra, once, stopped after {timeout} s.
 
-{md}""".format(command=args.command, date=datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
-               wall=wall, machine=platform.machine(), cpus=threads, load_start=load_start, load_end=load_end,
-               reps=args.reps, timeout=args.timeout, manifold=manifold, node=node, moved=moved, md=md)
+{md}
+## Targets (docs/nonconvex.md, "Speed")
+
+{targets}""".format(command=args.command, date=datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+                    wall=wall, reused="" if not args.reused else
+                    " (%d rows measured by earlier runs of the same command in the same --work directory and reused "
+                    "with --resume)" % args.reused, machine=platform.machine(), cpus=os.cpu_count(), load_start=load_start,
+                    load_end=load_end, reps=args.reps, timeout=args.timeout, manifold=manifold, node=node, md=md,
+                    targets=targets(results, args.timeout))
     tmp = args.page + ".tmp"
     try:
         with open(tmp, "w") as f:

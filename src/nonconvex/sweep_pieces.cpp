@@ -7,6 +7,7 @@
 
 #include "nonconvex/sweep.hpp"
 
+#include <cstdint>
 #include <map>
 #include <stdexcept>
 
@@ -113,14 +114,27 @@ int line_meets(const Point3& q, const Point3& r, const Point3& a, const Point3& 
 }  // namespace
 
 bool SurfaceCones::strictly_inside(const Point3& q) const {
-  // Rays in fixed directions with large co-prime integer components, tried in
-  // turn until one meets no edge or vertex of the surface (a finite set of
-  // directions is excluded for each triangle, so one of the first few does).
+  // Rays in directions with large co-prime integer components, tried in turn
+  // until one meets no edge or vertex of the surface and lies in no
+  // triangle's plane: each triangle excludes the directions of a few planes
+  // through q, so almost every direction is generic.  The first eight are
+  // fixed; then directions of a fixed pseudo-random sequence (splitmix64),
+  // up to 256 in all.
   static const long kDirections[][3] = {{1000003, 7919, 104729},    {-7927, 1000033, 130363},
                                         {15485863, -2750159, 7},   {-104723, -5381, 1299709},
                                         {611953, 1000037, -49979687}, {3, -32452843, 86028121},
                                         {-982451653, 67867967, 1},  {2038074743, 3, -179424673}};
-  for (const auto& dir : kDirections) {
+  std::uint64_t state = 0x6d696e6b73756dULL;
+  auto next = [&state] {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return long((z ^ (z >> 31)) >> 33) - (long(1) << 30);  // in [-2^30, 2^30)
+  };
+  for (int attempt = 0; attempt < 256; ++attempt) {
+    long dir[3];
+    for (int k = 0; k < 3; ++k) dir[k] = attempt < 8 ? kDirections[attempt][k] : next();
+    if (dir[0] == 0 && dir[1] == 0 && dir[2] == 0) continue;
     const Point3 d{Rational(dir[0]), Rational(dir[1]), Rational(dir[2])};
     const Point3 r = q + d;
     bool inside = false, generic = true;

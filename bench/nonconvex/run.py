@@ -423,6 +423,12 @@ def main():
         with open(cache, "w") as f:
             json.dump(results[-1], f, default=str)
     wall = time.perf_counter() - started
+    if args.meshes:
+        # Messages name the directory as the command line does: DIR.
+        for r in results:
+            if "refused" in r:
+                for d in (os.path.abspath(args.meshes), os.path.normpath(args.meshes), args.meshes):
+                    r["refused"] = r["refused"].replace(d.rstrip("/") + "/", "DIR/")
     load_end = " ".join(open("/proc/loadavg").read().split()[:3])
     md = table(results, args.timeout)
     sys.stdout.write(md + "\n" + targets(results, args.timeout))

@@ -28,7 +28,8 @@ standard input) holds one pair per line, either as a JSON object
 two names separated by white space
     parts/gear.off tools/ball.stl
 A and B are files ({formats}) or catalog names, as for 'minksum sum'.  Empty
-lines and lines starting with '#' are skipped.
+lines and lines starting with '#' are skipped; nothing but white space may
+follow a JSON object, and no line may hold a NUL byte.
 
 Options:
   --threads N        compute on N threads (default: one per hardware thread)
@@ -104,6 +105,9 @@ std::vector<Pair> read_pairs(std::istream& in, const std::string& file, Method m
       }
       if (!has_a || !has_b) parser.fail(std::string("missing \"") + (has_a ? "b" : "a") + "\"");
     } else {
+      // No name holds a NUL byte (the JSON form refuses it too).
+      if (const std::size_t nul = text.find('\0'); nul != std::string::npos)
+        parser.fail("a NUL byte at column " + std::to_string(nul + 1));
       std::istringstream words(text);
       std::string extra;
       if (!(words >> p.a >> p.b)) parser.fail("expected two names A B or a JSON object");

@@ -17,8 +17,10 @@ struct JsonMember {
 };
 
 // One JSON object {"key": value, ...} with string and boolean values (a
-// line of 'minksum batch', the body of a request to 'minksum play').  Throws
-// InputError(file, place, problem).
+// line of 'minksum batch', the body of a request to 'minksum play'): nothing
+// but JSON white space may follow the closing brace, and a NUL byte is
+// refused wherever it stands (JSON has no unescaped NUL; "\u0000" is refused
+// too, no name holds one).  Throws InputError(file, place, problem).
 class JsonObjectParser {
  public:
   JsonObjectParser(const std::string& text, const std::string& file, const std::string& place)
@@ -31,15 +33,16 @@ class JsonObjectParser {
       ++i_;
     } else {
       for (;;) {
-        std::string key = string();
+        JsonMember m;
+        m.key = string();
         expect(':');
-        JsonMember m{key, "", peek() == '"'};
+        m.is_string = peek() == '"';
         if (m.is_string) m.value = string();
         else if (word("true")) m.value = "true";
         else if (word("false")) m.value = "false";
-        else fail("the value of \"" + key + "\" is not a string or a boolean");
+        else fail("the value of \"" + m.key + "\" is not a string or a boolean");
         for (const auto& other : out)
-          if (other.key == key) fail("\"" + key + "\" given twice");
+          if (other.key == m.key) fail("\"" + m.key + "\" given twice");
         out.push_back(std::move(m));
         if (peek() == ',') {
           ++i_;
@@ -49,19 +52,26 @@ class JsonObjectParser {
         break;
       }
     }
-    if (peek() != '\0') fail("text after the JSON object");
+    if (peek() != kEnd) fail("text after the JSON object at column " + std::to_string(i_ + 1));
     return out;
   }
 
   [[noreturn]] void fail(const std::string& problem) const { throw InputError(file_, place_, problem); }
 
  private:
-  char peek() {
+  static constexpr int kEnd = -1;  // peek() at the end of the text
+
+  // The next character after JSON white space, as an unsigned char, or kEnd.
+  // A NUL byte there is refused: it is no JSON token.
+  int peek() {
     while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\t' || s_[i_] == '\r' || s_[i_] == '\n')) ++i_;
-    return i_ < s_.size() ? s_[i_] : '\0';
+    if (i_ >= s_.size()) return kEnd;
+    if (s_[i_] == '\0') fail("a NUL byte at column " + std::to_string(i_ + 1));
+    return static_cast<unsigned char>(s_[i_]);
   }
   void expect(char c) {
-    if (peek() != c) fail(std::string("expected '") + c + "' at column " + std::to_string(i_ + 1));
+    if (peek() != static_cast<unsigned char>(c))
+      fail(std::string("expected '") + c + "' at column " + std::to_string(i_ + 1));
     ++i_;
   }
   bool word(const char* w) {
@@ -107,12 +117,14 @@ class JsonObjectParser {
       if (i_ >= s_.size()) fail("unterminated string");
       const char c = s_[i_++];
       if (c == '"') return out;
+      if (c == '\0') fail("a NUL byte at column " + std::to_string(i_));
       if (static_cast<unsigned char>(c) < 0x20) fail("control character in a string");
       if (c != '\\') {
         out += c;
         continue;
       }
       if (i_ >= s_.size()) fail("unterminated string");
+      if (s_[i_] == '\0') fail("a NUL byte at column " + std::to_string(i_ + 1));
       switch (const char e = s_[i_++]) {
         case '"': case '\\': case '/': out += e; break;
         case 'b': out += '\b'; break;

@@ -159,6 +159,37 @@ TEST_F(Batch, MalformedLinesAreBadInputBeforeAnyWork) {
   }
 }
 
+// Nothing but white space after the JSON object, and no NUL byte anywhere:
+// exit 3 before any work, one line naming the file, the line and the problem.
+TEST_F(Batch, TrailingNulGarbageRefused) {
+  using namespace std::string_literals;
+  const std::pair<std::string, std::string> cases[] = {
+      {"{\"a\": \"cube\", \"b\": \"tetra\"}\0garbage\n"s, "line 2: a NUL byte at column 28"},
+      {"{\"a\": \"cube\", \"b\": \"tetra\"}\0\n"s, "line 2: a NUL byte at column 28"},
+      {"{\"a\": \"cube\", \"b\": \"tetra\"}  \0\n"s, "line 2: a NUL byte at column 30"},
+      {"{\"a\": \"cube\", \"b\": \"tetra\"}garbage\n"s, "line 2: text after the JSON object at column 28"},
+      {"{\"a\": \"cube\", \"b\": \"tetra\"} {}\n"s, "line 2: text after the JSON object at column 29"},
+      {"{\"a\": \"cu\0be\", \"b\": \"tetra\"}\n"s, "line 2: a NUL byte at column 10"},
+      {"{\"a\": \"cube\\\0\", \"b\": \"tetra\"}\n"s, "line 2: a NUL byte at column 13"},
+      {"{\"a\": \"cube\",\0 \"b\": \"tetra\"}\n"s, "line 2: a NUL byte at column 14"},
+      {"cube tetra\0garbage\n"s, "line 2: a NUL byte at column 11"},
+      {"cube\0 tetra\n"s, "line 2: a NUL byte at column 5"},
+  };
+  for (const auto& [line, message] : cases) {
+    SCOPED_TRACE(line);
+    const fs::path file = write("pairs.jsonl", "cube tetra\n" + line + "cube octahedron\n");
+    const CmdResult r = run("batch " + file.string());
+    EXPECT_EQ(r.status, 3);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+    EXPECT_NE(r.err.find(file.string() + ": " + message), std::string::npos) << r.err;
+  }
+  // White space after the object (a CRLF line too) is no garbage.
+  const CmdResult ok = run("batch", "{\"a\": \"cube\", \"b\": \"tetra\"} \t \r\n");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_EQ(field(ok.out, "a"), "cube");
+}
+
 TEST_F(Batch, JsonEscapesInNames) {
   const CmdResult r = run("batch", "{\"a\": \"\\u0063ube\", \"b\": \"tet\\u0072a\"}\n");
   ASSERT_EQ(r.status, 0) << r.err;

@@ -5,7 +5,9 @@
 #include <minksum/error.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace minksum::cli {
@@ -20,7 +22,8 @@ struct JsonMember {
 // line of 'minksum batch', the body of a request to 'minksum play'): nothing
 // but JSON white space may follow the closing brace, and a NUL byte is
 // refused wherever it stands (JSON has no unescaped NUL; "\u0000" is refused
-// too, no name holds one).  Throws InputError(file, place, problem).
+// too, no name holds one).  Linear in the length of the text, however many
+// keys it has.  Throws InputError(file, place, problem).
 class JsonObjectParser {
  public:
   JsonObjectParser(const std::string& text, const std::string& file, const std::string& place)
@@ -41,8 +44,6 @@ class JsonObjectParser {
         else if (word("true")) m.value = "true";
         else if (word("false")) m.value = "false";
         else fail("the value of \"" + m.key + "\" is not a string or a boolean");
-        for (const auto& other : out)
-          if (other.key == m.key) fail("\"" + m.key + "\" given twice");
         out.push_back(std::move(m));
         if (peek() == ',') {
           ++i_;
@@ -52,6 +53,7 @@ class JsonObjectParser {
         break;
       }
     }
+    check_unique_keys(out);
     if (peek() != kEnd) fail("text after the JSON object at column " + std::to_string(i_ + 1));
     return out;
   }
@@ -60,6 +62,26 @@ class JsonObjectParser {
 
  private:
   static constexpr int kEnd = -1;  // peek() at the end of the text
+
+  // Fails on the first member (in order) whose key an earlier one has: an
+  // open-addressing hash table of member indices, expected constant time per key.
+  void check_unique_keys(const std::vector<JsonMember>& members) const {
+    if (members.size() < 2) return;
+    constexpr std::size_t kFree = std::size_t(-1);
+    std::size_t mask = 1;
+    while (mask < 2 * members.size()) mask <<= 1;
+    std::vector<std::size_t> slot(mask--, kFree);
+    for (std::size_t i = 0; i < members.size(); ++i) {
+      const std::string& key = members[i].key;
+      for (std::size_t h = std::hash<std::string_view>{}(key) & mask;; h = (h + 1) & mask) {
+        if (slot[h] == kFree) {
+          slot[h] = i;
+          break;
+        }
+        if (members[slot[h]].key == key) fail("\"" + key + "\" given twice");
+      }
+    }
+  }
 
   // The next character after JSON white space, as an unsigned char, or kEnd.
   // A NUL byte there is refused: it is no JSON token.
@@ -119,8 +141,11 @@ class JsonObjectParser {
       if (c == '"') return out;
       if (c == '\0') fail("a NUL byte at column " + std::to_string(i_));
       if (static_cast<unsigned char>(c) < 0x20) fail("control character in a string");
-      if (c != '\\') {
-        out += c;
+      if (c != '\\') {  // with the plain characters after it, at once
+        std::size_t end = i_;
+        while (end < s_.size() && s_[end] != '"' && s_[end] != '\\' && static_cast<unsigned char>(s_[end]) >= 0x20) ++end;
+        out.append(s_, i_ - 1, end - i_ + 1);
+        i_ = end;
         continue;
       }
       if (i_ >= s_.size()) fail("unterminated string");

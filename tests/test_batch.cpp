@@ -6,9 +6,11 @@
 #include "shell.hpp"
 
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -157,6 +159,29 @@ TEST_F(Batch, MalformedLinesAreBadInputBeforeAnyWork) {
     EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
     EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
   }
+}
+
+// A line of 10^6 keys (about 14 MB), the last a duplicate of the first, is
+// refused ("k0" given twice: the whole line was read) in linear time.  The
+// parser used to compare each key with every key before it: 47 s for 160 000
+// keys, about half an hour for these.  The command runs under `timeout` so
+// that such code fails here in 30 s instead of hanging the suite; linear
+// parsing takes well under a second, the 10 s bound leaves room for a loaded
+// machine or a sanitizer build.
+TEST_F(Batch, MillionKeyLineIsLinear) {
+  std::string line = "{";
+  for (int k = 0; k < 1000000; ++k) line += "\"k" + std::to_string(k) + "\": \"x\", ";
+  line += "\"k0\": \"x\"}\n";
+  const fs::path file = write("keys.jsonl", "cube tetra\n" + line);
+  const auto t0 = std::chrono::steady_clock::now();
+  const CmdResult r = run("batch " + file.string() + " --threads 1", "");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::cout << "a line of 10^6 keys refused in " << seconds << " s\n";
+  EXPECT_LT(seconds, 10.0);
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(lines(r.err).size(), 1u) << r.err.substr(0, 300);
+  EXPECT_NE(r.err.find(file.string() + ": line 2: \"k0\" given twice"), std::string::npos) << r.err.substr(0, 300);
 }
 
 // Nothing but white space after the JSON object, and no NUL byte anywhere:

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "json_object.hpp"
+#include "text.hpp"
 
 namespace minksum::cli {
 
@@ -47,7 +48,8 @@ A pair that fails (a missing or bad file, an unknown catalog name) gets
 
 Exit status: 0 when every pair succeeded; otherwise 3 if a pair had bad input
 data, else 2, with one line on stderr counting the failed pairs and naming
-the first.  A malformed line of FILE itself (bad JSON, a missing "a") is bad
+the first (control characters and bytes that are not UTF-8 escaped, as in
+every message).  A malformed line of FILE itself (bad JSON, a missing "a") is bad
 input: exit status 3 before anything is computed, nothing printed.
 )";
 
@@ -192,9 +194,12 @@ int run_batch(const std::vector<std::string>& argv) {
   }
   std::cout.flush();
   if (!std::cout) throw OutputError("cannot write the results to standard output");
+  // The names in it are escaped as in every message (printable): no control
+  // character or byte that is not UTF-8 reaches the terminal.
   if (first)
     std::cerr << "minksum: batch: " << failed << " of " << pairs.size() << " pairs failed; the first, "
-              << (file == "-" ? "<stdin>" : file) << " line " << first_pair->line << ": " << first->error << "\n";
+              << printable(file == "-" ? "<stdin>" : file) << " line " << first_pair->line << ": "
+              << printable(first->error) << "\n";
   return status;
 }
 

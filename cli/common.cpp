@@ -61,6 +61,9 @@ Args parse_args(const std::vector<std::string>& argv, const std::string& command
 }
 
 
+// The content of a JSON string literal of s, valid JSON whatever the bytes of
+// s (a byte that is not UTF-8 becomes U+FFFD) and without a raw control
+// character.
 std::string json_escape(const std::string& s) {
   std::string out;
   for (std::size_t i = 0; i < s.size();) {
@@ -75,7 +78,9 @@ std::string json_escape(const std::string& s) {
     else if (cp == '\\') out += "\\\\";
     else if (cp == '\n') out += "\\n";
     else if (cp == '\t') out += "\\t";
-    else if (cp < 0x20 || cp == 0x7f) {
+    else if (cp < 0x20 || (cp >= 0x7f && cp <= 0x9f) || cp == 0x2028 || cp == 0x2029) {
+      // control characters (C0, DEL, C1: none reaches a terminal showing the
+      // line) and U+2028, U+2029 (line terminators in JavaScript source)
       char buf[8];
       std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(cp));
       out += buf;

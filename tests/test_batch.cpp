@@ -184,6 +184,48 @@ TEST_F(Batch, MillionKeyLineIsLinear) {
   EXPECT_NE(r.err.find(file.string() + ": line 2: \"k0\" given twice"), std::string::npos) << r.err.substr(0, 300);
 }
 
+// Names with control characters and bytes that are not UTF-8: the stderr line
+// escapes them exactly as 'minksum sum' does in its message about the same
+// name (\x1b, \r, \x07, \n, \xff), and the JSON line on stdout stays valid
+// JSON (control characters as \u00XX, the bytes that are not UTF-8 as U+FFFD).
+TEST_F(Batch, ControlCharactersInNamesEscaped) {
+  // ESC [31m, CR, BEL, newline, two bytes that are not UTF-8, a C1 control (U+009B, CSI).
+  const std::string name = (dir_ / "x\x1b[31mred\r\x07\ny\xff\xfe\xc2\x9bz.off").string();
+  std::string json_name;  // the name as a JSON string's content, written by hand
+  for (unsigned char c : name) {
+    if (c == '\x1b') json_name += "\\u001b";
+    else if (c == '\r') json_name += "\\r";
+    else if (c == '\x07') json_name += "\\u0007";
+    else if (c == '\n') json_name += "\\n";
+    else json_name += char(c);
+  }
+  const CmdResult r = run("batch", "{\"a\": \"" + json_name + "\", \"b\": \"tetra\"}\n");
+  EXPECT_EQ(r.status, 3) << r.err;
+  const std::string shown = (dir_ / "x\\x1b[31mred\\r\\x07\\ny\\xff\\xfe\\xc2\\x9bz.off").string();
+  EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+  EXPECT_NE(r.err.find("the first, <stdin> line 1: " + shown + ": "), std::string::npos) << r.err;
+  // 'minksum sum' with the same name (built by printf: the shell's own octal escapes).
+  const std::string dir = dir_.string();
+  const ShellOutput sum = shell_stdout(std::string(MINKSUM_BIN) + " sum \"$(printf '" + dir +
+                                       "/x\\033[31mred\\r\\007\\ny\\377\\376\\302\\233z.off')\" tetra 2>&1");
+  EXPECT_EQ(sum.status, 3) << sum.out;
+  EXPECT_NE(sum.out.find("minksum: " + shown + ": "), std::string::npos) << sum.out;
+  // Neither output holds a control byte but the line ends, nor a byte that is not UTF-8.
+  for (const std::string* text : {&r.err, &r.out}) {
+    for (std::size_t i = 0; i < text->size(); ++i) {
+      const unsigned char c = (*text)[i];
+      EXPECT_TRUE(c >= 0x20 || c == '\n') << "byte " << int(c) << " at " << i;
+      EXPECT_TRUE(c != 0x7f && c != 0xff && c != 0xfe) << "byte " << int(c) << " at " << i;
+      EXPECT_FALSE(c == 0xc2 && i + 1 < text->size() && (unsigned char)(*text)[i + 1] >= 0x80 &&
+                   (unsigned char)(*text)[i + 1] <= 0x9f) << "a C1 control at " << i;
+    }
+  }
+  ASSERT_EQ(lines(r.out).size(), 1u) << r.out;
+  const std::string json_shown = (dir_ / "x\\u001b[31mred\\u000d\\u0007\\ny\\ufffd\\ufffd\\u009bz.off").string();
+  EXPECT_NE(r.out.find("\"a\": \"" + json_shown + "\", \"b\": \"tetra\", \"error\": \""), std::string::npos) << r.out;
+  EXPECT_EQ(field(r.out, "status"), "3");
+}
+
 // Nothing but white space after the JSON object, and no NUL byte anywhere:
 // exit 3 before any work, one line naming the file, the line and the problem.
 TEST_F(Batch, TrailingNulGarbageRefused) {

@@ -3,10 +3,12 @@
 
 #include <minksum/io.hpp>
 
+#include <algorithm>
 #include <ostream>
 #include <string_view>
 
 #include "common.hpp"
+#include "text.hpp"
 
 // The viewer's script bundled with three.js (web/src/viewer.js, bundled by
 // esbuild at build time) and three.js's licence, linked into the command by
@@ -31,14 +33,41 @@ void check_html_path(const std::string& path, const std::string& option) {
     throw UsageError(option + ": the page is an .html file, got '" + path + "'");
 }
 
-std::string json_string(const std::string& s) {
-  // "</" would end the <script> element holding the data.
-  std::string e = json_escape(s), out = "\"";
-  for (std::size_t i = 0; i < e.size(); ++i) {
-    if (e[i] == '<' && i + 1 < e.size() && e[i + 1] == '/') out += "<\\";
-    else out += e[i];
+std::string json_string(const std::string& s) { return "\"" + json_escape(s) + "\""; }
+
+std::string script_safe_json(std::string_view json) {
+  // In JSON text these characters stand only inside strings (no token holds
+  // them), where \uXXXX means the same character.
+  std::string out;
+  out.reserve(json.size());
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (c == '<') out += "\\u003c";
+    else if (c == '>') out += "\\u003e";
+    else if (c == '&') out += "\\u0026";
+    else if (c == '\xe2' && i + 2 < json.size() && json[i + 1] == '\x80' && (json[i + 2] == '\xa8' || json[i + 2] == '\xa9'))
+      out += json[i + 2] == '\xa8' ? "\\u2028" : "\\u2029", i += 2;
+    else out += c;
   }
-  return out + "\"";
+  return out;
+}
+
+std::string html_text(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size();) {
+    char32_t cp = 0;
+    const std::size_t n = utf8_length(s, i, &cp);
+    if (n == 0 || (cp < 0x20 && cp != '\t' && cp != '\n') || (cp >= 0x7f && cp <= 0x9f)) out += "\xef\xbf\xbd";  // U+FFFD
+    else if (cp == '<') out += "&lt;";
+    else if (cp == '>') out += "&gt;";
+    else if (cp == '&') out += "&amp;";
+    else if (cp == '"') out += "&quot;";
+    else if (cp == '\'') out += "&#39;";
+    else out.append(s, i, n);
+    i += std::max<std::size_t>(n, 1);
+  }
+  return out;
 }
 
 std::string origin_names_json() {
@@ -101,13 +130,6 @@ void append_solid_json(std::string& out, const ConvexPolytope& p, const std::str
 std::string page_html(const std::string& title, const std::string& data, bool connect_self) {
   const std::string_view script = asset(minksum_viewer_js, minksum_viewer_js_end);
   const std::string_view licence = asset(minksum_three_licence, minksum_three_licence_end);
-  std::string escaped_title;
-  for (char c : title) {
-    if (c == '<') escaped_title += "&lt;";
-    else if (c == '>') escaped_title += "&gt;";
-    else if (c == '&') escaped_title += "&amp;";
-    else escaped_title += c;
-  }
   // The Content-Security-Policy forbids every request (the page works offline
   // or not at all), but, for a page its own server serves, requests to that server.
   std::string o;
@@ -117,9 +139,9 @@ std::string page_html(const std::string& title, const std::string& data, bool co
        "style-src 'unsafe-inline'; img-src data: blob:";
   if (connect_self) o += "; connect-src 'self'";
   o += "\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
-  o += "<meta name=\"generator\" content=\"minksum\">\n<title>" + escaped_title + "</title></head>\n<body>\n";
+  o += "<meta name=\"generator\" content=\"minksum\">\n<title>" + html_text(title) + "</title></head>\n<body>\n";
   o += "<noscript>This page draws with JavaScript and WebGL.</noscript>\n";
-  o += "<script type=\"application/json\" id=\"minksum-data\">" + data + "</script>\n";
+  o += "<script type=\"application/json\" id=\"minksum-data\">" + script_safe_json(data) + "</script>\n";
   o += "<script>\n/* The viewer of minksum, bundled with three.js (https://threejs.org), whose licence follows.\n\n";
   o += licence;
   o += "*/\n";

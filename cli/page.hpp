@@ -10,6 +10,7 @@
 #include <minksum/transform.hpp>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace minksum::cli {
@@ -31,11 +32,24 @@ void append_solid_json(std::string& out, const ConvexPolytope& p, const std::str
 // "[\"translated\", \"corner\", ...]": FacetOrigin names in enum order.
 std::string origin_names_json();
 
-// A JSON string literal of s (quotes included).
+// A JSON string literal of s (quotes included; json_escape).
 std::string json_string(const std::string& s);
 
+// JSON text made safe inside a <script> element: every '<', '>' and '&'
+// becomes \u003c, \u003e, \u0026 and U+2028, U+2029 become \u2028, \u2029,
+// so no "</script>", "<!--" or "<script" of a name ends the element or
+// changes how the HTML parser reads it; JSON.parse reads the same value.
+// `json` must be valid JSON (those characters then stand only in strings).
+std::string script_safe_json(std::string_view json);
+
+// Text for the content of an HTML element: '<', '>', '&', '"' and '\'' as
+// character references, control characters and bytes that are not UTF-8 as
+// U+FFFD.
+std::string html_text(std::string_view s);
+
 // The whole page as text: the viewer's script and three.js inlined, `data`
-// embedded.  With `connect_self` its Content-Security-Policy also lets it
+// (one JSON object) embedded through script_safe_json, `title` through
+// html_text.  With `connect_self` its Content-Security-Policy also lets it
 // send requests to the server it came from (the page of 'minksum play').
 std::string page_html(const std::string& title, const std::string& data, bool connect_self = false);
 

@@ -44,7 +44,9 @@ Output, one line per pair:
 volume is exact (an integer or p/q); seconds is the sum's computation alone.
 A pair that fails (a missing or bad file, an unknown catalog name) gets
   {"line": 3, "a": "...", "b": "...", "error": "FILE: PLACE: PROBLEM", "status": 3}
-(status 3: bad input data, 2: bad usage) and the other pairs go on.
+(status 3: bad input data, 2: bad usage) and the other pairs go on.  Every
+line is valid JSON whatever the names hold: control characters are escaped
+(\n, \t, \uXXXX), and a byte that is not UTF-8 becomes U+FFFD.
 
 Exit status: 0 when every pair succeeded; otherwise 3 if a pair had bad input
 data, else 2, with one line on stderr counting the failed pairs and naming

@@ -6,8 +6,9 @@
 //
 // Exact numbers cross the boundary as Python ints and fractions.Fraction,
 // converted through GMP's integers (machine words when they fit, else
-// hexadecimal text), never through doubles.  Every computation runs with
-// the GIL released.  Library errors become Python exceptions: InputError
+// hexadecimal text), never through doubles; inputs that cannot be taken
+// exactly (complex numbers, numpy long doubles) are refused (to_rational).
+// Every computation runs with the GIL released.  Library errors become Python exceptions: InputError
 // (bad data: file, place, problem), NotConvexError (an InputError), and
 // ValueError for bad requests (UsageError).
 #include <minksum/error.hpp>
@@ -81,76 +82,202 @@ Integer from_int(py::handle h) {
   return negative ? Integer(-z) : z;
 }
 
-// An exact coordinate from a Python number: int, float, Fraction (any
-// numbers.Rational), numpy scalar, or text such as "1/3" (parse_number).
-Rational to_rational(py::handle h, const char* what) {
-  if (PyLong_Check(h.ptr())) return Rational(from_int(h));
-  if (PyFloat_Check(h.ptr())) {
-    const double d = PyFloat_AS_DOUBLE(h.ptr());
-    if (!std::isfinite(d)) throw py::value_error(std::string(what) + ": " + (std::isnan(d) ? "NaN" : "infinite"));
-    return Rational(d);
-  }
-  if (PyUnicode_Check(h.ptr())) {
+py::object& numpy_generic() {
+  static auto* t = new py::object(py::module_::import("numpy").attr("generic"));
+  return *t;
+}
+
+py::object& decimal_type() {
+  static auto* t = new py::object(py::module_::import("decimal").attr("Decimal"));
+  return *t;
+}
+
+// "int", "numpy.float128", "decimal.Decimal": the type of h, for messages.
+std::string type_name(py::handle h) {
+  py::handle t = py::type::handle_of(h);
+  const std::string module = py::str(t.attr("__module__")), name = py::str(t.attr("__qualname__"));
+  return module == "builtins" ? name : module + "." + name;
+}
+
+std::string shape_text(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+std::string item(const std::string& name, std::size_t i) { return name + "[" + std::to_string(i) + "]"; }
+
+// Refuses the numpy dtypes whose values are not exact coordinates: complex
+// numbers, long doubles (more precise than a double: rounding them to
+// doubles would not be exact) and what is not a number.  `what` names the
+// argument and the position; `array`: the dtype of an array (else a scalar's).
+void check_dtype(const py::dtype& dt, const std::string& what, bool array) {
+  const char kind = dt.kind();
+  const std::string dtype = py::str(static_cast<py::handle>(dt));
+  const std::string of = array ? "an array of dtype " + dtype : "numpy." + dtype;
+  if (kind == 'c')
+    throw py::type_error(what + ": complex numbers are refused (coordinates are real), got " + of);
+  if (kind == 'f' && dt.itemsize() > 8)
+    throw py::type_error(what + ": numpy.longdouble is refused (its values are not doubles and would be rounded), " +
+                         "got " + of + "; convert to float64, or to Fraction(*x.as_integer_ratio()) for the exact values");
+  if (std::string("biufOU").find(kind) == std::string::npos)
+    throw py::type_error(what + ": expected numbers, got " + of);
+}
+
+Rational from_double(double d, const std::string& what) {
+  if (!std::isfinite(d)) throw py::value_error(what + ": " + (std::isnan(d) ? "NaN" : "infinite"));
+  return Rational(d);
+}
+
+// An exact coordinate from a Python number: int, float (the exact value of
+// the double), fractions.Fraction (any numbers.Rational), decimal.Decimal
+// (its exact value), numpy integer, bool and float scalars of at most 64
+// bits, any other number with an exact as_integer_ratio(), or text such as
+// "1/3" (parse_number).  Complex numbers and numpy long doubles are refused
+// with TypeError: nothing is rounded.  `what` names the argument and the
+// position ("vertices[3][2]").
+Rational to_rational(py::handle h, const std::string& what) {
+  PyObject* o = h.ptr();
+  if (PyLong_Check(o)) return Rational(from_int(h));  // and bool
+  if (PyFloat_Check(o)) return from_double(PyFloat_AS_DOUBLE(o), what);  // and numpy.float64
+  if (PyUnicode_Check(o)) {
     const std::string text = py::cast<std::string>(h);
     std::string why;
     if (auto q = parse_number(text, &why)) return *q;
-    throw py::value_error(std::string(what) + ": '" + text + "': " + why);
+    throw py::value_error(what + ": '" + text + "': " + why);
   }
-  if (PyIndex_Check(h.ptr())) return Rational(from_int(py::reinterpret_steal<py::object>(PyNumber_Index(h.ptr()))));
-  if (py::hasattr(h, "numerator") && py::hasattr(h, "denominator")) {
-    Rational q(from_int(py::int_(h.attr("numerator"))), from_int(py::int_(h.attr("denominator"))));
-    if (q.get_den() == 0) throw py::value_error(std::string(what) + ": zero denominator");
+  if (PyComplex_Check(o))  // and numpy.complex128
+    throw py::type_error(what + ": complex numbers are refused (coordinates are real), got " + type_name(h));
+  if (py::isinstance<py::array>(h)) {
+    auto a = py::reinterpret_borrow<py::array>(h);
+    if (a.ndim() != 0) throw py::type_error(what + ": expected a number, got an array of shape " + shape_text(a));
+    check_dtype(a.dtype(), what, true);
+    return to_rational(a.attr("item")(), what);
+  }
+  if (py::isinstance(h, numpy_generic())) {
+    const py::dtype dt = h.attr("dtype");
+    check_dtype(dt, what, false);
+    switch (dt.kind()) {
+      case 'b': return Rational(PyObject_IsTrue(o) ? 1 : 0);
+      case 'f':  // float16, float32: exact as doubles
+        return from_double(py::cast<double>(py::float_(py::reinterpret_borrow<py::object>(h))), what);
+      default: break;  // integers: below
+    }
+  }
+  if (py::isinstance(h, decimal_type())) {
+    if (!py::cast<bool>(h.attr("is_finite")()))
+      throw py::value_error(what + ": " + std::string(py::repr(h)) + " is not a finite number");
+    const py::tuple r = h.attr("as_integer_ratio")();
+    Rational q(from_int(r[0]), from_int(r[1]));
     q.canonicalize();
     return q;
   }
-  if (PyNumber_Check(h.ptr())) return to_rational(py::float_(py::reinterpret_borrow<py::object>(h)), what);
-  throw py::type_error(std::string(what) + ": expected a number (int, float, Fraction or text such as '1/3'), got " +
-                       std::string(py::str(py::type::handle_of(h).attr("__name__"))));
-}
-
-bool is_float_array(py::handle h) {
-  return py::isinstance<py::array>(h) && py::reinterpret_borrow<py::array>(h).dtype().kind() == 'f';
-}
-
-std::string item(const char* name, std::size_t i) { return std::string(name) + "[" + std::to_string(i) + "]"; }
-
-// Points from an (n, 3) float array (exact: each double is a rational) or a
-// sequence of triples of exact numbers.
-PointList to_points(py::handle h, const char* name) {
-  PointList pts;
-  if (is_float_array(h)) {
-    auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(h);
-    if (!a || a.ndim() != 2 || a.shape(1) != 3)
-      throw py::value_error(std::string(name) + ": expected an (n, 3) array");
-    auto r = a.unchecked<2>();
-    pts.reserve(static_cast<std::size_t>(r.shape(0)));
-    for (py::ssize_t i = 0; i < r.shape(0); ++i) {
-      const Vec3d v{r(i, 0), r(i, 1), r(i, 2)};
-      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-        throw py::value_error(item(name, static_cast<std::size_t>(i)) + ": not finite");
-      pts.push_back(v);
+  if (PyIndex_Check(o)) {
+    py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(o));
+    if (!i) throw py::error_already_set();
+    return Rational(from_int(i));
+  }
+  if (py::hasattr(h, "numerator") && py::hasattr(h, "denominator")) {  // numbers.Rational
+    Rational q(from_int(py::int_(h.attr("numerator"))), from_int(py::int_(h.attr("denominator"))));
+    if (q.get_den() == 0) throw py::value_error(what + ": zero denominator");
+    q.canonicalize();
+    return q;
+  }
+  if (py::hasattr(h, "as_integer_ratio")) {  // an exact binary or decimal float of another library
+    py::tuple r;
+    try {
+      r = h.attr("as_integer_ratio")();
+    } catch (py::error_already_set& e) {
+      if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_OverflowError)) throw;
+      throw py::value_error(what + ": " + std::string(py::repr(h)) + " is not a finite number");
     }
-    return pts;
+    Rational q(from_int(py::int_(r[0])), from_int(py::int_(r[1])));
+    if (q.get_den() == 0) throw py::value_error(what + ": zero denominator");
+    q.canonicalize();
+    return q;
   }
-  if (!py::isinstance<py::sequence>(h) || py::isinstance<py::str>(h))
-    throw py::type_error(std::string(name) + ": expected an (n, 3) array or a sequence of (x, y, z) triples");
+  throw py::type_error(what + ": expected a number (int, float, Fraction, Decimal or text such as '1/3'), got " +
+                       type_name(h));
+}
+
+bool is_text(py::handle h) { return PyUnicode_Check(h.ptr()) || PyBytes_Check(h.ptr()) || PyByteArray_Check(h.ptr()); }
+
+// A sequence (list, tuple, array...) that is not text.
+bool is_sequence(py::handle h) {
+  if (py::isinstance<py::array>(h)) return py::reinterpret_borrow<py::array>(h).ndim() > 0;
+  return !is_text(h) && PySequence_Check(h.ptr());
+}
+
+// One point: a triple (x, y, z) of exact numbers, or a numpy array of shape (3,).
+Point3 to_triple(py::handle h, const std::string& where) {
+  if (py::isinstance<py::array>(h)) {
+    auto a = py::reinterpret_borrow<py::array>(h);
+    check_dtype(a.dtype(), where, true);
+    if (a.ndim() != 1 || a.shape(0) != 3)
+      throw py::value_error(where + ": expected a triple (x, y, z), got an array of shape " + shape_text(a));
+  } else if (!is_sequence(h)) {
+    throw py::type_error(where + ": expected a triple (x, y, z), got " + type_name(h));
+  }
+  const auto r = py::reinterpret_borrow<py::sequence>(h);
+  const std::size_t n = r.size();
+  if (n != 3) throw py::value_error(where + ": expected a triple (x, y, z), got " + std::to_string(n) + " items");
+  Rational c[3];  // in order: the first bad coordinate is the one reported
+  for (std::size_t k = 0; k < 3; ++k) c[k] = to_rational(r[k], item(where, k));
+  return Point3(std::move(c[0]), std::move(c[1]), std::move(c[2]));
+}
+
+// Points from an (n, 3) array (float arrays of at most 64 bits: each double
+// taken exactly; integer, bool, object and text arrays: each entry as
+// to_rational takes it) or a sequence of triples.
+PointList to_points(py::handle h, const std::string& name) {
+  PointList pts;
+  if (py::isinstance<py::array>(h)) {
+    auto arr = py::reinterpret_borrow<py::array>(h);
+    check_dtype(arr.dtype(), name, true);
+    if (arr.ndim() != 2 || arr.shape(1) != 3)
+      throw py::value_error(name + ": expected an (n, 3) array, got an array of shape " + shape_text(arr));
+    if (arr.dtype().kind() == 'f') {
+      auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(h);
+      if (!a) throw py::error_already_set();
+      auto r = a.unchecked<2>();
+      pts.reserve(static_cast<std::size_t>(r.shape(0)));
+      for (py::ssize_t i = 0; i < r.shape(0); ++i) {
+        const Vec3d v{r(i, 0), r(i, 1), r(i, 2)};
+        if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+          throw py::value_error(item(name, static_cast<std::size_t>(i)) + ": not finite");
+        pts.push_back(v);
+      }
+      return pts;
+    }
+  } else if (!is_sequence(h)) {
+    throw py::type_error(name + ": expected an (n, 3) array or a sequence of (x, y, z) triples, got " + type_name(h));
+  }
   auto seq = py::reinterpret_borrow<py::sequence>(h);
-  pts.reserve(seq.size());
-  for (std::size_t i = 0; i < seq.size(); ++i) {
-    py::object row = seq[i];
-    const std::string where = item(name, i);
-    if (!py::isinstance<py::sequence>(row) || py::isinstance<py::str>(row) || py::len(row) != 3)
-      throw py::value_error(where + ": expected a triple (x, y, z)");
-    auto r = py::reinterpret_borrow<py::sequence>(row);
-    pts.push_back(Point3(to_rational(r[0], where.c_str()), to_rational(r[1], where.c_str()),
-                         to_rational(r[2], where.c_str())));
-  }
+  const std::size_t n = seq.size();
+  pts.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) pts.push_back(to_triple(seq[i], item(name, i)));
   return pts;
 }
 
-Point3 to_point(py::handle h, const char* name) {
-  PointList p = to_points(py::make_tuple(py::reinterpret_borrow<py::object>(h)), name);
-  return p.exact(0);
+// One translation or direction (`what`): a triple, or an array of shape (3,).
+// A batch (an (N, 3) array, a sequence of triples) is refused with ValueError.
+Point3 to_point(py::handle h, const std::string& name, const char* what = "translation") {
+  bool batch = false;
+  if (py::isinstance<py::array>(h)) {
+    auto a = py::reinterpret_borrow<py::array>(h);
+    batch = a.ndim() == 2 && a.shape(1) == 3;
+  } else if (is_sequence(h) && py::len(h) > 0) {
+    py::object first = py::reinterpret_borrow<py::sequence>(h)[0];
+    batch = is_sequence(first);
+  }
+  if (batch) {
+    const std::string given = py::isinstance<py::array>(h)
+                                  ? "an array of shape " + shape_text(py::reinterpret_borrow<py::array>(h))
+                                  : std::string("a sequence of triples");
+    throw py::value_error(name + ": takes one " + what + ", a triple (x, y, z), not a batch of them (" + given +
+                          "): query each " + what + " on its own");
+  }
+  return to_triple(h, name);
 }
 
 // ---------------------------------------------------------------------------
@@ -200,8 +327,9 @@ using Operand = std::variant<PolytopePtr, std::string>;
 Operand to_operand(py::handle h, const char* name) {
   if (py::isinstance<ConvexPolytope>(h)) return PolytopePtr(py::cast<std::shared_ptr<ConvexPolytope>>(h));
   if (py::isinstance<py::str>(h)) return py::cast<std::string>(h);
-  if (PyObject_HasAttrString(h.ptr(), "__fspath__")) return py::cast<std::string>(py::str(h.attr("__fspath__")()));
-  throw py::type_error(std::string(name) + ": expected a Polytope, a file path or a catalog name");
+  if (PyObject_HasAttrString(h.ptr(), "__fspath__"))  // os.PathLike
+    return py::cast<std::string>(py::module_::import("os").attr("fsdecode")(h));
+  throw py::type_error(std::string(name) + ": expected a Polytope, a file path or a catalog name, got " + type_name(h));
 }
 
 PolytopePtr resolve(const Operand& o, bool hull = false) {
@@ -281,19 +409,25 @@ ConvexPolytope polytope_from(PointList points, py::handle faces) {
     py::gil_scoped_release nogil;
     return ConvexPolytope::hull(mesh.points);
   }
-  if (!py::isinstance<py::sequence>(faces) && !py::isinstance<py::array>(faces))
-    throw py::type_error("faces: expected a sequence of index sequences");
+  if (!is_sequence(faces))
+    throw py::type_error("faces: expected a sequence of index sequences, got " + type_name(faces));
   const std::size_t n = mesh.points.size();
   for (py::handle f : faces) {
-    const std::size_t k = mesh.faces.size();
+    const std::string where = item("faces", mesh.faces.size());
+    if (!is_sequence(f)) throw py::type_error(where + ": expected a sequence of vertex indices, got " + type_name(f));
     std::vector<Index> loop;
     for (py::handle i : f) {
-      if (!PyIndex_Check(i.ptr())) throw py::type_error(item("faces", k) + ": expected integer vertex indices");
-      const long long v = py::cast<long long>(py::reinterpret_steal<py::object>(PyNumber_Index(i.ptr())));
-      if (v < 0 || static_cast<unsigned long long>(v) >= n)
-        throw py::value_error(item("faces", k) + ": " + std::to_string(v) + " is not a vertex index (0.." +
+      if (!PyIndex_Check(i.ptr()))
+        throw py::type_error(where + ": expected integer vertex indices, got " + type_name(i));
+      py::object v = py::reinterpret_steal<py::object>(PyNumber_Index(i.ptr()));
+      if (!v) throw py::error_already_set();
+      int overflow = 0;
+      const long long x = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
+      if (x == -1 && PyErr_Occurred()) throw py::error_already_set();
+      if (overflow || x < 0 || static_cast<unsigned long long>(x) >= n)
+        throw py::value_error(where + ": " + std::string(py::str(v)) + " is not a vertex index (0.." +
                               std::to_string(n ? n - 1 : 0) + ")");
-      loop.push_back(static_cast<Index>(v));
+      loop.push_back(static_cast<Index>(x));
     }
     mesh.faces.push_back(std::move(loop));
   }
@@ -301,8 +435,8 @@ ConvexPolytope polytope_from(PointList points, py::handle faces) {
   return ConvexPolytope::from_mesh(mesh);
 }
 
-ConvexPolytope polytope_from(py::handle vertices, py::handle faces) {
-  return polytope_from(to_points(vertices, "vertices"), faces);
+ConvexPolytope polytope_from(py::handle vertices, py::handle faces, const char* name = "vertices") {
+  return polytope_from(to_points(vertices, name), faces);
 }
 
 py::bytes vec_bytes(const std::vector<Vec3d>& v) {
@@ -390,9 +524,10 @@ struct WitnessPy {
 
 const char* kModuleDoc = R"(Exact Minkowski sums of convex polyhedra in 3D, and exact proximity queries.
 
-Every computation is exact: coordinates are rationals (float64 inputs are
-taken as the exact values of the doubles), every geometric decision is the
-sign of an exact polynomial.  Exact results are Python ints and
+Every computation is exact: coordinates are rationals (float inputs are
+taken as the exact values of the doubles, Decimal ones as their exact
+values; complex numbers and numpy.longdouble are refused), every geometric
+decision is the sign of an exact polynomial.  Exact results are Python ints and
 fractions.Fraction; float64 arrays (Polytope.vertices) are the nearest
 doubles, for plotting and numpy work.
 )";
@@ -458,6 +593,8 @@ PYBIND11_MODULE(_minksum, m) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const Interrupted&) {
       PyErr_SetString(PyExc_KeyboardInterrupt, "minksum: the sum was interrupted");
+    } catch (const py::cast_error& e) {  // an argument of the wrong type met inside a function: not a RuntimeError
+      PyErr_SetString(PyExc_TypeError, e.what());
     }
   });
 
@@ -465,17 +602,20 @@ PYBIND11_MODULE(_minksum, m) {
 
 Polytope(vertices, faces=None)
 
-vertices: an (n, 3) float array (each double taken exactly) or a sequence of
-(x, y, z) triples of exact numbers (int, fractions.Fraction, float, or text
-such as "1/3").  faces: polygons as sequences of vertex indices; without
+vertices: an (n, 3) numpy array (of floats of at most 64 bits, each value
+taken exactly, of integers, or of objects taken as below) or a sequence of (x, y, z) triples of exact numbers (int,
+fractions.Fraction, decimal.Decimal, float: the exact value of the double,
+numpy integer and float scalars, or text such as "1/3").  Complex numbers and
+numpy.longdouble are refused with TypeError (nothing is rounded).  faces: polygons as sequences of vertex indices; without
 faces, the polytope is the exact convex hull of the vertices.  With faces,
 the mesh must be a closed, exactly convex surface: coplanar facets are
 merged, equal vertices welded, unused vertices dropped, and an inward-facing
 mesh is turned outward.
 
 Raises InputError (NotConvexError for a surface that is not exactly convex)
-when the data is not a convex polytope, ValueError for malformed arguments.
-Polytopes are immutable, safe to share between threads, and picklable.)");
+when the data is not a convex polytope, ValueError for malformed arguments,
+TypeError for arguments of the wrong type.  Polytopes are immutable, safe to
+share between threads, and picklable.)");
   polytope
       .def(py::init([](py::object vertices, py::object faces) {
              return std::make_shared<ConvexPolytope>(polytope_from(vertices, faces));
@@ -483,7 +623,9 @@ Polytopes are immutable, safe to share between threads, and picklable.)");
            py::arg("vertices"), py::arg("faces") = py::none())
       .def_static(
           "hull",
-          [](py::object points) { return std::make_shared<ConvexPolytope>(polytope_from(points, py::none())); },
+          [](py::object points) {
+            return std::make_shared<ConvexPolytope>(polytope_from(points, py::none(), "points"));
+          },
           py::arg("points"), "The exact convex hull of an (n, 3) array or a sequence of exact triples.")
       .def_property_readonly(
           "vertices", [](py::object self) { return vertices_view(py::cast<const ConvexPolytope&>(self), self); },
@@ -571,7 +713,7 @@ Polytopes are immutable, safe to share between threads, and picklable.)");
       .def(
           "save",
           [](const ConvexPolytope& p, py::object path, bool exact, bool binary) {
-            const std::string file = py::cast<std::string>(py::str(py::module_::import("os").attr("fspath")(path)));
+            const std::string file = py::cast<std::string>(py::module_::import("os").attr("fsdecode")(path));
             WriteOptions w;
             w.exact = exact;
             w.binary = binary;
@@ -729,7 +871,11 @@ ValueError for a name that is neither a file nor a catalog spec.)");
           auto t = py::reinterpret_borrow<py::sequence>(pair);
           Job j{to_operand(t[0], (where + "[0]").c_str()), to_operand(t[1], (where + "[1]").c_str()),
                 default_method};
-          if (t.size() == 3) j.method = to_method(py::cast<std::string>(t[2]));
+          if (t.size() == 3) {
+            if (!py::isinstance<py::str>(t[2]))
+              throw py::type_error(where + "[2]: expected a method name (str), got " + type_name(t[2]));
+            j.method = to_method(py::cast<std::string>(t[2]));
+          }
           jobs.push_back(std::move(j));
         }
         std::vector<std::shared_ptr<Sum>> results(jobs.size());
@@ -775,8 +921,9 @@ A pair that fails (a bad file, an unknown name): with on_error="raise" the
 exception of the first failing pair is raised once every pair is done, with
 a note naming the pair ("pairs[7]"); with on_error="return" the exception
 object takes the pair's place in the list.  Arguments that are malformed
-(not a pair, an unknown method) raise ValueError before anything is computed.
-The GIL is released during the whole batch.)");
+(not a pair, an unknown method) raise ValueError, and of the wrong type
+TypeError, before anything is computed.  The GIL is released during the
+whole batch.)");
 
   py::class_<WitnessPy>(m, "Witness", R"(Where a proximity query was decided.
 
@@ -837,8 +984,9 @@ double); translation: α·d (exact Fraction triple).)")
 Obstacle(p, q, method="auto") computes the configuration-space obstacle
 M = P ⊕ (−Q) once (p and q: Polytope objects, file paths or catalog names).
 Each query takes t, the translation of Q relative to P (Q moved by t, P
-fixed; for P moved by u and Q by w, t = w − u), as an array or a triple of
-exact numbers, and answers exactly:
+fixed; for P moved by u and Q by w, t = w − u), one translation per call:
+a triple of exact numbers or an array of shape (3,) (an (N, 3) batch is
+refused with ValueError).  The queries answer exactly:
   collide(t)               "separate", "touching" or "penetrating"
   distance(t)              separation distance, closest points
   depth(t)                 penetration depth and a minimal separating move
@@ -871,7 +1019,7 @@ threads; its queries run one at a time, with the GIL released.)")
       .def(
           "directional_depth",
           [](Obstacle& o, py::object t, py::object d) {
-            const Point3 s = to_point(t, "t"), dir = to_point(d, "d");
+            const Point3 s = to_point(t, "t"), dir = to_point(d, "d", "direction");
             if (is_zero(dir)) throw py::value_error("d: the direction must not be the zero vector");
             py::gil_scoped_release nogil;
             std::lock_guard<std::mutex> lock(o.m);

@@ -1,14 +1,16 @@
 # Type stubs of the extension module minksum._minksum (python/minksum_module.cpp).
+from decimal import Decimal
 from fractions import Fraction
 from os import PathLike
-from typing import Iterable, Literal, Optional, Sequence, Tuple, Union
+from typing import Any, Iterable, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
 
-Number = Union[int, float, Fraction, str]
-Triple = Sequence[Number]
-Points = Union[npt.ArrayLike, Sequence[Triple]]
+# Coordinates are taken exactly: complex numbers and numpy.longdouble are refused (TypeError).
+Number = Union[int, float, Fraction, Decimal, str, np.integer[Any], np.float16, np.float32, np.float64]
+Triple = Union[Sequence[Number], npt.NDArray[Any]]  # one point: three numbers, or an array of shape (3,)
+Points = Union[npt.NDArray[Any], Sequence[Triple]]  # an (n, 3) array or a sequence of triples
 Feature = Tuple[Literal["vertex", "edge", "facet"], int]
 Operand = Union["Polytope", str, PathLike[str]]
 Status = Literal["separate", "touching", "penetrating"]

@@ -1,6 +1,7 @@
 """Every error path: bad data is minksum.InputError (file, place, problem), a bad request ValueError or TypeError."""
 
 import math
+import re
 from fractions import Fraction
 
 import numpy as np
@@ -87,6 +88,8 @@ def test_open_mesh_from_arrays_is_an_input_error():
         ([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, math.nan)], "NaN"),
         ([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, "1/0")], "zero denominator"),
         ([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, "x")], "not a number"),
+        ([(0, 0, 0), np.zeros((3, 3)), (0, 1, 0), (0, 0, 1)], r"vertices\[1\]: expected a triple .* shape \(3, 3\)"),
+        (np.array([(0, 0, 0), (1, 0)], dtype=object), r"vertices: expected an \(n, 3\) array, got .* shape \(2,\)"),
     ],
 )
 def test_bad_vertices_are_value_errors(vertices, match):
@@ -136,7 +139,7 @@ def test_obstacle_errors():
     o = minksum.Obstacle("cube", "tetra")
     with pytest.raises(ValueError, match="zero vector"):
         o.directional_depth((0, 0, 0), (0, 0, 0))
-    with pytest.raises(ValueError, match=r"t\[0\]: expected a triple"):
+    with pytest.raises(ValueError, match=r"t: expected a triple \(x, y, z\), got 2 items"):
         o.collide((1, 2))
 
 
@@ -146,3 +149,88 @@ def test_input_error_pickles():
     e = minksum.InputError("a.off", "line 3", "NaN")
     f = pickle.loads(pickle.dumps(e))
     assert (f.file, f.place, f.problem, str(f)) == ("a.off", "line 3", "NaN", "a.off: line 3: NaN")
+
+
+CUBE = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+TETRA = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+
+
+def wrong_type_calls():
+    """(name, call, pattern of the message) for every public entry point given arguments of the wrong type."""
+    cube = minksum.load("cube")
+    o = minksum.Obstacle("cube", "tetra")
+    return [
+        ("Polytope(None)", lambda: minksum.Polytope(None), r"vertices: expected .* got NoneType"),
+        ("Polytope(dict)", lambda: minksum.Polytope({0: (0, 0, 0)}), r"vertices: .* got dict"),
+        ("Polytope(bytes)", lambda: minksum.Polytope(b"abc"), r"vertices: .* got bytes"),
+        ("Polytope(flat list)", lambda: minksum.Polytope([0, 0, 0, 1, 1, 1]), r"vertices\[0\]: expected a triple .* got int"),
+        ("Polytope(too deep)", lambda: minksum.Polytope([[(0, 0, 0), (1, 0, 0), (0, 1, 0)]]),
+         r"vertices\[0\]\[0\]: expected a number .* got tuple"),
+        ("Polytope(object array with None)", lambda: minksum.Polytope(np.array(TETRA[:3] + [(0, 0, None)], dtype=object)),
+         r"vertices\[3\]\[2\]: expected a number .* got NoneType"),
+        ("Polytope(datetime array)", lambda: minksum.Polytope(np.zeros((4, 3), dtype="datetime64[s]")),
+         r"vertices: expected numbers, got an array of dtype datetime64"),
+        ("Polytope(faces=5)", lambda: minksum.Polytope(TETRA, 5), r"faces: expected a sequence .* got int"),
+        ("Polytope(flat faces)", lambda: minksum.Polytope(TETRA, [0, 1, 2]), r"faces\[0\]: expected a sequence .* got int"),
+        ("Polytope(text face)", lambda: minksum.Polytope(TETRA, ["012"]), r"faces\[0\]: expected a sequence .* got str"),
+        ("Polytope(float index)", lambda: minksum.Polytope(TETRA, [(0, 1, 2.0)]), r"faces\[0\]: expected integer .* got float"),
+        ("Polytope.hull(None)", lambda: minksum.Polytope.hull(None), r"points: .* got NoneType"),
+        ("load(None)", lambda: minksum.load(None), r"path_or_name: .* got NoneType"),
+        ("minkowski_sum(None, ...)", lambda: minksum.minkowski_sum(None, "cube"), r"a: .* got NoneType"),
+        ("minkowski_sum(method=5)", lambda: minksum.minkowski_sum("cube", "cube", 5), "incompatible function arguments"),
+        ("minkowski_sum_many(None)", lambda: minksum.minkowski_sum_many(None), "incompatible function arguments"),
+        ("minkowski_sum_many(operand 5)", lambda: minksum.minkowski_sum_many([("cube", 5)]), r"pairs\[0\]\[1\]: .* got int"),
+        ("minkowski_sum_many(method 5)", lambda: minksum.minkowski_sum_many([("cube", "cube", 5)]),
+         r"pairs\[0\]\[2\]: expected a method name \(str\), got int"),
+        ("minkowski_sum_many(threads='2')", lambda: minksum.minkowski_sum_many([], threads="2"), "incompatible"),
+        ("Obstacle(None, ...)", lambda: minksum.Obstacle(None, "cube"), r"p: .* got NoneType"),
+        ("collide(None)", lambda: o.collide(None), r"t: expected a triple \(x, y, z\), got NoneType"),
+        ("collide(str)", lambda: o.collide("123"), r"t: expected a triple \(x, y, z\), got str"),
+        ("collide(dict)", lambda: o.collide({0: 1, 1: 2, 2: 3}), r"t: expected a triple \(x, y, z\), got dict"),
+        ("distance(object array)", lambda: o.distance(np.array([1, None, 2], dtype=object)),
+         r"t\[1\]: expected a number .* got NoneType"),
+        ("depth(set)", lambda: o.depth({1, 2, 3}), r"t: expected a triple .* got set"),
+        ("directional_depth(d=None)", lambda: o.directional_depth((0, 0, 0), None), r"d: expected a triple .* got NoneType"),
+        ("translated(None)", lambda: cube.translated(None), r"t: expected a triple .* got NoneType"),
+        ("translated(5)", lambda: cube.translated(5), r"t: expected a triple .* got int"),
+        ("translated(text)", lambda: cube.translated((0, 0, b"1")), r"t\[2\]: expected a number .* got bytes"),
+        ("save(None)", lambda: cube.save(None), "NoneType"),
+        ("Polytope.__setstate__", lambda: minksum.Polytope.__new__(minksum.Polytope).__setstate__((1, 2, 3)), ""),
+    ]
+
+
+@pytest.mark.parametrize("name", [name for name, _, _ in wrong_type_calls()])
+def test_wrong_type_is_type_error(name):
+    # TypeError naming the argument and the position — never RuntimeError ("Unable to cast") or SystemError.
+    (call, match), = [(c, m) for n, c, m in wrong_type_calls() if n == name]
+    with pytest.raises(Exception) as e:
+        call()
+    assert type(e.value) is TypeError, (name, repr(e.value))
+    assert e.value.args and re.search(match, str(e.value)), (name, str(e.value))
+
+
+def test_face_index_too_large_for_a_machine_word_is_value_error():
+    with pytest.raises(ValueError, match=r"faces\[0\]: 1180591620717411303424 is not a vertex index \(0..3\)"):
+        minksum.Polytope(TETRA, [(0, 1, 2**70)])
+
+
+@pytest.mark.parametrize(
+    "batch",
+    [
+        np.array([[3.0, 0, 0], [4.0, 0, 0]]),
+        np.array([[3.0, 0, 0], [4.0, 0, 0], [5.0, 0, 0]]),  # three rows: once a SystemError
+        np.array([[3, 0, 0]]),
+        [(3, 0, 0), (4, 0, 0), (5, 0, 0)],
+        [np.array([3.0, 0, 0]), np.array([4.0, 0, 0])],
+    ],
+)
+def test_distance_of_batch_is_value_error_not_system_error(batch):
+    o = minksum.Obstacle("box:2:2:2", "box:2:2:2")
+    for query in (o.collide, o.distance, o.depth, lambda t: o.directional_depth(t, (1, 0, 0))):
+        with pytest.raises(ValueError, match=r"t: takes one translation, a triple \(x, y, z\), not a batch"):
+            query(batch)
+    with pytest.raises(ValueError, match=r"d: takes one direction, a triple \(x, y, z\), not a batch"):
+        o.directional_depth((0, 0, 0), batch)
+    # One translation, as a triple or an array of shape (3,), is answered exactly.
+    assert o.distance(np.array([5.0, 0, 0])).squared_distance == 9
+    assert o.distance([5, 0, 0]).squared_distance == 9

@@ -23,13 +23,18 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <variant>
 #include <vector>
 
@@ -374,6 +379,54 @@ std::shared_ptr<Sum> sum_of(const PolytopePtr& a, const PolytopePtr& b, Method m
 // Ctrl-C during a long sum: the progress callback (run at the method's report
 // points, on the thread computing) checks for signals with the GIL held.
 struct Interrupted {};
+
+// Runs work() on a thread of its own while the calling thread, the GIL
+// released, waits for it, checking for signals with the GIL held every 50 ms
+// (Python runs signal handlers on the main thread only, and a batch's jobs
+// run on other threads).  When a handler raises (Ctrl-C: KeyboardInterrupt),
+// *cancel is set, work() is waited for (the sums stop at their next report
+// point, SumOptions::cancel, and no new job starts) and the handler's
+// exception is raised.  An exception of work() is rethrown.
+void run_interruptible(const std::function<void()>& work, std::atomic<bool>& cancel) {
+  std::mutex mu;
+  std::condition_variable cv;
+  bool done = false;
+  std::exception_ptr failure;
+  PyObject *type = nullptr, *value = nullptr, *traceback = nullptr;  // the handler's exception
+  {
+    py::gil_scoped_release nogil;
+    std::thread runner([&] {
+      try {
+        work();
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mu);
+      done = true;
+      cv.notify_all();
+    });
+    std::unique_lock<std::mutex> lock(mu);
+    while (!cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; })) {
+      if (type) continue;  // interrupted: waiting for the jobs under way to stop
+      lock.unlock();
+      {
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) {
+          PyErr_Fetch(&type, &value, &traceback);
+          cancel = true;
+        }
+      }
+      lock.lock();
+    }
+    lock.unlock();
+    runner.join();
+  }
+  if (type) {
+    PyErr_Restore(type, value, traceback);
+    throw py::error_already_set();
+  }
+  if (failure) std::rethrow_exception(failure);
+}
 
 // ---------------------------------------------------------------------------
 // Conversions to Python.
@@ -880,16 +933,21 @@ ValueError for a name that is neither a file nor a catalog spec.)");
         }
         std::vector<std::shared_ptr<Sum>> results(jobs.size());
         std::vector<std::exception_ptr> errors(jobs.size());
-        {
-          py::gil_scoped_release nogil;
-          parallel_for(jobs.size(), threads ? static_cast<unsigned>(*threads) : 0u, [&](std::size_t i) {
-            try {
-              results[i] = sum_of(resolve(jobs[i].a), resolve(jobs[i].b), jobs[i].method);
-            } catch (...) {
-              errors[i] = std::current_exception();
-            }
-          });
-        }
+        std::atomic<bool> cancel{false};
+        SumOptions options;
+        options.cancel = &cancel;
+        run_interruptible(
+            [&] {
+              parallel_for(jobs.size(), threads ? static_cast<unsigned>(*threads) : 0u, [&](std::size_t i) {
+                if (cancel) return;  // interrupted: the pairs not started are skipped
+                try {
+                  results[i] = sum_of(resolve(jobs[i].a), resolve(jobs[i].b), jobs[i].method, options);
+                } catch (...) {
+                  errors[i] = std::current_exception();
+                }
+              });
+            },
+            cancel);
         py::list out;
         for (std::size_t i = 0; i < jobs.size(); ++i) {
           if (!errors[i]) {
@@ -923,7 +981,9 @@ a note naming the pair ("pairs[7]"); with on_error="return" the exception
 object takes the pair's place in the list.  Arguments that are malformed
 (not a pair, an unknown method) raise ValueError, and of the wrong type
 TypeError, before anything is computed.  The GIL is released during the
-whole batch.)");
+whole batch.  Ctrl-C stops the batch: the sums under way stop at their next
+report point, the pairs not started are skipped, and KeyboardInterrupt is
+raised.)");
 
   py::class_<WitnessPy>(m, "Witness", R"(Where a proximity query was decided.
 

@@ -127,3 +127,54 @@ def test_ctrl_c_interrupts_a_long_sum():
         done.set()
         sender.join()
         signal.signal(signal.SIGINT, previous)
+
+
+CTRL_C_SCRIPT = r"""
+import sys, time
+import minksum
+
+pairs = [("sphere:6", f"sphere:6@rot:{i}") for i in range(int(sys.argv[1]))]
+print("started", flush=True)
+start = time.monotonic()
+try:
+    minksum.minkowski_sum_many(pairs, threads=2)
+except KeyboardInterrupt:
+    print("KeyboardInterrupt after %.1f s" % (time.monotonic() - start), flush=True)
+    sys.exit(3)
+print("finished after %.1f s" % (time.monotonic() - start), flush=True)
+"""
+
+
+def test_ctrl_c_stops_minkowski_sum_many():
+    # SIGINT one second into a batch of sphere:6 ⊕ sphere:6@rot pairs that would take at least two minutes
+    # (sized from one pair timed here, on two threads): the process must end with KeyboardInterrupt within
+    # 10 s of the signal.  The jobs run on C++ threads; the calling thread polls for signals while it waits.
+    import math
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    start = time.monotonic()
+    minksum.minkowski_sum("sphere:6", "sphere:6@rot:1")
+    one = time.monotonic() - start
+    n = max(8, math.ceil(2 * 120 / one))
+    proc = subprocess.Popen([sys.executable, "-c", CTRL_C_SCRIPT, str(n)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline() == "started\n"
+        time.sleep(1)
+        sent = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        try:
+            out, err = proc.communicate(timeout=10)
+        except subprocess.TimeoutExpired:
+            pytest.fail(f"minkowski_sum_many of {n} pairs still running 10 s after SIGINT")
+        elapsed = time.monotonic() - sent
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode == 3, (out, err)
+    assert out.startswith("KeyboardInterrupt after"), (out, err)
+    assert elapsed < 10

@@ -35,8 +35,21 @@ def chunks(items: Sequence[Any], size: int) -> List[Sequence[Any]]:
     return [items[i:i + size] for i in range(0, len(items), size)]
 
 
-def _run_chunk(pairs, threads, method, on_error):
-    return _local_many(pairs, threads=threads, method=method, on_error=on_error)
+def _run_chunk(pairs, start, threads, method):
+    """One task: the pairs ``start``, ``start + 1``, ... of the whole batch, failures returned in place.
+
+    The note ``minkowski_sum_many`` gives a failing pair names its index in the
+    chunk; it is replaced with one naming the pair's index in the batch.
+    """
+    out = _local_many(pairs, threads=threads, method=method, on_error="return")
+    for k, r in enumerate(out):
+        if isinstance(r, BaseException):
+            notes = getattr(r, "__notes__", [])
+            local = f"minksum.minkowski_sum_many: pairs[{k}]"
+            if local in notes:
+                notes.remove(local)
+            r.add_note(f"minksum.dask.minkowski_sum_many: pairs[{start + k}]")
+    return out
 
 
 def minkowski_sum_many(client, pairs: Iterable[Any], *, chunk_size: Optional[int] = None,
@@ -49,8 +62,10 @@ def minkowski_sum_many(client, pairs: Iterable[Any], *, chunk_size: Optional[int
     worker, so that a slow chunk does not leave the other workers idle).
     threads: the threads each worker's ``minkowski_sum_many`` uses (None: one
     per core of the worker; with several single-threaded workers per
-    machine, 1).  With on_error="raise" the first failing pair's exception is
-    raised, with a note naming its index in ``pairs``.
+    machine, 1).  A failing pair's exception has a note naming its index in
+    ``pairs`` ("minksum.dask.minkowski_sum_many: pairs[15]"), whether it is
+    raised (on_error="raise": the first failing pair's) or returned in its
+    place (on_error="return").
     """
     if on_error not in ("raise", "return"):
         raise ValueError(f"on_error must be 'raise' or 'return', not {on_error!r}")
@@ -61,14 +76,13 @@ def minkowski_sum_many(client, pairs: Iterable[Any], *, chunk_size: Optional[int
         workers = max(1, len(client.scheduler_info().get("workers", {})))
         chunk_size = max(1, -(-len(pairs) // (4 * workers)))
     parts = chunks(pairs, chunk_size)
-    futures = client.map(_run_chunk, parts, threads=threads, method=method, on_error="return",
-                         pure=False)
+    starts = range(0, len(pairs), chunk_size)
+    futures = client.map(_run_chunk, parts, starts, threads=threads, method=method, pure=False)
     out: list = []
     for part in client.gather(futures):
         out.extend(part)
     if on_error == "raise":
-        for i, r in enumerate(out):
+        for r in out:
             if isinstance(r, BaseException):
-                r.add_note(f"minksum.dask.minkowski_sum_many: pairs[{i}]")
                 raise r
     return out

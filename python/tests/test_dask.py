@@ -28,6 +28,11 @@ def test_local_cluster_two_workers_equals_one_process(data):
         with pytest.raises(minksum.InputError) as e:
             minksum.dask.minkowski_sum_many(client, [("cube", "tetra"), ("cube", bad)], chunk_size=1)
         assert e.value.file == bad and any("pairs[1]" in n for n in e.value.__notes__)
+        # on_error="return": the failing pair's exception, back from its worker, names its index in the batch.
+        many = [("cube", "tetra")] * 15 + [("cube", bad)] + [("cube", "tetra")] * 4
+        out = minksum.dask.minkowski_sum_many(client, many, chunk_size=4, on_error="return")
+        assert [i for i, r in enumerate(out) if not isinstance(r, minksum.Sum)] == [15]
+        assert out[15].file == bad and out[15].__notes__ == ["minksum.dask.minkowski_sum_many: pairs[15]"]
 
 
 def test_chunks():
@@ -48,3 +53,43 @@ def test_docs_dask_example():
     sums = namespace["sums"]
     assert len(sums) == 100
     assert [s.volume() for s in sums[:3]] == [minksum.minkowski_sum(f"random:200:{i}", "sphere:3").volume() for i in range(3)]
+
+
+class InProcessClient:
+    """What minksum.dask uses of a distributed.Client, run in this process (no cluster)."""
+
+    def __init__(self, workers=2):
+        self.workers = workers
+        self.tasks = []
+
+    def scheduler_info(self):
+        return {"workers": {f"w{i}": {} for i in range(self.workers)}}
+
+    def map(self, fn, *iterables, pure=True, **kwargs):
+        self.tasks = [fn(*args, **kwargs) for args in zip(*iterables)]
+        return self.tasks
+
+    def gather(self, futures):
+        return list(futures)
+
+
+def test_dask_error_names_global_pair_index(data):
+    # Pair 15 fails; in chunks of 4 it is pair 3 of the fourth chunk: its note must say pairs[15].
+    import minksum.dask
+
+    bad = str(data / "bad" / "nan.off")
+    pairs = [("cube", "tetra")] * 15 + [("cube", bad), ("tetra", "nosuch")] + [("cube", "tetra")] * 3
+    client = InProcessClient()
+    out = minksum.dask.minkowski_sum_many(client, pairs, chunk_size=4, on_error="return")
+    assert len(client.tasks) == 5
+    assert [i for i, r in enumerate(out) if not isinstance(r, minksum.Sum)] == [15, 16]
+    assert isinstance(out[15], minksum.InputError) and out[15].file == bad
+    assert out[15].__notes__ == ["minksum.dask.minkowski_sum_many: pairs[15]"]
+    assert isinstance(out[16], ValueError) and out[16].__notes__ == ["minksum.dask.minkowski_sum_many: pairs[16]"]
+    with pytest.raises(minksum.InputError) as e:
+        minksum.dask.minkowski_sum_many(InProcessClient(), pairs, chunk_size=4)
+    assert e.value.__notes__ == ["minksum.dask.minkowski_sum_many: pairs[15]"]
+    # The default chunk size (the pairs over four tasks per worker): the same indices.
+    out = minksum.dask.minkowski_sum_many(InProcessClient(workers=3), pairs, on_error="return")
+    assert out[15].__notes__ == ["minksum.dask.minkowski_sum_many: pairs[15]"]
+    assert out[16].__notes__ == ["minksum.dask.minkowski_sum_many: pairs[16]"]

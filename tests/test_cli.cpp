@@ -1245,8 +1245,8 @@ TEST_F(Cli, NonConvexBadSolidsExitThree) {
   struct Case {
     std::string file, problem;
   };
-  for (const Case& c : {Case{write("open.off", open), "(the mesh is not closed)"},
-                        Case{write("flipped.off", flipped), "used twice in the same direction"},
+  for (const Case& c : {Case{write("open.off", open), "open mesh: the edge belongs to facet"},
+                        Case{write("flipped.off", flipped), "inconsistent orientation"},
                         Case{write("inverted.off", inverted), "oriented inwards"},
                         Case{write("crossing.off", "OFF\n16 12 0\n"
                                                    "0 0 0\n2 0 0\n0 2 0\n2 2 0\n0 0 2\n2 0 2\n0 2 2\n2 2 2\n"
@@ -1266,6 +1266,105 @@ TEST_F(Cli, NonConvexBadSolidsExitThree) {
   }
   // Usage: three operands with a non-convex one.
   EXPECT_EQ(run("sum tube cube cube").status, 2);
+}
+
+// Shells whose orientation disagrees with their nesting (the red team's two
+// cases): exit 3 and one line naming the shell, where they used to be summed
+// (volume 124 for nested outward cubes, 133 for an inverted cube beside a
+// cube).
+TEST_F(Cli, ShellsOrientedAgainstTheirNestingExitThree) {
+  auto box = [](int x0, int x1, int y0, int off, bool flip) {
+    std::string v, f;
+    for (int i = 0; i < 8; ++i)
+      v += std::to_string(i & 1 ? x1 : x0) + " " + std::to_string(i & 2 ? x1 - x0 + y0 : y0) + " " +
+           std::to_string(i & 4 ? x1 - x0 + y0 : y0) + "\n";
+    const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& face : q) {
+      f += "4";
+      for (int k = 0; k < 4; ++k) f += " " + std::to_string(off + face[flip ? 3 - k : k]);
+      f += "\n";
+    }
+    return std::make_pair(v, f);
+  };
+  struct Case {
+    std::string name, problem;
+    std::pair<std::string, std::string> a, b;
+  };
+  const Case cases[] = {
+      {"nested.off", "the shell of facet 6: faces outwards but lies inside another shell, in the solid",
+       box(0, 4, 0, 0, false), box(1, 3, 1, 8, false)},
+      {"inverted_beside.off", "the shell of facet 6: faces inwards but lies inside no other shell",
+       box(0, 4, 0, 0, false), box(6, 7, 0, 8, true)}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    std::ofstream(path(c.name)) << "OFF\n16 12 0\n" << c.a.first << c.b.first << c.a.second << c.b.second;
+    CmdResult r = run("sum " + path(c.name) + " cube -o " + path("out.off"));
+    EXPECT_EQ(r.status, 3) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("minksum: " + path(c.name) + ": " + c.problem, 0), 0u) << r.err;
+    EXPECT_FALSE(fs::exists(path("out.off")));
+  }
+  // The same two cubes, the inner one facing in, are a hollow solid: summed.
+  const auto outer = box(0, 4, 0, 0, false), cavity = box(1, 3, 1, 8, true);
+  std::ofstream(path("hollow.off")) << "OFF\n16 12 0\n" << outer.first << cavity.first << outer.second << cavity.second;
+  CmdResult h = run("sum " + path("hollow.off") + " cube@scale:1/4 --json");
+  ASSERT_EQ(h.status, 0) << h.err;
+  // [0,4]^3 minus [1,3]^3, each grown or shrunk by 1/4: 4.5^3 - 1.5^3.
+  EXPECT_NE(h.out.find("\"volume\": \"351/4\""), std::string::npos) << h.out;
+}
+
+// An STL has no vertex numbers: an open edge is located by its coordinates,
+// and worded alike by 'sum' (non-convex validation) and 'stats' (the
+// polytope builder).
+TEST_F(Cli, OpenStlEdgeLocatedByCoordinatesAndWordedAlike) {
+  for (const char* solid : {"tube", "cube"}) {
+    SCOPED_TRACE(solid);
+    ASSERT_EQ(run(std::string("gen ") + solid + " -o " + path("whole.stl")).status, 0);
+    const std::string text = slurp(path("whole.stl"));
+    // Drop the fourth facet.
+    std::size_t at = 0;
+    for (int k = 0; k < 3; ++k) at = text.find("endfacet\n", at) + 9;
+    const std::size_t end = text.find("endfacet\n", at) + 9;
+    std::ofstream(path("open.stl")) << text.substr(0, at) << text.substr(end);
+    for (const char* cmd : {"sum ", "stats "}) {
+      CmdResult r = run(cmd + path("open.stl") + (std::string(cmd) == "sum " ? " cube" : ""));
+      EXPECT_EQ(r.status, 3) << cmd << r.err;
+      EXPECT_EQ(lines(r.err), 1u) << r.err;
+      EXPECT_NE(r.err.find(": edge "), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find(" from ("), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find(") to ("), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find("): open mesh: the edge belongs to facet "), std::string::npos) << r.err;
+    }
+  }
+}
+
+// --hull takes the hull of a non-convex catalog solid's points, as of a
+// file's (it told the user to use --hull, which was given).
+TEST_F(Cli, HullOfANonConvexCatalogSolid) {
+  CmdResult r = run("sum tube cube --hull --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"volume\": \"64\""), std::string::npos) << r.out;  // [-2,2]^3
+  CmdResult q = run("sum tube cube");
+  EXPECT_EQ(q.status, 0) << q.err;
+}
+
+// 'gen' of a non-convex solid says how many triangles it wrote when the
+// faces were written as triangles (it said "96 faces" and wrote 192).
+TEST_F(Cli, GenOfANonConvexSolidCountsTheWrittenTriangles) {
+  CmdResult g = run("gen gear:6 -o " + path("gear.stl"));
+  ASSERT_EQ(g.status, 0) << g.err;
+  EXPECT_NE(g.out.find("gear:6: 96 vertices, 96 faces, non-convex, written to " + path("gear.stl") + " as 192 triangles"),
+            std::string::npos)
+      << g.out;
+  std::size_t facets = 0;
+  const std::string stl = slurp(path("gear.stl"));
+  for (std::size_t at = 0; (at = stl.find("endfacet", at)) != std::string::npos; at += 8) ++facets;
+  EXPECT_EQ(facets, 192u);
+  CmdResult t = run("gen tube --exact -o " + path("tube.off"));
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_NE(t.out.find("tube: 16 vertices, 16 faces, non-convex, written to " + path("tube.off") + "\n"),
+            std::string::npos)
+      << t.out;
 }
 
 TEST_F(Cli, NonConvexCatalogSolidsGenAndHelp) {

@@ -62,7 +62,7 @@ TEST(NonconvexValidation, ConvexMeshKeepsTheConvexPath) {
 TEST(NonconvexValidation, OpenMeshIsRefused) {
   Mesh m = catalog_mesh("tube");
   m.faces.pop_back();
-  EXPECT_NE(problem(m).find("has no facet on its other side (the mesh is not closed)"), std::string::npos) << problem(m);
+  EXPECT_NE(problem(m).find("open mesh: the edge belongs to facet "), std::string::npos) << problem(m);
 }
 
 TEST(NonconvexValidation, InvertedMeshIsRefused) {
@@ -74,7 +74,7 @@ TEST(NonconvexValidation, InvertedMeshIsRefused) {
 TEST(NonconvexValidation, OneFlippedFaceIsRefused) {
   Mesh m = catalog_mesh("tube");
   std::reverse(m.faces[3].begin(), m.faces[3].end());
-  EXPECT_NE(problem(m).find("used twice in the same direction"), std::string::npos) << problem(m);
+  EXPECT_NE(problem(m).find("inconsistent orientation: facet "), std::string::npos) << problem(m);
 }
 
 TEST(NonconvexValidation, SelfIntersectingMeshIsRefused) {
@@ -82,12 +82,12 @@ TEST(NonconvexValidation, SelfIntersectingMeshIsRefused) {
   const Mesh m = join(cube_mesh(2), box_mesh(1, 3, 1, 3, 1, 3));
   const std::string p = problem(m);
   EXPECT_NE(p.find("intersect (the surface intersects itself)"), std::string::npos) << p;
-  EXPECT_EQ(p.rfind("m.off: face ", 0), 0u) << p;
+  EXPECT_EQ(p.rfind("m.off: facet ", 0), 0u) << p;
 }
 
 TEST(NonconvexValidation, CubesTouchingAtAVertexAreNotAManifold) {
   const Mesh m = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1, 2, 1, 2, 1, 2));
-  EXPECT_NE(problem(m).find("several separate fans"), std::string::npos) << problem(m);
+  EXPECT_NE(problem(m).find("non-manifold vertex: its facets form more than one fan"), std::string::npos) << problem(m);
 }
 
 TEST(NonconvexValidation, NonPlanarFaceIsRefused) {
@@ -102,6 +102,83 @@ TEST(NonconvexValidation, DisjointShellsAndCavitiesAreSolids) {
   const Solid h = validate_solid(hollow_cube(), "hollow");
   EXPECT_FALSE(h.convex);
   EXPECT_EQ(h.volume, Rational(56));
+}
+
+// Shells whose orientation disagrees with their nesting describe no solid,
+// or another one than their volumes say: exit 3 naming the shell.
+TEST(NonconvexValidation, NestedCubesBothFacingOutwardsAreRefused) {
+  // [0,4]^3 with [1,3]^3 inside it, both facing out (the red team's case:
+  // summed as if the inner cube were a cavity).
+  const Mesh m = join(box_mesh(0, 4, 0, 4, 0, 4), box_mesh(1, 3, 1, 3, 1, 3));
+  const std::string p = problem(m);
+  EXPECT_EQ(p, "m.off: the shell of facet 6: faces outwards but lies inside another shell, in the solid (the boundary of "
+               "a cavity must face inwards)");
+}
+
+TEST(NonconvexValidation, InwardCubeBesideACubeIsRefused) {
+  // A 4-cube beside a separate unit cube facing in (signed volume 63).
+  const Mesh m = join(box_mesh(0, 4, 0, 4, 0, 4), box_mesh(6, 7, 0, 1, 0, 1), true);
+  const std::string p = problem(m);
+  EXPECT_EQ(p, "m.off: the shell of facet 6: faces inwards but lies inside no other shell (an outer boundary must face "
+               "outwards)");
+}
+
+TEST(NonconvexValidation, CavityFacingOutwardsInsideAnInwardShellIsRefused) {
+  // Both shells reversed: the outer one faces in, whatever the inner does.
+  Mesh m = join(box_mesh(0, 4, 0, 4, 0, 4), box_mesh(1, 3, 1, 3, 1, 3), true);
+  for (auto& f : m.faces) std::reverse(f.begin(), f.end());
+  const std::string p = problem(m);
+  EXPECT_NE(p.find("m.off: the shell of facet 0: faces inwards but lies inside no other shell"), std::string::npos) << p;
+}
+
+TEST(NonconvexValidation, IslandInACavityFacesOutwards) {
+  // [0,6]^3, its cavity [1,5]^3 (facing in), an island [2,4]^3 in the cavity.
+  const Mesh shell = join(box_mesh(0, 6, 0, 6, 0, 6), box_mesh(1, 5, 1, 5, 1, 5), true);
+  const Solid s = validate_solid(join(shell, box_mesh(2, 4, 2, 4, 2, 4)), "island");
+  EXPECT_EQ(s.volume, Rational(216 - 64 + 8));
+  // The island facing in is refused, named by its first face.
+  const std::string p = problem(join(shell, box_mesh(2, 4, 2, 4, 2, 4), true));
+  EXPECT_EQ(p, "m.off: the shell of facet 12: faces inwards but lies in a cavity (the boundary of an island in a cavity "
+               "must face outwards)");
+  // A cavity inside the island faces in again (depth 3).
+  const Mesh nested = join(join(shell, box_mesh(2, 4, 2, 4, 2, 4)), box_mesh(Rational(5, 2), Rational(7, 2),
+                                                                               Rational(5, 2), Rational(7, 2),
+                                                                               Rational(5, 2), Rational(7, 2)),
+                           true);
+  EXPECT_EQ(validate_solid(nested, "nested").volume, Rational(216 - 64 + 8 - 1));
+}
+
+TEST(NonconvexValidation, ShellsSideBySideAndOneInsideAnothersBoxAreSolids) {
+  // An L-shaped shell's bounding box holds a cube that lies outside it.
+  const Mesh l = catalog_mesh("lshape");
+  Rational lo[3], hi[3];
+  for (int c = 0; c < 3; ++c) lo[c] = hi[c] = l.points[0][c];
+  for (std::size_t i = 0; i < l.points.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      if (l.points[i][c] < lo[c]) lo[c] = l.points[i][c];
+      if (hi[c] < l.points[i][c]) hi[c] = l.points[i][c];
+    }
+  const Solid ls = validate_solid(l, "lshape");
+  // The corner of the box opposite the L's inner corner is empty: find a small
+  // cube in the box that the L does not hold, by trying the eight corners.
+  bool found = false;
+  for (int corner = 0; corner < 8 && !found; ++corner) {
+    Rational b[3][2];
+    for (int c = 0; c < 3; ++c) {
+      const Rational w = (hi[c] - lo[c]) / 8;
+      b[c][0] = (corner >> c & 1) ? Rational(hi[c] - 2 * w) : Rational(lo[c] + w);
+      b[c][1] = b[c][0] + w;
+    }
+    const Mesh m = join(l, box_mesh(b[0][0], b[0][1], b[1][0], b[1][1], b[2][0], b[2][1]));
+    try {
+      const Solid s = validate_solid(m, "l+cube");
+      EXPECT_EQ(s.volume, ls.volume + (b[0][1] - b[0][0]) * (b[1][1] - b[1][0]) * (b[2][1] - b[2][0]));
+      found = true;
+    } catch (const InputError&) {
+      // This corner is inside the L: the cube is a shell in the solid, refused.
+    }
+  }
+  EXPECT_TRUE(found);
 }
 
 // ---------------------------------------------------------------------------
@@ -263,6 +340,20 @@ TEST(NonconvexSum, ReportsProgressAndHonoursCancel) {
   };
   minkowski_sum_nonconvex(solid("tube"), solid("cube@scale:1/8"), o);
   EXPECT_EQ(phases, (std::vector<std::string>{"decompose", "pairs", "union", "boundary"}));
+  // The decompose phase reports a fraction, from 0 to 1, by either method
+  // (the progress line showed no fraction there).
+  for (const NonconvexMethod how : {NonconvexMethod::sweep, NonconvexMethod::decomposition}) {
+    std::vector<double> fractions;
+    SumOptions f;
+    f.progress = [&](const char* p, double x) {
+      if (std::string(p) == "decompose") fractions.push_back(x);
+    };
+    minkowski_sum_nonconvex(solid("tube"), solid("lshape"), f, 0, Method::automatic, how);
+    ASSERT_GE(fractions.size(), 2u);
+    EXPECT_EQ(fractions.front(), 0.0);
+    EXPECT_EQ(fractions.back(), 1.0);
+    EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  }
   std::atomic<bool> cancel{true};
   SumOptions c;
   c.cancel = &cancel;

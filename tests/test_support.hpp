@@ -7,6 +7,8 @@
 #include <minksum/polytope.hpp>
 
 #include <algorithm>
+#include <regex>
+#include <string>
 #include <set>
 #include <vector>
 
@@ -100,6 +102,14 @@ inline std::tuple<Integer, Integer, Integer> normal_direction(const Plane& p) {
   mpz_gcd(g.get_mpz_t(), p.a.get_mpz_t(), p.b.get_mpz_t());
   mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), p.c.get_mpz_t());
   return {p.a / g, p.b / g, p.c / g};
+}
+
+// A message without the coordinates that locate its place (" from (x, y,
+// z) to (x, y, z)", " at (x, y, z)"): to compare the verdicts on a mesh and
+// on a scaled copy.
+inline std::string without_coordinates(const std::string& message) {
+  static const std::regex located(R"( from \([^)]*\) to \([^)]*\)| at \([^)]*\))");
+  return std::regex_replace(message, located, "");
 }
 
 }  // namespace minksum::testing

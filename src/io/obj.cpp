@@ -171,6 +171,13 @@ Mesh read_obj(std::string_view data, const std::string& name) {
     } else if (is_one_of(key, {"cstype", "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim",
                                "hole", "scrv", "sp", "end", "con"})) {
       throw InputError(name, place, "free-form geometry (" + quote(key) + ") is not supported");
+    } else if (looks_numeric(key) && mesh.points.size() == 0 && mesh.faces.empty()) {
+      // Some OBJ writers (FCL's test meshes among them) put the vertex and
+      // face counts on a line of their own before the statements.
+      throw InputError(name, place,
+                       "unexpected token " + quote(key) +
+                           " (a line of numbers before the first statement, like a vertex and face count, is not "
+                           "OBJ: remove that line and the rest reads as OBJ)");
     } else {
       throw InputError(name, place, "unexpected token " + quote(key));
     }

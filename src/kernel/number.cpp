@@ -369,6 +369,11 @@ std::string format_double(double v) {
   return std::string(buf, res.ptr);
 }
 
+std::string format_point(const Point3& p) {
+  return "(" + format_double(to_double(p.x)) + ", " + format_double(to_double(p.y)) + ", " +
+         format_double(to_double(p.z)) + ")";
+}
+
 std::string format_exact(const Rational& q) {
   if (q.get_den() == 1) return q.get_num().get_str();
   return q.get_num().get_str() + "/" + q.get_den().get_str();

@@ -37,6 +37,13 @@ namespace minksum {
 namespace {
 
 std::string vtx(Index v) { return "vertex " + std::to_string(v); }
+// Where a defect of the user's file is: its vertex numbers and coordinates
+// (an STL has no vertex numbers of its own; the reader numbers its corners).
+std::string vertex_place(Index v, const PointList& named) { return vtx(v) + " at " + format_point(named[v]); }
+std::string edge_place(Index u, Index w, const PointList& named) {
+  return "edge " + std::to_string(u) + "-" + std::to_string(w) + " from " + format_point(named[u]) + " to " +
+         format_point(named[w]);
+}
 std::string fct(Index f) { return "facet " + std::to_string(f); }
 
 inline std::uint64_t mix64(std::uint64_t h) {
@@ -106,7 +113,7 @@ struct Graph {
 // error of each kind is the one on the edge that appears first: the
 // numbering and the messages do not depend on how edges are matched.
 Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::string& source,
-           const std::vector<Index>& vname, const std::vector<Index>& fname) {
+           const std::vector<Index>& vname, const std::vector<Index>& fname, const PointList& named) {
   const Index nf = Index(faces.size());
   // Corners in polygon order: corner c runs from co[c] to co[succ(c)].
   std::vector<Index> face_start = big_array<Index>(std::size_t(nf) + 1);
@@ -201,9 +208,7 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
     const Failure& z = b.open;
     open.note(z.first, z.u, z.w, z.count, z.c0, z.c1);
   }
-  auto edge_name = [&](const Failure& x) {
-    return "edge " + std::to_string(vname[x.u]) + "-" + std::to_string(vname[x.w]);
-  };
+  auto edge_name = [&](const Failure& x) { return edge_place(vname[x.u], vname[x.w], named); };
   if (non_manifold.first != kNoIndex)
     throw InputError(source, edge_name(non_manifold),
                      "non-manifold edge shared by " + std::to_string(non_manifold.count) + " facets");
@@ -268,7 +273,7 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
         ++steps;
       } while (h != g.vertex_he[v] && steps <= outdeg[v]);
       if (steps != outdeg[v])
-        throw InputError(source, vtx(vname[v]), "non-manifold vertex: its facets form more than one fan");
+        throw InputError(source, vertex_place(vname[v], named), "non-manifold vertex: its facets form more than one fan");
     }
   });
   // Connected, sphere topology.  Every vertex now has one fan, so two
@@ -773,7 +778,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   }
 
   // 3. Topology: closed, manifold, consistently oriented, connected sphere.
-  Graph g = link(Index(pts.size()), faces, source, vname, fname);
+  Graph g = link(Index(pts.size()), faces, source, vname, fname, mesh.points);
 
   // 4. Nonzero area, planar facets (exactly).  Signs are filtered with
   //    interval arithmetic; exact Newell normals are computed only when a
@@ -929,7 +934,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     for (auto& n : inrm) n = -n;
     for (Index f = 0; f < nf; ++f)
       if (xnrm[f]) *xnrm[f] = -*xnrm[f];
-    g = link(Index(pts.size()), faces, source, vname, fname);
+    g = link(Index(pts.size()), faces, source, vname, fname, mesh.points);
   }
 
   // 6. Merge adjacent coplanar facets: adjacent facets are coplanar exactly
@@ -1057,7 +1062,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
         throw InputError(source, fct(merged_name[f]), "degenerates to fewer than 3 corners");
       poly = std::move(kept);
     }
-    fg_own = link(Index(fpts_own.size()), merged, source, fname_v_own, merged_name);
+    fg_own = link(Index(fpts_own.size()), merged, source, fname_v_own, merged_name, mesh.points);
   }
   const PointList& fpts = unchanged ? pts : fpts_own;
   const std::vector<FastIPoint>& fip = unchanged ? ip : fip_own;
@@ -1099,9 +1104,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
         s = sgn(dot(cross(fnormal(f), fnormal(o)), fpoint(fg.origin[h + 1]) - fpoint(fg.origin[h])));
     }
     if (s <= 0)
-      throw NotConvexError(source,
-                       "edge " + std::to_string(fname_v[fg.origin[h]]) + "-" +
-                           std::to_string(fname_v[fg.origin[h + 1]]),
+      throw NotConvexError(source, edge_place(fname_v[fg.origin[h]], fname_v[fg.origin[h + 1]], mesh.points),
                        "reflex edge between " + fct(merged_name[f]) + " and " + fct(merged_name[o]) +
                            " (the solid is not convex)");
   }
@@ -1129,13 +1132,13 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
                                             *c, around, &wedges)) &&
             !convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), dip, tn, fpts,
                            block_scratch))
-          throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
+          throw NotConvexError(source, vertex_place(fname_v[v], mesh.points), "the solid is not convex around this vertex");
     });
   } else {
     for (Index v = 0; v < fpts.size(); ++v)
       if (!convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), fip, finrm, fpts,
                          scratch))
-        throw NotConvexError(source, vtx(fname_v[v]), "the solid is not convex around this vertex");
+        throw NotConvexError(source, vertex_place(fname_v[v], mesh.points), "the solid is not convex around this vertex");
   }
 
   // 9. The polytope.

@@ -113,7 +113,8 @@ int line_meets(const Point3& q, const Point3& r, const Point3& a, const Point3& 
 
 }  // namespace
 
-bool SurfaceCones::strictly_inside(const Point3& q) const {
+bool strictly_inside(const Point3& q, const std::vector<Point3>& points, const std::vector<std::array<Index, 3>>& tris,
+                     const std::vector<Point3>* normals) {
   // Rays in directions with large co-prime integer components, tried in turn
   // until one meets no edge or vertex of the surface and lies in no
   // triangle's plane: each triangle excludes the directions of a few planes
@@ -138,22 +139,27 @@ bool SurfaceCones::strictly_inside(const Point3& q) const {
     const Point3 d{Rational(dir[0]), Rational(dir[1]), Rational(dir[2])};
     const Point3 r = q + d;
     bool inside = false, generic = true;
-    for (std::size_t t = 0; t < tri_.size() && generic; ++t) {
-      const auto& c = tri_[t];
-      const int m = line_meets(q, r, points_[c[0]], points_[c[1]], points_[c[2]]);
+    for (std::size_t t = 0; t < tris.size() && generic; ++t) {
+      const auto& c = tris[t];
+      const int m = line_meets(q, r, points[c[0]], points[c[1]], points[c[2]]);
       if (m < 0) {
         generic = false;
       } else if (m > 0) {
         // The crossing is ahead of q (along d) iff n . (q - a) and n . d
         // have opposite signs.
-        const int sq = sgn(dot(normal_[t], q - points_[c[0]]));
+        const Point3 n = normals ? (*normals)[t] : cross(points[c[1]] - points[c[0]], points[c[2]] - points[c[0]]);
+        const int sq = sgn(dot(n, q - points[c[0]]));
         if (sq == 0) throw std::logic_error("strictly_inside: the point is on the surface");
-        if (sq * sgn(dot(normal_[t], d)) < 0) inside = !inside;
+        if (sq * sgn(dot(n, d)) < 0) inside = !inside;
       }
     }
     if (generic) return inside;
   }
   throw std::logic_error("strictly_inside: no generic ray direction");
+}
+
+bool SurfaceCones::strictly_inside(const Point3& q) const {
+  return nonconvex_detail::strictly_inside(q, points_, tri_, &normal_);
 }
 
 }  // namespace minksum::nonconvex_detail

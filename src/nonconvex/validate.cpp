@@ -4,6 +4,7 @@
 #include <minksum/predicates.hpp>
 
 #include "nonconvex/nef.hpp"
+#include "nonconvex/sweep.hpp"
 
 #include <algorithm>
 #include <map>
@@ -14,7 +15,7 @@ namespace minksum {
 
 namespace {
 
-std::string face_name(Index f) { return "face " + std::to_string(f); }
+std::string face_name(Index f) { return "facet " + std::to_string(f); }
 std::string vertex_name(Index v) { return "vertex " + std::to_string(v); }
 
 // Exact normal of a planar polygon (Newell's formula: twice its vector area).
@@ -67,6 +68,87 @@ bool ear_clip(const std::vector<Index>& loop, const std::vector<Point3>& pts, co
   if (orient2d(pts[poly[0]], pts[poly[1]], pts[poly[2]], drop) != ccw) return false;
   out.push_back({poly[0], poly[1], poly[2]});
   return true;
+}
+
+// Shells (the connected components of the surface; vertex-disjoint, as each
+// vertex is a single fan, and disjoint, as no two faces intersect) nest: the
+// depth of a shell is the number of shells enclosing it, decided by whether
+// one of its vertices lies strictly inside them (exact ray parity).  The
+// orientation must agree with the depth: an outer boundary (even depth)
+// faces outwards (positive signed volume), a cavity's boundary (odd depth)
+// inwards.  Anything else describes no solid, or another one than the
+// volumes say: an error naming the shell by its first face.
+void check_shell_orientation(const Solid& s, const std::string& source) {
+  const auto& tris = s.triangles.faces;
+  const std::size_t nv = s.triangles.points.size();
+  std::vector<Index> parent(nv);
+  std::iota(parent.begin(), parent.end(), Index(0));
+  auto find = [&](Index v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& t : tris)
+    for (int i = 1; i < 3; ++i) parent[find(t[i])] = find(t[0]);
+  std::vector<Index> shell_of_root(nv, kNoIndex);
+  std::vector<std::vector<std::array<Index, 3>>> shell;
+  std::vector<Index> first_face;
+  for (Index t = 0; t < tris.size(); ++t) {
+    Index& k = shell_of_root[find(tris[t][0])];
+    if (k == kNoIndex) {
+      k = Index(shell.size());
+      shell.emplace_back();
+      first_face.push_back(s.source_face[t]);
+    }
+    shell[k].push_back({tris[t][0], tris[t][1], tris[t][2]});
+  }
+  const std::vector<Point3> pts = s.triangles.points.to_points();
+  auto name = [&](std::size_t k) { return "the shell of " + face_name(first_face[k]); };
+  if (shell.size() == 1) {
+    if (sgn(s.volume) < 0)
+      throw InputError(source, "", "the faces are oriented inwards (the enclosed volume is negative)");
+    if (sgn(s.volume) == 0) throw InputError(source, "", "the enclosed volume is zero");
+    return;
+  }
+  // Per shell: signed volume and exact bounding box.
+  std::vector<int> sign(shell.size());
+  std::vector<Point3> lo, hi;
+  for (std::size_t k = 0; k < shell.size(); ++k) {
+    Rational six_v = 0;
+    Point3 l = pts[shell[k][0][0]], h = l;
+    for (const auto& t : shell[k]) {
+      six_v += dot(pts[t[0]], cross(pts[t[1]], pts[t[2]]));
+      for (Index v : t)
+        for (int c = 0; c < 3; ++c) {
+          if (cmp(pts[v][c], l[c]) < 0) l[c] = pts[v][c];
+          if (cmp(pts[v][c], h[c]) > 0) h[c] = pts[v][c];
+        }
+    }
+    sign[k] = sgn(six_v);
+    if (sign[k] == 0) throw InputError(source, name(k), "encloses zero volume");
+    lo.push_back(l);
+    hi.push_back(h);
+  }
+  for (std::size_t k = 0; k < shell.size(); ++k) {
+    const Point3& q = pts[shell[k][0][0]];
+    std::size_t depth = 0;
+    for (std::size_t j = 0; j < shell.size(); ++j) {
+      if (j == k) continue;
+      bool boxed = true;  // shell k's box inside shell j's: else j cannot enclose k
+      for (int c = 0; c < 3 && boxed; ++c) boxed = cmp(lo[j][c], lo[k][c]) <= 0 && cmp(hi[k][c], hi[j][c]) <= 0;
+      if (boxed && nonconvex_detail::strictly_inside(q, pts, shell[j])) ++depth;
+    }
+    const bool outward = sign[k] > 0;
+    if (depth % 2 == 0 && !outward)
+      throw InputError(source, name(k),
+                       depth == 0 ? "faces inwards but lies inside no other shell (an outer boundary must face "
+                                    "outwards)"
+                                  : "faces inwards but lies in a cavity (the boundary of an island in a cavity "
+                                    "must face outwards)");
+    if (depth % 2 == 1 && outward)
+      throw InputError(source, name(k),
+                       "faces outwards but lies inside another shell, in the solid (the boundary of a cavity must "
+                       "face inwards)");
+  }
 }
 
 }  // namespace
@@ -139,7 +221,15 @@ Solid validate_solid(const Mesh& mesh, const std::string& source) {
     std::vector<Point3> p;
     for (Index v : loop) p.push_back(exact[v]);
     const Point3 normal = polygon_normal(p);
-    if (is_zero(normal)) throw InputError(source, face_name(f), "has zero area");
+    if (is_zero(normal)) {
+      // Zero vector area: collinear vertices, or a boundary whose lobes
+      // cancel (a bow tie), which is not a simple polygon.
+      bool collinear = true;
+      for (std::size_t i = 2; i < p.size() && collinear; ++i) collinear = is_zero(cross(p[1] - p[0], p[i] - p[0]));
+      throw InputError(source, face_name(f),
+                       collinear ? std::string("has zero area (its vertices are collinear)")
+                                 : std::string("is not a simple polygon (its boundary crosses or touches itself)"));
+    }
     if (loop.size() == 3) {
       tris.push_back({loop[0], loop[1], loop[2]});
       tri_face.push_back(f);
@@ -154,22 +244,49 @@ Solid validate_solid(const Mesh& mesh, const std::string& source) {
     (void)before;
   }
 
-  // Edges: every directed edge once, its reverse once.
-  std::map<std::pair<Index, Index>, Index> directed;  // (u, v) -> triangle
+  // Edges: each shared by exactly two triangles traversing it in opposite
+  // directions.  Worded as the polytope builder words them (every command
+  // says the same of the same defect): the first edge of each kind in the
+  // order the triangles first use it, non-manifold edges before
+  // inconsistent ones before open ones, located by vertex numbers and
+  // coordinates.
+  struct EdgeUse {
+    Index count = 0, t0 = 0, t1 = 0;
+    bool same_direction = false;
+    Index from = 0;  // the first use's origin
+  };
+  std::vector<std::pair<Index, Index>> edge_order;
+  std::map<std::pair<Index, Index>, EdgeUse> uses;
   for (Index t = 0; t < tris.size(); ++t)
     for (int i = 0; i < 3; ++i) {
       const Index u = tris[t][i], v = tris[t][(i + 1) % 3];
-      if (!directed.emplace(std::make_pair(u, v), t).second)
-        throw InputError(source, face_name(tri_face[t]),
-                         "the edge from vertex " + std::to_string(u) + " to vertex " + std::to_string(v) +
-                             " is used twice in the same direction (faces inconsistently oriented, or more than "
-                             "two faces at an edge)");
+      const auto key = std::make_pair(std::min(u, v), std::max(u, v));
+      EdgeUse& e = uses[key];
+      if (e.count == 0) {
+        edge_order.push_back(key);
+        e.t0 = t;
+        e.from = u;
+      } else if (e.count == 1) {
+        e.t1 = t;
+        e.same_direction = u == e.from;
+      }
+      ++e.count;
     }
-  for (const auto& [e, t] : directed)
-    if (!directed.count({e.second, e.first}))
-      throw InputError(source, face_name(tri_face[t]),
-                       "the edge between vertex " + std::to_string(e.first) + " and vertex " +
-                           std::to_string(e.second) + " has no facet on its other side (the mesh is not closed)");
+  auto edge_place = [&](const std::pair<Index, Index>& k) {
+    return "edge " + std::to_string(k.first) + "-" + std::to_string(k.second) + " from " +
+           format_point(exact[k.first]) + " to " + format_point(exact[k.second]);
+  };
+  for (const auto& k : edge_order)
+    if (const EdgeUse& e = uses[k]; e.count > 2)
+      throw InputError(source, edge_place(k), "non-manifold edge shared by " + std::to_string(e.count) + " facets");
+  for (const auto& k : edge_order)
+    if (const EdgeUse& e = uses[k]; e.count == 2 && e.same_direction)
+      throw InputError(source, edge_place(k),
+                       "inconsistent orientation: " + face_name(tri_face[e.t0]) + " and " + face_name(tri_face[e.t1]) +
+                           " traverse this edge in the same direction");
+  for (const auto& k : edge_order)
+    if (const EdgeUse& e = uses[k]; e.count == 1)
+      throw InputError(source, edge_place(k), "open mesh: the edge belongs to " + face_name(tri_face[e.t0]) + " only");
 
   // Vertices: the triangles around each form one cycle (a single fan).
   std::vector<std::vector<std::pair<Index, Index>>> around(n);  // v -> (next, prev) of each corner
@@ -189,8 +306,8 @@ Solid validate_solid(const Mesh& mesh, const std::string& source) {
       ++steps;
     } while (w != fan[0].first && steps <= fan.size());
     if (steps != fan.size())
-      throw InputError(source, vertex_name(v),
-                       "several separate fans of faces meet at this vertex (the surface is not a 2-manifold)");
+      throw InputError(source, vertex_name(v) + " at " + format_point(exact[v]),
+                       "non-manifold vertex: its facets form more than one fan");
   }
 
   Solid s;
@@ -211,9 +328,7 @@ Solid validate_solid(const Mesh& mesh, const std::string& source) {
     throw InputError(source, face_name(s.source_face[hit->first]) + " and " + face_name(s.source_face[hit->second]),
                      "intersect (the surface intersects itself)");
   s.volume = mesh_volume(s.triangles);
-  if (sgn(s.volume) < 0)
-    throw InputError(source, "", "the faces are oriented inwards (the enclosed volume is negative)");
-  if (sgn(s.volume) == 0) throw InputError(source, "", "the enclosed volume is zero");
+  check_shell_orientation(s, source);
   return s;
 }
 

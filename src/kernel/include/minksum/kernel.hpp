@@ -118,6 +118,9 @@ std::optional<Rational> parse_number(std::string_view token, std::string* why = 
 // Printing.
 // Shortest "%.17g"-style text that reads back to the same double.
 std::string format_double(double v);
+// "(x, y, z)", each coordinate format_double of its nearest double: where a
+// message locates a point of the user's file (an STL has no vertex numbers).
+std::string format_point(const Point3& p);
 // Exact text: an integer ("-3") or "p/q" in lowest terms.
 std::string format_exact(const Rational& q);
 // The same text for the exact value hi + lo of two finite doubles (lo = 0:

@@ -60,8 +60,9 @@ struct Solid {
 // polygon, every edge shared by exactly two faces traversing it in opposite
 // directions (closed, consistently oriented), every vertex a single fan of
 // faces (2-manifold), no two faces intersecting other than in their shared
-// edges and vertices (exact CGAL self-intersection test), positive volume
-// (facets outward).
+// edges and vertices (exact CGAL self-intersection test), every shell
+// oriented as its nesting depth requires (outer boundaries and islands
+// outwards, cavities inwards; one shell: positive volume).
 Solid validate_solid(const Mesh& mesh, const std::string& source);
 // A convex polytope as a Solid (no validation needed).
 Solid solid_of(const ConvexPolytope& p);

@@ -10,6 +10,14 @@
 
 namespace minksum::nonconvex_detail {
 
+// Whether q lies in the interior of the closed surface made of `tris`
+// (indices into `points`, counter-clockwise seen from outside; q must not
+// lie on it): the parity of the crossings of an exact ray that meets no edge
+// or vertex of the surface.  `normals`, when given, holds each triangle's
+// (p1 - p0) x (p2 - p0).
+bool strictly_inside(const Point3& q, const std::vector<Point3>& points, const std::vector<std::array<Index, 3>>& tris,
+                     const std::vector<Point3>* normals = nullptr);
+
 // The triangulated closed surface of a solid A (Solid::triangles), with what
 // decides which facets of a piece t ⊕ C (t a triangle of A, C convex) can
 // lie on the boundary of A ⊕ B.

@@ -50,10 +50,11 @@ Options:
                      exact coordinates with --exact, else the nearest doubles
                      as for a .wrl file ('minksum view OUT.wrl -o page.html'
                      shows it)
-  --hull             take the convex hull of each input file's points instead
-                     of requiring a valid convex mesh (point clouds); points
-                     spanning fewer than 3 dimensions give a point, a
-                     segment or a polygon
+  --hull             take the convex hull of each operand's points instead
+                     of requiring a valid convex mesh (point clouds, and
+                     non-convex files or catalog solids); points spanning
+                     fewer than 3 dimensions give a point, a segment or a
+                     polygon
   --json             print one JSON object: dimension (3 for a polytope, 2,
                      1, 0 for a polygon, segment, point), vertices, edges,
                      facets, method,

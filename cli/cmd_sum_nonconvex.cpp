@@ -48,7 +48,10 @@ Counts counts(const Mesh& m) {
 // coarser grid), with a note naming the largest displacement; OutputError
 // naming --exact when it cannot be represented.  Returns the number of
 // coordinates rounded.
-std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh) {
+// Writes `mesh` (exact, or rounded to a valid solid); returns how many
+// coordinates were rounded, and the number of faces written in *faces_written
+// (triangles where the format or the rounding needs them).
+std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh, std::size_t* faces_written = nullptr) {
   const std::string name = out.to_stdout() ? "<stdout>" : out.path;
   const bool floats = out.format == Format::stl && out.options.binary;
   const std::string exact_hint = "; use --exact with " + extension_list(", ", " or ", true) + " to write exact rationals";
@@ -69,6 +72,7 @@ std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh) {
   Mesh written = rounded.rounded_coordinates ? std::move(rounded.mesh)
                  : out.format == Format::stl  ? triangulate(mesh, name)
                                               : mesh;
+  if (faces_written) *faces_written = written.faces.size();
   try {
     write_mesh_as_is(out, written);
   } catch (const UnrepresentableError& e) {
@@ -92,10 +96,13 @@ std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh) {
 int write_nonconvex_catalog_solid(const std::string& spec, const MeshOutput& output) {
   const Solid s = validate_solid(catalog_mesh(spec), spec);
   const Mesh m = catalog_mesh(spec);
-  write_solid_mesh(output, m);
+  std::size_t written = 0;
+  write_solid_mesh(output, m, &written);
   output.report_stream() << printable(spec) << ": " << s.vertices << " vertices, " << s.faces
                          << " faces, non-convex, written to "
-                         << (output.to_stdout() ? std::string("standard output") : printable(output.path)) << "\n";
+                         << (output.to_stdout() ? std::string("standard output") : printable(output.path));
+  if (written != s.faces) output.report_stream() << " as " << written << " triangles";
+  output.report_stream() << "\n";
   return 0;
 }
 

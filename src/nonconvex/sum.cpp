@@ -36,10 +36,12 @@ NonconvexSum sum_by_decomposition(const Solid& a, const Solid& b, const SumOptio
   out.method = "decomposition";
   out.pair_method = method;
   auto t0 = Clock::now();
-  options.report("decompose", -1.0);
+  // The fraction of the operands decomposed (each one CGAL call).
+  options.report("decompose", 0.0);
   const std::vector<ConvexPolytope> pa = convex_decomposition(a);
-  options.report("decompose", -1.0);
+  options.report("decompose", 0.5);
   const std::vector<ConvexPolytope> pb = convex_decomposition(b);
+  options.report("decompose", 1.0);
   out.pieces_a = pa.size();
   out.pieces_b = pb.size();
   out.seconds_decompose = since(t0);
@@ -89,8 +91,9 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
   const Solid& o = sweep_a ? b : a;
   out.swept = sweep_a ? 'a' : 'b';
   auto t0 = Clock::now();
-  options.report("decompose", -1.0);
+  options.report("decompose", 0.0);
   const std::vector<ConvexPolytope> po = convex_decomposition(o);
+  options.report("decompose", 1.0);
   std::vector<ConvexSet> pieces;
   pieces.reserve(po.size());
   for (const ConvexPolytope& p : po) pieces.emplace_back(p);

@@ -5,6 +5,7 @@
 #include <minksum/operand.hpp>
 
 #include <chrono>
+#include <optional>
 #include <sys/stat.h>
 
 namespace minksum {
@@ -80,11 +81,20 @@ T load_named(const std::string& spec, bool hull, LoadPhases* phases, std::option
     return validate<T>(read_file_operand(spec, given), spec, hull, phases, t0);
   }
   const auto t0 = Clock::now();
-  T p = Kind<T>::catalog(spec);
+  std::optional<T> p;
+  bool hulled = false;
+  try {
+    p = Kind<T>::catalog(spec);
+  } catch (const NotConvexError&) {
+    if (!hull) throw;
+    // --hull on a non-convex solid of the catalog: the hull of its points, as for a file.
+    p = Kind<T>::from_mesh(catalog_mesh(spec), spec, true);
+    hulled = true;
+  }
   const auto t1 = Clock::now();
-  if (hull) p = Kind<T>::hull_of(p, spec);
+  if (hull && !hulled) p = Kind<T>::hull_of(*p, spec);
   if (phases) *phases = {seconds(t0, t1), seconds(t1, Clock::now())};
-  return p;
+  return std::move(*p);
 }
 }  // namespace
 

@@ -173,14 +173,15 @@ bench-quick:
 	$(BENCH_BUILD)/bin/minksum_bench --suite quick --out $(BENCH_BUILD)/quick --command "make bench-quick"
 
 # libFuzzer targets (tests/fuzz/): each reader (off obj ply stl wrl) through
-# the public io API, and the trajectory-line and query-vector parsers, built
+# the public io API, the trajectory-line and query-vector parsers, and the
+# writer of non-convex solids over extreme scales (solid_writer), built
 # with clang, ASan and UBSan in build-fuzz/ (MINKSUM_FUZZ=ON; only the layers
 # they use).  `make fuzz` runs each for FUZZ_SECONDS from its seed corpus
 # (tests/fuzz/corpus/); `make fuzz-smoke` for 20 s each (what .ci/run does).
 # A finding is saved in build-fuzz/fuzz-artifacts/TARGET/ and fails the run.
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS ?= off obj ply stl wrl trajectory vector
+FUZZ_TARGETS ?= off obj ply stl wrl trajectory vector solid_writer
 .PHONY: fuzz fuzz-smoke fuzz-build
 fuzz-build:
 	@$(MAKE) --no-print-directory setup

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Run each libFuzzer target for a set time: scripts/fuzz.sh BUILD_DIR SECONDS [TARGET...]
-# (targets: off obj ply stl wrl trajectory vector; default all).
+# (targets: off obj ply stl wrl trajectory vector solid_writer; default all).
 #
 # Each target starts from its committed seed corpus (tests/fuzz/corpus/NAME/,
 # never modified) and the regression inputs (tests/fuzz/regressions/NAME/),
@@ -15,7 +15,7 @@ build=${1:?usage: scripts/fuzz.sh BUILD_DIR SECONDS [TARGET...]}
 seconds=${2:?usage: scripts/fuzz.sh BUILD_DIR SECONDS [TARGET...]}
 shift 2
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(off obj ply stl wrl trajectory vector)
+[ ${#targets[@]} -gt 0 ] || targets=(off obj ply stl wrl trajectory vector solid_writer)
 root=$(cd "$(dirname "$0")/.." && pwd)
 failed=()
 for t in "${targets[@]}"; do

@@ -5,6 +5,7 @@
 // inputs the fuzz targets found kept as regression files.
 #include <gtest/gtest.h>
 
+#include "fuzz/solid_writer_case.hpp"
 #include "shell.hpp"
 
 #include <minksum/error.hpp>
@@ -349,6 +350,22 @@ std::vector<fs::path> inputs(const std::string& target) {
   }
   std::sort(files.begin(), files.end());
   return files;
+}
+
+// The solid writer's seeds and findings: each a RoundingError or a written
+// file that reads back as a valid solid (solid_writer_case.hpp).
+TEST(FuzzInputs, EverySolidWriterInputIsWrittenValidOrRefused) {
+  const auto files = inputs("solid_writer");
+  EXPECT_GE(files.size(), 3u) << "solid_writer: the seed corpus is missing";
+  for (const fs::path& f : files) {
+    SCOPED_TRACE(f.string());
+    const std::string bytes = read_file(f);
+    try {
+      minksum_fuzz::solid_writer_case(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << e.what();
+    }
+  }
 }
 
 TEST(FuzzInputs, EveryReaderInputIsReadOrRefused) {

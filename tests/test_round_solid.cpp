@@ -117,6 +117,35 @@ TEST(RoundSolid, BeyondTheRangeOfFloatsIsRefused) {
   }
 }
 
+// Below the range: every coordinate rounds to zero (the message had an empty
+// "()" where the problem should be), or only some do.
+TEST(RoundSolid, BelowTheRangeOfFloatsIsRefusedWithAReason) {
+  const Mesh m = cube_with_top_point(Point3(Rational(1, 3), Rational(1, 3), Rational(1)));
+  Mesh tiny = m;
+  PointList pts;
+  for (std::size_t i = 0; i < m.points.size(); ++i) pts.push_back(Rational(1, Integer(1) << 200) * m.points[i]);
+  tiny.points = pts;
+  EXPECT_NO_THROW(round_solid(tiny, false, "tiny.off"));
+  try {
+    round_solid(tiny, true, "tiny.stl");
+    FAIL() << "no RoundingError";
+  } catch (const RoundingError& e) {
+    EXPECT_STREQ(e.what(), "every coordinate rounds to zero: the solid is below the range of 32-bit floats");
+  }
+  // 2^-140: floats are denormal there, with too few bits to keep the solid.
+  PointList near;
+  for (std::size_t i = 0; i < m.points.size(); ++i) near.push_back(Rational(1, Integer(1) << 148) * m.points[i]);
+  tiny.points = near;
+  try {
+    const RoundedSolid r = round_solid(tiny, true, "tiny.stl");
+    EXPECT_NO_THROW(validate_solid(r.mesh, "rounded"));
+  } catch (const RoundingError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find("()"), std::string::npos) << what;
+    EXPECT_EQ(what.rfind("the rounded surface ", 0), 0u) << what;
+  }
+}
+
 TEST(RoundSolid, SurfaceTouchingItselfAlongAnEdgeIsRefused) {
   // Two boxes sharing the edge x = y = 1/3, equal points welded (as in a
   // sum's mesh), scaled by 1/3 so that rounding is needed.

@@ -158,6 +158,9 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
       throw RoundingError("the sum touches itself along " + std::to_string(touching) +
                           " edges, which only exact coordinates keep apart");
   }
+  if (largest == 0)
+    throw RoundingError(std::string("every coordinate rounds to zero: the solid is below the range of ") +
+                        (floats ? "32-bit floats" : "doubles"));
   // Grids: none (the nearest values), then 2^e from the format's spacing at
   // the largest coordinate upwards, up to 2^-20 of it.
   int e0 = 0;
@@ -206,6 +209,9 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
     r.grid = grid;
     return r;
   }
+  if (last_problem.empty())
+    throw RoundingError("the rounded surface collapses (every face degenerates, even with points snapped to 2^-20 of "
+                        "the largest coordinate)");
   throw RoundingError("the rounded surface is not a valid solid even with points snapped to 2^-20 of the largest "
                       "coordinate (" + last_problem + ")");
 }

@@ -126,7 +126,7 @@ void check_dtype(const py::dtype& dt, const std::string& what, bool array) {
     throw py::type_error(what + ": numpy.longdouble is refused (its values are not doubles and would be rounded), " +
                          "got " + of + "; convert to float64, or to Fraction(*x.as_integer_ratio()) for the exact values");
   if (std::string("biufOU").find(kind) == std::string::npos)
-    throw py::type_error(what + ": expected numbers, got " + of);
+    throw py::type_error(what + (array ? ": expected numbers, got " : ": expected a number, got ") + of);
 }
 
 Rational from_double(double d, const std::string& what) {

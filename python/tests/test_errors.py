@@ -194,6 +194,8 @@ def wrong_type_calls():
         ("translated(None)", lambda: cube.translated(None), r"t: expected a triple .* got NoneType"),
         ("translated(5)", lambda: cube.translated(5), r"t: expected a triple .* got int"),
         ("translated(text)", lambda: cube.translated((0, 0, b"1")), r"t\[2\]: expected a number .* got bytes"),
+        ("translated(datetime)", lambda: cube.translated((np.datetime64("2020"), 0, 0)),
+         r"t\[0\]: expected a number, got numpy.datetime64"),
         ("save(None)", lambda: cube.save(None), "NoneType"),
         ("Polytope.__setstate__", lambda: minksum.Polytope.__new__(minksum.Polytope).__setstate__((1, 2, 3)), ""),
     ]

@@ -134,9 +134,9 @@ import sys, time
 import minksum
 
 pairs = [("sphere:6", f"sphere:6@rot:{i}") for i in range(int(sys.argv[1]))]
-print("started", flush=True)
 start = time.monotonic()
 try:
+    print("started", flush=True)
     minksum.minkowski_sum_many(pairs, threads=2)
 except KeyboardInterrupt:
     print("KeyboardInterrupt after %.1f s" % (time.monotonic() - start), flush=True)

@@ -2,22 +2,31 @@
 // URL read from the first line of standard output, queries sent with
 // cpp-httplib's client and their answers checked exactly against
 // `minksum query` for the same poses; malformed requests get 400 and one
-// line; SIGINT and SIGTERM stop it with exit status 0.
+// line; SIGINT and SIGTERM stop it with exit status 0.  Requests a page of
+// another origin would send (another Host, another Origin, text/plain) go
+// over raw sockets.
 #include <gtest/gtest.h>
 
 #include "shell.hpp"
 
 #include <httplib.h>
 
+#include <arpa/inet.h>
 #include <fcntl.h>
+#include <netinet/in.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <random>
 #include <string>
 #include <thread>
@@ -351,6 +360,242 @@ TEST(Play, CommandWithoutItsServerBesideItExitsWithStatusOne) {
   EXPECT_EQ(help.status, 0);
   EXPECT_NE(help.out.find("Usage: minksum play P Q"), std::string::npos) << help.out;
   EXPECT_EQ(usage.status, 2) << usage.out;
+}
+
+}  // namespace
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// One answer read from a raw connection; status 0 when none came whole.
+struct RawAnswer {
+  int status = 0;
+  std::string head, body;
+};
+
+// A raw connection to the server: bytes sent as given, answers read as they
+// come (for what cpp-httplib's client does not send).
+class Raw {
+ public:
+  explicit Raw(int port) {
+    fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(static_cast<uint16_t>(port));
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    connected_ = fd_ >= 0 && ::connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+  }
+  ~Raw() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  Raw(const Raw&) = delete;
+  Raw& operator=(const Raw&) = delete;
+  bool connected() const { return connected_; }
+  // The server closed (or reset) the connection.
+  bool closed() const { return closed_; }
+
+  // Sends `data` whole; false when the connection is closed or the server
+  // takes nothing for 10 s.
+  bool send(const std::string& data) {
+    for (std::size_t at = 0; at < data.size();) {
+      pollfd pf{fd_, POLLOUT, 0};
+      if (::poll(&pf, 1, 10000) <= 0) return false;
+      const ssize_t n = ::send(fd_, data.data() + at, data.size() - at, MSG_NOSIGNAL | MSG_DONTWAIT);
+      if (n < 0 && (errno == EAGAIN || errno == EINTR)) continue;
+      if (n <= 0) return false;
+      at += std::size_t(n);
+    }
+    return true;
+  }
+
+  // Reads what comes for `seconds` or until the connection closes.
+  void receive_for(double seconds) {
+    const auto t0 = Clock::now();
+    while (!closed_ && seconds_since(t0) < seconds) receive(100);
+  }
+
+  // The next answer, whole, within `seconds` (status 0 when none came).
+  RawAnswer next_answer(double seconds) {
+    const auto t0 = Clock::now();
+    RawAnswer a;
+    while (!take_answer(a) && !closed_ && seconds_since(t0) < seconds) receive(100);
+    if (a.status == 0) take_answer(a);
+    return a;
+  }
+
+  // Sends `data` in pieces while no answer has come, reading at the same
+  // time; stops when an answer is whole, the connection closes or `seconds`
+  // pass.  *sent: the bytes the server took.
+  RawAnswer send_until_answered(const std::string& data, double seconds, std::size_t* sent = nullptr) {
+    const auto t0 = Clock::now();
+    std::size_t at = 0;
+    bool send_failed = false;
+    RawAnswer a;
+    while (!take_answer(a) && !closed_ && seconds_since(t0) < seconds) {
+      const bool more = at < data.size() && !send_failed;
+      pollfd pf{fd_, static_cast<short>(POLLIN | (more ? POLLOUT : 0)), 0};
+      if (::poll(&pf, 1, 100) <= 0) continue;
+      if (pf.revents & (POLLIN | POLLHUP | POLLERR)) {
+        receive(0);
+      } else if (pf.revents & POLLOUT) {
+        const ssize_t n = ::send(fd_, data.data() + at, std::min<std::size_t>(data.size() - at, 65536),
+                                 MSG_NOSIGNAL | MSG_DONTWAIT);
+        if (n > 0) at += std::size_t(n);
+        else if (n < 0 && errno != EAGAIN && errno != EINTR) send_failed = true;
+      }
+    }
+    if (sent) *sent = at;
+    return a;
+  }
+
+  // Waits up to `seconds` for the server to close the connection.
+  bool closed_within(double seconds) {
+    receive_for(seconds);
+    return closed_;
+  }
+
+ private:
+  void receive(int ms) {
+    pollfd pf{fd_, POLLIN, 0};
+    if (::poll(&pf, 1, ms) <= 0) return;
+    char buf[65536];
+    const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
+    if (n > 0) received_.append(buf, std::size_t(n));
+    else if (n == 0 || (errno != EAGAIN && errno != EINTR)) closed_ = true;
+  }
+  // Takes the first answer from what was received when it is whole.
+  bool take_answer(RawAnswer& a) {
+    const std::size_t end = received_.find("\r\n\r\n");
+    if (end == std::string::npos) return false;
+    const std::string head = received_.substr(0, end);
+    std::string lower = head;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::size_t at = lower.find("\r\ncontent-length:");
+    const std::size_t length = at == std::string::npos ? 0 : std::stoul(head.substr(at + 17));
+    if (received_.size() < end + 4 + length) return false;
+    a.status = head.rfind("HTTP/1.1 ", 0) == 0 ? std::atoi(head.c_str() + 9) : -1;
+    a.head = head;
+    a.body = received_.substr(end + 4, length);
+    received_.erase(0, end + 4 + length);
+    return true;
+  }
+
+  int fd_ = -1;
+  bool connected_ = false, closed_ = false;
+  std::string received_;
+};
+
+std::string host_of(const Server& s) { return "127.0.0.1:" + std::to_string(s.port()); }
+
+// A POST of `body` to /query with the headers `extra` (each ending in CRLF).
+std::string raw_post(const Server& s, const std::string& body, const std::string& extra) {
+  return "POST /query HTTP/1.1\r\nHost: " + host_of(s) + "\r\n" + extra +
+         "Content-Length: " + std::to_string(body.size()) + "\r\n\r\n" + body;
+}
+
+// One line: the body is text ending in its only newline.
+void expect_one_line(const RawAnswer& a) {
+  ASSERT_FALSE(a.body.empty()) << a.head;
+  EXPECT_EQ(a.body.find('\n'), a.body.size() - 1) << "not one line: " << a.body.substr(0, 300);
+}
+
+// A page whose DNS name is made to mean 127.0.0.1 (DNS rebinding) sends its
+// own name as Host: the server answers only to its own address, so such a
+// page reads neither the page (the operands' names and exact coordinates)
+// nor an answer.
+TEST(Play, ForeignHostRefused) {
+  Server s({"cube", "octahedron"});
+  ASSERT_GT(s.port(), 0) << "first line: " << s.url();
+  const std::string port = std::to_string(s.port());
+  const std::string other_port = std::to_string(s.port() == 1 ? 2 : s.port() - 1);
+  const std::vector<std::string> requests = {
+      "GET / HTTP/1.1\r\nHost: rebound.example:" + port + "\r\n\r\n",
+      "GET / HTTP/1.1\r\nHost: rebound.example\r\n\r\n",
+      "GET / HTTP/1.1\r\nHost: 127.0.0.1:" + other_port + "\r\n\r\n",
+      "GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n",
+      "GET / HTTP/1.1\r\nHost: 127.0.0.1:" + port + "\r\nHost: rebound.example:" + port + "\r\n\r\n",
+      "GET / HTTP/1.0\r\n\r\n",
+      "POST /query HTTP/1.1\r\nHost: rebound.example:" + port +
+          "\r\nContent-Type: application/json\r\nContent-Length: 24\r\n\r\n{\"translate_p\": \"4,0,0\"}",
+  };
+  for (const auto& request : requests) {
+    SCOPED_TRACE(request);
+    Raw r(s.port());
+    ASSERT_TRUE(r.connected());
+    ASSERT_TRUE(r.send(request));
+    const RawAnswer a = r.next_answer(10);
+    EXPECT_EQ(a.status, 403) << a.head;
+    expect_one_line(a);
+    EXPECT_NE(a.body.find("the Host header must be 127.0.0.1:" + port), std::string::npos) << a.body;
+    EXPECT_EQ(a.body.find("solids"), std::string::npos);
+    EXPECT_EQ(a.body.find("squared_distance"), std::string::npos);
+  }
+  // Its own address is answered.
+  Raw r(s.port());
+  ASSERT_TRUE(r.send("GET / HTTP/1.1\r\nHost: 127.0.0.1:" + port + "\r\n\r\n"));
+  const RawAnswer page = r.next_answer(10);
+  EXPECT_EQ(page.status, 200);
+  EXPECT_NE(page.body.find("\"kind\": \"play\""), std::string::npos);
+  EXPECT_EQ(s.stop(SIGTERM), 0);
+}
+
+// Any page can send a "simple" cross-origin POST (text/plain, no preflight):
+// the server refuses a POST from another origin or site and one that is not
+// application/json, before the body reaches the session (P is not turned:
+// the next good request computes M again).
+TEST(Play, CrossOriginTextPlainPostRefused) {
+  Server s({"cube", "cube"});
+  ASSERT_GT(s.port(), 0) << "first line: " << s.url();
+  const std::string body = R"({"translate_p": "4,0,0", "rotate_p": "2,1,0,0"})";
+  const std::string own = "http://" + host_of(s);
+  const std::vector<std::pair<std::string, int>> refused = {
+      {"Origin: http://evil.example\r\nContent-Type: text/plain\r\n", 403},
+      {"Origin: http://evil.example\r\nContent-Type: application/json\r\n", 403},
+      {"Origin: null\r\nContent-Type: application/json\r\n", 403},
+      {"Origin: " + own + "\r\nSec-Fetch-Site: cross-site\r\nContent-Type: application/json\r\n", 403},
+      {"Sec-Fetch-Site: same-site\r\nContent-Type: application/json\r\n", 403},
+      {"Content-Type: text/plain\r\n", 415},
+      {"Origin: " + own + "\r\nContent-Type: text/plain;charset=UTF-8\r\n", 415},
+      {"Content-Type: application/x-www-form-urlencoded\r\n", 415},
+      {"", 415},
+  };
+  for (const auto& [headers, status] : refused) {
+    SCOPED_TRACE(headers);
+    Raw r(s.port());
+    ASSERT_TRUE(r.send(raw_post(s, body, headers)));
+    const RawAnswer a = r.next_answer(10);
+    EXPECT_EQ(a.status, status) << a.head;
+    expect_one_line(a);
+    EXPECT_EQ(a.body.find("recomputed"), std::string::npos) << a.body;
+  }
+  // The page's own request: same origin, JSON.
+  httplib::Client c("127.0.0.1", s.port());
+  const httplib::Headers page_headers = {{"Origin", own}, {"Sec-Fetch-Site", "same-origin"}};
+  auto r = c.Post("/query", page_headers, body, "application/json; charset=utf-8");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(json_field(r->body, "recomputed"), "true");
+  EXPECT_EQ(r->get_header_value("Cross-Origin-Resource-Policy"), "same-origin");
+  EXPECT_EQ(s.stop(SIGTERM), 0);
+}
+
+// A body that is a JSON object followed by a NUL byte and more is not a
+// JSON object: 400 and one line.
+TEST(Play, BodyWithNulAndGarbageRefused) {
+  Server s({"cube", "cube"});
+  ASSERT_GT(s.port(), 0) << "first line: " << s.url();
+  httplib::Client c("127.0.0.1", s.port());
+  const std::string body = std::string(R"({"translate_p": "4,0,0"})") + '\0' + "garbage";
+  auto r = post(c, body);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 400) << r->body;
+  ASSERT_FALSE(r->body.empty());
+  EXPECT_EQ(r->body.find('\n'), r->body.size() - 1) << "not one line: " << r->body;
+  EXPECT_EQ(r->body.find("squared_distance"), std::string::npos) << r->body;
+  EXPECT_EQ(s.stop(SIGTERM), 0);
 }
 
 }  // namespace

@@ -19,7 +19,9 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -46,6 +48,24 @@ namespace {
 constexpr std::size_t kMaxBody = 4096;
 // Bound on the integers of a rotation: M's coordinates grow with them.
 const Integer kMaxQuaternion = 1000000;
+
+// A header value in lower case without the blanks around it.
+std::string lower_trimmed(std::string t) {
+  t.erase(0, t.find_first_not_of(" \t"));
+  t.erase(t.find_last_not_of(" \t") + 1);
+  std::transform(t.begin(), t.end(), t.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+  return t;
+}
+
+// The media type of a Content-Type value, lower case, without parameters.
+std::string media_type(const std::string& content_type) {
+  return lower_trimmed(content_type.substr(0, content_type.find(';')));
+}
+
+// A client's text in a message: printable and not too long.
+std::string quoted(const std::string& s) {
+  return "'" + printable(s.size() > 100 ? s.substr(0, 100) + "..." : s) + "'";
+}
 
 // The feature of a polytope as the page draws it: its vertices' coordinates.
 std::string feature_points_json(const ConvexPolytope& p, const Feature& f, const Point3& shift) {
@@ -226,10 +246,75 @@ int run_play_server(const PlayOptions& o) {
     int yes = 1;
     setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
   });
+
+  const int port = o.port;
+  const int bound = port == 0 ? server.bind_to_any_port("127.0.0.1") : (server.bind_to_port("127.0.0.1", port) ? port : -1);
+  if (bound < 0)
+    throw OutputError("cannot listen on 127.0.0.1:" + std::to_string(port) + " (the port is taken or not allowed)");
+  // The only name the server answers to (against DNS rebinding: a page whose
+  // name comes to mean 127.0.0.1 sends its own name as Host) and the only
+  // origin whose requests it takes (against other pages' requests).
+  const std::string authority = "127.0.0.1:" + std::to_string(bound);
+  const std::string origin = "http://" + authority;
+
   auto fail = [](httplib::Response& res, int status, const std::string& message) {
     res.status = status;
     res.set_content(printable(message) + "\n", "text/plain; charset=utf-8");
   };
+  using httplib::Server;
+  server.set_pre_routing_handler([&](const httplib::Request& req, httplib::Response& res) {
+    const std::string host = req.get_header_value("Host");
+    if (req.get_header_value_count("Host") != 1 || host != authority) {
+      fail(res, 403, "refused: the Host header must be " + authority + ", this server's address (got " +
+                         (req.has_header("Host") ? quoted(host) : std::string("none")) + ")");
+      return Server::HandlerResponse::Handled;
+    }
+    if (req.has_header("Origin") &&
+        (req.get_header_value_count("Origin") != 1 || req.get_header_value("Origin") != origin)) {
+      fail(res, 403, "refused: a request from another origin, " + quoted(req.get_header_value("Origin")) +
+                         " (this server takes requests from " + origin + " only)");
+      return Server::HandlerResponse::Handled;
+    }
+    if (req.method != "POST") return Server::HandlerResponse::Unhandled;
+    const std::string site = req.get_header_value("Sec-Fetch-Site");
+    if (req.has_header("Sec-Fetch-Site") && site != "same-origin") {
+      fail(res, 403, "refused: a POST from another site (Sec-Fetch-Site: " + quoted(site) + ")");
+      return Server::HandlerResponse::Handled;
+    }
+    const std::string type = req.get_header_value("Content-Type");
+    if (media_type(type) != "application/json") {
+      fail(res, 415, "a POST takes Content-Type: application/json (got " +
+                         (req.has_header("Content-Type") ? quoted(type) : std::string("none")) + ")");
+      return Server::HandlerResponse::Handled;
+    }
+    if (req.has_header("Content-Encoding")) {
+      fail(res, 415, "a POST body is taken as sent, without Content-Encoding (got " +
+                         quoted(req.get_header_value("Content-Encoding")) + ")");
+      return Server::HandlerResponse::Handled;
+    }
+    const bool chunked = req.has_header("Transfer-Encoding");
+    if (chunked && (req.get_header_value_count("Transfer-Encoding") != 1 ||
+                    lower_trimmed(req.get_header_value("Transfer-Encoding")) != "chunked" ||
+                    req.has_header("Content-Length"))) {
+      fail(res, 400, "Transfer-Encoding: only chunked, alone and without Content-Length");
+      return Server::HandlerResponse::Handled;
+    }
+    if (!chunked && req.get_header_value_count("Content-Length") != 1) {
+      fail(res, 411, "a POST needs one Content-Length header (or Transfer-Encoding: chunked)");
+      return Server::HandlerResponse::Handled;
+    }
+    return Server::HandlerResponse::Unhandled;
+  });
+  // Every answer: not to be read by other origins' pages; an error answer
+  // asks the client to close the connection.
+  server.set_post_routing_handler([&](const httplib::Request&, httplib::Response& res) {
+    res.set_header("Cross-Origin-Resource-Policy", "same-origin");
+    res.set_header("X-Content-Type-Options", "nosniff");
+    if (res.status >= 400) {
+      res.headers.erase("Keep-Alive");
+      if (!res.has_header("Connection")) res.set_header("Connection", "close");
+    }
+  });
   server.Get("/", [&](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cache-Control", "no-store");
     res.set_content(html, "text/html; charset=utf-8");
@@ -257,10 +342,6 @@ int run_play_server(const PlayOptions& o) {
     else fail(res, res.status, "bad request");
   });
 
-  const int port = o.port;
-  const int bound = port == 0 ? server.bind_to_any_port("127.0.0.1") : (server.bind_to_port("127.0.0.1", port) ? port : -1);
-  if (bound < 0)
-    throw OutputError("cannot listen on 127.0.0.1:" + std::to_string(port) + " (the port is taken or not allowed)");
   const std::string url = "http://127.0.0.1:" + std::to_string(bound) + "/";
   std::cout << url << std::endl;
   check_stdout();

@@ -3,8 +3,8 @@
 // cpp-httplib's client and their answers checked exactly against
 // `minksum query` for the same poses; malformed requests get 400 and one
 // line; SIGINT and SIGTERM stop it with exit status 0.  Requests a page of
-// another origin would send (another Host, another Origin, text/plain) go
-// over raw sockets.
+// another origin or a hostile client would send (another Host, another
+// Origin, text/plain, oversized, slow, pipelined) go over raw sockets.
 #include <gtest/gtest.h>
 
 #include "shell.hpp"
@@ -582,6 +582,167 @@ TEST(Play, CrossOriginTextPlainPostRefused) {
   EXPECT_EQ(s.stop(SIGTERM), 0);
 }
 
+// One chunk of a chunked body.
+std::string chunk(const std::string& data) {
+  char size[32];
+  std::snprintf(size, sizeof size, "%zx\r\n", data.size());
+  return size + data + "\r\n";
+}
+
+// A chunked body is held to the same 4096 bytes as any body: a chunk that
+// announces 64 MiB, or many small chunks, get 413 once 4096 bytes are
+// exceeded, and the connection is closed; a small chunked body is answered.
+TEST(Play, ChunkedBodyBeyondLimitRefused) {
+  Server s({"cube", "cube"});
+  ASSERT_GT(s.port(), 0) << "first line: " << s.url();
+  const std::string head = "POST /query HTTP/1.1\r\nHost: " + host_of(s) +
+                           "\r\nContent-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n";
+  {
+    Raw r(s.port());
+    ASSERT_TRUE(r.send(head + chunk(R"({"translate_p")") + chunk(R"(: "4,0,0"})") + "0\r\n\r\n"));
+    const RawAnswer a = r.next_answer(10);
+    ASSERT_EQ(a.status, 200) << a.head << a.body;
+    EXPECT_EQ(json_field(a.body, "squared_distance"), "\"4\"");
+  }
+  {
+    SCOPED_TRACE("one chunk of 64 MiB");
+    Raw r(s.port());
+    const std::string data = head + "4000000\r\n{\"translate_p\": \"" + std::string(8192, '1');
+    const RawAnswer a = r.send_until_answered(data, 10);
+    EXPECT_EQ(a.status, 413) << a.head;
+    expect_one_line(a);
+    EXPECT_TRUE(r.closed_within(5));
+  }
+  {
+    SCOPED_TRACE("many chunks of 100 bytes");
+    Raw r(s.port());
+    std::string data = head + chunk(R"({"translate_p": ")");
+    for (int i = 0; i < 10000; ++i) data += chunk(std::string(100, '1'));
+    const RawAnswer a = r.send_until_answered(data, 10);
+    EXPECT_EQ(a.status, 413) << a.head;
+    expect_one_line(a);
+    EXPECT_TRUE(r.closed_within(5));
+  }
+  httplib::Client c("127.0.0.1", s.port());
+  auto good = post(c, R"({"translate_p": "4,0,0"})");
+  ASSERT_TRUE(good);
+  EXPECT_EQ(good->status, 200);
+  EXPECT_EQ(s.stop(SIGTERM), 0);
+}
+
+// A header line, or the request line, that never ends: refused (431) once
+// the request line and headers pass 16 KiB, not read on.
+TEST(Play, HugeHeaderLineRefused) {
+  Server s({"cube", "cube"});
+  ASSERT_GT(s.port(), 0) << "first line: " << s.url();
+  const std::string endless(std::size_t(1) << 26, 'a');  // 64 MiB, no end of line
+  for (const std::string& start : {"GET / HTTP/1.1\r\nHost: " + host_of(s) + "\r\nX-Big: ", std::string("GET /")}) {
+    SCOPED_TRACE(start);
+    Raw r(s.port());
+    std::size_t sent = 0;
+    const RawAnswer a = r.send_until_answered(start + endless, 10, &sent);
+    EXPECT_EQ(a.status, 431) << a.head;
+    expect_one_line(a);
+    EXPECT_NE(a.body.find("at most 16384 bytes"), std::string::npos) << a.body;
+    EXPECT_TRUE(r.closed_within(5));
+    EXPECT_LT(sent, endless.size());
+  }
+  httplib::Client c("127.0.0.1", s.port());
+  auto good = post(c, R"({"translate_p": "4,0,0"})");
+  ASSERT_TRUE(good);
+  EXPECT_EQ(good->status, 200);
+  EXPECT_EQ(s.stop(SIGTERM), 0);
+}
+
+// At most 64 header lines: 64 are answered, 65 get 431.
+TEST(Play, TooManyHeaderLinesRefused) {
+  Server s({"cube", "cube"});
+  ASSERT_GT(s.port(), 0) << "first line: " << s.url();
+  auto request = [&](int lines) {
+    std::string r = "GET / HTTP/1.1\r\nHost: " + host_of(s) + "\r\n";
+    for (int i = 1; i < lines; ++i) r += "X-Line-" + std::to_string(i) + ": 1\r\n";
+    return r + "\r\n";
+  };
+  {
+    Raw r(s.port());
+    ASSERT_TRUE(r.send(request(64)));
+    EXPECT_EQ(r.next_answer(10).status, 200);
+  }
+  Raw r(s.port());
+  ASSERT_TRUE(r.send(request(65)));
+  const RawAnswer a = r.next_answer(10);
+  EXPECT_EQ(a.status, 431) << a.head;
+  expect_one_line(a);
+  EXPECT_NE(a.body.find("too many header lines (at most 64)"), std::string::npos) << a.body;
+  EXPECT_EQ(s.stop(SIGTERM), 0);
+}
+
+// Five clients send a header a byte a second for 20 s: a sixth is answered
+// at once, and each slow one is cut off with 408 after 10 s.
+TEST(Play, SlowClientsDoNotBlockOthers) {
+  Server s({"cube", "cube"});
+  ASSERT_GT(s.port(), 0) << "first line: " << s.url();
+  struct Slow {
+    int status = 0;
+    double closed_after = -1;  // seconds; -1: still open after 20 s
+  };
+  std::vector<Slow> slow(5);
+  std::vector<std::thread> threads;
+  for (auto& out : slow) {
+    threads.emplace_back([&s, &out] {
+      const auto t0 = Clock::now();
+      Raw r(s.port());
+      if (!r.send("GET / HTTP/1.1\r\nHost: " + host_of(s) + "\r\nX-Slow: ")) return;
+      for (int i = 0; i < 20 && !r.closed(); ++i) {
+        r.send("a");
+        r.receive_for(1.0);
+      }
+      if (r.closed()) out.closed_after = seconds_since(t0);
+      out.status = r.next_answer(0).status;
+    });
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  httplib::Client c("127.0.0.1", s.port());
+  c.set_connection_timeout(5);
+  c.set_read_timeout(5);
+  c.set_write_timeout(5);
+  const auto t0 = Clock::now();
+  auto good = post(c, R"({"translate_p": "4,0,0"})");
+  const double answered_after = seconds_since(t0);
+  for (auto& t : threads) t.join();
+  ASSERT_TRUE(good) << "no answer while slow clients were connected";
+  EXPECT_EQ(good->status, 200);
+  EXPECT_LT(answered_after, 5.0);
+  for (const Slow& x : slow) {
+    EXPECT_EQ(x.status, 408);
+    EXPECT_GE(x.closed_after, 9.0);
+    EXPECT_LT(x.closed_after, 16.0);
+  }
+  EXPECT_EQ(s.stop(SIGTERM), 0);
+}
+
+// Requests sent together, in one packet, are each answered, in order.
+TEST(Play, PipelinedRequestsEachAnswered) {
+  Server s({"cube", "cube"});
+  ASSERT_GT(s.port(), 0) << "first line: " << s.url();
+  const std::string json = "Content-Type: application/json\r\n";
+  Raw r(s.port());
+  ASSERT_TRUE(r.send(raw_post(s, R"({"translate_p": "4,0,0"})", json) +
+                     raw_post(s, R"({"translate_p": "1/2,0,0"})", json) +
+                     "GET /favicon.ico HTTP/1.1\r\nHost: " + host_of(s) + "\r\n\r\n"));
+  const RawAnswer first = r.next_answer(10);
+  const RawAnswer second = r.next_answer(10);
+  const RawAnswer third = r.next_answer(10);
+  ASSERT_EQ(first.status, 200) << first.head;
+  EXPECT_EQ(json_field(first.body, "status"), "\"separate\"");
+  EXPECT_EQ(json_field(first.body, "squared_distance"), "\"4\"");
+  ASSERT_EQ(second.status, 200) << second.head;
+  EXPECT_EQ(json_field(second.body, "status"), "\"penetrating\"");
+  EXPECT_EQ(json_field(second.body, "squared_depth"), "\"9/4\"");
+  EXPECT_EQ(third.status, 204) << third.head;
+  EXPECT_EQ(s.stop(SIGTERM), 0);
+}
+
 // A body that is a JSON object followed by a NUL byte and more is not a
 // JSON object: 400 and one line.
 TEST(Play, BodyWithNulAndGarbageRefused) {
@@ -595,6 +756,33 @@ TEST(Play, BodyWithNulAndGarbageRefused) {
   ASSERT_FALSE(r->body.empty());
   EXPECT_EQ(r->body.find('\n'), r->body.size() - 1) << "not one line: " << r->body;
   EXPECT_EQ(r->body.find("squared_distance"), std::string::npos) << r->body;
+  EXPECT_EQ(s.stop(SIGTERM), 0);
+}
+
+// At most 32 connections at a time: a 33rd is answered 503 and closed; once
+// the others close, a new one is served.
+TEST(Play, ConnectionsBeyondTheLimitRefused) {
+  Server s({"cube", "cube"});
+  ASSERT_GT(s.port(), 0) << "first line: " << s.url();
+  std::vector<std::unique_ptr<Raw>> held;
+  for (int i = 0; i < 32; ++i) {
+    held.push_back(std::make_unique<Raw>(s.port()));
+    ASSERT_TRUE(held.back()->connected());
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  {
+    Raw extra(s.port());
+    ASSERT_TRUE(extra.connected());
+    const RawAnswer a = extra.next_answer(4);
+    EXPECT_EQ(a.status, 503) << a.head;
+    expect_one_line(a);
+    EXPECT_TRUE(extra.closed_within(4));
+  }
+  held.clear();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  Raw r(s.port());
+  ASSERT_TRUE(r.send("GET /favicon.ico HTTP/1.1\r\nHost: " + host_of(s) + "\r\n\r\n"));
+  EXPECT_EQ(r.next_answer(10).status, 204);
   EXPECT_EQ(s.stop(SIGTERM), 0);
 }
 

@@ -13,11 +13,16 @@
 
 #include "mesh/support.hpp"  // feature_vertices
 
+#include <arpa/inet.h>
 #include <fcntl.h>
+#include <netinet/in.h>
+#include <poll.h>
 #include <pthread.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -26,6 +31,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <list>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -45,9 +51,298 @@ namespace minksum::cli {
 
 namespace {
 
+// A request body, decoded (chunked or not), in bytes.
 constexpr std::size_t kMaxBody = 4096;
 // Bound on the integers of a rotation: M's coordinates grow with them.
 const Integer kMaxQuaternion = 1000000;
+
+// The limits of a request as a client sends it.  cpp-httplib 0.11 reads a
+// header line or a chunked body whatever its length, gives each read (not
+// each request) its timeout and forgets, between two requests of one
+// connection, what it received beyond the first: the connection below
+// (Connection, PlayServer) reads the socket itself and enforces these.
+constexpr std::size_t kMaxHead = 16384;        // request line and headers, bytes as sent
+constexpr std::size_t kMaxHeaderLines = 64;    // header lines
+constexpr std::size_t kMaxBodySent = 16384;    // the body as sent, chunked framing included
+constexpr int kRequestSeconds = 10;            // from a request's first byte to its last
+constexpr int kIdleSeconds = 5;                // a connection waits this long for a request
+constexpr int kWriteSeconds = 5;               // an answer must be taken within this
+constexpr std::size_t kMaxConnections = 32;    // at a time; each has its own thread
+constexpr std::size_t kMaxRequestsPerConnection = 100;
+
+using Clock = std::chrono::steady_clock;
+
+// Why a request was cut off while it was read.
+enum class Cutoff { none, head_too_large, too_many_header_lines, body_too_large, too_slow, stopping };
+
+// The answer to a request cut off (status and line), or status 0.
+std::pair<int, std::string> cutoff_answer(Cutoff c) {
+  switch (c) {
+    case Cutoff::head_too_large:
+      return {431, "request line and headers too large (at most " + std::to_string(kMaxHead) + " bytes)"};
+    case Cutoff::too_many_header_lines:
+      return {431, "too many header lines (at most " + std::to_string(kMaxHeaderLines) + ")"};
+    case Cutoff::body_too_large:
+      return {413, "request body too large (at most " + std::to_string(kMaxBody) + " bytes, " +
+                       std::to_string(kMaxBodySent) + " as sent)"};
+    case Cutoff::too_slow:
+      return {408, "request not received whole within " + std::to_string(kRequestSeconds) + " s"};
+    default:
+      return {0, ""};
+  }
+}
+
+const char* reason_phrase(int status) {
+  switch (status) {
+    case 408: return "Request Timeout";
+    case 431: return "Request Header Fields Too Large";
+    case 503: return "Service Unavailable";
+    default: return "Error";
+  }
+}
+
+// One client connection as cpp-httplib reads and writes it: the socket and
+// what was received but not yet read (so that requests sent together, in one
+// packet, are each answered), with the limits of the request being read.
+class Connection final : public httplib::Stream {
+ public:
+  Connection(socket_t sock, const std::atomic<socket_t>& listener) : sock_(sock), listener_(listener) {}
+
+  // Waits up to `seconds` for the first byte of a request (none when one
+  // came with the previous request); false when none comes, the client
+  // closed the connection or the server stops.
+  bool wait_for_request(time_t seconds) {
+    if (off_ < end_) return true;
+    return wait(POLLIN, Clock::now() + std::chrono::seconds(seconds));
+  }
+  // A new request: its limits start.
+  void begin_request() {
+    deadline_ = Clock::now() + std::chrono::seconds(kRequestSeconds);
+    in_body_ = false;
+    taken_ = lines_ = written_ = 0;
+    cutoff_ = Cutoff::none;
+  }
+  // The request line and headers are read: the body's limit from here.
+  void begin_body() {
+    in_body_ = true;
+    taken_ = 0;
+  }
+  Cutoff cutoff() const { return cutoff_; }
+  std::size_t written() const { return written_; }
+  void close_after_answer() { close_ = true; }
+  bool closing() const { return close_; }
+  bool stopping() const { return listener_ == INVALID_SOCKET; }
+
+  bool is_readable() const override { return off_ < end_ || wait(POLLIN, deadline_); }
+  bool is_writable() const override { return wait(POLLOUT, Clock::now() + std::chrono::seconds(kWriteSeconds)); }
+
+  ssize_t read(char* ptr, std::size_t size) override {
+    if (size == 0) return 0;
+    const std::size_t limit = in_body_ ? kMaxBodySent : kMaxHead;
+    if (taken_ >= limit) return cut(in_body_ ? Cutoff::body_too_large : Cutoff::head_too_large);
+    if (off_ == end_) {
+      if (!wait(POLLIN, deadline_)) return cut(stopping() ? Cutoff::stopping : Cutoff::too_slow);
+      ssize_t n;
+      do n = ::recv(sock_, buffer_, sizeof buffer_, 0);
+      while (n < 0 && errno == EINTR);
+      if (n <= 0) return n;
+      off_ = 0;
+      end_ = std::size_t(n);
+    }
+    const std::size_t n = std::min({size, end_ - off_, limit - taken_});
+    if (!in_body_) {
+      // The request line, the header lines and the blank line that ends them.
+      const std::size_t lines = lines_ + std::size_t(std::count(buffer_ + off_, buffer_ + off_ + n, '\n'));
+      if (lines > kMaxHeaderLines + 2) return cut(Cutoff::too_many_header_lines);
+      lines_ = lines;
+    }
+    std::memcpy(ptr, buffer_ + off_, n);
+    off_ += n;
+    taken_ += n;
+    return ssize_t(n);
+  }
+
+  using httplib::Stream::write;
+  ssize_t write(const char* ptr, std::size_t size) override {
+    if (!is_writable()) return -1;
+    ssize_t n;
+    do n = ::send(sock_, ptr, size, MSG_NOSIGNAL);
+    while (n < 0 && errno == EINTR);
+    if (n > 0) written_ += std::size_t(n);
+    return n;
+  }
+
+  void get_remote_ip_and_port(std::string& ip, int& port) const override { address(true, ip, port); }
+  void get_local_ip_and_port(std::string& ip, int& port) const override { address(false, ip, port); }
+  socket_t socket() const override { return sock_; }
+
+  // Answers with `status` and one line, and closes after it (for what
+  // cpp-httplib does not answer: a request cut off in its request line, a
+  // connection beyond the limit).
+  void refuse(int status, const std::string& line) {
+    const std::string body = line + "\n";
+    const std::string text = "HTTP/1.1 " + std::to_string(status) + " " + reason_phrase(status) +
+                             "\r\nContent-Type: text/plain; charset=utf-8\r\nContent-Length: " +
+                             std::to_string(body.size()) + "\r\nCache-Control: no-store\r\nConnection: close\r\n\r\n" +
+                             body;
+    for (std::size_t at = 0; at < text.size();) {
+      const ssize_t n = write(text.data() + at, text.size() - at);
+      if (n <= 0) break;
+      at += std::size_t(n);
+    }
+    close_ = true;
+  }
+
+  // Ends the connection.  What the client still sends is read and dropped
+  // for up to `linger_seconds` first: closing a socket with unread data
+  // resets the connection, and the client could lose the answer.
+  void finish(int linger_seconds) {
+    ::shutdown(sock_, SHUT_WR);
+    const auto until = Clock::now() + std::chrono::seconds(linger_seconds);
+    for (std::size_t dropped = 0; dropped < (std::size_t(1) << 20);) {
+      const ssize_t n = ::recv(sock_, buffer_, sizeof buffer_, MSG_DONTWAIT);
+      if (n > 0) {
+        dropped += std::size_t(n);
+      } else if (n == 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) || !wait(POLLIN, until)) {
+        break;
+      }
+    }
+    ::close(sock_);
+  }
+
+ private:
+  ssize_t cut(Cutoff why) {
+    cutoff_ = why;
+    return -1;
+  }
+  // Polls for `events` until `deadline`, in slices of 100 ms so that a
+  // server that stops is noticed.
+  bool wait(short events, Clock::time_point deadline) const {
+    for (;;) {
+      if (stopping()) return false;
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+      if (left <= 0) return false;
+      pollfd pf{sock_, events, 0};
+      const int r = ::poll(&pf, 1, int(std::min<long long>(left, 100)));
+      if (r > 0) return true;  // ready, or closed or failed: recv and send say which
+      if (r < 0 && errno != EINTR) return false;
+    }
+  }
+  void address(bool remote, std::string& ip, int& port) const {
+    sockaddr_storage a{};
+    socklen_t len = sizeof a;
+    auto* sa = reinterpret_cast<sockaddr*>(&a);
+    if ((remote ? ::getpeername(sock_, sa, &len) : ::getsockname(sock_, sa, &len)) != 0) return;
+    char text[INET6_ADDRSTRLEN] = "";
+    if (a.ss_family == AF_INET) {
+      const auto* v4 = reinterpret_cast<const sockaddr_in*>(&a);
+      ::inet_ntop(AF_INET, &v4->sin_addr, text, sizeof text);
+      port = ntohs(v4->sin_port);
+    } else if (a.ss_family == AF_INET6) {
+      const auto* v6 = reinterpret_cast<const sockaddr_in6*>(&a);
+      ::inet_ntop(AF_INET6, &v6->sin6_addr, text, sizeof text);
+      port = ntohs(v6->sin6_port);
+    }
+    ip = text;
+  }
+
+  socket_t sock_;
+  const std::atomic<socket_t>& listener_;
+  char buffer_[4096];
+  std::size_t off_ = 0, end_ = 0;  // the received bytes not yet read: buffer_[off_, end_)
+  Clock::time_point deadline_ = Clock::now();
+  bool in_body_ = false, close_ = false;
+  std::size_t taken_ = 0, lines_ = 0, written_ = 0;
+  Cutoff cutoff_ = Cutoff::none;
+};
+
+// The connection the current thread serves (the handlers read its limits).
+thread_local Connection* t_connection = nullptr;
+// Set while a connection beyond kMaxConnections is refused.
+thread_local bool t_over_limit = false;
+
+// Each connection on a thread of its own, at most kMaxConnections at a time,
+// so that a client that sends slowly holds only its own; a connection beyond
+// that is answered 503 at once and closed.
+class ConnectionThreads final : public httplib::TaskQueue {
+ public:
+  void enqueue(std::function<void()> fn) override {
+    reap();
+    if (workers_.size() < kMaxConnections) {
+      try {
+        Worker& w = workers_.emplace_back();
+        std::atomic<bool>& done = w.done;
+        w.thread = std::thread([fn, &done] {
+          fn();
+          done = true;
+        });
+        return;
+      } catch (const std::system_error&) {  // no thread: refused as beyond the limit
+        workers_.pop_back();
+      }
+    }
+    t_over_limit = true;
+    fn();
+    t_over_limit = false;
+  }
+  void shutdown() override {
+    for (auto& w : workers_) w.thread.join();
+    workers_.clear();
+  }
+
+ private:
+  struct Worker {
+    std::thread thread;
+    std::atomic<bool> done{false};
+  };
+  void reap() {
+    for (auto it = workers_.begin(); it != workers_.end();) {
+      if (it->done) {
+        it->thread.join();
+        it = workers_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+  }
+  std::list<Worker> workers_;  // used by the listening thread only
+};
+
+// cpp-httplib's server with connections as above: each request of a
+// connection is read from the same Connection, within its limits.
+class PlayServer final : public httplib::Server {
+ public:
+  // cpp-httplib listens with a backlog of 5: connections that come together
+  // beyond it wait a second for their SYN to be sent again.
+  bool widen_backlog(int n) { return ::listen(svr_sock_, n) == 0; }
+
+ private:
+  bool process_and_close_socket(socket_t sock) override {
+    Connection c(sock, svr_sock_);
+    if (t_over_limit) {
+      c.refuse(503, "too many connections (at most " + std::to_string(kMaxConnections) + " at a time)");
+      c.finish(0);
+      return true;
+    }
+    t_connection = &c;
+    bool ok = true;
+    for (std::size_t left = keep_alive_max_count_; left > 0 && !c.stopping(); --left) {
+      if (!c.wait_for_request(keep_alive_timeout_sec_)) break;
+      c.begin_request();
+      bool closed = false;
+      ok = process_request(c, left == 1, closed, nullptr);
+      // A request cut off in its request line gets no answer from cpp-httplib.
+      if (!ok && c.written() == 0) {
+        const auto [status, line] = cutoff_answer(c.cutoff());
+        if (status != 0) c.refuse(status, line);
+      }
+      if (!ok || closed || c.closing()) break;
+    }
+    t_connection = nullptr;
+    c.finish(c.stopping() ? 0 : 1);
+    return ok;
+  }
+};
 
 // A header value in lower case without the blanks around it.
 std::string lower_trimmed(std::string t) {
@@ -233,12 +528,13 @@ int run_play_server(const PlayOptions& o) {
   // A browser that closes a connection must not kill the server.
   signal(SIGPIPE, SIG_IGN);
 
-  httplib::Server server;
-  server.new_task_queue = [] { return new httplib::ThreadPool(4); };
+  PlayServer server;
+  server.new_task_queue = [] { return new ConnectionThreads; };
   server.set_payload_max_length(kMaxBody);
-  server.set_read_timeout(5);
-  server.set_write_timeout(5);
-  server.set_keep_alive_timeout(2);
+  server.set_read_timeout(kRequestSeconds);
+  server.set_write_timeout(kWriteSeconds);
+  server.set_keep_alive_timeout(kIdleSeconds);
+  server.set_keep_alive_max_count(kMaxRequestsPerConnection);
   server.set_tcp_nodelay(true);
   // SO_REUSEADDR only: cpp-httplib's default also sets SO_REUSEPORT, with
   // which a second server could bind the same port and share its connections.
@@ -251,6 +547,7 @@ int run_play_server(const PlayOptions& o) {
   const int bound = port == 0 ? server.bind_to_any_port("127.0.0.1") : (server.bind_to_port("127.0.0.1", port) ? port : -1);
   if (bound < 0)
     throw OutputError("cannot listen on 127.0.0.1:" + std::to_string(port) + " (the port is taken or not allowed)");
+  server.widen_backlog(int(2 * kMaxConnections));
   // The only name the server answers to (against DNS rebinding: a page whose
   // name comes to mean 127.0.0.1 sends its own name as Host) and the only
   // origin whose requests it takes (against other pages' requests).
@@ -263,6 +560,8 @@ int run_play_server(const PlayOptions& o) {
   };
   using httplib::Server;
   server.set_pre_routing_handler([&](const httplib::Request& req, httplib::Response& res) {
+    // The request line and headers are read; what follows is the body.
+    if (t_connection) t_connection->begin_body();
     const std::string host = req.get_header_value("Host");
     if (req.get_header_value_count("Host") != 1 || host != authority) {
       fail(res, 403, "refused: the Host header must be " + authority + ", this server's address (got " +
@@ -305,14 +604,15 @@ int run_play_server(const PlayOptions& o) {
     }
     return Server::HandlerResponse::Unhandled;
   });
-  // Every answer: not to be read by other origins' pages; an error answer
-  // asks the client to close the connection.
+  // Every answer: not to be read by other origins' pages; an error closes
+  // the connection (what the client sent after it is not read).
   server.set_post_routing_handler([&](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cross-Origin-Resource-Policy", "same-origin");
     res.set_header("X-Content-Type-Options", "nosniff");
     if (res.status >= 400) {
       res.headers.erase("Keep-Alive");
       if (!res.has_header("Connection")) res.set_header("Connection", "close");
+      if (t_connection) t_connection->close_after_answer();
     }
   });
   server.Get("/", [&](const httplib::Request&, httplib::Response& res) {
@@ -320,10 +620,28 @@ int run_play_server(const PlayOptions& o) {
     res.set_content(html, "text/html; charset=utf-8");
   });
   server.Get("/favicon.ico", [](const httplib::Request&, httplib::Response& res) { res.status = 204; });
-  server.Post("/query", [&](const httplib::Request& req, httplib::Response& res) {
+  server.Post("/query", [&](const httplib::Request&, httplib::Response& res, const httplib::ContentReader& read) {
+    // The body, decoded (chunked or not), at most kMaxBody bytes.
+    std::string body;
+    bool too_large = false;
+    const bool whole = read([&](const char* data, std::size_t n) {
+      if (body.size() + n > kMaxBody) {
+        too_large = true;
+        return false;
+      }
+      body.append(data, n);
+      return true;
+    });
+    if (!whole) {
+      const auto [status, line] = cutoff_answer(t_connection ? t_connection->cutoff() : Cutoff::none);
+      if (status != 0) fail(res, status, line);
+      else if (too_large || res.status == 413) fail(res, 413, cutoff_answer(Cutoff::body_too_large).second);
+      else fail(res, 400, "bad request body (its chunked framing or its length)");
+      return;
+    }
     try {
       res.set_header("Cache-Control", "no-store");
-      res.set_content(session.answer(parse_query(req.body)), "application/json");
+      res.set_content(session.answer(parse_query(body)), "application/json");
     } catch (const BadRequest& e) {
       fail(res, 400, e.what());
     } catch (const std::bad_alloc&) {
@@ -337,8 +655,12 @@ int run_play_server(const PlayOptions& o) {
   });
   server.set_error_handler([&](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;
-    if (res.status == 404) fail(res, 404, "no such page: " + req.method + " " + req.path + " (GET /, POST /query)");
-    else if (res.status == 413) fail(res, 413, "request too large (at most " + std::to_string(kMaxBody) + " bytes)");
+    const auto [status, line] = cutoff_answer(t_connection ? t_connection->cutoff() : Cutoff::none);
+    if (status != 0) fail(res, status, line);
+    else if (res.status == 404) fail(res, 404, "no such page: " + req.method + " " + req.path + " (GET /, POST /query)");
+    else if (res.status == 413) fail(res, 413, cutoff_answer(Cutoff::body_too_large).second);
+    else if (res.status == 414) fail(res, 414, "request line too long (at most 8192 bytes)");
+    else if (res.status == 400) fail(res, 400, "bad request: a malformed request line or header, or a header line over 8192 bytes");
     else fail(res, res.status, "bad request");
   });
 

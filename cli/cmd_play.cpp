@@ -60,8 +60,27 @@ The server: GET / is the page; POST /query takes a JSON object
 answers a JSON object (status, squared_distance, distance, squared_depth,
 depth, point_p, point_p_exact, point_q, point_q_exact, direction,
 depth_direction, witness, depth_witness, features, m, recomputed, pose,
-seconds).  A request body is at most 4096 bytes, a rotation's integers at
-most 10^6 in magnitude; a bad request gets HTTP 400 and one line saying why.
+seconds).  A rotation's integers are at most 10^6 in magnitude; a bad
+request gets HTTP 400 and one line saying why.
+
+What the server refuses, with one line saying why (an error answer closes
+the connection):
+  403  a Host header other than 127.0.0.1:PORT, its own address (so a page
+       whose name is made to mean 127.0.0.1 reads nothing), an Origin
+       other than http://127.0.0.1:PORT, and a POST whose Sec-Fetch-Site
+       is not same-origin (so other pages' requests change nothing)
+  415  a POST whose Content-Type is not application/json, or that has a
+       Content-Encoding
+  411  a POST with neither Content-Length nor Transfer-Encoding: chunked
+       (400: another Transfer-Encoding, or both)
+  413  a body over 4096 bytes (chunked or not), or over 16384 as sent
+  431  a request line and headers over 16384 bytes, or over 64 header lines
+  400  a header line over 8192 bytes; 414: a request line over 8192 bytes
+  408  a request not received whole within 10 s of its first byte
+  503  a connection beyond 32 at a time (each has its own thread, so a
+       slow client holds only its own)
+A connection with no request for 5 s is closed; requests sent one after
+another on a connection without waiting are answered in order.
 
 Exit status: 0 after Ctrl-C or SIGTERM, 1 when the port cannot be bound or
 standard output cannot be written, 2 bad usage, 3 bad input data.

@@ -1058,10 +1058,17 @@ threads; its queries run one at a time, with the GIL released.)")
              const Operand op = to_operand(p, "p"), oq = to_operand(q, "q");
              const Method mt = to_method(method);
              auto o = std::make_unique<Obstacle>();
-             py::gil_scoped_release nogil;
-             o->p = resolve(op);
-             o->q = resolve(oq);
-             o->o = std::make_unique<TranslationalObstacle>(*o->p, *o->q, mt);
+             // M's sum polled for Ctrl-C (run_interruptible: KeyboardInterrupt, no obstacle).
+             std::atomic<bool> cancel{false};
+             SumOptions options;
+             options.cancel = &cancel;
+             run_interruptible(
+                 [&] {
+                   o->p = resolve(op);
+                   o->q = resolve(oq);
+                   o->o = std::make_unique<TranslationalObstacle>(*o->p, *o->q, mt, options);
+                 },
+                 cancel);
              return o;
            }),
            py::arg("p"), py::arg("q"), py::arg("method") = "auto")

@@ -14,6 +14,7 @@
 #include <minksum/proximity.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -299,6 +300,26 @@ TEST(Proximity, CvmsAndChmsObstaclesAnswerAlike) {
     EXPECT_EQ(a.distance_point(s).squared_distance(), b.distance_point(s).squared_distance());
     EXPECT_EQ(a.penetration_depth_point(s).squared_depth(), b.penetration_depth_point(s).squared_depth());
   }
+}
+
+// The obstacle's construction reports progress (the sum's phases, then
+// M's planes) and stops on SumOptions::cancel: Python's Obstacle() waited
+// for the whole construction before Ctrl-C took effect.
+TEST(Proximity, ObstacleConstructionReportsProgressAndHonoursCancel) {
+  std::vector<std::string> phases;
+  SumOptions o;
+  o.progress = [&](const char* p, double) {
+    if (phases.empty() || phases.back() != p) phases.push_back(p);
+  };
+  const TranslationalObstacle a(catalog_polytope("sphere:3"), catalog_polytope("sphere:3@rot:1"), Method::walk, o);
+  ASSERT_FALSE(phases.empty());
+  EXPECT_EQ(phases.back(), "planes");
+  const TranslationalObstacle b(catalog_polytope("sphere:3"), catalog_polytope("sphere:3@rot:1"), Method::walk);
+  EXPECT_EQ(a.obstacle().num_facets(), b.obstacle().num_facets());
+  std::atomic<bool> cancel{true};
+  SumOptions c;
+  c.cancel = &cancel;
+  EXPECT_THROW(TranslationalObstacle(catalog_polytope("cube"), catalog_polytope("cube"), Method::walk, c), Cancelled);
 }
 
 // Grazing contacts: two unit cubes side by side, touching along a facet, an

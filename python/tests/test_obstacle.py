@@ -90,3 +90,49 @@ def test_obstacle_is_p_plus_minus_q():
     m = minksum.minkowski_sum("cube", minksum.load("tetra").negated())
     assert sorted(o.obstacle.planes()) == sorted(m.planes())
     assert o.p.num_vertices == 8 and o.q.num_vertices == 4
+
+
+OBSTACLE_CTRL_C_SCRIPT = r"""
+import sys, time
+import minksum
+
+p, q = minksum.load("sphere:8"), minksum.load("sphere:8@rot:1")
+start = time.monotonic()
+try:
+    print("started", flush=True)
+    minksum.Obstacle(p, q)
+except KeyboardInterrupt:
+    print("KeyboardInterrupt after %.1f s" % (time.monotonic() - start), flush=True)
+    sys.exit(3)
+print("finished after %.1f s" % (time.monotonic() - start), flush=True)
+"""
+
+
+def test_ctrl_c_stops_obstacle_construction():
+    # SIGINT one second into building the obstacle of two sphere:8 (M has about a million facets; its
+    # planes take tens of seconds here): KeyboardInterrupt within 5 s of the signal, where Ctrl-C used to
+    # wait for the whole construction.  The sum and M's planes poll SumOptions::cancel.
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    proc = subprocess.Popen([sys.executable, "-c", OBSTACLE_CTRL_C_SCRIPT], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline() == "started\n"
+        time.sleep(1)
+        sent = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        try:
+            out, err = proc.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            pytest.fail("Obstacle() still running 30 s after SIGINT")
+        elapsed = time.monotonic() - sent
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode == 3, (out, err)
+    assert out.startswith("KeyboardInterrupt after"), (out, err)
+    assert elapsed < 5

@@ -60,6 +60,11 @@ Point3 average(const std::vector<Point3>& pts) {
 TranslationalObstacle::TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method) : method_(method) {
   rebuild(std::move(p), std::move(q));
 }
+TranslationalObstacle::TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method,
+                                             const SumOptions& options)
+    : method_(method) {
+  rebuild(std::move(p), std::move(q), options);
+}
 
 // The operand kept by a rebuild: moved out of the current geometry when no
 // answer shares it, copied otherwise.
@@ -77,7 +82,7 @@ const ConvexPolytope& TranslationalObstacle::obstacle() const { return g_->sum.p
 const SumResult& TranslationalObstacle::sum() const { return g_->sum; }
 const Point3& TranslationalObstacle::interior_point() const { return g_->center; }
 
-void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q) {
+void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q, const SumOptions& options) {
   // A new geometry: the answers given so far keep the one they were answered on.
   auto g = std::make_shared<detail::ObstacleGeometry>();
   g->p = std::move(p);
@@ -87,7 +92,7 @@ void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q) {
   for (Index v = 0; v < g->q.num_vertices(); ++v) q_index.emplace(g->q.point(v), v);
   g->neg_to_q.assign(g->neg_q.num_vertices(), kNoIndex);
   for (Index v = 0; v < g->neg_q.num_vertices(); ++v) g->neg_to_q[v] = q_index.at(-g->neg_q.point(v));
-  g->sum = minkowski_sum(g->p, g->neg_q, method_);
+  g->sum = minkowski_sum(g->p, g->neg_q, method_, options);
   const ConvexPolytope& m = g->sum.polytope;
   const Index nf = m.num_facets();
   g->normal.resize(nf);
@@ -98,6 +103,9 @@ void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q) {
   unit_plane_.resize(nf);
   plane_ptr_.resize(nf);
   for (Index f = 0; f < nf; ++f) {
+    // M's planes, with their unit planes, cost more than the sum itself on
+    // large operands: progress and cancellation here too.
+    if ((f & 1023) == 0) options.report("planes", double(f) / double(nf));
     const Plane& pl = m.plane(f);
     g->normal[f] = pl.normal();
     g->offset[f] = Rational(pl.d);
@@ -112,6 +120,7 @@ void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q) {
   g->p_center = average(g->p.points());
   g->q_center = average(g->q.points());
   g->center = g->p_center - g->q_center;
+  options.report("planes", 1.0);
   g->prepare_exact();
   center_approx_ = to_double(g->center);
   facet_features_.assign(nf, {});

@@ -261,6 +261,9 @@ class TranslationalObstacle {
  public:
   // Computes M = P ⊕ (−Q) with `method` (any exact method gives the same M).
   TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method = Method::automatic);
+  // The same, the sum reporting progress to and polled for cancellation by
+  // `options` (a set SumOptions::cancel throws Cancelled: no obstacle).
+  TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method, const SumOptions& options);
 
   // Replace P or Q (e.g. rotated copies of the originals); recomputes M and
   // forgets the cached witnesses.  Answers given before keep the M they were
@@ -320,7 +323,7 @@ class TranslationalObstacle {
   std::pair<Point3, Point3> decompose(const Feature& m, const Point3& x) const;
 
  private:
-  void rebuild(ConvexPolytope p, ConvexPolytope q);
+  void rebuild(ConvexPolytope p, ConvexPolytope q, const SumOptions& options = {});
   // `single`: a single query (not a batch), see spare_distance_.
   void distance_into(const Point3& s, DistanceResult& r, bool single);
   void depth_into(const Point3& s, DepthResult& r, bool single);

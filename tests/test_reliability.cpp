@@ -252,6 +252,36 @@ TEST_F(Reliability, FileNamesWithControlCharactersAndInvalidUtf8AreEscaped) {
   EXPECT_NE(r.err.find("x\\ny.xyz"), std::string::npos) << r.err;
 }
 
+// cgm --svg names its operands in the picture: control characters and bytes
+// that are not UTF-8 made XML that no reader accepts.
+TEST_F(Reliability, SvgOfOperandsNamedWithControlCharactersIsWellFormed) {
+  const fs::path cube = dir_ / "a\x1b[31m<b>&\x01\xff\xc3(\xc2\x9b.off";
+  write_file(cube, cube_off("1"));
+  const fs::path svg = dir_ / "map.svg";
+  Outcome r = run("cgm " + sh(cube.string()) + " --svg " + sh(svg.string()));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string text = read_file(svg);
+  // Well-formed UTF-8, no control character but tab and newline, no C1 control.
+  for (std::size_t i = 0; i < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c < 0x80) {
+      EXPECT_TRUE(c >= 0x20 || c == '\n' || c == '\t') << "byte " << int(c) << " at " << i;
+      ++i;
+      continue;
+    }
+    const std::size_t len = c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : c >= 0xC2 ? 2 : 0;
+    ASSERT_GT(len, 0u) << "byte " << int(c) << " at " << i;
+    ASSERT_LE(i + len, text.size());
+    for (std::size_t k = 1; k < len; ++k)
+      ASSERT_EQ(static_cast<unsigned char>(text[i + k]) & 0xC0, 0x80) << "at " << i;
+    EXPECT_FALSE(c == 0xC2 && static_cast<unsigned char>(text[i + 1]) < 0xA0) << "a C1 control at " << i;
+    i += len;
+  }
+  // The markup in the name is text.
+  EXPECT_NE(text.find("[31m&lt;b&gt;&amp;"), std::string::npos);
+  EXPECT_EQ(text.find("<b>"), std::string::npos);
+}
+
 TEST_F(Reliability, TrajectoryErrorEchoingNulAndInvalidUtf8IsOneLine) {
   write_file(dir_ / "poses.txt", std::string("0,0,0\n1,2,\0\xfe\x9b" "3\n", 16));
   const Outcome r = run("query collide cube cube --trajectory " + (dir_ / "poses.txt").string());

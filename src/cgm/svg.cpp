@@ -36,14 +36,44 @@ std::string num(double x) {
   return buf;
 }
 
+// Text for XML 1.0 content and attributes: markup characters as references;
+// control characters (which XML 1.0 does not allow, tab and newline aside)
+// and bytes that are not UTF-8 (an operand's file name may hold any) as
+// U+FFFD, so the file stays well-formed whatever the names hold.
 std::string xml_escape(const std::string& s) {
+  static const char* const kReplacement = "\xEF\xBF\xBD";
   std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
+  const auto* b = reinterpret_cast<const unsigned char*>(s.data());
+  const std::size_t n = s.size();
+  for (std::size_t i = 0; i < n;) {
+    const unsigned char c = b[i];
+    if (c < 0x80) {
+      if (c == '<') out += "&lt;";
+      else if (c == '>') out += "&gt;";
+      else if (c == '&') out += "&amp;";
+      else if (c == '"') out += "&quot;";
+      else if (c < 0x20 && c != '\t' && c != '\n') out += kReplacement;
+      else out += char(c);
+      ++i;
+      continue;
+    }
+    // A well-formed UTF-8 sequence (no overlong forms, no surrogates, at
+    // most U+10FFFF) is copied; anything else is one U+FFFD per byte.
+    std::size_t len = c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : c >= 0xC2 ? 2 : 0;
+    if (c > 0xF4) len = 0;
+    bool ok = len > 0 && i + len <= n;
+    for (std::size_t k = 1; ok && k < len; ++k) ok = (b[i + k] & 0xC0) == 0x80;
+    if (ok && len == 3) ok = !(c == 0xE0 && b[i + 1] < 0xA0) && !(c == 0xED && b[i + 1] >= 0xA0);
+    if (ok && len == 4) ok = !(c == 0xF0 && b[i + 1] < 0x90) && !(c == 0xF4 && b[i + 1] >= 0x90);
+    // C1 controls (U+0080..U+009F) are discouraged in XML 1.0: replaced too.
+    if (ok && len == 2 && c == 0xC2 && b[i + 1] < 0xA0) ok = false;
+    if (!ok) {
+      out += kReplacement;
+      i += (len == 2 && c == 0xC2 && i + 1 < n && (b[i + 1] & 0xC0) == 0x80) ? 2 : 1;
+      continue;
+    }
+    out.append(s, i, len);
+    i += len;
   }
   return out;
 }

@@ -182,7 +182,8 @@ void overlay_map(int k, const Map& ma, const Map& mb, const ConvexPolytope& A, c
       if (o1 == 0 && o2 == 0) {
         // Collinear: an overlap when the interiors meet.
         Rational dx = p2.first - p1.first, dy = p2.second - p1.second;
-        auto along = [&](const Key2& x) -> Rational { return (x.first - p1.first) * dx + (x.second - p1.second) * dy; };
+        // p1 copied: a lambda may not capture a structured binding before C++20 (clang 14).
+        auto along = [&, o = p1](const Key2& x) -> Rational { return (x.first - o.first) * dx + (x.second - o.second) * dy; };
         Rational a0 = 0, a1 = along(p2), b0 = along(q1), b1 = along(q2);
         if (cmp(b0, b1) > 0) std::swap(b0, b1);
         if (cmp(std::max(a0, b0), std::min(a1, b1)) < 0) {

@@ -146,6 +146,22 @@ TEST(RoundSolid, BelowTheRangeOfFloatsIsRefusedWithAReason) {
   }
 }
 
+// Coordinates near 2^877 (as the solid_writer fuzz target found): the
+// squared displacement overflowed doubles and the note said "inf".
+TEST(RoundSolid, DisplacementOfHugeCoordinatesIsFinite) {
+  const Mesh m = cube_with_top_point(Point3(Rational(1, 3), Rational(1, 3), Rational(1)));
+  PointList pts;
+  for (std::size_t i = 0; i < m.points.size(); ++i) pts.push_back(Rational(Integer(1) << 880, 7) * m.points[i]);
+  Mesh huge = m;
+  huge.points = pts;
+  const RoundedSolid r = round_solid(huge, false, "huge.off");
+  ASSERT_GT(r.rounded_coordinates, 0u);
+  EXPECT_TRUE(std::isfinite(r.max_displacement));
+  // At most half an ulp of 2^880 / 7 in each of the three coordinates.
+  EXPECT_GT(r.max_displacement, 0.0);
+  EXPECT_LE(r.max_displacement, std::sqrt(3.0) * std::ldexp(1.0, 880 - 53));
+}
+
 TEST(RoundSolid, SurfaceTouchingItselfAlongAnEdgeIsRefused) {
   // Two boxes sharing the edge x = y = 1/3, equal points welded (as in a
   // sum's mesh), scaled by 1/3 so that rounding is needed.

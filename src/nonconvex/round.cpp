@@ -182,7 +182,9 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
       if (fresh) at.push_back(Point3(Rational(p.x), Rational(p.y), Rational(p.z)));
       map[i] = it->second;
       const Point3 d = at[it->second] - pts[i];
-      moved = std::max(moved, std::sqrt(to_double(dot(d, d))));
+      // hypot of the components: |d|^2 overflows doubles for coordinates
+      // above 2^512 (the displacement was reported as inf).
+      moved = std::max(moved, std::hypot(to_double(d.x), to_double(d.y), to_double(d.z)));
     }
     std::vector<Tri> tris;
     for (const auto& f : tri.faces) tris.push_back(Tri{map[f[0]], map[f[1]], map[f[2]]});

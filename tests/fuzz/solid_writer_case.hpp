@@ -58,9 +58,10 @@ inline void solid_writer_case(const std::uint8_t* data, std::size_t size) {
   Bytes in{data, size};
   const char* spec = kSolids[in.next() % (sizeof kSolids / sizeof *kSolids)];
   const std::uint8_t mode = in.next();
-  const bool floats = mode & 1;
+  // As the command writes: binary STL holds floats; ascii STL and OFF doubles.
   const Format format = (mode & 2) ? Format::off : Format::stl;
-  const bool binary = format == Format::stl && floats ? true : (mode & 4) != 0;
+  const bool floats = format == Format::stl && (mode & 1);
+  const bool binary = floats;
   // Scale m * 2^e: m = (1 + a) / (1 + b), e in [-1200, 1200].
   const long e = long(in.next16()) % 1201;
   const Rational m(long(in.next()) + 1, long(in.next()) + 1);
@@ -93,8 +94,13 @@ inline void solid_writer_case(const std::uint8_t* data, std::size_t size) {
   std::ostringstream out;
   WriteOptions options;
   options.binary = binary;
+  // As the command writes (write_solid_mesh): nothing rounded, the exact
+  // polygons, cut exactly into triangles for STL (a fan of an L-shaped face
+  // from a corner would cover its notch).
+  const Mesh written = rounded.rounded_coordinates == 0 && format == Format::stl ? triangulate(rounded.mesh, "fuzz")
+                                                                                 : rounded.mesh;
   try {
-    write_mesh(out, rounded.mesh, format, options);
+    write_mesh(out, written, format, options);
   } catch (const UnrepresentableError&) {
     check(false, "a rounded solid is representable in its format");
   }

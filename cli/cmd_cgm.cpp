@@ -17,7 +17,7 @@ namespace minksum::cli {
 
 namespace {
 const char* kCgmHelp = R"(Usage: minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [-o OUT.wrl] [--stats]
-                  [--json] [--format F]
+                  [--json] [--hull] [--format F]
 
 Build the Cubical Gaussian Map (Fogel & Halperin) of P: the Gaussian map
 centrally projected on the six faces of the cube [-1,1]^3, six planar maps
@@ -46,13 +46,15 @@ Options:
                counts and facet normals of its six planar maps; 'minksum
                view OUT.wrl -o page.html' shows it; written atomically
   --json       print the counts as one JSON object
+  --hull       take the exact convex hull of each operand's points instead of
+               requiring a valid convex mesh
   --format F   {format_names}: the format of an operand '-' (a mesh
                on standard input) or named without a known extension
 )";
 }  // namespace
 
 int run_cgm(const std::vector<std::string>& argv) {
-  const Args a = parse_args(argv, "cgm", {{"--svg", "", true}, {"--html", "", true}, {"--output", "-o", true}, {"--stats", "", false}, {"--json", "", false}, kFormatOption});
+  const Args a = parse_args(argv, "cgm", {{"--svg", "", true}, {"--html", "", true}, {"--output", "-o", true}, {"--stats", "", false}, {"--json", "", false}, {"--hull", "", false}, kFormatOption});
   if (a.help) {
     std::cout << expand_help(kCgmHelp);
     return 0;
@@ -68,7 +70,8 @@ int run_cgm(const std::vector<std::string>& argv) {
     throw UsageError("-o: the Cubical Gaussian Map is written as a VRML scene, a .wrl file; got '" + *scene_path +
                      "' (--svg and --html write pictures)");
   const auto format = format_option(a);
-  ConvexPolytope p = load_operand_from(a.positional[0], false, nullptr, format);
+  const bool hull = a.flag("--hull");
+  ConvexPolytope p = load_operand_from(a.positional[0], hull, nullptr, format);
   CubicalGaussianMap g;
   std::string label = a.positional[0];
   double seconds = 0;
@@ -81,7 +84,7 @@ int run_cgm(const std::vector<std::string>& argv) {
     comments.push_back("P = " + printable(a.positional[0]));
   }
   if (a.positional.size() == 2) {
-    ConvexPolytope q = load_operand_from(a.positional[1], false, nullptr, format);
+    ConvexPolytope q = load_operand_from(a.positional[1], hull, nullptr, format);
     if (scene_path) {
       scene.polytopes.push_back(polytope_node(q, "Q"));
       comments.push_back("Q = " + printable(a.positional[1]));

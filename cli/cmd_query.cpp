@@ -55,6 +55,10 @@ Options:
   --direction X,Y,Z     the direction d of ddepth (non-zero)
   --method M            how M = P ⊕ (−Q) is computed: any method of `minksum sum`
                         (default auto, i.e. walk)
+  --hull                take the exact convex hull of each operand's points
+                        instead of requiring a valid convex mesh (a robot's
+                        collision mesh that is not exactly convex, a point
+                        cloud, a non-convex solid of the catalog)
   --trajectory FILE     read one pose per line from FILE ('-': stdin) and
                         answer the query for each, reusing the previous
                         answer as the start of the next (coherence).  A line
@@ -229,7 +233,7 @@ int run_query(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "query",
                             {{"--translate-p", "", true}, {"--translate-q", "", true}, {"--rotate-p", "", true},
                              {"--rotate-q", "", true}, {"--direction", "", true}, {"--method", "", true},
-                             {"--trajectory", "", true}, {"--json", "", false}, kFormatOption});
+                             {"--trajectory", "", true}, {"--json", "", false}, {"--hull", "", false}, kFormatOption});
   if (a.help) {
     std::cout << expand_help(kQueryHelp);
     return 0;
@@ -261,8 +265,9 @@ int run_query(const std::vector<std::string>& argv) {
 
   if (a.value("--trajectory") == "-") claim_stdin("the trajectory");
   const auto format = format_option(a);
-  const ConvexSet ps = load_set_operand(a.positional[1], false, nullptr, format);
-  const ConvexSet qs = load_set_operand(a.positional[2], false, nullptr, format);
+  const bool hull = a.flag("--hull");
+  const ConvexSet ps = load_set_operand(a.positional[1], hull, nullptr, format);
+  const ConvexSet qs = load_set_operand(a.positional[2], hull, nullptr, format);
   if (!ps.full() || !qs.full()) {  // points, segments, polygons: docs/sweeps.md
     if (rp || rq || a.value("--trajectory"))
       throw UsageError("--rotate-p, --rotate-q and --trajectory take 3-dimensional polytopes only; P or Q is a point, "

@@ -1348,6 +1348,25 @@ TEST_F(Cli, HullOfANonConvexCatalogSolid) {
   EXPECT_EQ(q.status, 0) << q.err;
 }
 
+// query and cgm take --hull, which their refusals of a non-convex operand
+// suggest (a collision mesh refused by query with a hint query rejected).
+TEST_F(Cli, QueryAndCgmTakeTheHullTheirRefusalsSuggest) {
+  CmdResult refused = run("query distance tube cube@scale:1/2 --translate-p 4,0,0");
+  EXPECT_EQ(refused.status, 3);
+  EXPECT_NE(refused.err.find("--hull takes the convex hull of its points instead"), std::string::npos) << refused.err;
+  // The hull of the tube is [-1,1]^3, P moved by 4 along x; Q = [-1/2,1/2]^3: 4 - 1 - 1/2 = 5/2.
+  CmdResult q = run("query distance tube cube@scale:1/2 --translate-p 4,0,0 --hull --json");
+  ASSERT_EQ(q.status, 0) << q.err;
+  EXPECT_NE(q.out.find("\"squared_distance\": \"25/4\""), std::string::npos) << q.out;
+  CmdResult c = run("cgm tube --hull --json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  CmdResult cube = run("cgm cube --json");
+  ASSERT_EQ(cube.status, 0) << cube.err;
+  // The hull of the tube is the cube [-1,1]^3: the same maps, the name aside.
+  EXPECT_EQ(c.out.substr(c.out.find("\"vertices\"")), cube.out.substr(cube.out.find("\"vertices\"")));
+  EXPECT_EQ(run("cgm tube").status, 3);
+}
+
 // 'gen' of a non-convex solid says how many triangles it wrote when the
 // faces were written as triangles (it said "96 faces" and wrote 192).
 TEST_F(Cli, GenOfANonConvexSolidCountsTheWrittenTriangles) {

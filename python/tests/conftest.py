@@ -30,6 +30,35 @@ def cli_json(*args: str) -> dict:
     return json.loads(out)
 
 
+def interrupt_after_start(script: str, *args: str, what: str, limit: float) -> None:
+    """Run `script` in a child interpreter; one second after it prints "started", send SIGINT.  The child
+    must exit with status 3 after printing "KeyboardInterrupt after ..." (its own handler) within `limit`
+    seconds of the signal; `what` names the interrupted call in the failure message."""
+    import signal
+    import sys
+    import time
+
+    proc = subprocess.Popen([sys.executable, "-c", script, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    try:
+        assert proc.stdout.readline() == "started\n"
+        time.sleep(1)
+        sent = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        try:
+            out, err = proc.communicate(timeout=limit)
+        except subprocess.TimeoutExpired:
+            pytest.fail(f"{what} still running {limit} s after SIGINT")
+        elapsed = time.monotonic() - sent
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    assert proc.returncode == 3, (out, err)
+    assert out.startswith("KeyboardInterrupt after"), (out, err)
+    assert elapsed < limit
+
+
 @pytest.fixture
 def data() -> Path:
     return DATA

@@ -6,6 +6,7 @@ from fractions import Fraction
 import pytest
 
 import minksum
+from conftest import interrupt_after_start
 
 SPECS = ["cube", "tetra", "sphere:2", "random:60:1", "dodecahedron", "box:1:2:3", "sphere:2@rot:4", "octahedron"]
 
@@ -150,31 +151,10 @@ def test_ctrl_c_stops_minkowski_sum_many():
     # (sized from one pair timed here, on two threads): the process must end with KeyboardInterrupt within
     # 10 s of the signal.  The jobs run on C++ threads; the calling thread polls for signals while it waits.
     import math
-    import signal
-    import subprocess
-    import sys
     import time
 
     start = time.monotonic()
     minksum.minkowski_sum("sphere:6", "sphere:6@rot:1")
     one = time.monotonic() - start
     n = max(8, math.ceil(2 * 120 / one))
-    proc = subprocess.Popen([sys.executable, "-c", CTRL_C_SCRIPT, str(n)], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
-    try:
-        assert proc.stdout.readline() == "started\n"
-        time.sleep(1)
-        sent = time.monotonic()
-        proc.send_signal(signal.SIGINT)
-        try:
-            out, err = proc.communicate(timeout=10)
-        except subprocess.TimeoutExpired:
-            pytest.fail(f"minkowski_sum_many of {n} pairs still running 10 s after SIGINT")
-        elapsed = time.monotonic() - sent
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.communicate()
-    assert proc.returncode == 3, (out, err)
-    assert out.startswith("KeyboardInterrupt after"), (out, err)
-    assert elapsed < 10
+    interrupt_after_start(CTRL_C_SCRIPT, str(n), what=f"minkowski_sum_many of {n} pairs", limit=10)

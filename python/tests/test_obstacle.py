@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import minksum
-from conftest import cli_json
+from conftest import cli_json, interrupt_after_start
 
 P, Q = "cube", "tetra@rot:3"
 TRANSLATIONS = [(3, 0, 0), (Fraction(1, 2), Fraction(1, 3), Fraction(1, 5)), (0, 0, 0), (-2, Fraction(7, 3), 1)]
@@ -112,27 +112,4 @@ def test_ctrl_c_stops_obstacle_construction():
     # SIGINT one second into building the obstacle of two sphere:8 (M has about a million facets; its
     # planes take tens of seconds here): KeyboardInterrupt within 5 s of the signal, where Ctrl-C used to
     # wait for the whole construction.  The sum and M's planes poll SumOptions::cancel.
-    import signal
-    import subprocess
-    import sys
-    import time
-
-    proc = subprocess.Popen([sys.executable, "-c", OBSTACLE_CTRL_C_SCRIPT], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
-    try:
-        assert proc.stdout.readline() == "started\n"
-        time.sleep(1)
-        sent = time.monotonic()
-        proc.send_signal(signal.SIGINT)
-        try:
-            out, err = proc.communicate(timeout=30)
-        except subprocess.TimeoutExpired:
-            pytest.fail("Obstacle() still running 30 s after SIGINT")
-        elapsed = time.monotonic() - sent
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.communicate()
-    assert proc.returncode == 3, (out, err)
-    assert out.startswith("KeyboardInterrupt after"), (out, err)
-    assert elapsed < 5
+    interrupt_after_start(OBSTACLE_CTRL_C_SCRIPT, what="Obstacle()", limit=5)

@@ -103,6 +103,30 @@ TEST(RoundedPredicates, Orient3dAgreesAndBoundHolds) {
   }
 }
 
+TEST(RoundedPredicates, SupportCompareAgreesAndBoundHolds) {
+  // sign <bi - bj, (a1 - a0) x (a2 - a0)>; in half of the cases bi - bj is a
+  // rational combination of the two edges (the exact answer is 0).
+  for (std::uint64_t seed = 1; seed <= 400; ++seed) {
+    Gen g(seed);
+    Rounded a0(g.point()), a1(g.point()), a2(g.point()), bj(g.point());
+    Point3 bp = g.point();
+    if (seed % 2 == 0) {
+      Rational s(mpz_class(long(g.integer(-5, 5))), mpz_class(7)), t(mpz_class(long(g.integer(-5, 5))), mpz_class(3));
+      s.canonicalize(), t.canonicalize();
+      bp = bj.exact + s * (a1.exact - a0.exact) + t * (a2.exact - a0.exact);
+    }
+    Rounded bi(bp);
+    const Rational P = dot(bi.exact - bj.exact, cross(a1.exact - a0.exact, a2.exact - a0.exact));
+    in_all_modes([&](int mode) {
+      const RoundedPoint3 r0 = a0.ref(), r1 = a1.ref(), r2 = a2.ref(), ri = bi.ref(), rj = bj.ref();
+      const auto approx = detail::approx_rounded<detail::SupportComparePred>({&r0, &r1, &r2, &ri, &rj});
+      check_bound(approx, P, seed, mode);
+      ASSERT_EQ(support_compare(r0, r1, r2, ri, rj), sgn(P)) << "seed " << seed << " mode " << mode;
+      ASSERT_EQ(support_compare(a0.exact, a1.exact, a2.exact, bi.exact, bj.exact), sgn(P)) << "seed " << seed;
+    });
+  }
+}
+
 TEST(RoundedPredicates, Orient3dDeclinesOnUnusableRoundings) {
   // A coordinate below the subnormal range rounds to zero: unusable.
   const Point3 tiny(Rational(1) / Rational(mpz_class(1) << 1100), Rational(0), Rational(0));

@@ -91,6 +91,10 @@ int support_compare(const Point3& a0, const Point3& a1, const Point3& a2, const 
                     const Point3& bj) {
   return filtered<SupportComparePred>(a0, a1, a2, bi, bj);
 }
+int support_compare(const RoundedPoint3& a0, const RoundedPoint3& a1, const RoundedPoint3& a2,
+                    const RoundedPoint3& bi, const RoundedPoint3& bj) {
+  return filtered<SupportComparePred>(a0, a1, a2, bi, bj);
+}
 int edge_facet_sign(const Vec3d& p0, const Vec3d& p1, const Vec3d& a0, const Vec3d& a1,
                     const Vec3d& a2) {
   return filtered<EdgeFacetSignPred>(p0, p1, a0, a1, a2);

@@ -39,6 +39,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -107,7 +108,13 @@ Rational value(const Half& h, const V3& v) {
 int side(const Half& h, const V3& v) {
   if (h.filtered && v.filtered)
     if (const auto s = half_space_side_filter(h.da, h.db, h.dc, h.dd, v.d.x, v.d.y, v.d.z)) return *s;
-  return sgn(value(h, v));
+  return h.plane->side(v.p);  // integer arithmetic, no rational normalisation
+}
+
+// The filter alone: the sign when the doubles decide it.
+std::optional<int> side_filter(const Half& h, const V3& v) {
+  if (h.filtered && v.filtered) return half_space_side_filter(h.da, h.db, h.dc, h.dd, v.d.x, v.d.y, v.d.z);
+  return std::nullopt;
 }
 
 
@@ -835,6 +842,13 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
         const Item& it = *at;
         if (it.box.lo[0] > region.hi[0]) break;
         if (it.plane == g || !it.box.meets(region)) continue;
+        // Both ends on the plane; the filter first for both (an end shared
+        // with this face's boundary is exactly on it, which only the exact
+        // evaluation shows).
+        {
+          const auto fa = side_filter(h, it.a), fb = side_filter(h, it.b);
+          if ((fa && *fa != 0) || (fb && *fb != 0)) continue;
+        }
         if (side(h, it.a) != 0 || side(h, it.b) != 0) continue;
         if (!indexed) {
           for (const Segment& sg : own) {

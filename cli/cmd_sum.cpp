@@ -108,10 +108,11 @@ components) and the phases decompose, pairs, union and boundary.
                      operands cut into convex pieces (CGAL), every pair of
                      pieces summed, then the same union; slower on solids
                      with many reflex edges, the same exact result
---method sums the convex pieces (walk by default; the sweep's pieces, a
-triangle and a polytope, by walk or chms, the others falling back to walk:
-"pair_method" in --json names the method used); a sum with a non-convex
-operand takes exactly two operands.
+--method sums the convex pieces of the decomposition (walk by default); the
+sweep's pieces, a triangle and a polytope, are built from their Gaussian maps,
+or with --method chms as the exact hull of their vertex sums ("pair_method" in
+--json names the construction: "gaussian_map", "chms" or a method); a sum with
+a non-convex operand takes exactly two operands.
 
 Progress: when stderr is a terminal and the sum takes more than a second, one
 line is rewritten in place on stderr every 0.2 s and erased when the sum is

@@ -150,7 +150,7 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
   if (json) {
     report << "{\"vertices\": " << c.vertices << ", \"edges\": " << c.edges << ", \"facets\": " << c.faces
            << ", \"method\": \"nonconvex\", \"pair_method\": \""
-           << method_name(r.pair_method) << "\", \"seconds\": " << json_number(r.seconds())
+           << (r.pieces_from_maps ? "gaussian_map" : method_name(r.pair_method)) << "\", \"seconds\": " << json_number(r.seconds())
            << ", \"phases\": {\"read\": " << json_number(load.read) << ", \"validate\": " << json_number(validate_seconds)
            << ", \"decompose\": " << json_number(r.seconds_decompose) << ", \"pairs\": " << json_number(r.seconds_pairs)
            << ", \"union\": " << json_number(r.seconds_union) << ", \"boundary\": " << json_number(r.seconds_boundary)
@@ -158,7 +158,8 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
            << "\", \"volume_double\": " << json_number(to_double(r.volume)) << ", \"nonconvex_method\": \"" << r.method
            << "\", \"swept\": " << (r.swept ? std::string("\"") + r.swept + "\"" : std::string("null"))
            << ", \"pieces\": {\"a\": " << r.pieces_a
-           << ", \"b\": " << r.pieces_b << "}, \"pairs\": " << r.pairs << ", \"pair_vertices\": " << r.pair_vertices
+           << ", \"b\": " << r.pieces_b << "}, \"pairs\": " << r.pairs << ", \"pair_vertices\": "
+           << (r.pieces_from_maps ? std::string("null") : std::to_string(r.pair_vertices))
            << ", \"pair_facets\": " << r.pair_facets << ", \"candidate_facets\": " << r.candidate_facets
            << ", \"culled_facets\": " << r.culled_facets << ", \"union\": {\"clips\": " << r.clips
            << ", \"shells\": " << r.shells << ", \"non_manifold_edges\": " << r.non_manifold_edges

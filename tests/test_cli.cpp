@@ -1133,8 +1133,8 @@ TEST_F(Cli, NonConvexSumJsonAndExactOutput) {
   EXPECT_NE(back.out.find("\"volume\": \"27\""), std::string::npos) << back.out;
   EXPECT_EQ(json_int(back.out, "facets"), 6);
   // A ⊕ B = B ⊕ A, with the pairs of the decomposition summed by another
-  // method; the sweep's pieces (a triangle and a box) by chms, or by the walk
-  // when another method is asked for (pair_method says which).
+  // method; the sweep's pieces (a triangle and a box) by chms, or from the
+  // Gaussian maps when another method is asked for (pair_method says which).
   CmdResult ba = run("sum box:1/2:1/2:1/2 tube --method cvms --nonconvex-method decomposition --json");
   ASSERT_EQ(ba.status, 0) << ba.err;
   EXPECT_NE(ba.out.find("\"volume\": \"15\""), std::string::npos) << ba.out;
@@ -1147,11 +1147,12 @@ TEST_F(Cli, NonConvexSumJsonAndExactOutput) {
   EXPECT_NE(chms.out.find("\"nonconvex_method\": \"sweep\", \"swept\": \"b\""), std::string::npos) << chms.out;
   CmdResult cvms = run("sum box:1/2:1/2:1/2 tube --method cvms --json");
   ASSERT_EQ(cvms.status, 0) << cvms.err;
-  EXPECT_NE(cvms.out.find("\"pair_method\": \"walk\""), std::string::npos) << cvms.out;
+  EXPECT_NE(cvms.out.find("\"pair_method\": \"gaussian_map\""), std::string::npos) << cvms.out;
+  EXPECT_NE(cvms.out.find("\"pair_vertices\": null"), std::string::npos) << cvms.out;
   CmdResult bad = run("sum box:1/2:1/2:1/2 tube --nonconvex-method hull");
   EXPECT_EQ(bad.status, 2) << bad.err;
   EXPECT_NE(bad.err.find("unknown --nonconvex-method 'hull' (sweep, decomposition)"), std::string::npos) << bad.err;
-  EXPECT_NE(r.out.find("\"pair_method\": \"walk\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"pair_method\": \"gaussian_map\""), std::string::npos) << r.out;
 }
 
 // Without --exact: doubles written as they are; other coordinates rounded

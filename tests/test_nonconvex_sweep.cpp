@@ -14,6 +14,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <random>
 #include <set>
 
 using namespace minksum;
@@ -169,6 +172,106 @@ TEST(NonconvexSweep, PointInSolidIsExact) {
   EXPECT_TRUE(cones.strictly_inside(p(Rational(-199, 100), Rational(199, 100), 0)));  // near an edge
   EXPECT_FALSE(cones.strictly_inside(p(Rational(201, 100), Rational(2), Rational(2))));
   EXPECT_THROW(cones.strictly_inside(p(2, 0, 0)), std::logic_error);    // on the surface
+}
+
+// ---------------------------------------------------------------------------
+// The pieces t ⊕ B from the Gaussian maps (triangle_sum.cpp) against the
+// exact hull of the nine or more sums t_i + b_j: the same facet planes, the
+// same candidates (SurfaceCones::candidate on the hull's facets) and the
+// same vertex loops, on triangles with small integer coordinates, which are
+// often parallel to B's facets and edges or perpendicular to its normals.
+
+namespace {
+
+// A closed surface holding the triangle t as its triangle 0: the
+// tetrahedron of t and an apex below it.
+Mesh tetrahedron_on(const std::array<Point3, 3>& t) {
+  const Point3 n = cross(t[1] - t[0], t[2] - t[0]);
+  const Point3 apex = Rational(1, 3) * (t[0] + t[1] + t[2]) - n;
+  Mesh m;
+  for (const Point3& p : t) m.points.push_back(p);
+  m.points.push_back(apex);
+  m.faces = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
+  return m;
+}
+
+// Loops compared up to rotation.
+std::vector<Point3> rotated_to_smallest(std::vector<Point3> loop) {
+  auto less = [](const Point3& a, const Point3& b) {
+    for (int k = 0; k < 3; ++k)
+      if (int c = cmp(a[k], b[k])) return c < 0;
+    return false;
+  };
+  std::rotate(loop.begin(), std::min_element(loop.begin(), loop.end(), less), loop.end());
+  return loop;
+}
+
+void expect_piece_is_the_hull(const std::array<Point3, 3>& t, const ConvexPolytope& b, const std::string& trace) {
+  SCOPED_TRACE(trace);
+  const Mesh surface = tetrahedron_on(t);
+  const nonconvex_detail::SurfaceCones cones(surface);
+  const nonconvex_detail::SweptPolytope swept(b, 1);
+  const nonconvex_detail::Piece piece = swept.sum(cones, 0);
+  std::vector<Point3> sums;
+  for (const Point3& p : t)
+    for (const Point3& q : b.points()) sums.push_back(p + q);
+  const ConvexPolytope hull = ConvexPolytope::hull(sums, "hull");
+  // Planes: the same set, each once.
+  std::vector<Plane> built = piece.planes, expected;
+  for (Index f = 0; f < hull.num_facets(); ++f) expected.push_back(hull.plane(f));
+  std::sort(built.begin(), built.end());
+  std::sort(expected.begin(), expected.end());
+  ASSERT_EQ(built, expected);
+  // Candidates and their loops.
+  std::vector<std::pair<Plane, std::vector<Point3>>> got, want;
+  for (std::size_t c = 0; c < piece.candidates.size(); ++c)
+    got.emplace_back(piece.planes[piece.candidates[c]], rotated_to_smallest(piece.loops[c]));
+  for (Index f = 0; f < hull.num_facets(); ++f) {
+    const Plane& h = hull.plane(f);
+    if (!cones.candidate(0, Point3(Rational(h.a), Rational(h.b), Rational(h.c)))) continue;
+    std::vector<Point3> loop;
+    for (Index v : hull.facet_vertices(f)) loop.push_back(hull.point(v));
+    want.emplace_back(h, rotated_to_smallest(loop));
+  }
+  auto by_plane = [](const auto& x, const auto& y) { return x.first < y.first; };
+  std::sort(got.begin(), got.end(), by_plane);
+  std::sort(want.begin(), want.end(), by_plane);
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i].first, want[i].first);
+    EXPECT_EQ(got[i].second, want[i].second) << "candidate " << i;
+  }
+  // The box holds every point.
+  for (const Point3& s : sums) {
+    const Vec3d d = to_double(s);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(piece.lo[k], d[k]);
+      EXPECT_GE(piece.hi[k], d[k]);
+    }
+  }
+}
+
+}  // namespace
+
+TEST(NonconvexSweep, GaussianMapPiecesAreTheHullsOfTheSums) {
+  const char* operands[] = {"cube",   "box:1:2:3@rot:3", "octahedron", "tetra",
+                            "sphere:1", "prism:6",       "random:12:5", "cube@scale:1/10"};
+  for (const char* spec : operands) {
+    const ConvexPolytope b = catalog_polytope(spec);
+    for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+      std::mt19937_64 rng(seed);
+      std::uniform_int_distribution<int> coordinate(-2, 2);
+      std::array<Point3, 3> t;
+      for (;;) {
+        for (Point3& p : t) p = Point3(Rational(coordinate(rng)), Rational(coordinate(rng)), Rational(coordinate(rng)));
+        if (!is_zero(cross(t[1] - t[0], t[2] - t[0]))) break;
+      }
+      if (seed % 3 == 0)  // rational coordinates too
+        for (Point3& p : t) p = Rational(2, 7) * p;
+      expect_piece_is_the_hull(t, b, std::string(spec) + ", seed " + std::to_string(seed));
+      if (::testing::Test::HasFatalFailure()) return;
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------

@@ -95,8 +95,10 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
   const std::vector<ConvexPolytope> po = convex_decomposition(o);
   options.report("decompose", 1.0);
   std::vector<ConvexSet> pieces;
-  pieces.reserve(po.size());
-  for (const ConvexPolytope& p : po) pieces.emplace_back(p);
+  if (method == Method::chms) {
+    pieces.reserve(po.size());
+    for (const ConvexPolytope& p : po) pieces.emplace_back(p);
+  }
   const nonconvex_detail::SurfaceCones cones(s.triangles);
   // b: the centroid of the first piece's vertices, inside it (a full-dimensional convex polytope).
   Point3 inner(Rational(0), Rational(0), Rational(0));
@@ -109,10 +111,16 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
 
   t0 = Clock::now();
   const std::size_t n = nt * po.size();
-  std::vector<ConvexPolytope> sums(n);
-  std::vector<std::vector<char>> candidate(n);
-  const Method piece_method = method == Method::chms ? Method::chms : Method::walk;
-  out.pair_method = piece_method;
+  std::vector<nonconvex_detail::Piece> sums(n);
+  // The pieces t ⊕ O_j from the Gaussian maps (triangle_sum.cpp); with
+  // --method chms, by the pairwise hull and the candidate test on each facet
+  // (a second, independent construction the tests compare it with).
+  const bool by_hull = method == Method::chms;
+  out.pair_method = by_hull ? Method::chms : Method::walk;
+  out.pieces_from_maps = !by_hull;
+  std::vector<nonconvex_detail::SweptPolytope> swept;
+  if (!by_hull)
+    for (std::size_t j = 0; j < po.size(); ++j) swept.emplace_back(po[j], j + 1);
   const unsigned workers = parallel_threads(threads, n);
   const std::size_t batch = std::max<std::size_t>(64, std::size_t(workers) * 64);
   options.report("pairs", 0.0);
@@ -121,30 +129,33 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
     parallel_for(count, workers, [&](std::size_t k) {
       const std::size_t i = start + k;
       const Index t = Index(i / po.size());
+      if (!by_hull) {
+        sums[i] = swept[i % po.size()].sum(cones, t);
+        return;
+      }
       const auto& c = cones.triangle(t);
       const ConvexSet tri = ConvexSet::polygon({cones.point(c[0]), cones.point(c[1]), cones.point(c[2])});
-      ConvexPolytope sum = minkowski_sum_sets(tri, pieces[i % po.size()], piece_method).set.release_polytope();
-      std::vector<char>& flags = candidate[i];
-      flags.resize(sum.num_facets());
+      const ConvexPolytope sum = minkowski_sum_sets(tri, pieces[i % po.size()], Method::chms).set.release_polytope();
+      std::vector<char> flags(sum.num_facets());
       for (Index f = 0; f < sum.num_facets(); ++f) {
         const Plane& h = sum.plane(f);
         const Point3 u(Rational(h.a), Rational(h.b), Rational(h.c));
         const Vec3d approx = to_double(u);
         flags[f] = cones.candidate(t, RoundedPoint3{u, approx}) ? 1 : 0;
       }
-      sums[i] = std::move(sum);
+      sums[i] = nonconvex_detail::piece_of(sum, &flags);
     });
     options.report("pairs", double(start + count) / double(n));
   }
   out.pairs = n;
-  for (std::size_t i = 0; i < n; ++i) {
-    out.pair_vertices += sums[i].num_vertices();
-    out.pair_facets += sums[i].num_facets();
-    for (char f : candidate[i]) (f ? out.candidate_facets : out.culled_facets) += 1;
+  for (const auto& s : sums) {
+    out.pair_facets += s.planes.size();
+    out.candidate_facets += s.candidates.size();
   }
+  out.culled_facets = out.pair_facets - out.candidate_facets;
   out.seconds_pairs = since(t0);
 
-  nonconvex_detail::union_boundary(sums, options, out, threads, &candidate,
+  nonconvex_detail::union_boundary(sums, options, out, threads,
                                    [&](const Point3& p) { return cones.strictly_inside(p - inner); });
   out.volume = mesh_volume(out.mesh);
   return out;

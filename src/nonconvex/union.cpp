@@ -172,21 +172,26 @@ void signs(const Poly& g, const Half& h, std::vector<int>& sg, bool& pos, bool& 
 // the result is true; when they do not (the overlap has zero area), `out`
 // is left as it was and the result is false.  A facet plane of the piece
 // that contains g's plane has every sign 0 and cuts nothing.
-bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out) {
+// `first`, when a valid index, is the plane tried first (a guess of the one
+// that rejects the piece).
+bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out,
+              std::size_t first = std::size_t(-1)) {
   std::vector<int> sg;
   bool pos = false, neg = false;
   // First the signs only: a plane with all of g on or outside it rejects the
   // piece before any cut is made.
-  for (const Half& h : halves) {
-    pos = false;
-    std::size_t i = 0;
-    for (; i < g.size(); ++i) {
+  auto rejects = [&](const Half& h) {
+    bool above = false;
+    for (std::size_t i = 0; i < g.size(); ++i) {
       const int c = side(h, g[i]);
-      if (c < 0) break;
-      pos |= c > 0;
+      if (c < 0) return false;
+      above |= c > 0;
     }
-    if (i == g.size() && pos) return false;
-  }
+    return above;
+  };
+  if (first < halves.size() && rejects(halves[first])) return false;
+  for (std::size_t k = 0; k < halves.size(); ++k)
+    if (k != first && rejects(halves[k])) return false;
   const std::size_t mark = out.size();
   Poly rem = g;
   for (const Half& h : halves) {
@@ -446,7 +451,7 @@ struct PlaneResult {
 // `facets` are the candidate facets on the plane, `below` the other pieces
 // with a facet on it facing the same way (not candidates), ascending.
 PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& facets, const std::vector<Index>& below,
-                           const std::vector<ConvexPolytope>& parts, const std::vector<std::vector<Half>>& halves,
+                           const std::vector<Piece>& parts, const std::vector<std::vector<Half>>& halves,
                            const PieceGrid& grid, const std::vector<Segment>& slits = {}) {
   PlaneResult r;
   std::vector<Poly> fragments;
@@ -459,11 +464,12 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
     return it != facets.end() && it->piece == j;
   };
   for (const FacetRef& f : facets) {
-    const ConvexPolytope& p = parts[f.piece];
     std::vector<Poly> frags(1);
     Box box;
-    for (Index v : p.facet_vertices(f.facet)) {
-      frags[0].push_back(make_v3(p.point(v)));
+    const Piece& own = parts[f.piece];
+    const Index plane_index = own.candidates[f.facet];
+    for (const Point3& v : own.loops[f.facet]) {
+      frags[0].push_back(make_v3(v));
       box.add(frags[0].back().d);
     }
     grid.query(box, near);
@@ -476,8 +482,12 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
       if (j == f.piece) continue;
       if (member(j) && (j > f.piece || std::binary_search(below.begin(), below.end(), j))) continue;
       std::vector<Poly> next;
+      const Piece& other = parts[j];
+      const std::size_t first =
+          other.family == own.family && plane_index < own.shared && plane_index < other.shared ? plane_index
+                                                                                               : std::size_t(-1);
       for (Poly& g : frags)
-        if (subtract(g, halves[j], next))
+        if (subtract(g, halves[j], next, first))
           ++r.clips;
         else
           next.push_back(std::move(g));
@@ -730,20 +740,52 @@ std::vector<std::vector<Index>> plane_faces(const std::vector<std::vector<Index>
 
 }  // namespace
 
+Piece piece_of(const ConvexPolytope& p, const std::vector<char>* candidate) {
+  Piece out;
+  for (int k = 0; k < 3; ++k) {
+    out.lo[k] = INFINITY;
+    out.hi[k] = -INFINITY;
+  }
+  // approx(v): the nearest doubles of the exact point.
+  for (Index v = 0; v < p.num_vertices(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      out.lo[k] = std::min(out.lo[k], p.approx(v)[k]);
+      out.hi[k] = std::max(out.hi[k], p.approx(v)[k]);
+    }
+  for (Index f = 0; f < p.num_facets(); ++f) {
+    out.planes.push_back(p.plane(f));
+    if (candidate && !(*candidate)[f]) continue;
+    out.candidates.push_back(f);
+    std::vector<Point3> loop;
+    for (Index v : p.facet_vertices(f)) loop.push_back(p.point(v));
+    out.loops.push_back(std::move(loop));
+  }
+  return out;
+}
+
 void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& options, NonconvexSum& out,
-                    unsigned threads, const std::vector<std::vector<char>>* candidate,
+                    unsigned threads) {
+  std::vector<Piece> pieces(parts.size());
+  parallel_for(parts.size(), parallel_threads(threads, parts.size()),
+               [&](std::size_t i) { pieces[i] = piece_of(parts[i]); });
+  union_boundary(pieces, options, out, threads);
+}
+
+void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, NonconvexSum& out, unsigned threads,
                     const std::function<bool(const Point3&)>& interior) {
   auto t0 = Clock::now();
   options.report("union", 0.0);
   const unsigned all_workers = parallel_threads(threads, parts.size());
-  // Boxes and half-spaces of the pieces (in parallel: exact planes).
+  // Boxes and half-spaces of the pieces (in parallel).
   std::vector<Box> boxes(parts.size());
   std::vector<std::vector<Half>> halves(parts.size());
   parallel_for(parts.size(), all_workers, [&](std::size_t i) {
-    // approx(v): the nearest doubles of the exact point.
-    for (Index v = 0; v < parts[i].num_vertices(); ++v) boxes[i].add(parts[i].approx(v));
-    halves[i].reserve(parts[i].num_facets());
-    for (Index f = 0; f < parts[i].num_facets(); ++f) halves[i].push_back(half_of(parts[i].plane(f)));
+    for (int k = 0; k < 3; ++k) {
+      boxes[i].lo[k] = parts[i].lo[k];
+      boxes[i].hi[k] = parts[i].hi[k];
+    }
+    halves[i].reserve(parts[i].planes.size());
+    for (const Plane& h : parts[i].planes) halves[i].push_back(half_of(h));
   });
   const PieceGrid grid(boxes);
   // Candidate facets by oriented plane; then the other facets on those
@@ -766,22 +808,24 @@ void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& 
   };
   std::unordered_map<const Plane*, std::size_t, PlaneHash, PlaneEq> group_of;
   std::vector<Group> groups;
-  auto is_candidate = [&](Index i, Index f) { return !candidate || (*candidate)[i][f]; };
   for (Index i = 0; i < parts.size(); ++i)
-    for (Index f = 0; f < parts[i].num_facets(); ++f) {
-      if (!is_candidate(i, f)) continue;
-      const Plane* pl = &parts[i].plane(f);
+    for (Index f = 0; f < parts[i].candidates.size(); ++f) {
+      const Plane* pl = &parts[i].planes[parts[i].candidates[f]];
       auto [it, fresh] = group_of.emplace(pl, groups.size());
       if (fresh) groups.push_back(Group{pl, {}, {}});
       groups[it->second].facets.push_back(FacetRef{i, f});
     }
-  if (candidate)
-    for (Index i = 0; i < parts.size(); ++i)
-      for (Index f = 0; f < parts[i].num_facets(); ++f) {
-        if (is_candidate(i, f)) continue;
-        auto it = group_of.find(&parts[i].plane(f));
-        if (it != group_of.end()) groups[it->second].below.push_back(i);
+  for (Index i = 0; i < parts.size(); ++i) {
+    const std::vector<Index>& c = parts[i].candidates;  // ascending
+    for (Index f = 0, next = 0; f < parts[i].planes.size(); ++f) {
+      if (next < c.size() && c[next] == f) {
+        ++next;
+        continue;
       }
+      auto it = group_of.find(&parts[i].planes[f]);
+      if (it != group_of.end()) groups[it->second].below.push_back(i);
+    }
+  }
   group_of.clear();
   // In the order of the planes, so that the output does not depend on the
   // order of the pieces' facets.

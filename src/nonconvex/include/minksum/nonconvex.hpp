@@ -89,6 +89,9 @@ struct NonconvexSum {
   const char* method = "sweep";
   char swept = 0;
   Method pair_method = Method::walk;       // the method that summed the convex pieces
+  // Sweep: the pieces t ⊕ O_j built from the Gaussian maps of t and O_j
+  // (pair_method is then not used; false with --method chms, the pairwise hull).
+  bool pieces_from_maps = false;
   // Decomposition: the convex pieces of A and B.  Sweep: the triangles of
   // the swept operand's surface and the convex pieces of the other.
   std::size_t pieces_a = 0, pieces_b = 0;
@@ -98,7 +101,9 @@ struct NonconvexSum {
   // decomposition).
   std::size_t candidate_facets = 0, culled_facets = 0;
   std::size_t dropped_components = 0;      // parts of the sweep's boundary inside A + b, dropped
-  std::size_t pair_vertices = 0, pair_facets = 0;  // over all pair sums
+  // Over all pair sums; pair_vertices is counted by the decomposition only
+  // (the sweep's pieces are built from their planes, without their vertices).
+  std::size_t pair_vertices = 0, pair_facets = 0;
   std::size_t clips = 0;                   // facets cut by a pair sum that overlaps them (the union's work)
   std::size_t shells = 0;                  // boundary shells (outer ones and cavities)
   std::size_t non_manifold_edges = 0;      // edges of the boundary shared by more than two faces

@@ -5,6 +5,8 @@
 #include <minksum/nonconvex.hpp>
 #include <minksum/predicates.hpp>
 
+#include "nonconvex/union.hpp"
+
 #include <array>
 #include <vector>
 
@@ -51,6 +53,11 @@ class SurfaceCones {
   std::size_t triangles() const { return tri_.size(); }
   const std::array<Index, 3>& triangle(Index t) const { return tri_[t]; }
   const Point3& point(Index v) const { return points_[v]; }
+  // The point with its nearest doubles, for the kernel's filtered predicates.
+  RoundedPoint3 rounded(Index v) const { return at(v); }
+  // Triangle t's (p1 - p0) x (p2 - p0), outward, and its nearest doubles.
+  const Point3& normal(Index t) const { return normal_[t]; }
+  const Vec3d& normal_approx(Index t) const { return normal_approx_[t]; }
 
  private:
   bool below_all_neighbours(Index v, const RoundedPoint3& u) const;
@@ -64,6 +71,45 @@ class SurfaceCones {
   std::vector<std::array<Index, 3>> opposite_;     // edge k = (c[k], c[k+1]): the far vertex of the face across it
   std::vector<std::array<signed char, 3>> kind_;   // edge k: -1 convex, 0 flat, +1 reflex
   std::vector<std::vector<Index>> neighbours_;     // per vertex
+};
+
+// The convex operand B of the pieces t ⊕ B, prepared once for every
+// triangle t of the swept surface (triangle_sum.cpp, docs/nonconvex.md
+// "Pieces"): its facets' planes and normals, its edges with the far vertex of
+// each adjacent facet, its exact bounding box.
+class SweptPolytope {
+ public:
+  // `family` names B among the convex operands (Piece::family).
+  SweptPolytope(const ConvexPolytope& b, std::size_t family);
+
+  // t ⊕ B for triangle t of `cones`' surface, built from the Gaussian maps
+  // of t and B without constructing its vertices: every facet's canonical
+  // plane, the vertex loops of the facets that SurfaceCones::candidate
+  // keeps (the candidates first), and its box.
+  Piece sum(const SurfaceCones& cones, Index t) const;
+
+ private:
+  struct Facet {
+    Point3 normal;        // (a, b, c) of the canonical plane
+    Vec3d normal_approx;  // nearest doubles
+    Integer primitive_integer[3];  // (a, b, c) / gcd(a, b, c)
+    Integer offset_num, offset_den;  // d / gcd(a, b, c) in lowest terms: primitive . x = offset on the facet
+    std::vector<Index> loop;
+  };
+  struct Edge {
+    Index v0, v1;  // the edge's ends
+    Index w0, w1;  // a vertex of each adjacent facet off the edge
+    Index f0, f1;  // those facets (f0 holds w0)
+    Point3 direction;  // v1 - v0
+  };
+  RoundedPoint3 at(Index v) const { return RoundedPoint3{points_[v], approx_[v]}; }
+
+  std::vector<Point3> points_;
+  std::vector<Vec3d> approx_;
+  std::vector<Facet> facets_;
+  std::vector<Edge> edges_;
+  Point3 lo_, hi_;  // exact bounding box
+  std::size_t family_ = 0;
 };
 
 }  // namespace minksum::nonconvex_detail

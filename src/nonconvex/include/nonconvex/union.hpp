@@ -13,6 +13,26 @@
 
 namespace minksum::nonconvex_detail {
 
+// A convex polytope as the union needs it: the canonical plane of every
+// facet (outward), the facets that are candidates of the boundary (indices
+// into planes) with their vertex loops (counter-clockwise seen from
+// outside), and a box that contains the nearest doubles of its points.
+// Pieces of one family share the normals of their first `shared` planes
+// (plane k of each is facet k of the same convex operand, moved): the union
+// tries that plane of a neighbour first, which most often rejects it.
+struct Piece {
+  std::vector<Plane> planes;
+  std::vector<Index> candidates;
+  std::vector<std::vector<Point3>> loops;  // one per candidate
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  std::size_t family = 0;
+  Index shared = 0;
+};
+
+// p as a Piece, with the facets flagged in `candidate` (one flag per facet;
+// all when null) as its candidates.
+Piece piece_of(const ConvexPolytope& p, const std::vector<char>* candidate = nullptr);
+
 // The boundary of the union of the convex polytopes `parts` (regularised:
 // the closure of the union of their interiors): maximal planar faces,
 // counter-clockwise seen from outside, a face with a hole triangulated,
@@ -21,16 +41,17 @@ namespace minksum::nonconvex_detail {
 // shells, non_manifold_edges, seconds_union and seconds_boundary of `out`.
 // `threads` as parallel_for's.
 //
-// `candidate`, when given, holds one flag per facet of each part: only the
-// flagged facets are taken as the boundary's candidates (every part still
-// removes what it covers); the caller guarantees that the boundary of the
-// union, within the region it cares about, lies on flagged facets.
-// `interior`, when given, is asked for one vertex of each connected
-// component of the resulting boundary, and the components whose vertex it
-// calls interior are dropped (with their points).
+// Only the candidate facets of each part are taken as the boundary's
+// candidates (every part still removes what it covers); the caller
+// guarantees that the boundary of the union, within the region it cares
+// about, lies on candidate facets.  `interior`, when given, is asked for one
+// vertex of each connected component of the resulting boundary, and the
+// components whose vertex it calls interior are dropped (with their points).
+void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, NonconvexSum& out,
+                    unsigned threads = 0, const std::function<bool(const Point3&)>& interior = {});
+// The same for polytopes, every facet a candidate.
 void union_boundary(const std::vector<ConvexPolytope>& parts, const SumOptions& options, NonconvexSum& out,
-                    unsigned threads = 0, const std::vector<std::vector<char>>* candidate = nullptr,
-                    const std::function<bool(const Point3&)>& interior = {});
+                    unsigned threads = 0);
 
 // A point of a plane in two exact coordinates (the frame of union.cpp).
 struct PlanePoint {

@@ -1,0 +1,302 @@
+// The pieces t ⊕ B of the boundary sweep (docs/nonconvex.md, "Pieces"):
+// a triangle t of the swept surface summed with a convex polytope B, built
+// from the two Gaussian maps instead of by a hull or a walk.
+//
+// For a direction u, face_u(t ⊕ B) = face_u(t) + face_u(B), and it is a
+// facet exactly when the two faces span a plane.  With the dimensions of
+// the two faces:
+//   A. face_u(B) a facet f (u = f's normal): the facet f + face_u(t), one per
+//      facet of B;
+//   B. face_u(t) = t (u = ±n_t) and face_u(B) a vertex or an edge: t plus it;
+//   C. face_u(t) an edge e of t and face_u(B) an edge g of B, not parallel:
+//      u = ±(e × g), and u must lie in the open normal arcs of both edges:
+//      u · (o − a) < 0 for t's third vertex o (a an end of e) and
+//      u · (w − g0) < 0 for the vertex w off g of each of g's two facets;
+//      the facet is the parallelogram e ⊕ g.
+// Every other pair of faces sums to a segment or a point.  The three kinds
+// have different normals (A: facet normals of B; B: ±n_t, which are not
+// facet normals of B there; C: inside open arcs of B's map and not ±n_t), so
+// each facet is found once.  Every sign is a kernel predicate on the exact
+// points (support_compare and dot_sign, filtered on cached roundings); the
+// planes are exact canonical integer planes.
+#include <minksum/error.hpp>
+#include <minksum/predicates.hpp>
+
+#include "kernel/plane.hpp"
+#include "nonconvex/sweep.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+namespace minksum::nonconvex_detail {
+
+SweptPolytope::SweptPolytope(const ConvexPolytope& b, std::size_t family) : family_(family) {
+  points_ = b.points();
+  approx_.reserve(points_.size());
+  for (Index v = 0; v < b.num_vertices(); ++v) approx_.push_back(b.approx(v));
+  lo_ = hi_ = points_.front();
+  for (const Point3& p : points_)
+    for (int k = 0; k < 3; ++k) {
+      if (cmp(p[k], lo_[k]) < 0) lo_[k] = p[k];
+      if (cmp(p[k], hi_[k]) > 0) hi_[k] = p[k];
+    }
+  facets_.resize(b.num_facets());
+  for (Index f = 0; f < b.num_facets(); ++f) {
+    const Plane& h = b.plane(f);
+    Facet& x = facets_[f];
+    x.normal = h.normal();
+    x.normal_approx = to_double(x.normal);
+    Integer g;
+    mpz_gcd(g.get_mpz_t(), h.a.get_mpz_t(), h.b.get_mpz_t());
+    mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), h.c.get_mpz_t());
+    x.primitive_integer[0] = h.a / g;
+    x.primitive_integer[1] = h.b / g;
+    x.primitive_integer[2] = h.c / g;
+    Rational offset(h.d, g);
+    offset.canonicalize();
+    x.offset_num = offset.get_num();
+    x.offset_den = offset.get_den();
+    x.loop = b.facet_vertices(f);
+  }
+  edges_.reserve(b.num_edges());
+  for (Index e = 0; e < b.num_edges(); ++e) {
+    const Index h = 2 * e;
+    Edge x;
+    x.v0 = b.origin(h);
+    x.v1 = b.target(h);
+    // The next vertex of each facet's loop after the edge is off the edge.
+    x.w0 = b.target(b.next(h));
+    x.w1 = b.target(b.next(ConvexPolytope::twin(h)));
+    x.f0 = b.facet(h);
+    x.f1 = b.facet(ConvexPolytope::twin(h));
+    x.direction = points_[x.v1] - points_[x.v0];
+    edges_.push_back(std::move(x));
+  }
+}
+
+namespace {
+
+// The convex hull of `pts` (points of one plane with outward normal u),
+// counter-clockwise seen from outside, without collinear points: Andrew's
+// monotone chain on two exact coordinates (those of the frame that drops
+// the coordinate of u's largest component).
+std::vector<Point3> plane_hull(std::vector<Point3> pts, const Point3& u) {
+  int k = 2;
+  for (int i = 0; i < 3; ++i)
+    if (cmp(abs(u[i]), abs(u[k])) > 0) k = i;
+  int iu = (k + 1) % 3, iv = (k + 2) % 3;
+  if (sgn(u[k]) < 0) std::swap(iu, iv);
+  std::sort(pts.begin(), pts.end(), [&](const Point3& a, const Point3& b) {
+    if (int c = cmp(a[iu], b[iu])) return c < 0;
+    return cmp(a[iv], b[iv]) < 0;
+  });
+  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+  auto turn = [&](const Point3& a, const Point3& b, const Point3& c) {
+    return sgn((b[iu] - a[iu]) * (c[iv] - a[iv]) - (b[iv] - a[iv]) * (c[iu] - a[iu]));
+  };
+  std::vector<Point3> hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t start = hull.size();
+    for (std::size_t j = 0; j < pts.size(); ++j) {
+      const Point3& p = pass == 0 ? pts[j] : pts[pts.size() - 1 - j];
+      while (hull.size() >= start + 2 && turn(hull[hull.size() - 2], hull.back(), p) <= 0) hull.pop_back();
+      hull.push_back(p);
+    }
+    hull.pop_back();  // the last point starts the other chain
+  }
+  return hull;
+}
+
+struct Built {
+  Plane plane;
+  std::vector<Point3> loop;  // empty: not a candidate
+};
+
+}  // namespace
+
+Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
+  const auto& c = cones.triangle(t);
+  const RoundedPoint3 p[3] = {cones.rounded(c[0]), cones.rounded(c[1]), cones.rounded(c[2])};
+  const Point3 origin(Rational(0), Rational(0), Rational(0));
+  const Vec3d origin_approx{0, 0, 0};
+  const RoundedPoint3 o{origin, origin_approx};
+  std::vector<Built> built;
+  built.reserve(facets_.size() + 32);
+  // t's points as integers over a common denominator.
+  struct Scaled {
+    Integer coordinate[3];
+    Integer denominator;
+  } scaled[3];
+  for (int k = 0; k < 3; ++k) {
+    const Point3& q = p[k].exact;
+    Integer& D = scaled[k].denominator;
+    D = q.x.get_den();
+    mpz_lcm(D.get_mpz_t(), D.get_mpz_t(), q.y.get_den_mpz_t());
+    mpz_lcm(D.get_mpz_t(), D.get_mpz_t(), q.z.get_den_mpz_t());
+    for (int j = 0; j < 3; ++j) {
+      mpz_divexact(scaled[k].coordinate[j].get_mpz_t(), D.get_mpz_t(), q[j].get_den_mpz_t());
+      scaled[k].coordinate[j] *= q[j].get_num();
+    }
+  }
+  Integer work[3];
+
+  // A. The facets of B, each moved by the face of t extreme along its normal.
+  // rise[f][k] = sign n_f · (p_{k+1} − p_k), the sign along f's normal of
+  // t's edge k, which also tells the arcs of kind C below.
+  std::vector<std::array<signed char, 3>> rise(facets_.size());
+  for (std::size_t fi = 0; fi < facets_.size(); ++fi) {
+    const Facet& f = facets_[fi];
+    const RoundedPoint3 u{f.normal, f.normal_approx};
+    for (int k = 0; k < 3; ++k) rise[fi][k] = static_cast<signed char>(dot_sign(o, u, p[k], p[(k + 1) % 3]));
+    // p_k is at the top when neither edge at it rises away from it.
+    bool at_top[3];
+    int count = 0, top = -1;
+    for (int k = 0; k < 3; ++k) {
+      at_top[k] = rise[fi][k] <= 0 && rise[fi][(k + 2) % 3] >= 0;
+      if (at_top[k]) {
+        ++count;
+        if (top < 0) top = k;
+      }
+    }
+    Built x;
+    const Point3& q = p[top].exact;
+    // primitive · x = offset + primitive · q, with q = Q / D in integers:
+    // num / den = (offset_num D + offset_den S) / (offset_den D), S =
+    // primitive · Q; the plane (primitive den, num) / gcd(num, den) is
+    // primitive, as the primitive normal's gcd is 1.
+    {
+      const Integer* Q = scaled[top].coordinate;
+      mpz_mul(work[0].get_mpz_t(), f.primitive_integer[0].get_mpz_t(), Q[0].get_mpz_t());
+      mpz_addmul(work[0].get_mpz_t(), f.primitive_integer[1].get_mpz_t(), Q[1].get_mpz_t());
+      mpz_addmul(work[0].get_mpz_t(), f.primitive_integer[2].get_mpz_t(), Q[2].get_mpz_t());  // S
+      mpz_mul(work[1].get_mpz_t(), f.offset_den.get_mpz_t(), scaled[top].denominator.get_mpz_t());  // den
+      mpz_mul(work[0].get_mpz_t(), work[0].get_mpz_t(), f.offset_den.get_mpz_t());
+      mpz_addmul(work[0].get_mpz_t(), f.offset_num.get_mpz_t(), scaled[top].denominator.get_mpz_t());  // num
+      mpz_gcd(work[2].get_mpz_t(), work[0].get_mpz_t(), work[1].get_mpz_t());
+      if (mpz_cmp_ui(work[2].get_mpz_t(), 1) != 0) {
+        mpz_divexact(work[0].get_mpz_t(), work[0].get_mpz_t(), work[2].get_mpz_t());
+        mpz_divexact(work[1].get_mpz_t(), work[1].get_mpz_t(), work[2].get_mpz_t());
+      }
+      mpz_mul(x.plane.a.get_mpz_t(), f.primitive_integer[0].get_mpz_t(), work[1].get_mpz_t());
+      mpz_mul(x.plane.b.get_mpz_t(), f.primitive_integer[1].get_mpz_t(), work[1].get_mpz_t());
+      mpz_mul(x.plane.c.get_mpz_t(), f.primitive_integer[2].get_mpz_t(), work[1].get_mpz_t());
+      mpz_swap(x.plane.d.get_mpz_t(), work[0].get_mpz_t());
+    }
+    if (cones.candidate(t, u)) {
+      if (count == 1) {
+        for (Index v : f.loop) x.loop.push_back(points_[v] + q);
+      } else {
+        std::vector<Point3> sums;
+        for (int k = 0; k < 3; ++k)
+          if (at_top[k])
+            for (Index v : f.loop) sums.push_back(points_[v] + p[k].exact);
+        x.loop = plane_hull(std::move(sums), f.normal);
+      }
+    }
+    built.push_back(std::move(x));
+  }
+
+  // B. t plus the face of B extreme along n_t and along −n_t, when that face
+  // is a vertex or an edge (a facet's sum is in A).
+  {
+    std::vector<Index> faces[2] = {{0}, {0}};  // the vertices of B highest along n_t, and lowest
+    for (std::size_t v = 1; v < points_.size(); ++v)
+      for (int side = 0; side < 2; ++side) {
+        const int c = support_compare(p[0], p[1], p[2], at(Index(v)), at(faces[side].front())) * (side == 0 ? 1 : -1);
+        if (c > 0) faces[side].assign(1, Index(v));
+        else if (c == 0) faces[side].push_back(Index(v));
+      }
+    for (int side = 0; side < 2; ++side) {
+      const std::vector<Index>& face = faces[side];
+      if (face.size() >= 3) continue;  // a facet of B: in A
+      const Point3 u = side == 0 ? cones.normal(t) : Rational(-1) * cones.normal(t);
+      const Vec3d ua = side == 0 ? cones.normal_approx(t) : Vec3d{-cones.normal_approx(t).x, -cones.normal_approx(t).y,
+                                                                   -cones.normal_approx(t).z};
+      Built x;
+      x.plane = canonical_plane(u, p[0].exact + points_[face[0]]);
+      if (cones.candidate(t, RoundedPoint3{u, ua})) {
+        if (face.size() == 1) {
+          for (int k = 0; k < 3; ++k) x.loop.push_back(p[side == 0 ? k : 2 - k].exact + points_[face[0]]);
+        } else {
+          std::vector<Point3> sums;
+          for (int k = 0; k < 3; ++k)
+            for (Index v : face) sums.push_back(p[k].exact + points_[v]);
+          x.loop = plane_hull(std::move(sums), u);
+        }
+      }
+      built.push_back(std::move(x));
+    }
+  }
+
+  // C. An edge a → b of t and an edge g of B whose open normal arcs cross.
+  // The great circle normal to e = b − a crosses the open arc of g exactly
+  // when the normals of g's two facets lie strictly on opposite sides of it
+  // (rise of opposite non-zero signs); the crossing is ±(e × g), the sign σ
+  // that puts it in g's arc (σ u · (w − g0) < 0 for the far vertex w of
+  // g's first facet, never zero there), and it lies on t's arc (a half
+  // circle) when σ u · (third − a) < 0.
+  for (int k = 0; k < 3; ++k) {
+    const RoundedPoint3& a = p[k];
+    const RoundedPoint3& b = p[(k + 1) % 3];
+    const RoundedPoint3& third = p[(k + 2) % 3];
+    Point3 e;
+    bool have_e = false;
+    for (const Edge& g : edges_) {
+      const int r0 = rise[g.f0][k], r1 = rise[g.f1][k];
+      if (r0 * r1 >= 0) continue;
+      const RoundedPoint3 g0 = at(g.v0), g1 = at(g.v1);
+      const int sigma = -support_compare(g0, g1, at(g.w0), b, a);
+      if (sigma == 0) throw std::logic_error("SweptPolytope: a far vertex on the crossing plane");
+      // s = sign u · (third − a) for u = (b − a) × (g1 − g0).
+      const int s = -support_compare(a, b, third, g1, g0);
+      if (sigma * s >= 0) continue;
+      if (!have_e) {
+        e = b.exact - a.exact;
+        have_e = true;
+      }
+      Point3 u = cross(e, g.direction);
+      if (sigma < 0) u = Rational(-1) * u;
+      Built x;
+      x.plane = canonical_plane(u, a.exact + points_[g.v0]);
+      const Vec3d ua = to_double(u);
+      if (cones.candidate(t, RoundedPoint3{u, ua})) {
+        // e ⊕ g with normal e × g is counter-clockwise in the order
+        // a + g0, b + g0, b + g1, a + g1; reversed for σ < 0.
+        x.loop = {a.exact + points_[g.v0], b.exact + points_[g.v0], b.exact + points_[g.v1], a.exact + points_[g.v1]};
+        if (sigma < 0) std::reverse(x.loop.begin(), x.loop.end());
+      }
+      built.push_back(std::move(x));
+    }
+  }
+
+  // The planes in the order built (facet k of B first, as plane k: the
+  // union's hint), the candidates ascending.
+  Piece piece;
+  piece.family = family_;
+  piece.shared = Index(facets_.size());
+  piece.planes.reserve(built.size());
+  for (Index i = 0; i < built.size(); ++i) {
+    if (!built[i].loop.empty()) {
+      piece.candidates.push_back(i);
+      piece.loops.push_back(std::move(built[i].loop));
+    }
+    piece.planes.push_back(std::move(built[i].plane));
+  }
+  // The box: t's box plus B's, exactly, then rounded to nearest (monotone,
+  // so it holds the nearest doubles of every point of the piece).
+  for (int k = 0; k < 3; ++k) {
+    const Rational* lo = &p[0].exact[k];
+    const Rational* hi = lo;
+    for (int j = 1; j < 3; ++j) {
+      if (cmp(p[j].exact[k], *lo) < 0) lo = &p[j].exact[k];
+      if (cmp(p[j].exact[k], *hi) > 0) hi = &p[j].exact[k];
+    }
+    piece.lo[k] = to_double(Rational(*lo + lo_[k]));
+    piece.hi[k] = to_double(Rational(*hi + hi_[k]));
+  }
+  return piece;
+}
+
+}  // namespace minksum::nonconvex_detail

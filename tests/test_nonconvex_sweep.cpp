@@ -210,7 +210,7 @@ void expect_piece_is_the_hull(const std::array<Point3, 3>& t, const ConvexPolyto
   SCOPED_TRACE(trace);
   const Mesh surface = tetrahedron_on(t);
   const nonconvex_detail::SurfaceCones cones(surface);
-  const nonconvex_detail::SweptPolytope swept(b, 1);
+  const nonconvex_detail::SweptPolytope swept(b);
   const nonconvex_detail::Piece piece = swept.sum(cones, 0);
   std::vector<Point3> sums;
   for (const Point3& p : t)

@@ -119,8 +119,10 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
   out.pair_method = by_hull ? Method::chms : Method::walk;
   out.pieces_from_maps = !by_hull;
   std::vector<nonconvex_detail::SweptPolytope> swept;
-  if (!by_hull)
-    for (std::size_t j = 0; j < po.size(); ++j) swept.emplace_back(po[j], j + 1);
+  if (!by_hull) {
+    swept.reserve(po.size());  // (the pieces point into them: no reallocation)
+    for (const ConvexPolytope& p : po) swept.emplace_back(p);
+  }
   const unsigned workers = parallel_threads(threads, n);
   const std::size_t batch = std::max<std::size_t>(64, std::size_t(workers) * 64);
   options.report("pairs", 0.0);

@@ -32,7 +32,7 @@
 
 namespace minksum::nonconvex_detail {
 
-SweptPolytope::SweptPolytope(const ConvexPolytope& b, std::size_t family) : family_(family) {
+SweptPolytope::SweptPolytope(const ConvexPolytope& b) {
   points_ = b.points();
   approx_.reserve(points_.size());
   for (Index v = 0; v < b.num_vertices(); ++v) approx_.push_back(b.approx(v));
@@ -59,6 +59,9 @@ SweptPolytope::SweptPolytope(const ConvexPolytope& b, std::size_t family) : fami
     x.offset_num = offset.get_num();
     x.offset_den = offset.get_den();
     x.loop = b.facet_vertices(f);
+    const double len = std::sqrt(x.normal_approx.x * x.normal_approx.x + x.normal_approx.y * x.normal_approx.y +
+                                 x.normal_approx.z * x.normal_approx.z);
+    directions_.push_back(Vec3d{x.normal_approx.x / len, x.normal_approx.y / len, x.normal_approx.z / len});
   }
   edges_.reserve(b.num_edges());
   for (Index e = 0; e < b.num_edges(); ++e) {
@@ -272,10 +275,9 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   }
 
   // The planes in the order built (facet k of B first, as plane k: the
-  // union's hint), the candidates ascending.
+  // union's directions), the candidates ascending.
   Piece piece;
-  piece.family = family_;
-  piece.shared = Index(facets_.size());
+  piece.directions = &directions_;
   piece.planes.reserve(built.size());
   for (Index i = 0; i < built.size(); ++i) {
     if (!built[i].loop.empty()) {

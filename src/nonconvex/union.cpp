@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -57,20 +58,62 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 // (<minksum/half_space_side.hpp>, bound and derivation there), else the
 // exact value.
 
-// A point of a facet's plane: exact, with its nearest doubles.
+// A point of a facet's plane: the exact point (kept elsewhere: a piece's
+// loop, a segment, or an Arena), with its nearest doubles.  Copying one
+// copies no rational.  In a polygon, `edge` is a plane other than the polygon's own that holds
+// the edge from this vertex to the next: a cut point is then the meeting
+// point of three integer planes, whose size does not grow with the number
+// of cuts.
 struct V3 {
-  Point3 p;
+  const Point3* p = nullptr;
   Vec3d d;
   bool filtered = false;
+  const Plane* edge = nullptr;
 };
 
-V3 make_v3(Point3 p) {
+V3 make_v3(const Point3& p) {
   V3 v;
   v.d = to_double(p);
   v.filtered = half_space_filter_usable(v.d.x, p.x) && half_space_filter_usable(v.d.y, p.y) &&
                half_space_filter_usable(v.d.z, p.z);
-  v.p = std::move(p);
+  v.p = &p;
   return v;
+}
+
+// The points made by the cuts of one plane, and the planes of the edges
+// (deques: they do not move).
+struct Arena {
+  std::deque<Point3> points;
+  std::deque<Plane> planes;
+};
+
+// The point where three planes (a x + b y + c z = d) meet, by Cramer's rule
+// in integers; the planes' normals are independent.
+Point3 meet(const Plane& p, const Plane& q, const Plane& r) {
+  Integer det, x, y, z;
+  // Minors of the last two rows.
+  auto minor = [](Integer& out, const Integer& u1, const Integer& v1, const Integer& u2, const Integer& v2) {
+    mpz_mul(out.get_mpz_t(), u1.get_mpz_t(), v2.get_mpz_t());
+    mpz_submul(out.get_mpz_t(), u2.get_mpz_t(), v1.get_mpz_t());
+  };
+  Integer bc, ac, ab, dc, db, ad, bd;
+  minor(bc, q.b, q.c, r.b, r.c);  // b2 c3 - b3 c2
+  minor(ac, q.a, q.c, r.a, r.c);
+  minor(ab, q.a, q.b, r.a, r.b);
+  minor(dc, q.d, q.c, r.d, r.c);
+  minor(db, q.d, q.b, r.d, r.b);
+  minor(ad, q.a, q.d, r.a, r.d);
+  minor(bd, q.b, q.d, r.b, r.d);
+  det = p.a * bc - p.b * ac + p.c * ab;
+  x = p.d * bc - p.b * dc + p.c * db;
+  y = p.a * dc - p.d * ac + p.c * ad;
+  z = p.a * bd - p.b * ad + p.d * ab;
+  if (sgn(det) == 0) throw std::logic_error("union: a cut point of parallel planes");
+  Rational rx(x, det), ry(y, det), rz(z, det);
+  rx.canonicalize();
+  ry.canonicalize();
+  rz.canonicalize();
+  return Point3(std::move(rx), std::move(ry), std::move(rz));
 }
 
 // The half-space a*x + b*y + c*z <= d (inside) of an integer plane (kept
@@ -99,16 +142,11 @@ Half half_of(const Plane& q) {
   return h;
 }
 
-Rational value(const Half& h, const V3& v) {
-  const Plane& q = *h.plane;
-  return q.a * v.p.x + q.b * v.p.y + q.c * v.p.z - q.d;
-}
-
 // > 0 outside, 0 on the plane, < 0 inside.
 int side(const Half& h, const V3& v) {
   if (h.filtered && v.filtered)
     if (const auto s = half_space_side_filter(h.da, h.db, h.dc, h.dd, v.d.x, v.d.y, v.d.z)) return *s;
-  return h.plane->side(v.p);  // integer arithmetic, no rational normalisation
+  return h.plane->side(*v.p);  // integer arithmetic, no rational normalisation
 }
 
 // The filter alone: the sign when the doubles decide it.
@@ -141,19 +179,45 @@ using Poly = std::vector<V3>;
 // The convex polygon g cut by the plane of h, sg the signs of its vertices
 // (some > 0, some < 0): the part outside and the part inside.  The new
 // points are on g's edges, so in its plane, exactly.
-void cut(const Poly& g, const Half& h, const std::vector<int>& sg, Poly& outside, Poly& inside) {
+// `face` is g's own plane.  Each part's edges keep the planes of g's edges
+// they lie on; the new edge lies on h.
+void cut(const Poly& g, const Half& h, const std::vector<int>& sg, Poly& outside, Poly& inside, Arena& arena,
+         const Plane& face) {
   const std::size_t n = g.size();
+  // The edges of g each vertex of a part lies on: g[i] on edges i - 1 and i,
+  // a cut point of edge i on edge i only.
+  std::vector<std::array<std::size_t, 2>> on_out, on_in;
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t j = (i + 1) % n;
-    if (sg[i] >= 0) outside.push_back(g[i]);
-    if (sg[i] <= 0) inside.push_back(g[i]);
+    const std::size_t j = (i + 1) % n, before = (i + n - 1) % n;
+    if (sg[i] >= 0) {
+      outside.push_back(g[i]);
+      on_out.push_back({before, i});
+    }
+    if (sg[i] <= 0) {
+      inside.push_back(g[i]);
+      on_in.push_back({before, i});
+    }
     if (sg[i] * sg[j] < 0) {
-      const Rational sp = value(h, g[i]), sq = value(h, g[j]);
-      V3 x = make_v3(g[i].p + Rational(sp / (sp - sq)) * (g[j].p - g[i].p));
+      arena.points.push_back(meet(face, *g[i].edge, *h.plane));
+      const V3 x = make_v3(arena.points.back());
       outside.push_back(x);
-      inside.push_back(std::move(x));
+      on_out.push_back({i, i});
+      inside.push_back(x);
+      on_in.push_back({i, i});
     }
   }
+  auto edges = [&](Poly& part, const std::vector<std::array<std::size_t, 2>>& on) {
+    for (std::size_t k = 0; k < part.size(); ++k) {
+      const auto& u = on[k];
+      const auto& w = on[(k + 1) % part.size()];
+      std::size_t common = n;
+      for (std::size_t e : u)
+        if (e == w[0] || e == w[1]) common = e;
+      part[k].edge = common < n ? g[common].edge : h.plane;
+    }
+  };
+  edges(outside, on_out);
+  edges(inside, on_in);
 }
 
 // The signs of g's vertices for h; whether some are > 0 and some < 0.
@@ -174,8 +238,8 @@ void signs(const Poly& g, const Half& h, std::vector<int>& sg, bool& pos, bool& 
 // that contains g's plane has every sign 0 and cuts nothing.
 // `first`, when a valid index, is the plane tried first (a guess of the one
 // that rejects the piece).
-bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out,
-              std::size_t first = std::size_t(-1)) {
+bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out, Arena& arena,
+              const Plane& face, std::size_t first = std::size_t(-1)) {
   std::vector<int> sg;
   bool pos = false, neg = false;
   // First the signs only: a plane with all of g on or outside it rejects the
@@ -202,7 +266,7 @@ bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>&
       return false;
     }
     Poly outside, inside;
-    cut(rem, h, sg, outside, inside);
+    cut(rem, h, sg, outside, inside, arena, face);
     out.push_back(std::move(outside));
     rem = std::move(inside);
   }
@@ -401,7 +465,7 @@ std::vector<Segment> merge_fragments(const Frame& frame, const std::vector<Poly>
     ev.push_back(Event{up ? o.tq : o.tp, kind, -1, up ? &q : &p});
   };
   for (const Poly& g : fragments)
-    for (std::size_t i = 0; i < g.size(); ++i) add(g[i].p, g[(i + 1) % g.size()].p, 0);
+    for (std::size_t i = 0; i < g.size(); ++i) add(*g[i].p, *g[(i + 1) % g.size()].p, 0);
   for (const Segment& sl : slits) add(sl.a, sl.b, 2);
   std::vector<Segment> out;
   for (auto& [key, ev] : lines) {
@@ -454,6 +518,8 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
                            const std::vector<Piece>& parts, const std::vector<std::vector<Half>>& halves,
                            const PieceGrid& grid, const std::vector<Segment>& slits = {}) {
   PlaneResult r;
+  Arena arena;
+  const Point3 normal = plane.normal();
   std::vector<Poly> fragments;
   std::vector<Index> near;
   auto member = [&](Index j) {
@@ -467,10 +533,13 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
     std::vector<Poly> frags(1);
     Box box;
     const Piece& own = parts[f.piece];
-    const Index plane_index = own.candidates[f.facet];
-    for (const Point3& v : own.loops[f.facet]) {
-      frags[0].push_back(make_v3(v));
+    const std::vector<Point3>& loop = own.loops[f.facet];
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      frags[0].push_back(make_v3(loop[k]));
       box.add(frags[0].back().d);
+      // The plane through the edge perpendicular to this one.
+      arena.planes.push_back(canonical_plane(cross(loop[(k + 1) % loop.size()] - loop[k], normal), loop[k]));
+      frags[0].back().edge = &arena.planes.back();
     }
     grid.query(box, near);
     for (std::size_t k = 0; k < near.size() && !frags.empty(); ++k) {
@@ -483,11 +552,23 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
       if (member(j) && (j > f.piece || std::binary_search(below.begin(), below.end(), j))) continue;
       std::vector<Poly> next;
       const Piece& other = parts[j];
-      const std::size_t first =
-          other.family == own.family && plane_index < own.shared && plane_index < other.shared ? plane_index
-                                                                                               : std::size_t(-1);
+      // The plane tried first: the one whose normal points most towards the
+      // facet from the neighbour's box (an order of the exact tests only).
+      std::size_t first = std::size_t(-1);
+      if (other.directions) {
+        double d[3], best = -INFINITY;
+        for (int c = 0; c < 3; ++c) d[c] = (box.lo[c] + box.hi[c]) - (other.lo[c] + other.hi[c]);
+        const std::vector<Vec3d>& u = *other.directions;
+        for (std::size_t q = 0; q < u.size(); ++q) {
+          const double x = u[q].x * d[0] + u[q].y * d[1] + u[q].z * d[2];
+          if (x > best) {
+            best = x;
+            first = q;
+          }
+        }
+      }
       for (Poly& g : frags)
-        if (subtract(g, halves[j], next, first))
+        if (subtract(g, halves[j], next, arena, plane, first))
           ++r.clips;
         else
           next.push_back(std::move(g));
@@ -498,8 +579,8 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
   const Point3 n = plane.normal();
   for (const Segment& sl : slits) {
     // The plane through the slit, across this one.
-    const Plane across = canonical_plane(cross(sl.b - sl.a, n), sl.a);
-    const Half h = half_of(across);
+    arena.planes.push_back(canonical_plane(cross(sl.b - sl.a, n), sl.a));
+    const Half h = half_of(arena.planes.back());
     std::vector<Poly> next;
     std::vector<int> sg;
     bool pos = false, neg = false;
@@ -510,7 +591,7 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
         continue;
       }
       Poly outside, inside;
-      cut(g, h, sg, outside, inside);
+      cut(g, h, sg, outside, inside, arena, plane);
       next.push_back(std::move(outside));
       next.push_back(std::move(inside));
     }

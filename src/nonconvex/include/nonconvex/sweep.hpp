@@ -79,8 +79,7 @@ class SurfaceCones {
 // each adjacent facet, its exact bounding box.
 class SweptPolytope {
  public:
-  // `family` names B among the convex operands (Piece::family).
-  SweptPolytope(const ConvexPolytope& b, std::size_t family);
+  explicit SweptPolytope(const ConvexPolytope& b);
 
   // t ⊕ B for triangle t of `cones`' surface, built from the Gaussian maps
   // of t and B without constructing its vertices: every facet's canonical
@@ -109,7 +108,7 @@ class SweptPolytope {
   std::vector<Facet> facets_;
   std::vector<Edge> edges_;
   Point3 lo_, hi_;  // exact bounding box
-  std::size_t family_ = 0;
+  std::vector<Vec3d> directions_;  // approximate unit facet normals (Piece::directions)
 };
 
 }  // namespace minksum::nonconvex_detail

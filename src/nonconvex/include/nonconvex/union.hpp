@@ -17,16 +17,16 @@ namespace minksum::nonconvex_detail {
 // facet (outward), the facets that are candidates of the boundary (indices
 // into planes) with their vertex loops (counter-clockwise seen from
 // outside), and a box that contains the nearest doubles of its points.
-// Pieces of one family share the normals of their first `shared` planes
-// (plane k of each is facet k of the same convex operand, moved): the union
-// tries that plane of a neighbour first, which most often rejects it.
+// `directions`, when given, holds approximate unit normals of the first
+// planes (shared by the pieces of one convex operand, whose plane k is facet
+// k of that operand, moved): to reject a piece near a facet, the union
+// first tries the plane whose normal points most towards the facet.
 struct Piece {
   std::vector<Plane> planes;
   std::vector<Index> candidates;
   std::vector<std::vector<Point3>> loops;  // one per candidate
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  std::size_t family = 0;
-  Index shared = 0;
+  const std::vector<Vec3d>* directions = nullptr;
 };
 
 // p as a Piece, with the facets flagged in `candidate` (one flag per facet;

@@ -78,8 +78,19 @@ bool SurfaceCones::candidate(Index t, const RoundedPoint3& u) const {
   for (int k = 1; k < 3; ++k)
     if (dot_sign(o, u, at(c[top]), at(c[k])) > 0) top = k;
   bool at_top[3];
-  int count = 0;
-  for (int k = 0; k < 3; ++k) count += (at_top[k] = k == top || dot_sign(o, u, at(c[top]), at(c[k])) == 0);
+  for (int k = 0; k < 3; ++k) at_top[k] = k == top || dot_sign(o, u, at(c[top]), at(c[k])) == 0;
+  return candidate(t, u, at_top);
+}
+
+bool SurfaceCones::candidate(Index t, const RoundedPoint3& u, const bool at_top[3]) const {
+  const RoundedPoint3 o{origin(), kOriginApprox};
+  const auto& c = tri_[t];
+  int top = -1, count = 0;
+  for (int k = 0; k < 3; ++k)
+    if (at_top[k]) {
+      ++count;
+      if (top < 0) top = k;
+    }
   if (count == 3)  // the triangle itself: its outward normal only
     return dot_sign(o, u, o, RoundedPoint3{normal_[t], normal_approx_[t]}) > 0;
   if (count == 2) {

@@ -187,7 +187,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       mpz_mul(x.plane.c.get_mpz_t(), f.primitive_integer[2].get_mpz_t(), work[1].get_mpz_t());
       mpz_swap(x.plane.d.get_mpz_t(), work[0].get_mpz_t());
     }
-    if (cones.candidate(t, u)) {
+    if (cones.candidate(t, u, at_top)) {
       if (count == 1) {
         for (Index v : f.loop) x.loop.push_back(points_[v] + q);
       } else {
@@ -219,7 +219,8 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
                                                                    -cones.normal_approx(t).z};
       Built x;
       x.plane = canonical_plane(u, p[0].exact + points_[face[0]]);
-      if (cones.candidate(t, RoundedPoint3{u, ua})) {
+      const bool whole[3] = {true, true, true};  // t is face_u(t)
+      if (cones.candidate(t, RoundedPoint3{u, ua}, whole)) {
         if (face.size() == 1) {
           for (int k = 0; k < 3; ++k) x.loop.push_back(p[side == 0 ? k : 2 - k].exact + points_[face[0]]);
         } else {
@@ -264,7 +265,9 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       Built x;
       x.plane = canonical_plane(u, a.exact + points_[g.v0]);
       const Vec3d ua = to_double(u);
-      if (cones.candidate(t, RoundedPoint3{u, ua})) {
+      bool on_edge[3] = {false, false, false};  // the edge a → b is face_u(t)
+      on_edge[k] = on_edge[(k + 1) % 3] = true;
+      if (cones.candidate(t, RoundedPoint3{u, ua}, on_edge)) {
         // e ⊕ g with normal e × g is counter-clockwise in the order
         // a + g0, b + g0, b + g1, a + g1; reversed for σ < 0.
         x.loop = {a.exact + points_[g.v0], b.exact + points_[g.v0], b.exact + points_[g.v1], a.exact + points_[g.v1]};

@@ -43,6 +43,9 @@ class SurfaceCones {
   // exact points and their cached roundings (u given with a faithful
   // rounding of each coordinate, as to_double gives).
   bool candidate(Index t, const RoundedPoint3& u) const;
+  // The same, given which of t's vertices are highest along u (at_top[k]
+  // for the k-th vertex of the triangle).
+  bool candidate(Index t, const RoundedPoint3& u, const bool at_top[3]) const;
   bool candidate(Index t, const Point3& u) const { const Vec3d a = to_double(u); return candidate(t, RoundedPoint3{u, a}); }
 
   // Whether q lies in the interior of the solid (q must not lie on its

@@ -162,28 +162,229 @@ TEST(RoundSolid, DisplacementOfHugeCoordinatesIsFinite) {
   EXPECT_LE(r.max_displacement, std::sqrt(3.0) * std::ldexp(1.0, 880 - 53));
 }
 
-TEST(RoundSolid, SurfaceTouchingItselfAlongAnEdgeIsRefused) {
-  // Two boxes sharing the edge x = y = 1/3, equal points welded (as in a
-  // sum's mesh), scaled by 1/3 so that rounding is needed.
-  const Mesh joined = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1, 2, 1, 2, 0, 1));
-  Mesh m;
+namespace {
+
+// `m` scaled by s, exactly equal points welded (as in a sum's mesh).
+Mesh welded(const Mesh& m, const Rational& s) {
+  Mesh out;
   std::map<Point3, Index> id;
-  std::vector<Index> to(joined.points.size());
-  for (std::size_t i = 0; i < joined.points.size(); ++i) {
-    const Point3 p = Rational(1, 3) * joined.points[i];
-    auto [it, fresh] = id.emplace(p, Index(m.points.size()));
-    if (fresh) m.points.push_back(p);
+  std::vector<Index> to(m.points.size());
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    const Point3 p = s * m.points[i];
+    auto [it, fresh] = id.emplace(p, Index(out.points.size()));
+    if (fresh) out.points.push_back(p);
     to[i] = it->second;
   }
-  for (auto f : joined.faces) {
+  for (auto f : m.faces) {
     for (Index& v : f) v = to[v];
-    m.faces.push_back(f);
+    out.faces.push_back(f);
   }
+  return out;
+}
+
+// The closed surface's shells (connected by edges).
+std::size_t shells(const Mesh& m) {
+  std::vector<Index> parent(m.points.size());
+  for (Index i = 0; i < parent.size(); ++i) parent[i] = i;
+  auto find = [&](Index v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& f : m.faces)
+    for (Index v : f) parent[find(v)] = find(f[0]);
+  std::size_t n = 0;
+  for (Index i = 0; i < parent.size(); ++i) n += find(i) == i;
+  return n;
+}
+
+// Checks every property round_solid promises of r (from `exact`, whose
+// surface has area below `area`): a valid solid of doubles (floats), its
+// volume within area times the displacement of the exact one.
+void expect_valid_rounding(const RoundedSolid& r, const Mesh& exact, bool floats, double area) {
+  const Solid s = validate_solid(r.mesh, "rounded");
+  for (std::size_t i = 0; i < r.mesh.points.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double d = to_double(r.mesh.points[i][k]);
+      EXPECT_EQ(Rational(floats ? double(float(d)) : d), r.mesh.points[i][k]);
+    }
+  EXPECT_LE(std::fabs(to_double(s.volume - mesh_volume(exact))), area * r.max_displacement);
+}
+
+}  // namespace
+
+// Two boxes sharing the edge x = y = 1/3 (scaled by 1/3 so that rounding is
+// needed): the edge belongs to four faces, which no valid solid file holds.
+// The surface is cut apart along it, each box keeping its own copy of the
+// edge, moved a few spacings into its own box: two shells that no longer
+// touch.
+TEST(RoundSolid, SurfaceTouchingItselfAlongAnEdgeIsCutApart) {
+  const Mesh m = welded(join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1, 2, 1, 2, 0, 1)), Rational(1, 3));
   ASSERT_EQ(m.points.size(), 14u);
+  for (bool floats : {false, true}) {
+    const RoundedSolid r = round_solid(m, floats, "m.off");
+    EXPECT_GT(r.rounded_coordinates, 0u);
+    EXPECT_EQ(r.mesh.points.size(), 16u);
+    EXPECT_EQ(r.mesh.faces.size(), 24u);
+    EXPECT_EQ(shells(r.mesh), 2u);
+    EXPECT_GT(r.max_displacement, 0.0);
+    // A few spacings at 2/3.
+    EXPECT_LE(r.max_displacement, 8 * std::ldexp(1.0, floats ? -24 : -53));
+    expect_valid_rounding(r, m, floats, 5);
+  }
+}
+
+// The same with integer coordinates: nothing needs rounding, but the edge
+// of four faces still has to be cut apart for a valid solid.
+TEST(RoundSolid, SurfaceTouchingItselfWithoutRoundingIsCutApart) {
+  const Mesh m = welded(join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1, 2, 1, 2, 0, 1)), Rational(1));
+  const RoundedSolid r = round_solid(m, false, "m.off");
+  EXPECT_EQ(r.rounded_coordinates, 0u);
+  EXPECT_EQ(r.mesh.points.size(), 16u);
+  EXPECT_EQ(shells(r.mesh), 2u);
+  EXPECT_GT(r.max_displacement, 0.0);
+  EXPECT_LE(r.max_displacement, 8 * std::ldexp(1.0, -52));
+  expect_valid_rounding(r, m, false, 13);
+}
+
+// Two boxes touching at the corner (1,1,1)/3 only: the vertex has two fans,
+// each gets its own point.
+TEST(RoundSolid, SurfaceTouchingItselfAtAVertexIsCutApart) {
+  const Mesh m = welded(join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1, 2, 1, 2, 1, 2)), Rational(1, 3));
+  ASSERT_EQ(m.points.size(), 15u);
+  const RoundedSolid r = round_solid(m, true, "m.stl");
+  EXPECT_EQ(r.mesh.points.size(), 16u);
+  EXPECT_EQ(shells(r.mesh), 2u);
+  expect_valid_rounding(r, m, true, 5);
+}
+
+namespace {
+
+// The diagonal cubes [0,1]^3 and [1+g,2+g]^2 x [0,1], each ⊕ [-1/2,1/2]^3,
+// scaled by 1/3: for g = 1 the sums touch along an edge, for g a hair more
+// they are a hair apart, for g a hair less they overlap in a thin neck.
+NonconvexSum diagonal_cubes_sum(const Rational& g) {
+  const Mesh two = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1 + g, 2 + g, 1 + g, 2 + g, 0, 1));
+  NonconvexSum s = minkowski_sum_nonconvex(validate_solid(two, "diagonal"),
+                                           validate_solid(catalog_mesh("box:1:1:1"), "box"));
+  PointList third;
+  for (std::size_t i = 0; i < s.mesh.points.size(); ++i) third.push_back(Rational(1, 3) * s.mesh.points[i]);
+  s.mesh.points = third;
+  return s;
+}
+
+}  // namespace
+
+// A sum whose two parts touch along an edge (as in
+// NonconvexSum.SumsTouchingAlongAnEdgeKeepANonManifoldEdge): written as two
+// shells.
+TEST(RoundSolid, SumTouchingItselfAlongAnEdgeIsWrittenAsTwoShells) {
+  const NonconvexSum s = diagonal_cubes_sum(1);
+  ASSERT_EQ(s.non_manifold_edges, 1u);
+  for (bool floats : {false, true}) {
+    const RoundedSolid r = round_solid(s.mesh, floats, "s.stl");
+    EXPECT_EQ(shells(r.mesh), 2u);
+    expect_valid_rounding(r, s.mesh, floats, 12);
+  }
+}
+
+// The parts a hair apart: rounding puts their edges on one line, an edge of
+// four faces; the points merged there are pushed apart along their exact
+// offsets, which opens the gap again.
+TEST(RoundSolid, SumsNearlyTouchingAlongAnEdgeAreKeptApart) {
+  const NonconvexSum s = diagonal_cubes_sum(1 + kTiny);
+  ASSERT_EQ(s.non_manifold_edges, 0u);
+  for (bool floats : {false, true}) {
+    const RoundedSolid r = round_solid(s.mesh, floats, "s.stl");
+    EXPECT_EQ(r.mesh.faces.size(), 24u);
+    EXPECT_EQ(shells(r.mesh), 2u);
+    EXPECT_LE(r.max_displacement, 16 * std::ldexp(1.0, floats ? -24 : -53));
+    expect_valid_rounding(r, s.mesh, floats, 12);
+  }
+}
+
+// The parts overlapping in a neck a hair wide: rounding collapses the neck
+// onto an edge of four faces; its points are pushed apart along their exact
+// offsets, which keeps the neck, a few spacings wide.
+TEST(RoundSolid, NeckThinnerThanTheSpacingIsWidened) {
+  const NonconvexSum s = diagonal_cubes_sum(1 - kTiny);
+  ASSERT_EQ(s.non_manifold_edges, 0u);
+  for (bool floats : {false, true}) {
+    const RoundedSolid r = round_solid(s.mesh, floats, "s.stl");
+    EXPECT_EQ(shells(r.mesh), 1u);
+    EXPECT_EQ(r.mesh.faces.size(), 28u);
+    EXPECT_LE(r.max_displacement, 16 * std::ldexp(1.0, floats ? -24 : -53));
+    expect_valid_rounding(r, s.mesh, floats, 12);
+  }
+}
+
+// A box [0,1] x [0,3] x [0,1] whose top is cut into four triangles around
+// m = (1/3, 1 - 2^-60/3, 1), a hair below the diagonal y = 3x: the sliver
+// (0,0,1) m (1,3,1) is counter-clockwise, but m rounds to (1/3 - 2^-54/3, 1,
+// 1), above the diagonal, and the sliver folds over its neighbour across the
+// diagonal (the nearest rounding is not a valid solid).  The points of the
+// offending triangles are snapped to the grid of the spacing at 3, where m
+// is on the right side again.
+TEST(RoundSolid, FacesThatRoundingMakesCrossAreSnappedApart) {
+  Mesh m;
+  auto add = [&](const Rational& x, const Rational& y, const Rational& z) { m.points.push_back(Point3(x, y, z)); };
+  add(0, 0, 0);  // 0
+  add(1, 0, 0);  // 1
+  add(1, 3, 0);  // 2
+  add(0, 3, 0);  // 3
+  add(0, 0, 1);  // 4 A
+  add(1, 0, 1);  // 5 B
+  add(1, 3, 1);  // 6 C
+  add(0, 3, 1);  // 7 D
+  add(Rational(1, 3), 1 - kTiny, 1);  // 8 m
+  m.faces = {{0, 3, 2, 1}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7},
+             {4, 5, 8},    {5, 6, 8},    {4, 8, 6},    {4, 6, 7}};
+  ASSERT_NO_THROW(validate_solid(m, "m.off"));
+  // Rounded to the nearest, the sliver crosses its neighbour.
+  Mesh nearest = m;
+  nearest.points = PointList();
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    const Point3 p = m.points[i];
+    nearest.points.push_back(Point3(Rational(to_double(p.x)), Rational(to_double(p.y)), Rational(to_double(p.z))));
+  }
+  ASSERT_EQ(nearest.points[8].y, Rational(1));
+  EXPECT_THROW(validate_solid(nearest, "nearest"), InputError);
+  const RoundedSolid r = round_solid(m, false, "m.off");
+  EXPECT_EQ(r.rounded_coordinates, 2u);
+  EXPECT_GT(r.grid, 0.0);
+  EXPECT_EQ(r.mesh.points.size(), 9u);
+  EXPECT_EQ(r.mesh.faces.size(), 14u);
+  const Solid s = validate_solid(r.mesh, "r.off");
+  EXPECT_EQ(s.volume, Rational(3));  // every point stays in its face's plane
+  EXPECT_LE(r.max_displacement, 4 * std::ldexp(1.0, -51));
+}
+
+// Two boxes 2^-60/3 apart, the upper one shifted by half its width: rounding
+// puts the lower one's top and the upper one's bottom in one plane, where
+// they overlap.  Both are pushed a few spacings into their own box, opening
+// the gap again.
+TEST(RoundSolid, GapThatRoundingClosesIsPushedOpen) {
+  const Rational z(1, 3);
+  const Mesh m = join(box_mesh(0, 1, 0, 1, 0, z), box_mesh(Rational(1, 2), Rational(3, 2), 0, 1, z + kTiny, 1));
+  ASSERT_NO_THROW(validate_solid(m, "m.off"));
+  for (bool floats : {false, true}) {
+    const RoundedSolid r = round_solid(m, floats, "m.off");
+    EXPECT_EQ(r.mesh.points.size(), 16u);
+    EXPECT_EQ(r.mesh.faces.size(), 24u);
+    EXPECT_EQ(shells(r.mesh), 2u);
+    EXPECT_LE(r.max_displacement, 8 * std::ldexp(1.0, floats ? -24 : -53));
+    expect_valid_rounding(r, m, floats, 9);
+  }
+}
+
+// A slab thinner than the spacing of doubles everywhere collapses: refused.
+TEST(RoundSolid, SolidThinnerThanTheSpacingEverywhereIsRefused) {
+  const Rational z(1, 3);
   try {
-    round_solid(m, false, "m.off");
+    round_solid(box_mesh(0, 1, 0, 1, z, z + kTiny), false, "slab.off");
     FAIL() << "no RoundingError";
   } catch (const RoundingError& e) {
-    EXPECT_NE(std::string(e.what()).find("touches itself along"), std::string::npos) << e.what();
+    EXPECT_STREQ(e.what(),
+                 "the rounded surface collapses (every face degenerates: the solid is thinner than the spacing of "
+                 "doubles)");
   }
 }

@@ -154,29 +154,40 @@ Mesh triangulate(const Mesh& mesh, const std::string& source);
 // A solid boundary in the numbers of a file format: every coordinate a double
 // (or a 32-bit float), the surface a valid solid (validate_solid passes).
 struct RoundedSolid {
-  Mesh mesh;                            // triangles (the exact mesh itself when nothing was rounded)
+  // Triangles; the exact mesh itself when nothing was rounded and the
+  // surface does not touch itself (else the surface cut apart where it
+  // does, even when rounded_coordinates is 0).
+  Mesh mesh;
   std::size_t rounded_coordinates = 0;  // coordinates that were not doubles (floats)
   double max_displacement = 0;          // the largest distance a point moved (rounded up to a double)
-  double grid = 0;                      // 0: each coordinate to the nearest; else the grid snapped to
+  double grid = 0;                      // 0: no point snapped to a grid; else the coarsest grid points were snapped to
 };
 
 // round_solid could not represent the solid: a coordinate beyond the range of
-// the format's numbers, a surface that touches itself (non-manifold edges),
-// or no rounding up to 2^-20 of the largest coordinate that is a valid solid.
+// the format's numbers, a solid below it (every coordinate rounds to zero, or
+// every face degenerates), or no valid rounding up to a grid of 2^-20 of the
+// largest coordinate.
 class RoundingError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-// `exact` (a NonconvexSum's mesh: planar polygons, a closed solid) with
-// every coordinate that is not a double (with `floats`, a 32-bit float)
-// rounded, as a valid solid: the faces cut into triangles exactly, the
-// coordinates rounded to the nearest, points that round together merged,
-// the triangles that became degenerate removed (the surface kept closed);
-// when that is not a valid solid (rounding made faces cross), the same on
-// grids of 2^e, e from the format's spacing at the largest coordinate up to
-// 2^-20 of it, the first valid one kept (docs/nonconvex.md, "Output").
-// Throws RoundingError.
+// `exact` (a NonconvexSum's mesh: planar polygons, a closed solid, possibly
+// touching itself along edges or at vertices) with every coordinate that is
+// not a double (with `floats`, a 32-bit float) rounded, as a valid solid
+// (docs/nonconvex.md, "Output"): the faces cut into triangles exactly; where
+// the surface touches itself, cut apart, each part's copy of the contact
+// moved a few spacings into that part; the coordinates rounded to the
+// nearest, points that round together merged, the triangles that became
+// degenerate removed (the surface kept closed).  When that is not a valid
+// solid, it is repaired locally and re-tested exactly, round after round:
+// triangles that rounding made meet across a gap are pushed apart into the
+// solid, points of different parts merged into one are pushed apart along
+// their exact offsets, and the points of any other offending triangles are
+// snapped together to a coarser grid; failing that (problems multiplying),
+// the same on every point first snapped to a grid of 2^e, e from the
+// format's spacing at the largest coordinate up to 2^-20 of it.  The result
+// passes validate_solid.  Throws RoundingError.
 RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name);
 
 // Exact signed volume enclosed by a closed mesh whose faces are planar

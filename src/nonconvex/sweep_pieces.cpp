@@ -114,7 +114,8 @@ namespace {
 // line crosses the triangle's interior, 0 when it misses the closed
 // triangle, -1 when it meets its boundary or lies in its plane (the
 // direction is then not generic for this triangle).
-int line_meets(const Point3& q, const Point3& r, const Point3& a, const Point3& b, const Point3& c) {
+template <class P>
+int line_meets(const P& q, const P& r, const P& a, const P& b, const P& c) {
   const int o1 = orient3d(q, r, a, b), o2 = orient3d(q, r, b, c), o3 = orient3d(q, r, c, a);
   const bool pos = o1 > 0 || o2 > 0 || o3 > 0, neg = o1 < 0 || o2 < 0 || o3 < 0;
   if (pos && neg) return 0;
@@ -125,7 +126,8 @@ int line_meets(const Point3& q, const Point3& r, const Point3& a, const Point3& 
 }  // namespace
 
 bool strictly_inside(const Point3& q, const std::vector<Point3>& points, const std::vector<std::array<Index, 3>>& tris,
-                     const std::vector<Point3>* normals) {
+                     const std::vector<Point3>* normals, const std::vector<Vec3d>* approx) {
+  const Vec3d q_approx = to_double(q);
   // Rays in directions with large co-prime integer components, tried in turn
   // until one meets no edge or vertex of the surface and lies in no
   // triangle's plane: each triangle excludes the directions of a few planes
@@ -149,10 +151,16 @@ bool strictly_inside(const Point3& q, const std::vector<Point3>& points, const s
     if (dir[0] == 0 && dir[1] == 0 && dir[2] == 0) continue;
     const Point3 d{Rational(dir[0]), Rational(dir[1]), Rational(dir[2])};
     const Point3 r = q + d;
+    const Vec3d r_approx = to_double(r);
+    const RoundedPoint3 rq{q, q_approx}, rr{r, r_approx};
     bool inside = false, generic = true;
     for (std::size_t t = 0; t < tris.size() && generic; ++t) {
       const auto& c = tris[t];
-      const int m = line_meets(q, r, points[c[0]], points[c[1]], points[c[2]]);
+      // The orientation tests on the cached roundings when given.
+      const int m = approx ? line_meets(rq, rr, RoundedPoint3{points[c[0]], (*approx)[c[0]]},
+                                        RoundedPoint3{points[c[1]], (*approx)[c[1]]},
+                                        RoundedPoint3{points[c[2]], (*approx)[c[2]]})
+                           : line_meets(q, r, points[c[0]], points[c[1]], points[c[2]]);
       if (m < 0) {
         generic = false;
       } else if (m > 0) {
@@ -170,7 +178,7 @@ bool strictly_inside(const Point3& q, const std::vector<Point3>& points, const s
 }
 
 bool SurfaceCones::strictly_inside(const Point3& q) const {
-  return nonconvex_detail::strictly_inside(q, points_, tri_, &normal_);
+  return nonconvex_detail::strictly_inside(q, points_, tri_, &normal_, &approx_);
 }
 
 }  // namespace minksum::nonconvex_detail

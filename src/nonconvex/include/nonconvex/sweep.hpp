@@ -16,9 +16,10 @@ namespace minksum::nonconvex_detail {
 // (indices into `points`, counter-clockwise seen from outside; q must not
 // lie on it): the parity of the crossings of an exact ray that meets no edge
 // or vertex of the surface.  `normals`, when given, holds each triangle's
-// (p1 - p0) x (p2 - p0).
+// (p1 - p0) x (p2 - p0); `approx`, when given, the nearest doubles of the
+// points (the orientation tests then filter on them).
 bool strictly_inside(const Point3& q, const std::vector<Point3>& points, const std::vector<std::array<Index, 3>>& tris,
-                     const std::vector<Point3>* normals = nullptr);
+                     const std::vector<Point3>* normals = nullptr, const std::vector<Vec3d>* approx = nullptr);
 
 // The triangulated closed surface of a solid A (Solid::triangles), with what
 // decides which facets of a piece t ⊕ C (t a triangle of A, C convex) can

@@ -91,15 +91,16 @@ oriented 2-manifold surface of planar faces, without self-intersection, facing
 outwards (else exit status 3 and one line naming the problem).  The sum of two
 operands, one or both non-convex, is exact (docs/nonconvex.md): by default the
 boundary sweep, which sums each triangle of the non-convex operand's surface
-with the other operand (walk, in parallel; a non-convex other operand is cut
-into convex pieces first), keeps only the facets that can be on the boundary
-and writes the exact union (polygons of exact coordinates, cavities as inner
+with the other operand (in parallel; a non-convex other operand is cut into
+convex pieces first), keeps only the facets that can be on the boundary and
+writes the exact union (polygons of exact coordinates, cavities as inner
 shells).  Without --exact, coordinates that are not doubles (binary STL:
 floats) are rounded and the result written as a valid solid: points that round
-together merged, degenerate triangles removed, and points snapped to a coarser
-grid where rounding made faces cross; a note gives the largest displacement.
-Only a sum that cannot be represented (beyond the format's range, or touching
-itself along an edge) is refused (exit 1) naming --exact.  --json then reports "nonconvex_method", "swept",
+together merged, degenerate triangles removed, where the sum touches itself
+its parts moved apart, and where rounding made faces cross the points there
+snapped to a coarser grid; a note gives the largest displacement.  Only a sum
+that cannot be represented (beyond the format's range, or thinner than its
+spacing everywhere) is refused (exit 1) naming --exact.  --json then reports "nonconvex_method", "swept",
 "pieces", "pairs", "pair_vertices", "pair_facets", "candidate_facets",
 "culled_facets" and "union" (clips, shells, non-manifold edges, dropped
 components) and the phases decompose, pairs, union and boundary.

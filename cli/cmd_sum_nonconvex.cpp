@@ -69,7 +69,10 @@ std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh, std::size_
   }
   // STL holds triangles only: faces cut exactly (an L-shaped cap fanned from
   // a corner would cover its notch).
-  Mesh written = rounded.rounded_coordinates ? std::move(rounded.mesh)
+  // round_solid's mesh also when nothing was rounded but the surface,
+  // touching itself, was cut apart (points moved).
+  const bool changed = rounded.rounded_coordinates > 0 || rounded.max_displacement > 0;
+  Mesh written = changed ? std::move(rounded.mesh)
                  : out.format == Format::stl  ? triangulate(mesh, name)
                                               : mesh;
   if (faces_written) *faces_written = written.faces.size();
@@ -84,7 +87,12 @@ std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh, std::size_
     std::cerr << "minksum: note: " << printable(name) << ": " << rounded.rounded_coordinates << " coordinates are not "
               << (floats ? "32-bit floats" : "doubles") << ", written rounded (largest displacement "
               << format_double(rounded.max_displacement);
-    if (rounded.grid > 0) std::cerr << ", points snapped to multiples of " << format_double(rounded.grid);
+    if (rounded.grid > 0) std::cerr << ", some points snapped to multiples of " << format_double(rounded.grid);
+    std::cerr << "), the faces as triangles; the written surface is a closed solid without self-intersection "
+                 "(checked exactly); --exact writes the exact sum\n";
+  } else if (changed) {
+    std::cerr << "minksum: note: " << printable(name) << ": the sum touches itself, and its parts were moved apart "
+              << "to write it as a valid solid (largest displacement " << format_double(rounded.max_displacement);
     std::cerr << "), the faces as triangles; the written surface is a closed solid without self-intersection "
                  "(checked exactly); --exact writes the exact sum\n";
   }

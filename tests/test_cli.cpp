@@ -1155,6 +1155,38 @@ TEST_F(Cli, NonConvexSumJsonAndExactOutput) {
   EXPECT_NE(r.out.find("\"pair_method\": \"gaussian_map\""), std::string::npos) << r.out;
 }
 
+// Two diagonal unit cubes, each ⊕ [-1/2,1/2]^3: the sums touch along the edge
+// x = y = 3/2, every coordinate a double.  Without --exact the two parts are
+// moved apart (a valid solid of two shells, with a note); with --exact the
+// edge of four faces is kept.
+TEST_F(Cli, NonConvexSumTouchingItselfIsWrittenApart) {
+  std::ofstream(path("two.off")) << "OFF\n16 12 0\n"
+                                    "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                                    "2 2 0\n3 2 0\n3 3 0\n2 3 0\n2 2 1\n3 2 1\n3 3 1\n2 3 1\n"
+                                    "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n"
+                                    "4 8 11 10 9\n4 12 13 14 15\n4 8 9 13 12\n4 9 10 14 13\n4 10 11 15 14\n"
+                                    "4 11 8 12 15\n";
+  CmdResult r = run("sum " + path("two.off") + " box:1:1:1 -o " + path("apart.off"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("minksum: note: " + path("apart.off") +
+                       ": the sum touches itself, and its parts were moved apart to write it as a valid solid "
+                       "(largest displacement "),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(lines(r.err), 1u);
+  // It reads back as a valid solid: two boxes of 8 points each, a hair
+  // apart, their faces as triangles.
+  CmdResult back = run("sum " + path("apart.off") + " tetra@scale:1/8 --json");
+  ASSERT_EQ(back.status, 0) << back.err;
+  EXPECT_NE(back.out.find("\"a\": {\"name\": \"" + path("apart.off") + "\", \"vertices\": 16, \"faces\": 24,"),
+            std::string::npos)
+      << back.out;
+  CmdResult exact = run("sum " + path("two.off") + " box:1:1:1 --exact --json -o " + path("exact.off"));
+  ASSERT_EQ(exact.status, 0) << exact.err;
+  EXPECT_EQ(json_int(exact.out, "non_manifold_edges"), 1);
+  EXPECT_NE(exact.out.find("\"volume\": \"16\""), std::string::npos) << exact.out;
+}
+
 // Without --exact: doubles written as they are; other coordinates rounded
 // into a valid solid (round_solid), with a note naming the largest
 // displacement.

@@ -232,6 +232,10 @@ Fans separate_fans(const std::vector<Tri>& tris, const std::vector<Point3>& pts,
     out.split[v] = fans_of[out.vertex[v]] > 1;
     for (const auto* s : {&normal_sum[v], &one[v]}) {
       const double len = std::hypot((*s)[0], (*s)[1], (*s)[2]);
+      // Only the direction a split point is pushed in, not a decision: a
+      // sum of unit normals that nearly cancels gives a poor direction, so
+      // one face's normal is taken instead; wherever the point goes, the
+      // surface is checked again exactly.
       if (len > 1e-3 && std::isfinite(len)) {
         out.inward[v] = Vec3d{(*s)[0] / len, (*s)[1] / len, (*s)[2] / len};
         break;

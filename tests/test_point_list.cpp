@@ -272,6 +272,46 @@ TEST(LazyPlanes, AgreeWithExactPlanesInEveryForm) {
   }
 }
 
+// The integer construction of the sweep's planes (triangle_sum.cpp) against
+// the rational one: the plane with normal n through p + q, and the positive
+// multiple of q - p; random rationals with small and large denominators,
+// doubles included.
+TEST(CanonicalPlane, ThroughSumInIntegersEqualsRational) {
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    std::mt19937_64 rng(seed);
+    auto rational = [&]() -> Rational {
+      switch (rng() % 3) {
+        case 0: return Rational(long(rng() % 2001) - 1000);
+        case 1: return Rational(wild_double(rng));
+        default: {
+          Rational r(long(rng() % 200001) - 100000, long(rng() % 9999) + 1);
+          r.canonicalize();
+          return r;
+        }
+      }
+    };
+    auto point = [&] { return Point3(rational(), rational(), rational()); };
+    for (int i = 0; i < 200; ++i) {
+      const Point3 p = point(), q = point(), r = point();
+      const ScaledPoint sp = scaled_point(p), sq = scaled_point(q), sr = scaled_point(r);
+      for (int k = 0; k < 3; ++k) {
+        Rational x(sp.num[k], sp.den);
+        x.canonicalize();
+        ASSERT_EQ(x, p[k]) << "seed " << seed << ", case " << i;
+      }
+      Integer d[3];
+      scaled_difference(sp, sq, d);
+      const Point3 qp = q - p;
+      if (is_zero(qp)) continue;
+      // A positive multiple: d = k (q - p) with k > 0.
+      const Point3 dd{Rational(d[0]), Rational(d[1]), Rational(d[2])};
+      ASSERT_TRUE(is_zero(cross(dd, qp))) << "seed " << seed << ", case " << i;
+      ASSERT_GT(sgn(dot(dd, qp)), 0) << "seed " << seed << ", case " << i;
+      ASSERT_EQ(canonical_plane_through_sum(d, sq, sr), canonical_plane(qp, q + r)) << "seed " << seed << ", case " << i;
+    }
+  }
+}
+
 TEST(LazyVolume, DyadicEqualsRational) {
   const SumResult sum = minkowski_sum(catalog_polytope("cube"), catalog_polytope("sphere:2@scale:1/1024"), Method::walk);
   const ConvexPolytope& s = sum.polytope;

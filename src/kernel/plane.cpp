@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <initializer_list>
+#include <utility>
 
 namespace minksum {
 
@@ -58,6 +59,50 @@ Plane canonical_plane(const Point3& n, const Point3& p) {
     mpz_divexact(t.get_mpz_t(), l.get_mpz_t(), in[i]->get_den_mpz_t());
     *out[i] = in[i]->get_num() * t;
   }
+  make_primitive(pl);
+  return pl;
+}
+
+ScaledPoint scaled_point(const Point3& p) {
+  ScaledPoint s;
+  s.den = p.x.get_den();
+  mpz_lcm(s.den.get_mpz_t(), s.den.get_mpz_t(), p.y.get_den_mpz_t());
+  mpz_lcm(s.den.get_mpz_t(), s.den.get_mpz_t(), p.z.get_den_mpz_t());
+  for (int j = 0; j < 3; ++j) {
+    mpz_divexact(s.num[j].get_mpz_t(), s.den.get_mpz_t(), p[j].get_den_mpz_t());
+    s.num[j] *= p[j].get_num();
+  }
+  return s;
+}
+
+void scaled_difference(const ScaledPoint& p, const ScaledPoint& q, Integer out[3]) {
+  Integer g = 0;
+  for (int j = 0; j < 3; ++j) {
+    mpz_mul(out[j].get_mpz_t(), q.num[j].get_mpz_t(), p.den.get_mpz_t());
+    mpz_submul(out[j].get_mpz_t(), p.num[j].get_mpz_t(), q.den.get_mpz_t());
+    mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), out[j].get_mpz_t());
+  }
+  if (g != 1 && g != 0)
+    for (int j = 0; j < 3; ++j) mpz_divexact(out[j].get_mpz_t(), out[j].get_mpz_t(), g.get_mpz_t());
+}
+
+// n . (p + q) = (n . p.num q.den + n . q.num p.den) / (p.den q.den), so the
+// plane n (p.den q.den) . x = n . p.num q.den + n . q.num p.den is the
+// plane with normal a positive multiple of n through p + q.
+Plane canonical_plane_through_sum(const Integer n[3], const ScaledPoint& p, const ScaledPoint& q) {
+  Plane pl;
+  Integer dd, s, t;
+  mpz_mul(dd.get_mpz_t(), p.den.get_mpz_t(), q.den.get_mpz_t());
+  mpz_mul(pl.a.get_mpz_t(), n[0].get_mpz_t(), dd.get_mpz_t());
+  mpz_mul(pl.b.get_mpz_t(), n[1].get_mpz_t(), dd.get_mpz_t());
+  mpz_mul(pl.c.get_mpz_t(), n[2].get_mpz_t(), dd.get_mpz_t());
+  for (const auto& [x, other] : {std::pair<const ScaledPoint*, const ScaledPoint*>{&p, &q}, {&q, &p}}) {
+    mpz_mul(t.get_mpz_t(), n[0].get_mpz_t(), x->num[0].get_mpz_t());
+    mpz_addmul(t.get_mpz_t(), n[1].get_mpz_t(), x->num[1].get_mpz_t());
+    mpz_addmul(t.get_mpz_t(), n[2].get_mpz_t(), x->num[2].get_mpz_t());
+    mpz_addmul(s.get_mpz_t(), t.get_mpz_t(), other->den.get_mpz_t());
+  }
+  mpz_swap(pl.d.get_mpz_t(), s.get_mpz_t());
   make_primitive(pl);
   return pl;
 }

@@ -34,6 +34,8 @@ namespace minksum::nonconvex_detail {
 
 SweptPolytope::SweptPolytope(const ConvexPolytope& b) {
   points_ = b.points();
+  scaled_.reserve(points_.size());
+  for (const Point3& p : points_) scaled_.push_back(scaled_point(p));
   approx_.reserve(points_.size());
   for (Index v = 0; v < b.num_vertices(); ++v) approx_.push_back(b.approx(v));
   lo_ = hi_ = points_.front();
@@ -74,7 +76,7 @@ SweptPolytope::SweptPolytope(const ConvexPolytope& b) {
     x.w1 = b.target(b.next(ConvexPolytope::twin(h)));
     x.f0 = b.facet(h);
     x.f1 = b.facet(ConvexPolytope::twin(h));
-    x.direction = points_[x.v1] - points_[x.v0];
+    scaled_difference(scaled_[x.v0], scaled_[x.v1], x.direction);
     edges_.push_back(std::move(x));
   }
 }
@@ -112,6 +114,15 @@ std::vector<Point3> plane_hull(std::vector<Point3> pts, const Point3& u) {
   return hull;
 }
 
+// out = x × y.
+void cross_integers(const Integer x[3], const Integer y[3], Integer out[3]) {
+  for (int j = 0; j < 3; ++j) {
+    const int k = (j + 1) % 3, l = (j + 2) % 3;
+    mpz_mul(out[j].get_mpz_t(), x[k].get_mpz_t(), y[l].get_mpz_t());
+    mpz_submul(out[j].get_mpz_t(), x[l].get_mpz_t(), y[k].get_mpz_t());
+  }
+}
+
 struct Built {
   Plane plane;
   std::vector<Point3> loop;  // empty: not a candidate
@@ -128,21 +139,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   std::vector<Built> built;
   built.reserve(facets_.size() + 32);
   // t's points as integers over a common denominator.
-  struct Scaled {
-    Integer coordinate[3];
-    Integer denominator;
-  } scaled[3];
-  for (int k = 0; k < 3; ++k) {
-    const Point3& q = p[k].exact;
-    Integer& D = scaled[k].denominator;
-    D = q.x.get_den();
-    mpz_lcm(D.get_mpz_t(), D.get_mpz_t(), q.y.get_den_mpz_t());
-    mpz_lcm(D.get_mpz_t(), D.get_mpz_t(), q.z.get_den_mpz_t());
-    for (int j = 0; j < 3; ++j) {
-      mpz_divexact(scaled[k].coordinate[j].get_mpz_t(), D.get_mpz_t(), q[j].get_den_mpz_t());
-      scaled[k].coordinate[j] *= q[j].get_num();
-    }
-  }
+  const ScaledPoint scaled[3] = {scaled_point(p[0].exact), scaled_point(p[1].exact), scaled_point(p[2].exact)};
   Integer work[3];
 
   // A. The facets of B, each moved by the face of t extreme along its normal.
@@ -170,13 +167,13 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
     // primitive · Q; the plane (primitive den, num) / gcd(num, den) is
     // primitive, as the primitive normal's gcd is 1.
     {
-      const Integer* Q = scaled[top].coordinate;
+      const Integer* Q = scaled[top].num;
       mpz_mul(work[0].get_mpz_t(), f.primitive_integer[0].get_mpz_t(), Q[0].get_mpz_t());
       mpz_addmul(work[0].get_mpz_t(), f.primitive_integer[1].get_mpz_t(), Q[1].get_mpz_t());
       mpz_addmul(work[0].get_mpz_t(), f.primitive_integer[2].get_mpz_t(), Q[2].get_mpz_t());  // S
-      mpz_mul(work[1].get_mpz_t(), f.offset_den.get_mpz_t(), scaled[top].denominator.get_mpz_t());  // den
+      mpz_mul(work[1].get_mpz_t(), f.offset_den.get_mpz_t(), scaled[top].den.get_mpz_t());  // den
       mpz_mul(work[0].get_mpz_t(), work[0].get_mpz_t(), f.offset_den.get_mpz_t());
-      mpz_addmul(work[0].get_mpz_t(), f.offset_num.get_mpz_t(), scaled[top].denominator.get_mpz_t());  // num
+      mpz_addmul(work[0].get_mpz_t(), f.offset_num.get_mpz_t(), scaled[top].den.get_mpz_t());  // num
       mpz_gcd(work[2].get_mpz_t(), work[0].get_mpz_t(), work[1].get_mpz_t());
       if (mpz_cmp_ui(work[2].get_mpz_t(), 1) != 0) {
         mpz_divexact(work[0].get_mpz_t(), work[0].get_mpz_t(), work[2].get_mpz_t());
@@ -211,6 +208,15 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
         if (c > 0) faces[side].assign(1, Index(v));
         else if (c == 0) faces[side].push_back(Index(v));
       }
+    // n_t in integers: a positive multiple of (p1 - p0) x (p2 - p0).
+    Integer n[2][3];
+    if (faces[0].size() < 3 || faces[1].size() < 3) {
+      Integer e1[3], e2[3];
+      scaled_difference(scaled[0], scaled[1], e1);
+      scaled_difference(scaled[0], scaled[2], e2);
+      cross_integers(e1, e2, n[0]);
+      for (int j = 0; j < 3; ++j) n[1][j] = -n[0][j];
+    }
     for (int side = 0; side < 2; ++side) {
       const std::vector<Index>& face = faces[side];
       if (face.size() >= 3) continue;  // a facet of B: in A
@@ -218,7 +224,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       const Vec3d ua = side == 0 ? cones.normal_approx(t) : Vec3d{-cones.normal_approx(t).x, -cones.normal_approx(t).y,
                                                                    -cones.normal_approx(t).z};
       Built x;
-      x.plane = canonical_plane(u, p[0].exact + points_[face[0]]);
+      x.plane = canonical_plane_through_sum(n[side], scaled[0], scaled_[face[0]]);
       const bool whole[3] = {true, true, true};  // t is face_u(t)
       if (cones.candidate(t, RoundedPoint3{u, ua}, whole)) {
         if (face.size() == 1) {
@@ -245,7 +251,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
     const RoundedPoint3& a = p[k];
     const RoundedPoint3& b = p[(k + 1) % 3];
     const RoundedPoint3& third = p[(k + 2) % 3];
-    Point3 e;
+    Integer e[3];  // a positive multiple of b - a
     bool have_e = false;
     for (const Edge& g : edges_) {
       const int r0 = rise[g.f0][k], r1 = rise[g.f1][k];
@@ -257,13 +263,17 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       const int s = -support_compare(a, b, third, g1, g0);
       if (sigma * s >= 0) continue;
       if (!have_e) {
-        e = b.exact - a.exact;
+        scaled_difference(scaled[k], scaled[(k + 1) % 3], e);
         have_e = true;
       }
-      Point3 u = cross(e, g.direction);
-      if (sigma < 0) u = Rational(-1) * u;
+      // u: a positive multiple of σ (b - a) × (g1 - g0), in integers.
+      Integer n[3];
+      cross_integers(e, g.direction, n);
+      if (sigma < 0)
+        for (Integer& x : n) mpz_neg(x.get_mpz_t(), x.get_mpz_t());
       Built x;
-      x.plane = canonical_plane(u, a.exact + points_[g.v0]);
+      x.plane = canonical_plane_through_sum(n, scaled[k], scaled_[g.v0]);
+      const Point3 u{Rational(n[0]), Rational(n[1]), Rational(n[2])};
       const Vec3d ua = to_double(u);
       bool on_edge[3] = {false, false, false};  // the edge a → b is face_u(t)
       on_edge[k] = on_edge[(k + 1) % 3] = true;

@@ -17,6 +17,23 @@ Plane canonical_plane(const Point3& n, const Point3& p);
 // arithmetic.  Precondition: the triangle has nonzero area.
 Plane canonical_plane_of_dyadic_triangle(const Vec3d hi[3], const Vec3d lo[3]);
 
+// A rational point as integers over one positive common denominator:
+// the point is num / den (den the lcm of the coordinates' denominators).
+struct ScaledPoint {
+  Integer num[3];
+  Integer den;
+};
+ScaledPoint scaled_point(const Point3& p);
+
+// A positive integer multiple of q - p: q.num * p.den - p.num * q.den
+// (divided by the gcd of its components).
+void scaled_difference(const ScaledPoint& p, const ScaledPoint& q, Integer out[3]);
+
+// The canonical plane with normal n (integers, not all zero) through the
+// point p + q, in integer arithmetic: (n p.den q.den, n . (p.num q.den +
+// q.num p.den)) made primitive.  The same plane as canonical_plane(n, p + q).
+Plane canonical_plane_through_sum(const Integer n[3], const ScaledPoint& p, const ScaledPoint& q);
+
 // Finite doubles as integers with one common power of two: values[i] =
 // value[i] * 2^exponent exactly (exponent = the smallest exponent of the
 // nonzero values' last mantissa bits).

@@ -5,6 +5,7 @@
 #include <minksum/nonconvex.hpp>
 #include <minksum/predicates.hpp>
 
+#include "kernel/plane.hpp"
 #include "nonconvex/union.hpp"
 
 #include <array>
@@ -103,11 +104,12 @@ class SweptPolytope {
     Index v0, v1;  // the edge's ends
     Index w0, w1;  // a vertex of each adjacent facet off the edge
     Index f0, f1;  // those facets (f0 holds w0)
-    Point3 direction;  // v1 - v0
+    Integer direction[3];  // a positive multiple of v1 - v0, primitive
   };
   RoundedPoint3 at(Index v) const { return RoundedPoint3{points_[v], approx_[v]}; }
 
   std::vector<Point3> points_;
+  std::vector<ScaledPoint> scaled_;  // points_ as integers over a common denominator
   std::vector<Vec3d> approx_;
   std::vector<Facet> facets_;
   std::vector<Edge> edges_;

@@ -597,6 +597,14 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
     }
     fragments = std::move(next);
   }
+  if (fragments.size() == 1 && slits.empty()) {
+    // One convex fragment (most planes): nothing to cancel, its edges are
+    // the boundary (its vertices are distinct and no three consecutive are
+    // collinear, as merging would make them).
+    const Poly& g = fragments.front();
+    for (std::size_t i = 0; i < g.size(); ++i) r.segments.push_back({*g[i].p, *g[(i + 1) % g.size()].p});
+    return r;
+  }
   r.segments = merge_fragments(Frame(plane), fragments, slits);
   return r;
 }

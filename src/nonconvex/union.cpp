@@ -968,6 +968,26 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
       const Frame frame(*planes[g]->plane);
       std::map<LineKey, std::vector<std::pair<Rational, Rational>>> along;  // own stretches by line
       bool indexed = false;
+      // This plane's own segments by the nearest doubles of their two ends
+      // (unordered): most segments of other planes found here are shared
+      // edges, the same segment, which is covered (checked exactly).
+      auto end_hash = [](const Vec3d& p, const Vec3d& q) {
+        auto one = [](const Vec3d& v) {
+          return std::hash<double>()(v.x) ^ (std::hash<double>()(v.y) * 31u) ^ (std::hash<double>()(v.z) * 1000003u);
+        };
+        return one(p) + one(q);
+      };
+      std::unordered_multimap<std::size_t, const Segment*> own_ends;
+      own_ends.reserve(own.size());
+      for (const Segment& sg : own) own_ends.emplace(end_hash(to_double(sg.a), to_double(sg.b)), &sg);
+      auto is_own = [&](const Item& it) {
+        auto [lo, hi] = own_ends.equal_range(end_hash(it.a.d, it.b.d));
+        for (auto e = lo; e != hi; ++e) {
+          const Segment& sg = *e->second;
+          if ((sg.a == *it.a.p && sg.b == *it.b.p) || (sg.a == *it.b.p && sg.b == *it.a.p)) return true;
+        }
+        return false;
+      };
       // Only a segment starting at most `longest` before the region can reach it.
       auto first = std::lower_bound(items.begin(), items.end(), std::nextafter(region.lo[0] - longest, -INFINITY),
                                     [](const Item& it, double x) { return it.box.lo[0] < x; });
@@ -975,6 +995,7 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
         const Item& it = *at;
         if (it.box.lo[0] > region.hi[0]) break;
         if (it.plane == g || !it.box.meets(region)) continue;
+        if (is_own(it)) continue;
         // Both ends on the plane; the filter first for both (an end shared
         // with this face's boundary is exactly on it, which only the exact
         // evaluation shows).

@@ -45,6 +45,7 @@ SweptPolytope::SweptPolytope(const ConvexPolytope& b) {
       if (cmp(p[k], hi_[k]) > 0) hi_[k] = p[k];
     }
   facets_.resize(b.num_facets());
+  std::vector<Vec3d> unit;
   for (Index f = 0; f < b.num_facets(); ++f) {
     const Plane& h = b.plane(f);
     Facet& x = facets_[f];
@@ -63,8 +64,9 @@ SweptPolytope::SweptPolytope(const ConvexPolytope& b) {
     x.loop = b.facet_vertices(f);
     const double len = std::sqrt(x.normal_approx.x * x.normal_approx.x + x.normal_approx.y * x.normal_approx.y +
                                  x.normal_approx.z * x.normal_approx.z);
-    directions_.push_back(Vec3d{x.normal_approx.x / len, x.normal_approx.y / len, x.normal_approx.z / len});
+    unit.push_back(Vec3d{x.normal_approx.x / len, x.normal_approx.y / len, x.normal_approx.z / len});
   }
+  directions_ = DirectionIndex(std::move(unit));
   edges_.reserve(b.num_edges());
   for (Index e = 0; e < b.num_edges(); ++e) {
     const Index h = 2 * e;

@@ -556,16 +556,9 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
       // facet from the neighbour's box (an order of the exact tests only).
       std::size_t first = std::size_t(-1);
       if (other.directions) {
-        double d[3], best = -INFINITY;
+        double d[3];
         for (int c = 0; c < 3; ++c) d[c] = (box.lo[c] + box.hi[c]) - (other.lo[c] + other.hi[c]);
-        const std::vector<Vec3d>& u = *other.directions;
-        for (std::size_t q = 0; q < u.size(); ++q) {
-          const double x = u[q].x * d[0] + u[q].y * d[1] + u[q].z * d[2];
-          if (x > best) {
-            best = x;
-            first = q;
-          }
-        }
+        first = other.directions->best(d);
       }
       for (Poly& g : frags)
         if (subtract(g, halves[j], next, arena, plane, first))
@@ -828,6 +821,48 @@ std::vector<std::vector<Index>> plane_faces(const std::vector<std::vector<Index>
 }
 
 }  // namespace
+
+DirectionIndex::DirectionIndex(std::vector<Vec3d> unit_normals) : normals_(std::move(unit_normals)) {
+  if (normals_.empty() || normals_.size() > 65535) {
+    normals_.clear();
+    return;
+  }
+  cell_.resize(std::size_t(6) * kCells * kCells);
+  for (int face = 0; face < 6; ++face)
+    for (int i = 0; i < kCells; ++i)
+      for (int j = 0; j < kCells; ++j) {
+        const int axis = face / 2;
+        double d[3];
+        d[axis] = face % 2 ? -1.0 : 1.0;
+        d[(axis + 1) % 3] = (2.0 * i + 1.0) / kCells - 1.0;
+        d[(axis + 2) % 3] = (2.0 * j + 1.0) / kCells - 1.0;
+        std::size_t best = 0;
+        double top = -INFINITY;
+        for (std::size_t q = 0; q < normals_.size(); ++q) {
+          const double x = normals_[q].x * d[0] + normals_[q].y * d[1] + normals_[q].z * d[2];
+          if (x > top) {
+            top = x;
+            best = q;
+          }
+        }
+        cell_[(std::size_t(face) * kCells + std::size_t(i)) * kCells + std::size_t(j)] = std::uint16_t(best);
+      }
+}
+
+std::size_t DirectionIndex::best(const double d[3]) const {
+  if (normals_.empty()) return SIZE_MAX;
+  int axis = 0;
+  for (int c = 1; c < 3; ++c)
+    if (std::fabs(d[c]) > std::fabs(d[axis])) axis = c;
+  const double m = std::fabs(d[axis]);
+  if (!(m > 0) || !std::isfinite(m)) return SIZE_MAX;
+  auto index = [&](double x) {
+    const double t = (x / m + 1.0) * 0.5 * kCells;
+    return std::size_t(std::clamp(t, 0.0, double(kCells - 1)));
+  };
+  const int face = 2 * axis + (d[axis] < 0 ? 1 : 0);
+  return cell_[(std::size_t(face) * kCells + index(d[(axis + 1) % 3])) * kCells + index(d[(axis + 2) % 3])];
+}
 
 Piece piece_of(const ConvexPolytope& p, const std::vector<char>* candidate) {
   Piece out;

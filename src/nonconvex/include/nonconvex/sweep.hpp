@@ -114,7 +114,7 @@ class SweptPolytope {
   std::vector<Facet> facets_;
   std::vector<Edge> edges_;
   Point3 lo_, hi_;  // exact bounding box
-  std::vector<Vec3d> directions_;  // approximate unit facet normals (Piece::directions)
+  DirectionIndex directions_;  // approximate unit facet normals (Piece::directions)
 };
 
 }  // namespace minksum::nonconvex_detail

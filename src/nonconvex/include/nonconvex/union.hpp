@@ -7,6 +7,7 @@
 #include <minksum/nonconvex.hpp>
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <utility>
 #include <vector>
@@ -17,16 +18,35 @@ namespace minksum::nonconvex_detail {
 // facet (outward), the facets that are candidates of the boundary (indices
 // into planes) with their vertex loops (counter-clockwise seen from
 // outside), and a box that contains the nearest doubles of its points.
-// `directions`, when given, holds approximate unit normals of the first
+// `directions`, when given, indexes approximate unit normals of the first
 // planes (shared by the pieces of one convex operand, whose plane k is facet
 // k of that operand, moved): to reject a piece near a facet, the union
 // first tries the plane whose normal points most towards the facet.
+// The approximate unit normals of a convex operand's facets, with a cube
+// map of the sphere of directions: each cell holds the facet whose normal
+// is closest to the cell's centre, so the facet facing a direction is found
+// in constant time (an order of exact tests, never a decision).
+class DirectionIndex {
+ public:
+  DirectionIndex() = default;
+  explicit DirectionIndex(std::vector<Vec3d> unit_normals);
+  // The facet whose normal points most nearly along d (not normalised);
+  // SIZE_MAX when d is zero or not finite.
+  std::size_t best(const double d[3]) const;
+  std::size_t size() const { return normals_.size(); }
+
+ private:
+  static constexpr int kCells = 32;  // per side of each face of the cube
+  std::vector<Vec3d> normals_;
+  std::vector<std::uint16_t> cell_;  // 6 kCells kCells entries
+};
+
 struct Piece {
   std::vector<Plane> planes;
   std::vector<Index> candidates;
   std::vector<std::vector<Point3>> loops;  // one per candidate
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-  const std::vector<Vec3d>* directions = nullptr;
+  const DirectionIndex* directions = nullptr;
 };
 
 // p as a Piece, with the facets flagged in `candidate` (one flag per facet;

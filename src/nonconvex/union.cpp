@@ -440,8 +440,64 @@ OnLine on_line(const Frame& f, const Point3& p, const Point3& q) {
                 ra * q[f.iu] + rb * q[f.iv]};
 }
 
+// A line of a plane in its frame's two coordinates, as the primitive
+// integer equation A u + B v = C (gcd(A, B, C) = 1, A > 0 or A = 0 < B):
+// one key per line, however it was found.
+struct Line2 {
+  Integer A, B, C;
+  friend bool operator<(const Line2& x, const Line2& y) {
+    if (int r = cmp(x.A, y.A)) return r < 0;
+    if (int r = cmp(x.B, y.B)) return r < 0;
+    return cmp(x.C, y.C) < 0;
+  }
+};
+
+void make_canonical(Line2& l) {
+  Integer g;
+  mpz_gcd(g.get_mpz_t(), l.A.get_mpz_t(), l.B.get_mpz_t());
+  mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), l.C.get_mpz_t());
+  if (g != 1)
+    for (Integer* x : {&l.A, &l.B, &l.C}) mpz_divexact(x->get_mpz_t(), x->get_mpz_t(), g.get_mpz_t());
+  if (sgn(l.A) < 0 || (sgn(l.A) == 0 && sgn(l.B) < 0))
+    for (Integer* x : {&l.A, &l.B, &l.C}) mpz_neg(x->get_mpz_t(), x->get_mpz_t());
+}
+
+// The line where the plane e meets the oriented plane h (not parallel to
+// it), in h's frame: with k the coordinate the frame drops (h_k != 0),
+// h gives x_k = (h_d - h_u u - h_v v) / h_k, and e times h_k becomes
+// (e_u h_k - e_k h_u) u + (e_v h_k - e_k h_v) v = e_d h_k - e_k h_d.
+// False when e is parallel to h.
+bool line_of(const Plane& h, const Plane& e, const Frame& f, Line2& out) {
+  const int k = 3 - f.iu - f.iv;
+  const Integer* hc[3] = {&h.a, &h.b, &h.c};
+  const Integer* ec[3] = {&e.a, &e.b, &e.c};
+  auto term = [](Integer& r, const Integer& x1, const Integer& y1, const Integer& x2, const Integer& y2) {
+    mpz_mul(r.get_mpz_t(), x1.get_mpz_t(), y1.get_mpz_t());
+    mpz_submul(r.get_mpz_t(), x2.get_mpz_t(), y2.get_mpz_t());
+  };
+  term(out.A, *ec[f.iu], *hc[k], *ec[k], *hc[f.iu]);
+  term(out.B, *ec[f.iv], *hc[k], *ec[k], *hc[f.iv]);
+  if (sgn(out.A) == 0 && sgn(out.B) == 0) return false;
+  term(out.C, e.d, *hc[k], *ec[k], h.d);
+  make_canonical(out);
+  return true;
+}
+
+// The line through two distinct points of the plane, in its frame.
+Line2 line_through(const Frame& f, const Point3& p, const Point3& q) {
+  // Direction (a, b) primitive; the line is b u - a v = b p_u - a p_v.
+  auto [a, b] = primitive(q[f.iu] - p[f.iu], q[f.iv] - p[f.iv]);
+  Rational c = Rational(b) * p[f.iu] - Rational(a) * p[f.iv];
+  Line2 l;
+  l.A = b * c.get_den();
+  l.B = -a * c.get_den();
+  l.C = c.get_num();
+  make_canonical(l);
+  return l;
+}
+
 struct Event {
-  Rational t;
+  const Rational* t;  // the point's parameter along the line
   int kind;   // 0: fragment edge along the line, 1: against it, 2: slit
   int delta;  // +1 where the interval starts, -1 where it ends
   const Point3* point;
@@ -453,29 +509,38 @@ struct Segment {
   Point3 a, b;
 };
 
-std::vector<Segment> merge_fragments(const Frame& frame, const std::vector<Poly>& fragments,
+std::vector<Segment> merge_fragments(const Plane& plane, const Frame& frame, const std::vector<Poly>& fragments,
                                      const std::vector<Segment>& slits) {
-  std::map<LineKey, std::vector<Event>> lines;
-  auto add = [&](const Point3& p, const Point3& q, int kind) {
-    OnLine o = on_line(frame, p, q);
-    const bool up = o.forward;  // p has the smaller parameter
-    if (kind == 0 && !o.forward) kind = 1;
-    auto& ev = lines[o.key];
-    ev.push_back(Event{up ? o.tp : o.tq, kind, 1, up ? &p : &q});
-    ev.push_back(Event{up ? o.tq : o.tp, kind, -1, up ? &q : &p});
+  // Along a line A u + B v = C, u grows with the line's direction (B, -A)
+  // made first-nonzero-positive when B != 0, else v does: the parameter of a
+  // point is its u or its v, exactly, with no arithmetic.
+  std::map<Line2, std::vector<Event>> lines;
+  auto add = [&](const Line2& line, const Point3& p, const Point3& q, int kind) {
+    const int along = sgn(line.B) != 0 ? frame.iu : frame.iv;
+    const bool up = cmp(p[along], q[along]) < 0;  // p has the smaller parameter
+    if (kind == 0 && !up) kind = 1;
+    auto& ev = lines[line];
+    ev.push_back(Event{up ? &p[along] : &q[along], kind, 1, up ? &p : &q});
+    ev.push_back(Event{up ? &q[along] : &p[along], kind, -1, up ? &q : &p});
   };
+  Line2 line;
   for (const Poly& g : fragments)
-    for (std::size_t i = 0; i < g.size(); ++i) add(*g[i].p, *g[(i + 1) % g.size()].p, 0);
-  for (const Segment& sl : slits) add(sl.a, sl.b, 2);
+    for (std::size_t i = 0; i < g.size(); ++i) {
+      const Point3& p = *g[i].p;
+      const Point3& q = *g[(i + 1) % g.size()].p;
+      if (!g[i].edge || !line_of(plane, *g[i].edge, frame, line)) line = line_through(frame, p, q);
+      add(line, p, q, 0);
+    }
+  for (const Segment& sl : slits) add(line_through(frame, sl.a, sl.b), sl.a, sl.b, 2);
   std::vector<Segment> out;
   for (auto& [key, ev] : lines) {
-    std::sort(ev.begin(), ev.end(), [](const Event& x, const Event& y) { return cmp(x.t, y.t) < 0; });
+    std::sort(ev.begin(), ev.end(), [](const Event& x, const Event& y) { return cmp(*x.t, *y.t) < 0; });
     int count[3] = {0, 0, 0};
     bool along = false, against = false;  // the stretches under way
     const Point3 *start_along = nullptr, *start_against = nullptr;
     for (std::size_t i = 0; i < ev.size();) {
       const Point3* here = ev[i].point;
-      for (const std::size_t first = i; i < ev.size() && cmp(ev[i].t, ev[first].t) == 0; ++i)
+      for (const std::size_t first = i; i < ev.size() && cmp(*ev[i].t, *ev[first].t) == 0; ++i)
         count[ev[i].kind] += ev[i].delta;
       const bool slit = count[2] > 0;
       const bool now_along = slit ? count[0] > 0 : count[0] > count[1];
@@ -598,7 +663,7 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
     for (std::size_t i = 0; i < g.size(); ++i) r.segments.push_back({*g[i].p, *g[(i + 1) % g.size()].p});
     return r;
   }
-  r.segments = merge_fragments(Frame(plane), fragments, slits);
+  r.segments = merge_fragments(plane, Frame(plane), fragments, slits);
   return r;
 }
 

@@ -26,11 +26,34 @@ Point3 polygon_normal(const std::vector<Point3>& p) {
   return n;
 }
 
-// Signed area (doubled) of the triangle a b c projected along axis `drop`.
-int orient2d(const Point3& a, const Point3& b, const Point3& c, int drop) {
-  const int u = (drop + 1) % 3, v = (drop + 2) % 3;
-  const Rational d = (b[u] - a[u]) * (c[v] - a[v]) - (b[v] - a[v]) * (c[u] - a[u]);
-  return sgn(d);
+const Point3& origin_point() {
+  static const Point3 o(Rational(0), Rational(0), Rational(0));
+  return o;
+}
+const Vec3d kOriginApprox{0, 0, 0};
+const Point3& axis_point(int k) {
+  static const Point3 e[3] = {Point3(Rational(1), Rational(0), Rational(0)), Point3(Rational(0), Rational(1), Rational(0)),
+                              Point3(Rational(0), Rational(0), Rational(1))};
+  return e[k];
+}
+const Vec3d kAxisApprox[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+
+// The sign of ((b - a) x (c - a))_k, the doubled signed area of the triangle
+// a b c projected along axis k: support_compare(a, b, c, e_k, 0), the
+// kernel's filtered predicate on the points' cached roundings.
+int orient2d(const RoundedPoint3& a, const RoundedPoint3& b, const RoundedPoint3& c, int drop) {
+  return support_compare(a, b, c, RoundedPoint3{axis_point(drop), kAxisApprox[drop]},
+                         RoundedPoint3{origin_point(), kOriginApprox});
+}
+
+// Whether the triangle a b c has zero area: every component of its normal
+// (b - a) x (c - a) is zero.
+bool collinear(const Point3& a, const Point3& b, const Point3& c) {
+  const Vec3d da = to_double(a), db = to_double(b), dc = to_double(c);
+  const RoundedPoint3 ra{a, da}, rb{b, db}, rc{c, dc};
+  for (int k = 0; k < 3; ++k)
+    if (orient2d(ra, rb, rc, k) != 0) return false;
+  return true;
 }
 
 // Ear clipping of a simple planar polygon (indices into `pts`), exact; the
@@ -43,31 +66,36 @@ bool ear_clip(const std::vector<Index>& loop, const std::vector<Point3>& pts, co
     if (cmp(abs(normal[i]), abs(normal[drop])) > 0) drop = i;
   // Orientation of a counter-clockwise triangle in the projection.
   const int ccw = sgn(normal[drop]);
-  std::vector<Index> poly = loop;
+  // Positions in the loop, with the points' nearest doubles.
+  std::vector<Vec3d> approx(loop.size());
+  for (std::size_t i = 0; i < loop.size(); ++i) approx[i] = to_double(pts[loop[i]]);
+  auto at = [&](std::size_t i) { return RoundedPoint3{pts[loop[i]], approx[i]}; };
+  std::vector<std::size_t> poly(loop.size());
+  std::iota(poly.begin(), poly.end(), std::size_t(0));
   while (poly.size() > 3) {
     bool clipped = false;
     for (std::size_t i = 0; i < poly.size() && !clipped; ++i) {
       const std::size_t n = poly.size();
-      const Index a = poly[(i + n - 1) % n], b = poly[i], c = poly[(i + 1) % n];
-      if (orient2d(pts[a], pts[b], pts[c], drop) != ccw) continue;  // reflex or flat corner
+      const std::size_t a = poly[(i + n - 1) % n], b = poly[i], c = poly[(i + 1) % n];
+      if (orient2d(at(a), at(b), at(c), drop) != ccw) continue;  // reflex or flat corner
       bool empty = true;
       for (std::size_t j = 0; j < n && empty; ++j) {
-        const Index q = poly[j];
+        const std::size_t q = poly[j];
         if (q == a || q == b || q == c) continue;
         // q inside or on the closed triangle a b c blocks the ear.
-        if (orient2d(pts[a], pts[b], pts[q], drop) != -ccw && orient2d(pts[b], pts[c], pts[q], drop) != -ccw &&
-            orient2d(pts[c], pts[a], pts[q], drop) != -ccw)
+        if (orient2d(at(a), at(b), at(q), drop) != -ccw && orient2d(at(b), at(c), at(q), drop) != -ccw &&
+            orient2d(at(c), at(a), at(q), drop) != -ccw)
           empty = false;
       }
       if (!empty) continue;
-      out.push_back({a, b, c});
+      out.push_back({loop[a], loop[b], loop[c]});
       poly.erase(poly.begin() + std::ptrdiff_t(i));
       clipped = true;
     }
     if (!clipped) return false;
   }
-  if (orient2d(pts[poly[0]], pts[poly[1]], pts[poly[2]], drop) != ccw) return false;
-  out.push_back({poly[0], poly[1], poly[2]});
+  if (orient2d(at(poly[0]), at(poly[1]), at(poly[2]), drop) != ccw) return false;
+  out.push_back({loop[poly[0]], loop[poly[1]], loop[poly[2]]});
   return true;
 }
 
@@ -233,6 +261,11 @@ Solid validate_solid(const Mesh& mesh, const std::string& source) {
       std::sort(s.begin(), s.end());
       if (std::adjacent_find(s.begin(), s.end()) != s.end())
         throw InputError(source, face_name(f), "uses a vertex twice (after welding equal points)");
+    }
+    if (loop.size() == 3 && !collinear(exact[loop[0]], exact[loop[1]], exact[loop[2]])) {
+      tris.push_back({loop[0], loop[1], loop[2]});
+      tri_face.push_back(f);
+      continue;
     }
     std::vector<Point3> p;
     for (Index v : loop) p.push_back(exact[v]);

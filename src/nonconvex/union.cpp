@@ -1053,8 +1053,12 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
         items.push_back(std::move(it));
       }
     std::sort(items.begin(), items.end(), [](const Item& x, const Item& y) { return x.box.lo[0] < y.box.lo[0]; });
-    double longest = 0;  // at least the largest x extent of a segment (rounded up)
-    for (const Item& it : items) longest = std::max(longest, std::nextafter(it.box.hi[0] - it.box.lo[0], INFINITY));
+    // The segments' boxes in a grid, so that a plane looks only at the
+    // segments whose boxes meet its face's, in their order.
+    std::vector<Box> item_boxes;
+    item_boxes.reserve(items.size());
+    for (const Item& it : items) item_boxes.push_back(it.box);
+    const PieceGrid item_grid(item_boxes);
     std::vector<std::vector<Segment>> slits(n);
     parallel_for(n, workers, [&](std::size_t g) {
       const std::vector<Segment>& own = results[g].segments;
@@ -1088,13 +1092,11 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
         }
         return false;
       };
-      // Only a segment starting at most `longest` before the region can reach it.
-      auto first = std::lower_bound(items.begin(), items.end(), std::nextafter(region.lo[0] - longest, -INFINITY),
-                                    [](const Item& it, double x) { return it.box.lo[0] < x; });
-      for (auto at = first; at != items.end(); ++at) {
-        const Item& it = *at;
-        if (it.box.lo[0] > region.hi[0]) break;
-        if (it.plane == g || !it.box.meets(region)) continue;
+      std::vector<Index> near;
+      item_grid.query(region, near);
+      for (Index at : near) {
+        const Item& it = items[at];
+        if (it.plane == g) continue;
         if (is_own(it)) continue;
         // Both ends on the plane; the filter first for both (an end shared
         // with this face's boundary is exactly on it, which only the exact

@@ -236,10 +236,17 @@ void signs(const Poly& g, const Half& h, std::vector<int>& sg, bool& pos, bool& 
 // the result is true; when they do not (the overlap has zero area), `out`
 // is left as it was and the result is false.  A facet plane of the piece
 // that contains g's plane has every sign 0 and cuts nothing.
-// `first`, when a valid index, is the plane tried first (a guess of the one
-// that rejects the piece).
+// `order`, when given, names planes to try first for the rejection (guesses
+// of one that rejects the piece, best first), and planes from `extra_from` on
+// are tried next; the rest after them.  An order of exact tests only.
+struct RejectOrder {
+  const std::uint16_t* first = nullptr;
+  std::size_t count = 0;
+  std::size_t extra_from = SIZE_MAX;
+};
+
 bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out, Arena& arena,
-              const Plane& face, std::size_t first = std::size_t(-1)) {
+              const Plane& face, const RejectOrder& order = {}) {
   std::vector<int> sg;
   bool pos = false, neg = false;
   // First the signs only: a plane with all of g on or outside it rejects the
@@ -253,9 +260,18 @@ bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>&
     }
     return above;
   };
-  if (first < halves.size() && rejects(halves[first])) return false;
-  for (std::size_t k = 0; k < halves.size(); ++k)
-    if (k != first && rejects(halves[k])) return false;
+  const std::size_t n = halves.size();
+  auto preferred = [&](std::size_t k) {
+    for (std::size_t i = 0; i < order.count; ++i)
+      if (order.first[i] == k) return true;
+    return false;
+  };
+  for (std::size_t i = 0; i < order.count; ++i)
+    if (order.first[i] < n && rejects(halves[order.first[i]])) return false;
+  for (std::size_t k = std::min(order.extra_from, n); k < n; ++k)
+    if (rejects(halves[k])) return false;
+  for (std::size_t k = 0; k < std::min(order.extra_from, n); ++k)
+    if (!preferred(k) && rejects(halves[k])) return false;
   const std::size_t mark = out.size();
   Poly rem = g;
   for (const Half& h : halves) {
@@ -617,16 +633,18 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
       if (member(j) && (j > f.piece || std::binary_search(below.begin(), below.end(), j))) continue;
       std::vector<Poly> next;
       const Piece& other = parts[j];
-      // The plane tried first: the one whose normal points most towards the
-      // facet from the neighbour's box (an order of the exact tests only).
-      std::size_t first = std::size_t(-1);
+      // The planes tried first: those whose normals point most towards the
+      // facet from the neighbour's box, then the piece's planes beyond its
+      // operand's facets (an order of the exact tests only).
+      RejectOrder order;
       if (other.directions) {
         double d[3];
         for (int c = 0; c < 3; ++c) d[c] = (box.lo[c] + box.hi[c]) - (other.lo[c] + other.hi[c]);
-        first = other.directions->best(d);
+        order.count = other.directions->best(d, order.first);
+        order.extra_from = other.directions->size();
       }
       for (Poly& g : frags)
-        if (subtract(g, halves[j], next, arena, plane, first))
+        if (subtract(g, halves[j], next, arena, plane, order))
           ++r.clips;
         else
           next.push_back(std::move(g));
@@ -892,7 +910,9 @@ DirectionIndex::DirectionIndex(std::vector<Vec3d> unit_normals) : normals_(std::
     normals_.clear();
     return;
   }
-  cell_.resize(std::size_t(6) * kCells * kCells);
+  width_ = std::min<std::size_t>(kBest, normals_.size());
+  cell_.resize(std::size_t(6) * kCells * kCells * width_);
+  std::vector<std::pair<double, std::size_t>> rank(normals_.size());
   for (int face = 0; face < 6; ++face)
     for (int i = 0; i < kCells; ++i)
       for (int j = 0; j < kCells; ++j) {
@@ -901,32 +921,29 @@ DirectionIndex::DirectionIndex(std::vector<Vec3d> unit_normals) : normals_(std::
         d[axis] = face % 2 ? -1.0 : 1.0;
         d[(axis + 1) % 3] = (2.0 * i + 1.0) / kCells - 1.0;
         d[(axis + 2) % 3] = (2.0 * j + 1.0) / kCells - 1.0;
-        std::size_t best = 0;
-        double top = -INFINITY;
-        for (std::size_t q = 0; q < normals_.size(); ++q) {
-          const double x = normals_[q].x * d[0] + normals_[q].y * d[1] + normals_[q].z * d[2];
-          if (x > top) {
-            top = x;
-            best = q;
-          }
-        }
-        cell_[(std::size_t(face) * kCells + std::size_t(i)) * kCells + std::size_t(j)] = std::uint16_t(best);
+        for (std::size_t q = 0; q < normals_.size(); ++q)
+          rank[q] = {-(normals_[q].x * d[0] + normals_[q].y * d[1] + normals_[q].z * d[2]), q};
+        std::partial_sort(rank.begin(), rank.begin() + std::ptrdiff_t(width_), rank.end());
+        std::uint16_t* out = &cell_[((std::size_t(face) * kCells + std::size_t(i)) * kCells + std::size_t(j)) * width_];
+        for (std::size_t q = 0; q < width_; ++q) out[q] = std::uint16_t(rank[q].second);
       }
 }
 
-std::size_t DirectionIndex::best(const double d[3]) const {
-  if (normals_.empty()) return SIZE_MAX;
+std::size_t DirectionIndex::best(const double d[3], const std::uint16_t*& out) const {
+  out = nullptr;
+  if (normals_.empty()) return 0;
   int axis = 0;
   for (int c = 1; c < 3; ++c)
     if (std::fabs(d[c]) > std::fabs(d[axis])) axis = c;
   const double m = std::fabs(d[axis]);
-  if (!(m > 0) || !std::isfinite(m)) return SIZE_MAX;
+  if (!(m > 0) || !std::isfinite(m)) return 0;
   auto index = [&](double x) {
     const double t = (x / m + 1.0) * 0.5 * kCells;
     return std::size_t(std::clamp(t, 0.0, double(kCells - 1)));
   };
   const int face = 2 * axis + (d[axis] < 0 ? 1 : 0);
-  return cell_[(std::size_t(face) * kCells + index(d[(axis + 1) % 3])) * kCells + index(d[(axis + 2) % 3])];
+  out = &cell_[((std::size_t(face) * kCells + index(d[(axis + 1) % 3])) * kCells + index(d[(axis + 2) % 3])) * width_];
+  return width_;
 }
 
 Piece piece_of(const ConvexPolytope& p, const std::vector<char>* candidate) {

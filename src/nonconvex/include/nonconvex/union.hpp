@@ -23,22 +23,26 @@ namespace minksum::nonconvex_detail {
 // k of that operand, moved): to reject a piece near a facet, the union
 // first tries the plane whose normal points most towards the facet.
 // The approximate unit normals of a convex operand's facets, with a cube
-// map of the sphere of directions: each cell holds the facet whose normal
-// is closest to the cell's centre, so the facet facing a direction is found
-// in constant time (an order of exact tests, never a decision).
+// map of the sphere of directions: each cell holds the facets whose normals
+// are closest to the cell's centre, closest first, so the facets facing a
+// direction are found in constant time (an order of exact tests, never a
+// decision).
 class DirectionIndex {
  public:
   DirectionIndex() = default;
   explicit DirectionIndex(std::vector<Vec3d> unit_normals);
-  // The facet whose normal points most nearly along d (not normalised);
-  // SIZE_MAX when d is zero or not finite.
-  std::size_t best(const double d[3]) const;
+  // The facets whose normals point most nearly along d (not normalised),
+  // best first: sets `out` to them and returns how many (none when d is zero
+  // or not finite).
+  std::size_t best(const double d[3], const std::uint16_t*& out) const;
   std::size_t size() const { return normals_.size(); }
 
  private:
   static constexpr int kCells = 32;  // per side of each face of the cube
+  static constexpr std::size_t kBest = 6;  // facets kept per cell
   std::vector<Vec3d> normals_;
-  std::vector<std::uint16_t> cell_;  // 6 kCells kCells entries
+  std::size_t width_ = 0;
+  std::vector<std::uint16_t> cell_;  // 6 kCells kCells cells of width_ entries
 };
 
 struct Piece {

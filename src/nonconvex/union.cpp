@@ -354,7 +354,11 @@ class PieceGrid {
     for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
     start_ = count;
     items_.resize(count.back());
-    for_each_piece_cell([&](std::size_t c, Index j) { items_[count[c]++] = j; });
+    item_box_.resize(count.back());
+    for_each_piece_cell([&](std::size_t c, Index j) {
+      item_box_[count[c]] = boxes_[j];
+      items_[count[c]++] = j;
+    });
   }
 
   // The pieces whose boxes meet `box`, ascending.
@@ -367,7 +371,7 @@ class PieceGrid {
         for (std::size_t z = lo[2]; z <= hi[2]; ++z) {
           const std::size_t c = (x * n_[1] + y) * n_[2] + z;
           for (std::size_t k = start_[c]; k < start_[c + 1]; ++k)
-            if (box.meets(boxes_[items_[k]])) out.push_back(items_[k]);
+            if (box.meets(item_box_[k])) out.push_back(items_[k]);
         }
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -404,6 +408,7 @@ class PieceGrid {
   std::size_t n_[3] = {1, 1, 1};
   std::vector<std::size_t> start_;
   std::vector<Index> items_;
+  std::vector<Box> item_box_;  // the box of items_[k], beside it in the cell's list (no indirection)
 };
 
 // ---------------------------------------------------------------------------

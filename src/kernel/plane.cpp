@@ -107,6 +107,22 @@ Plane canonical_plane_through_sum(const Integer n[3], const ScaledPoint& p, cons
   return pl;
 }
 
+double truncated_ratio(const Integer& X, const Integer& W) {
+  if (sgn(X) == 0) return 0.0;
+  const long s = 56 + long(mpz_sizeinbase(W.get_mpz_t(), 2)) - long(mpz_sizeinbase(X.get_mpz_t(), 2));
+  Integer num, den, q;
+  mpz_abs(num.get_mpz_t(), X.get_mpz_t());
+  if (s >= 0) {
+    mpz_mul_2exp(num.get_mpz_t(), num.get_mpz_t(), mp_bitcnt_t(s));
+    mpz_tdiv_q(q.get_mpz_t(), num.get_mpz_t(), W.get_mpz_t());
+  } else {
+    mpz_mul_2exp(den.get_mpz_t(), W.get_mpz_t(), mp_bitcnt_t(-s));
+    mpz_tdiv_q(q.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+  }
+  const double r = std::ldexp(mpz_get_d(q.get_mpz_t()), int(std::clamp<long>(-s, -100000, 100000)));
+  return sgn(X) < 0 ? -r : r;
+}
+
 ScaledIntegers::ScaledIntegers(const double* values, std::size_t n) {
   // Every nonzero double is M * 2^E with an odd or even integer |M| < 2^53;
   // the smallest E over all values is the common exponent.

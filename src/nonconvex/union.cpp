@@ -58,17 +58,41 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 // (<minksum/half_space_side.hpp>, bound and derivation there), else the
 // exact value.
 
+// A cut point: where three integer planes meet, (X, Y, Z) / W with W > 0 as
+// Cramer's rule gives them, not reduced.  Its signs against planes are
+// taken on the integers; the canonical rational point (three gcds of
+// numbers of several hundred bits) is made only when something asks for it
+// (a fragment that reaches the merge, a segment), as many cut points are
+// dropped with the part of a facet a piece covers.
+struct CutPoint {
+  Integer X, Y, Z, W;
+  mutable std::optional<Point3> canonical;
+  const Point3& point() const {
+    if (!canonical) {
+      Rational x(X, W), y(Y, W), z(Z, W);
+      x.canonicalize();
+      y.canonicalize();
+      z.canonicalize();
+      canonical.emplace(std::move(x), std::move(y), std::move(z));
+    }
+    return *canonical;
+  }
+};
+
 // A point of a facet's plane: the exact point (kept elsewhere: a piece's
-// loop, a segment, or an Arena), with its nearest doubles.  Copying one
-// copies no rational.  In a polygon, `edge` is a plane other than the polygon's own that holds
-// the edge from this vertex to the next: a cut point is then the meeting
-// point of three integer planes, whose size does not grow with the number
-// of cuts.
+// loop, a segment, or an Arena: a given point or a cut point), with its
+// nearest doubles (or a faithful rounding: within relative 2^-52).  Copying
+// one copies no number.  In a polygon, `edge` is a plane other than the
+// polygon's own that holds the edge from this vertex to the next: a cut
+// point is then the meeting point of three integer planes, whose size does
+// not grow with the number of cuts.
 struct V3 {
   const Point3* p = nullptr;
+  const CutPoint* c = nullptr;
   Vec3d d;
   bool filtered = false;
   const Plane* edge = nullptr;
+  const Point3& exact() const { return p ? *p : c->point(); }
 };
 
 V3 make_v3(const Point3& p) {
@@ -80,17 +104,36 @@ V3 make_v3(const Point3& p) {
   return v;
 }
 
-// The points made by the cuts of one plane, and the planes of the edges
-// (deques: they do not move).
+// Usable in the filter: zero with the exact value, or of magnitude in
+// [2^-480, 2^480).
+bool cut_filter_usable(double x, const Integer& X) {
+  return std::isfinite(x) && std::fabs(x) < kHalfSpaceFilterMax &&
+         (x == 0 ? sgn(X) == 0 : std::fabs(x) >= kHalfSpaceFilterMin);
+}
+
+V3 make_v3(const CutPoint& c) {
+  V3 v;
+  v.d = Vec3d{truncated_ratio(c.X, c.W), truncated_ratio(c.Y, c.W), truncated_ratio(c.Z, c.W)};
+  v.filtered = cut_filter_usable(v.d.x, c.X) && cut_filter_usable(v.d.y, c.Y) && cut_filter_usable(v.d.z, c.Z);
+  v.c = &c;
+  return v;
+}
+
+// The cut points of one plane, and the planes of the edges (deques: they do
+// not move).
 struct Arena {
-  std::deque<Point3> points;
+  std::deque<CutPoint> points;
   std::deque<Plane> planes;
 };
 
 // The point where three planes (a x + b y + c z = d) meet, by Cramer's rule
 // in integers; the planes' normals are independent.
-Point3 meet(const Plane& p, const Plane& q, const Plane& r) {
-  Integer det, x, y, z;
+CutPoint meet(const Plane& p, const Plane& q, const Plane& r) {
+  CutPoint out;
+  Integer& det = out.W;
+  Integer& x = out.X;
+  Integer& y = out.Y;
+  Integer& z = out.Z;
   // Minors of the last two rows.
   auto minor = [](Integer& out, const Integer& u1, const Integer& v1, const Integer& u2, const Integer& v2) {
     mpz_mul(out.get_mpz_t(), u1.get_mpz_t(), v2.get_mpz_t());
@@ -109,11 +152,20 @@ Point3 meet(const Plane& p, const Plane& q, const Plane& r) {
   y = p.a * dc - p.d * ac + p.c * ad;
   z = p.a * bd - p.b * ad + p.d * ab;
   if (sgn(det) == 0) throw std::logic_error("union: a cut point of parallel planes");
-  Rational rx(x, det), ry(y, det), rz(z, det);
-  rx.canonicalize();
-  ry.canonicalize();
-  rz.canonicalize();
-  return Point3(std::move(rx), std::move(ry), std::move(rz));
+  if (sgn(det) < 0)
+    for (Integer* v : {&det, &x, &y, &z}) mpz_neg(v->get_mpz_t(), v->get_mpz_t());
+  return out;
+}
+
+// The sign of a X + b Y + c Z - d W for a cut point (W > 0): the plane's
+// side of the point, in integers.
+int side_of_cut(const Plane& h, const CutPoint& c) {
+  Integer acc;
+  mpz_mul(acc.get_mpz_t(), h.a.get_mpz_t(), c.X.get_mpz_t());
+  mpz_addmul(acc.get_mpz_t(), h.b.get_mpz_t(), c.Y.get_mpz_t());
+  mpz_addmul(acc.get_mpz_t(), h.c.get_mpz_t(), c.Z.get_mpz_t());
+  mpz_submul(acc.get_mpz_t(), h.d.get_mpz_t(), c.W.get_mpz_t());
+  return sgn(acc);
 }
 
 // The half-space a*x + b*y + c*z <= d (inside) of an integer plane (kept
@@ -146,6 +198,7 @@ Half half_of(const Plane& q) {
 int side(const Half& h, const V3& v) {
   if (h.filtered && v.filtered)
     if (const auto s = half_space_side_filter(h.da, h.db, h.dc, h.dd, v.d.x, v.d.y, v.d.z)) return *s;
+  if (v.c) return side_of_cut(*h.plane, *v.c);
   return h.plane->side(*v.p);  // integer arithmetic, no rational normalisation
 }
 
@@ -199,7 +252,7 @@ void cut(const Poly& g, const Half& h, const std::vector<int>& sg, Poly& outside
     }
     if (sg[i] * sg[j] < 0) {
       arena.points.push_back(meet(face, *g[i].edge, *h.plane));
-      const V3 x = make_v3(arena.points.back());
+      V3 x = make_v3(arena.points.back());
       outside.push_back(x);
       on_out.push_back({i, i});
       inside.push_back(x);
@@ -547,8 +600,8 @@ std::vector<Segment> merge_fragments(const Plane& plane, const Frame& frame, con
   Line2 line;
   for (const Poly& g : fragments)
     for (std::size_t i = 0; i < g.size(); ++i) {
-      const Point3& p = *g[i].p;
-      const Point3& q = *g[(i + 1) % g.size()].p;
+      const Point3& p = g[i].exact();
+      const Point3& q = g[(i + 1) % g.size()].exact();
       if (!g[i].edge || !line_of(plane, *g[i].edge, frame, line)) line = line_through(frame, p, q);
       add(line, p, q, 0);
     }
@@ -683,7 +736,7 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
     // the boundary (its vertices are distinct and no three consecutive are
     // collinear, as merging would make them).
     const Poly& g = fragments.front();
-    for (std::size_t i = 0; i < g.size(); ++i) r.segments.push_back({*g[i].p, *g[(i + 1) % g.size()].p});
+    for (std::size_t i = 0; i < g.size(); ++i) r.segments.push_back({g[i].exact(), g[(i + 1) % g.size()].exact()});
     return r;
   }
   r.segments = merge_fragments(plane, Frame(plane), fragments, slits);

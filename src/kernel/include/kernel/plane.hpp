@@ -34,6 +34,16 @@ void scaled_difference(const ScaledPoint& p, const ScaledPoint& q, Integer out[3
 // q.num p.den)) made primitive.  The same plane as canonical_plane(n, p + q).
 Plane canonical_plane_through_sum(const Integer n[3], const ScaledPoint& p, const ScaledPoint& q);
 
+// X / W for W > 0, truncated towards zero to a double: a faithful rounding
+// (within relative 2^-52 of the exact quotient, never beyond it), as the
+// half-space filter accepts (<minksum/half_space_side.hpp>), without
+// reducing the fraction.  The integer quotient q = trunc(|X| 2^s / W) is
+// taken with 56 or 57 bits; mpz_get_d keeps its leading 53, truncating, and
+// dropping low bits of an integer part truncates the real quotient as well;
+// the scaling by 2^-s is exact in the normal range (outside it the result
+// is 0, subnormal or infinite, which the filter's range check refuses).
+double truncated_ratio(const Integer& X, const Integer& W);
+
 // Finite doubles as integers with one common power of two: values[i] =
 // value[i] * 2^exponent exactly (exponent = the smallest exponent of the
 // nonzero values' last mantissa bits).

@@ -1,4 +1,5 @@
-// Format dispatch, whole-file reading, atomic writing, operand resolution,
+// Format dispatch, whole-file reading, atomic writing (operands named on the
+// command line are resolved in src/operand/operand.cpp),
 // and the helpers the per-format readers and writers share.
 #include "io/readers.hpp"
 

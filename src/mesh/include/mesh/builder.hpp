@@ -12,8 +12,8 @@ namespace minksum {
 
 class PolytopeBuilder {
  public:
-  // Validate a polygon mesh and build the polytope (see polytope.hpp).
-  // `points_are_hull` skips nothing: it only changes the wording of errors.
+  // Validate a polygon mesh and build the polytope (see polytope.hpp);
+  // `source` names the file in the InputError of the first defect.
   static ConvexPolytope build(const Mesh& mesh, const std::string& source);
 
   // The exact convex hull of `points`, the same polytope as

@@ -45,6 +45,7 @@ A, B, P are files ({formats}, format by extension or --format
 {format_names}), '-' for a mesh on standard input, or names of
 built-in polytopes such as cube, sphere:4, dioctagonal:17, random:1000:7,
 box:1:2:3, sphere:3@rot:5 (see 'minksum gen --help' for the whole catalog).
+Files take the catalog's transforms too: part.stl@neg, part.stl@scale:2@rot:5.
 -o - writes the mesh to standard output (with --format; the summary then goes
 to stderr).  What minksum writes reads back as a valid convex polytope.
 

@@ -1400,6 +1400,39 @@ TEST_F(Cli, QueryAndCgmTakeTheHullTheirRefusalsSuggest) {
   EXPECT_EQ(run("cgm tube").status, 3);
 }
 
+// '@' transforms on files (they worked on catalog names only: "part.stl@neg
+// is neither a file nor a catalog name"), convex and non-convex, a bad
+// transform, a missing file, and a file whose own name holds '@'.
+TEST_F(Cli, TransformsApplyToFiles) {
+  ASSERT_EQ(run("gen truncated-cube -o " + path("T.off")).status, 0);
+  ASSERT_EQ(run("gen tube --exact -o " + path("tube.off")).status, 0);
+  auto volume = [&](const std::string& args) {
+    CmdResult r = run(args + " --json");
+    EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+    const std::size_t at = r.out.find("\"volume\": \"");
+    EXPECT_NE(at, std::string::npos) << r.out;
+    return r.out.substr(at, r.out.find('"', at + 11) - at);
+  };
+  EXPECT_EQ(volume("sum " + path("T.off") + "@neg " + path("T.off") + "@rot:1,1,0,0@scale:1/2"),
+            volume("sum truncated-cube@neg truncated-cube@rot:1,1,0,0@scale:1/2"));
+  EXPECT_EQ(volume("sum " + path("tube.off") + "@translate:1,0,0@rot:3 cube"),
+            volume("sum tube@translate:1,0,0@rot:3 cube"));
+  CmdResult st = run("stats " + path("T.off") + "@scale:2");
+  ASSERT_EQ(st.status, 0) << st.err;
+  CmdResult sc = run("stats truncated-cube@scale:2");
+  ASSERT_EQ(sc.status, 0) << sc.err;
+  EXPECT_EQ(st.out.substr(st.out.find(':')), sc.out.substr(sc.out.find(':')));
+  CmdResult bad = run("stats " + path("T.off") + "@frob");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("operand '" + path("T.off") + "@frob': unknown transform 'frob'"), std::string::npos) << bad.err;
+  CmdResult missing = run("stats " + path("nothere.off") + "@neg");
+  EXPECT_EQ(missing.status, 3);
+  EXPECT_NE(missing.err.find(path("nothere.off") + ": no such file"), std::string::npos) << missing.err;
+  fs::copy_file(path("T.off"), path("a@b.off"));
+  EXPECT_EQ(volume("sum " + path("a@b.off") + " cube"), volume("sum truncated-cube cube"));
+  EXPECT_EQ(volume("sum " + path("a@b.off") + "@neg cube"), volume("sum truncated-cube@neg cube"));
+}
+
 // 'gen' of a non-convex solid says how many triangles it wrote when the
 // faces were written as triangles (it said "96 faces" and wrote 192).
 TEST_F(Cli, GenOfANonConvexSolidCountsTheWrittenTriangles) {

@@ -476,6 +476,18 @@ Mesh catalog_mesh(const std::string& spec) {
   return mesh;
 }
 
+void apply_transforms(Mesh& mesh, const std::string& spec, const std::string& transforms) {
+  std::vector<Transform> parsed;
+  try {
+    for (const std::string& part : split(transforms, '@')) parsed.push_back(parse_transform(spec, part));
+  } catch (const UsageError& e) {
+    // The transform's complaint, about a file operand rather than a catalog spec.
+    const std::string what = e.what(), prefix = "catalog spec '";
+    throw UsageError(what.rfind(prefix, 0) == 0 ? "operand '" + what.substr(prefix.size()) : what);
+  }
+  for (const Transform& t : parsed) t(mesh);
+}
+
 ConvexPolytope catalog_polytope(const std::string& spec) {
   if (spec.empty()) throw UsageError("empty catalog spec; see 'minksum gen --help' for the names");
   const std::vector<std::string> parts = split(spec, '@');

@@ -7,12 +7,31 @@
 #include <chrono>
 #include <optional>
 #include <sys/stat.h>
+#include <unistd.h>
 
 namespace minksum {
 
 namespace {
 using Clock = std::chrono::steady_clock;
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+// A file operand followed by transforms, "FILE@TRANSFORM@...": the longest
+// prefix of `spec` ending before an '@' that is an existing file (a name that
+// itself holds '@' still reads as it is, as an existing file comes first),
+// and the transforms after it; nothing when there is none.
+struct FileWithTransforms {
+  std::string file, transforms;
+};
+std::optional<FileWithTransforms> file_with_transforms(const std::string& spec) {
+  struct stat st{};
+  for (std::size_t at = spec.rfind('@'); at != std::string::npos && at > 0; at = spec.rfind('@', at - 1)) {
+    const std::string file = spec.substr(0, at);
+    // As for a plain name: a stray file called "cube" does not shadow the catalog.
+    if (::stat(file.c_str(), &st) == 0 && (format_from_path(file) || !is_catalog_spec(file)))
+      return FileWithTransforms{file, spec.substr(at + 1)};
+  }
+  return std::nullopt;
+}
 
 // True when `spec` names a file to read: an existing file, unless its name
 // has no known extension and is a catalog spec (a stray file called "cube"
@@ -25,14 +44,28 @@ bool is_file_operand(const std::string& spec) {
   const bool exists = ::stat(spec.c_str(), &st) == 0;
   if (exists && (format || !is_catalog_spec(spec))) return true;
   if (is_catalog_spec(spec)) return false;
+  if (!exists && file_with_transforms(spec)) return true;
+  if (const std::size_t at = spec.find('@'); at != std::string::npos && at > 0 && format_from_path(spec.substr(0, at)))
+    throw InputError(spec.substr(0, at), "", "no such file");  // a missing file followed by transforms
   unknown_operand(spec, format);
 }
 
 // The file's mesh, in the format of its extension or else `given`: UsageError
 // for an unknown extension (and no format given); InputError for
-// directories, unreadable files, bad data.
+// directories, unreadable files, bad data.  "FILE@TRANSFORM@..." is FILE's
+// mesh with the transforms applied (UsageError for a bad one, before reading).
 Mesh read_file_operand(const std::string& spec, std::optional<Format> given) {
-  return format_from_path(spec) || !given ? read_mesh(spec) : read_mesh(spec, *given);
+  std::string file = spec, transforms;
+  if (::access(spec.c_str(), F_OK) != 0)
+    if (auto f = file_with_transforms(spec)) {
+      file = f->file;
+      transforms = f->transforms;
+      Mesh probe;
+      apply_transforms(probe, spec, transforms);  // a bad transform is a usage error before any reading
+    }
+  Mesh m = format_from_path(file) || !given ? read_mesh(file) : read_mesh(file, *given);
+  if (!transforms.empty()) apply_transforms(m, spec, transforms);
+  return m;
 }
 
 // What differs between loading a polytope and loading a set of any

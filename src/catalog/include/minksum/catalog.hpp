@@ -76,6 +76,12 @@ ConvexPolytope catalog_polytope(const std::string& spec);
 // the transforms applied.  Throws UsageError like catalog_polytope().
 Mesh catalog_mesh(const std::string& spec);
 
+// Apply the transforms `transforms` (the text after a file name's '@':
+// "rot:1@neg", the syntax above) to `mesh` in order, for an operand
+// "FILE@TRANSFORM@...".  Throws UsageError naming `spec` for a bad transform,
+// before changing the mesh.
+void apply_transforms(Mesh& mesh, const std::string& spec, const std::string& transforms);
+
 // Build the convex set named by `spec`: a point, a segment or a polygon for
 // those names (transforms applied to their points), else the polytope of
 // catalog_polytope().

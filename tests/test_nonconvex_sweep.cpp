@@ -274,6 +274,48 @@ TEST(NonconvexSweep, GaussianMapPiecesAreTheHullsOfTheSums) {
   }
 }
 
+// Each candidate facet once over a whole surface (SurfaceCones::keeps): the
+// candidates of all the pieces t ⊕ B, as (plane, loop), are the facets of
+// the exact hulls of the sums t + B that SurfaceCones::candidate accepts, as
+// a set, and no two pieces hold the same one.  Before, the two triangles of
+// a convex edge both kept its edge ⊕ edge and facet ⊕ edge facets, and every
+// triangle at a vertex its facet ⊕ vertex facets.
+TEST(NonconvexSweep, EachCandidateFacetIsBuiltOnce) {
+  const std::pair<const char*, const char*> cases[] = {{"torus:8:6", "sphere:1@scale:1/5"},
+                                                       {"lshape", "box:1:1:1"},
+                                                       {"tube", "cube@scale:1/4@rot:3"},
+                                                       {"star:5", "sphere:1@scale:1/4"},
+                                                       {"gear:6", "prism:8@scale:1/8"}};
+  for (const auto& [a, b] : cases) {
+    SCOPED_TRACE(std::string(a) + " + " + b);
+    const Solid s = solid(a);
+    const ConvexPolytope p = catalog_polytope(b);
+    const nonconvex_detail::SurfaceCones cones(s.triangles);
+    const nonconvex_detail::SweptPolytope swept(p);
+    std::vector<std::pair<Plane, std::vector<Point3>>> got;
+    std::set<std::pair<Plane, std::vector<Point3>>> want;
+    for (Index t = 0; t < s.triangles.faces.size(); ++t) {
+      const nonconvex_detail::Piece piece = swept.sum(cones, t);
+      for (std::size_t c = 0; c < piece.candidates.size(); ++c)
+        got.emplace_back(piece.planes[piece.candidates[c]], rotated_to_smallest(piece.loops[c]));
+      std::vector<Point3> sums;
+      for (Index v : s.triangles.faces[t])
+        for (const Point3& q : p.points()) sums.push_back(s.triangles.points[v] + q);
+      const ConvexPolytope hull = ConvexPolytope::hull(sums, "hull");
+      for (Index f = 0; f < hull.num_facets(); ++f) {
+        const Plane& h = hull.plane(f);
+        if (!cones.candidate(t, Point3(Rational(h.a), Rational(h.b), Rational(h.c)))) continue;
+        std::vector<Point3> loop;
+        for (Index v : hull.facet_vertices(f)) loop.push_back(hull.point(v));
+        want.emplace(h, rotated_to_smallest(loop));
+      }
+    }
+    const std::set<std::pair<Plane, std::vector<Point3>>> distinct(got.begin(), got.end());
+    EXPECT_EQ(distinct.size(), got.size()) << "a candidate facet held by two pieces";
+    EXPECT_EQ(distinct, want);
+  }
+}
+
 // ---------------------------------------------------------------------------
 // Properties on a larger case (the decomposition would take minutes here).
 

@@ -33,8 +33,11 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
   opposite_.resize(tri_.size());
   kind_.resize(tri_.size());
   neighbours_.resize(nv);
+  incident_.resize(nv);
+  across_.resize(tri_.size());
   for (Index t = 0; t < tri_.size(); ++t) {
     const auto& c = tri_[t];
+    for (int k = 0; k < 3; ++k) incident_[c[k]].push_back(t);
     normal_[t] = cross(points_[c[1]] - points_[c[0]], points_[c[2]] - points_[c[0]]);
     normal_approx_[t] = to_double(normal_[t]);
     for (int k = 0; k < 3; ++k) {
@@ -45,6 +48,9 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
       const auto& o = tri_[it->second.first];
       const Index w = o[(it->second.second + 2) % 3];
       opposite_[t][k] = w;
+      // Paired both ways: t is the triangle across the reversed edge too.
+      const auto back = directed.find({a, b});
+      across_[t][k] = back->second.first == t ? it->second.first : kNoTriangle;
       // The neighbour's far vertex below this triangle's plane: a convex
       // edge; on it: flat; above: reflex.
       kind_[t][k] = static_cast<signed char>(sgn(dot(normal_[t], points_[w] - points_[a])));
@@ -106,6 +112,35 @@ bool SurfaceCones::candidate(Index t, const RoundedPoint3& u, const bool at_top[
     return below_all_neighbours(a, u) || below_all_neighbours(b, u);
   }
   return below_all_neighbours(c[top], u);
+}
+
+bool SurfaceCones::keeps(Index t, const RoundedPoint3& u, const bool at_top[3]) const {
+  const RoundedPoint3 o{origin(), kOriginApprox};
+  const auto& c = tri_[t];
+  int top = -1, count = 0;
+  for (int k = 0; k < 3; ++k)
+    if (at_top[k]) {
+      ++count;
+      if (top < 0) top = k;
+    }
+  if (count == 3) return true;
+  if (count == 2) {
+    int k = 0;
+    while (!(at_top[k] && at_top[(k + 1) % 3])) ++k;
+    const Index other = across_[t][k];
+    if (other == kNoTriangle || other > t) return true;
+    return dot_sign(o, u, at(c[k]), at(opposite_[t][k])) >= 0;
+  }
+  const Index v = c[top];
+  for (Index s : incident_[v]) {
+    if (s >= t) break;  // ascending
+    const auto& d = tri_[s];
+    bool below = true;
+    for (Index w : d)
+      if (w != v && dot_sign(o, u, at(v), at(w)) >= 0) below = false;
+    if (below) return false;
+  }
+  return true;
 }
 
 namespace {

@@ -186,7 +186,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       mpz_mul(x.plane.c.get_mpz_t(), f.primitive_integer[2].get_mpz_t(), work[1].get_mpz_t());
       mpz_swap(x.plane.d.get_mpz_t(), work[0].get_mpz_t());
     }
-    if (cones.candidate(t, u, at_top)) {
+    if (cones.candidate(t, u, at_top) && cones.keeps(t, u, at_top)) {
       if (count == 1) {
         for (Index v : f.loop) x.loop.push_back(points_[v] + q);
       } else {
@@ -279,7 +279,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       const Vec3d ua = to_double(u);
       bool on_edge[3] = {false, false, false};  // the edge a → b is face_u(t)
       on_edge[k] = on_edge[(k + 1) % 3] = true;
-      if (cones.candidate(t, RoundedPoint3{u, ua}, on_edge)) {
+      if (cones.candidate(t, RoundedPoint3{u, ua}, on_edge) && cones.keeps(t, RoundedPoint3{u, ua}, on_edge)) {
         // e ⊕ g with normal e × g is counter-clockwise in the order
         // a + g0, b + g0, b + g1, a + g1; reversed for σ < 0.
         x.loop = {a.exact + points_[g.v0], b.exact + points_[g.v0], b.exact + points_[g.v1], a.exact + points_[g.v1]};

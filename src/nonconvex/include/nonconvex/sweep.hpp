@@ -50,6 +50,24 @@ class SurfaceCones {
   bool candidate(Index t, const RoundedPoint3& u, const bool at_top[3]) const;
   bool candidate(Index t, const Point3& u) const { const Vec3d a = to_double(u); return candidate(t, RoundedPoint3{u, a}); }
 
+  // Whether t keeps a candidate facet with normal u of t ⊕ C (at_top as for
+  // candidate) when other triangles build the same facet, the same polygon
+  // on the same plane, which is then a candidate of theirs too: the facet
+  // is kept by the first of them.
+  //   * face_u(t) an edge e whose other triangle t' has its far vertex
+  //     strictly below along u: t' has e at its top too, and builds the same
+  //     facet (face_u(t') = e, so the same kind, plane and polygon) with the
+  //     same candidate test (the edge's convexity, the arcs and the two
+  //     vertex cones are the edge's, not the triangle's); the lower index
+  //     keeps it;
+  //   * face_u(t) a vertex v: every triangle at v whose two other vertices
+  //     are strictly below builds f + v with the same test (v's cone); the
+  //     lowest index keeps it;
+  //   * face_u(t) = t: only t builds it.
+  // Where an edge has other than two triangles, or its two triangles are not
+  // each other's neighbours across it, t keeps the facet.
+  bool keeps(Index t, const RoundedPoint3& u, const bool at_top[3]) const;
+
   // Whether q lies in the interior of the solid (q must not lie on its
   // surface): the parity of the crossings of an exact ray that meets no
   // edge or vertex of the surface.
@@ -76,6 +94,9 @@ class SurfaceCones {
   std::vector<std::array<Index, 3>> opposite_;     // edge k = (c[k], c[k+1]): the far vertex of the face across it
   std::vector<std::array<signed char, 3>> kind_;   // edge k: -1 convex, 0 flat, +1 reflex
   std::vector<std::vector<Index>> neighbours_;     // per vertex
+  std::vector<std::vector<Index>> incident_;       // per vertex, its triangles, ascending
+  std::vector<std::array<Index, 3>> across_;       // edge k: the triangle across it, when the two pair up; else kNoTriangle
+  static constexpr Index kNoTriangle = ~Index(0);
 };
 
 // The convex operand B of the pieces t ⊕ B, prepared once for every

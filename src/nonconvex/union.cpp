@@ -570,11 +570,36 @@ Line2 line_through(const Frame& f, const Point3& p, const Point3& q) {
   return l;
 }
 
+// The sign of x_k − y_k for two points of a plane, exactly.  A cut point
+// (X, Y, Z) / W, W > 0, is compared by cross-multiplication, so that only
+// the points that become vertices of the boundary are made canonical (three
+// gcds of numbers of several hundred bits each).
+int compare_coordinate(const V3& x, const V3& y, int k) {
+  if (x.c && x.c == y.c) return 0;
+  const CutPoint* cx = x.c && !x.c->canonical ? x.c : nullptr;
+  const CutPoint* cy = y.c && !y.c->canonical ? y.c : nullptr;
+  if (!cx && !cy) return cmp(x.exact()[k], y.exact()[k]);
+  auto num = [k](const CutPoint& c) -> const Integer& { return k == 0 ? c.X : k == 1 ? c.Y : c.Z; };
+  Integer l, r;
+  if (cx && cy) {
+    mpz_mul(l.get_mpz_t(), num(*cx).get_mpz_t(), cy->W.get_mpz_t());
+    mpz_mul(r.get_mpz_t(), num(*cy).get_mpz_t(), cx->W.get_mpz_t());
+  } else if (cx) {
+    const Rational& q = y.exact()[k];
+    mpz_mul(l.get_mpz_t(), num(*cx).get_mpz_t(), q.get_den_mpz_t());
+    mpz_mul(r.get_mpz_t(), q.get_num_mpz_t(), cx->W.get_mpz_t());
+  } else {
+    const Rational& q = x.exact()[k];
+    mpz_mul(l.get_mpz_t(), q.get_num_mpz_t(), cy->W.get_mpz_t());
+    mpz_mul(r.get_mpz_t(), num(*cy).get_mpz_t(), q.get_den_mpz_t());
+  }
+  return cmp(l, r);
+}
+
 struct Event {
-  const Rational* t;  // the point's parameter along the line
+  const V3* point;  // its parameter along the line is its u or its v
   int kind;   // 0: fragment edge along the line, 1: against it, 2: slit
   int delta;  // +1 where the interval starts, -1 where it ends
-  const Point3* point;
 };
 
 // A boundary segment of a plane's region, lifted: from a to b, the region
@@ -589,43 +614,52 @@ std::vector<Segment> merge_fragments(const Plane& plane, const Frame& frame, con
   // made first-nonzero-positive when B != 0, else v does: the parameter of a
   // point is its u or its v, exactly, with no arithmetic.
   std::map<Line2, std::vector<Event>> lines;
-  auto add = [&](const Line2& line, const Point3& p, const Point3& q, int kind) {
+  auto add = [&](const Line2& line, const V3& p, const V3& q, int kind) {
     const int along = sgn(line.B) != 0 ? frame.iu : frame.iv;
-    const bool up = cmp(p[along], q[along]) < 0;  // p has the smaller parameter
+    const bool up = compare_coordinate(p, q, along) < 0;  // p has the smaller parameter
     if (kind == 0 && !up) kind = 1;
     auto& ev = lines[line];
-    ev.push_back(Event{up ? &p[along] : &q[along], kind, 1, up ? &p : &q});
-    ev.push_back(Event{up ? &q[along] : &p[along], kind, -1, up ? &q : &p});
+    ev.push_back(Event{up ? &p : &q, kind, 1});
+    ev.push_back(Event{up ? &q : &p, kind, -1});
   };
   Line2 line;
   for (const Poly& g : fragments)
     for (std::size_t i = 0; i < g.size(); ++i) {
-      const Point3& p = g[i].exact();
-      const Point3& q = g[(i + 1) % g.size()].exact();
-      if (!g[i].edge || !line_of(plane, *g[i].edge, frame, line)) line = line_through(frame, p, q);
+      const V3& p = g[i];
+      const V3& q = g[(i + 1) % g.size()];
+      if (!p.edge || !line_of(plane, *p.edge, frame, line)) line = line_through(frame, p.exact(), q.exact());
       add(line, p, q, 0);
     }
-  for (const Segment& sl : slits) add(line_through(frame, sl.a, sl.b), sl.a, sl.b, 2);
+  std::vector<V3> slit_ends;
+  slit_ends.reserve(2 * slits.size());
+  for (const Segment& sl : slits) {
+    slit_ends.push_back(make_v3(sl.a));
+    slit_ends.push_back(make_v3(sl.b));
+  }
+  for (std::size_t i = 0; i < slits.size(); ++i)
+    add(line_through(frame, slits[i].a, slits[i].b), slit_ends[2 * i], slit_ends[2 * i + 1], 2);
   std::vector<Segment> out;
   for (auto& [key, ev] : lines) {
-    std::sort(ev.begin(), ev.end(), [](const Event& x, const Event& y) { return cmp(*x.t, *y.t) < 0; });
+    const int k = sgn(key.B) != 0 ? frame.iu : frame.iv;
+    std::sort(ev.begin(), ev.end(),
+              [k](const Event& x, const Event& y) { return compare_coordinate(*x.point, *y.point, k) < 0; });
     int count[3] = {0, 0, 0};
     bool along = false, against = false;  // the stretches under way
-    const Point3 *start_along = nullptr, *start_against = nullptr;
+    const V3 *start_along = nullptr, *start_against = nullptr;
     for (std::size_t i = 0; i < ev.size();) {
-      const Point3* here = ev[i].point;
-      for (const std::size_t first = i; i < ev.size() && cmp(*ev[i].t, *ev[first].t) == 0; ++i)
+      const V3* here = ev[i].point;
+      for (const std::size_t first = i; i < ev.size() && compare_coordinate(*ev[i].point, *ev[first].point, k) == 0; ++i)
         count[ev[i].kind] += ev[i].delta;
       const bool slit = count[2] > 0;
       const bool now_along = slit ? count[0] > 0 : count[0] > count[1];
       const bool now_against = slit ? count[1] > 0 : count[1] > count[0];
       if (now_along != along) {
-        if (along) out.push_back({*start_along, *here});
+        if (along) out.push_back({start_along->exact(), here->exact()});
         start_along = here;
         along = now_along;
       }
       if (now_against != against) {
-        if (against) out.push_back({*here, *start_against});
+        if (against) out.push_back({here->exact(), start_against->exact()});
         start_against = here;
         against = now_against;
       }
@@ -636,6 +670,28 @@ std::vector<Segment> merge_fragments(const Plane& plane, const Frame& frame, con
 
 // ---------------------------------------------------------------------------
 // One plane's boundary: its facets cut by the other pieces, merged.
+
+// A plane through the segment p → q of a facet's plane, perpendicular to
+// it: normal (q − p) × n, in integers, not made primitive (an edge plane
+// only enters cut points, whose W is normalised, and line equations, which
+// are made canonical).
+Plane edge_plane(const ScaledPoint& p, const ScaledPoint& q, const Integer n[3]) {
+  Integer e[3], m[3];
+  scaled_difference(p, q, e);
+  for (int j = 0; j < 3; ++j) {
+    const int k = (j + 1) % 3, l = (j + 2) % 3;
+    mpz_mul(m[j].get_mpz_t(), e[k].get_mpz_t(), n[l].get_mpz_t());
+    mpz_submul(m[j].get_mpz_t(), e[l].get_mpz_t(), n[k].get_mpz_t());
+  }
+  Plane out;
+  mpz_mul(out.d.get_mpz_t(), m[0].get_mpz_t(), p.num[0].get_mpz_t());
+  mpz_addmul(out.d.get_mpz_t(), m[1].get_mpz_t(), p.num[1].get_mpz_t());
+  mpz_addmul(out.d.get_mpz_t(), m[2].get_mpz_t(), p.num[2].get_mpz_t());
+  mpz_mul(out.a.get_mpz_t(), m[0].get_mpz_t(), p.den.get_mpz_t());
+  mpz_mul(out.b.get_mpz_t(), m[1].get_mpz_t(), p.den.get_mpz_t());
+  mpz_mul(out.c.get_mpz_t(), m[2].get_mpz_t(), p.den.get_mpz_t());
+  return out;
+}
 
 struct FacetRef {
   Index piece, facet;
@@ -658,7 +714,8 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
                            const PieceGrid& grid, const std::vector<Segment>& slits = {}) {
   PlaneResult r;
   Arena arena;
-  const Point3 normal = plane.normal();
+  const Integer normal_integers[3] = {plane.a, plane.b, plane.c};
+  std::vector<ScaledPoint> scaled;
   std::vector<Poly> fragments;
   std::vector<Index> near;
   auto member = [&](Index j) {
@@ -673,11 +730,13 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
     Box box;
     const Piece& own = parts[f.piece];
     const std::vector<Point3>& loop = own.loops[f.facet];
+    scaled.clear();
+    for (const Point3& p : loop) scaled.push_back(scaled_point(p));
     for (std::size_t k = 0; k < loop.size(); ++k) {
       frags[0].push_back(make_v3(loop[k]));
       box.add(frags[0].back().d);
       // The plane through the edge perpendicular to this one.
-      arena.planes.push_back(canonical_plane(cross(loop[(k + 1) % loop.size()] - loop[k], normal), loop[k]));
+      arena.planes.push_back(edge_plane(scaled[k], scaled[(k + 1) % loop.size()], normal_integers));
       frags[0].back().edge = &arena.planes.back();
     }
     grid.query(box, near);

@@ -122,6 +122,7 @@ int run_command(const std::vector<std::string>& args) {
 
 int main(int argc, char** argv) {
   tune_memory();
+  pool_gmp_memory();
   std::vector<std::string> args(argv + 1, argv + argc);
   std::ios::sync_with_stdio(false);
   int status = run_command(args);

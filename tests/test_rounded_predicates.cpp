@@ -13,6 +13,7 @@
 #include <cfenv>
 #include <cstdint>
 #include <limits>
+#include <minksum/dot_difference.hpp>
 #include <minksum/half_space_side.hpp>
 #include <minksum/kernel.hpp>
 #include <minksum/polytope.hpp>
@@ -489,4 +490,93 @@ TEST(HalfSpaceSide, TinyAndHugeMagnitudes) {
   }
   EXPECT_GT(count.usable, 0);
   EXPECT_LT(count.usable, count.cases);  // some beyond the range: exact only
+}
+
+// ---------------------------------------------------------------------------
+// dot_difference_sign (<minksum/dot_difference.hpp>): sign u · (q − p).
+
+namespace {
+
+struct DotCheck {
+  int cases = 0, decided = 0;
+};
+
+// Every answer of the filter equals the exact sign in all four rounding
+// modes, and dot_difference_sign always does.
+void check_dot_difference(const Point3& u, const Point3& p, const Point3& q, std::uint64_t seed, DotCheck& count) {
+  const Rounded ru(u), rp(p), rq(q);
+  const int exact = sgn(dot(u, q - p));
+  ++count.cases;
+  bool decided = false;
+  in_all_modes([&](int mode) {
+    if (const auto s = dot_difference_filter(ru.ref(), rp.ref(), rq.ref())) {
+      ASSERT_EQ(*s, exact) << "seed " << seed << " mode " << mode;
+      decided = true;
+    }
+  });
+  count.decided += decided;
+  ASSERT_EQ(dot_difference_sign(ru.ref(), rp.ref(), rq.ref()), exact) << "seed " << seed;
+}
+
+}  // namespace
+
+TEST(DotDifference, UsableInputsAndZeros) {
+  const Point3 zero(Rational(0), Rational(0), Rational(0));
+  const Point3 one(Rational(1), Rational(2), Rational(3));
+  const Rounded z(zero), o(one);
+  EXPECT_EQ(dot_difference_filter(z.ref(), o.ref(), o.ref()), std::optional<int>(0));  // u = 0
+  EXPECT_EQ(dot_difference_filter(o.ref(), z.ref(), z.ref()), std::optional<int>(0));  // q = p = 0
+  EXPECT_EQ(dot_difference_filter(o.ref(), z.ref(), o.ref()), std::optional<int>(1));
+  EXPECT_EQ(dot_difference_filter(o.ref(), o.ref(), z.ref()), std::optional<int>(-1));
+  // q = p exactly but not zero: the filter cannot tell from the doubles.
+  EXPECT_EQ(dot_difference_filter(o.ref(), o.ref(), o.ref()), std::nullopt);
+  EXPECT_EQ(dot_difference_sign(o.ref(), o.ref(), o.ref()), 0);
+  // A coordinate that rounds to zero without being zero, or out of range:
+  // declined, and the exact answer still given.
+  const Point3 tiny(pow2(-1100), Rational(0), Rational(0));
+  const Rounded t(tiny);
+  const Point3 e1(Rational(1), Rational(0), Rational(0));
+  const Rounded x(e1);
+  EXPECT_EQ(dot_difference_filter(x.ref(), z.ref(), t.ref()), std::nullopt);
+  EXPECT_EQ(dot_difference_sign(x.ref(), z.ref(), t.ref()), 1);
+  const Point3 huge(pow2(500), Rational(0), Rational(0));
+  const Rounded h(huge);
+  EXPECT_EQ(dot_difference_filter(x.ref(), z.ref(), h.ref()), std::nullopt);
+  EXPECT_EQ(dot_difference_sign(x.ref(), z.ref(), h.ref()), 1);
+}
+
+// Random rationals of varied sizes (huge, tiny, zero).
+TEST(DotDifference, RandomAgreesWithExactInAllRoundingModes) {
+  DotCheck count;
+  for (std::uint64_t seed = 1; seed <= 3000; ++seed) {
+    Gen g(seed);
+    check_dot_difference(g.point(), g.point(), g.point(), seed, count);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(count.decided, count.cases * 8 / 10);
+}
+
+// q − p exactly orthogonal to u (exact zeros, never decided non-zero), and
+// moved off it by a relative 2^-k, k = 20..120, with p and q close together
+// and far from the origin (the difference cancels).
+TEST(DotDifference, OnAndNearOrthogonal) {
+  DotCheck count;
+  int zeros = 0;
+  for (std::uint64_t seed = 1; seed <= 2000; ++seed) {
+    Gen g(seed);
+    const Point3 u(Rational(long(g.integer(1, 1000))), Rational(long(g.integer(-1000, 1000))), g.rational());
+    const Point3 p = g.point();
+    // w orthogonal to u: u × (anything), then q = p + w.
+    const Point3 w = cross(u, g.point());
+    Point3 q = p + w;
+    const int k = int(g.integer(20, 120));
+    if (seed % 2 == 0) {
+      q.x += (g.integer(0, 1) ? 1 : -1) * (abs(q.x) + 1) * pow2(-k);
+    } else {
+      ++zeros;
+    }
+    check_dot_difference(u, p, q, seed, count);
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(zeros, 900);
 }

@@ -8,6 +8,7 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <minksum/dot_difference.hpp>
 #include <minksum/kernel.hpp>
 #include <minksum/unit_plane.hpp>
 
@@ -18,10 +19,7 @@ namespace minksum {
 
 namespace detail {
 
-bool rounded_usable(const RoundedPoint3& p) {
-  // The common case first: three normal doubles (no look at the rationals).
-  const double ax = std::fabs(p.approx.x), ay = std::fabs(p.approx.y), az = std::fabs(p.approx.z);
-  if (ax >= DBL_MIN && ax <= DBL_MAX && ay >= DBL_MIN && ay <= DBL_MAX && az >= DBL_MIN && az <= DBL_MAX) return true;
+bool rounded_usable_slow(const RoundedPoint3& p) {
   for (int j = 0; j < 3; ++j) {
     const double x = j == 0 ? p.approx.x : j == 1 ? p.approx.y : p.approx.z;
     if (x == 0) {
@@ -103,6 +101,13 @@ int plane_side(const Plane& plane, const std::array<double, 4>& rounded, const R
 std::size_t nearest_plane(const Plane* const* planes, const std::array<double, 4>* rounded,
                           std::size_t n, const RoundedPoint3& s) {
   return detail::nearest_plane_among(planes, detail::nearest_plane_candidates(rounded, n, s), s);
+}
+
+int dot_difference_sign(const RoundedPoint3& u, const RoundedPoint3& p, const RoundedPoint3& q) {
+  if (const auto s = dot_difference_filter(u, p, q)) return *s;
+  static const Point3 origin(Rational(0), Rational(0), Rational(0));
+  static const Vec3d origin_approx{0, 0, 0};
+  return dot_sign(RoundedPoint3{origin, origin_approx}, u, p, q);
 }
 
 }  // namespace minksum

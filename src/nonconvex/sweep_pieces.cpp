@@ -3,6 +3,7 @@
 // a piece t ⊕ B_j can be on the boundary of A ⊕ B, and the exact
 // point-in-solid test that tells the pockets of the sweep inside A + b from
 // the boundary of A ⊕ B.
+#include <minksum/dot_difference.hpp>
 #include <minksum/predicates.hpp>
 
 #include "nonconvex/sweep.hpp"
@@ -68,23 +69,24 @@ const Vec3d kOriginApprox{0, 0, 0};
 
 }  // namespace
 
-// sign(u . (w - v)) = dot_sign(0, u, v, w).
-bool SurfaceCones::below_all_neighbours(Index v, const RoundedPoint3& u) const {
-  const RoundedPoint3 o{origin(), kOriginApprox};
+// sign(u . (w - v)) = dot_difference_sign(u, v, w); `level` is a
+// neighbour known to be at v's height along u (u . (level - v) = 0 exactly,
+// as the caller decided it), which needs no test: the filter cannot prove a
+// zero, so it would go to exact arithmetic every time.
+bool SurfaceCones::below_all_neighbours(Index v, const RoundedPoint3& u, Index level) const {
   for (Index w : neighbours_[v])
-    if (dot_sign(o, u, at(v), at(w)) > 0) return false;
+    if (w != level && dot_difference_sign(u, at(v), at(w)) > 0) return false;
   return true;
 }
 
 bool SurfaceCones::candidate(Index t, const RoundedPoint3& u) const {
-  const RoundedPoint3 o{origin(), kOriginApprox};
   const auto& c = tri_[t];
   // The vertices of t highest along u: compare u . p_k with u . p_top.
   int top = 0;
   for (int k = 1; k < 3; ++k)
-    if (dot_sign(o, u, at(c[top]), at(c[k])) > 0) top = k;
+    if (dot_difference_sign(u, at(c[top]), at(c[k])) > 0) top = k;
   bool at_top[3];
-  for (int k = 0; k < 3; ++k) at_top[k] = k == top || dot_sign(o, u, at(c[top]), at(c[k])) == 0;
+  for (int k = 0; k < 3; ++k) at_top[k] = k == top || dot_difference_sign(u, at(c[top]), at(c[k])) == 0;
   return candidate(t, u, at_top);
 }
 
@@ -108,14 +110,13 @@ bool SurfaceCones::candidate(Index t, const RoundedPoint3& u, const bool at_top[
     // faces' normals, u . (far vertex of either face - a) <= 0 (this face's
     // holds, as its far vertex is below the top); a flat or reflex edge has
     // no outward normal at its inner points.
-    if (kind_[t][k] < 0 && dot_sign(o, u, at(a), at(opposite_[t][k])) <= 0) return true;
-    return below_all_neighbours(a, u) || below_all_neighbours(b, u);
+    if (kind_[t][k] < 0 && dot_difference_sign(u, at(a), at(opposite_[t][k])) <= 0) return true;
+    return below_all_neighbours(a, u, b) || below_all_neighbours(b, u, a);
   }
   return below_all_neighbours(c[top], u);
 }
 
 bool SurfaceCones::keeps(Index t, const RoundedPoint3& u, const bool at_top[3]) const {
-  const RoundedPoint3 o{origin(), kOriginApprox};
   const auto& c = tri_[t];
   int top = -1, count = 0;
   for (int k = 0; k < 3; ++k)
@@ -129,7 +130,7 @@ bool SurfaceCones::keeps(Index t, const RoundedPoint3& u, const bool at_top[3]) 
     while (!(at_top[k] && at_top[(k + 1) % 3])) ++k;
     const Index other = across_[t][k];
     if (other == kNoTriangle || other > t) return true;
-    return dot_sign(o, u, at(c[k]), at(opposite_[t][k])) >= 0;
+    return dot_difference_sign(u, at(c[k]), at(opposite_[t][k])) >= 0;
   }
   const Index v = c[top];
   for (Index s : incident_[v]) {
@@ -137,7 +138,7 @@ bool SurfaceCones::keeps(Index t, const RoundedPoint3& u, const bool at_top[3]) 
     const auto& d = tri_[s];
     bool below = true;
     for (Index w : d)
-      if (w != v && dot_sign(o, u, at(v), at(w)) >= 0) below = false;
+      if (w != v && dot_difference_sign(u, at(v), at(w)) >= 0) below = false;
     if (below) return false;
   }
   return true;

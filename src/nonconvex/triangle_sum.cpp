@@ -17,9 +17,10 @@
 // have different normals (A: facet normals of B; B: ±n_t, which are not
 // facet normals of B there; C: inside open arcs of B's map and not ±n_t), so
 // each facet is found once.  Every sign is a kernel predicate on the exact
-// points (support_compare and dot_sign, filtered on cached roundings); the
+// points (support_compare and dot_difference_sign, filtered on cached roundings); the
 // planes are exact canonical integer planes.
 #include <minksum/error.hpp>
+#include <minksum/dot_difference.hpp>
 #include <minksum/predicates.hpp>
 
 #include "kernel/plane.hpp"
@@ -135,9 +136,6 @@ struct Built {
 Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   const auto& c = cones.triangle(t);
   const RoundedPoint3 p[3] = {cones.rounded(c[0]), cones.rounded(c[1]), cones.rounded(c[2])};
-  const Point3 origin(Rational(0), Rational(0), Rational(0));
-  const Vec3d origin_approx{0, 0, 0};
-  const RoundedPoint3 o{origin, origin_approx};
   std::vector<Built> built;
   built.reserve(facets_.size() + 32);
   // t's points as integers over a common denominator.
@@ -151,7 +149,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   for (std::size_t fi = 0; fi < facets_.size(); ++fi) {
     const Facet& f = facets_[fi];
     const RoundedPoint3 u{f.normal, f.normal_approx};
-    for (int k = 0; k < 3; ++k) rise[fi][k] = static_cast<signed char>(dot_sign(o, u, p[k], p[(k + 1) % 3]));
+    for (int k = 0; k < 3; ++k) rise[fi][k] = static_cast<signed char>(dot_difference_sign(u, p[k], p[(k + 1) % 3]));
     // p_k is at the top when neither edge at it rises away from it.
     bool at_top[3];
     int count = 0, top = -1;

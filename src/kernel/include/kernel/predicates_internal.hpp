@@ -37,6 +37,7 @@
 #pragma once
 
 #include <cmath>
+#include <cfloat>
 
 #include <array>
 #include <concepts>
@@ -339,7 +340,14 @@ inline constexpr StageFunction<EdgeNormalSidePred, Stage::exact> edge_normal_sid
 // is normal, or zero with the exact coordinate zero.  Then, the rounding
 // being faithful, |approx − exact| ≤ ε |approx| ≤ κ |approx| coordinatewise,
 // the premise of the rational filter (filter.hpp).
-bool rounded_usable(const RoundedPoint3& p);
+// The common case (three normal doubles, no look at the rationals) inline;
+// rounded_usable_slow the rest.
+bool rounded_usable_slow(const RoundedPoint3& p);
+inline bool rounded_usable(const RoundedPoint3& p) {
+  const double ax = std::fabs(p.approx.x), ay = std::fabs(p.approx.y), az = std::fabs(p.approx.z);
+  if (ax >= DBL_MIN && ax <= DBL_MAX && ay >= DBL_MIN && ay <= DBL_MAX && az >= DBL_MIN && az <= DBL_MAX) return true;
+  return rounded_usable_slow(p);
+}
 
 // Stage 1 of descriptor D on rounded points: the rational filter on the
 // cached roundings, or nothing (kDecline) when one is unusable.

@@ -83,7 +83,7 @@ class SurfaceCones {
   const Vec3d& normal_approx(Index t) const { return normal_approx_[t]; }
 
  private:
-  bool below_all_neighbours(Index v, const RoundedPoint3& u) const;
+  bool below_all_neighbours(Index v, const RoundedPoint3& u, Index level = ~Index(0)) const;
   RoundedPoint3 at(Index v) const { return RoundedPoint3{points_[v], approx_[v]}; }
 
   std::vector<Point3> points_;

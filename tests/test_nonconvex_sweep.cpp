@@ -217,15 +217,33 @@ void expect_piece_is_the_hull(const std::array<Point3, 3>& t, const ConvexPolyto
     for (const Point3& q : b.points()) sums.push_back(p + q);
   const ConvexPolytope hull = ConvexPolytope::hull(sums, "hull");
   // Planes: the same set, each once.
-  std::vector<Plane> built = piece.planes, expected;
+  std::vector<Plane> built, expected;
+  for (Index k = 0; k < piece.num_planes(); ++k) built.push_back(piece.plane(k));
   for (Index f = 0; f < hull.num_facets(); ++f) expected.push_back(hull.plane(f));
+  // The lazy planes' doubles: the primitive normal's and the offset along
+  // it, each rounded towards zero from the built plane's own value, so that
+  // equal planes have equal doubles (the union's key for them).
+  for (Index k = 0; k < piece.lazy.size(); ++k) {
+    const Plane& h = built[k];
+    Integer g;
+    mpz_gcd(g.get_mpz_t(), h.a.get_mpz_t(), h.b.get_mpz_t());
+    mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), h.c.get_mpz_t());
+    const nonconvex_detail::LazyPlane& l = piece.lazy[k];
+    EXPECT_EQ(l.a, mpz_get_d(Integer(h.a / g).get_mpz_t())) << "lazy plane " << k;
+    EXPECT_EQ(l.b, mpz_get_d(Integer(h.b / g).get_mpz_t())) << "lazy plane " << k;
+    EXPECT_EQ(l.c, mpz_get_d(Integer(h.c / g).get_mpz_t())) << "lazy plane " << k;
+    EXPECT_EQ(l.d, truncated_ratio(h.d, g)) << "lazy plane " << k;
+    EXPECT_TRUE(l.filtered);
+    if (l.exact >= 0) EXPECT_EQ(piece.lazy_exact[std::size_t(l.exact)], h);
+  }
+  EXPECT_EQ(piece.lazy.size(), b.num_facets());
   std::sort(built.begin(), built.end());
   std::sort(expected.begin(), expected.end());
   ASSERT_EQ(built, expected);
   // Candidates and their loops.
   std::vector<std::pair<Plane, std::vector<Point3>>> got, want;
   for (std::size_t c = 0; c < piece.candidates.size(); ++c)
-    got.emplace_back(piece.planes[piece.candidates[c]], rotated_to_smallest(piece.loops[c]));
+    got.emplace_back(piece.plane(piece.candidates[c]), rotated_to_smallest(piece.loops[c]));
   for (Index f = 0; f < hull.num_facets(); ++f) {
     const Plane& h = hull.plane(f);
     if (!cones.candidate(0, Point3(Rational(h.a), Rational(h.b), Rational(h.c)))) continue;
@@ -297,7 +315,7 @@ TEST(NonconvexSweep, EachCandidateFacetIsBuiltOnce) {
     for (Index t = 0; t < s.triangles.faces.size(); ++t) {
       const nonconvex_detail::Piece piece = swept.sum(cones, t);
       for (std::size_t c = 0; c < piece.candidates.size(); ++c)
-        got.emplace_back(piece.planes[piece.candidates[c]], rotated_to_smallest(piece.loops[c]));
+        got.emplace_back(piece.plane(piece.candidates[c]), rotated_to_smallest(piece.loops[c]));
       std::vector<Point3> sums;
       for (Index v : s.triangles.faces[t])
         for (const Point3& q : p.points()) sums.push_back(s.triangles.points[v] + q);

@@ -151,7 +151,7 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
   }
   out.pairs = n;
   for (const auto& s : sums) {
-    out.pair_facets += s.planes.size();
+    out.pair_facets += s.num_planes();
     out.candidate_facets += s.candidates.size();
   }
   out.culled_facets = out.pair_facets - out.candidate_facets;

@@ -58,6 +58,13 @@ SweptPolytope::SweptPolytope(const ConvexPolytope& b) {
     x.primitive_integer[0] = h.a / g;
     x.primitive_integer[1] = h.b / g;
     x.primitive_integer[2] = h.c / g;
+    // Their doubles, truncated towards zero (faithful, and the same for
+    // equal normals), usable in the union's filter below 2^480.
+    x.primitive_usable = true;
+    for (int j = 0; j < 3; ++j) {
+      x.primitive_approx[j] = mpz_get_d(x.primitive_integer[j].get_mpz_t());
+      if (mpz_sizeinbase(x.primitive_integer[j].get_mpz_t(), 2) >= 480) x.primitive_usable = false;
+    }
     Rational offset(h.d, g);
     offset.canonicalize();
     x.offset_num = offset.get_num();
@@ -133,11 +140,63 @@ struct Built {
 
 }  // namespace
 
+namespace {
+
+// The usable range of a lazy plane's offset in the union's half-space
+// filter (<minksum/half_space_side.hpp>): zero with the exact value, or of
+// magnitude in [2^-480, 2^480).
+constexpr double kLazyFilterMin = 0x1p-480;
+constexpr double kLazyFilterMax = 0x1p+480;
+
+}  // namespace
+
+// work[0] / work[1] (work[1] > 0) = the offset of f moved to q = Q / D along
+// f's primitive normal: (offset_num D + offset_den S) / (offset_den D), S =
+// primitive · Q.
+void SweptPolytope::offset_along(const Facet& f, const ScaledPoint& q, Integer work[3]) {
+  const Integer* Q = q.num;
+  mpz_mul(work[0].get_mpz_t(), f.primitive_integer[0].get_mpz_t(), Q[0].get_mpz_t());
+  mpz_addmul(work[0].get_mpz_t(), f.primitive_integer[1].get_mpz_t(), Q[1].get_mpz_t());
+  mpz_addmul(work[0].get_mpz_t(), f.primitive_integer[2].get_mpz_t(), Q[2].get_mpz_t());  // S
+  mpz_mul(work[1].get_mpz_t(), f.offset_den.get_mpz_t(), q.den.get_mpz_t());  // den
+  mpz_mul(work[0].get_mpz_t(), work[0].get_mpz_t(), f.offset_den.get_mpz_t());
+  mpz_addmul(work[0].get_mpz_t(), f.offset_num.get_mpz_t(), q.den.get_mpz_t());  // num
+}
+
+// The canonical plane primitive · x = work[0] / work[1]: (primitive den,
+// num) / gcd(num, den), primitive as the primitive normal's gcd is 1.
+// Changes work.
+Plane SweptPolytope::canonical_from_offset(const Facet& f, Integer work[3]) {
+  Plane out;
+  mpz_gcd(work[2].get_mpz_t(), work[0].get_mpz_t(), work[1].get_mpz_t());
+  if (mpz_cmp_ui(work[2].get_mpz_t(), 1) != 0) {
+    mpz_divexact(work[0].get_mpz_t(), work[0].get_mpz_t(), work[2].get_mpz_t());
+    mpz_divexact(work[1].get_mpz_t(), work[1].get_mpz_t(), work[2].get_mpz_t());
+  }
+  mpz_mul(out.a.get_mpz_t(), f.primitive_integer[0].get_mpz_t(), work[1].get_mpz_t());
+  mpz_mul(out.b.get_mpz_t(), f.primitive_integer[1].get_mpz_t(), work[1].get_mpz_t());
+  mpz_mul(out.c.get_mpz_t(), f.primitive_integer[2].get_mpz_t(), work[1].get_mpz_t());
+  mpz_swap(out.d.get_mpz_t(), work[0].get_mpz_t());
+  return out;
+}
+
+Plane SweptPolytope::build(const Piece& piece, Index k) const {
+  const Facet& f = facets_[k];
+  const ScaledPoint q = scaled_point(*piece.corner[piece.lazy[k].tag]);
+  Integer work[3];
+  offset_along(f, q, work);
+  return canonical_from_offset(f, work);
+}
+
 Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   const auto& c = cones.triangle(t);
   const RoundedPoint3 p[3] = {cones.rounded(c[0]), cones.rounded(c[1]), cones.rounded(c[2])};
   std::vector<Built> built;
-  built.reserve(facets_.size() + 32);
+  built.reserve(32);
+  std::vector<LazyPlane> lazy(facets_.size());
+  std::vector<Plane> lazy_exact;
+  std::vector<Index> candidates;
+  std::vector<std::vector<Point3>> loops;
   // t's points as integers over a common denominator.
   const ScaledPoint scaled[3] = {scaled_point(p[0].exact), scaled_point(p[1].exact), scaled_point(p[2].exact)};
   Integer work[3];
@@ -160,42 +219,37 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
         if (top < 0) top = k;
       }
     }
-    Built x;
     const Point3& q = p[top].exact;
     // primitive · x = offset + primitive · q, with q = Q / D in integers:
     // num / den = (offset_num D + offset_den S) / (offset_den D), S =
-    // primitive · Q; the plane (primitive den, num) / gcd(num, den) is
-    // primitive, as the primitive normal's gcd is 1.
-    {
-      const Integer* Q = scaled[top].num;
-      mpz_mul(work[0].get_mpz_t(), f.primitive_integer[0].get_mpz_t(), Q[0].get_mpz_t());
-      mpz_addmul(work[0].get_mpz_t(), f.primitive_integer[1].get_mpz_t(), Q[1].get_mpz_t());
-      mpz_addmul(work[0].get_mpz_t(), f.primitive_integer[2].get_mpz_t(), Q[2].get_mpz_t());  // S
-      mpz_mul(work[1].get_mpz_t(), f.offset_den.get_mpz_t(), scaled[top].den.get_mpz_t());  // den
-      mpz_mul(work[0].get_mpz_t(), work[0].get_mpz_t(), f.offset_den.get_mpz_t());
-      mpz_addmul(work[0].get_mpz_t(), f.offset_num.get_mpz_t(), scaled[top].den.get_mpz_t());  // num
-      mpz_gcd(work[2].get_mpz_t(), work[0].get_mpz_t(), work[1].get_mpz_t());
-      if (mpz_cmp_ui(work[2].get_mpz_t(), 1) != 0) {
-        mpz_divexact(work[0].get_mpz_t(), work[0].get_mpz_t(), work[2].get_mpz_t());
-        mpz_divexact(work[1].get_mpz_t(), work[1].get_mpz_t(), work[2].get_mpz_t());
-      }
-      mpz_mul(x.plane.a.get_mpz_t(), f.primitive_integer[0].get_mpz_t(), work[1].get_mpz_t());
-      mpz_mul(x.plane.b.get_mpz_t(), f.primitive_integer[1].get_mpz_t(), work[1].get_mpz_t());
-      mpz_mul(x.plane.c.get_mpz_t(), f.primitive_integer[2].get_mpz_t(), work[1].get_mpz_t());
-      mpz_swap(x.plane.d.get_mpz_t(), work[0].get_mpz_t());
-    }
+    // primitive · Q.  The plane is lazy: its doubles now (the offset num /
+    // den rounded towards zero), the canonical plane only for a candidate
+    // or when the union asks (build).
+    LazyPlane& lp = lazy[fi];
+    offset_along(f, scaled[top], work);
+    lp.tag = static_cast<std::uint8_t>(top);
+    lp.a = f.primitive_approx[0];
+    lp.b = f.primitive_approx[1];
+    lp.c = f.primitive_approx[2];
+    lp.d = truncated_ratio(work[0], work[1]);
+    lp.filtered = f.primitive_usable && std::isfinite(lp.d) && std::fabs(lp.d) < kLazyFilterMax &&
+                  (lp.d == 0 ? sgn(work[0]) == 0 : std::fabs(lp.d) >= kLazyFilterMin);
     if (cones.candidate(t, u, at_top) && cones.keeps(t, u, at_top)) {
+      lp.exact = std::int32_t(lazy_exact.size());
+      lazy_exact.push_back(canonical_from_offset(f, work));
+      candidates.push_back(Index(fi));
+      std::vector<Point3> loop;
       if (count == 1) {
-        for (Index v : f.loop) x.loop.push_back(points_[v] + q);
+        for (Index v : f.loop) loop.push_back(points_[v] + q);
       } else {
         std::vector<Point3> sums;
         for (int k = 0; k < 3; ++k)
           if (at_top[k])
             for (Index v : f.loop) sums.push_back(points_[v] + p[k].exact);
-        x.loop = plane_hull(std::move(sums), f.normal);
+        loop = plane_hull(std::move(sums), f.normal);
       }
+      loops.push_back(std::move(loop));
     }
-    built.push_back(std::move(x));
   }
 
   // B. t plus the face of B extreme along n_t and along −n_t, when that face
@@ -288,13 +342,20 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   }
 
   // The planes in the order built (facet k of B first, as plane k: the
-  // union's directions), the candidates ascending.
+  // union's directions; lazy), the candidates ascending.
   Piece piece;
   piece.directions = &directions_;
+  piece.builder = this;
+  for (int k = 0; k < 3; ++k) piece.corner[k] = &p[k].exact;
+  piece.lazy = std::move(lazy);
+  piece.lazy_exact = std::move(lazy_exact);
+  piece.candidates = std::move(candidates);
+  piece.loops = std::move(loops);
   piece.planes.reserve(built.size());
+  const Index first = Index(facets_.size());
   for (Index i = 0; i < built.size(); ++i) {
     if (!built[i].loop.empty()) {
-      piece.candidates.push_back(i);
+      piece.candidates.push_back(first + i);
       piece.loops.push_back(std::move(built[i].loop));
     }
     piece.planes.push_back(std::move(built[i].plane));

@@ -172,10 +172,35 @@ int side_of_cut(const Plane& h, const CutPoint& c) {
 // by reference: the pieces' planes, or planes the caller keeps alive), with
 // the nearest doubles of its four integers.
 struct Half {
-  const Plane* plane = nullptr;
+  const Plane* plane = nullptr;  // null for a lazy plane not built yet: piece->plane(index)
   double da = 0, db = 0, dc = 0, dd = 0;
   bool filtered = false;
+  const Piece* piece = nullptr;
+  Index index = 0;
+  std::uint64_t generation = 0;  // of the union (a later one may reuse the piece's address)
 };
+
+// A lazy plane, built for an exact test: the last few built on this thread
+// are kept (a facet's vertices are tested against the same planes in turn).
+const Plane& built_plane(const Half& h) {
+  struct Entry {
+    const Piece* piece = nullptr;
+    Index index = 0;
+    std::uint64_t generation = 0;
+    Plane plane;
+  };
+  constexpr std::size_t kEntries = 64;
+  thread_local std::array<Entry, kEntries> cache;
+  const std::size_t slot = (std::hash<const void*>()(h.piece) * 31 + h.index) % kEntries;
+  Entry& e = cache[slot];
+  if (e.piece != h.piece || e.index != h.index || e.generation != h.generation) {
+    e.plane = h.piece->plane(h.index);
+    e.piece = h.piece;
+    e.index = h.index;
+    e.generation = h.generation;
+  }
+  return e.plane;
+}
 
 // mpz_get_d truncates towards zero: a faithful rounding (within relative
 // 2^-52), which the filter's bound allows (<minksum/half_space_side.hpp>);
@@ -198,8 +223,9 @@ Half half_of(const Plane& q) {
 int side(const Half& h, const V3& v) {
   if (h.filtered && v.filtered)
     if (const auto s = half_space_side_filter(h.da, h.db, h.dc, h.dd, v.d.x, v.d.y, v.d.z)) return *s;
-  if (v.c) return side_of_cut(*h.plane, *v.c);
-  return h.plane->side(*v.p);  // integer arithmetic, no rational normalisation
+  const Plane& plane = h.plane ? *h.plane : built_plane(h);
+  if (v.c) return side_of_cut(plane, *v.c);
+  return plane.side(*v.p);  // integer arithmetic, no rational normalisation
 }
 
 // The filter alone: the sign when the doubles decide it.
@@ -237,6 +263,12 @@ using Poly = std::vector<V3>;
 void cut(const Poly& g, const Half& h, const std::vector<int>& sg, Poly& outside, Poly& inside, Arena& arena,
          const Plane& face) {
   const std::size_t n = g.size();
+  // A lazy cutting plane is built into the arena: the new edge keeps it.
+  const Plane* cutting = h.plane;
+  if (!cutting) {
+    arena.planes.push_back(built_plane(h));
+    cutting = &arena.planes.back();
+  }
   // The edges of g each vertex of a part lies on: g[i] on edges i - 1 and i,
   // a cut point of edge i on edge i only.
   std::vector<std::array<std::size_t, 2>> on_out, on_in;
@@ -251,7 +283,7 @@ void cut(const Poly& g, const Half& h, const std::vector<int>& sg, Poly& outside
       on_in.push_back({before, i});
     }
     if (sg[i] * sg[j] < 0) {
-      arena.points.push_back(meet(face, *g[i].edge, *h.plane));
+      arena.points.push_back(meet(face, *g[i].edge, *cutting));
       V3 x = make_v3(arena.points.back());
       outside.push_back(x);
       on_out.push_back({i, i});
@@ -266,7 +298,7 @@ void cut(const Poly& g, const Half& h, const std::vector<int>& sg, Poly& outside
       std::size_t common = n;
       for (std::size_t e : u)
         if (e == w[0] || e == w[1]) common = e;
-      part[k].edge = common < n ? g[common].edge : h.plane;
+      part[k].edge = common < n ? g[common].edge : cutting;
     }
   };
   edges(outside, on_out);
@@ -1098,6 +1130,8 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
                     const std::function<bool(const Point3&)>& interior) {
   auto t0 = Clock::now();
   options.report("union", 0.0);
+  static std::atomic<std::uint64_t> unions{0};
+  const std::uint64_t generation = ++unions;
   const unsigned all_workers = parallel_threads(threads, parts.size());
   // Boxes and half-spaces of the pieces (in parallel).
   std::vector<Box> boxes(parts.size());
@@ -1107,8 +1141,23 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
       boxes[i].lo[k] = parts[i].lo[k];
       boxes[i].hi[k] = parts[i].hi[k];
     }
-    halves[i].reserve(parts[i].planes.size());
-    for (const Plane& h : parts[i].planes) halves[i].push_back(half_of(h));
+    const Piece& p = parts[i];
+    halves[i].reserve(p.num_planes());
+    for (Index k = 0; k < p.lazy.size(); ++k) {
+      const LazyPlane& l = p.lazy[k];
+      Half h;
+      h.plane = p.held(k);
+      h.da = l.a;
+      h.db = l.b;
+      h.dc = l.c;
+      h.dd = l.d;
+      h.filtered = l.filtered;
+      h.piece = &p;
+      h.index = k;
+      h.generation = generation;
+      halves[i].push_back(h);
+    }
+    for (const Plane& h : p.planes) halves[i].push_back(half_of(h));
   });
   const PieceGrid grid(boxes);
   // Candidate facets by oriented plane; then the other facets on those
@@ -1131,24 +1180,62 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
   };
   std::unordered_map<const Plane*, std::size_t, PlaneHash, PlaneEq> group_of;
   std::vector<Group> groups;
+  // The lazy candidates' planes also by their doubles: a lazy plane equal to
+  // one of them has the same doubles (each the rounding towards zero of the
+  // same value), and a lazy plane never equals a plane that is not lazy
+  // (the sweep's lazy planes have the convex operand's facet normals, its
+  // other planes never: docs/nonconvex.md, "Pieces").
+  struct DoublesHash {
+    std::size_t operator()(const std::array<double, 4>& k) const {
+      std::size_t h = 0;
+      for (double x : k) h = h * 1000003u ^ std::hash<double>()(x);
+      return h;
+    }
+  };
+  std::unordered_multimap<std::array<double, 4>, std::size_t, DoublesHash> lazy_group_of;
   for (Index i = 0; i < parts.size(); ++i)
     for (Index f = 0; f < parts[i].candidates.size(); ++f) {
-      const Plane* pl = &parts[i].planes[parts[i].candidates[f]];
+      const Index k = parts[i].candidates[f];
+      const Plane* pl = parts[i].held(k);
       auto [it, fresh] = group_of.emplace(pl, groups.size());
-      if (fresh) groups.push_back(Group{pl, {}, {}});
+      if (fresh) {
+        groups.push_back(Group{pl, {}, {}});
+        if (k < parts[i].lazy.size()) {
+          const LazyPlane& l = parts[i].lazy[k];
+          lazy_group_of.emplace(std::array<double, 4>{l.a, l.b, l.c, l.d}, it->second);
+        }
+      }
       groups[it->second].facets.push_back(FacetRef{i, f});
     }
-  for (Index i = 0; i < parts.size(); ++i) {
-    const std::vector<Index>& c = parts[i].candidates;  // ascending
-    for (Index f = 0, next = 0; f < parts[i].planes.size(); ++f) {
+  // Each piece's other facets on those planes, in parallel (a lazy one is
+  // built only when its doubles match a candidate's), then gathered in the
+  // order of the pieces.
+  std::vector<std::vector<std::size_t>> below_of(parts.size());
+  parallel_for(parts.size(), all_workers, [&](std::size_t i) {
+    const Piece& p = parts[i];
+    const std::vector<Index>& c = p.candidates;  // ascending
+    for (Index f = 0, next = 0; f < p.num_planes(); ++f) {
       if (next < c.size() && c[next] == f) {
         ++next;
         continue;
       }
-      auto it = group_of.find(&parts[i].planes[f]);
-      if (it != group_of.end()) groups[it->second].below.push_back(i);
+      if (f < p.lazy.size()) {
+        const LazyPlane& l = p.lazy[f];
+        auto range = lazy_group_of.equal_range(std::array<double, 4>{l.a, l.b, l.c, l.d});
+        if (range.first == range.second) continue;
+        const Plane exact = p.plane(f);
+        for (auto it = range.first; it != range.second; ++it)
+          if (*groups[it->second].plane == exact) below_of[i].push_back(it->second);
+        continue;
+      }
+      auto it = group_of.find(&p.planes[f - p.lazy.size()]);
+      if (it != group_of.end()) below_of[i].push_back(it->second);
     }
-  }
+  });
+  for (Index i = 0; i < parts.size(); ++i)
+    for (std::size_t g : below_of[i]) groups[g].below.push_back(i);
+  below_of.clear();
+  lazy_group_of.clear();
   group_of.clear();
   // In the order of the planes, so that the output does not depend on the
   // order of the pieces' facets.

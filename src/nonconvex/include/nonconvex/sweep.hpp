@@ -103,9 +103,12 @@ class SurfaceCones {
 // triangle t of the swept surface (triangle_sum.cpp, docs/nonconvex.md
 // "Pieces"): its facets' planes and normals, its edges with the far vertex of
 // each adjacent facet, its exact bounding box.
-class SweptPolytope {
+class SweptPolytope final : public PlaneBuilder {
  public:
   explicit SweptPolytope(const ConvexPolytope& b);
+  // The canonical plane of facet k of B moved to the vertex of piece's
+  // triangle at its top (piece.lazy[k].tag), as sum's lazy planes.
+  Plane build(const Piece& piece, Index k) const override;
 
   // t ⊕ B for triangle t of `cones`' surface, built from the Gaussian maps
   // of t and B without constructing its vertices: every facet's canonical
@@ -118,6 +121,8 @@ class SweptPolytope {
     Point3 normal;        // (a, b, c) of the canonical plane
     Vec3d normal_approx;  // nearest doubles
     Integer primitive_integer[3];  // (a, b, c) / gcd(a, b, c)
+    double primitive_approx[3];    // their doubles (mpz_get_d: towards zero)
+    bool primitive_usable;         // each below 2^480
     Integer offset_num, offset_den;  // d / gcd(a, b, c) in lowest terms: primitive . x = offset on the facet
     std::vector<Index> loop;
   };
@@ -127,6 +132,8 @@ class SweptPolytope {
     Index f0, f1;  // those facets (f0 holds w0)
     Integer direction[3];  // a positive multiple of v1 - v0, primitive
   };
+  static void offset_along(const Facet& f, const ScaledPoint& q, Integer work[3]);
+  static Plane canonical_from_offset(const Facet& f, Integer work[3]);
   RoundedPoint3 at(Index v) const { return RoundedPoint3{points_[v], approx_[v]}; }
 
   std::vector<Point3> points_;

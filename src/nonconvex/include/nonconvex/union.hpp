@@ -45,12 +45,56 @@ class DirectionIndex {
   std::vector<std::uint16_t> cell_;  // 6 kCells kCells cells of width_ entries
 };
 
+struct Piece;
+
+// A facet plane that a piece builds only when an exact test needs it (the
+// sweep's planes f + face_u(t), one per facet f of the convex operand, most
+// of which only ever meet the filter): the doubles of a positive multiple of
+// it, (a, b, c) the operand's primitive integer normal and d the offset
+// along it, each the rounding towards zero of its exact value (so equal
+// planes have equal doubles), and what its builder needs.
+struct LazyPlane {
+  double a = 0, b = 0, c = 0, d = 0;
+  bool filtered = false;    // all four usable in the union's half-space filter
+  std::uint8_t tag = 0;     // the builder's (the sweep: the vertex of t at the top)
+  std::int32_t exact = -1;  // the plane in Piece::lazy_exact, when the piece holds it
+};
+
+// Builds plane k (< piece.lazy.size()) of a piece exactly, canonical.
+class PlaneBuilder {
+ public:
+  virtual Plane build(const Piece& piece, Index k) const = 0;
+
+ protected:
+  ~PlaneBuilder() = default;
+};
+
+// The facet planes: 0 .. lazy.size() − 1 are lazy (built by `builder`,
+// which reads `corner`), the others planes[k − lazy.size()]; a lazy plane
+// that is a candidate is held exactly in lazy_exact.
 struct Piece {
+  std::vector<LazyPlane> lazy;
+  std::vector<Plane> lazy_exact;
+  const PlaneBuilder* builder = nullptr;
+  const Point3* corner[3] = {nullptr, nullptr, nullptr};
   std::vector<Plane> planes;
   std::vector<Index> candidates;
   std::vector<std::vector<Point3>> loops;  // one per candidate
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   const DirectionIndex* directions = nullptr;
+
+  std::size_t num_planes() const { return lazy.size() + planes.size(); }
+  // Plane k when the piece holds it exactly (every plane that is not lazy,
+  // the lazy candidates), else null.
+  const Plane* held(Index k) const {
+    if (k >= lazy.size()) return &planes[k - lazy.size()];
+    return lazy[k].exact >= 0 ? &lazy_exact[std::size_t(lazy[k].exact)] : nullptr;
+  }
+  // Plane k, exactly.
+  Plane plane(Index k) const {
+    if (const Plane* p = held(k)) return *p;
+    return builder->build(*this, k);
+  }
 };
 
 // p as a Piece, with the facets flagged in `candidate` (one flag per facet;

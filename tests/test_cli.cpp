@@ -1679,3 +1679,31 @@ TEST_F(Cli, ViewShowsNonConvexSolids) {
   EXPECT_EQ(text.out, "tube: 16 vertices, 32 edges, 16 facets, a non-convex solid\n  page written to " +
                           path("t2.html") + "\n");
 }
+
+// A refusal of a non-convex operand names --hull only on the commands that
+// have it: cgm (which refused without the hint), query, batch; not simulate,
+// whose --obstacle and --robot take convex polytopes only.
+TEST_F(Cli, RefusalsNameHullOnlyWhereTheCommandHasIt) {
+  const std::string hint = "; --hull takes the convex hull of its points instead";
+  for (const std::string& cmd : std::vector<std::string>{"cgm tube", "cgm cube tube", "query collide tube cube"}) {
+    SCOPED_TRACE(cmd);
+    CmdResult r = run(cmd);
+    EXPECT_EQ(r.status, 3) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find(hint), std::string::npos) << r.err;
+    EXPECT_EQ(run(cmd + " --hull").status, 0) << cmd;
+  }
+  CmdResult b = run_sh("echo 'tube cube' | minksum batch");
+  EXPECT_NE(b.out.find(hint), std::string::npos) << b.out;
+  CmdResult sim = run("simulate --obstacle tube");
+  EXPECT_EQ(sim.status, 3) << sim.err;
+  EXPECT_EQ(sim.err.find("--hull"), std::string::npos) << sim.err;
+  // The commands that take solids take a valid one without a word of --hull.
+  for (const std::string& cmd : std::vector<std::string>{"stats tube", "convert tube -o " + path("t.off"),
+                                                        "view tube -o " + path("t.html"), "sum tube cube"}) {
+    SCOPED_TRACE(cmd);
+    CmdResult r = run(cmd);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ((r.out + r.err).find("--hull"), std::string::npos) << r.out << r.err;
+  }
+}

@@ -62,13 +62,8 @@ int convert_solid(const std::string& in, const Solid& solid, const MeshOutput& o
   if (json) {
     report << "{\"name\": \"" << json_escape(in) << "\", \"vertices\": " << c.vertices << ", \"edges\": " << c.edges
            << ", \"facets\": " << c.faces << ", \"convex\": false, \"output\": \"" << json_escape(out_name)
-           << "\", \"format\": \"" << format_info(output.format).extension << "\", \"rounding\": ";
-    if (!r.rounded_coordinates && r.max_displacement == 0)
-      report << "null";
-    else
-      report << "{\"coordinates\": " << r.rounded_coordinates << ", \"max_displacement\": "
-             << json_number(r.max_displacement) << ", \"grid\": " << json_number(r.grid) << "}";
-    report << "}\n";
+           << "\", \"format\": \"" << format_info(output.format).extension
+           << "\", \"rounding\": " << solid_rounding_json(r) << "}\n";
   } else {
     const MeshCounts given = mesh_counts(faces);
     report << printable(in) << ": " << given.vertices << " vertices, " << given.edges << " edges, " << given.faces

@@ -100,10 +100,14 @@ together merged, degenerate triangles removed, where the sum touches itself
 its parts moved apart, and where rounding made faces cross the points there
 snapped to a coarser grid; a note gives the largest displacement.  Only a sum
 that cannot be represented (beyond the format's range, or thinner than its
-spacing everywhere) is refused (exit 1) naming --exact.  --json then reports "nonconvex_method", "swept",
-"pieces", "pairs", "pair_vertices", "pair_facets", "candidate_facets",
-"culled_facets" and "union" (clips, shells, non-manifold edges, dropped
-components) and the phases decompose, pairs, union and boundary.
+spacing everywhere) is refused (exit 1) naming --exact.  --json then has a
+convex sum's counts, "dimension", "volume", "a", "b", "operands", "output" and
+"rounding" (null or {"coordinates": N, "max_displacement": D, "grid": G};
+also "rounded_coordinates": N), "method": "nonconvex", and
+"nonconvex_method", "swept", "pieces", "pairs", "pair_vertices",
+"pair_facets", "candidate_facets", "culled_facets" and "union" (clips,
+shells, non-manifold edges, dropped components) and the phases decompose,
+pairs, union and boundary.
   --nonconvex-method sweep|decomposition
                      sweep (default), or Hachenberger's decomposition: both
                      operands cut into convex pieces (CGAL), every pair of

@@ -22,9 +22,20 @@ namespace minksum::cli {
 
 namespace {
 
+// An operand's counts as the convex sum's JSON gives them: its faces as
+// validated (a polygon with k corners is k - 2 triangles, k - 3 of their
+// edges inside it, so edges = triangles / 2 + faces).  "a" and "b" keep
+// "faces" beside "vertices", as they had it.
+std::string solid_counts_json(const Solid& s) {
+  return "\"vertices\": " + std::to_string(s.vertices) +
+         ", \"edges\": " + std::to_string(s.triangles.faces.size() / 2 + s.faces) +
+         ", \"facets\": " + std::to_string(s.faces);
+}
+
 std::string solid_json(const std::string& name, const Solid& s, std::size_t pieces) {
   std::ostringstream o;
   o << "{\"name\": \"" << json_escape(name) << "\", \"vertices\": " << s.vertices << ", \"faces\": " << s.faces
+    << ", \"edges\": " << s.triangles.faces.size() / 2 + s.faces << ", \"facets\": " << s.faces
     << ", \"convex\": " << (s.convex ? "true" : "false") << ", \"pieces\": " << pieces << "}";
   return o.str();
 }
@@ -78,13 +89,14 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
   }
   const auto w0 = std::chrono::steady_clock::now();
   std::size_t rounded = 0;
-  if (output) rounded = write_solid_mesh(*output, r.mesh);
+  RoundedSolid rounding;
+  if (output) rounded = write_solid_mesh(*output, r.mesh, nullptr, &rounding);
   const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   const MeshCounts c = mesh_counts(r.mesh);
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
     report << "{\"vertices\": " << c.vertices << ", \"edges\": " << c.edges << ", \"facets\": " << c.faces
-           << ", \"method\": \"nonconvex\", \"pair_method\": \""
+           << ", \"dimension\": 3, \"method\": \"nonconvex\", \"pair_method\": \""
            << (r.pieces_from_maps ? "gaussian_map" : method_name(r.pair_method)) << "\", \"seconds\": " << json_number(r.seconds())
            << ", \"phases\": {\"read\": " << json_number(load.read) << ", \"validate\": " << json_number(validate_seconds)
            << ", \"decompose\": " << json_number(r.seconds_decompose) << ", \"pairs\": " << json_number(r.seconds_pairs)
@@ -100,10 +112,15 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
            << ", \"shells\": " << r.shells << ", \"non_manifold_edges\": " << r.non_manifold_edges
            << ", \"dropped_components\": " << r.dropped_components << "}"
            << ", \"a\": " << solid_json(names[0], solids[0], r.pieces_a)
-           << ", \"b\": " << solid_json(names[1], solids[1], r.pieces_b) << ", \"output\": ";
+           << ", \"b\": " << solid_json(names[1], solids[1], r.pieces_b) << ", \"operands\": [";
+    for (std::size_t i = 0; i < 2; ++i)
+      report << (i ? ", " : "") << "{\"name\": \"" << json_escape(names[i]) << "\", " << solid_counts_json(solids[i])
+             << "}";
+    report << "], \"output\": ";
     if (!output) report << "null";
     else report << "\"" << json_escape(output->to_stdout() ? "-" : output->path) << "\"";
-    report << ", \"rounded_coordinates\": " << rounded << "}\n";
+    report << ", \"rounding\": " << solid_rounding_json(rounding) << ", \"rounded_coordinates\": " << rounded
+           << "}\n";
   } else {
     for (std::size_t i = 0; i < 2; ++i)
       report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << solids[i].vertices << " V, " << solids[i].faces

@@ -114,6 +114,12 @@ Mesh solid_faces(const Solid& s) {
   return m;
 }
 
+std::string solid_rounding_json(const RoundedSolid& r) {
+  if (!r.rounded_coordinates && r.max_displacement == 0) return "null";
+  return "{\"coordinates\": " + std::to_string(r.rounded_coordinates) +
+         ", \"max_displacement\": " + json_number(r.max_displacement) + ", \"grid\": " + json_number(r.grid) + "}";
+}
+
 MeshCounts mesh_counts(const Mesh& m) {
   MeshCounts c;
   c.vertices = m.points.size();

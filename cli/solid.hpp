@@ -58,6 +58,11 @@ SolidStats solid_stats(const Solid& s, const Mesh& faces);
 std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh, Mesh* written = nullptr,
                              RoundedSolid* rounded = nullptr, const std::string& what = "sum");
 
+// The rounding of a solid written, as "rounding" in --json: null when
+// nothing moved, else {"coordinates": N, "max_displacement": D, "grid": G}
+// (G: 0, or the coarsest grid points were snapped to).
+std::string solid_rounding_json(const RoundedSolid& r);
+
 // Vertices, edges and faces of a closed polygon mesh.
 struct MeshCounts {
   std::size_t vertices = 0, edges = 0, faces = 0;

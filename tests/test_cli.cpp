@@ -1707,3 +1707,33 @@ TEST_F(Cli, RefusalsNameHullOnlyWhereTheCommandHasIt) {
     EXPECT_EQ((r.out + r.err).find("--hull"), std::string::npos) << r.out << r.err;
   }
 }
+
+// A non-convex sum's --json has the keys of a convex sum's (it had "faces"
+// and "rounded_coordinates" only, no "dimension", no "operands"), the
+// operands' counts those of 'stats', and "rounding" what was rounded.
+TEST_F(Cli, NonConvexSumJsonHasTheConvexSumsKeys) {
+  CmdResult convex = run("sum cube box:1/2:1/2:1/2 --json");
+  ASSERT_EQ(convex.status, 0) << convex.err;
+  CmdResult solid = run("sum tube box:1/2:1/2:1/2 --json");
+  ASSERT_EQ(solid.status, 0) << solid.err;
+  for (const char* key : {"vertices", "edges", "facets", "dimension", "method", "seconds", "phases", "volume",
+                          "volume_double", "a", "b", "operands", "output", "rounding"}) {
+    SCOPED_TRACE(key);
+    const std::string k = std::string("\"") + key + "\": ";
+    EXPECT_NE(convex.out.find(k), std::string::npos) << convex.out;
+    EXPECT_NE(solid.out.find(k), std::string::npos) << solid.out;
+  }
+  EXPECT_EQ(json_int(solid.out, "dimension"), 3);
+  EXPECT_NE(solid.out.find("\"operands\": [{\"name\": \"tube\", \"vertices\": 16, \"edges\": 32, \"facets\": 16}, "
+                           "{\"name\": \"box:1/2:1/2:1/2\", \"vertices\": 8, \"edges\": 12, \"facets\": 6}]"),
+            std::string::npos)
+      << solid.out;
+  EXPECT_NE(solid.out.find("\"output\": null, \"rounding\": null, \"rounded_coordinates\": 0}"), std::string::npos)
+      << solid.out;
+  // Rounded: 1/3 is no double.
+  CmdResult third = run("sum lshape cube@scale:1/3 --json -o " + path("third.off"));
+  ASSERT_EQ(third.status, 0) << third.err;
+  const std::string rounding = third.out.substr(third.out.find("\"rounding\": "));
+  EXPECT_EQ(json_int(rounding, "coordinates"), 36) << third.out;
+  EXPECT_EQ(json_int(third.out, "rounded_coordinates"), 36) << third.out;
+}

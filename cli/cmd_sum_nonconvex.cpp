@@ -96,7 +96,7 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
     report << "{\"vertices\": " << c.vertices << ", \"edges\": " << c.edges << ", \"facets\": " << c.faces
-           << ", \"dimension\": 3, \"method\": \"nonconvex\", \"pair_method\": \""
+           << ", \"dimension\": 3, \"kind\": \"solid\", \"method\": \"nonconvex\", \"pair_method\": \""
            << (r.pieces_from_maps ? "gaussian_map" : method_name(r.pair_method)) << "\", \"seconds\": " << json_number(r.seconds())
            << ", \"phases\": {\"read\": " << json_number(load.read) << ", \"validate\": " << json_number(validate_seconds)
            << ", \"decompose\": " << json_number(r.seconds_decompose) << ", \"pairs\": " << json_number(r.seconds_pairs)

@@ -1709,21 +1709,26 @@ TEST_F(Cli, RefusalsNameHullOnlyWhereTheCommandHasIt) {
 }
 
 // A non-convex sum's --json has the keys of a convex sum's (it had "faces"
-// and "rounded_coordinates" only, no "dimension", no "operands"), the
+// and "rounded_coordinates" only, no "dimension", no "operands"), "kind"
+// names the result in both (as for sums with points, segments, polygons), the
 // operands' counts those of 'stats', and "rounding" what was rounded.
 TEST_F(Cli, NonConvexSumJsonHasTheConvexSumsKeys) {
   CmdResult convex = run("sum cube box:1/2:1/2:1/2 --json");
   ASSERT_EQ(convex.status, 0) << convex.err;
   CmdResult solid = run("sum tube box:1/2:1/2:1/2 --json");
   ASSERT_EQ(solid.status, 0) << solid.err;
-  for (const char* key : {"vertices", "edges", "facets", "dimension", "method", "seconds", "phases", "volume",
-                          "volume_double", "a", "b", "operands", "output", "rounding"}) {
+  for (const char* key : {"vertices", "edges", "facets", "dimension", "kind", "method", "seconds", "phases",
+                          "volume", "volume_double", "a", "b", "operands", "output", "rounding"}) {
     SCOPED_TRACE(key);
     const std::string k = std::string("\"") + key + "\": ";
     EXPECT_NE(convex.out.find(k), std::string::npos) << convex.out;
     EXPECT_NE(solid.out.find(k), std::string::npos) << solid.out;
   }
   EXPECT_EQ(json_int(solid.out, "dimension"), 3);
+  EXPECT_NE(solid.out.find("\"dimension\": 3, \"kind\": \"solid\", \"method\": \"nonconvex\""), std::string::npos)
+      << solid.out;
+  EXPECT_NE(convex.out.find("\"dimension\": 3, \"kind\": \"polytope\", \"method\": \"walk\""), std::string::npos)
+      << convex.out;
   EXPECT_NE(solid.out.find("\"operands\": [{\"name\": \"tube\", \"vertices\": 16, \"edges\": 32, \"facets\": 16}, "
                            "{\"name\": \"box:1/2:1/2:1/2\", \"vertices\": 8, \"edges\": 12, \"facets\": 6}]"),
             std::string::npos)

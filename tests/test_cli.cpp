@@ -1680,9 +1680,9 @@ TEST_F(Cli, ViewShowsNonConvexSolids) {
                           path("t2.html") + "\n");
 }
 
-// A refusal of a non-convex operand names --hull only on the commands that
-// have it: cgm (which refused without the hint), query, batch; not simulate,
-// whose --obstacle and --robot take convex polytopes only.
+// A refusal of a non-convex operand names --hull, and every command that
+// takes convex operands has it: cgm (which refused without the hint),
+// query, batch, simulate (which had no --hull).
 TEST_F(Cli, RefusalsNameHullOnlyWhereTheCommandHasIt) {
   const std::string hint = "; --hull takes the convex hull of its points instead";
   for (const std::string& cmd : std::vector<std::string>{"cgm tube", "cgm cube tube", "query collide tube cube"}) {
@@ -1695,9 +1695,13 @@ TEST_F(Cli, RefusalsNameHullOnlyWhereTheCommandHasIt) {
   }
   CmdResult b = run_sh("echo 'tube cube' | minksum batch");
   EXPECT_NE(b.out.find(hint), std::string::npos) << b.out;
-  CmdResult sim = run("simulate --obstacle tube");
+  CmdResult sim = run("simulate --obstacle tube --frames 4");
   EXPECT_EQ(sim.status, 3) << sim.err;
-  EXPECT_EQ(sim.err.find("--hull"), std::string::npos) << sim.err;
+  EXPECT_EQ(lines(sim.err), 1u) << sim.err;
+  EXPECT_NE(sim.err.find(hint), std::string::npos) << sim.err;
+  EXPECT_EQ(run("simulate --obstacle tube --frames 4 --hull").status, 0);
+  CmdResult robot = run("simulate --robot tube --frames 4");
+  EXPECT_NE(robot.err.find(hint), std::string::npos) << robot.err;
   // The commands that take solids take a valid one without a word of --hull.
   for (const std::string& cmd : std::vector<std::string>{"stats tube", "convert tube -o " + path("t.off"),
                                                         "view tube -o " + path("t.html"), "sum tube cube"}) {

@@ -108,7 +108,9 @@ window.addEventListener('resize', resize);
 // Colours and names.
 
 const COLOURS = {
-  a: 0x3b7dd8, b: 0xe8862a, polytope: 0x5b8fd0, obstacle: 0x8fa9cf,
+  // sum: a sum without provenance (a non-convex sum, a big one), in the
+  // colour of its swatch in the list of solids, not A's blue.
+  a: 0x3b7dd8, b: 0xe8862a, sum: 0x3aa655, polytope: 0x5b8fd0, obstacle: 0x8fa9cf,
   translated: 0x3b7dd8, corner: 0xe8862a, edge: 0x3aa655, facet_edge: 0x9b59b6, facet_facet: 0x8a8f99,
   separate: 0x2a8f3a, touching: 0xe08a00, penetrating: 0xd02020,
   p: 0xd0312d, q: 0x2563c9, both: 0x8e44ad, real: 0x1d2430, artificial: 0x7a8594, cobstacle: 0x9b59b6,
@@ -423,7 +425,7 @@ function initPolytope() {
 function initSum() {
   const [da, db, ds] = data.solids;
   const a = buildSolid(da, 'a'), b = buildSolid(db, 'b'), s = buildSolid(ds, 'sum');
-  side.append(el('h2', { text: 'Solids' }), solidControls(a, COLOURS.a), solidControls(b, COLOURS.b), solidControls(s, COLOURS.edge));
+  side.append(el('h2', { text: 'Solids' }), solidControls(a, COLOURS.a), solidControls(b, COLOURS.b), solidControls(s, COLOURS.sum));
   side.append(el('div', { text: `method: ${data.method}` }));
   side.append(countsTable([da, db, ds]));
   const legend = el('div', { id: 'legend' });

@@ -71,7 +71,7 @@ int run_cgm(const std::vector<std::string>& argv) {
                      "' (--svg and --html write pictures)");
   const auto format = format_option(a);
   const bool hull = a.flag("--hull");
-  ConvexPolytope p = load_operand_from(a.positional[0], hull, nullptr, format);
+  ConvexPolytope p = load_operand(a.positional[0], hull, nullptr, format);
   CubicalGaussianMap g;
   std::string label = a.positional[0];
   double seconds = 0;
@@ -84,7 +84,7 @@ int run_cgm(const std::vector<std::string>& argv) {
     comments.push_back("P = " + printable(a.positional[0]));
   }
   if (a.positional.size() == 2) {
-    ConvexPolytope q = load_operand_from(a.positional[1], hull, nullptr, format);
+    ConvexPolytope q = load_operand(a.positional[1], hull, nullptr, format);
     if (scene_path) {
       scene.polytopes.push_back(polytope_node(q, "Q"));
       comments.push_back("Q = " + printable(a.positional[1]));

@@ -1,10 +1,11 @@
 // minksum convert IN -o OUT: read, validate (or take the hull) and write a
-// polytope in another format, or the same one cleaned.
+// polytope or a closed solid in another format, or the same one cleaned.
 #include <iostream>
 
 #include "commands.hpp"
 #include "common.hpp"
 #include "mesh_io.hpp"
+#include "solid.hpp"
 
 namespace minksum::cli {
 
@@ -13,11 +14,22 @@ const char* kConvertHelp = R"(Usage: minksum convert IN -o OUT [--hull] [--exact
                        [--from F] [--json]
 
 Read IN (a file, a catalog name, or '-' for a mesh on standard input), check
-that it is a closed convex polytope exactly, and write it to OUT
-({formats}, or '-' for standard output) cleaned: exactly equal
-vertices welded, coplanar facets merged into one polygon, vertices in the
-middle of an edge dropped, facets oriented outwards.  What is written reads
-back as a valid convex polytope (see 'minksum sum --help', Rounding).
+that it is a closed convex polytope exactly (or a closed solid, below), and
+write it to OUT ({formats}, or '-' for standard output) cleaned:
+exactly equal vertices welded, coplanar facets merged into one polygon,
+vertices in the middle of an edge dropped, facets oriented outwards.  What
+is written reads back as a valid convex polytope (see 'minksum sum --help',
+Rounding).
+
+A non-convex IN (without --hull) must be a closed solid (docs/nonconvex.md;
+else exit status 3 and one line naming the problem), such as 'minksum sum'
+writes for a non-convex sum: it is written with its faces as given (exactly
+equal vertices welded; as triangles to STL), exactly with --exact, else as
+'minksum sum' writes a non-convex sum: coordinates that are not doubles
+(binary STL: floats) rounded, the surface kept a valid solid, a note giving
+the largest displacement.  --json then has "convex": false and "rounding"
+null or {"coordinates": N, "max_displacement": D, "grid": G} (G: 0, or the
+coarsest grid points were snapped to).
 
 Options:
   -o, --output OUT   where to write ('-': standard output; the summary or
@@ -37,6 +49,33 @@ Options:
                      what was written, output, and rounding (null, or what
                      rounding to the format's numbers did)
 )";
+
+// convert of a non-convex solid: its faces written as a sum's boundary is.
+int convert_solid(const std::string& in, const Solid& solid, const MeshOutput& output, bool json) {
+  const Mesh faces = solid_faces(solid);
+  Mesh written;
+  RoundedSolid r;
+  write_solid_mesh(output, faces, &written, &r, "solid");
+  const MeshCounts c = mesh_counts(written);
+  std::ostream& report = output.report_stream();
+  const std::string out_name = output.to_stdout() ? "-" : output.path;
+  if (json) {
+    report << "{\"name\": \"" << json_escape(in) << "\", \"vertices\": " << c.vertices << ", \"edges\": " << c.edges
+           << ", \"facets\": " << c.faces << ", \"convex\": false, \"output\": \"" << json_escape(out_name)
+           << "\", \"format\": \"" << format_info(output.format).extension
+           << "\", \"rounding\": " << solid_rounding_json(r) << "}\n";
+  } else {
+    const MeshCounts given = mesh_counts(faces);
+    report << printable(in) << ": " << given.vertices << " vertices, " << given.edges << " edges, " << given.faces
+           << " facets, a non-convex solid, written to "
+           << (output.to_stdout() ? std::string("standard output") : printable(output.path)) << " ("
+           << format_name(output.format) << ")";
+    if (c.faces != given.faces) report << " as " << c.faces << " triangles";
+    report << "\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int run_convert(const std::vector<std::string>& argv) {
@@ -57,7 +96,9 @@ int run_convert(const std::vector<std::string>& argv) {
     from = format_option(only);
   }
   const std::string& in = a.positional[0];
-  const ConvexPolytope p = load_operand(in, a.flag("--hull"), nullptr, from);
+  SolidOperand operand = load_solid_operand(in, a.flag("--hull"), nullptr, from);
+  if (operand.solid) return convert_solid(in, *operand.solid, *output, a.flag("--json"));
+  const ConvexPolytope p = std::move(*operand.polytope);
   ConvexPolytope written;
   const RoundingReport r = write_mesh_output(*output, p, &written);
   std::ostream& report = output->report_stream();

@@ -36,6 +36,8 @@ trajectory API; a frame's query time is the batch's time per frame.
 Options:
   --obstacle SPEC   the obstacle Q (file or catalog name; default dodecahedron@scale:2)
   --robot SPEC      the robot P (default cube@scale:1/2)
+  --hull            take the exact convex hull of the obstacle's and the
+                    robot's points instead of requiring valid convex meshes
   --frames N        number of frames, 4 <= N <= 10000 (default 40)
   --turn A,B,C,D    the rotation applied every other frame, an integer
                     quaternion (default 10,0,0,1: about z by ≈ 11.4°)
@@ -110,7 +112,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   const Args a = parse_args(argv, "simulate",
                             {{"--obstacle", "", true}, {"--robot", "", true}, {"--frames", "", true},
                              {"--turn", "", true}, {"--output", "-o", true}, {"--html", "", true},
-                             {"--show-m", "", false}, {"--json", "", false}});
+                             {"--show-m", "", false}, {"--json", "", false}, {"--hull", "", false}});
   if (a.help) {
     std::cout << kSimulateHelp;
     return 0;
@@ -150,8 +152,9 @@ int run_simulate(const std::vector<std::string>& argv) {
       throw UsageError("--turn needs a non-zero integer quaternion A,B,C,D, got '" + *t + "'");
   }
   const bool json = a.flag("--json");
-  const ConvexPolytope obstacle = load_polytope(a.value_or("--obstacle", "dodecahedron@scale:2"));
-  const ConvexPolytope robot = load_polytope(a.value_or("--robot", "cube@scale:1/2"));
+  const bool hull = a.flag("--hull");
+  const ConvexPolytope obstacle = load_operand(a.value_or("--obstacle", "dodecahedron@scale:2"), hull, nullptr);
+  const ConvexPolytope robot = load_operand(a.value_or("--robot", "cube@scale:1/2"), hull, nullptr);
 
   // Orientation k (frames 2k, 2k+1): the robot turned k times.
   const std::size_t orientations = std::size_t((frames + 1) / 2);

@@ -56,8 +56,9 @@ Options:
                      fewer than 3 dimensions give a point, a segment or a
                      polygon
   --json             print one JSON object: dimension (3 for a polytope, 2,
-                     1, 0 for a polygon, segment, point), vertices, edges,
-                     facets, method,
+                     1, 0 for a polygon, segment, point), kind (polytope,
+                     polygon, segment, point; solid for a non-convex sum),
+                     vertices, edges, facets, method,
                      seconds (the computation alone, not the I/O), phases
                      (seconds spent reading the operands, validating them,
                      computing the sum, making its explicit polytope, and
@@ -100,10 +101,14 @@ together merged, degenerate triangles removed, where the sum touches itself
 its parts moved apart, and where rounding made faces cross the points there
 snapped to a coarser grid; a note gives the largest displacement.  Only a sum
 that cannot be represented (beyond the format's range, or thinner than its
-spacing everywhere) is refused (exit 1) naming --exact.  --json then reports "nonconvex_method", "swept",
-"pieces", "pairs", "pair_vertices", "pair_facets", "candidate_facets",
-"culled_facets" and "union" (clips, shells, non-manifold edges, dropped
-components) and the phases decompose, pairs, union and boundary.
+spacing everywhere) is refused (exit 1) naming --exact.  --json then has a
+convex sum's counts, "dimension", "kind" ("solid"), "volume", "a", "b",
+"operands", "output" and "rounding" (null or {"coordinates": N,
+"max_displacement": D, "grid": G}; also "rounded_coordinates": N), "method":
+"nonconvex", and "nonconvex_method", "swept", "pieces", "pairs",
+"pair_vertices", "pair_facets", "candidate_facets", "culled_facets" and
+"union" (clips, shells, non-manifold edges, dropped components) and the
+phases decompose, pairs, union and boundary.
   --nonconvex-method sweep|decomposition
                      sweep (default), or Hachenberger's decomposition: both
                      operands cut into convex pieces (CGAL), every pair of
@@ -302,7 +307,7 @@ int run_sum(const std::vector<std::string>& argv) {
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
     const Rational vol = volume ? *volume : s.volume();
-    report << "{" << counts_json(s) << ", \"dimension\": 3, \"method\": \"" << method_name(r.method) << "\""
+    report << "{" << counts_json(s) << ", \"dimension\": 3, \"kind\": \"polytope\", \"method\": \"" << method_name(r.method) << "\""
            << ", \"seconds\": " << json_number(seconds) << ", \"phases\": {\"read\": " << json_number(load.read)
            << ", \"validate\": " << json_number(load.validate)
            << ", \"sum\": " << json_number(seconds - explicit_seconds)

@@ -15,88 +15,29 @@
 #include "memory.hpp"
 #include "nonconvex_sum.hpp"
 #include "progress.hpp"
+#include "solid.hpp"
 #include "text.hpp"
 
 namespace minksum::cli {
 
 namespace {
 
+// An operand's counts as the convex sum's JSON gives them: its faces as
+// validated (a polygon with k corners is k - 2 triangles, k - 3 of their
+// edges inside it, so edges = triangles / 2 + faces).  "a" and "b" keep
+// "faces" beside "vertices", as they had it.
+std::string solid_counts_json(const Solid& s) {
+  return "\"vertices\": " + std::to_string(s.vertices) +
+         ", \"edges\": " + std::to_string(s.triangles.faces.size() / 2 + s.faces) +
+         ", \"facets\": " + std::to_string(s.faces);
+}
+
 std::string solid_json(const std::string& name, const Solid& s, std::size_t pieces) {
   std::ostringstream o;
   o << "{\"name\": \"" << json_escape(name) << "\", \"vertices\": " << s.vertices << ", \"faces\": " << s.faces
+    << ", \"edges\": " << s.triangles.faces.size() / 2 + s.faces << ", \"facets\": " << s.faces
     << ", \"convex\": " << (s.convex ? "true" : "false") << ", \"pieces\": " << pieces << "}";
   return o.str();
-}
-
-// Vertices, edges and faces of a polygon mesh.
-struct Counts {
-  std::size_t vertices = 0, edges = 0, faces = 0;
-};
-Counts counts(const Mesh& m) {
-  Counts c;
-  c.vertices = m.points.size();
-  c.faces = m.faces.size();
-  std::size_t corners = 0;
-  for (const auto& f : m.faces) corners += f.size();
-  c.edges = corners / 2;  // every edge has as many faces on each side
-  return c;
-}
-
-// The mesh as `out`'s format holds it: itself when every coordinate is
-// representable (or with --exact); else round_solid's valid solid (faces
-// triangulated exactly, points rounded, merged and, if need be, snapped to a
-// coarser grid), with a note naming the largest displacement; OutputError
-// naming --exact when it cannot be represented.  Returns the number of
-// coordinates rounded.
-// Writes `mesh` (exact, or rounded to a valid solid); returns how many
-// coordinates were rounded, and the number of faces written in *faces_written
-// (triangles where the format or the rounding needs them).
-std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh, std::size_t* faces_written = nullptr) {
-  const std::string name = out.to_stdout() ? "<stdout>" : out.path;
-  const bool floats = out.format == Format::stl && out.options.binary;
-  const std::string exact_hint = "; use --exact with " + extension_list(", ", " or ", true) + " to write exact rationals";
-  // Without --exact: coordinates that are not doubles (binary STL: floats)
-  // rounded, the surface kept a valid solid (round_solid, docs/nonconvex.md).
-  RoundedSolid rounded;
-  if (!out.options.exact) {
-    try {
-      rounded = round_solid(mesh, floats, name);
-    } catch (const RoundingError& e) {
-      throw OutputError("cannot write " + name + ": " + e.what() + exact_hint);
-    } catch (const InputError& e) {
-      throw OutputError(std::string("cannot write ") + e.what());
-    }
-  }
-  // STL holds triangles only: faces cut exactly (an L-shaped cap fanned from
-  // a corner would cover its notch).
-  // round_solid's mesh also when nothing was rounded but the surface,
-  // touching itself, was cut apart (points moved).
-  const bool changed = rounded.rounded_coordinates > 0 || rounded.max_displacement > 0;
-  Mesh written = changed ? std::move(rounded.mesh)
-                 : out.format == Format::stl  ? triangulate(mesh, name)
-                                              : mesh;
-  if (faces_written) *faces_written = written.faces.size();
-  try {
-    write_mesh_as_is(out, written);
-  } catch (const UnrepresentableError& e) {
-    throw OutputError("cannot write " + name + ": " + e.problem() + exact_hint);
-  } catch (const InputError& e) {
-    throw OutputError(std::string("cannot write ") + e.what());
-  }
-  if (rounded.rounded_coordinates) {
-    std::cerr << "minksum: note: " << printable(name) << ": " << rounded.rounded_coordinates << " coordinates are not "
-              << (floats ? "32-bit floats" : "doubles") << ", written rounded (largest displacement "
-              << format_double(rounded.max_displacement);
-    if (rounded.grid > 0) std::cerr << ", some points snapped to multiples of " << format_double(rounded.grid);
-    std::cerr << "), the faces as triangles; the written surface is a closed solid without self-intersection "
-                 "(checked exactly); --exact writes the exact sum\n";
-  } else if (changed) {
-    std::cerr << "minksum: note: " << printable(name) << ": the sum touches itself, and its parts were moved apart "
-              << "to write it as a valid solid (largest displacement " << format_double(rounded.max_displacement);
-    std::cerr << "), the faces as triangles; the written surface is a closed solid without self-intersection "
-                 "(checked exactly); --exact writes the exact sum\n";
-  }
-  return rounded.rounded_coordinates;
 }
 
 }  // namespace
@@ -104,8 +45,9 @@ std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh, std::size_
 int write_nonconvex_catalog_solid(const std::string& spec, const MeshOutput& output) {
   const Solid s = validate_solid(catalog_mesh(spec), spec);
   const Mesh m = catalog_mesh(spec);
-  std::size_t written = 0;
-  write_solid_mesh(output, m, &written);
+  Mesh written_mesh;
+  write_solid_mesh(output, m, &written_mesh, nullptr, "solid");
+  const std::size_t written = written_mesh.faces.size();
   output.report_stream() << printable(spec) << ": " << s.vertices << " vertices, " << s.faces
                          << " faces, non-convex, written to "
                          << (output.to_stdout() ? std::string("standard output") : printable(output.path));
@@ -135,11 +77,7 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
       solids.push_back(solid_of(*operands[i].polytope));
       continue;
     }
-    try {
-      solids.push_back(validate_solid(operands[i].mesh, names[i] == "-" ? "<stdin>" : names[i]));
-    } catch (const InputError& e) {
-      throw InputError(e.file(), e.place(), e.problem() + "; --hull takes the convex hull of its points instead");
-    }
+    solids.push_back(validate_operand_solid(operands[i].mesh, names[i] == "-" ? "<stdin>" : names[i]));
   }
   const double validate_seconds =
       load.validate + std::chrono::duration<double>(std::chrono::steady_clock::now() - v0).count();
@@ -151,13 +89,14 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
   }
   const auto w0 = std::chrono::steady_clock::now();
   std::size_t rounded = 0;
-  if (output) rounded = write_solid_mesh(*output, r.mesh);
+  RoundedSolid rounding;
+  if (output) rounded = write_solid_mesh(*output, r.mesh, nullptr, &rounding);
   const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
-  const Counts c = counts(r.mesh);
+  const MeshCounts c = mesh_counts(r.mesh);
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
     report << "{\"vertices\": " << c.vertices << ", \"edges\": " << c.edges << ", \"facets\": " << c.faces
-           << ", \"method\": \"nonconvex\", \"pair_method\": \""
+           << ", \"dimension\": 3, \"kind\": \"solid\", \"method\": \"nonconvex\", \"pair_method\": \""
            << (r.pieces_from_maps ? "gaussian_map" : method_name(r.pair_method)) << "\", \"seconds\": " << json_number(r.seconds())
            << ", \"phases\": {\"read\": " << json_number(load.read) << ", \"validate\": " << json_number(validate_seconds)
            << ", \"decompose\": " << json_number(r.seconds_decompose) << ", \"pairs\": " << json_number(r.seconds_pairs)
@@ -173,10 +112,15 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
            << ", \"shells\": " << r.shells << ", \"non_manifold_edges\": " << r.non_manifold_edges
            << ", \"dropped_components\": " << r.dropped_components << "}"
            << ", \"a\": " << solid_json(names[0], solids[0], r.pieces_a)
-           << ", \"b\": " << solid_json(names[1], solids[1], r.pieces_b) << ", \"output\": ";
+           << ", \"b\": " << solid_json(names[1], solids[1], r.pieces_b) << ", \"operands\": [";
+    for (std::size_t i = 0; i < 2; ++i)
+      report << (i ? ", " : "") << "{\"name\": \"" << json_escape(names[i]) << "\", " << solid_counts_json(solids[i])
+             << "}";
+    report << "], \"output\": ";
     if (!output) report << "null";
     else report << "\"" << json_escape(output->to_stdout() ? "-" : output->path) << "\"";
-    report << ", \"rounded_coordinates\": " << rounded << "}\n";
+    report << ", \"rounding\": " << solid_rounding_json(rounding) << ", \"rounded_coordinates\": " << rounded
+           << "}\n";
   } else {
     for (std::size_t i = 0; i < 2; ++i)
       report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << solids[i].vertices << " V, " << solids[i].faces

@@ -6,9 +6,12 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "memory.hpp"
+#include "nonconvex_sum.hpp"
 #include "page.hpp"
 #include "progress.hpp"
 #include "scene.hpp"
+#include "solid.hpp"
 #include "text.hpp"
 #include "sweep.hpp"
 
@@ -35,6 +38,13 @@ exact plane a x + b y + c z = d, its provenance and its vertices' exact
 coordinates.  With one operand the page shows its counts and exact volume.
 docs/viewer.md describes the page.
 
+A non-convex operand must be a closed solid (docs/nonconvex.md; else exit
+status 3 and one line naming the problem), such as 'minksum sum' writes for a
+non-convex sum: alone it is shown with its faces as given, its counts and
+exact volume; with a second operand the page shows A, B and their exact
+non-convex sum as 'minksum sum' computes it (the boundary sweep; --method
+sums the convex pieces as there), its facets not coloured by provenance.
+
 A VRML scene (docs/vrml.md) with several shapes or with CubicalGaussianMap
 nodes, such as 'minksum cgm P Q -o cgm.wrl' writes, is shown whole: every ExactPolyhedron (or IndexedFaceSet) as
 a solid, every CubicalGaussianMap as its cube with the six planar maps and
@@ -48,6 +58,7 @@ Options:
                      records every facet's provenance, for the others it is
                      computed afterwards (left out above 2·10^8 vertex tests)
   --hull             take the convex hull of each input file's points
+                     (a non-convex solid is shown as it is without it)
   --title T          the page's title (default: the operands' names)
   --json             print the counts (and the sum's facet types) as JSON
 )";
@@ -115,6 +126,81 @@ int view_scene(const Args& a, const LoadedScene& scene, const std::string& outpu
   return 0;
 }
 
+// The page of one non-convex solid, or of A, B and A ⊕ B when an operand is
+// not convex (validated as 'sum' validates it, summed by the boundary sweep).
+int view_nonconvex(const Args& a, const std::string& output, const std::vector<AnyOperand>& any, Method method) {
+  const std::vector<std::string>& names = a.positional;
+  const bool json = a.flag("--json");
+  std::vector<Solid> solids;
+  for (std::size_t i = 0; i < any.size(); ++i) {
+    if (any[i].flat)
+      throw UsageError("a point, segment or polygon operand is summed with convex operands only, not with a "
+                       "non-convex solid (docs/sweeps.md)");
+    solids.push_back(any[i].polytope ? solid_of(*any[i].polytope) : validate_operand_solid(any[i].mesh, names[i]));
+  }
+  // A solid's JSON for the page: a convex operand as 'view' shows polytopes.
+  auto append_operand = [&](std::string& data, std::size_t i, const std::string& role) {
+    if (any[i].polytope) append_solid_json(data, *any[i].polytope, names[i], role);
+    else append_mesh_solid_json(data, solid_faces(solids[i]), solids[i].volume, names[i], role);
+  };
+  auto counts_of = [&](std::size_t i) {
+    const MeshCounts c = any[i].polytope ? MeshCounts{any[i].polytope->num_vertices(), any[i].polytope->num_edges(),
+                                                      any[i].polytope->num_facets()}
+                                         : mesh_counts(solid_faces(solids[i]));
+    return c;
+  };
+  auto counts_text = [](const MeshCounts& c) {
+    return "\"vertices\": " + std::to_string(c.vertices) + ", \"edges\": " + std::to_string(c.edges) +
+           ", \"facets\": " + std::to_string(c.faces);
+  };
+  if (names.size() == 1) {
+    const std::string title = a.value_or("--title", names[0]);
+    std::string data = "{\"kind\": \"solid\", \"title\": " + json_string(title) + ", \"solids\": [";
+    append_operand(data, 0, "polytope");
+    data += "]}";
+    write_page(output, title, data);
+    const MeshCounts c = counts_of(0);
+    if (json)
+      std::cout << "{\"kind\": \"solid\", \"name\": \"" << json_escape(names[0]) << "\", " << counts_text(c)
+                << ", \"volume\": \"" << format_exact(solids[0].volume) << "\", \"convex\": false, \"output\": \""
+                << json_escape(output) << "\"}\n";
+    else
+      std::cout << printable(names[0]) << ": " << c.vertices << " vertices, " << c.edges << " edges, " << c.faces
+                << " facets, a non-convex solid\n  page written to " << printable(output) << "\n";
+    return 0;
+  }
+  allow_thread_arenas();
+  NonconvexSum r;
+  {
+    ProgressTicker ticker("minksum view");
+    r = minkowski_sum_nonconvex(solids[0], solids[1], ticker.sum_options(), 0,
+                                method == Method::automatic ? Method::walk : method);
+  }
+  const std::string sum_name = names[0] + " ⊕ " + names[1];
+  const std::string title = a.value_or("--title", sum_name);
+  std::string data = "{\"kind\": \"sum\", \"title\": " + json_string(title) +
+                     ", \"method\": \"nonconvex\", \"provenance\": \"nonconvex\", \"origins\": " +
+                     origin_names_json() + ", \"solids\": [";
+  append_operand(data, 0, "a");
+  data += ", ";
+  append_operand(data, 1, "b");
+  data += ", ";
+  append_mesh_solid_json(data, r.mesh, r.volume, sum_name, "sum");
+  data += "]}";
+  write_page(output, title, data);
+  const MeshCounts c = mesh_counts(r.mesh);
+  if (json) {
+    std::cout << "{\"kind\": \"sum\", " << counts_text(c) << ", \"method\": \"nonconvex\", \"volume\": \""
+              << format_exact(r.volume) << "\", \"a\": {\"name\": \"" << json_escape(names[0]) << "\", "
+              << counts_text(counts_of(0)) << "}, \"b\": {\"name\": \"" << json_escape(names[1]) << "\", "
+              << counts_text(counts_of(1)) << "}, \"output\": \"" << json_escape(output) << "\"}\n";
+  } else {
+    std::cout << printable(sum_name) << " = " << c.vertices << " vertices, " << c.edges << " edges, " << c.faces
+              << " facets (non-convex sum, " << r.method << ")\n  page written to " << printable(output) << "\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int run_view(const std::vector<std::string>& argv) {
@@ -146,8 +232,19 @@ int run_view(const std::vector<std::string>& argv) {
   }
   // Points, segments, polygons (docs/sweeps.md): drawn by cmd_sweep.cpp.
   std::vector<ConvexSet> sets;
+  if (!hull) {  // operands that may be non-convex solids (docs/nonconvex.md)
+    std::vector<AnyOperand> any;
+    bool convex = true;
+    for (const std::string& name : a.positional) {
+      any.push_back(load_any_operand_from(name, nullptr, std::nullopt));
+      convex = convex && (any.back().polytope || any.back().flat);
+    }
+    if (!convex) return view_nonconvex(a, *output, any, *method);
+    for (auto& o : any) sets.push_back(o.flat ? std::move(*o.flat) : ConvexSet(std::move(*o.polytope)));
+  }
   {
-    for (const std::string& name : a.positional) sets.push_back(load_set_operand(name, hull, nullptr, std::nullopt));
+    for (std::size_t i = 0; hull && i < a.positional.size(); ++i)
+      sets.push_back(load_set_operand(a.positional[i], hull, nullptr, std::nullopt));
     bool lower = false;
     for (const ConvexSet& s : sets) lower = lower || !s.full();
     if (lower) {

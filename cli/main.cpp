@@ -31,7 +31,7 @@ Usage:
                 [--direction X,Y,Z] [--method M] [--trajectory FILE] [--json]
                 [--hull] [--format F]
   minksum simulate [--obstacle Q] [--robot P] [--frames N] [--turn A,B,C,D]
-                [-o OUT.svg] [--html OUT.html] [--show-m] [--json]
+                [-o OUT.svg] [--html OUT.html] [--show-m] [--json] [--hull]
   minksum cgm P [Q] [--svg OUT.svg] [--html OUT.html] [-o OUT.wrl] [--stats]
                 [--json] [--hull] [--format F]
   minksum view A [B] -o OUT.html [--method M] [--hull] [--title T] [--json]
@@ -47,7 +47,9 @@ built-in polytopes such as cube, sphere:4, dioctagonal:17, random:1000:7,
 box:1:2:3, sphere:3@rot:5 (see 'minksum gen --help' for the whole catalog).
 Files take the catalog's transforms too: part.stl@neg, part.stl@scale:2@rot:5.
 -o - writes the mesh to standard output (with --format; the summary then goes
-to stderr).  What minksum writes reads back as a valid convex polytope.
+to stderr).  What minksum writes reads back as a valid convex polytope, or,
+for a non-convex result, as a valid closed solid: sum, stats, convert and view
+take closed solids that are not convex (docs/nonconvex.md).
 
 Every computation is exact: coordinates are rationals, every geometric
 decision is the sign of an exact polynomial.

@@ -2,6 +2,7 @@
 #include "page.hpp"
 
 #include <minksum/io.hpp>
+#include <minksum/nonconvex.hpp>
 
 #include <algorithm>
 #include <ostream>
@@ -125,6 +126,93 @@ void append_solid_json(std::string& out, const ConvexPolytope& p, const std::str
     out += "]";
   }
   out += "}";
+}
+
+namespace {
+// The oriented plane of a planar polygon in canonical integers (kernel.hpp's
+// Plane): its normal by Newell's sum of cross products (exact, nonzero for a
+// simple polygon, pointing to the side it turns counter-clockwise around),
+// scaled to integers and divided by their gcd.
+Plane polygon_plane(const Mesh& m, const std::vector<Index>& loop) {
+  Point3 n(Rational(0), Rational(0), Rational(0));
+  const Point3 p0 = m.points.exact(loop[0]);
+  Point3 prev = p0;
+  for (std::size_t i = 1; i <= loop.size(); ++i) {
+    const Point3 p = i < loop.size() ? m.points.exact(loop[i]) : p0;
+    n = n + cross(prev - p0, p - p0);
+    prev = p;
+  }
+  Rational c[4] = {n.x, n.y, n.z, dot(n, p0)};
+  Integer den = 1;
+  for (const Rational& q : c) mpz_lcm(den.get_mpz_t(), den.get_mpz_t(), q.get_den_mpz_t());
+  Integer k[4], g = 0;
+  for (int i = 0; i < 4; ++i) {
+    k[i] = c[i].get_num() * (den / c[i].get_den());
+    mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), k[i].get_mpz_t());
+  }
+  if (g != 0)
+    for (Integer& x : k) x /= g;
+  return Plane{k[0], k[1], k[2], k[3]};
+}
+}  // namespace
+
+void append_mesh_solid_json(std::string& out, const Mesh& faces, const Rational& volume, const std::string& name,
+                            const std::string& role) {
+  std::size_t corners = 0;
+  for (const auto& f : faces.faces) corners += f.size();
+  out += "{\"name\": " + json_string(name) + ", \"role\": " + json_string(role) + ", \"counts\": {\"vertices\": " +
+         std::to_string(faces.points.size()) + ", \"edges\": " + std::to_string(corners / 2) +
+         ", \"facets\": " + std::to_string(faces.faces.size()) + "}, \"volume\": \"" + format_exact(volume) +
+         "\", \"xyz\": [";
+  for (std::size_t v = 0; v < faces.points.size(); ++v) {
+    const Vec3d& a = faces.points.approx(v);
+    out += (v ? "," : "") + json_number(a.x) + "," + json_number(a.y) + "," + json_number(a.z);
+  }
+  out += "], \"exact\": [";
+  for (std::size_t v = 0; v < faces.points.size(); ++v) {
+    const Point3 q = faces.points.exact(v);
+    out += v ? ",\"" : "\"";
+    append_exact(out, q.x), out += ' ', append_exact(out, q.y), out += ' ', append_exact(out, q.z);
+    out += '"';
+  }
+  out += "], \"facets\": [";
+  for (std::size_t f = 0; f < faces.faces.size(); ++f) {
+    out += f ? ",[" : "[";
+    for (std::size_t i = 0; i < faces.faces[f].size(); ++i) out += (i ? "," : "") + std::to_string(faces.faces[f][i]);
+    out += ']';
+  }
+  out += "], \"planes\": [";
+  for (std::size_t f = 0; f < faces.faces.size(); ++f) {
+    const Plane pl = polygon_plane(faces, faces.faces[f]);
+    out += (f ? ",\"" : "\"") + pl.a.get_str() + " " + pl.b.get_str() + " " + pl.c.get_str() + " " + pl.d.get_str() + "\"";
+  }
+  // Each face cut into triangles alone (a triangle as it is), its corners
+  // mapped back to the mesh's vertices.
+  std::string tri_facet;
+  out += "], \"triangles\": [";
+  bool first = true;
+  for (std::size_t f = 0; f < faces.faces.size(); ++f) {
+    const std::vector<Index>& loop = faces.faces[f];
+    std::vector<std::vector<Index>> tris;
+    if (loop.size() == 3) {
+      tris.push_back(loop);
+    } else {
+      Mesh one;
+      std::vector<Index> local;
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        one.points.push_back(faces.points.exact(loop[i]));
+        local.push_back(Index(i));
+      }
+      one.faces.push_back(std::move(local));
+      for (const auto& t : triangulate(one, name).faces) tris.push_back({loop[t[0]], loop[t[1]], loop[t[2]]});
+    }
+    for (const auto& t : tris) {
+      out += (first ? "" : ",") + std::to_string(t[0]) + "," + std::to_string(t[1]) + "," + std::to_string(t[2]);
+      tri_facet += (first ? "" : ",") + std::to_string(f);
+      first = false;
+    }
+  }
+  out += "], \"triangle_facet\": [" + tri_facet + "]}";
 }
 
 std::string page_html(const std::string& title, const std::string& data, bool connect_self) {

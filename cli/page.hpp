@@ -29,6 +29,17 @@ void check_html_path(const std::string& path, const std::string& option);
 void append_solid_json(std::string& out, const ConvexPolytope& p, const std::string& name, const std::string& role,
                        const std::vector<FacetProvenance>* provenance = nullptr);
 
+// The same fields for a solid that need not be convex, given by its faces
+// (simple planar polygons, counter-clockwise seen from outside, as a
+// Solid's faces or a NonconvexSum's mesh): "counts" (vertices, edges and
+// facets of `faces`), "volume" (`volume`, exact), "xyz", "exact", "facets"
+// (the faces' loops), "planes" (each face's canonical integer plane), and
+// "triangles" (each face cut into triangles by exact ear clipping: three
+// vertex indices a triangle, flat) with "triangle_facet" (the face of each
+// triangle), which the page draws instead of fanning the loops.
+void append_mesh_solid_json(std::string& out, const Mesh& faces, const Rational& volume, const std::string& name,
+                            const std::string& role);
+
 // "[\"translated\", \"corner\", ...]": FacetOrigin names in enum order.
 std::string origin_names_json();
 
@@ -54,7 +65,7 @@ std::string html_text(std::string_view s);
 std::string page_html(const std::string& title, const std::string& data, bool connect_self = false);
 
 // Writes the page atomically: `data` is one JSON object (it holds "kind":
-// "sum", "polytope", "cgm" or "motion"); OutputError when the file cannot be written.
+// "sum", "polytope", "solid", "cgm" or "motion"); OutputError when the file cannot be written.
 void write_page(const std::string& path, const std::string& title, const std::string& data);
 
 // The page of 'minksum cgm --html': the map g of `shown` (P, or P ⊕ Q when

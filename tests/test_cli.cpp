@@ -267,15 +267,18 @@ TEST_F(Cli, BadInputExitsThreeWithOneLine) {
     std::string in = data(std::string("bad/") + c);
     ASSERT_TRUE(fs::exists(in)) << in;
     std::string out = path("out.off");
-    // An L prism and two disjoint cubes are closed solids: sum takes them
-    // (docs/nonconvex.md); the convex-only commands refuse them.
+    // An L prism and two disjoint cubes are closed solids: sum, stats,
+    // convert and view take them (docs/nonconvex.md); the convex-only
+    // commands refuse them.
     const bool solid = std::string(c) == "nonconvex_lprism.off" || std::string(c) == "two_cubes.off";
     CmdResult r = run("sum " + in + (solid ? " tube -o " : " cube -o ") + out);
     if (solid) {
       EXPECT_EQ(r.status, 0) << r.err;
       fs::remove(out);
       CmdResult st = run("stats " + in);
-      EXPECT_EQ(st.status, 3) << st.err;
+      EXPECT_EQ(st.status, 0) << st.err;
+      CmdResult q = run("query distance " + in + " cube");
+      EXPECT_EQ(q.status, 3) << q.err;
       continue;
     }
     EXPECT_EQ(r.status, 3) << r.err;
@@ -294,9 +297,14 @@ TEST_F(Cli, NotConvexInputSuggestsHull) {
   for (const char* c : {"nonplanar_facet.off", "nonconvex_lprism.off"}) {
     SCOPED_TRACE(c);
     const std::string in = data(std::string("bad/") + c);
-    const bool solid = std::string(c) == "nonconvex_lprism.off";  // sum takes it (docs/nonconvex.md)
-    for (const std::string& cmd : {"stats " + in, "sum " + in + " cube"}) {
-      if (solid && cmd[1] == 'u') continue;
+    // sum and stats take the L prism as the solid it is (docs/nonconvex.md);
+    // query, which takes convex operands only, refuses it naming --hull.
+    const bool solid = std::string(c) == "nonconvex_lprism.off";
+    for (const std::string& cmd : {"stats " + in, "sum " + in + " cube", "query distance " + in + " cube"}) {
+      if (solid && cmd[0] == 's') {
+        EXPECT_EQ(run(cmd).status, 0) << cmd;
+        continue;
+      }
       CmdResult r = run(cmd);
       EXPECT_EQ(r.status, 3) << r.err;
       EXPECT_NE(r.err.find("; --hull takes the convex hull of its points instead"), std::string::npos) << r.err;
@@ -875,13 +883,14 @@ TEST_F(Cli, ConvertEveryFormatToEveryFormat) {
   CmdResult p = run_sh("minksum gen cube -o - --format stl | minksum convert - --from stl -o - --format off");
   ASSERT_EQ(p.status, 0) << p.err;
   EXPECT_EQ(p.out.rfind("OFF\n8 6 12\n", 0), 0u) << p.out;
-  // Not convex: refused naming --hull; with --hull its hull.
-  CmdResult n = run("convert " + data("bad/nonconvex_lprism.off") + " -o " + path("h.off"));
-  EXPECT_EQ(n.status, 3);
-  EXPECT_NE(n.err.find("--hull"), std::string::npos) << n.err;
-  EXPECT_FALSE(fs::exists(path("h.off")));
+  // Not convex: written as the solid it is, naming no --hull; with --hull its hull.
+  CmdResult n = run("convert " + data("bad/nonconvex_lprism.off") + " -o " + path("l.off"));
+  EXPECT_EQ(n.status, 0) << n.err;
+  EXPECT_EQ(n.err.find("--hull"), std::string::npos) << n.err;
   EXPECT_EQ(run("convert " + data("bad/nonconvex_lprism.off") + " -o " + path("h.off") + " --hull").status, 0);
-  EXPECT_EQ(run("stats " + path("h.off")).status, 0);
+  CmdResult h = run("stats " + path("h.off") + " --json");
+  EXPECT_EQ(h.status, 0);
+  EXPECT_EQ(h.out.find("genus"), std::string::npos) << h.out;  // convex
   // Usage.
   EXPECT_EQ(run("convert cube").status, 2);
   EXPECT_EQ(run("convert -o " + path("x.off")).status, 2);
@@ -903,15 +912,20 @@ TEST_F(Cli, CadMeshesAreRefusedNamingHullAndAcceptedWithIt) {
                         Case{"hull.stl", 332, -1, -1}}) {
     SCOPED_TRACE(c.file);
     const std::string in = data(std::string("cad/") + c.file);
-    // (sum takes them as the non-convex solids they are: docs/nonconvex.md.)
-    for (const std::string& cmd : {"stats " + in, "convert " + in + " -o " + path("x.off")}) {
-      CmdResult r = run(cmd);
-      EXPECT_EQ(r.status, 3) << r.err;
-      EXPECT_EQ(lines(r.err), 1u) << r.err;
-      EXPECT_EQ(r.err.rfind("minksum: " + in + ": ", 0), 0u) << r.err;
-      EXPECT_NE(r.err.find("; --hull takes the convex hull of its points instead"), std::string::npos) << r.err;
-    }
-    EXPECT_FALSE(fs::exists(path("x.off")));
+    // sum, stats and convert take them as the non-convex solids they are
+    // (docs/nonconvex.md): one shell of genus 0 through all the points.
+    CmdResult solid = run("stats " + in + " --json");
+    ASSERT_EQ(solid.status, 0) << solid.err;
+    EXPECT_NE(solid.out.find("\"convex\": false"), std::string::npos) << solid.out;
+    EXPECT_EQ(json_int(solid.out, "vertices"), c.vertices);
+    EXPECT_EQ(json_int(solid.out, "genus"), 0);
+    EXPECT_EQ(json_int(solid.out, "shells"), 1);
+    // query takes convex operands only: refused, naming --hull.
+    CmdResult r = run("query distance " + in + " cube");
+    EXPECT_EQ(r.status, 3) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("minksum: " + in + ": ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("; --hull takes the convex hull of its points instead"), std::string::npos) << r.err;
     CmdResult h = run("stats " + in + " --hull --json");
     ASSERT_EQ(h.status, 0) << h.err;
     const long v = json_int(h.out, "vertices"), e = json_int(h.out, "edges"), f = json_int(h.out, "facets");
@@ -1459,7 +1473,17 @@ TEST_F(Cli, NonConvexCatalogSolidsGenAndHelp) {
   CmdResult g = run("gen gear:4 -o " + path("gear.off"));
   ASSERT_EQ(g.status, 0) << g.err;
   EXPECT_NE(g.out.find("gear:4: 64 vertices, 64 faces, non-convex"), std::string::npos) << g.out;
-  EXPECT_EQ(run("stats " + path("gear.off")).status, 3);  // not convex
+  // Not convex: a solid of genus 1 (the bore), its faces as written
+  // (rounded to doubles: triangles).
+  CmdResult st = run("stats " + path("gear.off") + " --json");
+  ASSERT_EQ(st.status, 0) << st.err;
+  EXPECT_EQ(json_int(st.out, "vertices"), 64);
+  EXPECT_EQ(json_int(st.out, "facets"), 128);
+  EXPECT_EQ(json_int(st.out, "genus"), 1);
+  CmdResult exact = run("stats gear:4 --json");
+  ASSERT_EQ(exact.status, 0) << exact.err;
+  EXPECT_EQ(json_int(exact.out, "facets"), 64);
+  EXPECT_EQ(json_int(exact.out, "genus"), 1);
   CmdResult s = run("sum " + path("gear.off") + " cube@scale:1/16 --json");
   ASSERT_EQ(s.status, 0) << s.err;
   CmdResult t = run("sum gear:4 cube@scale:1/16 --json");
@@ -1468,4 +1492,257 @@ TEST_F(Cli, NonConvexCatalogSolidsGenAndHelp) {
   EXPECT_EQ(run("gen gear:2 -o " + path("x.off")).status, 2);
   CmdResult help = run("sum --help");
   EXPECT_NE(help.out.find("Non-convex operands"), std::string::npos);
+}
+
+// ---------------------------------------------------------------------------
+// stats, convert and view take closed solids that are not convex (they
+// refused the file 'sum' writes for a non-convex sum, with a hint at --hull
+// that would have destroyed the shape).
+
+// An exact string field "key": "value" of a JSON line ("" when absent).
+static std::string json_text(const std::string& json, const std::string& key) {
+  const std::string k = "\"" + key + "\": \"";
+  const std::size_t at = json.find(k);
+  if (at == std::string::npos) return "";
+  const std::size_t from = at + k.size();
+  return json.substr(from, json.find('"', from) - from);
+}
+
+// The stats of what 'sum' wrote for a non-convex sum are the sum's own:
+// counts and exact volume; tube ⊕ a small sphere has the tube's genus 1.
+TEST_F(Cli, StatsOfTheFileSumWritesForANonConvexSum) {
+  CmdResult s = run("sum tube sphere:2@scale:1/4 --exact --json -o " + path("x.off"));
+  ASSERT_EQ(s.status, 0) << s.err;
+  CmdResult st = run("stats " + path("x.off") + " --json");
+  ASSERT_EQ(st.status, 0) << st.err;
+  EXPECT_EQ(json_text(st.out, "volume"), json_text(s.out, "volume")) << st.out;
+  EXPECT_FALSE(json_text(st.out, "volume").empty());
+  for (const char* key : {"vertices", "edges", "facets"}) EXPECT_EQ(json_int(st.out, key), json_int(s.out, key)) << key;
+  EXPECT_EQ(json_int(st.out, "genus"), 1) << st.out;
+  EXPECT_EQ(json_int(st.out, "shells"), 1) << st.out;
+  EXPECT_NE(st.out.find("\"convex\": false"), std::string::npos) << st.out;
+  // V - E + F = 2 - 2 genus.
+  EXPECT_EQ(json_int(st.out, "vertices") - json_int(st.out, "edges") + json_int(st.out, "facets"), 0);
+  // The text names the same numbers; no hint at --hull.
+  CmdResult text = run("stats " + path("x.off"));
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find(std::to_string(json_int(s.out, "facets")) + " facets, a non-convex solid\n"),
+            std::string::npos)
+      << text.out;
+  EXPECT_NE(text.out.find("  genus 1, 1 shell\n"), std::string::npos) << text.out;
+  EXPECT_EQ(text.err.find("--hull"), std::string::npos) << text.err;
+}
+
+// The catalog's tube ([-1,1]^3 with a square hole of side 1 along z): 16
+// vertices, 32 edges, 16 faces, volume 8 - 1·2 = 6, genus 1, its box exactly
+// [-1,1]^3; a torus (genus 1); two disjoint cubes (two shells); a cube with
+// a cubic cavity (two shells, volume 64 - 8).
+TEST_F(Cli, StatsOfNonConvexSolidsGenusShellsAndBox) {
+  CmdResult t = run("stats tube --json");
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_EQ(json_int(t.out, "vertices"), 16);
+  EXPECT_EQ(json_int(t.out, "edges"), 32);
+  EXPECT_EQ(json_int(t.out, "facets"), 16);
+  EXPECT_EQ(json_text(t.out, "volume"), "6");
+  EXPECT_EQ(json_int(t.out, "genus"), 1);
+  EXPECT_EQ(json_int(t.out, "shells"), 1);
+  EXPECT_NE(t.out.find("\"bounding_box\": {\"min\": [\"-1\", \"-1\", \"-1\"], \"max\": [\"1\", \"1\", \"1\"], "
+                       "\"min_double\": [-1, -1, -1], \"max_double\": [1, 1, 1]}"),
+            std::string::npos)
+      << t.out;
+  CmdResult text = run("stats tube@scale:1/3");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("tube@scale:1/3: 16 vertices, 32 edges, 16 facets, a non-convex solid\n"), std::string::npos)
+      << text.out;
+  EXPECT_NE(text.out.find("(exactly 2/9)"), std::string::npos) << text.out;  // 6 / 27
+  EXPECT_NE(text.out.find("    exactly [-1/3, 1/3] × [-1/3, 1/3] × [-1/3, 1/3]\n"), std::string::npos) << text.out;
+  CmdResult torus = run("stats torus:8:4 --json");
+  ASSERT_EQ(torus.status, 0) << torus.err;
+  EXPECT_EQ(json_int(torus.out, "vertices"), 32);
+  EXPECT_EQ(json_int(torus.out, "facets"), 64);
+  EXPECT_EQ(json_int(torus.out, "edges"), 96);
+  EXPECT_EQ(json_int(torus.out, "genus"), 1);
+  CmdResult two = run("stats " + data("bad/two_cubes.off") + " --json");
+  ASSERT_EQ(two.status, 0) << two.err;
+  EXPECT_EQ(json_int(two.out, "shells"), 2);
+  EXPECT_EQ(json_int(two.out, "genus"), 0);
+  // A cube [-2,2]^3 facing outwards around a cavity [-1,1]^3 facing into it.
+  std::ofstream(path("cavity.off")) << "OFF\n16 12 0\n"
+                                    << "-2 -2 -2\n2 -2 -2\n2 2 -2\n-2 2 -2\n-2 -2 2\n2 -2 2\n2 2 2\n-2 2 2\n"
+                                    << "-1 -1 -1\n1 -1 -1\n1 1 -1\n-1 1 -1\n-1 -1 1\n1 -1 1\n1 1 1\n-1 1 1\n"
+                                    << "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n"
+                                    << "4 8 9 10 11\n4 12 15 14 13\n4 8 12 13 9\n4 9 13 14 10\n4 10 14 15 11\n"
+                                    << "4 11 15 12 8\n";
+  CmdResult cav = run("stats " + path("cavity.off") + " --json");
+  ASSERT_EQ(cav.status, 0) << cav.err;
+  EXPECT_EQ(json_text(cav.out, "volume"), "56");
+  EXPECT_EQ(json_int(cav.out, "shells"), 2);
+  EXPECT_EQ(json_int(cav.out, "genus"), 0);
+  EXPECT_EQ(json_int(cav.out, "facets"), 12);
+  // Through standard input.
+  CmdResult in = run_sh("minksum gen tube --exact -o - --format off | minksum stats - --format off --json");
+  ASSERT_EQ(in.status, 0) << in.err;
+  EXPECT_EQ(json_int(in.out, "genus"), 1);
+  EXPECT_NE(in.out.find("\"name\": \"-\""), std::string::npos) << in.out;
+}
+
+// Convex inputs keep their stats exactly (the keys of a polytope, no genus).
+TEST_F(Cli, StatsOfAConvexPolytopeUnchangedBySolids) {
+  CmdResult c = run("stats cube --json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  EXPECT_EQ(c.out.rfind("{\"name\": \"cube\", \"vertices\": 8, \"edges\": 12, \"facets\": 6, \"volume\": \"8\", "
+                        "\"volume_double\": 8, \"max_facet_degree\": 4, \"max_vertex_degree\": 3, "
+                        "\"coordinates_are_doubles\": true, \"phases\": {",
+                        0),
+            0u)
+      << c.out;
+  CmdResult t = run("stats cube");
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_EQ(t.out, "cube: 8 vertices, 12 edges, 6 facets\n  volume 8\n  largest facet has 4 vertices, largest vertex "
+                   "degree 3\n  coordinates: all exact doubles\n");
+}
+
+// convert writes a solid in every format: exactly to OFF/OBJ/WRL with
+// --exact (read back: the same exact volume), rounded otherwise (a note, a
+// valid solid read back), as triangles to STL.
+TEST_F(Cli, ConvertWritesNonConvexSolids) {
+  ASSERT_EQ(run("sum tube sphere:2@scale:1/4 --exact -o " + path("x.off")).status, 0);
+  CmdResult st = run("stats " + path("x.off") + " --json");
+  ASSERT_EQ(st.status, 0) << st.err;
+  const std::string volume = json_text(st.out, "volume");
+  for (const char* ext : {"obj", "wrl", "off"}) {
+    SCOPED_TRACE(ext);
+    const std::string out = path(std::string("y.") + ext);
+    CmdResult c = run("convert " + path("x.off") + " --exact --json -o " + out);
+    ASSERT_EQ(c.status, 0) << c.err;
+    EXPECT_NE(c.out.find("\"convex\": false"), std::string::npos) << c.out;
+    EXPECT_NE(c.out.find("\"rounding\": null"), std::string::npos) << c.out;
+    EXPECT_EQ(json_int(c.out, "facets"), json_int(st.out, "facets"));
+    CmdResult back = run("stats " + out + " --json");
+    ASSERT_EQ(back.status, 0) << back.err;
+    EXPECT_EQ(json_text(back.out, "volume"), volume);
+    EXPECT_EQ(json_int(back.out, "genus"), 1);
+  }
+  // Without --exact the coordinates that are not doubles are rounded, the
+  // written surface a valid solid of genus 1.
+  for (const char* ext : {"stl", "ply", "obj"}) {
+    SCOPED_TRACE(ext);
+    const std::string out = path(std::string("r.") + ext);
+    CmdResult c = run("convert " + path("x.off") + " --json -o " + out);
+    ASSERT_EQ(c.status, 0) << c.err;
+    EXPECT_NE(c.err.find("written rounded"), std::string::npos) << c.err;
+    EXPECT_GE(json_int(c.out, "coordinates"), 1) << c.out;
+    CmdResult back = run("stats " + out + " --json");
+    ASSERT_EQ(back.status, 0) << back.err;
+    EXPECT_EQ(json_int(back.out, "genus"), 1);
+    EXPECT_EQ(json_int(back.out, "facets"), json_int(c.out, "facets"));
+  }
+  // The tube's integer coordinates are written as they are; to STL its 16
+  // faces as 32 triangles.
+  CmdResult tube = run("convert tube -o " + path("t.stl"));
+  ASSERT_EQ(tube.status, 0) << tube.err;
+  EXPECT_EQ(tube.err, "");
+  EXPECT_EQ(tube.out, "tube: 16 vertices, 32 edges, 16 facets, a non-convex solid, written to " + path("t.stl") +
+                          " (STL) as 32 triangles\n");
+  CmdResult t = run("stats " + path("t.stl") + " --json");
+  ASSERT_EQ(t.status, 0) << t.err;
+  EXPECT_EQ(json_text(t.out, "volume"), "6");
+  EXPECT_EQ(json_int(t.out, "facets"), 32);
+  // Bad solids are still refused: exit 3, one line, no file.
+  const std::string l = slurp(data("bad/nonconvex_lprism.off"));
+  std::ofstream(path("open.off")) << l.substr(0, l.rfind('\n', l.size() - 2) + 1);
+  CmdResult bad = run("convert " + path("open.off") + " -o " + path("bad.off"));
+  EXPECT_EQ(bad.status, 3) << bad.err;
+  EXPECT_EQ(lines(bad.err), 1u) << bad.err;
+  EXPECT_FALSE(fs::exists(path("bad.off")));
+}
+
+// view shows a non-convex solid, alone or in a sum with the sum's exact
+// volume; the page's data gives the triangles of the faces.
+TEST_F(Cli, ViewShowsNonConvexSolids) {
+  CmdResult one = run("view tube -o " + path("tube.html") + " --json");
+  ASSERT_EQ(one.status, 0) << one.err;
+  EXPECT_EQ(one.out, "{\"kind\": \"solid\", \"name\": \"tube\", \"vertices\": 16, \"edges\": 32, \"facets\": 16, "
+                     "\"volume\": \"6\", \"convex\": false, \"output\": \"" + path("tube.html") + "\"}\n");
+  const std::string page = slurp(path("tube.html"));
+  EXPECT_NE(page.find("\"triangle_facet\""), std::string::npos);
+  EXPECT_NE(page.find("\"kind\": \"solid\""), std::string::npos);
+  CmdResult sum = run("sum tube box:1/2:1/2:1/2 --json");
+  ASSERT_EQ(sum.status, 0) << sum.err;
+  CmdResult two = run("view tube box:1/2:1/2:1/2 -o " + path("sum.html") + " --json");
+  ASSERT_EQ(two.status, 0) << two.err;
+  EXPECT_EQ(json_text(two.out, "volume"), "15");
+  EXPECT_EQ(json_int(two.out, "facets"), json_int(sum.out, "facets"));
+  EXPECT_TRUE(fs::exists(path("sum.html")));
+  CmdResult text = run("view tube -o " + path("t2.html"));
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_EQ(text.out, "tube: 16 vertices, 32 edges, 16 facets, a non-convex solid\n  page written to " +
+                          path("t2.html") + "\n");
+}
+
+// A refusal of a non-convex operand names --hull, and every command that
+// takes convex operands has it: cgm (which refused without the hint),
+// query, batch, simulate (which had no --hull).
+TEST_F(Cli, RefusalsNameHullOnlyWhereTheCommandHasIt) {
+  const std::string hint = "; --hull takes the convex hull of its points instead";
+  for (const std::string& cmd : std::vector<std::string>{"cgm tube", "cgm cube tube", "query collide tube cube"}) {
+    SCOPED_TRACE(cmd);
+    CmdResult r = run(cmd);
+    EXPECT_EQ(r.status, 3) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find(hint), std::string::npos) << r.err;
+    EXPECT_EQ(run(cmd + " --hull").status, 0) << cmd;
+  }
+  CmdResult b = run_sh("echo 'tube cube' | minksum batch");
+  EXPECT_NE(b.out.find(hint), std::string::npos) << b.out;
+  CmdResult sim = run("simulate --obstacle tube --frames 4");
+  EXPECT_EQ(sim.status, 3) << sim.err;
+  EXPECT_EQ(lines(sim.err), 1u) << sim.err;
+  EXPECT_NE(sim.err.find(hint), std::string::npos) << sim.err;
+  EXPECT_EQ(run("simulate --obstacle tube --frames 4 --hull").status, 0);
+  CmdResult robot = run("simulate --robot tube --frames 4");
+  EXPECT_NE(robot.err.find(hint), std::string::npos) << robot.err;
+  // The commands that take solids take a valid one without a word of --hull.
+  for (const std::string& cmd : std::vector<std::string>{"stats tube", "convert tube -o " + path("t.off"),
+                                                        "view tube -o " + path("t.html"), "sum tube cube"}) {
+    SCOPED_TRACE(cmd);
+    CmdResult r = run(cmd);
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ((r.out + r.err).find("--hull"), std::string::npos) << r.out << r.err;
+  }
+}
+
+// A non-convex sum's --json has the keys of a convex sum's (it had "faces"
+// and "rounded_coordinates" only, no "dimension", no "operands"), "kind"
+// names the result in both (as for sums with points, segments, polygons), the
+// operands' counts those of 'stats', and "rounding" what was rounded.
+TEST_F(Cli, NonConvexSumJsonHasTheConvexSumsKeys) {
+  CmdResult convex = run("sum cube box:1/2:1/2:1/2 --json");
+  ASSERT_EQ(convex.status, 0) << convex.err;
+  CmdResult solid = run("sum tube box:1/2:1/2:1/2 --json");
+  ASSERT_EQ(solid.status, 0) << solid.err;
+  for (const char* key : {"vertices", "edges", "facets", "dimension", "kind", "method", "seconds", "phases",
+                          "volume", "volume_double", "a", "b", "operands", "output", "rounding"}) {
+    SCOPED_TRACE(key);
+    const std::string k = std::string("\"") + key + "\": ";
+    EXPECT_NE(convex.out.find(k), std::string::npos) << convex.out;
+    EXPECT_NE(solid.out.find(k), std::string::npos) << solid.out;
+  }
+  EXPECT_EQ(json_int(solid.out, "dimension"), 3);
+  EXPECT_NE(solid.out.find("\"dimension\": 3, \"kind\": \"solid\", \"method\": \"nonconvex\""), std::string::npos)
+      << solid.out;
+  EXPECT_NE(convex.out.find("\"dimension\": 3, \"kind\": \"polytope\", \"method\": \"walk\""), std::string::npos)
+      << convex.out;
+  EXPECT_NE(solid.out.find("\"operands\": [{\"name\": \"tube\", \"vertices\": 16, \"edges\": 32, \"facets\": 16}, "
+                           "{\"name\": \"box:1/2:1/2:1/2\", \"vertices\": 8, \"edges\": 12, \"facets\": 6}]"),
+            std::string::npos)
+      << solid.out;
+  EXPECT_NE(solid.out.find("\"output\": null, \"rounding\": null, \"rounded_coordinates\": 0}"), std::string::npos)
+      << solid.out;
+  // Rounded: 1/3 is no double.
+  CmdResult third = run("sum lshape cube@scale:1/3 --json -o " + path("third.off"));
+  ASSERT_EQ(third.status, 0) << third.err;
+  const std::string rounding = third.out.substr(third.out.find("\"rounding\": "));
+  EXPECT_EQ(json_int(rounding, "coordinates"), 36) << third.out;
+  EXPECT_EQ(json_int(third.out, "rounded_coordinates"), 36) << third.out;
 }

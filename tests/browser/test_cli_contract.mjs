@@ -89,6 +89,29 @@ for (const method of ['chms', 'walk']) {
   for (const x of d.solids) checkPlanes(x, `view --method ${method} ${x.name}`);
 }
 
+// Non-convex solids (docs/nonconvex.md): alone and in a sum, valid JSON, the
+// planes exact, and each face cut into its corners' number less two
+// triangles of its own vertices (which the page draws instead of a fan).
+for (const args of [['view', 'tube'], ['view', 'tube', 'box:1/2:1/2:1/2'], ['view', 'lshape', 'tube@scale:1/4']]) {
+  const r = run([...args, '-o', page, '--json']);
+  check(r.status === 0, `'minksum ${args.join(' ')}': exit ${r.status} ${r.err}`);
+  JSON.parse(r.out);
+  const d = pageData(page);
+  for (const x of d.solids) {
+    const name = `${args.join(' ')}: ${x.name}`;
+    checkPlanes(x, name);
+    if (!x.triangles) continue;
+    check(x.triangles.length === 3 * x.triangle_facet.length, `${name}: ${x.triangles.length} triangle corners for ${x.triangle_facet.length} triangles`);
+    const per = new Array(x.facets.length).fill(0);
+    x.triangle_facet.forEach((f, t) => {
+      ++per[f];
+      for (let k = 0; k < 3; ++k)
+        check(x.facets[f].includes(x.triangles[3 * t + k]), `${name}: triangle ${t} has a corner off its facet ${f}`);
+    });
+    per.forEach((n, f) => check(n === x.facets[f].length - 2, `${name}: facet ${f} of ${x.facets[f].length} corners cut into ${n} triangles`));
+  }
+}
+
 // A title with '</script>' in it stays inside the data.
 const r = run(['view', 'tetra', '-o', page, '--title', 'a </script><b>title</b>']);
 check(r.status === 0, `view --title: exit ${r.status}`);

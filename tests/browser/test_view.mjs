@@ -6,7 +6,9 @@
 // the exact volume, and a facet clicked in the canvas is a face of the
 // polytope 'minksum sum/gen --exact' writes, with its exact plane.  'sweep':
 // a solid swept along a segment (docs/sweeps.md), the segment drawn as its
-// one edge; 'point': a point alone, drawn as a dot.
+// one edge; 'point': a point alone, drawn as a dot; 'solid': a non-convex
+// solid and its sum (docs/nonconvex.md), faces drawn from their exact
+// triangulation, counts as 'minksum stats' gives them.
 import { check, checkPage, checkPickedFacet, clickFacet, launch, minksum, minksumJson, open, options, readOff, visibleFacet } from './lib.mjs';
 import { join } from 'node:path';
 
@@ -19,9 +21,10 @@ const CASES = {
   big: { operands: ['sphere:6', 'sphere:6@rot:1'] },
   sweep: { operands: ['truncated-cube', 'segment:0,0,0:1,2,3'] },
   point: { operands: ['point:1,2,3'] },
+  solid: { operands: ['tube', 'box:1/2:1/2:1/2'] },
 };
 const c = CASES[kind];
-check(c, `unknown case '${kind}' (polytope, sum, big, sweep, point)`);
+check(c, `unknown case '${kind}' (polytope, sum, big, sweep, point, solid)`);
 const html = join(o.out, `view-${kind}.html`);
 minksum(o.minksum, ['view', ...c.operands, '-o', html]);
 
@@ -66,13 +69,20 @@ try {
   } else {
     const offFile = join(o.out, `view-${kind}.off`);
     const sum = minksumJson(o.minksum, ['sum', ...c.operands, '--exact', '-o', offFile, '--json']);
-    const keys = kind === 'sweep' ? [['a', sum.a], ['sum', sum]] : [['a', sum.a], ['b', sum.b], ['sum', sum]];
+    const keys = kind === 'sweep' ? [['a', sum.a], ['sum', sum]]
+               : kind === 'solid' ? [['a', minksumJson(o.minksum, ['stats', c.operands[0], '--json'])],
+                                     ['b', minksumJson(o.minksum, ['stats', c.operands[1], '--json'])], ['sum', sum]]
+               : [['a', sum.a], ['b', sum.b], ['sum', sum]];
     if (kind === 'sweep') check(drawn.edges.b === 1, `sweep: ${drawn.edges.b} edges of the segment drawn`);
     for (const [key, want] of keys) {
       check(drawn.facets[key] === want.facets, `${kind}: ${drawn.facets[key]} facets of ${key} drawn, minksum sum says ${want.facets}`);
       check(drawn.edges[key] === want.edges, `${kind}: ${drawn.edges[key]} edges of ${key} drawn, minksum sum says ${want.edges}`);
     }
-    if (kind !== 'sweep') {
+    if (kind === 'solid') {
+      const note = await page.textContent('#legend');
+      check(note.includes('non-convex'), `solid: the legend says '${note}'`);
+    }
+    if (kind !== 'sweep' && kind !== 'solid') {
     const legend = await page.$$eval('#legend [data-origin]', (rows) => Object.fromEntries(rows.map((r) => [r.dataset.origin, Number(r.dataset.count)])));
     check(JSON.stringify(legend) === JSON.stringify(sum.facet_types), `${kind}: legend ${JSON.stringify(legend)}, minksum sum says ${JSON.stringify(sum.facet_types)}`);
     }
@@ -87,8 +97,8 @@ try {
                            : await visibleFacet(page, target);
   check(f >= 0, `${kind}: no facet of ${target} is visible`);
   const picked = await clickFacet(page, target, f, kind);
-  checkPickedFacet(picked, off, kind);
-  if (kind !== 'polytope' && kind !== 'sweep') {
+  checkPickedFacet(picked, off, kind, kind !== 'solid');
+  if (kind !== 'polytope' && kind !== 'sweep' && kind !== 'solid') {
     const shownKind = await page.getAttribute('#pick-provenance', 'data-kind');
     check(shownKind === picked.provenance && shownKind, `${kind}: provenance shown '${shownKind}'`);
   }

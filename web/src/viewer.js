@@ -108,7 +108,9 @@ window.addEventListener('resize', resize);
 // Colours and names.
 
 const COLOURS = {
-  a: 0x3b7dd8, b: 0xe8862a, polytope: 0x5b8fd0, obstacle: 0x8fa9cf,
+  // sum: a sum without provenance (a non-convex sum, a big one), in the
+  // colour of its swatch in the list of solids, not A's blue.
+  a: 0x3b7dd8, b: 0xe8862a, sum: 0x3aa655, polytope: 0x5b8fd0, obstacle: 0x8fa9cf,
   translated: 0x3b7dd8, corner: 0xe8862a, edge: 0x3aa655, facet_edge: 0x9b59b6, facet_facet: 0x8a8f99,
   separate: 0x2a8f3a, touching: 0xe08a00, penetrating: 0xd02020,
   p: 0xd0312d, q: 0x2563c9, both: 0x8e44ad, real: 0x1d2430, artificial: 0x7a8594, cobstacle: 0x9b59b6,
@@ -137,8 +139,9 @@ function planeText(plane) {
 }
 
 // ---------------------------------------------------------------------------
-// Solids: one BufferGeometry each (facets fanned into triangles, one colour
-// per facet through vertex colours), the facet of every triangle kept for
+// Solids: one BufferGeometry each (facets fanned into triangles, or, for a
+// solid that is not convex, the triangles its data gives; one colour per
+// facet through vertex colours), the facet of every triangle kept for
 // picking, the edges as one LineSegments.
 
 const solids = [];  // { data, group, mesh, edges, triFacet, highlight, key }
@@ -152,27 +155,38 @@ function facetColours(s) {
 function buildSolid(s, key) {
   const xyz = s.xyz, facets = s.facets;
   let tris = 0;
-  for (const f of facets) tris += f.length - 2;
+  if (s.triangles) tris = s.triangle_facet.length;
+  else for (const f of facets) tris += f.length - 2;
   const pos = new Float32Array(tris * 9), col = new Float32Array(tris * 9), nor = new Float32Array(tris * 9);
   const triFacet = new Uint32Array(tris);
   const colourOf = facetColours(s);
   const colour = new THREE.Color();
-  let t = 0;
-  for (let f = 0; f < facets.length; ++f) {
-    const loop = facets[f];
-    colour.setHex(colourOf(f), THREE.SRGBColorSpace);
-    const p = s.planes[f].split(' ').map(Number);
-    const len = Math.hypot(p[0], p[1], p[2]) || 1;
-    for (let i = 1; i + 1 < loop.length; ++i, ++t) {
-      triFacet[t] = f;
-      const corners = [loop[0], loop[i], loop[i + 1]];
-      for (let k = 0; k < 3; ++k) {
-        const o = t * 9 + k * 3, v = corners[k] * 3;
-        pos[o] = xyz[v]; pos[o + 1] = xyz[v + 1]; pos[o + 2] = xyz[v + 2];
-        col[o] = colour.r; col[o + 1] = colour.g; col[o + 2] = colour.b;
-        nor[o] = p[0] / len; nor[o + 1] = p[1] / len; nor[o + 2] = p[2] / len;
-      }
+  let t = 0, last = -1, normal = null;
+  // Triangle t: corners u, v, w of facet f.
+  function put(f, u, v, w) {
+    if (f !== last) {
+      last = f;
+      colour.setHex(colourOf(f), THREE.SRGBColorSpace);
+      const p = s.planes[f].split(' ').map(Number);
+      const len = Math.hypot(p[0], p[1], p[2]) || 1;
+      normal = [p[0] / len, p[1] / len, p[2] / len];
     }
+    triFacet[t] = f;
+    const corners = [u, v, w];
+    for (let k = 0; k < 3; ++k) {
+      const o = t * 9 + k * 3, c = corners[k] * 3;
+      pos[o] = xyz[c]; pos[o + 1] = xyz[c + 1]; pos[o + 2] = xyz[c + 2];
+      col[o] = colour.r; col[o + 1] = colour.g; col[o + 2] = colour.b;
+      nor[o] = normal[0]; nor[o + 1] = normal[1]; nor[o + 2] = normal[2];
+    }
+    ++t;
+  }
+  if (s.triangles) {
+    const tv = s.triangles, tf = s.triangle_facet;
+    for (let i = 0; i < tf.length; ++i) put(tf[i], tv[3 * i], tv[3 * i + 1], tv[3 * i + 2]);
+  } else {
+    for (let f = 0; f < facets.length; ++f)
+      for (let i = 1; i + 1 < facets[f].length; ++i) put(f, facets[f][0], facets[f][i], facets[f][i + 1]);
   }
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute('position', new THREE.BufferAttribute(pos, 3));
@@ -401,7 +415,7 @@ function displayControls(list) {
 
 function initPolytope() {
   const s = buildSolid(data.solids[0], 'polytope');
-  side.append(el('h2', { text: 'Polytope' }), solidControls(s, COLOURS.polytope), countsTable([s.data]), volumes([s.data]));
+  side.append(el('h2', { text: data.kind === 'solid' ? 'Solid' : 'Polytope' }), solidControls(s, COLOURS.polytope), countsTable([s.data]), volumes([s.data]));
   side.append(el('h2', { text: 'Display' }), displayControls([s]));
   side.append(el('h2', { text: 'Picked facet' }), pickPanel);
   layout(false);
@@ -411,7 +425,7 @@ function initPolytope() {
 function initSum() {
   const [da, db, ds] = data.solids;
   const a = buildSolid(da, 'a'), b = buildSolid(db, 'b'), s = buildSolid(ds, 'sum');
-  side.append(el('h2', { text: 'Solids' }), solidControls(a, COLOURS.a), solidControls(b, COLOURS.b), solidControls(s, COLOURS.edge));
+  side.append(el('h2', { text: 'Solids' }), solidControls(a, COLOURS.a), solidControls(b, COLOURS.b), solidControls(s, COLOURS.sum));
   side.append(el('div', { text: `method: ${data.method}` }));
   side.append(countsTable([da, db, ds]));
   const legend = el('div', { id: 'legend' });
@@ -424,6 +438,8 @@ function initSum() {
         el('span', { class: 'sw', style: `background:${hex(COLOURS[name])}` }), `${ORIGIN_TEXT[name]}: ${count[i]}`));
     });
     if (data.provenance === 'computed') legend.append(el('div', { text: `(method ${data.method} does not record provenance; computed from the operands)` }));
+  } else if (data.provenance === 'nonconvex') {
+    legend.append(el('div', { text: 'not shown: the sum of a non-convex solid is the union of the sums of its pieces (docs/nonconvex.md)' }));
   } else {
     legend.append(el('div', { text: `not shown: method ${data.method} does not record it (use --method walk)` }));
   }
@@ -761,7 +777,7 @@ api.measureFrames = function (n = 60) {
 // 'minksum play': P and Q, P moved by the mouse, answers from the server (play.js).
 const initPlayPage = () => initPlay({ THREE, data, api, scene, camera, controls, renderer, view, side, el, hex, COLOURS,
   buildSolid, fitCamera, requestRender, countsTable, displayControls, pickPanel });
-const init = { polytope: initPolytope, sum: initSum, cgm: initCgm, motion: initMotion, play: initPlayPage, scene: initScene }[data.kind];
+const init = { polytope: initPolytope, solid: initPolytope, sum: initSum, cgm: initCgm, motion: initMotion, play: initPlayPage, scene: initScene }[data.kind];
 if (!init) throw new Error(`minksum: unknown page kind '${data.kind}'`);
 init();
 resize();

@@ -1,0 +1,223 @@
+// The minksum command line: convex polytopes or closed solids (solid.hpp).
+#include "solid.hpp"
+
+#include <chrono>
+#include <iostream>
+#include <iterator>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+
+#include "common.hpp"
+#include "nonconvex_sum.hpp"
+#include "text.hpp"
+
+namespace minksum::cli {
+
+Solid validate_operand_solid(const Mesh& mesh, const std::string& name) {
+  try {
+    return validate_solid(mesh, name);
+  } catch (const InputError& e) {
+    // The hint where --hull gives what was likely meant, as load_operand
+    // hints: a point cloud, or a closed surface whose fault the convex
+    // validator finds in its convexity or planarity (NotConvexError: a CAD
+    // tool's rounding, a surface crossing itself); not for a mesh whose
+    // surface is broken (open, non-manifold, oriented inwards).
+    bool hint = mesh.faces.empty();
+    if (!hint) {
+      try {
+        ConvexPolytope::from_mesh(mesh, name);
+      } catch (const NotConvexError&) {
+        hint = true;
+      } catch (const InputError&) {
+      }
+    }
+    if (!hint) throw;
+    throw InputError(e.file(), e.place(), e.problem() + "; --hull takes the convex hull of its points instead");
+  }
+}
+
+SolidOperand load_solid_operand(const std::string& spec, bool hull, LoadPhases* phases,
+                                std::optional<Format> format) {
+  SolidOperand o;
+  if (hull) {
+    o.polytope = load_operand(spec, true, phases, format);
+    return o;
+  }
+  // Standard input is read once, kept, so that a point, segment or polygon
+  // can be refused below exactly as load_operand refuses it.
+  std::string input;
+  if (spec == "-") {
+    if (!format) throw UsageError("reading a mesh from standard input ('-') needs --format " + format_choices());
+    claim_stdin("an operand");
+    input.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+  }
+  const std::string name = spec == "-" ? "<stdin>" : spec;
+  LoadPhases load;
+  AnyOperand any;
+  if (spec == "-") {
+    std::istringstream in(input);
+    any = load_any_operand(in, *format, name, &load);
+  } else {
+    any = load_any_operand(spec, &load, format);
+  }
+  if (any.polytope) {
+    o.polytope = std::move(*any.polytope);
+  } else if (any.flat) {  // not a solid: load_operand's refusal
+    if (spec != "-") {
+      o.polytope = load_operand(spec, false, &load, format);
+    } else {
+      std::istringstream in(input);
+      try {
+        o.polytope = load_polytope(in, *format, name, false, &load);
+      } catch (const NotConvexError& e) {
+        throw InputError(e.file(), e.place(), e.problem() + "; --hull takes the convex hull of its points instead");
+      }
+    }
+  } else {
+    const auto t0 = std::chrono::steady_clock::now();
+    o.solid = validate_operand_solid(any.mesh, name);
+    load.validate += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  if (phases) *phases = load;
+  return o;
+}
+
+Mesh solid_faces(const Solid& s) {
+  const Mesh& t = s.triangles;
+  // The triangles of each input face, in the order of the faces.
+  std::map<Index, std::vector<std::size_t>> by_face;
+  for (std::size_t i = 0; i < t.faces.size(); ++i) by_face[s.source_face[i]].push_back(i);
+  Mesh m;
+  m.points = t.points;
+  m.faces.reserve(by_face.size());
+  for (const auto& [face, tris] : by_face) {
+    // A face is a simple polygon cut by ear clipping (no point added): its
+    // triangles' halfedges without their twin in the face are its boundary,
+    // one loop through each of its vertices once.
+    std::map<std::pair<Index, Index>, int> half;
+    for (std::size_t i : tris)
+      for (std::size_t k = 0; k < 3; ++k) ++half[{t.faces[i][k], t.faces[i][(k + 1) % 3]}];
+    std::unordered_map<Index, Index> next;
+    for (const auto& [uv, n] : half)
+      if (!half.count({uv.second, uv.first})) next[uv.first] = uv.second;
+    std::vector<Index> loop;
+    const Index start = t.faces[tris[0]][0];
+    Index v = start;
+    do {
+      loop.push_back(v);
+      v = next.at(v);
+    } while (v != start && loop.size() <= next.size());
+    m.faces.push_back(std::move(loop));
+  }
+  return m;
+}
+
+std::string solid_rounding_json(const RoundedSolid& r) {
+  if (!r.rounded_coordinates && r.max_displacement == 0) return "null";
+  return "{\"coordinates\": " + std::to_string(r.rounded_coordinates) +
+         ", \"max_displacement\": " + json_number(r.max_displacement) + ", \"grid\": " + json_number(r.grid) + "}";
+}
+
+MeshCounts mesh_counts(const Mesh& m) {
+  MeshCounts c;
+  c.vertices = m.points.size();
+  c.faces = m.faces.size();
+  std::size_t corners = 0;
+  for (const auto& f : m.faces) corners += f.size();
+  c.edges = corners / 2;  // every edge has as many faces on each side
+  return c;
+}
+
+SolidStats solid_stats(const Solid& s, const Mesh& faces) {
+  SolidStats st;
+  const MeshCounts c = mesh_counts(faces);
+  st.vertices = c.vertices, st.edges = c.edges, st.facets = c.faces;
+  // Shells: the components of the vertices joined by the faces (every vertex
+  // is one fan of faces, so these are the surface's components).
+  std::vector<Index> parent(faces.points.size());
+  std::iota(parent.begin(), parent.end(), Index(0));
+  auto find = [&](Index v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& f : faces.faces)
+    for (std::size_t k = 1; k < f.size(); ++k) parent[find(f[k])] = find(f[0]);
+  for (Index v = 0; v < parent.size(); ++v) st.shells += find(v) == v;
+  // Euler: V - E + F = 2 (shells - genus) for closed orientable surfaces of
+  // disks.
+  const long long chi = (long long)c.vertices - (long long)c.edges + (long long)c.faces;
+  st.genus = std::size_t((2 * (long long)st.shells - chi) / 2);
+  for (std::size_t i = 0; i < faces.points.size(); ++i) {
+    const Point3 p = faces.points.exact(i);
+    if (i == 0) {
+      st.min = st.max = p;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (p[k] < st.min[k]) st.min[k] = p[k];
+      if (p[k] > st.max[k]) st.max[k] = p[k];
+    }
+  }
+  return st;
+}
+
+std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh, Mesh* written_out, RoundedSolid* rounded_out,
+                             const std::string& what) {
+  const std::string name = out.to_stdout() ? "<stdout>" : out.path;
+  const bool floats = out.format == Format::stl && out.options.binary;
+  const std::string exact_hint = "; use --exact with " + extension_list(", ", " or ", true) + " to write exact rationals";
+  // Without --exact: coordinates that are not doubles (binary STL: floats)
+  // rounded, the surface kept a valid solid (round_solid, docs/nonconvex.md).
+  RoundedSolid rounded;
+  if (!out.options.exact) {
+    try {
+      rounded = round_solid(mesh, floats, name);
+    } catch (const RoundingError& e) {
+      throw OutputError("cannot write " + name + ": " + e.what() + exact_hint);
+    } catch (const InputError& e) {
+      throw OutputError(std::string("cannot write ") + e.what());
+    }
+  }
+  // STL holds triangles only: faces cut exactly (an L-shaped cap fanned from
+  // a corner would cover its notch).
+  // round_solid's mesh also when nothing was rounded but the surface,
+  // touching itself, was cut apart (points moved).
+  const bool changed = rounded.rounded_coordinates > 0 || rounded.max_displacement > 0;
+  Mesh written = changed ? std::move(rounded.mesh)
+                 : out.format == Format::stl  ? triangulate(mesh, name)
+                                              : mesh;
+  try {
+    write_mesh_as_is(out, written);
+  } catch (const UnrepresentableError& e) {
+    throw OutputError("cannot write " + name + ": " + e.problem() + exact_hint);
+  } catch (const InputError& e) {
+    throw OutputError(std::string("cannot write ") + e.what());
+  }
+  if (rounded.rounded_coordinates) {
+    std::cerr << "minksum: note: " << printable(name) << ": " << rounded.rounded_coordinates << " coordinates are not "
+              << (floats ? "32-bit floats" : "doubles") << ", written rounded (largest displacement "
+              << format_double(rounded.max_displacement);
+    if (rounded.grid > 0) std::cerr << ", some points snapped to multiples of " << format_double(rounded.grid);
+    std::cerr << "), the faces as triangles; the written surface is a closed solid without self-intersection "
+                 "(checked exactly); --exact writes the exact "
+              << what << "\n";
+  } else if (changed) {
+    std::cerr << "minksum: note: " << printable(name) << ": the " << what
+              << " touches itself, and its parts were moved apart "
+              << "to write it as a valid solid (largest displacement " << format_double(rounded.max_displacement);
+    std::cerr << "), the faces as triangles; the written surface is a closed solid without self-intersection "
+                 "(checked exactly); --exact writes the exact "
+              << what << "\n";
+  }
+  if (written_out) *written_out = std::move(written);
+  if (rounded_out) {
+    rounded_out->rounded_coordinates = rounded.rounded_coordinates;
+    rounded_out->max_displacement = rounded.max_displacement;
+    rounded_out->grid = rounded.grid;
+  }
+  return rounded.rounded_coordinates;
+}
+
+}  // namespace minksum::cli

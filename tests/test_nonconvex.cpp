@@ -85,6 +85,28 @@ TEST(NonconvexValidation, SelfIntersectingMeshIsRefused) {
   EXPECT_EQ(p.rfind("m.off: facet ", 0), 0u) << p;
 }
 
+// The self-intersection test runs on CGAL's kernel of exact predicates on
+// doubles when every coordinate is a double, on the exact kernel otherwise:
+// both decide a gap or an overlap of one unit in the last place, and a
+// rational overlap of 1/3^40.
+TEST(NonconvexValidation, SelfIntersectionDecidedExactlyOnDoublesAndRationals) {
+  const Rational ulp(mpz_class(1), mpz_class(1) << 52);  // 1 + ulp is a double
+  const Mesh apart = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1 + ulp, 2, 0, 1, 0, 1));
+  ASSERT_TRUE(apart.points.all_doubles());
+  EXPECT_EQ(problem(apart), "");
+  const Mesh overlap = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1 - ulp / 2, 2, 0, 1, 0, 1));
+  ASSERT_TRUE(overlap.points.all_doubles());
+  EXPECT_NE(problem(overlap).find("the surface intersects itself"), std::string::npos) << problem(overlap);
+  Rational third(1, 1);
+  for (int i = 0; i < 40; ++i) third /= 3;
+  const Mesh rational_apart = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1 + third, 2, 0, 1, 0, 1));
+  ASSERT_FALSE(rational_apart.points.all_doubles());
+  EXPECT_EQ(problem(rational_apart), "");
+  const Mesh rational_overlap = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1 - third, 2, 0, 1, 0, 1));
+  EXPECT_NE(problem(rational_overlap).find("the surface intersects itself"), std::string::npos)
+      << problem(rational_overlap);
+}
+
 TEST(NonconvexValidation, CubesTouchingAtAVertexAreNotAManifold) {
   const Mesh m = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1, 2, 1, 2, 1, 2));
   EXPECT_NE(problem(m).find("non-manifold vertex: its facets form more than one fan"), std::string::npos) << problem(m);

@@ -8,6 +8,7 @@
 #include "nonconvex/nef.hpp"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Nef_polyhedron_3.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -115,13 +116,17 @@ Nef solid_nef(const Mesh& triangles) {
 
 }  // namespace
 
-std::optional<std::pair<Index, Index>> first_self_intersection(const Mesh& triangles) {
-  using SM = CGAL::Surface_mesh<KPoint>;
-  using Face = SM::Face_index;
+namespace {
+// The first pair of intersecting triangles that CGAL's self_intersections
+// reports, on a Surface_mesh of points of kernel IK.
+template <class IK>
+std::optional<std::pair<Index, Index>> first_hit(std::vector<typename IK::Point_3> points, const Mesh& triangles) {
+  using SM = CGAL::Surface_mesh<typename IK::Point_3>;
+  using Face = typename SM::Face_index;
   std::vector<std::vector<std::size_t>> faces;
   for (const auto& f : triangles.faces) faces.emplace_back(f.begin(), f.end());
   SM sm;
-  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(cgal_points(triangles.points), faces, sm);
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, faces, sm);
   std::optional<std::pair<Index, Index>> hit;
   // polygon_soup_to_polygon_mesh keeps the order of the faces.
   auto out = boost::make_function_output_iterator([&](const std::pair<Face, Face>& p) {
@@ -134,6 +139,25 @@ std::optional<std::pair<Index, Index>> first_self_intersection(const Mesh& trian
   } catch (const FirstHit&) {
   }
   return hit;
+}
+}  // namespace
+
+// The test needs exact predicates only (do two triangles meet?): when every
+// coordinate is a double (a rounded output, most files read), CGAL's kernel
+// of exact predicates on doubles decides it exactly without building exact
+// rational points; otherwise the exact kernel.
+std::optional<std::pair<Index, Index>> first_self_intersection(const Mesh& triangles) {
+  if (triangles.points.all_doubles()) {
+    using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
+    std::vector<IK::Point_3> points;
+    points.reserve(triangles.points.size());
+    for (std::size_t i = 0; i < triangles.points.size(); ++i) {
+      const Vec3d& d = triangles.points.approx(i);
+      points.emplace_back(d.x, d.y, d.z);
+    }
+    return first_hit<IK>(std::move(points), triangles);
+  }
+  return first_hit<K>(cgal_points(triangles.points), triangles);
 }
 
 namespace {

@@ -186,19 +186,27 @@ Mesh triangulate(const Mesh& mesh, const std::string& source) {
   Mesh out;
   out.points = mesh.points;
   const std::vector<Point3> pts = mesh.points.to_points();
-  for (Index f = 0; f < mesh.faces.size(); ++f) {
+  // The faces' triangles in parallel (each face on its own), then in the
+  // order of the faces; the first face that is not simple is named.
+  const std::size_t n = mesh.faces.size();
+  std::vector<std::vector<std::array<Index, 3>>> tris(n);
+  std::vector<char> simple(n, 1);
+  parallel_for(n, parallel_threads(0, n / 256 + 1), [&](std::size_t f) {
     const auto& loop = mesh.faces[f];
-    if (loop.size() == 3) {
-      out.faces.push_back(loop);
-      continue;
-    }
+    if (loop.size() == 3) return;
     std::vector<Point3> p;
     for (Index v : loop) p.push_back(pts[v]);
-    std::vector<std::array<Index, 3>> tris;
     const Point3 normal = polygon_normal(p);
-    if (is_zero(normal) || !ear_clip(loop, pts, normal, tris))
+    if (is_zero(normal) || !ear_clip(loop, pts, normal, tris[f])) simple[f] = 0;
+  });
+  for (Index f = 0; f < n; ++f) {
+    if (!simple[f])
       throw InputError(source, face_name(f), "is not a simple polygon (its boundary crosses or touches itself)");
-    for (const auto& t : tris) out.faces.push_back({t[0], t[1], t[2]});
+    if (mesh.faces[f].size() == 3) {
+      out.faces.push_back(mesh.faces[f]);
+      continue;
+    }
+    for (const auto& t : tris[f]) out.faces.push_back({t[0], t[1], t[2]});
   }
   return out;
 }

@@ -1361,29 +1361,52 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
 
   t0 = Clock::now();
   options.report("boundary", -1.0);
-  // Weld exactly equal points.
-  std::map<Point3, Index> index;
+  // Weld exactly equal points: looked up by their nearest doubles (equal
+  // points have equal ones; the doubles of the segments' ends in parallel),
+  // then compared exactly among the points with the same doubles.
+  std::vector<std::vector<std::array<Vec3d, 2>>> end_approx(n);
+  parallel_for(n, workers, [&](std::size_t g) {
+    end_approx[g].reserve(results[g].segments.size());
+    for (const Segment& sg : results[g].segments) end_approx[g].push_back({to_double(sg.a), to_double(sg.b)});
+  });
+  struct ApproxHash {
+    std::size_t operator()(const std::array<double, 3>& k) const {
+      std::size_t h = 0;
+      for (double x : k) h = h * 1000003u ^ std::hash<double>()(x);
+      return h;
+    }
+  };
+  std::unordered_multimap<std::array<double, 3>, Index, ApproxHash> index;
   std::vector<Point3> pts;
+  std::vector<Vec3d> approx;
+  auto weld = [&](Point3& p, const Vec3d& d) {
+    const std::array<double, 3> key{d.x, d.y, d.z};
+    auto range = index.equal_range(key);
+    for (auto it = range.first; it != range.second; ++it)
+      if (pts[it->second] == p) return std::make_pair(it->second, false);
+    const Index id = Index(pts.size());
+    index.emplace(key, id);
+    pts.push_back(std::move(p));
+    approx.push_back(d);
+    return std::make_pair(id, true);
+  };
   std::vector<std::vector<std::pair<Index, Index>>> edges(n);
   for (std::size_t g = 0; g < n; ++g)
-    for (Segment& s : results[g].segments) {
-      Index ends[2];
-      for (int e = 0; e < 2; ++e) {
-        Point3& p = e ? s.b : s.a;
-        auto [it, fresh] = index.emplace(p, Index(pts.size()));
-        if (fresh) pts.push_back(std::move(p));
-        ends[e] = it->second;
-      }
-      edges[g].emplace_back(ends[0], ends[1]);
+    for (std::size_t i = 0; i < results[g].segments.size(); ++i) {
+      Segment& sg = results[g].segments[i];
+      const Index a = weld(sg.a, end_approx[g][i][0]).first;
+      const Index b = weld(sg.b, end_approx[g][i][1]).first;
+      edges[g].emplace_back(a, b);
     }
   results.clear();
+  end_approx.clear();
   // Two edges crossing at a point inside both (the solid touching itself at
   // a point there): the point becomes a vertex of both.
-  for (Point3& x : crossings(edges, pts))
-    if (index.emplace(x, Index(pts.size())).second) pts.push_back(std::move(x));
+  for (Point3& x : crossings(edges, pts)) {
+    const Vec3d d = to_double(x);
+    weld(x, d);
+  }
   index.clear();
-  std::vector<Vec3d> approx(pts.size());
-  for (std::size_t v = 0; v < pts.size(); ++v) approx[v] = to_double(pts[v]);
   std::vector<Index> order(pts.size());
   std::iota(order.begin(), order.end(), Index(0));
   std::sort(order.begin(), order.end(), [&](Index x, Index y) { return approx[x].x < approx[y].x; });

@@ -4,6 +4,7 @@
 // point-in-solid test that tells the pockets of the sweep inside A + b from
 // the boundary of A ⊕ B.
 #include <minksum/dot_difference.hpp>
+#include <minksum/parallel.hpp>
 #include <minksum/predicates.hpp>
 
 #include "nonconvex/sweep.hpp"
@@ -11,6 +12,7 @@
 #include <cstdint>
 #include <map>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace minksum::nonconvex_detail {
 
@@ -26,7 +28,15 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
     if (f.size() != 3) throw std::logic_error("SurfaceCones: a face that is not a triangle");
     tri_.push_back({f[0], f[1], f[2]});
   }
-  std::map<std::pair<Index, Index>, std::pair<Index, int>> directed;  // (a, b) -> (triangle, edge)
+  // (a, b) -> (triangle, edge); then each triangle's normal, and for each
+  // edge the face across it, in parallel.
+  struct PairHash {
+    std::size_t operator()(const std::pair<Index, Index>& e) const {
+      return std::hash<std::uint64_t>()((std::uint64_t(e.first) << 32) ^ e.second);
+    }
+  };
+  std::unordered_map<std::pair<Index, Index>, std::pair<Index, int>, PairHash> directed;
+  directed.reserve(3 * tri_.size());
   for (Index t = 0; t < tri_.size(); ++t)
     for (int k = 0; k < 3; ++k) directed[{tri_[t][k], tri_[t][(k + 1) % 3]}] = {t, k};
   normal_.resize(tri_.size());
@@ -38,25 +48,31 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
   across_.resize(tri_.size());
   for (Index t = 0; t < tri_.size(); ++t) {
     const auto& c = tri_[t];
-    for (int k = 0; k < 3; ++k) incident_[c[k]].push_back(t);
+    for (int k = 0; k < 3; ++k) {
+      incident_[c[k]].push_back(t);
+      neighbours_[c[k]].push_back(c[(k + 1) % 3]);
+      if (directed.find({c[(k + 1) % 3], c[k]}) == directed.end())
+        throw std::logic_error("SurfaceCones: an edge with one triangle");
+    }
+  }
+  parallel_for(tri_.size(), parallel_threads(0, tri_.size() / 256 + 1), [&](std::size_t t) {
+    const auto& c = tri_[t];
     normal_[t] = cross(points_[c[1]] - points_[c[0]], points_[c[2]] - points_[c[0]]);
     normal_approx_[t] = to_double(normal_[t]);
     for (int k = 0; k < 3; ++k) {
       const Index a = c[k], b = c[(k + 1) % 3];
-      neighbours_[a].push_back(b);
-      auto it = directed.find({b, a});
-      if (it == directed.end()) throw std::logic_error("SurfaceCones: an edge with one triangle");
+      const auto it = directed.find({b, a});
       const auto& o = tri_[it->second.first];
       const Index w = o[(it->second.second + 2) % 3];
       opposite_[t][k] = w;
       // Paired both ways: t is the triangle across the reversed edge too.
       const auto back = directed.find({a, b});
-      across_[t][k] = back->second.first == t ? it->second.first : kNoTriangle;
+      across_[t][k] = back->second.first == Index(t) ? it->second.first : kNoTriangle;
       // The neighbour's far vertex below this triangle's plane: a convex
       // edge; on it: flat; above: reflex.
       kind_[t][k] = static_cast<signed char>(sgn(dot(normal_[t], points_[w] - points_[a])));
     }
-  }
+  });
 }
 
 namespace {

@@ -40,12 +40,24 @@ exact strings; "min_double" and "max_double": their nearest doubles) instead
 of the largest facet and vertex degrees.
 )";
 
+// (Appended piece by piece: GCC 12 warns, wrongly, about overlapping copies
+// in a chain of operator+ that starts with a literal.)
 std::string exact_triple(const Point3& p) {
-  return "[\"" + format_exact(p.x) + "\", \"" + format_exact(p.y) + "\", \"" + format_exact(p.z) + "\"]";
+  std::string s = "[";
+  for (int k = 0; k < 3; ++k) {
+    s += k ? ", \"" : "\"";
+    s += format_exact(p[k]);
+    s += "\"";
+  }
+  return s + "]";
 }
 std::string double_triple(const Point3& p) {
-  return "[" + json_number(to_double(p.x)) + ", " + json_number(to_double(p.y)) + ", " + json_number(to_double(p.z)) +
-         "]";
+  std::string s = "[";
+  for (int k = 0; k < 3; ++k) {
+    if (k) s += ", ";
+    s += json_number(to_double(p[k]));
+  }
+  return s + "]";
 }
 // "[x0, x1] × [y0, y1] × [z0, z1]" by `number`.
 template <class F>

@@ -14,6 +14,7 @@
 #include <minksum/error.hpp>
 #include <minksum/io.hpp>
 #include <minksum/minkowski.hpp>
+#include <minksum/nonconvex.hpp>
 #include <minksum/operand.hpp>
 #include <minksum/parallel.hpp>
 #include <minksum/polytope.hpp>
@@ -30,11 +31,14 @@
 #include <cstring>
 #include <functional>
 #include <memory>
+#include <map>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <unordered_map>
 #include <variant>
 #include <vector>
 
@@ -455,13 +459,9 @@ py::array vertices_view(const ConvexPolytope& p, py::handle owner) {
   return a;
 }
 
-ConvexPolytope polytope_from(PointList points, py::handle faces) {
-  Mesh mesh;
-  mesh.points = std::move(points);
-  if (faces.is_none()) {
-    py::gil_scoped_release nogil;
-    return ConvexPolytope::hull(mesh.points);
-  }
+// The faces' loops (sequences of vertex indices, an (m, k) integer array)
+// into mesh.faces, each index checked against mesh.points.
+void read_faces(Mesh& mesh, py::handle faces) {
   if (!is_sequence(faces))
     throw py::type_error("faces: expected a sequence of index sequences, got " + type_name(faces));
   const std::size_t n = mesh.points.size();
@@ -484,12 +484,196 @@ ConvexPolytope polytope_from(PointList points, py::handle faces) {
     }
     mesh.faces.push_back(std::move(loop));
   }
+}
+
+ConvexPolytope polytope_from(PointList points, py::handle faces) {
+  Mesh mesh;
+  mesh.points = std::move(points);
+  if (faces.is_none()) {
+    py::gil_scoped_release nogil;
+    return ConvexPolytope::hull(mesh.points);
+  }
+  read_faces(mesh, faces);
   py::gil_scoped_release nogil;
   return ConvexPolytope::from_mesh(mesh);
 }
 
 ConvexPolytope polytope_from(py::handle vertices, py::handle faces, const char* name = "vertices") {
   return polytope_from(to_points(vertices, name), faces);
+}
+
+// ---------------------------------------------------------------------------
+// Solids (<minksum/nonconvex.hpp>).
+
+// A closed polyhedral solid, convex or not: its faces as polygons (the input's
+// faces after welding, or a non-convex sum's boundary), its exact volume, and
+// the validated Solid that sums take (for a sum's result, validated on first
+// use as an operand: its boundary may touch itself, which validate_solid
+// refuses).
+struct SolidPy {
+  Mesh faces;
+  Rational volume;
+  std::optional<Solid> solid;
+  std::string name;  // the source named in errors ("" for arrays)
+  std::mutex solid_mutex;
+
+  const Solid& validated() {
+    std::lock_guard<std::mutex> lock(solid_mutex);
+    if (!solid) solid = validate_solid(faces, name);
+    return *solid;
+  }
+};
+using SolidPtr = std::shared_ptr<SolidPy>;
+
+// The solid's faces as polygons again (Solid keeps its triangles): every face
+// of the input, welded, one loop over the points of s.triangles, as the
+// command's stats counts them.
+Mesh solid_faces(const Solid& s) {
+  const Mesh& t = s.triangles;
+  std::map<Index, std::vector<std::size_t>> by_face;
+  for (std::size_t i = 0; i < t.faces.size(); ++i) by_face[s.source_face[i]].push_back(i);
+  Mesh m;
+  m.points = t.points;
+  m.faces.reserve(by_face.size());
+  for (const auto& [face, tris] : by_face) {
+    // A face is a simple polygon cut by ear clipping (no point added): the
+    // halfedges of its triangles without their twin in the face are its boundary.
+    std::map<std::pair<Index, Index>, int> half;
+    for (std::size_t i : tris)
+      for (std::size_t k = 0; k < 3; ++k) ++half[{t.faces[i][k], t.faces[i][(k + 1) % 3]}];
+    std::unordered_map<Index, Index> next;
+    for (const auto& [uv, n] : half)
+      if (!half.count({uv.second, uv.first})) next[uv.first] = uv.second;
+    std::vector<Index> loop;
+    const Index start = t.faces[tris[0]][0];
+    Index v = start;
+    do {
+      loop.push_back(v);
+      v = next.at(v);
+    } while (v != start && loop.size() <= next.size());
+    m.faces.push_back(std::move(loop));
+  }
+  return m;
+}
+
+SolidPtr solid_from(Solid s, std::string name) {
+  auto out = std::make_shared<SolidPy>();
+  out->faces = solid_faces(s);
+  out->volume = s.volume;
+  out->name = std::move(name);
+  out->solid = std::move(s);
+  return out;
+}
+
+// What `minksum stats` prints of a solid: counts, shells, genus, bounding box.
+struct SolidCounts {
+  std::size_t vertices = 0, edges = 0, facets = 0, shells = 0;
+  long long genus = 0;
+  Point3 min, max;
+};
+
+SolidCounts solid_counts(const Mesh& m) {
+  SolidCounts c;
+  c.vertices = m.points.size();
+  c.facets = m.faces.size();
+  std::size_t corners = 0;
+  for (const auto& f : m.faces) corners += f.size();
+  c.edges = corners / 2;  // every edge has as many faces on each side
+  // Shells: the components of the vertices joined by the faces.
+  std::vector<Index> parent(m.points.size());
+  std::iota(parent.begin(), parent.end(), Index(0));
+  auto find = [&](Index v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& f : m.faces)
+    for (std::size_t k = 1; k < f.size(); ++k) parent[find(f[k])] = find(f[0]);
+  for (Index v = 0; v < parent.size(); ++v) c.shells += find(v) == v;
+  // Euler: V - E + F = 2 (shells - genus) for closed orientable surfaces.
+  const long long chi = (long long)c.vertices - (long long)c.edges + (long long)c.facets;
+  c.genus = (2 * (long long)c.shells - chi) / 2;
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    const Point3 p = m.points.exact(i);
+    if (i == 0) {
+      c.min = c.max = p;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (p[k] < c.min[k]) c.min[k] = p[k];
+      if (p[k] > c.max[k]) c.max[k] = p[k];
+    }
+  }
+  return c;
+}
+
+// The result of a non-convex sum: the boundary as a SolidPy, and the report
+// the command prints (NonconvexSum without its mesh).
+struct SolidSum : SolidPy {
+  NonconvexSum report;
+};
+
+// An operand of minkowski_sum that may be a solid: a Solid, a Polytope, or a
+// name loaded later (load_any_operand) with the GIL released.
+using AnyOperandPy = std::variant<SolidPtr, PolytopePtr, std::string>;
+
+AnyOperandPy to_any_operand(py::handle h, const char* name) {
+  if (py::isinstance<SolidPy>(h)) return py::cast<SolidPtr>(h);
+  Operand o = to_operand(h, name);
+  if (auto* p = std::get_if<PolytopePtr>(&o)) return *p;
+  return std::get<std::string>(o);
+}
+
+// A name as a solid: a convex polytope (file or catalog) as the solid it is,
+// else the mesh validated as a closed solid.  What is neither (a point cloud,
+// an open surface, a polygon) is refused with load() 's error, so that a name
+// that load() refuses is refused here in the same words.
+Solid load_solid(const std::string& spec) {
+  AnyOperand any = load_any_operand(spec);
+  if (any.polytope) return solid_of(*any.polytope);
+  if (!any.flat) {
+    try {
+      return validate_solid(any.mesh, spec);
+    } catch (const InputError&) {
+      // load_polytope's error (NotConvexError with its hint...) when it has one
+      load_polytope(spec);
+      throw;
+    }
+  }
+  load_polytope(spec);  // a point, segment or polygon: load()'s refusal
+  throw InputError(spec, "", "not a solid");
+}
+
+// The solid of an operand (with the GIL released).
+Solid operand_solid(const AnyOperandPy& o) {
+  if (auto* s = std::get_if<SolidPtr>(&o)) return (*s)->validated();
+  if (auto* p = std::get_if<PolytopePtr>(&o)) return solid_of(**p);
+  return load_solid(std::get<std::string>(o));
+}
+
+// A name that is not a convex polytope (load_any_operand gives its mesh).
+bool names_solid(const std::string& spec) {
+  AnyOperand any = load_any_operand(spec);
+  return !any.polytope && !any.flat;
+}
+
+py::array_t<double> points_array(const PointList& pts) {
+  py::array_t<double> a({static_cast<py::ssize_t>(pts.size()), py::ssize_t{3}});
+  auto r = a.mutable_unchecked<2>();
+  const auto& approx = pts.approx();
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    r(static_cast<py::ssize_t>(i), 0) = approx[i].x;
+    r(static_cast<py::ssize_t>(i), 1) = approx[i].y;
+    r(static_cast<py::ssize_t>(i), 2) = approx[i].z;
+  }
+  return a;
+}
+
+py::array_t<std::int64_t> triangle_array(const Mesh& t) {
+  py::array_t<std::int64_t> a({static_cast<py::ssize_t>(t.faces.size()), py::ssize_t{3}});
+  auto r = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < t.faces.size(); ++i)
+    for (int k = 0; k < 3; ++k) r(static_cast<py::ssize_t>(i), k) = t.faces[i][k];
+  return a;
 }
 
 py::bytes vec_bytes(const std::vector<Vec3d>& v) {
@@ -575,7 +759,7 @@ struct WitnessPy {
   Witness w;
 };
 
-const char* kModuleDoc = R"(Exact Minkowski sums of convex polyhedra in 3D, and exact proximity queries.
+const char* kModuleDoc = R"(Exact Minkowski sums of polyhedra in 3D (convex and non-convex solids), and exact proximity queries.
 
 Every computation is exact: coordinates are rationals (float inputs are
 taken as the exact values of the doubles, Decimal ones as their exact
@@ -600,6 +784,16 @@ Sum.facet_provenance here):
 "auto" picks walk, the output-sensitive method, for every pair.  Use
 another method to compare or to cross-check; "chms" (the hull of all
 pairwise vertex sums) is the slow, simple reference.
+
+Non-convex solids: when a or b is a Solid, or a name that is not a convex
+polytope (a file or a catalog solid such as "tube", validated as a closed
+solid), the sum is that of 'minksum sum' for a non-convex pair (the
+boundary sweep, docs/nonconvex.md) and the result is a SolidSum: a Solid
+(its exact boundary and volume) with the report the command prints
+(pieces, culled and candidate facets, clips, the phases' seconds).  The
+method then sums the sweep's pieces: walk (also for "auto" and the
+methods other than chms) or chms.  A Polytope given with a Solid is taken
+as the convex solid it is.
 
 Raises ValueError for an unknown method, InputError when a file named as an
 operand is bad, KeyboardInterrupt when interrupted (Ctrl-C).  The GIL is
@@ -864,6 +1058,153 @@ counters: operation counts some methods record.)")
             return s;
           }));
 
+  py::class_<SolidPy, std::shared_ptr<SolidPy>>(m, "Solid", R"(A closed polyhedral solid, convex or not, of any genus, with exact coordinates.
+
+Solid(vertices, faces)
+
+vertices: as for Polytope (an (n, 3) float64 array, each double taken
+exactly, an integer array, or a sequence of exact triples: int, Fraction,
+Decimal, float, text such as "1/3").  faces: polygons as sequences of vertex
+indices, or an (m, k) integer array (triangles: (m, 3)), counter-clockwise
+seen from outside.  The mesh is validated exactly as 'minksum sum' validates
+a non-convex operand (validate_solid): faces of at least three distinct
+vertices, planar and simple; every edge shared by two faces in opposite
+directions; every vertex one fan of faces; no self-intersection; the shells
+oriented as their nesting requires.  Equal vertices are welded and unused
+ones dropped.  Solid.load(name) reads a file or builds a catalog solid.
+
+Raises InputError (file "", place, problem: the message the command prints)
+when the mesh is not a valid closed solid, ValueError for malformed
+arguments, TypeError for arguments of the wrong type.)")
+      .def(py::init([](py::object vertices, py::object faces) {
+             Mesh mesh;
+             mesh.points = to_points(vertices, "vertices");
+             read_faces(mesh, faces);
+             py::gil_scoped_release nogil;
+             return solid_from(validate_solid(mesh, ""), "");
+           }),
+           py::arg("vertices"), py::arg("faces"))
+      .def_static(
+          "load",
+          [](py::object spec) {
+            const Operand o = to_operand(spec, "path_or_name");
+            if (std::holds_alternative<PolytopePtr>(o))
+              throw py::type_error("Solid.load: expected a file path or a catalog name");
+            const std::string name = std::get<std::string>(o);
+            py::gil_scoped_release nogil;
+            return solid_from(load_solid(name), name);
+          },
+          py::arg("path_or_name"),
+          "A solid from a file (.off, .obj, .ply, .stl, .wrl) or the catalog (\"tube\", \"cube\", ...): a convex\n"
+          "polytope as the solid it is, any other mesh validated as a closed solid.  Raises InputError as\n"
+          "load() does, ValueError for a name that is neither a file nor a catalog spec.")
+      .def_property_readonly(
+          "vertices", [](const SolidPy& s) { return points_array(s.faces.points); },
+          "The vertices as a float64 (n, 3) array: the nearest double of each exact coordinate (a copy).")
+      .def(
+          "exact_vertices",
+          [](const SolidPy& s) {
+            py::list out;
+            for (std::size_t i = 0; i < s.faces.points.size(); ++i) out.append(to_fractions(s.faces.points.exact(i)));
+            return out;
+          },
+          "The exact vertices: a list of (x, y, z) tuples of fractions.Fraction.")
+      .def_property_readonly(
+          "faces",
+          [](const SolidPy& s) {
+            py::list out;
+            for (const auto& f : s.faces.faces) out.append(index_array(f));
+            return out;
+          },
+          "The faces: one int64 array of vertex indices per face, counter-clockwise seen from outside.")
+      .def(
+          "triangles",
+          [](const SolidPy& s) {
+            Mesh t;
+            {
+              py::gil_scoped_release nogil;
+              t = s.solid ? s.solid->triangles : triangulate(s.faces, s.name);
+            }
+            return triangle_array(t);
+          },
+          "The faces cut into triangles (exact ear clipping), an int64 (m, 3) array of vertex indices\n"
+          "counter-clockwise seen from outside (trimesh.Trimesh(s.vertices, s.triangles())).")
+      .def_property_readonly("num_vertices", [](const SolidPy& s) { return s.faces.points.size(); })
+      .def_property_readonly("num_edges", [](const SolidPy& s) { return solid_counts(s.faces).edges; })
+      .def_property_readonly("num_facets", [](const SolidPy& s) { return s.faces.faces.size(); })
+      .def_property_readonly(
+          "is_convex", [](const SolidPy& s) { return s.solid && s.solid->convex.has_value(); },
+          "True when the solid is exactly a convex polytope (as validated; False for a sum's result).")
+      .def(
+          "volume", [](const SolidPy& s) { return to_fraction(s.volume); }, "The exact volume, a fractions.Fraction.")
+      .def_property_readonly(
+          "stats",
+          [](const SolidPy& s) {
+            SolidCounts c;
+            {
+              py::gil_scoped_release nogil;
+              c = solid_counts(s.faces);
+            }
+            py::dict d;
+            d["vertices"] = c.vertices;
+            d["edges"] = c.edges;
+            d["facets"] = c.facets;
+            d["volume"] = to_fraction(s.volume);
+            d["volume_float"] = to_double(s.volume);
+            d["genus"] = c.genus;
+            d["shells"] = c.shells;
+            d["bounding_box"] = py::make_tuple(to_fractions(c.min), to_fractions(c.max));
+            return d;
+          },
+          "What 'minksum stats' prints of a solid, as a dict: vertices, edges, facets (ints), volume (exact\n"
+          "Fraction), volume_float (its nearest double), genus (the sum of the shells' genera: a torus 1),\n"
+          "shells (connected components of the surface), bounding_box ((min, max), exact Fraction triples).")
+      .def("__repr__", [](const SolidPy& s) {
+        const SolidCounts c = solid_counts(s.faces);
+        return "<minksum.Solid: " + std::to_string(c.vertices) + " vertices, " + std::to_string(c.edges) +
+               " edges, " + std::to_string(c.facets) + " faces>";
+      });
+
+  py::class_<SolidSum, std::shared_ptr<SolidSum>, SolidPy>(m, "SolidSum", R"(The result of minkowski_sum with a non-convex operand: a Solid with its report.
+
+The boundary of a ⊕ b (exact polygons; where the sum touches itself the
+boundary is kept as it is, an edge of four faces) and what 'minksum sum'
+prints of the sum: method ("sweep"), swept ("a", "b" or None), pieces (the
+triangles swept and the convex pieces of the other operand, (a, b)), pairs,
+pair_facets, candidate_facets, culled_facets, clips, shells,
+non_manifold_edges, dropped_components, phases (seconds of "decompose",
+"pairs", "union", "boundary") and seconds (their sum).)")
+      .def_property_readonly("method", [](const SolidSum& s) { return std::string(s.report.method); })
+      .def_property_readonly("swept",
+                             [](const SolidSum& s) -> py::object {
+                               if (!s.report.swept) return py::none();
+                               return py::str(std::string(1, s.report.swept));
+                             })
+      .def_property_readonly("pieces", [](const SolidSum& s) { return py::make_tuple(s.report.pieces_a, s.report.pieces_b); })
+      .def_property_readonly("pairs", [](const SolidSum& s) { return s.report.pairs; })
+      .def_property_readonly("pair_facets", [](const SolidSum& s) { return s.report.pair_facets; })
+      .def_property_readonly("candidate_facets", [](const SolidSum& s) { return s.report.candidate_facets; })
+      .def_property_readonly("culled_facets", [](const SolidSum& s) { return s.report.culled_facets; })
+      .def_property_readonly("clips", [](const SolidSum& s) { return s.report.clips; })
+      .def_property_readonly("shells", [](const SolidSum& s) { return s.report.shells; })
+      .def_property_readonly("non_manifold_edges", [](const SolidSum& s) { return s.report.non_manifold_edges; })
+      .def_property_readonly("dropped_components", [](const SolidSum& s) { return s.report.dropped_components; })
+      .def_property_readonly("phases",
+                             [](const SolidSum& s) {
+                               py::dict d;
+                               d["decompose"] = s.report.seconds_decompose;
+                               d["pairs"] = s.report.seconds_pairs;
+                               d["union"] = s.report.seconds_union;
+                               d["boundary"] = s.report.seconds_boundary;
+                               return d;
+                             })
+      .def_property_readonly("seconds", [](const SolidSum& s) { return s.report.seconds(); })
+      .def("__repr__", [](const SolidSum& s) {
+        const SolidCounts c = solid_counts(s.faces);
+        return "<minksum.SolidSum (" + std::string(s.report.method) + "): " + std::to_string(c.vertices) +
+               " vertices, " + std::to_string(c.edges) + " edges, " + std::to_string(c.facets) + " faces>";
+      });
+
   m.def(
       "load",
       [](py::object spec, bool hull) {
@@ -887,9 +1228,40 @@ ValueError for a name that is neither a file nor a catalog spec.)");
 
   m.def(
       "minkowski_sum",
-      [](py::object a, py::object b, const std::string& method) {
-        const Operand oa = to_operand(a, "a"), ob = to_operand(b, "b");
+      [](py::object a, py::object b, const std::string& method) -> py::object {
+        AnyOperandPy any[2] = {to_any_operand(a, "a"), to_any_operand(b, "b")};
         const Method mt = to_method(method);
+        // Names are loaded first (load_any_operand): a name that is not a
+        // convex polytope is a solid.  Any solid makes the sum non-convex.
+        bool solid = false;
+        {
+          py::gil_scoped_release nogil;
+          for (AnyOperandPy& o : any) {
+            if (auto* name = std::get_if<std::string>(&o)) {
+              AnyOperand loaded = load_any_operand(*name);
+              if (loaded.polytope) o = std::make_shared<const ConvexPolytope>(std::move(*loaded.polytope));
+              else o = solid_from(load_solid(*name), *name);
+            }
+            solid = solid || std::holds_alternative<SolidPtr>(o);
+          }
+        }
+        if (solid) {
+          auto out = std::make_shared<SolidSum>();
+          std::atomic<bool> cancel{false};
+          SumOptions options;
+          options.cancel = &cancel;
+          run_interruptible(
+              [&] {
+                const Solid sa = operand_solid(any[0]), sb = operand_solid(any[1]);
+                out->report = minkowski_sum_nonconvex(sa, sb, options, 0, mt == Method::automatic ? Method::walk : mt);
+                out->faces = std::move(out->report.mesh);
+                out->report.mesh = Mesh{};
+                out->volume = out->report.volume;
+              },
+              cancel);
+          return py::cast(out);
+        }
+        const Operand oa = std::get<PolytopePtr>(any[0]), ob = std::get<PolytopePtr>(any[1]);
         SumOptions options;
         options.progress = [](const char*, double) {
           py::gil_scoped_acquire gil;
@@ -898,8 +1270,12 @@ ValueError for a name that is neither a file nor a catalog spec.)");
             throw Interrupted{};
           }
         };
-        py::gil_scoped_release nogil;
-        return sum_of(resolve(oa), resolve(ob), mt, options);
+        std::shared_ptr<Sum> r;
+        {
+          py::gil_scoped_release nogil;
+          r = sum_of(resolve(oa), resolve(ob), mt, options);
+        }
+        return py::cast(r);
       },
       py::arg("a"), py::arg("b"), py::arg("method") = "auto", with_methods(kMinkowskiSumDoc).c_str());
 

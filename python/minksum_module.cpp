@@ -268,6 +268,14 @@ PointList to_points(py::handle h, const std::string& name) {
   return pts;
 }
 
+// Whether h is a batch of points: an array of two dimensions, or a non-empty
+// sequence whose first item is a sequence.
+bool is_batch(py::handle h) {
+  if (py::isinstance<py::array>(h)) return py::reinterpret_borrow<py::array>(h).ndim() == 2;
+  if (is_sequence(h) && py::len(h) > 0) return is_sequence(py::reinterpret_borrow<py::sequence>(h)[0]);
+  return false;
+}
+
 // One translation or direction (`what`): a triple, or an array of shape (3,).
 // A batch (an (N, 3) array, a sequence of triples) is refused with ValueError.
 Point3 to_point(py::handle h, const std::string& name, const char* what = "translation") {
@@ -739,20 +747,90 @@ py::list provenance_list(Sum& s) {
 
 struct Obstacle {
   PolytopePtr p, q;
+  Method method = Method::automatic;
   std::unique_ptr<TranslationalObstacle> o;
-  std::mutex m;  // a TranslationalObstacle answers one query at a time
+  // For batches on several threads: more obstacles of the same P and Q (a
+  // TranslationalObstacle answers one query at a time), built on first use
+  // and kept.
+  std::vector<std::unique_ptr<TranslationalObstacle>> workers;
+  std::mutex m;  // one query or batch at a time
 };
+
+// A batch runs on at most one thread per this many translations.
+constexpr std::size_t kPosesPerThread = 64;
+
+// A batch of translations t[i] answered on `threads` threads (None: one per
+// hardware thread), each thread a contiguous block of poses on its own
+// obstacle; out[i] = answer(t[i]), the answer of the single query.
+template <class Result, class Answer>
+std::vector<Result> batch(Obstacle& o, const std::vector<Point3>& t, std::optional<long long> threads, Answer answer) {
+  if (threads && *threads < 1) throw py::value_error("threads must be at least 1 (or None: one per core)");
+  std::vector<Result> out(t.size());
+  py::gil_scoped_release nogil;
+  std::lock_guard<std::mutex> lock(o.m);
+  const std::size_t blocks = (t.size() + kPosesPerThread - 1) / kPosesPerThread;
+  const unsigned n = parallel_threads(threads ? static_cast<unsigned>(*threads) : 0u, blocks);
+  while (o.workers.size() + 1 < n)
+    o.workers.push_back(std::make_unique<TranslationalObstacle>(*o.p, *o.q, o.method));
+  parallel_for(n, n, [&](std::size_t k) {
+    TranslationalObstacle& ob = k == 0 ? *o.o : *o.workers[k - 1];
+    const std::size_t begin = t.size() * k / n, end = t.size() * (k + 1) / n;
+    for (std::size_t i = begin; i < end; ++i) out[i] = answer(ob, t[i]);
+  });
+  return out;
+}
+
+std::vector<Point3> to_translations(py::handle h) {
+  const PointList pts = to_points(h, "t");
+  std::vector<Point3> t;
+  t.reserve(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) t.push_back(pts.exact(i));
+  return t;
+}
 
 // A query of Obstacle on t (the translation of Q relative to P): t converted
 // with the GIL held, then answered with it released, one query at a time.
-template <class Result>
-auto query(Result (TranslationalObstacle::*answer)(const Point3&)) {
-  return [answer](Obstacle& o, py::object t) {
+// A batch of translations (an (N, 3) array or a sequence of triples) gives
+// the array value(result) of each (exact=True: the list of the results).
+template <class Result, class Value>
+auto query(Result (TranslationalObstacle::*answer)(const Point3&), Value value) {
+  return [answer, value](Obstacle& o, py::object t, bool exact, std::optional<long long> threads) -> py::object {
+    if (is_batch(t)) {
+      const std::vector<Point3> ts = to_translations(t);
+      std::vector<Result> r =
+          batch<Result>(o, ts, threads, [answer](TranslationalObstacle& ob, const Point3& s) { return (ob.*answer)(s); });
+      if (exact) {
+        py::list out;
+        for (Result& x : r) out.append(py::cast(std::move(x)));
+        return out;
+      }
+      return value(r);
+    }
     const Point3 s = to_point(t, "t");
-    py::gil_scoped_release nogil;
-    std::lock_guard<std::mutex> lock(o.m);
-    return ((*o.o).*answer)(s);
+    Result r;
+    {
+      py::gil_scoped_release nogil;
+      std::lock_guard<std::mutex> lock(o.m);
+      r = ((*o.o).*answer)(s);
+    }
+    return py::cast(std::move(r));
   };
+}
+
+template <class Result>
+py::array_t<std::int8_t> status_array(const std::vector<Result>& r) {
+  py::array_t<std::int8_t> a(static_cast<py::ssize_t>(r.size()));
+  auto w = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < r.size(); ++i) w(static_cast<py::ssize_t>(i)) = static_cast<std::int8_t>(r[i].status);
+  return a;
+}
+
+template <class Result, class F>
+py::array_t<double> double_array(const std::vector<Result>& r, F f) {
+  py::array_t<double> a(static_cast<py::ssize_t>(r.size()));
+  auto w = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < r.size(); ++i) w(static_cast<py::ssize_t>(i)) = f(r[i]);
+  return a;
 }
 
 struct WitnessPy {
@@ -1420,20 +1498,33 @@ double); translation: α·d (exact Fraction triple).)")
 Obstacle(p, q, method="auto") computes the configuration-space obstacle
 M = P ⊕ (−Q) once (p and q: Polytope objects, file paths or catalog names).
 Each query takes t, the translation of Q relative to P (Q moved by t, P
-fixed; for P moved by u and Q by w, t = w − u), one translation per call:
-a triple of exact numbers or an array of shape (3,) (an (N, 3) batch is
-refused with ValueError).  The queries answer exactly:
+fixed; for P moved by u and Q by w, t = w − u).  The command 'minksum query'
+moves P by --translate-p u and Q by --translate-q w: its answer is that of
+t = w − u here, so --translate-p u alone is t = −u.  t is one translation
+(a triple of exact numbers or an array of shape (3,)) or a batch of them (an
+(N, 3) array, floats taken exactly, or a sequence of triples).  The queries
+answer exactly:
   collide(t)               "separate", "touching" or "penetrating"
   distance(t)              separation distance, closest points
   depth(t)                 penetration depth and a minimal separating move
   directional_depth(t, d)  how far P must move along d to stop overlapping
-Successive queries start from the previous answer's witness, so a moving
-query point costs little.  An Obstacle may be used from several Python
-threads; its queries run one at a time, with the GIL released.)")
+One translation gives a result object.  A batch gives, in one call, an
+array: collide an int8 array of status codes (STATUS[code]: 0 separate, 1
+touching, 2 penetrating), distance, depth and directional_depth float64
+arrays of the nearest doubles; with exact=True, the list of the result
+objects.  Each answer of a batch is the answer of the single query.  A batch
+runs with the GIL released on `threads` threads (None: one per core; one
+thread per 64 translations at most), each thread a block of the poses on
+an obstacle of its own (built on first use, a sum of P and −Q each, and
+kept).  Successive queries start from the previous answer's witness, so a
+moving query point costs little.  An Obstacle may be used from several
+Python threads; its queries and batches run one at a time, with the GIL
+released.)")
       .def(py::init([](py::object p, py::object q, const std::string& method) {
              const Operand op = to_operand(p, "p"), oq = to_operand(q, "q");
              const Method mt = to_method(method);
              auto o = std::make_unique<Obstacle>();
+             o->method = mt;
              // M's sum polled for Ctrl-C (run_interruptible: KeyboardInterrupt, no obstacle).
              std::atomic<bool> cancel{false};
              SumOptions options;
@@ -1453,23 +1544,62 @@ threads; its queries run one at a time, with the GIL released.)")
       .def_property_readonly(
           "obstacle", [](const Obstacle& o) { return std::make_shared<ConvexPolytope>(o.o->obstacle()); },
           "M = P ⊕ (−Q), as a Polytope.")
-      .def("collide", query(&TranslationalObstacle::collide_point), py::arg("t"),
-           "Whether P and Q translated by t are separate, touching or penetrating.")
-      .def("distance", query(&TranslationalObstacle::distance_point), py::arg("t"),
-           "The exact separation distance between P and Q translated by t.")
-      .def("depth", query(&TranslationalObstacle::penetration_depth_point), py::arg("t"),
-           "The exact penetration depth of P and Q translated by t.")
+      .def("collide",
+           query(&TranslationalObstacle::collide_point,
+                 [](const std::vector<CollisionResult>& r) { return py::object(status_array(r)); }),
+           py::arg("t"), py::kw_only(), py::arg("exact") = false, py::arg("threads") = py::none(),
+           "Whether P and Q translated by t are separate, touching or penetrating.\n"
+           "t: one translation of Q relative to P (a CollisionResult), or an (N, 3) batch: an int8 array\n"
+           "of status codes (minksum.STATUS[code]: 0 separate, 1 touching, 2 penetrating; exact=True:\n"
+           "the list of CollisionResult), on `threads` threads (None: one per core).")
+      .def("distance",
+           query(&TranslationalObstacle::distance_point,
+                 [](const std::vector<DistanceResult>& r) {
+                   return py::object(double_array(r, [](const DistanceResult& x) { return x.distance(); }));
+                 }),
+           py::arg("t"), py::kw_only(), py::arg("exact") = false, py::arg("threads") = py::none(),
+           "The exact separation distance between P and Q translated by t (a DistanceResult).\n"
+           "An (N, 3) batch of t: a float64 array of the distances (the nearest doubles; 0 unless\n"
+           "separate); exact=True: the list of DistanceResult.")
+      .def("depth",
+           query(&TranslationalObstacle::penetration_depth_point,
+                 [](const std::vector<DepthResult>& r) {
+                   return py::object(double_array(r, [](const DepthResult& x) { return x.depth(); }));
+                 }),
+           py::arg("t"), py::kw_only(), py::arg("exact") = false, py::arg("threads") = py::none(),
+           "The exact penetration depth of P and Q translated by t (a DepthResult).\n"
+           "An (N, 3) batch of t: a float64 array of the depths (the nearest doubles; 0 unless\n"
+           "penetrating); exact=True: the list of DepthResult.")
       .def(
           "directional_depth",
-          [](Obstacle& o, py::object t, py::object d) {
-            const Point3 s = to_point(t, "t"), dir = to_point(d, "d", "direction");
+          [](Obstacle& o, py::object t, py::object d, bool exact, std::optional<long long> threads) -> py::object {
+            const Point3 dir = to_point(d, "d", "direction");
             if (is_zero(dir)) throw py::value_error("d: the direction must not be the zero vector");
-            py::gil_scoped_release nogil;
-            std::lock_guard<std::mutex> lock(o.m);
-            return o.o->directional_depth_point(s, dir);
+            if (is_batch(t)) {
+              const std::vector<Point3> ts = to_translations(t);
+              auto r = batch<DirectionalDepthResult>(o, ts, threads, [&dir](TranslationalObstacle& ob, const Point3& s) {
+                return ob.directional_depth_point(s, dir);
+              });
+              if (exact) {
+                py::list out;
+                for (auto& x : r) out.append(py::cast(std::move(x)));
+                return out;
+              }
+              return double_array(r, [](const DirectionalDepthResult& x) { return x.depth; });
+            }
+            const Point3 s = to_point(t, "t");
+            DirectionalDepthResult r;
+            {
+              py::gil_scoped_release nogil;
+              std::lock_guard<std::mutex> lock(o.m);
+              r = o.o->directional_depth_point(s, dir);
+            }
+            return py::cast(std::move(r));
           },
-          py::arg("t"), py::arg("d"),
-          "How far P must move along d (not normalised) to stop overlapping Q translated by t.")
+          py::arg("t"), py::arg("d"), py::kw_only(), py::arg("exact") = false, py::arg("threads") = py::none(),
+          "How far P must move along d (not normalised) to stop overlapping Q translated by t.\n"
+          "An (N, 3) batch of t (one d): a float64 array of the depths α·|d|; exact=True: the list of\n"
+          "DirectionalDepthResult.")
       .def("__repr__", [](const Obstacle& o) {
         const ConvexPolytope& mm = o.o->obstacle();
         return "<minksum.Obstacle: M has " + std::to_string(mm.num_vertices()) + " vertices, " +
@@ -1479,4 +1609,5 @@ threads; its queries run one at a time, with the GIL released.)")
   py::list names;
   for (const MethodInfo& mi : methods()) names.append(mi.name);
   m.attr("METHODS") = py::tuple(names);
+  m.attr("STATUS") = py::make_tuple("separate", "touching", "penetrating");  // the codes of collide() on a batch
 }

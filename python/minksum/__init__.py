@@ -20,6 +20,7 @@ Many sums: ``minkowski_sum_many`` runs them on a pool of C++ threads;
 from ._errors import InputError, NotConvexError
 from ._minksum import (
     METHODS,
+    STATUS,
     CollisionResult,
     DepthResult,
     DirectionalDepthResult,
@@ -37,6 +38,7 @@ from ._minksum import (
 
 __all__ = [
     "METHODS",
+    "STATUS",
     "CollisionResult",
     "DepthResult",
     "DirectionalDepthResult",

@@ -523,12 +523,29 @@ struct SolidPy {
   Rational volume;
   std::optional<Solid> solid;
   std::string name;  // the source named in errors ("" for arrays)
-  std::mutex solid_mutex;
+  mutable std::mutex solid_mutex;  // guards `solid` (set by validated() on another thread)
 
   const Solid& validated() {
     std::lock_guard<std::mutex> lock(solid_mutex);
     if (!solid) solid = validate_solid(faces, name);
     return *solid;
+  }
+  // Whether the solid is exactly a convex polytope (a sum's boundary that
+  // does not validate as a solid, touching itself, is not).
+  bool is_convex() {
+    try {
+      return validated().convex.has_value();
+    } catch (const InputError&) {
+      return false;
+    }
+  }
+  // The surface as triangles: the validated solid's, else the faces cut by ear clipping.
+  Mesh triangles() const {
+    {
+      std::lock_guard<std::mutex> lock(solid_mutex);
+      if (solid) return solid->triangles;
+    }
+    return triangulate(faces, name);
   }
 };
 using SolidPtr = std::shared_ptr<SolidPy>;
@@ -656,12 +673,6 @@ Solid operand_solid(const AnyOperandPy& o) {
   if (auto* s = std::get_if<SolidPtr>(&o)) return (*s)->validated();
   if (auto* p = std::get_if<PolytopePtr>(&o)) return solid_of(**p);
   return load_solid(std::get<std::string>(o));
-}
-
-// A name that is not a convex polytope (load_any_operand gives its mesh).
-bool names_solid(const std::string& spec) {
-  AnyOperand any = load_any_operand(spec);
-  return !any.polytope && !any.flat;
 }
 
 py::array_t<double> points_array(const PointList& pts) {
@@ -1201,7 +1212,7 @@ arguments, TypeError for arguments of the wrong type.)")
             Mesh t;
             {
               py::gil_scoped_release nogil;
-              t = s.solid ? s.solid->triangles : triangulate(s.faces, s.name);
+              t = s.triangles();
             }
             return triangle_array(t);
           },
@@ -1211,8 +1222,12 @@ arguments, TypeError for arguments of the wrong type.)")
       .def_property_readonly("num_edges", [](const SolidPy& s) { return solid_counts(s.faces).edges; })
       .def_property_readonly("num_facets", [](const SolidPy& s) { return s.faces.faces.size(); })
       .def_property_readonly(
-          "is_convex", [](const SolidPy& s) { return s.solid && s.solid->convex.has_value(); },
-          "True when the solid is exactly a convex polytope (as validated; False for a sum's result).")
+          "is_convex",
+          [](SolidPy& s) {
+            py::gil_scoped_release nogil;
+            return s.is_convex();
+          },
+          "True when the solid is exactly a convex polytope (a sum's result is validated as a solid first).")
       .def(
           "volume", [](const SolidPy& s) { return to_fraction(s.volume); }, "The exact volume, a fractions.Fraction.")
       .def_property_readonly(

@@ -85,6 +85,12 @@ def test_sum_operand_order_and_result_as_operand():
 def test_convex_pairs_keep_the_convex_path():
     s = minksum.minkowski_sum("cube", "tetra")
     assert isinstance(s, minksum.Sum)
+    # a Solid operand makes it a SolidSum, the same polytope
+    ss = minksum.minkowski_sum(minksum.Solid.load("cube"), "tetra")
+    assert isinstance(ss, minksum.SolidSum) and ss.is_convex
+    assert ss.volume() == s.volume() and (ss.num_vertices, ss.num_edges, ss.num_facets) == (
+        s.num_vertices, s.num_edges, s.num_facets)
+    assert not minksum.minkowski_sum("tube", "cube@scale:1/8").is_convex
 
 
 def test_bad_solids():

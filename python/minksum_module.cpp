@@ -14,6 +14,7 @@
 #include <minksum/error.hpp>
 #include <minksum/io.hpp>
 #include <minksum/minkowski.hpp>
+#include <minksum/nonconvex.hpp>
 #include <minksum/operand.hpp>
 #include <minksum/parallel.hpp>
 #include <minksum/polytope.hpp>
@@ -30,11 +31,14 @@
 #include <cstring>
 #include <functional>
 #include <memory>
+#include <map>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <unordered_map>
 #include <variant>
 #include <vector>
 
@@ -264,6 +268,14 @@ PointList to_points(py::handle h, const std::string& name) {
   return pts;
 }
 
+// Whether h is a batch of points: an array of two dimensions, or a non-empty
+// sequence whose first item is a sequence.
+bool is_batch(py::handle h) {
+  if (py::isinstance<py::array>(h)) return py::reinterpret_borrow<py::array>(h).ndim() == 2;
+  if (is_sequence(h) && py::len(h) > 0) return is_sequence(py::reinterpret_borrow<py::sequence>(h)[0]);
+  return false;
+}
+
 // One translation or direction (`what`): a triple, or an array of shape (3,).
 // A batch (an (N, 3) array, a sequence of triples) is refused with ValueError.
 Point3 to_point(py::handle h, const std::string& name, const char* what = "translation") {
@@ -455,13 +467,9 @@ py::array vertices_view(const ConvexPolytope& p, py::handle owner) {
   return a;
 }
 
-ConvexPolytope polytope_from(PointList points, py::handle faces) {
-  Mesh mesh;
-  mesh.points = std::move(points);
-  if (faces.is_none()) {
-    py::gil_scoped_release nogil;
-    return ConvexPolytope::hull(mesh.points);
-  }
+// The faces' loops (sequences of vertex indices, an (m, k) integer array)
+// into mesh.faces, each index checked against mesh.points.
+void read_faces(Mesh& mesh, py::handle faces) {
   if (!is_sequence(faces))
     throw py::type_error("faces: expected a sequence of index sequences, got " + type_name(faces));
   const std::size_t n = mesh.points.size();
@@ -484,12 +492,207 @@ ConvexPolytope polytope_from(PointList points, py::handle faces) {
     }
     mesh.faces.push_back(std::move(loop));
   }
+}
+
+ConvexPolytope polytope_from(PointList points, py::handle faces) {
+  Mesh mesh;
+  mesh.points = std::move(points);
+  if (faces.is_none()) {
+    py::gil_scoped_release nogil;
+    return ConvexPolytope::hull(mesh.points);
+  }
+  read_faces(mesh, faces);
   py::gil_scoped_release nogil;
   return ConvexPolytope::from_mesh(mesh);
 }
 
 ConvexPolytope polytope_from(py::handle vertices, py::handle faces, const char* name = "vertices") {
   return polytope_from(to_points(vertices, name), faces);
+}
+
+// ---------------------------------------------------------------------------
+// Solids (<minksum/nonconvex.hpp>).
+
+// A closed polyhedral solid, convex or not: its faces as polygons (the input's
+// faces after welding, or a non-convex sum's boundary), its exact volume, and
+// the validated Solid that sums take (for a sum's result, validated on first
+// use as an operand: its boundary may touch itself, which validate_solid
+// refuses).
+struct SolidPy {
+  Mesh faces;
+  Rational volume;
+  std::optional<Solid> solid;
+  std::string name;  // the source named in errors ("" for arrays)
+  mutable std::mutex solid_mutex;  // guards `solid` (set by validated() on another thread)
+
+  const Solid& validated() {
+    std::lock_guard<std::mutex> lock(solid_mutex);
+    if (!solid) solid = validate_solid(faces, name);
+    return *solid;
+  }
+  // Whether the solid is exactly a convex polytope (a sum's boundary that
+  // does not validate as a solid, touching itself, is not).
+  bool is_convex() {
+    try {
+      return validated().convex.has_value();
+    } catch (const InputError&) {
+      return false;
+    }
+  }
+  // The surface as triangles: the validated solid's, else the faces cut by ear clipping.
+  Mesh triangles() const {
+    {
+      std::lock_guard<std::mutex> lock(solid_mutex);
+      if (solid) return solid->triangles;
+    }
+    return triangulate(faces, name);
+  }
+};
+using SolidPtr = std::shared_ptr<SolidPy>;
+
+// The solid's faces as polygons again (Solid keeps its triangles): every face
+// of the input, welded, one loop over the points of s.triangles, as the
+// command's stats counts them.
+Mesh solid_faces(const Solid& s) {
+  const Mesh& t = s.triangles;
+  std::map<Index, std::vector<std::size_t>> by_face;
+  for (std::size_t i = 0; i < t.faces.size(); ++i) by_face[s.source_face[i]].push_back(i);
+  Mesh m;
+  m.points = t.points;
+  m.faces.reserve(by_face.size());
+  for (const auto& [face, tris] : by_face) {
+    // A face is a simple polygon cut by ear clipping (no point added): the
+    // halfedges of its triangles without their twin in the face are its boundary.
+    std::map<std::pair<Index, Index>, int> half;
+    for (std::size_t i : tris)
+      for (std::size_t k = 0; k < 3; ++k) ++half[{t.faces[i][k], t.faces[i][(k + 1) % 3]}];
+    std::unordered_map<Index, Index> next;
+    for (const auto& [uv, n] : half)
+      if (!half.count({uv.second, uv.first})) next[uv.first] = uv.second;
+    std::vector<Index> loop;
+    const Index start = t.faces[tris[0]][0];
+    Index v = start;
+    do {
+      loop.push_back(v);
+      v = next.at(v);
+    } while (v != start && loop.size() <= next.size());
+    m.faces.push_back(std::move(loop));
+  }
+  return m;
+}
+
+SolidPtr solid_from(Solid s, std::string name) {
+  auto out = std::make_shared<SolidPy>();
+  out->faces = solid_faces(s);
+  out->volume = s.volume;
+  out->name = std::move(name);
+  out->solid = std::move(s);
+  return out;
+}
+
+// What `minksum stats` prints of a solid: counts, shells, genus, bounding box.
+struct SolidCounts {
+  std::size_t vertices = 0, edges = 0, facets = 0, shells = 0;
+  long long genus = 0;
+  Point3 min, max;
+};
+
+SolidCounts solid_counts(const Mesh& m) {
+  SolidCounts c;
+  c.vertices = m.points.size();
+  c.facets = m.faces.size();
+  std::size_t corners = 0;
+  for (const auto& f : m.faces) corners += f.size();
+  c.edges = corners / 2;  // every edge has as many faces on each side
+  // Shells: the components of the vertices joined by the faces.
+  std::vector<Index> parent(m.points.size());
+  std::iota(parent.begin(), parent.end(), Index(0));
+  auto find = [&](Index v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& f : m.faces)
+    for (std::size_t k = 1; k < f.size(); ++k) parent[find(f[k])] = find(f[0]);
+  for (Index v = 0; v < parent.size(); ++v) c.shells += find(v) == v;
+  // Euler: V - E + F = 2 (shells - genus) for closed orientable surfaces.
+  const long long chi = (long long)c.vertices - (long long)c.edges + (long long)c.facets;
+  c.genus = (2 * (long long)c.shells - chi) / 2;
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    const Point3 p = m.points.exact(i);
+    if (i == 0) {
+      c.min = c.max = p;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (p[k] < c.min[k]) c.min[k] = p[k];
+      if (p[k] > c.max[k]) c.max[k] = p[k];
+    }
+  }
+  return c;
+}
+
+// The result of a non-convex sum: the boundary as a SolidPy, and the report
+// the command prints (NonconvexSum without its mesh).
+struct SolidSum : SolidPy {
+  NonconvexSum report;
+};
+
+// An operand of minkowski_sum that may be a solid: a Solid, a Polytope, or a
+// name loaded later (load_any_operand) with the GIL released.
+using AnyOperandPy = std::variant<SolidPtr, PolytopePtr, std::string>;
+
+AnyOperandPy to_any_operand(py::handle h, const char* name) {
+  if (py::isinstance<SolidPy>(h)) return py::cast<SolidPtr>(h);
+  Operand o = to_operand(h, name);
+  if (auto* p = std::get_if<PolytopePtr>(&o)) return *p;
+  return std::get<std::string>(o);
+}
+
+// A name as a solid: a convex polytope (file or catalog) as the solid it is,
+// else the mesh validated as a closed solid.  What is neither (a point cloud,
+// an open surface, a polygon) is refused with load() 's error, so that a name
+// that load() refuses is refused here in the same words.
+Solid load_solid(const std::string& spec) {
+  AnyOperand any = load_any_operand(spec);
+  if (any.polytope) return solid_of(*any.polytope);
+  if (!any.flat) {
+    try {
+      return validate_solid(any.mesh, spec);
+    } catch (const InputError&) {
+      // load_polytope's error (NotConvexError with its hint...) when it has one
+      load_polytope(spec);
+      throw;
+    }
+  }
+  load_polytope(spec);  // a point, segment or polygon: load()'s refusal
+  throw InputError(spec, "", "not a solid");
+}
+
+// The solid of an operand (with the GIL released).
+Solid operand_solid(const AnyOperandPy& o) {
+  if (auto* s = std::get_if<SolidPtr>(&o)) return (*s)->validated();
+  if (auto* p = std::get_if<PolytopePtr>(&o)) return solid_of(**p);
+  return load_solid(std::get<std::string>(o));
+}
+
+py::array_t<double> points_array(const PointList& pts) {
+  py::array_t<double> a({static_cast<py::ssize_t>(pts.size()), py::ssize_t{3}});
+  auto r = a.mutable_unchecked<2>();
+  const auto& approx = pts.approx();
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    r(static_cast<py::ssize_t>(i), 0) = approx[i].x;
+    r(static_cast<py::ssize_t>(i), 1) = approx[i].y;
+    r(static_cast<py::ssize_t>(i), 2) = approx[i].z;
+  }
+  return a;
+}
+
+py::array_t<std::int64_t> triangle_array(const Mesh& t) {
+  py::array_t<std::int64_t> a({static_cast<py::ssize_t>(t.faces.size()), py::ssize_t{3}});
+  auto r = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < t.faces.size(); ++i)
+    for (int k = 0; k < 3; ++k) r(static_cast<py::ssize_t>(i), k) = t.faces[i][k];
+  return a;
 }
 
 py::bytes vec_bytes(const std::vector<Vec3d>& v) {
@@ -555,27 +758,97 @@ py::list provenance_list(Sum& s) {
 
 struct Obstacle {
   PolytopePtr p, q;
+  Method method = Method::automatic;
   std::unique_ptr<TranslationalObstacle> o;
-  std::mutex m;  // a TranslationalObstacle answers one query at a time
+  // For batches on several threads: more obstacles of the same P and Q (a
+  // TranslationalObstacle answers one query at a time), built on first use
+  // and kept.
+  std::vector<std::unique_ptr<TranslationalObstacle>> workers;
+  std::mutex m;  // one query or batch at a time
 };
+
+// A batch runs on at most one thread per this many translations.
+constexpr std::size_t kPosesPerThread = 64;
+
+// A batch of translations t[i] answered on `threads` threads (None: one per
+// hardware thread), each thread a contiguous block of poses on its own
+// obstacle; out[i] = answer(t[i]), the answer of the single query.
+template <class Result, class Answer>
+std::vector<Result> batch(Obstacle& o, const std::vector<Point3>& t, std::optional<long long> threads, Answer answer) {
+  if (threads && *threads < 1) throw py::value_error("threads must be at least 1 (or None: one per core)");
+  std::vector<Result> out(t.size());
+  py::gil_scoped_release nogil;
+  std::lock_guard<std::mutex> lock(o.m);
+  const std::size_t blocks = (t.size() + kPosesPerThread - 1) / kPosesPerThread;
+  const unsigned n = parallel_threads(threads ? static_cast<unsigned>(*threads) : 0u, blocks);
+  while (o.workers.size() + 1 < n)
+    o.workers.push_back(std::make_unique<TranslationalObstacle>(*o.p, *o.q, o.method));
+  parallel_for(n, n, [&](std::size_t k) {
+    TranslationalObstacle& ob = k == 0 ? *o.o : *o.workers[k - 1];
+    const std::size_t begin = t.size() * k / n, end = t.size() * (k + 1) / n;
+    for (std::size_t i = begin; i < end; ++i) out[i] = answer(ob, t[i]);
+  });
+  return out;
+}
+
+std::vector<Point3> to_translations(py::handle h) {
+  const PointList pts = to_points(h, "t");
+  std::vector<Point3> t;
+  t.reserve(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) t.push_back(pts.exact(i));
+  return t;
+}
 
 // A query of Obstacle on t (the translation of Q relative to P): t converted
 // with the GIL held, then answered with it released, one query at a time.
-template <class Result>
-auto query(Result (TranslationalObstacle::*answer)(const Point3&)) {
-  return [answer](Obstacle& o, py::object t) {
+// A batch of translations (an (N, 3) array or a sequence of triples) gives
+// the array value(result) of each (exact=True: the list of the results).
+template <class Result, class Value>
+auto query(Result (TranslationalObstacle::*answer)(const Point3&), Value value) {
+  return [answer, value](Obstacle& o, py::object t, bool exact, std::optional<long long> threads) -> py::object {
+    if (is_batch(t)) {
+      const std::vector<Point3> ts = to_translations(t);
+      std::vector<Result> r =
+          batch<Result>(o, ts, threads, [answer](TranslationalObstacle& ob, const Point3& s) { return (ob.*answer)(s); });
+      if (exact) {
+        py::list out;
+        for (Result& x : r) out.append(py::cast(std::move(x)));
+        return out;
+      }
+      return value(r);
+    }
     const Point3 s = to_point(t, "t");
-    py::gil_scoped_release nogil;
-    std::lock_guard<std::mutex> lock(o.m);
-    return ((*o.o).*answer)(s);
+    Result r;
+    {
+      py::gil_scoped_release nogil;
+      std::lock_guard<std::mutex> lock(o.m);
+      r = ((*o.o).*answer)(s);
+    }
+    return py::cast(std::move(r));
   };
+}
+
+template <class Result>
+py::array_t<std::int8_t> status_array(const std::vector<Result>& r) {
+  py::array_t<std::int8_t> a(static_cast<py::ssize_t>(r.size()));
+  auto w = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < r.size(); ++i) w(static_cast<py::ssize_t>(i)) = static_cast<std::int8_t>(r[i].status);
+  return a;
+}
+
+template <class Result, class F>
+py::array_t<double> double_array(const std::vector<Result>& r, F f) {
+  py::array_t<double> a(static_cast<py::ssize_t>(r.size()));
+  auto w = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < r.size(); ++i) w(static_cast<py::ssize_t>(i)) = f(r[i]);
+  return a;
 }
 
 struct WitnessPy {
   Witness w;
 };
 
-const char* kModuleDoc = R"(Exact Minkowski sums of convex polyhedra in 3D, and exact proximity queries.
+const char* kModuleDoc = R"(Exact Minkowski sums of polyhedra in 3D (convex and non-convex solids), and exact proximity queries.
 
 Every computation is exact: coordinates are rationals (float inputs are
 taken as the exact values of the doubles, Decimal ones as their exact
@@ -600,6 +873,16 @@ Sum.facet_provenance here):
 "auto" picks walk, the output-sensitive method, for every pair.  Use
 another method to compare or to cross-check; "chms" (the hull of all
 pairwise vertex sums) is the slow, simple reference.
+
+Non-convex solids: when a or b is a Solid, or a name that is not a convex
+polytope (a file or a catalog solid such as "tube", validated as a closed
+solid), the sum is that of 'minksum sum' for a non-convex pair (the
+boundary sweep, docs/nonconvex.md) and the result is a SolidSum: a Solid
+(its exact boundary and volume) with the report the command prints
+(pieces, culled and candidate facets, clips, the phases' seconds).  The
+method then sums the sweep's pieces: walk (also for "auto" and the
+methods other than chms) or chms.  A Polytope given with a Solid is taken
+as the convex solid it is.
 
 Raises ValueError for an unknown method, InputError when a file named as an
 operand is bad, KeyboardInterrupt when interrupted (Ctrl-C).  The GIL is
@@ -864,6 +1147,157 @@ counters: operation counts some methods record.)")
             return s;
           }));
 
+  py::class_<SolidPy, std::shared_ptr<SolidPy>>(m, "Solid", R"(A closed polyhedral solid, convex or not, of any genus, with exact coordinates.
+
+Solid(vertices, faces)
+
+vertices: as for Polytope (an (n, 3) float64 array, each double taken
+exactly, an integer array, or a sequence of exact triples: int, Fraction,
+Decimal, float, text such as "1/3").  faces: polygons as sequences of vertex
+indices, or an (m, k) integer array (triangles: (m, 3)), counter-clockwise
+seen from outside.  The mesh is validated exactly as 'minksum sum' validates
+a non-convex operand (validate_solid): faces of at least three distinct
+vertices, planar and simple; every edge shared by two faces in opposite
+directions; every vertex one fan of faces; no self-intersection; the shells
+oriented as their nesting requires.  Equal vertices are welded and unused
+ones dropped.  Solid.load(name) reads a file or builds a catalog solid.
+
+Raises InputError (file "", place, problem: the message the command prints)
+when the mesh is not a valid closed solid, ValueError for malformed
+arguments, TypeError for arguments of the wrong type.)")
+      .def(py::init([](py::object vertices, py::object faces) {
+             Mesh mesh;
+             mesh.points = to_points(vertices, "vertices");
+             read_faces(mesh, faces);
+             py::gil_scoped_release nogil;
+             return solid_from(validate_solid(mesh, ""), "");
+           }),
+           py::arg("vertices"), py::arg("faces"))
+      .def_static(
+          "load",
+          [](py::object spec) {
+            const Operand o = to_operand(spec, "path_or_name");
+            if (std::holds_alternative<PolytopePtr>(o))
+              throw py::type_error("Solid.load: expected a file path or a catalog name");
+            const std::string name = std::get<std::string>(o);
+            py::gil_scoped_release nogil;
+            return solid_from(load_solid(name), name);
+          },
+          py::arg("path_or_name"),
+          "A solid from a file (.off, .obj, .ply, .stl, .wrl) or the catalog (\"tube\", \"cube\", ...): a convex\n"
+          "polytope as the solid it is, any other mesh validated as a closed solid.  Raises InputError as\n"
+          "load() does, ValueError for a name that is neither a file nor a catalog spec.")
+      .def_property_readonly(
+          "vertices", [](const SolidPy& s) { return points_array(s.faces.points); },
+          "The vertices as a float64 (n, 3) array: the nearest double of each exact coordinate (a copy).")
+      .def(
+          "exact_vertices",
+          [](const SolidPy& s) {
+            py::list out;
+            for (std::size_t i = 0; i < s.faces.points.size(); ++i) out.append(to_fractions(s.faces.points.exact(i)));
+            return out;
+          },
+          "The exact vertices: a list of (x, y, z) tuples of fractions.Fraction.")
+      .def_property_readonly(
+          "faces",
+          [](const SolidPy& s) {
+            py::list out;
+            for (const auto& f : s.faces.faces) out.append(index_array(f));
+            return out;
+          },
+          "The faces: one int64 array of vertex indices per face, counter-clockwise seen from outside.")
+      .def(
+          "triangles",
+          [](const SolidPy& s) {
+            Mesh t;
+            {
+              py::gil_scoped_release nogil;
+              t = s.triangles();
+            }
+            return triangle_array(t);
+          },
+          "The faces cut into triangles (exact ear clipping), an int64 (m, 3) array of vertex indices\n"
+          "counter-clockwise seen from outside (trimesh.Trimesh(s.vertices, s.triangles())).")
+      .def_property_readonly("num_vertices", [](const SolidPy& s) { return s.faces.points.size(); })
+      .def_property_readonly("num_edges", [](const SolidPy& s) { return solid_counts(s.faces).edges; })
+      .def_property_readonly("num_facets", [](const SolidPy& s) { return s.faces.faces.size(); })
+      .def_property_readonly(
+          "is_convex",
+          [](SolidPy& s) {
+            py::gil_scoped_release nogil;
+            return s.is_convex();
+          },
+          "True when the solid is exactly a convex polytope (a sum's result is validated as a solid first).")
+      .def(
+          "volume", [](const SolidPy& s) { return to_fraction(s.volume); }, "The exact volume, a fractions.Fraction.")
+      .def_property_readonly(
+          "stats",
+          [](const SolidPy& s) {
+            SolidCounts c;
+            {
+              py::gil_scoped_release nogil;
+              c = solid_counts(s.faces);
+            }
+            py::dict d;
+            d["vertices"] = c.vertices;
+            d["edges"] = c.edges;
+            d["facets"] = c.facets;
+            d["volume"] = to_fraction(s.volume);
+            d["volume_float"] = to_double(s.volume);
+            d["genus"] = c.genus;
+            d["shells"] = c.shells;
+            d["bounding_box"] = py::make_tuple(to_fractions(c.min), to_fractions(c.max));
+            return d;
+          },
+          "What 'minksum stats' prints of a solid, as a dict: vertices, edges, facets (ints), volume (exact\n"
+          "Fraction), volume_float (its nearest double), genus (the sum of the shells' genera: a torus 1),\n"
+          "shells (connected components of the surface), bounding_box ((min, max), exact Fraction triples).")
+      .def("__repr__", [](const SolidPy& s) {
+        const SolidCounts c = solid_counts(s.faces);
+        return "<minksum.Solid: " + std::to_string(c.vertices) + " vertices, " + std::to_string(c.edges) +
+               " edges, " + std::to_string(c.facets) + " faces>";
+      });
+
+  py::class_<SolidSum, std::shared_ptr<SolidSum>, SolidPy>(m, "SolidSum", R"(The result of minkowski_sum with a non-convex operand: a Solid with its report.
+
+The boundary of a ⊕ b (exact polygons; where the sum touches itself the
+boundary is kept as it is, an edge of four faces) and what 'minksum sum'
+prints of the sum: method ("sweep"), swept ("a", "b" or None), pieces (the
+triangles swept and the convex pieces of the other operand, (a, b)), pairs,
+pair_facets, candidate_facets, culled_facets, clips, shells,
+non_manifold_edges, dropped_components, phases (seconds of "decompose",
+"pairs", "union", "boundary") and seconds (their sum).)")
+      .def_property_readonly("method", [](const SolidSum& s) { return std::string(s.report.method); })
+      .def_property_readonly("swept",
+                             [](const SolidSum& s) -> py::object {
+                               if (!s.report.swept) return py::none();
+                               return py::str(std::string(1, s.report.swept));
+                             })
+      .def_property_readonly("pieces", [](const SolidSum& s) { return py::make_tuple(s.report.pieces_a, s.report.pieces_b); })
+      .def_property_readonly("pairs", [](const SolidSum& s) { return s.report.pairs; })
+      .def_property_readonly("pair_facets", [](const SolidSum& s) { return s.report.pair_facets; })
+      .def_property_readonly("candidate_facets", [](const SolidSum& s) { return s.report.candidate_facets; })
+      .def_property_readonly("culled_facets", [](const SolidSum& s) { return s.report.culled_facets; })
+      .def_property_readonly("clips", [](const SolidSum& s) { return s.report.clips; })
+      .def_property_readonly("shells", [](const SolidSum& s) { return s.report.shells; })
+      .def_property_readonly("non_manifold_edges", [](const SolidSum& s) { return s.report.non_manifold_edges; })
+      .def_property_readonly("dropped_components", [](const SolidSum& s) { return s.report.dropped_components; })
+      .def_property_readonly("phases",
+                             [](const SolidSum& s) {
+                               py::dict d;
+                               d["decompose"] = s.report.seconds_decompose;
+                               d["pairs"] = s.report.seconds_pairs;
+                               d["union"] = s.report.seconds_union;
+                               d["boundary"] = s.report.seconds_boundary;
+                               return d;
+                             })
+      .def_property_readonly("seconds", [](const SolidSum& s) { return s.report.seconds(); })
+      .def("__repr__", [](const SolidSum& s) {
+        const SolidCounts c = solid_counts(s.faces);
+        return "<minksum.SolidSum (" + std::string(s.report.method) + "): " + std::to_string(c.vertices) +
+               " vertices, " + std::to_string(c.edges) + " edges, " + std::to_string(c.facets) + " faces>";
+      });
+
   m.def(
       "load",
       [](py::object spec, bool hull) {
@@ -887,9 +1321,40 @@ ValueError for a name that is neither a file nor a catalog spec.)");
 
   m.def(
       "minkowski_sum",
-      [](py::object a, py::object b, const std::string& method) {
-        const Operand oa = to_operand(a, "a"), ob = to_operand(b, "b");
+      [](py::object a, py::object b, const std::string& method) -> py::object {
+        AnyOperandPy any[2] = {to_any_operand(a, "a"), to_any_operand(b, "b")};
         const Method mt = to_method(method);
+        // Names are loaded first (load_any_operand): a name that is not a
+        // convex polytope is a solid.  Any solid makes the sum non-convex.
+        bool solid = false;
+        {
+          py::gil_scoped_release nogil;
+          for (AnyOperandPy& o : any) {
+            if (auto* name = std::get_if<std::string>(&o)) {
+              AnyOperand loaded = load_any_operand(*name);
+              if (loaded.polytope) o = std::make_shared<const ConvexPolytope>(std::move(*loaded.polytope));
+              else o = solid_from(load_solid(*name), *name);
+            }
+            solid = solid || std::holds_alternative<SolidPtr>(o);
+          }
+        }
+        if (solid) {
+          auto out = std::make_shared<SolidSum>();
+          std::atomic<bool> cancel{false};
+          SumOptions options;
+          options.cancel = &cancel;
+          run_interruptible(
+              [&] {
+                const Solid sa = operand_solid(any[0]), sb = operand_solid(any[1]);
+                out->report = minkowski_sum_nonconvex(sa, sb, options, 0, mt == Method::automatic ? Method::walk : mt);
+                out->faces = std::move(out->report.mesh);
+                out->report.mesh = Mesh{};
+                out->volume = out->report.volume;
+              },
+              cancel);
+          return py::cast(out);
+        }
+        const Operand oa = std::get<PolytopePtr>(any[0]), ob = std::get<PolytopePtr>(any[1]);
         SumOptions options;
         options.progress = [](const char*, double) {
           py::gil_scoped_acquire gil;
@@ -898,8 +1363,12 @@ ValueError for a name that is neither a file nor a catalog spec.)");
             throw Interrupted{};
           }
         };
-        py::gil_scoped_release nogil;
-        return sum_of(resolve(oa), resolve(ob), mt, options);
+        std::shared_ptr<Sum> r;
+        {
+          py::gil_scoped_release nogil;
+          r = sum_of(resolve(oa), resolve(ob), mt, options);
+        }
+        return py::cast(r);
       },
       py::arg("a"), py::arg("b"), py::arg("method") = "auto", with_methods(kMinkowskiSumDoc).c_str());
 
@@ -1044,20 +1513,33 @@ double); translation: α·d (exact Fraction triple).)")
 Obstacle(p, q, method="auto") computes the configuration-space obstacle
 M = P ⊕ (−Q) once (p and q: Polytope objects, file paths or catalog names).
 Each query takes t, the translation of Q relative to P (Q moved by t, P
-fixed; for P moved by u and Q by w, t = w − u), one translation per call:
-a triple of exact numbers or an array of shape (3,) (an (N, 3) batch is
-refused with ValueError).  The queries answer exactly:
+fixed; for P moved by u and Q by w, t = w − u).  The command 'minksum query'
+moves P by --translate-p u and Q by --translate-q w: its answer is that of
+t = w − u here, so --translate-p u alone is t = −u.  t is one translation
+(a triple of exact numbers or an array of shape (3,)) or a batch of them (an
+(N, 3) array, floats taken exactly, or a sequence of triples).  The queries
+answer exactly:
   collide(t)               "separate", "touching" or "penetrating"
   distance(t)              separation distance, closest points
   depth(t)                 penetration depth and a minimal separating move
   directional_depth(t, d)  how far P must move along d to stop overlapping
-Successive queries start from the previous answer's witness, so a moving
-query point costs little.  An Obstacle may be used from several Python
-threads; its queries run one at a time, with the GIL released.)")
+One translation gives a result object.  A batch gives, in one call, an
+array: collide an int8 array of status codes (STATUS[code]: 0 separate, 1
+touching, 2 penetrating), distance, depth and directional_depth float64
+arrays of the nearest doubles; with exact=True, the list of the result
+objects.  Each answer of a batch is the answer of the single query.  A batch
+runs with the GIL released on `threads` threads (None: one per core; one
+thread per 64 translations at most), each thread a block of the poses on
+an obstacle of its own (built on first use, a sum of P and −Q each, and
+kept).  Successive queries start from the previous answer's witness, so a
+moving query point costs little.  An Obstacle may be used from several
+Python threads; its queries and batches run one at a time, with the GIL
+released.)")
       .def(py::init([](py::object p, py::object q, const std::string& method) {
              const Operand op = to_operand(p, "p"), oq = to_operand(q, "q");
              const Method mt = to_method(method);
              auto o = std::make_unique<Obstacle>();
+             o->method = mt;
              // M's sum polled for Ctrl-C (run_interruptible: KeyboardInterrupt, no obstacle).
              std::atomic<bool> cancel{false};
              SumOptions options;
@@ -1077,23 +1559,62 @@ threads; its queries run one at a time, with the GIL released.)")
       .def_property_readonly(
           "obstacle", [](const Obstacle& o) { return std::make_shared<ConvexPolytope>(o.o->obstacle()); },
           "M = P ⊕ (−Q), as a Polytope.")
-      .def("collide", query(&TranslationalObstacle::collide_point), py::arg("t"),
-           "Whether P and Q translated by t are separate, touching or penetrating.")
-      .def("distance", query(&TranslationalObstacle::distance_point), py::arg("t"),
-           "The exact separation distance between P and Q translated by t.")
-      .def("depth", query(&TranslationalObstacle::penetration_depth_point), py::arg("t"),
-           "The exact penetration depth of P and Q translated by t.")
+      .def("collide",
+           query(&TranslationalObstacle::collide_point,
+                 [](const std::vector<CollisionResult>& r) { return py::object(status_array(r)); }),
+           py::arg("t"), py::kw_only(), py::arg("exact") = false, py::arg("threads") = py::none(),
+           "Whether P and Q translated by t are separate, touching or penetrating.\n"
+           "t: one translation of Q relative to P (a CollisionResult), or an (N, 3) batch: an int8 array\n"
+           "of status codes (minksum.STATUS[code]: 0 separate, 1 touching, 2 penetrating; exact=True:\n"
+           "the list of CollisionResult), on `threads` threads (None: one per core).")
+      .def("distance",
+           query(&TranslationalObstacle::distance_point,
+                 [](const std::vector<DistanceResult>& r) {
+                   return py::object(double_array(r, [](const DistanceResult& x) { return x.distance(); }));
+                 }),
+           py::arg("t"), py::kw_only(), py::arg("exact") = false, py::arg("threads") = py::none(),
+           "The exact separation distance between P and Q translated by t (a DistanceResult).\n"
+           "An (N, 3) batch of t: a float64 array of the distances (the nearest doubles; 0 unless\n"
+           "separate); exact=True: the list of DistanceResult.")
+      .def("depth",
+           query(&TranslationalObstacle::penetration_depth_point,
+                 [](const std::vector<DepthResult>& r) {
+                   return py::object(double_array(r, [](const DepthResult& x) { return x.depth(); }));
+                 }),
+           py::arg("t"), py::kw_only(), py::arg("exact") = false, py::arg("threads") = py::none(),
+           "The exact penetration depth of P and Q translated by t (a DepthResult).\n"
+           "An (N, 3) batch of t: a float64 array of the depths (the nearest doubles; 0 unless\n"
+           "penetrating); exact=True: the list of DepthResult.")
       .def(
           "directional_depth",
-          [](Obstacle& o, py::object t, py::object d) {
-            const Point3 s = to_point(t, "t"), dir = to_point(d, "d", "direction");
+          [](Obstacle& o, py::object t, py::object d, bool exact, std::optional<long long> threads) -> py::object {
+            const Point3 dir = to_point(d, "d", "direction");
             if (is_zero(dir)) throw py::value_error("d: the direction must not be the zero vector");
-            py::gil_scoped_release nogil;
-            std::lock_guard<std::mutex> lock(o.m);
-            return o.o->directional_depth_point(s, dir);
+            if (is_batch(t)) {
+              const std::vector<Point3> ts = to_translations(t);
+              auto r = batch<DirectionalDepthResult>(o, ts, threads, [&dir](TranslationalObstacle& ob, const Point3& s) {
+                return ob.directional_depth_point(s, dir);
+              });
+              if (exact) {
+                py::list out;
+                for (auto& x : r) out.append(py::cast(std::move(x)));
+                return out;
+              }
+              return double_array(r, [](const DirectionalDepthResult& x) { return x.depth; });
+            }
+            const Point3 s = to_point(t, "t");
+            DirectionalDepthResult r;
+            {
+              py::gil_scoped_release nogil;
+              std::lock_guard<std::mutex> lock(o.m);
+              r = o.o->directional_depth_point(s, dir);
+            }
+            return py::cast(std::move(r));
           },
-          py::arg("t"), py::arg("d"),
-          "How far P must move along d (not normalised) to stop overlapping Q translated by t.")
+          py::arg("t"), py::arg("d"), py::kw_only(), py::arg("exact") = false, py::arg("threads") = py::none(),
+          "How far P must move along d (not normalised) to stop overlapping Q translated by t.\n"
+          "An (N, 3) batch of t (one d): a float64 array of the depths α·|d|; exact=True: the list of\n"
+          "DirectionalDepthResult.")
       .def("__repr__", [](const Obstacle& o) {
         const ConvexPolytope& mm = o.o->obstacle();
         return "<minksum.Obstacle: M has " + std::to_string(mm.num_vertices()) + " vertices, " +
@@ -1103,4 +1624,5 @@ threads; its queries run one at a time, with the GIL released.)")
   py::list names;
   for (const MethodInfo& mi : methods()) names.append(mi.name);
   m.attr("METHODS") = py::tuple(names);
+  m.attr("STATUS") = py::make_tuple("separate", "touching", "penetrating");  // the codes of collide() on a batch
 }

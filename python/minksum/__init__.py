@@ -1,4 +1,4 @@
-"""minksum: exact Minkowski sums of convex polyhedra in 3D, and exact proximity queries.
+"""minksum: exact Minkowski sums of polyhedra in 3D (convex and non-convex), and exact proximity queries.
 
     >>> import minksum
     >>> s = minksum.minkowski_sum(minksum.load("cube"), minksum.load("tetra"))
@@ -9,6 +9,10 @@ exact value of each double), every geometric decision is the sign of an exact
 polynomial.  Exact results are Python ints and fractions.Fraction; the float64
 array ``Polytope.vertices`` holds the nearest doubles, without a copy.
 
+Non-convex solids: ``Solid(vertices, faces)`` or ``Solid.load("tube")``;
+``minkowski_sum`` with a ``Solid`` operand (or a name that is not a convex
+polytope) returns a ``SolidSum``.
+
 Many sums: ``minkowski_sum_many`` runs them on a pool of C++ threads;
 ``minksum.dask`` spreads them over a Dask cluster.
 """
@@ -16,12 +20,15 @@ Many sums: ``minkowski_sum_many`` runs them on a pool of C++ threads;
 from ._errors import InputError, NotConvexError
 from ._minksum import (
     METHODS,
+    STATUS,
     CollisionResult,
     DepthResult,
     DirectionalDepthResult,
     DistanceResult,
     Obstacle,
     Polytope,
+    Solid,
+    SolidSum,
     Sum,
     Witness,
     load,
@@ -31,6 +38,7 @@ from ._minksum import (
 
 __all__ = [
     "METHODS",
+    "STATUS",
     "CollisionResult",
     "DepthResult",
     "DirectionalDepthResult",
@@ -39,6 +47,8 @@ __all__ = [
     "NotConvexError",
     "Obstacle",
     "Polytope",
+    "Solid",
+    "SolidSum",
     "Sum",
     "Witness",
     "load",

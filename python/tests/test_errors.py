@@ -226,11 +226,14 @@ def test_face_index_too_large_for_a_machine_word_is_value_error():
         [np.array([3.0, 0, 0]), np.array([4.0, 0, 0])],
     ],
 )
-def test_distance_of_batch_is_value_error_not_system_error(batch):
+def test_a_batch_of_translations_is_answered_a_batch_of_directions_refused(batch):
     o = minksum.Obstacle("box:2:2:2", "box:2:2:2")
-    for query in (o.collide, o.distance, o.depth, lambda t: o.directional_depth(t, (1, 0, 0))):
-        with pytest.raises(ValueError, match=r"t: takes one translation, a triple \(x, y, z\), not a batch"):
-            query(batch)
+    n = len(batch)
+    # a batch of t: one answer per row (tests/test_obstacle_batch.py checks them against single calls)
+    assert o.collide(batch).tolist() == [0] * n
+    assert o.distance(batch).tolist() == [float(3 + i - 2) for i in range(n)]
+    assert o.depth(batch).tolist() == [0.0] * n
+    assert o.directional_depth(batch, (1, 0, 0)).tolist() == [0.0] * n
     with pytest.raises(ValueError, match=r"d: takes one direction, a triple \(x, y, z\), not a batch"):
         o.directional_depth((0, 0, 0), batch)
     # One translation, as a triple or an array of shape (3,), is answered exactly.

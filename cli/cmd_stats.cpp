@@ -69,7 +69,7 @@ std::string box_text(const Point3& lo, const Point3& hi, F number) {
 
 int print_solid_stats(const std::string& name, const Solid& solid, const LoadPhases& phases, bool json) {
   const Mesh faces = solid_faces(solid);
-  const SolidStats st = solid_stats(solid, faces);
+  const SolidStats st = solid_stats(faces);
   const Rational& vol = solid.volume;
   const bool doubles = faces.points.all_doubles();
   if (json) {

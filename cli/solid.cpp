@@ -84,36 +84,6 @@ SolidOperand load_solid_operand(const std::string& spec, bool hull, LoadPhases* 
   return o;
 }
 
-Mesh solid_faces(const Solid& s) {
-  const Mesh& t = s.triangles;
-  // The triangles of each input face, in the order of the faces.
-  std::map<Index, std::vector<std::size_t>> by_face;
-  for (std::size_t i = 0; i < t.faces.size(); ++i) by_face[s.source_face[i]].push_back(i);
-  Mesh m;
-  m.points = t.points;
-  m.faces.reserve(by_face.size());
-  for (const auto& [face, tris] : by_face) {
-    // A face is a simple polygon cut by ear clipping (no point added): its
-    // triangles' halfedges without their twin in the face are its boundary,
-    // one loop through each of its vertices once.
-    std::map<std::pair<Index, Index>, int> half;
-    for (std::size_t i : tris)
-      for (std::size_t k = 0; k < 3; ++k) ++half[{t.faces[i][k], t.faces[i][(k + 1) % 3]}];
-    std::unordered_map<Index, Index> next;
-    for (const auto& [uv, n] : half)
-      if (!half.count({uv.second, uv.first})) next[uv.first] = uv.second;
-    std::vector<Index> loop;
-    const Index start = t.faces[tris[0]][0];
-    Index v = start;
-    do {
-      loop.push_back(v);
-      v = next.at(v);
-    } while (v != start && loop.size() <= next.size());
-    m.faces.push_back(std::move(loop));
-  }
-  return m;
-}
-
 std::string solid_rounding_json(const RoundedSolid& r) {
   if (!r.rounded_coordinates && r.max_displacement == 0) return "null";
   return "{\"coordinates\": " + std::to_string(r.rounded_coordinates) +
@@ -128,39 +98,6 @@ MeshCounts mesh_counts(const Mesh& m) {
   for (const auto& f : m.faces) corners += f.size();
   c.edges = corners / 2;  // every edge has as many faces on each side
   return c;
-}
-
-SolidStats solid_stats(const Solid& s, const Mesh& faces) {
-  SolidStats st;
-  const MeshCounts c = mesh_counts(faces);
-  st.vertices = c.vertices, st.edges = c.edges, st.facets = c.faces;
-  // Shells: the components of the vertices joined by the faces (every vertex
-  // is one fan of faces, so these are the surface's components).
-  std::vector<Index> parent(faces.points.size());
-  std::iota(parent.begin(), parent.end(), Index(0));
-  auto find = [&](Index v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const auto& f : faces.faces)
-    for (std::size_t k = 1; k < f.size(); ++k) parent[find(f[k])] = find(f[0]);
-  for (Index v = 0; v < parent.size(); ++v) st.shells += find(v) == v;
-  // Euler: V - E + F = 2 (shells - genus) for closed orientable surfaces of
-  // disks.
-  const long long chi = (long long)c.vertices - (long long)c.edges + (long long)c.faces;
-  st.genus = std::size_t((2 * (long long)st.shells - chi) / 2);
-  for (std::size_t i = 0; i < faces.points.size(); ++i) {
-    const Point3 p = faces.points.exact(i);
-    if (i == 0) {
-      st.min = st.max = p;
-      continue;
-    }
-    for (int k = 0; k < 3; ++k) {
-      if (p[k] < st.min[k]) st.min[k] = p[k];
-      if (p[k] > st.max[k]) st.max[k] = p[k];
-    }
-  }
-  return st;
 }
 
 std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh, Mesh* written_out, RoundedSolid* rounded_out,

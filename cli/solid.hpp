@@ -35,20 +35,6 @@ struct SolidOperand {
 SolidOperand load_solid_operand(const std::string& spec, bool hull, LoadPhases* phases,
                                 std::optional<Format> format);
 
-// The solid's faces as polygons again (Solid keeps its triangles): every face
-// of the input (welded, as validated) one loop, counter-clockwise seen from
-// outside, over the points of s.triangles.
-Mesh solid_faces(const Solid& s);
-
-// What 'stats' prints of a solid.
-struct SolidStats {
-  std::size_t vertices = 0, edges = 0, facets = 0;
-  std::size_t shells = 0;  // connected components of the surface
-  std::size_t genus = 0;   // the sum of the shells' genera (a torus: 1)
-  Point3 min, max;         // the exact bounding box
-};
-SolidStats solid_stats(const Solid& s, const Mesh& faces);
-
 // Writes a solid's boundary `mesh` (exact, or rounded to a valid solid by
 // round_solid, docs/nonconvex.md) to `out`, with a note on stderr when it was
 // rounded (`what` names it there: "sum", "solid"); OutputError naming

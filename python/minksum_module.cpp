@@ -550,37 +550,6 @@ struct SolidPy {
 };
 using SolidPtr = std::shared_ptr<SolidPy>;
 
-// The solid's faces as polygons again (Solid keeps its triangles): every face
-// of the input, welded, one loop over the points of s.triangles, as the
-// command's stats counts them.
-Mesh solid_faces(const Solid& s) {
-  const Mesh& t = s.triangles;
-  std::map<Index, std::vector<std::size_t>> by_face;
-  for (std::size_t i = 0; i < t.faces.size(); ++i) by_face[s.source_face[i]].push_back(i);
-  Mesh m;
-  m.points = t.points;
-  m.faces.reserve(by_face.size());
-  for (const auto& [face, tris] : by_face) {
-    // A face is a simple polygon cut by ear clipping (no point added): the
-    // halfedges of its triangles without their twin in the face are its boundary.
-    std::map<std::pair<Index, Index>, int> half;
-    for (std::size_t i : tris)
-      for (std::size_t k = 0; k < 3; ++k) ++half[{t.faces[i][k], t.faces[i][(k + 1) % 3]}];
-    std::unordered_map<Index, Index> next;
-    for (const auto& [uv, n] : half)
-      if (!half.count({uv.second, uv.first})) next[uv.first] = uv.second;
-    std::vector<Index> loop;
-    const Index start = t.faces[tris[0]][0];
-    Index v = start;
-    do {
-      loop.push_back(v);
-      v = next.at(v);
-    } while (v != start && loop.size() <= next.size());
-    m.faces.push_back(std::move(loop));
-  }
-  return m;
-}
-
 SolidPtr solid_from(Solid s, std::string name) {
   auto out = std::make_shared<SolidPy>();
   out->faces = solid_faces(s);
@@ -588,47 +557,6 @@ SolidPtr solid_from(Solid s, std::string name) {
   out->name = std::move(name);
   out->solid = std::move(s);
   return out;
-}
-
-// What `minksum stats` prints of a solid: counts, shells, genus, bounding box.
-struct SolidCounts {
-  std::size_t vertices = 0, edges = 0, facets = 0, shells = 0;
-  long long genus = 0;
-  Point3 min, max;
-};
-
-SolidCounts solid_counts(const Mesh& m) {
-  SolidCounts c;
-  c.vertices = m.points.size();
-  c.facets = m.faces.size();
-  std::size_t corners = 0;
-  for (const auto& f : m.faces) corners += f.size();
-  c.edges = corners / 2;  // every edge has as many faces on each side
-  // Shells: the components of the vertices joined by the faces.
-  std::vector<Index> parent(m.points.size());
-  std::iota(parent.begin(), parent.end(), Index(0));
-  auto find = [&](Index v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const auto& f : m.faces)
-    for (std::size_t k = 1; k < f.size(); ++k) parent[find(f[k])] = find(f[0]);
-  for (Index v = 0; v < parent.size(); ++v) c.shells += find(v) == v;
-  // Euler: V - E + F = 2 (shells - genus) for closed orientable surfaces.
-  const long long chi = (long long)c.vertices - (long long)c.edges + (long long)c.facets;
-  c.genus = (2 * (long long)c.shells - chi) / 2;
-  for (std::size_t i = 0; i < m.points.size(); ++i) {
-    const Point3 p = m.points.exact(i);
-    if (i == 0) {
-      c.min = c.max = p;
-      continue;
-    }
-    for (int k = 0; k < 3; ++k) {
-      if (p[k] < c.min[k]) c.min[k] = p[k];
-      if (p[k] > c.max[k]) c.max[k] = p[k];
-    }
-  }
-  return c;
 }
 
 // The result of a non-convex sum: the boundary as a SolidPy, and the report
@@ -1219,7 +1147,7 @@ arguments, TypeError for arguments of the wrong type.)")
           "The faces cut into triangles (exact ear clipping), an int64 (m, 3) array of vertex indices\n"
           "counter-clockwise seen from outside (trimesh.Trimesh(s.vertices, s.triangles())).")
       .def_property_readonly("num_vertices", [](const SolidPy& s) { return s.faces.points.size(); })
-      .def_property_readonly("num_edges", [](const SolidPy& s) { return solid_counts(s.faces).edges; })
+      .def_property_readonly("num_edges", [](const SolidPy& s) { return solid_stats(s.faces).edges; })
       .def_property_readonly("num_facets", [](const SolidPy& s) { return s.faces.faces.size(); })
       .def_property_readonly(
           "is_convex",
@@ -1233,10 +1161,10 @@ arguments, TypeError for arguments of the wrong type.)")
       .def_property_readonly(
           "stats",
           [](const SolidPy& s) {
-            SolidCounts c;
+            SolidStats c;
             {
               py::gil_scoped_release nogil;
-              c = solid_counts(s.faces);
+              c = solid_stats(s.faces);
             }
             py::dict d;
             d["vertices"] = c.vertices;
@@ -1253,7 +1181,7 @@ arguments, TypeError for arguments of the wrong type.)")
           "Fraction), volume_float (its nearest double), genus (the sum of the shells' genera: a torus 1),\n"
           "shells (connected components of the surface), bounding_box ((min, max), exact Fraction triples).")
       .def("__repr__", [](const SolidPy& s) {
-        const SolidCounts c = solid_counts(s.faces);
+        const SolidStats c = solid_stats(s.faces);
         return "<minksum.Solid: " + std::to_string(c.vertices) + " vertices, " + std::to_string(c.edges) +
                " edges, " + std::to_string(c.facets) + " faces>";
       });
@@ -1293,7 +1221,7 @@ non_manifold_edges, dropped_components, phases (seconds of "decompose",
                              })
       .def_property_readonly("seconds", [](const SolidSum& s) { return s.report.seconds(); })
       .def("__repr__", [](const SolidSum& s) {
-        const SolidCounts c = solid_counts(s.faces);
+        const SolidStats c = solid_stats(s.faces);
         return "<minksum.SolidSum (" + std::string(s.report.method) + "): " + std::to_string(c.vertices) +
                " vertices, " + std::to_string(c.edges) + " edges, " + std::to_string(c.facets) + " faces>";
       });

@@ -405,4 +405,70 @@ Solid solid_of(const ConvexPolytope& p) {
   return s;
 }
 
+Mesh solid_faces(const Solid& s) {
+  const Mesh& t = s.triangles;
+  // The triangles of each input face, in the order of the faces.
+  std::map<Index, std::vector<std::size_t>> by_face;
+  for (std::size_t i = 0; i < t.faces.size(); ++i) by_face[s.source_face[i]].push_back(i);
+  Mesh m;
+  m.points = t.points;
+  m.faces.reserve(by_face.size());
+  for (const auto& [face, tris] : by_face) {
+    // A face is a simple polygon cut by ear clipping (no point added): its
+    // triangles' halfedges without their twin in the face are its boundary,
+    // one loop through each of its vertices once.
+    std::map<std::pair<Index, Index>, int> half;
+    for (std::size_t i : tris)
+      for (std::size_t k = 0; k < 3; ++k) ++half[{t.faces[i][k], t.faces[i][(k + 1) % 3]}];
+    std::unordered_map<Index, Index> next;
+    for (const auto& [uv, n] : half)
+      if (!half.count({uv.second, uv.first})) next[uv.first] = uv.second;
+    std::vector<Index> loop;
+    const Index start = t.faces[tris[0]][0];
+    Index v = start;
+    do {
+      loop.push_back(v);
+      v = next.at(v);
+    } while (v != start && loop.size() <= next.size());
+    m.faces.push_back(std::move(loop));
+  }
+  return m;
+}
+
+SolidStats solid_stats(const Mesh& faces) {
+  SolidStats st;
+  st.vertices = faces.points.size();
+  st.facets = faces.faces.size();
+  std::size_t corners = 0;
+  for (const auto& f : faces.faces) corners += f.size();
+  st.edges = corners / 2;  // every edge has as many faces on each side
+  // Shells: the components of the vertices joined by the faces (every vertex
+  // is one fan of faces, so these are the surface's components).
+  std::vector<Index> parent(faces.points.size());
+  std::iota(parent.begin(), parent.end(), Index(0));
+  auto find = [&](Index v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& f : faces.faces)
+    for (std::size_t k = 1; k < f.size(); ++k) parent[find(f[k])] = find(f[0]);
+  for (Index v = 0; v < parent.size(); ++v) st.shells += find(v) == v;
+  // Euler: V - E + F = 2 (shells - genus) for closed orientable surfaces of
+  // disks.
+  const long long chi = (long long)st.vertices - (long long)st.edges + (long long)st.facets;
+  st.genus = std::size_t((2 * (long long)st.shells - chi) / 2);
+  for (std::size_t i = 0; i < faces.points.size(); ++i) {
+    const Point3 p = faces.points.exact(i);
+    if (i == 0) {
+      st.min = st.max = p;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (p[k] < st.min[k]) st.min[k] = p[k];
+      if (p[k] > st.max[k]) st.max[k] = p[k];
+    }
+  }
+  return st;
+}
+
 }  // namespace minksum

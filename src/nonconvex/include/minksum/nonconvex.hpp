@@ -64,6 +64,23 @@ struct Solid {
 // oriented as its nesting depth requires (outer boundaries and islands
 // outwards, cavities inwards; one shell: positive volume).
 Solid validate_solid(const Mesh& mesh, const std::string& source);
+
+// The solid's faces as polygons again (Solid keeps its triangles): every face
+// of the input (welded, as validated) one loop, counter-clockwise seen from
+// outside, over the points of s.triangles.
+Mesh solid_faces(const Solid& s);
+
+// What `minksum stats` reports of a solid, from its faces (solid_faces): the
+// counts, the shells (connected components of the surface; a cavity is
+// one), the genus (the sum of the shells' genera, by Euler's formula: a
+// torus has 1) and the exact bounding box.
+struct SolidStats {
+  std::size_t vertices = 0, edges = 0, facets = 0;
+  std::size_t shells = 0;
+  std::size_t genus = 0;
+  Point3 min, max;
+};
+SolidStats solid_stats(const Mesh& faces);
 // A convex polytope as a Solid (no validation needed).
 Solid solid_of(const ConvexPolytope& p);
 

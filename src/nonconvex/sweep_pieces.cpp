@@ -106,21 +106,39 @@ bool SurfaceCones::candidate(Index t, const RoundedPoint3& u) const {
   return candidate(t, u, at_top);
 }
 
+namespace {
+
+// The vertices of a triangle at its top along u (at_top): how many, the
+// first of them, and when two, the edge k = (c[k], c[k+1]) they span.
+struct Top {
+  int count = 0, first = -1, edge = -1;
+};
+Top top_of(const bool at_top[3]) {
+  Top t;
+  for (int k = 0; k < 3; ++k)
+    if (at_top[k]) {
+      ++t.count;
+      if (t.first < 0) t.first = k;
+    }
+  if (t.count == 2) {
+    t.edge = 0;
+    while (!(at_top[t.edge] && at_top[(t.edge + 1) % 3])) ++t.edge;
+  }
+  return t;
+}
+
+}  // namespace
+
 bool SurfaceCones::candidate(Index t, const RoundedPoint3& u, const bool at_top[3]) const {
   const RoundedPoint3 o{origin(), kOriginApprox};
   const auto& c = tri_[t];
-  int top = -1, count = 0;
-  for (int k = 0; k < 3; ++k)
-    if (at_top[k]) {
-      ++count;
-      if (top < 0) top = k;
-    }
+  const Top tp = top_of(at_top);
+  const int top = tp.first, count = tp.count;
   if (count == 3)  // the triangle itself: its outward normal only
     return dot_sign(o, u, o, RoundedPoint3{normal_[t], normal_approx_[t]}) > 0;
   if (count == 2) {
     // The edge k = (c[k], c[k+1]) at the top.
-    int k = 0;
-    while (!(at_top[k] && at_top[(k + 1) % 3])) ++k;
+    const int k = tp.edge;
     const Index a = c[k], b = c[(k + 1) % 3];
     // Inside the edge: a convex edge's normals are the arc between its two
     // faces' normals, u . (far vertex of either face - a) <= 0 (this face's
@@ -134,16 +152,11 @@ bool SurfaceCones::candidate(Index t, const RoundedPoint3& u, const bool at_top[
 
 bool SurfaceCones::keeps(Index t, const RoundedPoint3& u, const bool at_top[3]) const {
   const auto& c = tri_[t];
-  int top = -1, count = 0;
-  for (int k = 0; k < 3; ++k)
-    if (at_top[k]) {
-      ++count;
-      if (top < 0) top = k;
-    }
+  const Top tp = top_of(at_top);
+  const int top = tp.first, count = tp.count;
   if (count == 3) return true;
   if (count == 2) {
-    int k = 0;
-    while (!(at_top[k] && at_top[(k + 1) % 3])) ++k;
+    const int k = tp.edge;
     const Index other = across_[t][k];
     if (other == kNoTriangle || other > t) return true;
     return dot_difference_sign(u, at(c[k]), at(opposite_[t][k])) >= 0;

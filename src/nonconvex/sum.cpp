@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 namespace minksum {
 
@@ -100,6 +101,11 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
     for (const ConvexPolytope& p : po) pieces.emplace_back(p);
   }
   const nonconvex_detail::SurfaceCones cones(s.triangles);
+  // O's surface, when O is not convex: a facet of t ⊕ O_j is a candidate
+  // only if its face of O_j can touch O's surface with its normal in O's
+  // local cone there (SweptPolytope::on_surface).
+  std::optional<nonconvex_detail::SurfaceCones> o_cones;
+  if (!o.convex) o_cones.emplace(o.triangles);
   // b: the centroid of the first piece's vertices, inside it (a full-dimensional convex polytope).
   Point3 inner(Rational(0), Rational(0), Rational(0));
   for (const Point3& p : po.front().points()) inner = inner + p;
@@ -121,7 +127,7 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
   std::vector<nonconvex_detail::SweptPolytope> swept;
   if (!by_hull) {
     swept.reserve(po.size());  // (the pieces point into them: no reallocation)
-    for (const ConvexPolytope& p : po) swept.emplace_back(p);
+    for (const ConvexPolytope& p : po) swept.emplace_back(p, o_cones ? &*o_cones : nullptr);
   }
   const unsigned workers = parallel_threads(threads, n);
   const std::size_t batch = std::max<std::size_t>(64, std::size_t(workers) * 64);

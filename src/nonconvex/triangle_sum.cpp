@@ -33,7 +33,7 @@
 
 namespace minksum::nonconvex_detail {
 
-SweptPolytope::SweptPolytope(const ConvexPolytope& b) {
+SweptPolytope::SweptPolytope(const ConvexPolytope& b, const SurfaceCones* surface) : surface_(surface) {
   points_ = b.points();
   scaled_.reserve(points_.size());
   for (const Point3& p : points_) scaled_.push_back(scaled_point(p));
@@ -89,6 +89,41 @@ SweptPolytope::SweptPolytope(const ConvexPolytope& b) {
     scaled_difference(scaled_[x.v0], scaled_[x.v1], x.direction);
     edges_.push_back(std::move(x));
   }
+  if (!surface_) return;
+  for (Index t = 0; t < surface_->triangles(); ++t) {
+    const auto& c = surface_->triangle(t);
+    bool meets = true;
+    for (int k = 0; k < 3 && meets; ++k) {
+      bool below = false, above = false;  // some corner <= hi_, some >= lo_
+      for (int j = 0; j < 3; ++j) {
+        const Rational& x = surface_->point(c[j])[k];
+        below = below || cmp(x, hi_[k]) <= 0;
+        above = above || cmp(x, lo_[k]) >= 0;
+      }
+      meets = below && above;
+    }
+    if (meets) touching_.push_back(t);
+  }
+  facet_on_surface_.resize(facets_.size());
+  for (std::size_t f = 0; f < facets_.size(); ++f)
+    facet_on_surface_[f] = on_surface(facets_[f].loop.front(), RoundedPoint3{facets_[f].normal, facets_[f].normal_approx});
+}
+
+bool SweptPolytope::on_surface(Index x, const RoundedPoint3& u) const {
+  if (!surface_) return true;
+  const RoundedPoint3 base = at(x);
+  for (Index t : touching_) {
+    const auto& c = surface_->triangle(t);
+    bool at_top[3], any = false, above = false;
+    for (int k = 0; k < 3 && !above; ++k) {
+      const int s = dot_difference_sign(u, base, surface_->rounded(c[k]));
+      above = s > 0;
+      at_top[k] = s == 0;
+      any = any || at_top[k];
+    }
+    if (!above && any && surface_->candidate(t, u, at_top)) return true;
+  }
+  return false;
 }
 
 namespace {
@@ -234,7 +269,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
     lp.d = truncated_ratio(work[0], work[1]);
     lp.filtered = f.primitive_usable && std::isfinite(lp.d) && std::fabs(lp.d) < kLazyFilterMax &&
                   (lp.d == 0 ? sgn(work[0]) == 0 : std::fabs(lp.d) >= kLazyFilterMin);
-    if (cones.candidate(t, u, at_top) && cones.keeps(t, u, at_top)) {
+    if ((!surface_ || facet_on_surface_[fi]) && cones.candidate(t, u, at_top) && cones.keeps(t, u, at_top)) {
       lp.exact = std::int32_t(lazy_exact.size());
       lazy_exact.push_back(canonical_from_offset(f, work));
       candidates.push_back(Index(fi));
@@ -280,7 +315,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       Built x;
       x.plane = canonical_plane_through_sum(n[side], scaled[0], scaled_[face[0]]);
       const bool whole[3] = {true, true, true};  // t is face_u(t)
-      if (cones.candidate(t, RoundedPoint3{u, ua}, whole)) {
+      if (cones.candidate(t, RoundedPoint3{u, ua}, whole) && on_surface(face[0], RoundedPoint3{u, ua})) {
         if (face.size() == 1) {
           for (int k = 0; k < 3; ++k) x.loop.push_back(p[side == 0 ? k : 2 - k].exact + points_[face[0]]);
         } else {
@@ -331,7 +366,8 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       const Vec3d ua = to_double(u);
       bool on_edge[3] = {false, false, false};  // the edge a → b is face_u(t)
       on_edge[k] = on_edge[(k + 1) % 3] = true;
-      if (cones.candidate(t, RoundedPoint3{u, ua}, on_edge) && cones.keeps(t, RoundedPoint3{u, ua}, on_edge)) {
+      if (cones.candidate(t, RoundedPoint3{u, ua}, on_edge) && cones.keeps(t, RoundedPoint3{u, ua}, on_edge) &&
+          on_surface(g.v0, RoundedPoint3{u, ua})) {
         // e ⊕ g with normal e × g is counter-clockwise in the order
         // a + g0, b + g0, b + g1, a + g1; reversed for σ < 0.
         x.loop = {a.exact + points_[g.v0], b.exact + points_[g.v0], b.exact + points_[g.v1], a.exact + points_[g.v1]};

@@ -105,7 +105,11 @@ class SurfaceCones {
 // each adjacent facet, its exact bounding box.
 class SweptPolytope final : public PlaneBuilder {
  public:
-  explicit SweptPolytope(const ConvexPolytope& b);
+  // `surface`, when given, is the surface of the non-convex solid O that B
+  // is a convex piece of (B ⊆ O): a facet of t ⊕ B is then also culled
+  // unless its face of B can hold a point o of O's surface with the
+  // facet's normal u in O's local normal cone at o (on_surface).
+  explicit SweptPolytope(const ConvexPolytope& b, const SurfaceCones* surface = nullptr);
   // The canonical plane of facet k of B moved to the vertex of piece's
   // triangle at its top (piece.lazy[k].tag), as sum's lazy planes.
   Plane build(const Piece& piece, Index k) const override;
@@ -115,6 +119,8 @@ class SweptPolytope final : public PlaneBuilder {
   // plane, the vertex loops of the facets that SurfaceCones::candidate
   // keeps (the candidates first), and its box.
   Piece sum(const SurfaceCones& cones, Index t) const;
+  // on_surface for facet f of B and its normal (true without a surface).
+  bool facet_on_surface(Index f) const { return !surface_ || facet_on_surface_[f]; }
 
  private:
   struct Facet {
@@ -132,6 +138,13 @@ class SweptPolytope final : public PlaneBuilder {
     Index f0, f1;  // those facets (f0 holds w0)
     Integer direction[3];  // a positive multiple of v1 - v0, primitive
   };
+  // Whether the face of B extreme along u, which holds vertex x of B, can
+  // hold a point o of O's surface with u in O's local normal cone at o.
+  // Such an o lies on a triangle t' of O that lies below the plane through
+  // x normal to u (O does near o, and t' is planar) with o in face_u(t'),
+  // and SurfaceCones::candidate(t', u) holds: the test keeps every such
+  // face (a superset; t' ranges over the triangles whose box meets B's).
+  bool on_surface(Index x, const RoundedPoint3& u) const;
   static void offset_along(const Facet& f, const ScaledPoint& q, Integer work[3]);
   static Plane canonical_from_offset(const Facet& f, Integer work[3]);
   RoundedPoint3 at(Index v) const { return RoundedPoint3{points_[v], approx_[v]}; }
@@ -143,6 +156,9 @@ class SweptPolytope final : public PlaneBuilder {
   std::vector<Edge> edges_;
   Point3 lo_, hi_;  // exact bounding box
   DirectionIndex directions_;  // approximate unit facet normals (Piece::directions)
+  const SurfaceCones* surface_ = nullptr;  // O's, when B is a piece of a non-convex O
+  std::vector<Index> touching_;            // O's triangles whose exact box meets B's
+  std::vector<char> facet_on_surface_;     // on_surface for each facet of B
 };
 
 }  // namespace minksum::nonconvex_detail

@@ -4,6 +4,7 @@
 #include <minksum/nonconvex.hpp>
 #include <minksum/predicates.hpp>
 
+#include "kernel/plane.hpp"
 #include "nonconvex/nef.hpp"
 #include "nonconvex/sweep.hpp"
 
@@ -216,13 +217,38 @@ Mesh triangulate(const Mesh& mesh, const std::string& source) {
 // every term, so adding them one by one costs the final sum's size per
 // term; the pairwise sums of equal-sized halves cost about the final size
 // per level.  The terms in parallel, each level too.
+// Each fan triangle's term in integers: with the points as P / D over one
+// denominator each (ScaledPoint), det(p0, p1, p2) = det(P0, P1, P2) /
+// (D0 D1 D2), one gcd per triangle instead of one per rational operation.
 Rational mesh_volume(const Mesh& mesh) {
   std::vector<Rational> term(mesh.faces.size());
   const unsigned workers = parallel_threads(0, term.size() / 256 + 1);
+  std::vector<ScaledPoint> scaled(mesh.points.size());
+  parallel_for(scaled.size(), parallel_threads(0, scaled.size() / 256 + 1),
+               [&](std::size_t v) { scaled[v] = scaled_point(mesh.points[v]); });
   parallel_for(term.size(), workers, [&](std::size_t k) {
     const auto& f = mesh.faces[k];
-    const Point3 p0 = mesh.points[f[0]];
-    for (std::size_t i = 1; i + 1 < f.size(); ++i) term[k] += dot(p0, cross(mesh.points[f[i]], mesh.points[f[i + 1]]));
+    const ScaledPoint& p0 = scaled[f[0]];
+    Integer c[3], det, den;
+    Rational t;
+    for (std::size_t i = 1; i + 1 < f.size(); ++i) {
+      const ScaledPoint& p1 = scaled[f[i]];
+      const ScaledPoint& p2 = scaled[f[i + 1]];
+      for (int j = 0; j < 3; ++j) {
+        const int a = (j + 1) % 3, b = (j + 2) % 3;
+        mpz_mul(c[j].get_mpz_t(), p1.num[a].get_mpz_t(), p2.num[b].get_mpz_t());
+        mpz_submul(c[j].get_mpz_t(), p1.num[b].get_mpz_t(), p2.num[a].get_mpz_t());
+      }
+      mpz_mul(det.get_mpz_t(), p0.num[0].get_mpz_t(), c[0].get_mpz_t());
+      mpz_addmul(det.get_mpz_t(), p0.num[1].get_mpz_t(), c[1].get_mpz_t());
+      mpz_addmul(det.get_mpz_t(), p0.num[2].get_mpz_t(), c[2].get_mpz_t());
+      mpz_mul(den.get_mpz_t(), p0.den.get_mpz_t(), p1.den.get_mpz_t());
+      mpz_mul(den.get_mpz_t(), den.get_mpz_t(), p2.den.get_mpz_t());
+      mpz_swap(t.get_num_mpz_t(), det.get_mpz_t());
+      mpz_swap(t.get_den_mpz_t(), den.get_mpz_t());
+      t.canonicalize();
+      term[k] += t;
+    }
   });
   std::vector<Rational> next;
   while (term.size() > 1) {

@@ -412,3 +412,35 @@ TEST(NonconvexCatalog, BadParametersAreUsageErrors) {
   EXPECT_TRUE(is_catalog_spec("gear:12@rot:1"));
   EXPECT_EQ(nonconvex_catalog_entries().size(), 7u);
 }
+
+// triangulate ear-clips each face of a valid solid without its rational
+// normal (the drop axis from one corner, the orientation from the turn at
+// the lexicographically smallest projected vertex): on non-convex faces
+// (the L, the star, the gear with its hole's faces, a tube), in every
+// orientation the rotations give (faces facing ±x, ±y, ±z and oblique, and the point reflection,
+// the smallest vertex at a reflex corner or not), every triangle turns as
+// its face does (its normal a positive multiple of the face's Newell
+// normal) and the triangles' volume is the faces' exactly.
+TEST(NonconvexSum, TriangulatedFacesTurnAsTheirFaces) {
+  for (const char* base : {"lshape", "star:5", "gear:4", "tube", "ring:5"})
+    for (const char* turn : {"", "@rot:1", "@rot:3", "@rot:7", "@rot:1,2,3,4", "@rot:0,1,0,0", "@neg"}) {
+      const std::string spec = std::string(base) + turn;
+      SCOPED_TRACE(spec);
+      const Mesh m = catalog_mesh(spec);
+      const Mesh t = triangulate(m, spec);
+      EXPECT_EQ(mesh_volume(t), mesh_volume(m));
+      // Each face's triangles follow it in order: match them by plane.
+      std::size_t next = 0;
+      for (const auto& f : m.faces) {
+        Point3 n(Rational(0), Rational(0), Rational(0));
+        for (std::size_t i = 0; i < f.size(); ++i) n = n + cross(m.points[f[i]], m.points[f[(i + 1) % f.size()]]);
+        for (std::size_t k = 0; k + 2 < f.size(); ++k, ++next) {
+          ASSERT_LT(next, t.faces.size());
+          const auto& g = t.faces[next];
+          const Point3 c = cross(t.points[g[1]] - t.points[g[0]], t.points[g[2]] - t.points[g[0]]);
+          EXPECT_TRUE(is_zero(cross(c, n)) && sgn(dot(c, n)) > 0) << "a triangle turning against its face";
+        }
+      }
+      EXPECT_EQ(next, t.faces.size());
+    }
+}

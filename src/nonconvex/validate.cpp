@@ -57,19 +57,21 @@ bool collinear(const Point3& a, const Point3& b, const Point3& c) {
   return true;
 }
 
-// Ear clipping of a simple planar polygon (indices into `pts`), exact; the
-// polygon is counter-clockwise about `normal`.  Returns false when no ear is
-// found (the polygon is not simple).
-bool ear_clip(const std::vector<Index>& loop, const std::vector<Point3>& pts, const Point3& normal,
-              std::vector<std::array<Index, 3>>& out) {
+// The coordinate a polygon with normal n is projected along (where |n| is
+// largest; the same for every positive or negative multiple of n).
+int drop_axis(const Point3& n) {
   int drop = 0;
   for (int i = 1; i < 3; ++i)
-    if (cmp(abs(normal[i]), abs(normal[drop])) > 0) drop = i;
-  // Orientation of a counter-clockwise triangle in the projection.
-  const int ccw = sgn(normal[drop]);
-  // Positions in the loop, with the points' nearest doubles.
-  std::vector<Vec3d> approx(loop.size());
-  for (std::size_t i = 0; i < loop.size(); ++i) approx[i] = to_double(pts[loop[i]]);
+    if (cmp(abs(n[i]), abs(n[drop])) > 0) drop = i;
+  return drop;
+}
+
+// Ear clipping of a simple planar polygon (indices into `pts`), exact,
+// projected along axis `drop`, where a counter-clockwise triangle of the
+// polygon has orientation `ccw` (the sign of its normal's component).
+// Returns false when no ear is found (the polygon is not simple).
+bool ear_clip(const std::vector<Index>& loop, const std::vector<Point3>& pts, int drop, int ccw,
+              const std::vector<Vec3d>& approx, std::vector<std::array<Index, 3>>& out) {
   auto at = [&](std::size_t i) { return RoundedPoint3{pts[loop[i]], approx[i]}; };
   std::vector<std::size_t> poly(loop.size());
   std::iota(poly.begin(), poly.end(), std::size_t(0));
@@ -98,6 +100,49 @@ bool ear_clip(const std::vector<Index>& loop, const std::vector<Point3>& pts, co
   if (orient2d(at(poly[0]), at(poly[1]), at(poly[2]), drop) != ccw) return false;
   out.push_back({loop[poly[0]], loop[poly[1]], loop[poly[2]]});
   return true;
+}
+
+// The same, counter-clockwise about `normal`.
+bool ear_clip(const std::vector<Index>& loop, const std::vector<Point3>& pts, const Point3& normal,
+              std::vector<std::array<Index, 3>>& out) {
+  const int drop = drop_axis(normal);
+  std::vector<Vec3d> approx(loop.size());
+  for (std::size_t i = 0; i < loop.size(); ++i) approx[i] = to_double(pts[loop[i]]);
+  return ear_clip(loop, pts, drop, sgn(normal[drop]), approx, out);
+}
+
+// Ear clipping of a face of a valid solid (a simple planar polygon) without
+// its rational normal: the plane's normal direction from the first
+// non-collinear corner (any multiple gives the same drop axis), and the
+// orientation from the turn at the vertex whose projection is
+// lexicographically smallest, a vertex of the projection's hull and so a
+// convex corner of the simple polygon, which turns as the polygon does.
+// Every sign a filtered predicate.  False when the polygon has no such
+// corner or no ear (it is not simple).
+bool ear_clip_face(const std::vector<Index>& loop, const std::vector<Point3>& pts,
+                   std::vector<std::array<Index, 3>>& out) {
+  const std::size_t n = loop.size();
+  std::vector<Vec3d> approx(n);
+  for (std::size_t i = 0; i < n; ++i) approx[i] = to_double(pts[loop[i]]);
+  auto at = [&](std::size_t i) { return RoundedPoint3{pts[loop[i]], approx[i]}; };
+  int drop = -1;
+  for (std::size_t i = 0; i < n && drop < 0; ++i) {
+    const std::size_t a = (i + n - 1) % n, c = (i + 1) % n;
+    for (int k = 0; k < 3 && drop < 0; ++k)
+      if (orient2d(at(a), at(i), at(c), k) != 0) drop = drop_axis(cross(pts[loop[i]] - pts[loop[a]], pts[loop[c]] - pts[loop[a]]));
+  }
+  if (drop < 0) return false;
+  const int iu = (drop + 1) % 3, iv = (drop + 2) % 3;
+  std::size_t low = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    const Point3& p = pts[loop[i]];
+    const Point3& q = pts[loop[low]];
+    const int c = cmp(p[iu], q[iu]);
+    if (c < 0 || (c == 0 && cmp(p[iv], q[iv]) < 0)) low = i;
+  }
+  const int ccw = orient2d(at((low + n - 1) % n), at(low), at((low + 1) % n), drop);
+  if (ccw == 0) return false;
+  return ear_clip(loop, pts, drop, ccw, approx, out);
 }
 
 // Shells (the connected components of the surface; vertex-disjoint, as each
@@ -195,10 +240,7 @@ Mesh triangulate(const Mesh& mesh, const std::string& source) {
   parallel_for(n, parallel_threads(0, n / 256 + 1), [&](std::size_t f) {
     const auto& loop = mesh.faces[f];
     if (loop.size() == 3) return;
-    std::vector<Point3> p;
-    for (Index v : loop) p.push_back(pts[v]);
-    const Point3 normal = polygon_normal(p);
-    if (is_zero(normal) || !ear_clip(loop, pts, normal, tris[f])) simple[f] = 0;
+    if (!ear_clip_face(loop, pts, tris[f])) simple[f] = 0;
   });
   for (Index f = 0; f < n; ++f) {
     if (!simple[f])

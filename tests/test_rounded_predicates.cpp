@@ -23,6 +23,7 @@
 #include <random>
 #include <vector>
 
+#include "kernel/plane.hpp"
 #include "kernel/predicates_internal.hpp"
 
 using namespace minksum;
@@ -579,4 +580,82 @@ TEST(DotDifference, OnAndNearOrthogonal) {
     if (HasFatalFailure()) return;
   }
   EXPECT_GT(zeros, 900);
+}
+
+// half_space_box_side: the side of a whole set of points from the corners of
+// the box of their cached doubles (nearest for some points, towards zero
+// for others, as the union caches loop vertices and cut points), in all
+// four rounding modes.  Every −1 is a set strictly inside, every +1 a set
+// strictly outside, exactly; sets with points on the plane or on both sides
+// are never decided; sets far on one side are.
+TEST(HalfSpaceSide, BoxOfASetOfPointsDecidesOnlyWhatHolds) {
+  std::size_t decided = 0, far = 0, far_decided = 0;
+  for (std::uint64_t seed = 1; seed <= 3000; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<int> small(-40, 40);
+    const Rational a(small(rng), 7), b(small(rng), 3), c(small(rng), 11), d(small(rng), 5);
+    if (a == 0 && b == 0 && c == 0) continue;
+    const double da = to_double(a), db = to_double(b), dc = to_double(c), dd = to_double(d);
+    const int n = 2 + int(rng() % 6);
+    // Offsets from the plane: zero, tiny or large, of one sign or mixed.
+    const int kind = int(rng() % 5);
+    std::vector<Point3> pts;
+    std::vector<Vec3d> cached;
+    for (int k = 0; k < n; ++k) {
+      // A point on the plane, then moved along the normal.
+      Point3 p(Rational(small(rng), 13), Rational(small(rng), 17), Rational(small(rng), 19));
+      const Rational at = a * p.x + b * p.y + c * p.z - d;
+      const Rational nn = a * a + b * b + c * c;
+      p = p - Rational(at / nn) * Point3(a, b, c);
+      Rational t = 0;
+      switch (kind) {
+        case 0: t = Rational(1 + k, 3); break;                            // far outside
+        case 1: t = Rational(-1 - k, 3); break;                           // far inside
+        case 2: t = Rational(k == 0 ? 0 : 1, 1 << 20); break;             // one on the plane
+        case 3: t = Rational(k % 2 ? 1 : -1, mpz_class(1) << 60); break;  // both sides, barely
+        default: t = Rational(-1, mpz_class(1) << 70); break;             // inside, barely
+      }
+      p = p + t * Point3(a, b, c);
+      pts.push_back(p);
+      if (k % 2 == 0) {
+        cached.push_back(to_double(p));
+      } else {  // towards zero, as truncated_ratio gives cut points
+        const ScaledPoint s = scaled_point(p);
+        cached.push_back(Vec3d{truncated_ratio(s.num[0], s.den), truncated_ratio(s.num[1], s.den),
+                               truncated_ratio(s.num[2], s.den)});
+      }
+    }
+    bool usable = true;
+    for (std::size_t k = 0; k < pts.size(); ++k)
+      for (int i = 0; i < 3; ++i) usable = usable && half_space_filter_usable(cached[k][i], pts[k][i]);
+    if (!usable) continue;
+    int lo_sign = 2, hi_sign = -2;
+    for (const Point3& p : pts) {
+      const int s = sgn(Rational(a * p.x + b * p.y + c * p.z - d));
+      lo_sign = std::min(lo_sign, s);
+      hi_sign = std::max(hi_sign, s);
+    }
+    double lo[3], hi[3];
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = hi[i] = cached[0][i];
+      for (const Vec3d& v : cached) {
+        lo[i] = std::min(lo[i], v[i]);
+        hi[i] = std::max(hi[i], v[i]);
+      }
+    }
+    const bool is_far = kind <= 1;
+    far += is_far;
+    in_all_modes([&](int mode) {
+      const auto s = half_space_box_side(da, db, dc, dd, lo, hi);
+      if (s == std::optional<int>(-1)) ASSERT_EQ(hi_sign, -1) << "seed " << seed << " mode " << mode;
+      if (s == std::optional<int>(1)) ASSERT_EQ(lo_sign, 1) << "seed " << seed << " mode " << mode;
+      if (mode == FE_TONEAREST) {
+        decided += s.has_value();
+        far_decided += is_far && s.has_value();
+      }
+    });
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  EXPECT_GT(decided, 0u);
+  EXPECT_GT(far_decided, far / 4) << far_decided << " of " << far << " far sets decided";
 }

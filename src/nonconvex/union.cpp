@@ -330,13 +330,38 @@ struct RejectOrder {
   std::size_t extra_from = SIZE_MAX;
 };
 
+// The box of a polygon's cached doubles, when every vertex may enter the
+// filter (for half_space_box_side).
+struct PolyBox {
+  double lo[3], hi[3];
+  bool usable = false;
+  explicit PolyBox(const Poly& g) {
+    usable = !g.empty();
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = usable ? g.front().d[k] : 0;
+    for (const V3& v : g) {
+      usable = usable && v.filtered;
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], v.d[k]);
+        hi[k] = std::max(hi[k], v.d[k]);
+      }
+    }
+  }
+  // −1: every vertex strictly inside h; +1: every vertex strictly outside.
+  std::optional<int> side(const Half& h) const {
+    if (!usable || !h.filtered) return std::nullopt;
+    return half_space_box_side(h.da, h.db, h.dc, h.dd, lo, hi);
+  }
+};
+
 bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out, Arena& arena,
               const Plane& face, const RejectOrder& order = {}) {
   std::vector<int> sg;
   bool pos = false, neg = false;
+  const PolyBox box(g);
   // First the signs only: a plane with all of g on or outside it rejects the
   // piece before any cut is made.
   auto rejects = [&](const Half& h) {
+    if (const auto s = box.side(h)) return *s > 0;
     bool above = false;
     for (std::size_t i = 0; i < g.size(); ++i) {
       const int c = side(h, g[i]);
@@ -359,7 +384,10 @@ bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>&
     if (!preferred(k) && rejects(halves[k])) return false;
   const std::size_t mark = out.size();
   Poly rem = g;
+  PolyBox rem_box = box;
   for (const Half& h : halves) {
+    // rem wholly inside h, proved from its box: nothing to cut.
+    if (rem_box.side(h) == std::optional<int>(-1)) continue;
     signs(rem, h, sg, pos, neg);
     if (!pos) continue;  // rem inside this half-space
     if (!neg) {          // rem outside: the overlap has no interior
@@ -370,6 +398,7 @@ bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>&
     cut(rem, h, sg, outside, inside, arena, face);
     out.push_back(std::move(outside));
     rem = std::move(inside);
+    rem_box = PolyBox(rem);
   }
   return true;
 }

@@ -77,6 +77,45 @@ inline std::optional<int> half_space_side_filter(double a, double b, double c, d
   return std::nullopt;
 }
 
+// The side of a whole set of points at once, from their extreme doubles.
+// Points v_1..v_n (exact), each coordinate cached as a faithful rounding
+// (within relative ε = 2^-52 of the exact value, zero exactly when it is
+// zero, usable as above; nearest and towards-zero roundings both are), lo
+// and hi the smallest and largest cached value of each coordinate over the
+// points, and (â, b̂, ĉ, d̂) usable roundings of the plane's rationals.
+//  * The sign of a rational equals that of its rounding, so the exact
+//    corner q, with q_i the largest exact i-th coordinate where â_i > 0,
+//    the smallest where â_i < 0 (any where â_i = 0), gives the largest
+//    value of the linear form: P(v_k) ≤ P(q) for every k.
+//  * The cached coordinate ĉ_i = hi_i (or lo_i) of that corner is within
+//    relative ε of q_i: with f(t) = t + ε|t| and g(t) = t − ε|t|, both
+//    non-decreasing, every cached v̂_i lies in [g(v_i), f(v_i)], so
+//    max_k v̂_k,i ≤ max_k f(v_k,i) = f(q_i) and max_k v̂_k,i ≥ v̂_w,i ≥ g(q_i)
+//    for the point w attaining q_i (the same for min).  It is zero only if
+//    q_i is: a cached zero comes from an exact zero, and a larger exact
+//    coordinate would have a positive cached value.  So ĉ is a rounding of
+//    q within relative ε/(1 − ε) of ĉ, usable.
+//  * The filter's bound above holds for inputs within relative ε/(1 − ε)
+//    too: the input term becomes (2ε' + ε'²)/(1 − ε) with ε' = ε/(1 − ε),
+//    and the total stays below 6.002 ε S < 16 ε (1 − ε)^3 S.
+// Hence half_space_side_filter at ĉ answering −1 proves P(v_k) < 0 for every
+// point (all strictly inside), and at the opposite corner (lo where â_i > 0,
+// hi where â_i < 0) answering +1 proves all strictly outside.
+// half_space_box_side returns −1 or +1 when one of the two is proved, else
+// nothing.
+inline std::optional<int> half_space_box_side(double a, double b, double c, double d, const double lo[3],
+                                              const double hi[3]) {
+  const double n[3] = {a, b, c};
+  double top[3], bottom[3];
+  for (int i = 0; i < 3; ++i) {
+    top[i] = n[i] >= 0 ? hi[i] : lo[i];
+    bottom[i] = n[i] >= 0 ? lo[i] : hi[i];
+  }
+  if (half_space_side_filter(a, b, c, d, top[0], top[1], top[2]) == std::optional<int>(-1)) return -1;
+  if (half_space_side_filter(a, b, c, d, bottom[0], bottom[1], bottom[2]) == std::optional<int>(1)) return 1;
+  return std::nullopt;
+}
+
 // The exact sign of a·x + b·y + c·z − d.
 inline int half_space_side_exact(const Rational& a, const Rational& b, const Rational& c,
                                  const Rational& d, const Point3& p) {

@@ -659,3 +659,42 @@ TEST(HalfSpaceSide, BoxOfASetOfPointsDecidesOnlyWhatHolds) {
   EXPECT_GT(decided, 0u);
   EXPECT_GT(far_decided, far / 4) << far_decided << " of " << far << " far sets decided";
 }
+
+// compare_filter: the order of two rationals from their cached roundings
+// (to nearest or towards zero, mixed), in all four rounding modes: every
+// decided sign is exact; equal values, and values closer than the bound, are
+// never decided; values apart by more than 2^-40 of their size always are.
+TEST(HalfSpaceSide, CompareFilterDecidesOnlyWhatHolds) {
+  std::size_t decided = 0, apart = 0;
+  const auto cached = [](const Rational& q, bool nearest) {
+    if (nearest) return to_double(q);
+    return truncated_ratio(q.get_num(), q.get_den());
+  };
+  for (std::uint64_t seed = 1; seed <= 20000; ++seed) {
+    std::mt19937_64 rng(seed);
+    const Rational x(Integer(std::int64_t(rng() >> 2)) - Integer(std::int64_t(1) << 61), Integer(std::int64_t(rng() >> 3) + 1));
+    const int gap = int(rng() % 8);
+    Rational y = x;
+    if (gap == 1) y = x + Rational(1, mpz_class(1) << 200);
+    else if (gap == 2) y = x - Rational(1, mpz_class(1) << 60) * abs(x);
+    else if (gap == 3) y = x * Rational(1 + (1 << 20), 1 << 20);
+    else if (gap >= 4) y = Rational(Integer(std::int64_t(rng() >> 2)), Integer(std::int64_t(rng() >> 3) + 1));
+    const bool nx = rng() % 2, ny = rng() % 2;
+    const double dx = cached(x, nx), dy = cached(y, ny);
+    if (!half_space_filter_usable(dx, x) || !half_space_filter_usable(dy, y)) continue;
+    const int exact = cmp(x, y);
+    const bool far = abs(Rational(x - y)) > Rational(0x1p-40) * (abs(x) + abs(y));
+    apart += far;
+    in_all_modes([&](int mode) {
+      volatile double vx = dx, vy = dy;
+      const auto s = compare_filter(vx, vy);
+      if (s) ASSERT_EQ(*s, exact) << "seed " << seed << " mode " << mode;
+      if (exact == 0) ASSERT_FALSE(s.has_value()) << "seed " << seed;
+      if (far) ASSERT_TRUE(s.has_value()) << "seed " << seed << " mode " << mode;
+      if (mode == FE_TONEAREST) decided += s.has_value();
+    });
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  EXPECT_GT(apart, 1000u);
+  EXPECT_GE(decided, apart);
+}

@@ -637,6 +637,8 @@ Line2 line_through(const Frame& f, const Point3& p, const Point3& q) {
 // gcds of numbers of several hundred bits each).
 int compare_coordinate(const V3& x, const V3& y, int k) {
   if (x.c && x.c == y.c) return 0;
+  if (x.filtered && y.filtered)
+    if (const auto s = compare_filter(x.d[k], y.d[k])) return *s;
   const CutPoint* cx = x.c && !x.c->canonical ? x.c : nullptr;
   const CutPoint* cy = y.c && !y.c->canonical ? y.c : nullptr;
   if (!cx && !cy) return cmp(x.exact()[k], y.exact()[k]);

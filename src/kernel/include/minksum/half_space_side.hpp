@@ -116,6 +116,23 @@ inline std::optional<int> half_space_box_side(double a, double b, double c, doub
   return std::nullopt;
 }
 
+// The sign of x − y for two rationals from cached roundings x̂, ŷ (within
+// relative ε of x̂ and ŷ: x = x̂(1 + ξ), y = ŷ(1 + η), |ξ|, |η| ≤ ε; usable as
+// above).  x − y = (x̂ − ŷ) + (x̂ξ − ŷη) and |x̂ξ − ŷη| ≤ ε(|x̂| + |ŷ|).  In any
+// rounding mode fl(x̂ − ŷ) = (x̂ − ŷ)(1 + δ₁) and fl(|x̂| + |ŷ|) = (|x̂| +
+// |ŷ|)(1 + δ₂), |δ_i| ≤ ε (a difference in the subnormal range is exact, and
+// the scaling by 2^-50 of a sum of usable doubles is exact or zero), so
+// |fl(x̂ − ŷ)| > 2^-50 fl(|x̂| + |ŷ|) gives |x̂ − ŷ| > 4ε (1 − ε)/(1 + ε)
+// (|x̂| + |ŷ|) > ε (|x̂| + |ŷ|): the sign of x − y is that of x̂ − ŷ.
+// Otherwise nothing (equal doubles always give nothing).
+inline std::optional<int> compare_filter(double x, double y) {
+  const double d = x - y;
+  const double e = 0x1p-50 * (std::fabs(x) + std::fabs(y));
+  if (d > e) return 1;
+  if (d < -e) return -1;
+  return std::nullopt;
+}
+
 // The exact sign of a·x + b·y + c·z − d.
 inline int half_space_side_exact(const Rational& a, const Rational& b, const Rational& c,
                                  const Rational& d, const Point3& p) {

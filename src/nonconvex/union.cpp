@@ -1487,15 +1487,24 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     for (const auto& plane_faces : faces)
       for (const auto& f : plane_faces)
         for (Index v : f) parent[find(v)] = find(f[0]);
+    // One vertex per component (the first face's first), asked in parallel.
     std::vector<signed char> drop(pts.size(), -1);  // by root: -1 not asked yet
+    std::vector<Index> asked;
     for (const auto& plane_faces : faces)
       for (const auto& f : plane_faces) {
         const Index r = find(f[0]);
         if (drop[r] < 0) {
-          drop[r] = interior(pts[f[0]]) ? 1 : 0;
-          out.dropped_components += std::size_t(drop[r]);
+          drop[r] = 0;
+          asked.push_back(f[0]);
         }
       }
+    std::vector<char> inside(asked.size());
+    parallel_for(asked.size(), parallel_threads(threads, asked.size()),
+                 [&](std::size_t k) { inside[k] = interior(pts[asked[k]]) ? 1 : 0; });
+    for (std::size_t k = 0; k < asked.size(); ++k) {
+      drop[find(asked[k])] = static_cast<signed char>(inside[k]);
+      out.dropped_components += std::size_t(inside[k]);
+    }
     std::vector<Index> renumber(pts.size(), Index(-1));
     std::vector<Point3> kept;
     for (auto& plane_faces : faces) {

@@ -114,7 +114,8 @@ Piece piece_of(const ConvexPolytope& p, const std::vector<char>* candidate = nul
 // guarantees that the boundary of the union, within the region it cares
 // about, lies on candidate facets.  `interior`, when given, is asked for one
 // vertex of each connected component of the resulting boundary, and the
-// components whose vertex it calls interior are dropped (with their points).
+// components whose vertex it calls interior are dropped (with their points);
+// it is called from several threads at once.
 void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, NonconvexSum& out,
                     unsigned threads = 0, const std::function<bool(const Point3&)>& interior = {});
 // The same for polytopes, every facet a candidate.

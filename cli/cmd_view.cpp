@@ -110,7 +110,7 @@ int view_scene(const Args& a, const LoadedScene& scene, const std::string& outpu
                    "\", " + counts_json(p) + "}";
   }
   if (a.flag("--json")) {
-    std::cout << "{\"kind\": \"scene\", \"name\": \"" << json_escape(file) << "\", \"shapes\": [" << shapes_json
+    std::cout << "{\"page\": \"scene\", \"name\": \"" << json_escape(file) << "\", \"shapes\": [" << shapes_json
               << "], \"output\": \"" << json_escape(output) << "\"}\n";
   } else {
     std::cout << printable(file) << ": a scene of " << scene.shapes.size() << " shapes\n";
@@ -149,9 +149,9 @@ int view_nonconvex(const Args& a, const std::string& output, const std::vector<A
                                          : mesh_counts(solid_faces(solids[i]));
     return c;
   };
-  auto counts_text = [](const MeshCounts& c) {
+  auto counts_text = [](const MeshCounts& c, bool convex) {
     return "\"vertices\": " + std::to_string(c.vertices) + ", \"edges\": " + std::to_string(c.edges) +
-           ", \"facets\": " + std::to_string(c.faces);
+           ", \"facets\": " + std::to_string(c.faces) + ", " + kind_json(3, convex ? "polytope" : "solid");
   };
   if (names.size() == 1) {
     const std::string title = a.value_or("--title", names[0]);
@@ -161,7 +161,7 @@ int view_nonconvex(const Args& a, const std::string& output, const std::vector<A
     write_page(output, title, data);
     const MeshCounts c = counts_of(0);
     if (json)
-      std::cout << "{\"kind\": \"solid\", \"name\": \"" << json_escape(names[0]) << "\", " << counts_text(c)
+      std::cout << "{\"page\": \"solid\", \"name\": \"" << json_escape(names[0]) << "\", " << counts_text(c, false)
                 << ", \"volume\": \"" << format_exact(solids[0].volume) << "\", \"convex\": false, \"output\": \""
                 << json_escape(output) << "\"}\n";
     else
@@ -190,10 +190,11 @@ int view_nonconvex(const Args& a, const std::string& output, const std::vector<A
   write_page(output, title, data);
   const MeshCounts c = mesh_counts(r.mesh);
   if (json) {
-    std::cout << "{\"kind\": \"sum\", " << counts_text(c) << ", \"method\": \"nonconvex\", \"volume\": \""
+    std::cout << "{\"page\": \"sum\", " << counts_text(c, false) << ", \"method\": \"nonconvex\", \"volume\": \""
               << format_exact(r.volume) << "\", \"a\": {\"name\": \"" << json_escape(names[0]) << "\", "
-              << counts_text(counts_of(0)) << "}, \"b\": {\"name\": \"" << json_escape(names[1]) << "\", "
-              << counts_text(counts_of(1)) << "}, \"output\": \"" << json_escape(output) << "\"}\n";
+              << counts_text(counts_of(0), solids[0].convex.has_value()) << "}, \"b\": {\"name\": \"" << json_escape(names[1])
+              << "\", " << counts_text(counts_of(1), solids[1].convex.has_value()) << "}, \"output\": \"" << json_escape(output)
+              << "\"}\n";
   } else {
     std::cout << printable(sum_name) << " = " << c.vertices << " vertices, " << c.edges << " edges, " << c.faces
               << " facets (non-convex sum, " << r.method << ")\n  page written to " << printable(output) << "\n";
@@ -261,7 +262,7 @@ int run_view(const std::vector<std::string>& argv) {
     data += "]}";
     write_page(*output, title, data);
     if (json)
-      std::cout << "{\"kind\": \"polytope\", \"name\": \"" << json_escape(a.positional[0]) << "\", " << counts_json(pa)
+      std::cout << "{\"page\": \"polytope\", \"name\": \"" << json_escape(a.positional[0]) << "\", " << polytope_json(pa)
                 << ", \"volume\": \"" << format_exact(pa.volume()) << "\", \"output\": \"" << json_escape(*output)
                 << "\"}\n";
     else
@@ -295,10 +296,10 @@ int run_view(const std::vector<std::string>& argv) {
   data += "]}";
   write_page(*output, title, data);
   if (json) {
-    std::cout << "{\"kind\": \"sum\", " << counts_json(s) << ", \"method\": \"" << method_name(r.method)
+    std::cout << "{\"page\": \"sum\", " << polytope_json(s) << ", \"method\": \"" << method_name(r.method)
               << "\", \"volume\": \"" << format_exact(s.volume()) << "\", \"a\": {\"name\": \""
-              << json_escape(a.positional[0]) << "\", " << counts_json(pa) << "}, \"b\": {\"name\": \""
-              << json_escape(a.positional[1]) << "\", " << counts_json(pb) << "}, \"output\": \""
+              << json_escape(a.positional[0]) << "\", " << polytope_json(pa) << "}, \"b\": {\"name\": \""
+              << json_escape(a.positional[1]) << "\", " << polytope_json(pb) << "}, \"output\": \""
               << json_escape(*output) << "\"}\n";
   } else {
     std::cout << a.positional[0] << " ⊕ " << a.positional[1] << " = " << s.num_vertices() << " vertices, "

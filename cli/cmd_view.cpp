@@ -78,13 +78,30 @@ int view_scene(const Args& a, const LoadedScene& scene, const std::string& outpu
   std::string data = "{\"kind\": \"scene\", \"title\": " + json_string(title) +
                      ", \"origins\": " + origin_names_json() + ", \"solids\": [";
   std::string shapes_json;
+  // What each polytope is in the scene, for its colour and its line in the
+  // legend: an operand or the polytope of a CubicalGaussianMap sum, or alone.
+  std::vector<std::string> role(scene.polytopes.size(), "polytope"), caption(scene.polytopes.size());
+  for (const LoadedCgm& c : scene.cgms) {
+    if (c.operand_nodes.size() != 2) continue;
+    const std::string sum = (c.polytope_node != kNoNode ? scene.names[c.polytope_node] + " = " : std::string()) +
+                            c.operands[0] + " ⊕ " + c.operands[1];
+    for (std::size_t k = 0; k < 2; ++k)
+      if (caption[c.operand_nodes[k]].empty()) {
+        role[c.operand_nodes[k]] = k ? "b" : "a";
+        caption[c.operand_nodes[k]] = std::string(k ? "second" : "first") + " operand of " + sum;
+      }
+    if (c.polytope_node != kNoNode) role[c.polytope_node] = "sum", caption[c.polytope_node] = "the sum " + sum;
+  }
+  std::string roles_json;
   bool first = true;
   for (const SceneShape& sh : scene.shapes) {
     if (sh.kind != SceneShape::Kind::polytope) continue;
-    if (!first) data += ", ";
-    append_solid_json(data, scene.polytopes[sh.index], scene.names[sh.index], "polytope");
+    if (!first) data += ", ", roles_json += ", ";
+    append_solid_json(data, scene.polytopes[sh.index], scene.names[sh.index], role[sh.index]);
+    roles_json += "{\"role\": " + json_string(role[sh.index]) + ", \"caption\": " + json_string(caption[sh.index]) + "}";
     first = false;
   }
+  data += "], \"roles\": [" + roles_json;
   data += "], \"cgms\": [";
   for (std::size_t i = 0; i < scene.cgms.size(); ++i) {
     const LoadedCgm& c = scene.cgms[i];

@@ -16,7 +16,6 @@
 #include "scene.hpp"
 #include "sweep.hpp"
 #include "text.hpp"
-#include "kernel/big_array.hpp"
 
 namespace minksum::cli {
 
@@ -293,11 +292,11 @@ int run_sum(const std::vector<std::string>& argv) {
   // triangles cost.
   std::optional<Rational> volume;
   if (json && operands.size() == 2) volume = sum_volume(operands[0], operands[1], r);
-  if (!scene) release(operands);
+  if (!scene) std::vector<ConvexPolytope>().swap(operands);  // freed now (clear() keeps the memory)
   // Likewise the per-facet and per-vertex records, once summed up for --json.
   const std::string details = names.size() == 2 ? facet_types_json(r) + method_detail_json(r) : "";
-  release(r.facet_provenance);
-  release(r.vertex_origin);
+  decltype(r.facet_provenance)().swap(r.facet_provenance);
+  decltype(r.vertex_origin)().swap(r.vertex_origin);
   const auto w0 = std::chrono::steady_clock::now();
   RoundingReport rounding;
   if (output && scene) rounding = write_scene_of_sum(*output, names, operands, r.polytope);

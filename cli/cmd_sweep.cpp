@@ -1,12 +1,12 @@
 // minksum sum with points, segments and flat polygons (see sweep.hpp).
 #include "sweep.hpp"
 
+#include <minksum/plane.hpp>
 #include <minksum/sweep.hpp>
 #include <minksum/sweep_proximity.hpp>
 
 #include <cmath>
 
-#include "kernel/plane.hpp"
 
 #include <chrono>
 #include <iostream>

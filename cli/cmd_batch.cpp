@@ -40,7 +40,8 @@ Options:
 
 Output, one line per pair:
   {"line": 1, "a": "cube", "b": "sphere:3", "method": "walk", "vertices": V,
-   "edges": E, "facets": F, "volume": "p/q", "volume_double": x, "seconds": s}
+   "edges": E, "facets": F, "dimension": 3, "kind": "polytope", "volume": "p/q",
+   "volume_double": x, "seconds": s}
 volume is exact (an integer or p/q); seconds is the sum's computation alone.
 A pair that fails (a missing or bad file, an unknown catalog name) gets
   {"line": 3, "a": "...", "b": "...", "error": "FILE: PLACE: PROBLEM", "status": 3}
@@ -130,7 +131,7 @@ Outcome compute(const Pair& p) {
     const ConvexPolytope b = load_operand(p.b, p.hull, nullptr);
     const SumResult r = minkowski_sum(a, b, p.method);
     const Rational volume = sum_volume(a, b, r);  // by mixed volumes, from the operands
-    o.json = ", \"method\": \"" + std::string(method_name(r.method)) + "\", " + counts_json(r.polytope) +
+    o.json = ", \"method\": \"" + std::string(method_name(r.method)) + "\", " + polytope_json(r.polytope) +
              ", \"volume\": \"" + format_exact(volume) + "\", \"volume_double\": " + json_number(to_double(volume)) +
              ", \"seconds\": " + json_number(r.seconds);
   } catch (const InputError& e) {

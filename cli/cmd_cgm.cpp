@@ -125,7 +125,7 @@ int run_cgm(const std::vector<std::string>& argv) {
     write_cgm_page(*html, label, g, shown, operands, provenance);
   }
   if (a.flag("--json")) {
-    std::cout << "{\"name\": \"" << json_escape(label) << "\", " << counts_json(shown) << ", \"maps\": [";
+    std::cout << "{\"name\": \"" << json_escape(label) << "\", " << polytope_json(shown) << ", \"maps\": [";
     for (int k = 0; k < 6; ++k) {
       auto c = g.counts(k);
       std::cout << (k ? ", " : "") << "{\"id\": " << k << ", \"vertices\": " << c.vertices

@@ -61,7 +61,7 @@ int convert_solid(const std::string& in, const Solid& solid, const MeshOutput& o
   const std::string out_name = output.to_stdout() ? "-" : output.path;
   if (json) {
     report << "{\"name\": \"" << json_escape(in) << "\", \"vertices\": " << c.vertices << ", \"edges\": " << c.edges
-           << ", \"facets\": " << c.faces << ", \"convex\": false, \"output\": \"" << json_escape(out_name)
+           << ", \"facets\": " << c.faces << ", " << kind_json(3, "solid") << ", \"convex\": false, \"output\": \"" << json_escape(out_name)
            << "\", \"format\": \"" << format_info(output.format).extension
            << "\", \"rounding\": " << solid_rounding_json(r) << "}\n";
   } else {
@@ -105,7 +105,7 @@ int run_convert(const std::vector<std::string>& argv) {
   const std::string out_name = output->to_stdout() ? "-" : output->path;
   if (a.flag("--json")) {
     // The counts of what was written (what stats gives for OUT).
-    report << "{\"name\": \"" << json_escape(in) << "\", " << counts_json(written) << ", \"output\": \""
+    report << "{\"name\": \"" << json_escape(in) << "\", " << polytope_json(written) << ", \"output\": \""
            << json_escape(out_name) << "\", \"format\": \"" << format_info(output->format).extension
            << "\", \"rounding\": " << rounding_json(r) << "}\n";
   } else {

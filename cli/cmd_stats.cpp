@@ -74,7 +74,8 @@ int print_solid_stats(const std::string& name, const Solid& solid, const LoadPha
   const bool doubles = faces.points.all_doubles();
   if (json) {
     std::cout << "{\"name\": \"" << json_escape(name) << "\", \"vertices\": " << st.vertices
-              << ", \"edges\": " << st.edges << ", \"facets\": " << st.facets << ", \"volume\": \""
+              << ", \"edges\": " << st.edges << ", \"facets\": " << st.facets << ", " << kind_json(3, "solid")
+              << ", \"volume\": \""
               << format_exact(vol) << "\", \"volume_double\": " << json_number(to_double(vol))
               << ", \"convex\": false, \"genus\": " << st.genus << ", \"shells\": " << st.shells
               << ", \"bounding_box\": {\"min\": " << exact_triple(st.min) << ", \"max\": " << exact_triple(st.max)
@@ -116,7 +117,7 @@ int run_stats(const std::vector<std::string>& argv) {
   for (Index f = 0; f < p.num_facets(); ++f) max_fdeg = std::max(max_fdeg, p.facet_degree(f));
   for (Index v = 0; v < p.num_vertices(); ++v) max_vdeg = std::max(max_vdeg, p.vertex_degree(v));
   if (a.flag("--json")) {
-    std::cout << "{\"name\": \"" << json_escape(a.positional[0]) << "\", " << counts_json(p)
+    std::cout << "{\"name\": \"" << json_escape(a.positional[0]) << "\", " << polytope_json(p)
               << ", \"volume\": \"" << format_exact(vol) << "\", \"volume_double\": "
               << json_number(to_double(vol)) << ", \"max_facet_degree\": " << max_fdeg
               << ", \"max_vertex_degree\": " << max_vdeg << ", \"coordinates_are_doubles\": "

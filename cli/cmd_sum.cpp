@@ -16,7 +16,6 @@
 #include "scene.hpp"
 #include "sweep.hpp"
 #include "text.hpp"
-#include "kernel/big_array.hpp"
 
 namespace minksum::cli {
 
@@ -104,7 +103,7 @@ that cannot be represented (beyond the format's range, or thinner than its
 spacing everywhere) is refused (exit 1) naming --exact.  --json then has a
 convex sum's counts, "dimension", "kind" ("solid"), "volume", "a", "b",
 "operands", "output" and "rounding" (null or {"coordinates": N,
-"max_displacement": D, "grid": G}; also "rounded_coordinates": N), "method":
+"max_displacement": D, "grid": G}), "method":
 "nonconvex", and "nonconvex_method", "swept", "pieces", "pairs",
 "pair_vertices", "pair_facets", "candidate_facets", "culled_facets" and
 "union" (clips, shells, non-manifold edges, dropped components) and the
@@ -285,7 +284,7 @@ int run_sum(const std::vector<std::string>& argv) {
   // process's peak memory is the sum's, not the sum's plus the operands'.
   std::vector<std::string> operand_counts, operand_summary;
   for (const ConvexPolytope& p : operands) {
-    operand_counts.push_back(counts_json(p));
+    operand_counts.push_back(polytope_json(p));
     operand_summary.push_back(std::to_string(p.num_vertices()) + " V, " + std::to_string(p.num_facets()) + " F");
   }
   // --json reports the exact volume: by mixed volumes from the two operands
@@ -293,11 +292,11 @@ int run_sum(const std::vector<std::string>& argv) {
   // triangles cost.
   std::optional<Rational> volume;
   if (json && operands.size() == 2) volume = sum_volume(operands[0], operands[1], r);
-  if (!scene) release(operands);
+  if (!scene) std::vector<ConvexPolytope>().swap(operands);  // freed now (clear() keeps the memory)
   // Likewise the per-facet and per-vertex records, once summed up for --json.
   const std::string details = names.size() == 2 ? facet_types_json(r) + method_detail_json(r) : "";
-  release(r.facet_provenance);
-  release(r.vertex_origin);
+  decltype(r.facet_provenance)().swap(r.facet_provenance);
+  decltype(r.vertex_origin)().swap(r.vertex_origin);
   const auto w0 = std::chrono::steady_clock::now();
   RoundingReport rounding;
   if (output && scene) rounding = write_scene_of_sum(*output, names, operands, r.polytope);
@@ -307,7 +306,7 @@ int run_sum(const std::vector<std::string>& argv) {
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
     const Rational vol = volume ? *volume : s.volume();
-    report << "{" << counts_json(s) << ", \"dimension\": 3, \"kind\": \"polytope\", \"method\": \"" << method_name(r.method) << "\""
+    report << "{" << polytope_json(s) << ", \"method\": \"" << method_name(r.method) << "\""
            << ", \"seconds\": " << json_number(seconds) << ", \"phases\": {\"read\": " << json_number(load.read)
            << ", \"validate\": " << json_number(load.validate)
            << ", \"sum\": " << json_number(seconds - explicit_seconds)

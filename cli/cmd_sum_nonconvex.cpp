@@ -24,20 +24,16 @@ namespace {
 
 // An operand's counts as the convex sum's JSON gives them: its faces as
 // validated (a polygon with k corners is k - 2 triangles, k - 3 of their
-// edges inside it, so edges = triangles / 2 + faces).  "a" and "b" keep
-// "faces" beside "vertices", as they had it.
+// edges inside it, so edges = triangles / 2 + faces), and its kind.
 std::string solid_counts_json(const Solid& s) {
   return "\"vertices\": " + std::to_string(s.vertices) +
          ", \"edges\": " + std::to_string(s.triangles.faces.size() / 2 + s.faces) +
-         ", \"facets\": " + std::to_string(s.faces);
+         ", \"facets\": " + std::to_string(s.faces) + ", " + kind_json(3, s.convex ? "polytope" : "solid");
 }
 
 std::string solid_json(const std::string& name, const Solid& s, std::size_t pieces) {
-  std::ostringstream o;
-  o << "{\"name\": \"" << json_escape(name) << "\", \"vertices\": " << s.vertices << ", \"faces\": " << s.faces
-    << ", \"edges\": " << s.triangles.faces.size() / 2 + s.faces << ", \"facets\": " << s.faces
-    << ", \"convex\": " << (s.convex ? "true" : "false") << ", \"pieces\": " << pieces << "}";
-  return o.str();
+  return "{\"name\": \"" + json_escape(name) + "\", " + solid_counts_json(s) +
+         ", \"convex\": " + (s.convex ? "true" : "false") + ", \"pieces\": " + std::to_string(pieces) + "}";
 }
 
 }  // namespace
@@ -88,9 +84,8 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
                                 method == Method::automatic ? Method::walk : method, how);
   }
   const auto w0 = std::chrono::steady_clock::now();
-  std::size_t rounded = 0;
   RoundedSolid rounding;
-  if (output) rounded = write_solid_mesh(*output, r.mesh, nullptr, &rounding);
+  if (output) write_solid_mesh(*output, r.mesh, nullptr, &rounding);
   const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   const MeshCounts c = mesh_counts(r.mesh);
   std::ostream& report = output ? output->report_stream() : std::cout;
@@ -119,8 +114,7 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
     report << "], \"output\": ";
     if (!output) report << "null";
     else report << "\"" << json_escape(output->to_stdout() ? "-" : output->path) << "\"";
-    report << ", \"rounding\": " << solid_rounding_json(rounding) << ", \"rounded_coordinates\": " << rounded
-           << "}\n";
+    report << ", \"rounding\": " << solid_rounding_json(rounding) << "}\n";
   } else {
     for (std::size_t i = 0; i < 2; ++i)
       report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << solids[i].vertices << " V, " << solids[i].faces

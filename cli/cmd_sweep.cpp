@@ -1,12 +1,12 @@
 // minksum sum with points, segments and flat polygons (see sweep.hpp).
 #include "sweep.hpp"
 
+#include <minksum/plane.hpp>
 #include <minksum/sweep.hpp>
 #include <minksum/sweep_proximity.hpp>
 
 #include <cmath>
 
-#include "kernel/plane.hpp"
 
 #include <chrono>
 #include <iostream>
@@ -22,8 +22,7 @@ namespace {
 
 std::string set_counts_json(const ConvexSet& s) {
   return "\"vertices\": " + std::to_string(s.num_vertices()) + ", \"edges\": " + std::to_string(s.num_edges()) +
-         ", \"facets\": " + std::to_string(s.num_facets()) + ", \"dimension\": " + std::to_string(s.dimension()) +
-         ", \"kind\": \"" + dimension_name(s.dimension()) + "\"";
+         ", \"facets\": " + std::to_string(s.num_facets()) + ", " + kind_json(s.dimension(), dimension_name(s.dimension()));
 }
 
 // A point, a segment or a polygon, written exactly as it is: one face for a
@@ -156,8 +155,8 @@ int view_sets(const std::string& output, const std::string& title, const std::ve
     data += "]}";
     write_page(output, title, data);
     if (json)
-      std::cout << "{\"name\": \"" << json_escape(names[0]) << "\", " << set_counts_json(operands[0])
-                << ", \"output\": \""
+      std::cout << "{\"page\": \"polytope\", \"name\": \"" << json_escape(names[0]) << "\", "
+                << set_counts_json(operands[0]) << ", \"output\": \""
                 << json_escape(output) << "\"}\n";
     else
       std::cout << names[0] << ": a " << dimension_name(operands[0].dimension()) << ", "
@@ -179,7 +178,7 @@ int view_sets(const std::string& output, const std::string& title, const std::ve
   data += "]}";
   write_page(output, title, data);
   if (json)
-    std::cout << "{\"kind\": \"sum\", " << set_counts_json(r.set) << ", \"method\": \"" << method_name(r.method)
+    std::cout << "{\"page\": \"sum\", " << set_counts_json(r.set) << ", \"method\": \"" << method_name(r.method)
               << "\", \"route\": \"" << r.route << "\", \"volume\": \"" << format_exact(r.set.volume())
               << "\", \"a\": {\"name\": \"" << json_escape(names[0]) << "\", " << set_counts_json(operands[0])
               << "}, \"b\": {\"name\": \"" << json_escape(names[1]) << "\", " << set_counts_json(operands[1])

@@ -78,13 +78,30 @@ int view_scene(const Args& a, const LoadedScene& scene, const std::string& outpu
   std::string data = "{\"kind\": \"scene\", \"title\": " + json_string(title) +
                      ", \"origins\": " + origin_names_json() + ", \"solids\": [";
   std::string shapes_json;
+  // What each polytope is in the scene, for its colour and its line in the
+  // legend: an operand or the polytope of a CubicalGaussianMap sum, or alone.
+  std::vector<std::string> role(scene.polytopes.size(), "polytope"), caption(scene.polytopes.size());
+  for (const LoadedCgm& c : scene.cgms) {
+    if (c.operand_nodes.size() != 2) continue;
+    const std::string sum = (c.polytope_node != kNoNode ? scene.names[c.polytope_node] + " = " : std::string()) +
+                            c.operands[0] + " ⊕ " + c.operands[1];
+    for (std::size_t k = 0; k < 2; ++k)
+      if (caption[c.operand_nodes[k]].empty()) {
+        role[c.operand_nodes[k]] = k ? "b" : "a";
+        caption[c.operand_nodes[k]] = std::string(k ? "second" : "first") + " operand of " + sum;
+      }
+    if (c.polytope_node != kNoNode) role[c.polytope_node] = "sum", caption[c.polytope_node] = "the sum " + sum;
+  }
+  std::string roles_json;
   bool first = true;
   for (const SceneShape& sh : scene.shapes) {
     if (sh.kind != SceneShape::Kind::polytope) continue;
-    if (!first) data += ", ";
-    append_solid_json(data, scene.polytopes[sh.index], scene.names[sh.index], "polytope");
+    if (!first) data += ", ", roles_json += ", ";
+    append_solid_json(data, scene.polytopes[sh.index], scene.names[sh.index], role[sh.index]);
+    roles_json += "{\"role\": " + json_string(role[sh.index]) + ", \"caption\": " + json_string(caption[sh.index]) + "}";
     first = false;
   }
+  data += "], \"roles\": [" + roles_json;
   data += "], \"cgms\": [";
   for (std::size_t i = 0; i < scene.cgms.size(); ++i) {
     const LoadedCgm& c = scene.cgms[i];
@@ -110,7 +127,7 @@ int view_scene(const Args& a, const LoadedScene& scene, const std::string& outpu
                    "\", " + counts_json(p) + "}";
   }
   if (a.flag("--json")) {
-    std::cout << "{\"kind\": \"scene\", \"name\": \"" << json_escape(file) << "\", \"shapes\": [" << shapes_json
+    std::cout << "{\"page\": \"scene\", \"name\": \"" << json_escape(file) << "\", \"shapes\": [" << shapes_json
               << "], \"output\": \"" << json_escape(output) << "\"}\n";
   } else {
     std::cout << printable(file) << ": a scene of " << scene.shapes.size() << " shapes\n";
@@ -149,9 +166,9 @@ int view_nonconvex(const Args& a, const std::string& output, const std::vector<A
                                          : mesh_counts(solid_faces(solids[i]));
     return c;
   };
-  auto counts_text = [](const MeshCounts& c) {
+  auto counts_text = [](const MeshCounts& c, bool convex) {
     return "\"vertices\": " + std::to_string(c.vertices) + ", \"edges\": " + std::to_string(c.edges) +
-           ", \"facets\": " + std::to_string(c.faces);
+           ", \"facets\": " + std::to_string(c.faces) + ", " + kind_json(3, convex ? "polytope" : "solid");
   };
   if (names.size() == 1) {
     const std::string title = a.value_or("--title", names[0]);
@@ -161,7 +178,7 @@ int view_nonconvex(const Args& a, const std::string& output, const std::vector<A
     write_page(output, title, data);
     const MeshCounts c = counts_of(0);
     if (json)
-      std::cout << "{\"kind\": \"solid\", \"name\": \"" << json_escape(names[0]) << "\", " << counts_text(c)
+      std::cout << "{\"page\": \"solid\", \"name\": \"" << json_escape(names[0]) << "\", " << counts_text(c, false)
                 << ", \"volume\": \"" << format_exact(solids[0].volume) << "\", \"convex\": false, \"output\": \""
                 << json_escape(output) << "\"}\n";
     else
@@ -190,10 +207,11 @@ int view_nonconvex(const Args& a, const std::string& output, const std::vector<A
   write_page(output, title, data);
   const MeshCounts c = mesh_counts(r.mesh);
   if (json) {
-    std::cout << "{\"kind\": \"sum\", " << counts_text(c) << ", \"method\": \"nonconvex\", \"volume\": \""
+    std::cout << "{\"page\": \"sum\", " << counts_text(c, false) << ", \"method\": \"nonconvex\", \"volume\": \""
               << format_exact(r.volume) << "\", \"a\": {\"name\": \"" << json_escape(names[0]) << "\", "
-              << counts_text(counts_of(0)) << "}, \"b\": {\"name\": \"" << json_escape(names[1]) << "\", "
-              << counts_text(counts_of(1)) << "}, \"output\": \"" << json_escape(output) << "\"}\n";
+              << counts_text(counts_of(0), solids[0].convex.has_value()) << "}, \"b\": {\"name\": \"" << json_escape(names[1])
+              << "\", " << counts_text(counts_of(1), solids[1].convex.has_value()) << "}, \"output\": \"" << json_escape(output)
+              << "\"}\n";
   } else {
     std::cout << printable(sum_name) << " = " << c.vertices << " vertices, " << c.edges << " edges, " << c.faces
               << " facets (non-convex sum, " << r.method << ")\n  page written to " << printable(output) << "\n";
@@ -261,7 +279,7 @@ int run_view(const std::vector<std::string>& argv) {
     data += "]}";
     write_page(*output, title, data);
     if (json)
-      std::cout << "{\"kind\": \"polytope\", \"name\": \"" << json_escape(a.positional[0]) << "\", " << counts_json(pa)
+      std::cout << "{\"page\": \"polytope\", \"name\": \"" << json_escape(a.positional[0]) << "\", " << polytope_json(pa)
                 << ", \"volume\": \"" << format_exact(pa.volume()) << "\", \"output\": \"" << json_escape(*output)
                 << "\"}\n";
     else
@@ -295,10 +313,10 @@ int run_view(const std::vector<std::string>& argv) {
   data += "]}";
   write_page(*output, title, data);
   if (json) {
-    std::cout << "{\"kind\": \"sum\", " << counts_json(s) << ", \"method\": \"" << method_name(r.method)
+    std::cout << "{\"page\": \"sum\", " << polytope_json(s) << ", \"method\": \"" << method_name(r.method)
               << "\", \"volume\": \"" << format_exact(s.volume()) << "\", \"a\": {\"name\": \""
-              << json_escape(a.positional[0]) << "\", " << counts_json(pa) << "}, \"b\": {\"name\": \""
-              << json_escape(a.positional[1]) << "\", " << counts_json(pb) << "}, \"output\": \""
+              << json_escape(a.positional[0]) << "\", " << polytope_json(pa) << "}, \"b\": {\"name\": \""
+              << json_escape(a.positional[1]) << "\", " << polytope_json(pb) << "}, \"output\": \""
               << json_escape(*output) << "\"}\n";
   } else {
     std::cout << a.positional[0] << " ⊕ " << a.positional[1] << " = " << s.num_vertices() << " vertices, "

@@ -116,6 +116,12 @@ std::string counts_json(const ConvexPolytope& p) {
   return o.str();
 }
 
+std::string kind_json(int dimension, const char* kind) {
+  return "\"dimension\": " + std::to_string(dimension) + ", \"kind\": \"" + kind + "\"";
+}
+
+std::string polytope_json(const ConvexPolytope& p) { return counts_json(p) + ", " + kind_json(3, "polytope"); }
+
 ConvexPolytope load_operand(const std::string& spec, bool hull, LoadPhases* phases, std::optional<Format> format) {
   try {
     return load_operand_from(spec, hull, phases, format);

@@ -54,6 +54,12 @@ Args parse_args(const std::vector<std::string>& argv, const std::string& command
 std::string json_escape(const std::string& s);
 // "\"vertices\": V, \"edges\": E, \"facets\": F"
 std::string counts_json(const ConvexPolytope& p);
+// "\"dimension\": D, \"kind\": \"K\"": what a result or an operand is, in
+// every command's --json (docs/json.md): K is point, segment, polygon,
+// polytope (D = 0, 1, 2, 3) or solid (a closed solid that is not convex, D = 3).
+std::string kind_json(int dimension, const char* kind);
+// counts_json(p) and kind_json(3, "polytope").
+std::string polytope_json(const ConvexPolytope& p);
 
 // A failed write is not bad input: the command exits with status 1.
 struct OutputError : std::runtime_error {

@@ -116,11 +116,13 @@ LoadedScene load_scene(const std::string& path) {
       c.map.set_operands(r.vertex_origin, r.polytope);
       c.provenance = r.facet_provenance.empty() ? facet_provenance(a, b, r.polytope) : r.facet_provenance;
       c.operands = {out.names[node.operands[0]], out.names[node.operands[1]]};
+      c.operand_nodes = node.operands;
       c.polytope = std::move(r.polytope);
     } else {
       c.polytope = out.polytopes[node.polytope];
       c.map = CubicalGaussianMap::from_polytope(c.polytope);
     }
+    c.polytope_node = node.polytope;
     check_claims(path, node, c.map);
     out.cgms.push_back(std::move(c));
   }

@@ -19,6 +19,8 @@ struct LoadedCgm {
   CubicalGaussianMap map;
   ConvexPolytope polytope;
   std::vector<std::string> operands;    // the operands' names, for a sum
+  std::vector<std::size_t> operand_nodes;  // their indices into LoadedScene::polytopes
+  std::size_t polytope_node = kNoNode;     // the node's polytope in LoadedScene::polytopes, if it names one
   std::vector<FacetProvenance> provenance;  // of a sum's facets
 };
 

@@ -603,6 +603,32 @@ Solid operand_solid(const AnyOperandPy& o) {
   return load_solid(std::get<std::string>(o));
 }
 
+// A name loaded (with the GIL released): a convex polytope when it is one,
+// else a solid (load_solid's refusal for what is neither).  Polytopes and
+// solids stay as they are.
+void load_name(AnyOperandPy& o) {
+  if (auto* name = std::get_if<std::string>(&o)) {
+    AnyOperand loaded = load_any_operand(*name);
+    if (loaded.polytope) o = std::make_shared<const ConvexPolytope>(std::move(*loaded.polytope));
+    else o = solid_from(load_solid(*name), *name);
+  }
+}
+
+// The sum of two loaded operands (load_name) when one is a solid: the
+// boundary sweep (docs/nonconvex.md), with the GIL released; null when both
+// are convex polytopes (sum_of's case).
+std::shared_ptr<SolidSum> solid_sum(const AnyOperandPy& a, const AnyOperandPy& b, Method method,
+                                    const SumOptions& options) {
+  if (!std::holds_alternative<SolidPtr>(a) && !std::holds_alternative<SolidPtr>(b)) return nullptr;
+  auto out = std::make_shared<SolidSum>();
+  const Solid sa = operand_solid(a), sb = operand_solid(b);
+  out->report = minkowski_sum_nonconvex(sa, sb, options, 0, method == Method::automatic ? Method::walk : method);
+  out->faces = std::move(out->report.mesh);
+  out->report.mesh = Mesh{};
+  out->volume = out->report.volume;
+  return out;
+}
+
 py::array_t<double> points_array(const PointList& pts) {
   py::array_t<double> a({static_cast<py::ssize_t>(pts.size()), py::ssize_t{3}});
   auto r = a.mutable_unchecked<2>();
@@ -1252,34 +1278,18 @@ ValueError for a name that is neither a file nor a catalog spec.)");
       [](py::object a, py::object b, const std::string& method) -> py::object {
         AnyOperandPy any[2] = {to_any_operand(a, "a"), to_any_operand(b, "b")};
         const Method mt = to_method(method);
-        // Names are loaded first (load_any_operand): a name that is not a
-        // convex polytope is a solid.  Any solid makes the sum non-convex.
-        bool solid = false;
+        // Names are loaded first: a name that is not a convex polytope is a
+        // solid.  Any solid makes the sum non-convex.
         {
           py::gil_scoped_release nogil;
-          for (AnyOperandPy& o : any) {
-            if (auto* name = std::get_if<std::string>(&o)) {
-              AnyOperand loaded = load_any_operand(*name);
-              if (loaded.polytope) o = std::make_shared<const ConvexPolytope>(std::move(*loaded.polytope));
-              else o = solid_from(load_solid(*name), *name);
-            }
-            solid = solid || std::holds_alternative<SolidPtr>(o);
-          }
+          for (AnyOperandPy& o : any) load_name(o);
         }
-        if (solid) {
-          auto out = std::make_shared<SolidSum>();
+        if (std::holds_alternative<SolidPtr>(any[0]) || std::holds_alternative<SolidPtr>(any[1])) {
+          std::shared_ptr<SolidSum> out;
           std::atomic<bool> cancel{false};
           SumOptions options;
           options.cancel = &cancel;
-          run_interruptible(
-              [&] {
-                const Solid sa = operand_solid(any[0]), sb = operand_solid(any[1]);
-                out->report = minkowski_sum_nonconvex(sa, sb, options, 0, mt == Method::automatic ? Method::walk : mt);
-                out->faces = std::move(out->report.mesh);
-                out->report.mesh = Mesh{};
-                out->volume = out->report.volume;
-              },
-              cancel);
+          run_interruptible([&] { out = solid_sum(any[0], any[1], mt, options); }, cancel);
           return py::cast(out);
         }
         const Operand oa = std::get<PolytopePtr>(any[0]), ob = std::get<PolytopePtr>(any[1]);
@@ -1309,7 +1319,7 @@ ValueError for a name that is neither a file nor a catalog spec.)");
           throw py::value_error("on_error must be 'raise' or 'return', not '" + on_error + "'");
         const Method default_method = to_method(method);
         struct Job {
-          Operand a, b;
+          AnyOperandPy a, b;
           Method method;
         };
         std::vector<Job> jobs;
@@ -1319,7 +1329,7 @@ ValueError for a name that is neither a file nor a catalog spec.)");
               (py::len(pair) != 2 && py::len(pair) != 3))
             throw py::value_error(where + ": expected (a, b) or (a, b, method)");
           auto t = py::reinterpret_borrow<py::sequence>(pair);
-          Job j{to_operand(t[0], (where + "[0]").c_str()), to_operand(t[1], (where + "[1]").c_str()),
+          Job j{to_any_operand(t[0], (where + "[0]").c_str()), to_any_operand(t[1], (where + "[1]").c_str()),
                 default_method};
           if (t.size() == 3) {
             if (!py::isinstance<py::str>(t[2]))
@@ -1328,7 +1338,8 @@ ValueError for a name that is neither a file nor a catalog spec.)");
           }
           jobs.push_back(std::move(j));
         }
-        std::vector<std::shared_ptr<Sum>> results(jobs.size());
+        // A convex sum, or the sum with a solid (exactly what minkowski_sum returns).
+        std::vector<std::variant<std::shared_ptr<Sum>, std::shared_ptr<SolidSum>>> results(jobs.size());
         std::vector<std::exception_ptr> errors(jobs.size());
         std::atomic<bool> cancel{false};
         SumOptions options;
@@ -1338,7 +1349,11 @@ ValueError for a name that is neither a file nor a catalog spec.)");
               parallel_for(jobs.size(), threads ? static_cast<unsigned>(*threads) : 0u, [&](std::size_t i) {
                 if (cancel) return;  // interrupted: the pairs not started are skipped
                 try {
-                  results[i] = sum_of(resolve(jobs[i].a), resolve(jobs[i].b), jobs[i].method, options);
+                  Job& j = jobs[i];
+                  load_name(j.a);
+                  load_name(j.b);
+                  if (auto s = solid_sum(j.a, j.b, j.method, options)) results[i] = std::move(s);
+                  else results[i] = sum_of(std::get<PolytopePtr>(j.a), std::get<PolytopePtr>(j.b), j.method, options);
                 } catch (...) {
                   errors[i] = std::current_exception();
                 }
@@ -1348,7 +1363,7 @@ ValueError for a name that is neither a file nor a catalog spec.)");
         py::list out;
         for (std::size_t i = 0; i < jobs.size(); ++i) {
           if (!errors[i]) {
-            out.append(results[i]);
+            out.append(std::visit([](const auto& r) { return py::cast(r); }, results[i]));
             continue;
           }
           py::object e = exception_object(errors[i]);
@@ -1365,12 +1380,14 @@ ValueError for a name that is neither a file nor a catalog spec.)");
       py::arg("pairs"), py::arg("threads") = py::none(), py::arg("method") = "auto", py::arg("on_error") = "raise",
       R"(Many independent Minkowski sums on a pool of C++ threads; the results in input order.
 
-pairs: an iterable of (a, b) or (a, b, method) with a and b Polytope objects,
-file paths or catalog names (names are loaded on the worker threads).
+pairs: an iterable of (a, b) or (a, b, method) with a and b Polytope or
+Solid objects, file paths or catalog names (names are loaded on the worker
+threads; a name that is not a convex polytope is a solid, as in
+minkowski_sum).
 threads: the number of threads (None: one per hardware thread).  method: the
 method of the pairs that do not name one (see minkowski_sum).  Each result is
-exactly what minkowski_sum(a, b, method) returns, whatever the number of
-threads.
+exactly what minkowski_sum(a, b, method) returns (a Sum, or a SolidSum when
+an operand is a solid), whatever the number of threads.
 
 A pair that fails (a bad file, an unknown name): with on_error="raise" the
 exception of the first failing pair is raised once every pair is done, with

@@ -711,9 +711,9 @@ TEST_F(Cli, CoordinateBeyondDoubleRangeExitsOneWithOneLine) {
 TEST_F(Cli, SumOfThreeOrMoreOperands) {
   CmdResult r = run("sum cube tetra octahedron@rot:3 --json");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("\"operands\": [{\"name\": \"cube\", \"vertices\": 8, \"edges\": 12, \"facets\": 6}, "
-                       "{\"name\": \"tetra\", \"vertices\": 4, \"edges\": 6, \"facets\": 4}, "
-                       "{\"name\": \"octahedron@rot:3\""),
+  EXPECT_NE(r.out.find("\"operands\": [{\"name\": \"cube\", \"vertices\": 8, \"edges\": 12, \"facets\": 6, "
+                       "\"dimension\": 3, \"kind\": \"polytope\"}, {\"name\": \"tetra\", \"vertices\": 4, \"edges\": 6, \"facets\": 4, "
+                       "\"dimension\": 3, \"kind\": \"polytope\"}, {\"name\": \"octahedron@rot:3\""),
             std::string::npos)
       << r.out;
   EXPECT_EQ(r.out.find("\"a\": "), std::string::npos) << r.out;
@@ -734,8 +734,8 @@ TEST_F(Cli, SumOfThreeOrMoreOperands) {
 TEST_F(Cli, SumReportAfterTheOperandsAreFreed) {
   CmdResult r = run("sum cube sphere:2 -o " + path("cs.off") + " --json");
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("\"a\": {\"name\": \"cube\", \"vertices\": 8, \"edges\": 12, \"facets\": 6}, "
-                       "\"b\": {\"name\": \"sphere:2\", \"vertices\": 42, \"edges\": 120, \"facets\": 80}"),
+  EXPECT_NE(r.out.find("\"a\": {\"name\": \"cube\", \"vertices\": 8, \"edges\": 12, \"facets\": 6, \"dimension\": 3, \"kind\": \"polytope\"}, "
+                       "\"b\": {\"name\": \"sphere:2\", \"vertices\": 42, \"edges\": 120, \"facets\": 80, \"dimension\": 3, \"kind\": \"polytope\"}"),
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("\"facet_types\": {\"translated\": 6, \"corner\": 56, \"edge\": 12, \"facet_edge\": 24, "
@@ -1138,7 +1138,7 @@ TEST_F(Cli, NonConvexSumJsonAndExactOutput) {
   EXPECT_GE(json_int(work, "clips"), 1);  // the pieces around the hole overlap
   EXPECT_EQ(json_int(r.out, "shells"), 1);
   EXPECT_EQ(json_int(r.out, "non_manifold_edges"), 0);
-  for (const char* key : {"decompose", "pairs", "union", "boundary", "pair_facets", "rounded_coordinates"})
+  for (const char* key : {"decompose", "pairs", "union", "boundary", "pair_facets"})
     EXPECT_NE(r.out.find(std::string("\"") + key + "\""), std::string::npos) << key;
   // Read back, a valid solid again: ⊕ [-1/4,1/4]^3 closes its hole (1/2)
   // exactly, leaving the cube [-3/2,3/2]^3.
@@ -1192,7 +1192,7 @@ TEST_F(Cli, NonConvexSumTouchingItselfIsWrittenApart) {
   // apart, their faces as triangles.
   CmdResult back = run("sum " + path("apart.off") + " tetra@scale:1/8 --json");
   ASSERT_EQ(back.status, 0) << back.err;
-  EXPECT_NE(back.out.find("\"a\": {\"name\": \"" + path("apart.off") + "\", \"vertices\": 16, \"faces\": 24,"),
+  EXPECT_NE(back.out.find("\"a\": {\"name\": \"" + path("apart.off") + "\", \"vertices\": 16, \"edges\": 36, \"facets\": 24,"),
             std::string::npos)
       << back.out;
   CmdResult exact = run("sum " + path("two.off") + " box:1:1:1 --exact --json -o " + path("exact.off"));
@@ -1586,11 +1586,13 @@ TEST_F(Cli, StatsOfNonConvexSolidsGenusShellsAndBox) {
   EXPECT_NE(in.out.find("\"name\": \"-\""), std::string::npos) << in.out;
 }
 
-// Convex inputs keep their stats exactly (the keys of a polytope, no genus).
+// Convex inputs keep their stats exactly (the keys of a polytope, no genus;
+// the kind of every result, docs/json.md).
 TEST_F(Cli, StatsOfAConvexPolytopeUnchangedBySolids) {
   CmdResult c = run("stats cube --json");
   ASSERT_EQ(c.status, 0) << c.err;
-  EXPECT_EQ(c.out.rfind("{\"name\": \"cube\", \"vertices\": 8, \"edges\": 12, \"facets\": 6, \"volume\": \"8\", "
+  EXPECT_EQ(c.out.rfind("{\"name\": \"cube\", \"vertices\": 8, \"edges\": 12, \"facets\": 6, "
+                        "\"dimension\": 3, \"kind\": \"polytope\", \"volume\": \"8\", "
                         "\"volume_double\": 8, \"max_facet_degree\": 4, \"max_vertex_degree\": 3, "
                         "\"coordinates_are_doubles\": true, \"phases\": {",
                         0),
@@ -1662,8 +1664,9 @@ TEST_F(Cli, ConvertWritesNonConvexSolids) {
 TEST_F(Cli, ViewShowsNonConvexSolids) {
   CmdResult one = run("view tube -o " + path("tube.html") + " --json");
   ASSERT_EQ(one.status, 0) << one.err;
-  EXPECT_EQ(one.out, "{\"kind\": \"solid\", \"name\": \"tube\", \"vertices\": 16, \"edges\": 32, \"facets\": 16, "
-                     "\"volume\": \"6\", \"convex\": false, \"output\": \"" + path("tube.html") + "\"}\n");
+  EXPECT_EQ(one.out, "{\"page\": \"solid\", \"name\": \"tube\", \"vertices\": 16, \"edges\": 32, \"facets\": 16, "
+                     "\"dimension\": 3, \"kind\": \"solid\", \"volume\": \"6\", \"convex\": false, \"output\": \"" +
+                         path("tube.html") + "\"}\n");
   const std::string page = slurp(path("tube.html"));
   EXPECT_NE(page.find("\"triangle_facet\""), std::string::npos);
   EXPECT_NE(page.find("\"kind\": \"solid\""), std::string::npos);
@@ -1713,7 +1716,7 @@ TEST_F(Cli, RefusalsNameHullOnlyWhereTheCommandHasIt) {
 }
 
 // A non-convex sum's --json has the keys of a convex sum's (it had "faces"
-// and "rounded_coordinates" only, no "dimension", no "operands"), "kind"
+// and "rounded_coordinates", no "dimension", no "operands"), "kind"
 // names the result in both (as for sums with points, segments, polygons), the
 // operands' counts those of 'stats', and "rounding" what was rounded.
 TEST_F(Cli, NonConvexSumJsonHasTheConvexSumsKeys) {
@@ -1733,16 +1736,20 @@ TEST_F(Cli, NonConvexSumJsonHasTheConvexSumsKeys) {
       << solid.out;
   EXPECT_NE(convex.out.find("\"dimension\": 3, \"kind\": \"polytope\", \"method\": \"walk\""), std::string::npos)
       << convex.out;
-  EXPECT_NE(solid.out.find("\"operands\": [{\"name\": \"tube\", \"vertices\": 16, \"edges\": 32, \"facets\": 16}, "
-                           "{\"name\": \"box:1/2:1/2:1/2\", \"vertices\": 8, \"edges\": 12, \"facets\": 6}]"),
+  EXPECT_NE(solid.out.find("\"operands\": [{\"name\": \"tube\", \"vertices\": 16, \"edges\": 32, \"facets\": 16, "
+                           "\"dimension\": 3, \"kind\": \"solid\"}, {\"name\": \"box:1/2:1/2:1/2\", \"vertices\": 8, "
+                           "\"edges\": 12, \"facets\": 6, \"dimension\": 3, \"kind\": \"polytope\"}]"),
             std::string::npos)
       << solid.out;
-  EXPECT_NE(solid.out.find("\"output\": null, \"rounding\": null, \"rounded_coordinates\": 0}"), std::string::npos)
+  EXPECT_NE(solid.out.find("\"output\": null, \"rounding\": null}"), std::string::npos)
       << solid.out;
   // Rounded: 1/3 is no double.
   CmdResult third = run("sum lshape cube@scale:1/3 --json -o " + path("third.off"));
   ASSERT_EQ(third.status, 0) << third.err;
   const std::string rounding = third.out.substr(third.out.find("\"rounding\": "));
   EXPECT_EQ(json_int(rounding, "coordinates"), 36) << third.out;
-  EXPECT_EQ(json_int(third.out, "rounded_coordinates"), 36) << third.out;
+  // Each quantity under one name: the operands' faces are their facets, the
+  // rounded coordinates those of "rounding" (docs/json.md).
+  for (const char* gone : {"\"faces\"", "\"rounded_coordinates\""})
+    EXPECT_EQ(third.out.find(gone), std::string::npos) << gone << " in " << third.out;
 }

@@ -6,12 +6,12 @@
 // penetration depth and witnesses (the library's TranslationalObstacle, the
 // same answers as 'minksum query').  docs/viewer.md describes the page and
 // the protocol.
+#include <minksum/feature.hpp>
 #include <minksum/operand.hpp>
 #include <minksum/proximity.hpp>
 
 #include <httplib.h>
 
-#include "mesh/support.hpp"  // feature_vertices
 
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -364,8 +364,7 @@ std::string quoted(const std::string& s) {
 
 // The feature of a polytope as the page draws it: its vertices' coordinates.
 std::string feature_points_json(const ConvexPolytope& p, const Feature& f, const Point3& shift) {
-  std::vector<Index> vs;
-  if (f.index != kNoIndex) feature_vertices(p, f, vs);
+  const std::vector<Index> vs = f.index != kNoIndex ? feature_vertices(p, f) : std::vector<Index>();
   std::string xyz, exact;
   for (std::size_t i = 0; i < vs.size(); ++i) {
     const Point3 x = p.point(vs[i]) + shift;

@@ -125,11 +125,11 @@ def minkowski_sum(a: Polytope, b: Polytope, method: str = "auto") -> Sum: ...
 @overload
 def minkowski_sum(a: SolidOperand, b: SolidOperand, method: str = "auto") -> Union[Sum, SolidSum]: ...
 def minkowski_sum_many(
-    pairs: Iterable[Union[Tuple[Operand, Operand], Tuple[Operand, Operand, str]]],
+    pairs: Iterable[Union[Tuple[SolidOperand, SolidOperand], Tuple[SolidOperand, SolidOperand, str]]],
     threads: Optional[int] = None,
     method: str = "auto",
     on_error: Literal["raise", "return"] = "raise",
-) -> list[Union[Sum, BaseException]]: ...
+) -> list[Union[Sum, SolidSum, BaseException]]: ...
 
 class Witness:
     @property

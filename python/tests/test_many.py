@@ -36,6 +36,41 @@ def test_names_are_loaded_on_the_workers_and_method_per_pair():
     assert len({s.volume() for s in out}) == 1
 
 
+def solid_summary(s):
+    return (type(s), s.method, s.num_vertices, s.num_edges, s.num_facets, s.volume(), s.stats["genus"], s.shells)
+
+
+# Solids in a batch as in minkowski_sum: a Solid object, or a name that is not
+# a convex polytope, makes the pair's result a SolidSum, whose exact volume
+# has a closed form here:
+#   tube + [-1/4, 1/4]^3: [-5/4, 5/4]^3 less a hole of side 1/2: 125/8 - 5/8 = 15, genus 1;
+#   lshape + [-1/4, 1/4]^3: the L (area 3) grown by 1/4: two 5/2 x 3/2 rectangles
+#   overlapping in 3/2 x 3/2, area 21/4, times the height 3/2: 63/8;
+#   cube + tube@scale:1/2 (a hole of side 1/2, filled): [-3/2, 3/2]^3, 27.
+def test_solids_and_names_of_solids_in_a_batch():
+    tube = minksum.Solid.load("tube")
+    ps = [(tube, "cube@scale:1/4"), ("cube", "tetra"), ("lshape", "cube@scale:1/4"),
+          ("cube", "tube@scale:1/2"), ("cube@scale:1/4", tube, "chms")]
+    for threads in (1, 2):
+        out = minksum.minkowski_sum_many(ps, threads=threads)
+        assert [type(s) for s in out] == [minksum.SolidSum, minksum.Sum, minksum.SolidSum, minksum.SolidSum,
+                                         minksum.SolidSum]
+        assert [s.volume() for s in out] == [15, Fraction(176, 3), Fraction(63, 8), 27, 15]
+        assert out[0].stats["genus"] == 1 and out[2].stats["genus"] == 0 and out[3].stats["genus"] == 0
+        # Each one what minkowski_sum gives.
+        assert [solid_summary(s) for s in (out[0], out[2], out[3], out[4])] == [
+            solid_summary(minksum.minkowski_sum(*p)) for p in (ps[0], ps[2], ps[3], ps[4])]
+        assert out[1].planes() == minksum.minkowski_sum("cube", "tetra").planes()
+
+
+def test_failing_solid_pair_returned_in_place(data):
+    open_mesh = str(data / "bad" / "open_mesh.off")
+    out = minksum.minkowski_sum_many([("tube", "cube"), ("tube", open_mesh)], on_error="return")
+    assert isinstance(out[0], minksum.SolidSum) and out[0].volume() == 64  # [-2, 2]^3: the hole filled
+    assert isinstance(out[1], minksum.InputError) and out[1].file == open_mesh
+    assert any("pairs[1]" in n for n in out[1].__notes__)
+
+
 def test_empty_batch():
     assert minksum.minkowski_sum_many([]) == []
 

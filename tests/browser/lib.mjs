@@ -190,3 +190,58 @@ export async function visibleFacet(page, key) {
     return -1;
   }, key);
 }
+
+// ---------------------------------------------------------------------------
+// Exact values shown with their decimals (web/src/exact.js).
+
+// A decimal as the page prints it ("58.6666666667", "-1.5e-30") as the
+// exact rational M * 10^E: [M, E].
+function decimalValue(text) {
+  const m = /^(-?)([0-9]+)(?:\.([0-9]+))?(?:e(-?[0-9]+))?$/.exec(text);
+  check(m, `'${text}' is not a decimal`);
+  const frac = m[3] || '';
+  return [BigInt(m[1] + m[2] + frac), Number(m[4] || 0) - frac.length];
+}
+// True when the decimal d is p/q rounded to its last digit (within half a
+// unit of it), or, `exact`, equal to p/q.
+function decimalMatches(text, [p, q], exact) {
+  const [mant, e] = decimalValue(text);
+  // |mant * 10^e - p/q| <= 10^e / 2, scaled by 2 q 10^-e (or by 2 q when e >= 0).
+  const diff = e >= 0 ? mant * 10n ** BigInt(e) * q - p : mant * q - p * 10n ** BigInt(-e);
+  const abs = diff < 0n ? -diff : diff;
+  if (exact) return diff === 0n;
+  return 2n * abs <= (e >= 0 ? q * 10n ** BigInt(e) : q);
+}
+
+// Every exact value on the page (or under `root`) with its decimal beside
+// it: a fraction or a long integer has a decimal that is its value rounded
+// to the digits shown ("≈") or equal to it ("="), checked exactly with
+// BigInt; an exact text longer than 40 characters is folded in a <details>.
+// Points ("x y z", "N: x y z", "x  y  z") have the decimals of each
+// coordinate.  Returns the number of values checked, at least `atLeast`.
+export async function checkDecimals(page, name, atLeast = 1, root = '#side') {
+  const values = await page.$$eval(`${root} .value`, (vs) => vs.map((v) => {
+    const exact = v.querySelector('.exact');
+    const decimal = v.querySelector('.decimal');
+    return { id: exact.id, exact: exact.textContent, decimal: decimal ? decimal.textContent : null,
+             folded: !!exact.closest('details') };
+  }));
+  let checked = 0;
+  for (const v of values) {
+    if (v.id === 'pick-plane') continue;  // a plane: its decimal, when shown, is of its long coefficients
+    const parts = v.exact.replace(/^[0-9]+: /, '').trim().split(/\s+/);
+    const needs = parts.some((t) => t.includes('/') || t.replace('-', '').length > 15);
+    check(!needs || v.decimal, `${name}: the exact value ${v.exact.slice(0, 80)} has no decimal beside it`);
+    check((v.exact.length > 40) === v.folded, `${name}: the exact value ${v.exact.slice(0, 80)} (${v.exact.length} characters) is ${v.folded ? '' : 'not '}folded`);
+    if (!v.decimal) continue;
+    const exact = v.decimal.startsWith('= ');
+    check(exact || v.decimal.startsWith('≈ '), `${name}: decimal '${v.decimal}'`);
+    const shown = v.decimal.slice(2).replace(/^\(|\)$/g, '').split(', ');
+    check(shown.length === parts.length, `${name}: ${shown.length} decimals for ${parts.length} exact values: ${v.decimal} / ${v.exact}`);
+    parts.forEach((t, i) => check(decimalMatches(shown[i], rat(t), exact),
+      `${name}: the decimal ${shown[i]} is not ${t} ${exact ? 'exactly' : 'rounded'}`));
+    ++checked;
+  }
+  check(checked >= atLeast, `${name}: ${checked} exact values with decimals, expected at least ${atLeast}`);
+  return checked;
+}

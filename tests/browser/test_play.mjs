@@ -8,7 +8,7 @@
 //   node test_play.mjs --minksum BIN --out DIR
 import { spawn } from 'node:child_process';
 import { join } from 'node:path';
-import { check, checkPage, fail, launch, minksumJson, options } from './lib.mjs';
+import { check, checkDecimals, checkPage, fail, launch, minksumJson, options } from './lib.mjs';
 
 const o = options();
 const P = 'dodecahedron@rot:5', Q = 'truncated-cube@scale:3/2';
@@ -88,6 +88,7 @@ try {
     const ctx = `play: ${what}, pose ${JSON.stringify(s.pose)}`;
     check(s.status === d.status, `${ctx}: the page shows ${s.status}, minksum query says ${d.status}`);
     check(s.point === d.point_p_exact.join('  '), `${ctx}: the page shows the point ${s.point}, minksum query ${d.point_p_exact}`);
+    await checkDecimals(page, ctx, 0, '#play-answer');  // each fraction shown (value, points) with its decimal
     if (d.status === 'penetrating') {
       const dp = query('depth', s.pose);
       check(s.value === dp.squared_depth, `${ctx}: squared depth ${s.value} shown, minksum query depth says ${dp.squared_depth}`);

@@ -6,7 +6,7 @@
 // normals and edges against 'minksum cgm --json' of its polytope (the sum's
 // arcs of P and of Q both drawn), and a facet of the sum clicked against the
 // exact polytope 'minksum sum --exact' writes.
-import { check, checkPage, checkPickedFacet, clickFacet, launch, minksum, minksumJson, open, options, readOff } from './lib.mjs';
+import { check, checkDecimals, checkPage, checkPickedFacet, clickFacet, launch, minksum, minksumJson, open, options, readOff } from './lib.mjs';
 import { join } from 'node:path';
 
 const o = options();
@@ -43,6 +43,23 @@ try {
     check(all - (c.edges.artificial || 0) === sum((x) => x.real_edges), `scene: map ${c.name}: ${all - (c.edges.artificial || 0)} arcs drawn, minksum cgm says ${sum((x) => x.real_edges)}`);
   });
   check(s.cgms[2].edges.p > 0 && s.cgms[2].edges.q > 0, `scene: the sum's map has arcs of P and of Q: ${JSON.stringify(s.cgms[2].edges)}`);
+  // Each polytope named with what it is, in a colour of its own that the
+  // solid is drawn in; the legend names every colour of the maps and of the
+  // sum's facets by provenance.
+  const shapes = await page.$$eval('#side [data-shape]', (rows) => rows.map((r) => ({
+    name: r.dataset.shape, role: r.dataset.role, text: r.textContent, swatch: getComputedStyle(r.querySelector('.sw')).backgroundColor })));
+  check(JSON.stringify(shapes.map((r) => [r.name, r.role])) === JSON.stringify([['P', 'a'], ['Q', 'b'], ['S', 'sum']]),
+        `scene: shapes ${JSON.stringify(shapes)}`);
+  check(shapes[0].text.includes('first operand of S = P ⊕ Q') && shapes[1].text.includes('second operand of S = P ⊕ Q') &&
+        shapes[2].text.includes('the sum S = P ⊕ Q'), `scene: shape captions ${shapes.map((r) => r.text).join(' | ')}`);
+  check(new Set(shapes.map((r) => r.swatch)).size === 3, `scene: the shapes share colours ${shapes.map((r) => r.swatch)}`);
+  const roles = await page.evaluate(() => window.minksum.data.solids.map((d) => d.role));
+  check(JSON.stringify(roles) === JSON.stringify(['a', 'b', 'sum']), `scene: solids of the roles ${roles}`);
+  const legend = await page.$$eval('#legend .row', (rows) => rows.map((r) => r.textContent));
+  for (const want of ['arcs of the first operand', 'arcs of the second operand', 'artificial edges', 'dots: facet normals',
+                      'edge of A ⊕ edge of B'])
+    check(legend.some((t) => t.includes(want)), `scene: the legend lacks '${want}': ${legend.join(' | ')}`);
+  await checkDecimals(page, 'scene', 1);
   await page.screenshot({ path: join(o.out, 'scene.png') });
   // A facet of S the camera sees (visibleFacet looks solids up by role; here every solid is a 'polytope').
   const f = await page.evaluate(() => {

@@ -6,7 +6,7 @@
 // changes, play/pause and the slider; the solids' drawn facets against
 // 'minksum stats --json', a facet of the obstacle clicked against
 // 'minksum gen --exact'.
-import { check, checkPage, checkPickedFacet, clickFacet, launch, minksum, minksumJson, open, options, planeValue, readOff, visibleFacet } from './lib.mjs';
+import { check, checkDecimals, checkPage, checkPickedFacet, clickFacet, launch, minksum, minksumJson, open, options, planeValue, readOff, visibleFacet } from './lib.mjs';
 import { join } from 'node:path';
 
 const o = options();
@@ -39,6 +39,8 @@ try {
     const value = f.squared_depth ?? f.squared_distance;
     check(shown.status === f.status && shown.value === value && shown.t === f.translation.join('  '),
           `simulate: frame ${i} shows ${JSON.stringify(shown)}, minksum simulate says ${f.status} ${value} ${f.translation}`);
+    // The exact value and translation with their decimals (the value is a fraction).
+    if (i < 4) await checkDecimals(page, `simulate: frame ${i}`, 1, '#frame-info');
   }
   // The slider, then play and pause.
   await page.fill('#slider', String(events[0]));

@@ -8,8 +8,9 @@
 // a solid swept along a segment (docs/sweeps.md), the segment drawn as its
 // one edge; 'point': a point alone, drawn as a dot; 'solid': a non-convex
 // solid and its sum (docs/nonconvex.md), faces drawn from their exact
-// triangulation, counts as 'minksum stats' gives them.
-import { check, checkPage, checkPickedFacet, clickFacet, launch, minksum, minksumJson, open, options, readOff, visibleFacet } from './lib.mjs';
+// triangulation, counts as 'minksum stats' gives them.  Every exact number
+// shown has its decimal beside it, checked exactly, long ones folded.
+import { check, checkDecimals, checkPage, checkPickedFacet, clickFacet, launch, minksum, minksumJson, open, options, readOff, visibleFacet } from './lib.mjs';
 import { join } from 'node:path';
 
 const kind = process.argv[2];
@@ -98,6 +99,8 @@ try {
   check(f >= 0, `${kind}: no facet of ${target} is visible`);
   const picked = await clickFacet(page, target, f, kind);
   checkPickedFacet(picked, off, kind, kind !== 'solid');
+  // Every exact number shown (the volumes, the picked facet's vertices) has its decimal beside it.
+  await checkDecimals(page, kind, 1);
   if (kind !== 'polytope' && kind !== 'sweep' && kind !== 'solid') {
     const shownKind = await page.getAttribute('#pick-provenance', 'data-kind');
     check(shownKind === picked.provenance && shownKind, `${kind}: provenance shown '${shownKind}'`);

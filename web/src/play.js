@@ -16,6 +16,8 @@
 // `idle` (no request under way nor waiting).
 const QUATERNION_SCALE = 64;
 
+import { decimalText, decimalsText, exactWithDecimal } from './exact.js';
+
 export function initPlay(v) {
   const { THREE, data, api, scene, camera, controls, renderer, view, side, el, hex, COLOURS, buildSolid, fitCamera,
     requestRender, countsTable, displayControls, pickPanel } = v;
@@ -147,7 +149,12 @@ export function initPlay(v) {
     p.mesh.material.color.setHex(COLOURS[a.status], THREE.SRGBColorSpace);
     p.mesh.material.needsUpdate = true;
     const penetrating = a.status === 'penetrating';
-    const exactRow = (label, id, text) => [el('div', { text: label }), el('div', { class: 'exact', id, text })];
+    // Each exact value with its decimal (a point: its three decimals).
+    const exactRow = (label, id, value) => {
+      const text = Array.isArray(value) ? value.join('  ') : value;
+      const decimal = Array.isArray(value) ? decimalsText(value) : decimalText(value);
+      return [el('div', { text: label }), exactWithDecimal(el, el('div', { class: 'exact', id, text }), decimal)];
+    };
     const featureText = (name, f) => `${f.type} ${f.index} of ${name}: ${f.exact.join('; ')}`;
     statusBox.replaceChildren(
       el('div', { class: 'row' }, el('span', { class: 'sw', style: `background:${hex(COLOURS[a.status])}` }),
@@ -155,12 +162,12 @@ export function initPlay(v) {
       ...(penetrating
         ? [...exactRow('squared penetration depth (exact):', 'play-value', a.squared_depth),
           el('div', { id: 'play-double', text: `depth ≈ ${a.depth}` }),
-          ...exactRow('translate P by (exact), to touch:', 'play-direction', a.depth_direction.join('  '))]
+          ...exactRow('translate P by (exact), to touch:', 'play-direction', a.depth_direction)]
         : [...exactRow('squared distance (exact):', 'play-value', a.squared_distance),
           el('div', { id: 'play-double', text: `distance ≈ ${a.distance}` })]),
       ...exactRow(penetrating ? 'a common point (exact):' : a.status === 'touching' ? 'the contact point (exact):' : 'closest point of P (exact):',
-        'play-point-p', a.point_p_exact.join('  ')),
-      ...(a.status === 'separate' ? exactRow('closest point of Q (exact):', 'play-point-q', a.point_q_exact.join('  ')) : []),
+        'play-point-p', a.point_p_exact),
+      ...(a.status === 'separate' ? exactRow('closest point of Q (exact):', 'play-point-q', a.point_q_exact) : []),
       el('div', { text: 'witness features:' }),
       el('div', { class: 'exact', id: 'play-feature-p', text: featureText('P', a.features.p) }),
       el('div', { class: 'exact', id: 'play-feature-q', text: featureText('Q', a.features.q) }),

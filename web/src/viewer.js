@@ -11,6 +11,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { initPlay } from './play.js';
+import { decimalText, decimalsText, exactWithDecimal } from './exact.js';
 
 const parseStart = performance.now();
 const data = JSON.parse(document.getElementById('minksum-data').textContent);
@@ -39,6 +40,9 @@ html, body { margin: 0; height: 100%; font: 14px/1.4 system-ui, sans-serif; colo
 .row { display: flex; align-items: center; gap: 6px; margin: 2px 0; }
 .sw { display: inline-block; width: 14px; height: 14px; border-radius: 3px; border: 1px solid #0003; flex: none; }
 .exact { font-family: ui-monospace, monospace; font-size: 12px; word-break: break-all; }
+.decimal { font-family: ui-monospace, monospace; font-size: 12px; color: #2c3a4d; }
+.fold summary { cursor: pointer; font-size: 12px; color: #566; }
+.value { margin: 1px 0 4px; }
 table { border-collapse: collapse; width: 100%; font-size: 13px; }
 td, th { text-align: left; padding: 1px 4px; vertical-align: top; }
 #pick .exact { margin: 2px 0; }
@@ -137,6 +141,19 @@ function planeText(plane) {
   }
   return s + ' = ' + d;
 }
+
+// A plane with a coefficient too long to read: the same with each
+// coefficient's decimal (its rounding to 12 digits); '' when all are short.
+function planeDecimalText(plane) {
+  const parts = plane.split(' ');
+  if (parts.every((k) => decimalText(k) === '')) return '';
+  const short = (k) => { const t = decimalText(k); return t ? t.slice(2) : k; };
+  return '≈ ' + planeText(parts.map(short).join(' '));
+}
+
+// An exact value (an element holding its exact text) with its decimal.
+const withDecimal = (exactElement) => exactWithDecimal(el, exactElement, decimalText(exactElement.textContent));
+const pointWithDecimal = (exactElement, point) => exactWithDecimal(el, exactElement, decimalsText(point));
 
 // ---------------------------------------------------------------------------
 // Solids: one BufferGeometry each (facets fanned into triangles, or, for a
@@ -316,11 +333,14 @@ function showPick(solid, facet) {
   api.picked = { solid: solid.key, name: s.name, facet, plane: s.planes[facet], vertices: loop.slice(),
                  exact: loop.map((v) => s.exact[v]), provenance: prov ? prov.kind : null };
   pickPanel.append(el('div', {}, el('b', { text: `${s.name}` }), ` — facet ${facet} (${loop.length} vertices)`));
-  pickPanel.append(el('div', { text: 'plane:' }), el('div', { class: 'exact', id: 'pick-plane', 'data-plane': s.planes[facet], text: planeText(s.planes[facet]) }));
+  pickPanel.append(el('div', { text: 'plane:' }), exactWithDecimal(el, el('div', { class: 'exact', id: 'pick-plane', 'data-plane': s.planes[facet], text: planeText(s.planes[facet]) }), planeDecimalText(s.planes[facet])));
   if (prov) pickPanel.append(el('div', { id: 'pick-provenance', 'data-kind': prov.kind }, el('span', { class: 'sw', style: `background:${hex(COLOURS[prov.kind])}` }), ' ' + prov.text));
   pickPanel.append(el('div', { text: 'vertices (exact x y z):' }));
   const list = el('div', { id: 'pick-vertices' });
-  for (const v of loop) list.append(el('div', { class: 'exact', 'data-vertex': String(v), text: `${v}: ${s.exact[v]}` }));
+  for (const v of loop) {
+    const exact = el('div', { class: 'exact', 'data-vertex': String(v), text: `${v}: ${s.exact[v]}` });
+    list.append(exactWithDecimal(el, exact, decimalsText(s.exact[v].split(' '))));
+  }
   pickPanel.append(list);
   // The picked facet outlined on top of the solid.
   const pts = [];
@@ -391,7 +411,7 @@ function countsTable(list) {
 
 function volumes(list) {
   const d = el('div', { id: 'volumes' });
-  for (const s of list) d.append(el('div', { text: `volume of ${s.name} (exact):` }), el('div', { class: 'exact', 'data-volume': s.volume, text: s.volume }));
+  for (const s of list) d.append(el('div', { text: `volume of ${s.name} (exact):` }), withDecimal(el('div', { class: 'exact', 'data-volume': s.volume, text: s.volume })));
   return d;
 }
 
@@ -609,10 +629,17 @@ function initScene() {
     return { d, cube: c.cube, solid: s };
   });
   const all = list.concat(cgms.map((c) => c.solid));
+  // Each polytope named, in the colour of what it is in the scene (an
+  // operand of a sum, the sum, or a polytope alone): the legend of the row.
   side.append(el('h2', { text: 'Shapes' }));
-  list.forEach((s) => side.append(el('div', { class: 'row' },
-    checkbox(`show-${s.key}`, '', true, (on) => { s.group.visible = on; }),
-    el('span', { class: 'sw', style: `background:${hex(COLOURS.polytope)}` }), el("span", { text: `polytope ${s.data.name}` }))));
+  const roles = data.roles || [];
+  list.forEach((s, i) => {
+    const r = roles[i] || { role: 'polytope', caption: '' };
+    side.append(el('div', { class: 'row', 'data-shape': s.data.name, 'data-role': r.role },
+      checkbox(`show-${s.key}`, '', true, (on) => { s.group.visible = on; }),
+      el('span', { class: 'sw', style: `background:${hex(COLOURS[r.role] ?? COLOURS.polytope)}` }),
+      el('span', { text: `polytope ${s.data.name}` + (r.caption ? ` — ${r.caption}` : '') })));
+  });
   cgms.forEach((c) => side.append(el('div', { class: 'row' },
     checkbox(`show-${c.solid.key}`, '', true, (on) => { c.cube.visible = on; c.solid.group.visible = on; }),
     el('span', { class: 'sw', style: `background:${hex(COLOURS.real)}` }),
@@ -625,6 +652,11 @@ function initScene() {
     legend.append(row(COLOURS.real, 'arcs (edges of the polytope)'));
     if (cgms.some((c) => c.d.operands)) legend.append(row(COLOURS.p, 'arcs of the first operand'), row(COLOURS.q, 'arcs of the second operand'), row(COLOURS.both, 'arcs of both (overlapping)'));
     legend.append(row(COLOURS.artificial, 'artificial edges (cube-face boundaries)', true), row(COLOURS.real, 'dots: facet normals'));
+    // A map of a sum colours its dots, and its polytope its facets, by provenance.
+    if (cgms.some((c) => c.d.solid.origin)) {
+      legend.append(el('div', { text: 'facets of a sum beside its map, and their dots, by provenance:' }));
+      for (const name of data.origins) legend.append(row(COLOURS[name], ORIGIN_TEXT[name]));
+    }
     side.append(el('h2', { text: 'Cubical Gaussian Maps' }), legend);
   }
   side.append(el('h2', { text: 'Display' }), displayControls(all));
@@ -703,8 +735,8 @@ function initMotion() {
     info.replaceChildren(
       el('div', {}, el('b', { text: `frame ${frame}` }), ` of ${frames.length} (pass ${f.pass}, orientation ${f.o})`),
       el('div', { class: 'row' }, el('span', { class: 'sw', style: `background:${hex(COLOURS[statuses[f.status]])}` }), el('span', { id: 'frame-status', text: statuses[f.status] })),
-      el('div', { text: 'translation of the robot (exact):' }), el('div', { class: 'exact', id: 'frame-translation', text: f.exact.join('  ') }),
-      el('div', { text: `${what} (exact):` }), el('div', { class: 'exact', id: 'frame-value', text: f.value }));
+      el('div', { text: 'translation of the robot (exact):' }), pointWithDecimal(el('div', { class: 'exact', id: 'frame-translation', text: f.exact.join('  ') }), f.exact),
+      el('div', { text: `${what} (exact):` }), withDecimal(el('div', { class: 'exact', id: 'frame-value', text: f.value })));
     api.frame = frame;
     requestRender();
   }

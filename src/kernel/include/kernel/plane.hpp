@@ -2,13 +2,11 @@
 #pragma once
 
 #include <minksum/kernel.hpp>
+#include <minksum/plane.hpp>  // canonical_plane(n, p)
 
 #include <vector>
 
 namespace minksum {
-
-// The canonical plane with (unnormalised, nonzero) normal n through p.
-Plane canonical_plane(const Point3& n, const Point3& p);
 
 // The canonical plane through the triangle a, b, c with a = hi[0] + lo[0],
 // b = hi[1] + lo[1], c = hi[2] + lo[2] (coordinate-wise, exact sums of two

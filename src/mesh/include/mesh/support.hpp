@@ -19,6 +19,7 @@
 //     neighbours of b on the facet, which are consecutive around b.
 #pragma once
 
+#include <minksum/feature.hpp>  // feature_vertices(p, f)
 #include <minksum/polytope.hpp>
 
 #include <optional>
@@ -166,7 +167,7 @@ inline void feature_vertices(const ConvexPolytope& p, const Feature& f, std::vec
     }
   }
 }
-std::vector<Index> feature_vertices(const ConvexPolytope& p, const Feature& f);
+// (The same as a new vector: feature_vertices(p, f) in <minksum/feature.hpp>.)
 
 // Whether two vertex lists sorted increasingly (support sets) share a vertex.
 bool share_a_vertex(const std::vector<Index>& x, const std::vector<Index>& y);

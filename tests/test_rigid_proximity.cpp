@@ -315,6 +315,12 @@ void expect_contact(const RigidBody& p, const RigidBody& q, const PlacedMap& rot
     const RigidPose pq = on_top(q.polytope(), rot, low, x, y, dz, matrix, m);
     const RigidCollision c = collide(p, RigidPose(), q, pq);
     EXPECT_EQ(c.status, want) << what << ", dz " << dz.get_str();
+    // 2^-40 from contact is far above the rounding of the search: the
+    // answer is certified without the exact path (the separating plane of
+    // the nearest triangle of D, or a tetrahedron).
+    if (want == ContactStatus::separate) EXPECT_EQ(c.certificate, RigidCertificate::separating_plane) << what;
+    if (want == ContactStatus::penetrating) EXPECT_EQ(c.certificate, RigidCertificate::simplex) << what;
+    if (want == ContactStatus::touching) EXPECT_EQ(c.certificate, RigidCertificate::exact) << what;
     EXPECT_EQ(sat_status(p.polytope(), PlacedMap(), q.polytope(), pq.map()), want) << what;
   }
 }

@@ -325,30 +325,50 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
   Index ip = s[0].p, iq = s[0].q;
   bool decided = false;
   double last = std::numeric_limits<double>::infinity();
-  for (int it = 0; it < kMaxIterations; ++it) {
+  // A separating plane of normal nrm (doubles, taken exactly), from the
+  // support guesses cp, cq: certified or not.
+  const auto try_plane = [&](const Vec3d& nrm, Index cp, Index cq) {
+    if (!(std::fabs(nrm.x) + std::fabs(nrm.y) + std::fabs(nrm.z) > 0)) return false;
+    if (!qu.certify_separation(nrm, cp, cq)) return false;
+    r.status = ContactStatus::separate;
+    r.certificate = RigidCertificate::separating_plane;
+    r.normal = nrm;
+    r.p = cp, r.q = cq;
+    return true;
+  };
+  // The normal of the simplex's triangle, turned towards the origin.  Near
+  // contact the closest point v is tiny and its direction is only as good
+  // as its absolute rounding (about 1e-16 over |v|), while the triangle,
+  // which lies on the facet of D nearest to the origin, gives that facet's
+  // normal to about 1e-16 relative whatever the distance.
+  const auto triangle_normal = [&]() {
+    V3 nt = cross(s[1].w - s[0].w, s[2].w - s[0].w);
+    if (dot(nt, s[0].w) > 0) nt = -nt;
+    return Vec3d{nt.x, nt.y, nt.z};
+  };
+  bool tried_triangle = false;
+  for (int it = 0; it < kMaxIterations && !decided; ++it) {
     ++g_stats.iterations;
     const double vv = dot(v, v);
     if (!(vv > 0)) break;  // the origin on the simplex (in doubles): touching or near it
     const SimplexVertex w = qu.support(-v, ip, iq);
     ip = w.p, iq = w.q;
-    if (dot(v, w.w) > 0) {
-      // −v separates in doubles; certify it.
-      const Vec3d nrm{-v.x, -v.y, -v.z};
-      Index cp = w.p, cq = w.q;
-      if (qu.certify_separation(nrm, cp, cq)) {
-        r.status = ContactStatus::separate;
-        r.certificate = RigidCertificate::separating_plane;
-        r.normal = nrm;
-        r.p = cp, r.q = cq;
-        decided = true;
-        break;
+    const double vw = dot(v, w.w);
+    if (vw > 0) {
+      // −v separates in doubles; certify it, or the triangle's normal.
+      decided = try_plane(Vec3d{-v.x, -v.y, -v.z}, w.p, w.q);
+      if (!decided && n == 3) {
+        tried_triangle = true;
+        decided = try_plane(triangle_normal(), s[0].p, s[0].q);
       }
+      if (decided) break;
     }
     bool repeated = false;
     for (int k = 0; k < n; ++k) repeated = repeated || (s[k].p == w.p && s[k].q == w.q);
-    if (repeated || !(vv < last) || vv - dot(v, w.w) <= 1e-15 * vv) break;  // converged without a certificate
+    if (repeated || !(vv < last) || vv - vw <= 1e-15 * vv) break;  // converged without a certificate
     last = vv;
     s[n++] = w;
+    tried_triangle = false;
     if (!closest_on_simplex(s, n, v)) {
       if (qu.certify_tetrahedron(s)) {
         r.status = ContactStatus::penetrating;
@@ -359,6 +379,7 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
       break;
     }
   }
+  if (!decided && n == 3 && !tried_triangle) decided = try_plane(triangle_normal(), s[0].p, s[0].q);
   if (!decided) {
     r.status = collide_exact(p, pose_p, q, pose_q);
     r.certificate = RigidCertificate::exact;

@@ -194,6 +194,19 @@ TEST(PlacedPredicates, NearZeroFallsBackToRationals) {
   // b − a = (2, −1, 0) is orthogonal.
   EXPECT_EQ(PulledDirection(third, Vec3d{1, 0, 0}).difference_sign(a, point_bounds(a), P(2, -1, 0), point_bounds(P(2, -1, 0))), 0);
   EXPECT_GT(placed_predicate_counts().exact, before.exact);
+  // Out of the doubles stage's range (2^-300, 2^250): the later stages answer.
+  const Point3 tiny(std::ldexp(1.0, -300), 0.0, 0.0), huge(std::ldexp(1.0, 250), 1.0, 0.0);
+  EXPECT_EQ(PulledDirection(id, Vec3d{1, 0, 0}).difference_sign(a, point_bounds(a), tiny, point_bounds(tiny)), 1);
+  EXPECT_EQ(PulledDirection(id, Vec3d{-1, 0, 0}).difference_sign(a, point_bounds(a), huge, point_bounds(huge)), -1);
+  EXPECT_EQ(placed_gap_sign(Vec3d{0, 1, 0}, id, huge, point_bounds(huge), id, a, point_bounds(a)), -1);
+  EXPECT_EQ(placed_gap_sign(Vec3d{1, 0, 0}, id, a, point_bounds(a), id, tiny, point_bounds(tiny)), 1);
+  // The doubles stage on an exact zero it cannot see as zero: 0.1 + 0.2 − 0.3
+  // style cancellations are decided exactly (1 · (2^53 + 1) − (2^53 + 1)).
+  const double big = std::ldexp(1.0, 53);
+  const PlacedMap shear(std::array<double, 9>{1, 1, 0, 0, 1, 0, 0, 0, 1}, Vec3d{0, 0, 0});
+  const Point3 c(big, 1.0, 0.0), e(0.0, 0.0, 0.0);
+  // n · A (c − e) with n = (1, −(2^53 + 2), 0): (2^53 + 1) − (2^53 + 2) = −1.
+  EXPECT_EQ(PulledDirection(shear, Vec3d{1, -(big + 2), 0}).difference_sign(e, point_bounds(e), c, point_bounds(c)), -1);
 }
 
 TEST(PlacedMap, RejectsSingularReflectedAndNonFiniteMatrices) {
@@ -318,9 +331,10 @@ void expect_contact(const RigidBody& p, const RigidBody& q, const PlacedMap& rot
     // 2^-40 from contact is far above the rounding of the search: the
     // answer is certified without the exact path (the separating plane of
     // the nearest triangle of D, or a tetrahedron).
-    if (want == ContactStatus::separate) EXPECT_EQ(c.certificate, RigidCertificate::separating_plane) << what;
-    if (want == ContactStatus::penetrating) EXPECT_EQ(c.certificate, RigidCertificate::simplex) << what;
-    if (want == ContactStatus::touching) EXPECT_EQ(c.certificate, RigidCertificate::exact) << what;
+    const RigidCertificate proof = want == ContactStatus::separate      ? RigidCertificate::separating_plane
+                                   : want == ContactStatus::penetrating ? RigidCertificate::simplex
+                                                                        : RigidCertificate::exact;
+    EXPECT_EQ(c.certificate, proof) << what << ", dz " << dz.get_str();
     EXPECT_EQ(sat_status(p.polytope(), PlacedMap(), q.polytope(), pq.map()), want) << what;
   }
 }

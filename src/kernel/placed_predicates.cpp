@@ -34,6 +34,13 @@ int exact_sign(const Rational& q) {
 
 Rational det3(const Point3& a, const Point3& b, const Point3& c) { return dot(a, cross(b, c)); }
 
+// Stage 1's range (placed_predicates.hpp): zero, or |x| in [2^-240, 2^240).
+constexpr double kFastMin = 0x1p-240, kFastMax = 0x1p+240;
+inline bool in_range(double x) {
+  const double a = std::fabs(x);
+  return a == 0 || (a >= kFastMin && a < kFastMax);
+}
+
 }  // namespace
 
 Bounds rational_bounds(const Rational& q) {
@@ -41,7 +48,12 @@ Bounds rational_bounds(const Rational& q) {
   return {i.inf(), i.sup()};
 }
 
-PointBounds point_bounds(const Point3& p) { return {rational_bounds(p.x), rational_bounds(p.y), rational_bounds(p.z)}; }
+PointBounds point_bounds(const Point3& p) {
+  PointBounds b{rational_bounds(p.x), rational_bounds(p.y), rational_bounds(p.z)};
+  b.doubles = b.x.lo == b.x.hi && b.y.lo == b.y.hi && b.z.lo == b.z.hi && in_range(b.x.lo) && in_range(b.y.lo) &&
+              in_range(b.z.lo);
+  return b;
+}
 
 PlacedMap::PlacedMap() : PlacedMap(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}, Vec3d{0, 0, 0}) {}
 
@@ -52,18 +64,21 @@ PlacedMap::PlacedMap(const std::array<double, 9>& a, const Vec3d& t) {
   approx_t_ = t;
   bounds_t_ = {{t.x, t.x}, {t.y, t.y}, {t.z, t.z}};
   check_determinant();
+  set_fast();
 }
 
 PlacedMap::PlacedMap(const std::array<double, 9>& a, const Point3& t) {
   set_double_a(a);
   set_t(t);
   check_determinant();
+  set_fast();
 }
 
 PlacedMap::PlacedMap(const std::array<std::array<Rational, 3>, 3>& a, const Point3& t) {
   set_rational_a(a);
   set_t(t);
   check_determinant();
+  set_fast();
 }
 
 PlacedMap PlacedMap::rotation(const std::array<Integer, 4>& q, const Point3& t) {
@@ -85,6 +100,7 @@ PlacedMap PlacedMap::rotation(const std::array<Integer, 4>& q, const Point3& t) 
   PlacedMap m;
   m.set_rational_a(r);
   m.set_t(t);  // det = 1: the matrix of a unit quaternion is a rotation
+  m.set_fast();
   return m;
 }
 
@@ -114,6 +130,12 @@ void PlacedMap::set_t(const Point3& t) {
   bounds_t_ = point_bounds(t);
   if (is_double(t)) exact_t_.reset();
   else exact_t_ = std::make_shared<const Point3>(t);
+}
+
+void PlacedMap::set_fast() {
+  fast_ = doubles();
+  for (double x : approx_a_) fast_ = fast_ && in_range(x);
+  for (double x : {approx_t_.x, approx_t_.y, approx_t_.z}) fast_ = fast_ && in_range(x);
 }
 
 void PlacedMap::check_determinant() const {
@@ -150,6 +172,23 @@ Point3 PlacedMap::apply_linear(const Point3& p) const {
 Point3 PlacedMap::apply(const Point3& p) const { return apply_linear(p) + t(); }
 
 PulledDirection::PulledDirection(const PlacedMap& m, const Vec3d& n) : m_(&m), n_(n) {
+  fast_ = m.filter_ready() && in_range(n.x) && in_range(n.y) && in_range(n.z);
+  if (fast_) {
+    const auto& a = m.approx_a();
+    for (int c = 0; c < 3; ++c) {
+      uf_[c] = (a[c] * n.x + a[3 + c] * n.y) + a[6 + c] * n.z;
+      um_[c] = (std::fabs(a[c]) * std::fabs(n.x) + std::fabs(a[3 + c]) * std::fabs(n.y)) +
+               std::fabs(a[6 + c]) * std::fabs(n.z);
+    }
+    return;  // the enclosure u_ is made on first need (stage 2)
+  }
+  make_enclosure();
+}
+
+void PulledDirection::make_enclosure() const {
+  enclosure_ = true;
+  const PlacedMap& m = *m_;
+  const Vec3d& n = n_;
   CGAL::Protect_FPU_rounding<true> upward;
   const auto& a = m.bounds_a();
   const FastInterval nx(n.x), ny(n.y), nz(n.z);
@@ -159,8 +198,9 @@ PulledDirection::PulledDirection(const PlacedMap& m, const Vec3d& n) : m_(&m), n
   }
 }
 
-int PulledDirection::difference_sign(const Point3& a, const PointBounds& ab, const Point3& b,
-                                     const PointBounds& bb) const {
+int PulledDirection::difference_sign_later(const Point3& a, const PointBounds& ab, const Point3& b,
+                                           const PointBounds& bb) const {
+  if (!enclosure_) make_enclosure();
   {
     CGAL::Protect_FPU_rounding<true> upward;
     const FastIPoint d = iv(bb) - iv(ab);
@@ -181,6 +221,30 @@ int PulledDirection::difference_sign(const Point3& a, const PointBounds& ab, con
 
 int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const PointBounds& pb, const PlacedMap& mq,
                     const Point3& q, const PointBounds& qb) {
+  if (mp.filter_ready() && mq.filter_ready() && in_range(n.x) && in_range(n.y) && in_range(n.z) && pb.doubles &&
+      qb.doubles) {
+    const auto &ap = mp.approx_a(), &aq = mq.approx_a();
+    const Vec3d &tp = mp.approx_t(), &tq = mq.approx_t();
+    const double P[3] = {pb.x.lo, pb.y.lo, pb.z.lo}, Q[3] = {qb.x.lo, qb.y.lo, qb.z.lo};
+    const double T[2][3] = {{tp.x, tp.y, tp.z}, {tq.x, tq.y, tq.z}}, N[3] = {n.x, n.y, n.z};
+    double g = 0, b = 0;
+    for (int r = 0; r < 3; ++r) {
+      const double x = ((aq[3 * r] * Q[0] + aq[3 * r + 1] * Q[1]) + aq[3 * r + 2] * Q[2]) + T[1][r];
+      const double y = ((ap[3 * r] * P[0] + ap[3 * r + 1] * P[1]) + ap[3 * r + 2] * P[2]) + T[0][r];
+      const double mx = ((std::fabs(aq[3 * r]) * std::fabs(Q[0]) + std::fabs(aq[3 * r + 1]) * std::fabs(Q[1])) +
+                         std::fabs(aq[3 * r + 2]) * std::fabs(Q[2])) + std::fabs(T[1][r]);
+      const double my = ((std::fabs(ap[3 * r]) * std::fabs(P[0]) + std::fabs(ap[3 * r + 1]) * std::fabs(P[1])) +
+                         std::fabs(ap[3 * r + 2]) * std::fabs(P[2])) + std::fabs(T[0][r]);
+      // Summed in the order of the analysis: ((t_0 + t_1) + t_2).
+      g = r == 0 ? N[r] * (x - y) : g + N[r] * (x - y);
+      b = r == 0 ? std::fabs(N[r]) * (mx + my) : b + std::fabs(N[r]) * (mx + my);
+    }
+    const double scaled = 0x1p+48 * g;
+    if (scaled > b || scaled < -b || b == 0) {
+      ++g_counts.filtered;
+      return scaled > b ? 1 : (scaled < -b ? -1 : 0);
+    }
+  }
   {
     CGAL::Protect_FPU_rounding<true> upward;
     const FastIPoint d = apply(mq, iv(qb), true) - apply(mp, iv(pb), true);

@@ -18,6 +18,7 @@ struct RigidBody::Data {
   std::vector<Index> first;           // neighbours of v: nbr[first[v] .. first[v + 1])
   std::vector<Index> nbr;
   Vec3d centroid;                     // of the vertices (doubles): the first search direction
+  const Point3* exact = nullptr;      // poly.points(), exact (built once)
 };
 
 namespace {
@@ -79,10 +80,10 @@ struct Placed {
     const PulledDirection u(map, n);
     for (;;) {
       Index next = v;
-      const Point3& pv = d.poly.point(v);
+      const Point3& pv = d.exact[v];
       for (Index k = d.first[v]; k < d.first[v + 1]; ++k) {
         const Index w = d.nbr[k];
-        if (u.difference_sign(pv, d.bounds[v], d.poly.point(w), d.bounds[w]) > 0) {
+        if (u.difference_sign(pv, d.bounds[v], d.exact[w], d.bounds[w]) > 0) {
           next = w;
           break;
         }
@@ -215,14 +216,14 @@ struct Query {
   bool certify_separation(const Vec3d& n, Index& ip, Index& iq) const {
     ip = P.certified_support(n, ip);
     iq = Q.certified_support(Vec3d{-n.x, -n.y, -n.z}, iq);
-    return placed_gap_sign(n, P.map, dp.poly.point(ip), dp.bounds[ip], Q.map, dq.poly.point(iq), dq.bounds[iq]) > 0;
+    return placed_gap_sign(n, P.map, dp.exact[ip], dp.bounds[ip], Q.map, dq.exact[iq], dq.bounds[iq]) > 0;
   }
   bool certify_tetrahedron(const std::array<SimplexVertex, 4>& s) const {
     std::array<const Point3*, 4> p, q;
     std::array<const PointBounds*, 4> pb, qb;
     for (int k = 0; k < 4; ++k) {
-      p[k] = &dp.poly.point(s[k].p), pb[k] = &dp.bounds[s[k].p];
-      q[k] = &dq.poly.point(s[k].q), qb[k] = &dq.bounds[s[k].q];
+      p[k] = &dp.exact[s[k].p], pb[k] = &dp.bounds[s[k].p];
+      q[k] = &dq.exact[s[k].q], qb[k] = &dq.bounds[s[k].q];
     }
     return placed_tetrahedron_holds_origin(P.map, Q.map, p, pb, q, qb);
   }
@@ -272,6 +273,7 @@ RigidBody::RigidBody(ConvexPolytope p) {
     d->first[v + 1] = d->first[v] + poly.vertex_degree(v);
   }
   d->centroid = {cx / nv, cy / nv, cz / nv};
+  d->exact = poly.points().data();
   d->nbr.resize(d->first[nv]);
   for (Index v = 0; v < nv; ++v) {
     Index k = d->first[v];

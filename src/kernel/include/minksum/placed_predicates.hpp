@@ -9,7 +9,45 @@
 // is the sign of an exact polynomial in the entries of A, t, p and of the
 // direction n (a double vector, taken exactly).
 //
-// Filter.  Each sign is first evaluated in interval arithmetic
+// Filters.  Two stages before rationals.
+//
+// Stage 1, doubles (the common case: A, t, n and the points all doubles, as
+// for a double rotation matrix and vertices read from a mesh file), with a
+// derived error bound.  u = 2^-52 bounds the relative error of one IEEE 754
+// operation in ANY rounding mode when its result is normal (and an addition
+// whose result is subnormal is exact); γ_k = k u / (1 − k u).  Every input
+// must be zero or of magnitude in [2^-240, 2^240) (checked; else stage 2):
+// then every product of two or three inputs lies in [2^-720, 2^720), every
+// non-zero difference of two inputs is at least 2^-292, and no operation
+// below overflows or leaves the normal range except exact additions.
+//  * Climb sign S = Σ_c u_c (b_c − a_c), u_c = Σ_r A_rc n_r (exact).  The
+//    doubles û_c = fl(Σ_r A_rc n_r) (three products, two additions, at most
+//    four roundings per term: |û_c − u_c| ≤ γ_3 U_c with U_c = Σ_r |A_rc||n_r|),
+//    d̂_c = fl(b_c − a_c) (|d̂_c − d_c| ≤ u |d_c| ≤ u D_c, D_c = |a_c| + |b_c|)
+//    and ŝ = fl(Σ_c û_c d̂_c) give
+//      |ŝ − S| ≤ Σ_c |û_c d̂_c − u_c d_c| + γ_3 Σ_c |û_c d̂_c|
+//              ≤ [γ_3 (1 + u) + u + γ_3 (1 + γ_3)(1 + u)] Σ_c U_c D_c < 7.01 u B
+//    with B = Σ_c U_c D_c.  The bound computed, B̂, is the same expression on
+//    the absolute values: at most seven roundings of non-negative normal
+//    doubles on any path, so B̂ ≥ (1 − u)^7 B.  The test 2^49 |ŝ| > B̂ (the
+//    scaling is exact) means |ŝ| > 8 u B̂ ≥ 8 (1 − u)^7 u B > 7.01 u B ≥
+//    |ŝ − S|, so sign ŝ = sign S.  B̂ = 0 only when every U_c D_c is 0 (no
+//    product of inputs in range rounds to 0): then every term of S is 0.
+//  * Gap sign G = Σ_r n_r (x_r − y_r), x = A_q q + t_q, y = A_p p + t_p.  x̂_r
+//    = fl(Σ_c A_q,rc q_c + t_q,r) (four terms, at most four roundings each:
+//    |x̂_r − x_r| ≤ γ_4 X_r^q with X_r^q the sum of the terms' absolute
+//    values), ŷ_r likewise, the difference one rounding more, and ĝ =
+//    fl(Σ_r n_r fl(x̂_r − ŷ_r)):
+//      |ĝ − G| ≤ (1 + γ_3)(γ_4 + u (1 + γ_4)) Σ_r |n_r| X_r + γ_3 (1 + γ_4)(1 + u) Σ_r |n_r| X_r
+//              < 8.01 u B,   B = Σ_r |n_r| X_r, X_r = X_r^q + X_r^p.
+//    B̂ takes at most eight roundings: B̂ ≥ (1 − u)^8 B, and the test
+//    2^48 |ĝ| > B̂ gives |ĝ| > 16 (1 − u)^8 u B > |ĝ − G|.
+//  * The analysis holds if the compiler contracts a product and a sum into
+//    an FMA (one rounding fewer); not under -ffast-math, which the kernel
+//    refuses.
+//
+// Stage 2 (any input: rationals, or out of stage 1's range): each sign is
+// evaluated in interval arithmetic
 // (CGAL::Interval_nt, every operation rounded outward under a guard that sets
 // the rounding mode upward and restores the caller's), on enclosures of the
 // exact inputs (Bounds: the two doubles around a rational, a point interval
@@ -24,12 +62,14 @@
 // efficient implementation and an application to computational geometry",
 // Workshop on Applications of Interval Analysis to Systems and Control, 1999).
 // The tests (PlacedPredicates.*) check every sign against the rational
-// evaluation in all four rounding modes, on and near zero.
+// evaluation in all four rounding modes, on and near zero, with inputs in
+// and out of stage 1's range.
 #pragma once
 
 #include <minksum/kernel.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -42,6 +82,10 @@ struct Bounds {
 };
 struct PointBounds {
   Bounds x, y, z;
+  // Each coordinate is a double (lo = hi), zero or of magnitude in
+  // [2^-240, 2^240): the point may enter the doubles stage (set by
+  // point_bounds).
+  bool doubles = false;
 };
 // The smallest such interval around q (lo = hi = q when q is a double).
 Bounds rational_bounds(const Rational& q);
@@ -88,6 +132,7 @@ class PlacedMap {
   void set_double_a(const std::array<double, 9>& a);
   void set_t(const Point3& t);
   void check_determinant() const;
+  void set_fast();
   std::array<double, 9> approx_a_{};
   Vec3d approx_t_;
   std::array<Bounds, 9> bounds_a_{};
@@ -95,6 +140,12 @@ class PlacedMap {
   // The exact values when they are not the doubles above.
   std::shared_ptr<const std::array<std::array<Rational, 3>, 3>> exact_a_;
   std::shared_ptr<const Point3> exact_t_;
+  // Stage 1 may read approx_a_ and approx_t_: they are the exact entries,
+  // each zero or of magnitude in [2^-240, 2^240).
+  bool fast_ = false;
+
+ public:
+  bool filter_ready() const { return fast_; }
 };
 
 // A direction n (doubles, taken exactly) pulled back through the linear part
@@ -107,13 +158,33 @@ class PulledDirection {
   // sign n · A (b − a) = sign u · (b − a): whether b lies beyond a along n
   // once both are placed (the step of a support climb).  Degree 3 in the
   // entries of n, A and the points.
-  int difference_sign(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
+  int difference_sign(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const {
+    if (fast_ && ab.doubles && bb.doubles) {
+      // Stage 1 (the bound at the top of this header).
+      const double ax = ab.x.lo, ay = ab.y.lo, az = ab.z.lo, bx = bb.x.lo, by = bb.y.lo, bz = bb.z.lo;
+      const double s = (uf_[0] * (bx - ax) + uf_[1] * (by - ay)) + uf_[2] * (bz - az);
+      const double m = (um_[0] * (std::fabs(ax) + std::fabs(bx)) + um_[1] * (std::fabs(ay) + std::fabs(by))) +
+                       um_[2] * (std::fabs(az) + std::fabs(bz));
+      const double scaled = 0x1p+49 * s;
+      if (scaled > m) return 1;
+      if (scaled < -m) return -1;
+      if (m == 0) return 0;
+    }
+    return difference_sign_later(a, ab, b, bb);
+  }
   const Vec3d& direction() const { return n_; }
 
  private:
   const PlacedMap* m_;
   Vec3d n_;
-  std::array<Bounds, 3> u_{};
+  mutable std::array<Bounds, 3> u_{};
+  mutable bool enclosure_ = false;
+  void make_enclosure() const;
+  // Stages 2 and 3.
+  int difference_sign_later(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
+  // Stage 1: û and U (see the top), when A and n are doubles in range.
+  bool fast_ = false;
+  std::array<double, 3> uf_{}, um_{};
   mutable std::optional<Point3> exact_;
 };
 
@@ -134,8 +205,8 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
                                      const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
                                      const std::array<const PointBounds*, 4>& qb);
 
-// How often the filters above decided and how often they fell back to
-// rationals, on the calling thread since it started.
+// How often the interval stage decided and how often the rationals did, on
+// the calling thread since it started (the doubles stage is not counted).
 struct PlacedPredicateCounts {
   std::uint64_t filtered = 0, exact = 0;
 };

@@ -277,6 +277,51 @@ TEST(RigidCollide, AgreesWithSeparatingAxesOnRandomPoses) {
   expect_agrees_with_sat("random:12:1", "random:10:2", 200, 1.5, 14);
 }
 
+namespace {
+
+// Random poses of a and b with translations in [-spread, spread]^3 (exact),
+// every answer against the exact obstacle; both outcomes occur.
+void expect_agrees_with_exact(const std::string& a, const std::string& b, double spread, std::uint64_t seed) {
+  const RigidBody pa(catalog_polytope(a)), pb(catalog_polytope(b));
+  Rng r(seed);
+  int separate = 0;
+  for (int i = 0; i < 60; ++i) {
+    const RigidPose pp = random_pose(r, 0, i % 2 == 0);
+    const RigidPose pq0 = random_pose(r, 0, i % 2 == 1);
+    const Point3 t(r.uniform(-spread, spread), r.uniform(-spread, spread), r.uniform(-spread, spread));
+    std::array<std::array<Rational, 3>, 3> m;
+    for (int x = 0; x < 3; ++x)
+      for (int y = 0; y < 3; ++y) m[x][y] = pq0.map().a(x, y);
+    const RigidPose pq(PlacedMap(m, t));
+    const ContactStatus want = collide_exact(pa, pp, pb, pq);
+    separate += want == ContactStatus::separate;
+    EXPECT_EQ(collide(pa, pp, pb, pq).status, want) << a << " / " << b << ", seed " << seed << ", pose " << i;
+  }
+  EXPECT_GT(separate, 5) << a;
+  EXPECT_LT(separate, 55) << a;
+}
+
+}  // namespace
+
+TEST(RigidCollide, RationalCoordinatesTakeTheIntervalStage) {
+  // Vertices p/q (cube@scale:1/3): no doubles stage.
+  expect_agrees_with_exact("cube@scale:1/3", "tetra@rot:2", 2.0, 41);
+}
+
+TEST(RigidCollide, TinyAndHugeBodiesWhoseSearchUnderflowsOrOverflows) {
+  // Bodies of size 1e-80: the search's products of four coordinates
+  // underflow and its closest point of a triangle divided by zero, which
+  // made an infinite normal reach the interval stage (an assertion of
+  // CGAL's Interval_nt).  A normal that is not finite certifies nothing now.
+  expect_agrees_with_exact("dodecahedron@scale:1e-80", "cube@scale:1e-80", 5e-80, 42);
+  // Size 1e80: the same products overflow.
+  expect_agrees_with_exact("dodecahedron@scale:1e80", "cube@scale:1e80", 5e80, 43);
+  const PlacedMap id;
+  const Point3 o(0, 0, 0);
+  EXPECT_THROW(PulledDirection(id, Vec3d{INFINITY, 0, 0}), UsageError);
+  EXPECT_THROW(placed_gap_sign(Vec3d{NAN, 0, 0}, id, o, point_bounds(o), id, o, point_bounds(o)), UsageError);
+}
+
 TEST(RigidCollide, AgreesWithTheExactObstacleOnLargerPairs) {
   for (const auto& [a, b, seed] : std::vector<std::tuple<std::string, std::string, std::uint64_t>>{
            {"sphere:2", "sphere:2", 21}, {"random:50:1", "random:50:2", 22}, {"sphere:3", "cube", 23}}) {

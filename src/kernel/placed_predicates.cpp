@@ -172,6 +172,8 @@ Point3 PlacedMap::apply_linear(const Point3& p) const {
 Point3 PlacedMap::apply(const Point3& p) const { return apply_linear(p) + t(); }
 
 PulledDirection::PulledDirection(const PlacedMap& m, const Vec3d& n) : m_(&m), n_(n) {
+  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
+    throw UsageError("a direction must have finite coordinates");
   fast_ = m.filter_ready() && in_range(n.x) && in_range(n.y) && in_range(n.z);
   if (fast_) {
     const auto& a = m.approx_a();
@@ -221,6 +223,8 @@ int PulledDirection::difference_sign_later(const Point3& a, const PointBounds& a
 
 int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const PointBounds& pb, const PlacedMap& mq,
                     const Point3& q, const PointBounds& qb) {
+  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
+    throw UsageError("a direction must have finite coordinates");
   if (mp.filter_ready() && mq.filter_ready() && in_range(n.x) && in_range(n.y) && in_range(n.z) && pb.doubles &&
       qb.doubles) {
     const auto &ap = mp.approx_a(), &aq = mq.approx_a();

@@ -330,7 +330,10 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
   // A separating plane of normal nrm (doubles, taken exactly), from the
   // support guesses cp, cq: certified or not.
   const auto try_plane = [&](const Vec3d& nrm, Index cp, Index cq) {
-    if (!(std::fabs(nrm.x) + std::fabs(nrm.y) + std::fabs(nrm.z) > 0)) return false;
+    // A normal that is zero, or not finite (the search's doubles overflow or
+    // underflow on bodies of extreme size), proves nothing.
+    const double l1 = std::fabs(nrm.x) + std::fabs(nrm.y) + std::fabs(nrm.z);
+    if (!(l1 > 0) || !std::isfinite(l1)) return false;
     if (!qu.certify_separation(nrm, cp, cq)) return false;
     r.status = ContactStatus::separate;
     r.certificate = RigidCertificate::separating_plane;

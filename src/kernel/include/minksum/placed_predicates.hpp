@@ -154,6 +154,7 @@ class PlacedMap {
 // the exact u (computed on first use).
 class PulledDirection {
  public:
+  // Throws UsageError unless n is finite.
   PulledDirection(const PlacedMap& m, const Vec3d& n);
   // sign n · A (b − a) = sign u · (b − a): whether b lies beyond a along n
   // once both are placed (the step of a support climb).  Degree 3 in the
@@ -192,6 +193,7 @@ class PulledDirection {
 // placed points p of P and q of Q.  With p the support of placed P along n
 // and q the support of placed Q along −n, a positive sign proves that the
 // plane normal to n separates them strictly, zero that it touches both.
+// Throws UsageError unless n is finite.
 int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const PointBounds& pb, const PlacedMap& mq,
                     const Point3& q, const PointBounds& qb);
 

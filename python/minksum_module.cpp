@@ -19,6 +19,7 @@
 #include <minksum/parallel.hpp>
 #include <minksum/polytope.hpp>
 #include <minksum/proximity.hpp>
+#include <minksum/rigid_proximity.hpp>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -798,6 +799,107 @@ py::array_t<double> double_array(const std::vector<Result>& r, F f) {
   return a;
 }
 
+
+// Poses under rigid motion (collide_rigid): translations t, an (N, 3) or (3,)
+// array (floats taken exactly, integers exactly) or None (zero), and
+// rotations r, an (N, 4) or (4,) integer array of quaternions, an (N, 3, 3)
+// or (3, 3) float array of matrices (taken exactly), or None (the
+// identity).  One pose of either stands for every pose.
+struct PoseInput {
+  std::size_t count = 1;  // 1: one pose for all
+  PointList t;            // empty: zero
+  std::vector<Quaternion> quaternions;
+  std::vector<std::array<double, 9>> matrices;
+};
+
+PoseInput to_pose_input(py::handle t, py::handle r, const std::string& tn, const std::string& rn) {
+  PoseInput in;
+  std::size_t nt = 1, nr = 1;
+  if (!t.is_none()) {
+    py::array a = py::array::ensure(t);
+    if (!a) throw py::type_error(tn + ": expected an (N, 3) or (3,) array of translations, got " + type_name(t));
+    if (a.ndim() == 1) {
+      in.t.push_back(to_point(t, tn));
+    } else {
+      in.t = to_points(t, tn);
+      nt = in.t.size();
+    }
+  }
+  if (!r.is_none()) {
+    py::array a = py::array::ensure(r);
+    if (!a) throw py::type_error(rn + ": expected quaternions (N, 4) or matrices (N, 3, 3), got " + type_name(r));
+    check_dtype(a.dtype(), rn, true);
+    const char kind = a.dtype().kind();
+    const bool quaternions = (a.ndim() == 2 && a.shape(1) == 4) || (a.ndim() == 1 && a.shape(0) == 4);
+    const bool matrices = (a.ndim() == 3 && a.shape(1) == 3 && a.shape(2) == 3) || (a.ndim() == 2 && a.shape(0) == 3 && a.shape(1) == 3);
+    if (quaternions) {
+      if (kind != 'i' && kind != 'u')
+        throw py::type_error(rn + ": quaternions must be integers (their rotation is exact); give a rotation of "
+                                  "floats as a (3, 3) matrix, got an array of dtype " + std::string(py::str(static_cast<py::handle>(a.dtype()))));
+      auto q = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(r);
+      const std::size_t n = a.ndim() == 1 ? 1 : static_cast<std::size_t>(a.shape(0));
+      const long long* d = q.data();
+      for (std::size_t i = 0; i < n; ++i) {
+        Quaternion x{Integer(static_cast<long>(d[4 * i])), Integer(static_cast<long>(d[4 * i + 1])),
+                     Integer(static_cast<long>(d[4 * i + 2])), Integer(static_cast<long>(d[4 * i + 3]))};
+        if (!sgn(x[0]) && !sgn(x[1]) && !sgn(x[2]) && !sgn(x[3]))
+          throw py::value_error(item(rn, i) + ": the zero quaternion is not a rotation");
+        in.quaternions.push_back(std::move(x));
+      }
+      if (a.ndim() == 2) nr = n;
+    } else if (matrices) {
+      if (kind != 'f') throw py::type_error(rn + ": rotation matrices must be floats, got an array of dtype " +
+                                            std::string(py::str(static_cast<py::handle>(a.dtype()))));
+      auto m = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(r);
+      const std::size_t n = a.ndim() == 2 ? 1 : static_cast<std::size_t>(a.shape(0));
+      const double* d = m.data();
+      for (std::size_t i = 0; i < n; ++i) {
+        std::array<double, 9> x;
+        for (int k = 0; k < 9; ++k) {
+          x[k] = d[9 * i + k];
+          if (!std::isfinite(x[k])) throw py::value_error(item(rn, i) + ": not finite");
+        }
+        in.matrices.push_back(x);
+      }
+      if (a.ndim() == 3) nr = n;
+    } else {
+      throw py::value_error(rn + ": expected quaternions (N, 4) or matrices (N, 3, 3), got an array of shape " +
+                            shape_text(a));
+    }
+  }
+  if (nt != 1 && nr != 1 && nt != nr)
+    throw py::value_error(tn + " and " + rn + ": " + std::to_string(nt) + " translations and " + std::to_string(nr) +
+                          " rotations (the counts must agree, or one be a single pose)");
+  in.count = std::max(nt, nr);
+  return in;
+}
+
+// The poses of `in` (built without the GIL: no Python object is read).
+std::vector<RigidPose> to_poses(const PoseInput& in, const std::string& rn) {
+  const std::size_t n = in.count;
+  std::vector<RigidPose> out;
+  out.reserve(n);
+  const bool doubles = in.t.all_doubles();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t it = in.t.size() == 1 ? 0 : i;
+    const Vec3d td = in.t.size() == 0 ? Vec3d{0, 0, 0} : in.t.approx(it);
+    try {
+      if (!in.quaternions.empty()) {
+        const Quaternion& q = in.quaternions[in.quaternions.size() == 1 ? 0 : i];
+        out.push_back(RigidPose::quaternion(q, in.t.size() == 0 ? Point3(0, 0, 0) : in.t.exact(it)));
+      } else {
+        static const std::array<double, 9> id{1, 0, 0, 0, 1, 0, 0, 0, 1};
+        const std::array<double, 9>& m = in.matrices.empty() ? id : in.matrices[in.matrices.size() == 1 ? 0 : i];
+        if (doubles) out.push_back(RigidPose::matrix(m, td));
+        else out.push_back(RigidPose::matrix(m, in.t.exact(it)));
+      }
+    } catch (const UsageError& e) {
+      throw py::value_error(item(rn, in.matrices.size() == 1 || in.quaternions.size() == 1 ? 0 : i) + ": " + e.what());
+    }
+  }
+  return out;
+}
+
 struct WitnessPy {
   Witness w;
 };
@@ -1565,6 +1667,53 @@ released.)")
         return "<minksum.Obstacle: M has " + std::to_string(mm.num_vertices()) + " vertices, " +
                std::to_string(mm.num_facets()) + " facets>";
       });
+
+
+  py::class_<RigidBody>(m, "RigidBody", R"(A convex polytope prepared for collision under rigid motion.
+
+RigidBody(p) (a Polytope, a file path or a catalog name) keeps its vertex
+graph, the doubles of its vertices and their enclosures, built once and
+shared by every pose and thread of collide_rigid.)")
+      .def(py::init([](py::object p) { return RigidBody(*resolve(to_operand(p, "p"))); }), py::arg("p"))
+      .def_property_readonly(
+          "polytope", [](const RigidBody& b) { return std::make_shared<ConvexPolytope>(b.polytope()); })
+      .def("__repr__", [](const RigidBody& b) {
+        return "<minksum.RigidBody: " + std::to_string(b.polytope().num_vertices()) + " vertices>";
+      });
+  m.def(
+      "collide_rigid",
+      [](const RigidBody& a, const RigidBody& b, py::object tb, py::object rb, py::object ta, py::object ra,
+         std::optional<long long> threads) {
+        if (threads && *threads < 1) throw py::value_error("threads must be at least 1 (or None: one per core)");
+        const PoseInput ib = to_pose_input(tb, rb, "t_b", "r_b"), ia = to_pose_input(ta, ra, "t_a", "r_a");
+        if (ia.count != 1 && ib.count != 1 && ia.count != ib.count)
+          throw py::value_error("poses of a and b: " + std::to_string(ia.count) + " and " + std::to_string(ib.count) +
+                                " (the counts must agree, or one be a single pose)");
+        const std::size_t n = std::max(ia.count, ib.count);
+        py::array_t<std::int8_t> codes(static_cast<py::ssize_t>(n));
+        std::int8_t* w = codes.mutable_data();
+        {
+          py::gil_scoped_release nogil;
+          const std::vector<RigidPose> pa = to_poses(ia, "r_a"), pb = to_poses(ib, "r_b");
+          std::vector<RigidCollision> out(n);
+          collide(a, pa, b, pb, out, threads ? static_cast<unsigned>(*threads) : 0u);
+          for (std::size_t i = 0; i < n; ++i) w[i] = static_cast<std::int8_t>(out[i].status);
+        }
+        return codes;
+      },
+      py::arg("a"), py::arg("b"), py::arg("t_b") = py::none(), py::arg("r_b") = py::none(),
+      py::arg("t_a") = py::none(), py::arg("r_a") = py::none(), py::kw_only(), py::arg("threads") = py::none(),
+      R"(Exact collision of a and b (RigidBody), each under a rotation and a translation, for N poses in one call.
+
+b is rotated by r_b, then translated by t_b (and a by r_a, t_a).  t: an
+(N, 3) or (3,) array (floats taken exactly) or None (no translation); r: an
+(N, 4) or (4,) integer array of quaternions (exact rational rotations, as
+'@rot:'), an (N, 3, 3) or (3, 3) float array of matrices taken exactly as
+given (the answer is exact for that matrix; its determinant must be
+positive), or None (no rotation).  One pose stands for all N.  Returns an
+int8 array of N status codes (minksum.STATUS[code]: 0 separate, 1 touching,
+2 penetrating), each certified exactly (docs/proximity.md, "Rigid motion").
+Runs with the GIL released on `threads` threads (None: one per core).)");
 
   py::list names;
   for (const MethodInfo& mi : methods()) names.append(mi.name);

@@ -19,6 +19,9 @@
 //            (the same distance values in lowest terms) (divide by N).
 //        bench_proximity --count-trajectory P Q N   the coherent trajectory of N
 //            steps: count_ours_trajectory (distance_points), count_fcl_trajectory.
+//        bench_proximity --rotation [--poses N] [--meshes DIR]   collision under
+//            rigid motion against FCL (rotation.cpp); DIR holds the robot-link
+//            meshes (ur5e_forearm.stl, ur5e_upperarm.stl, franka_link1.stl).
 #include <ccd/ccd.h>
 #include <ccd/quat.h>
 
@@ -37,6 +40,9 @@
 #endif
 #include <minksum/catalog.hpp>
 #include <minksum/proximity.hpp>
+
+#include "fcl_convex.hpp"
+#include "rotation.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -110,20 +116,6 @@ double now_us(Clock::time_point t0, long n) {
 }
 
 #ifdef MINKSUM_HAVE_FCL
-std::shared_ptr<fcl::Convexd> fcl_convex(const ConvexPolytope& p) {
-  auto verts = std::make_shared<std::vector<fcl::Vector3d>>();
-  for (Index v = 0; v < p.num_vertices(); ++v) {
-    const Vec3d a = p.approx(v);
-    verts->emplace_back(a.x, a.y, a.z);
-  }
-  auto faces = std::make_shared<std::vector<int>>();
-  for (Index f = 0; f < p.num_facets(); ++f) {
-    const std::vector<Index> loop = p.facet_vertices(f);
-    faces->push_back(int(loop.size()));
-    for (Index v : loop) faces->push_back(int(v));
-  }
-  return std::make_shared<fcl::Convexd>(verts, int(p.num_facets()), faces);
-}
 struct Fcl {
   fcl::CollisionObjectd a, b;
   fcl::CollisionRequestd creq;
@@ -314,6 +306,7 @@ void trajectory(TranslationalObstacle& ob, long steps, std::vector<Point3>& traj
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "--rotation") return rotation_section(argc, argv);
 #ifdef MINKSUM_HAVE_FCL
   if (argc > 1 && std::string(argv[1]).rfind("--count", 0) == 0) return count_main(argc, argv);
 #endif

@@ -2,7 +2,7 @@
 # Build and run the proximity benchmark (minksum vs libccd, and FCL when
 # libfcl-dev is installed) and write its
 # markdown section to docs/generated/benchmarks-proximity.md.
-#   bench/proximity/run.sh [BUILD_DIR] [extra bench_proximity arguments]
+#   [MESHES=DIR] bench/proximity/run.sh [BUILD_DIR] [extra bench_proximity arguments]
 # BUILD_DIR defaults to build-bench-prox (Release, assertions off).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -20,5 +20,9 @@ fi
 out=docs/generated/benchmarks-proximity.md
 tmp=$(mktemp "$out.XXXXXX")
 "$BUILD/bin/bench_proximity" --steps 100000 --reps 2000 "$@" > "$tmp"
+# The rotation section; MESHES names a directory with the robot-link meshes
+# (ur5e_forearm.stl, ur5e_upperarm.stl, franka_link1.stl) to add their hulls.
+printf '\n' >> "$tmp"
+"$BUILD/bin/bench_proximity" --rotation --poses 100000 ${MESHES:+--meshes "$MESHES"} >> "$tmp"
 mv "$tmp" "$out"
 cat "$out"

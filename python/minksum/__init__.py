@@ -13,6 +13,9 @@ Non-convex solids: ``Solid(vertices, faces)`` or ``Solid.load("tube")``;
 ``minkowski_sum`` with a ``Solid`` operand (or a name that is not a convex
 polytope) returns a ``SolidSum``.
 
+Collision under rigid motion: ``collide_rigid(RigidBody(a), RigidBody(b), t_b,
+r_b)`` for N poses (quaternions or rotation matrices) in one call.
+
 Many sums: ``minkowski_sum_many`` runs them on a pool of C++ threads;
 ``minksum.dask`` spreads them over a Dask cluster.
 """
@@ -27,10 +30,12 @@ from ._minksum import (
     DistanceResult,
     Obstacle,
     Polytope,
+    RigidBody,
     Solid,
     SolidSum,
     Sum,
     Witness,
+    collide_rigid,
     load,
     minkowski_sum,
     minkowski_sum_many,
@@ -47,10 +52,12 @@ __all__ = [
     "NotConvexError",
     "Obstacle",
     "Polytope",
+    "RigidBody",
     "Solid",
     "SolidSum",
     "Sum",
     "Witness",
+    "collide_rigid",
     "load",
     "minkowski_sum",
     "minkowski_sum_many",

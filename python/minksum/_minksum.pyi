@@ -220,3 +220,20 @@ class Obstacle:
     def directional_depth(self, t: Points, d: Triple, *, exact: Literal[False] = False, threads: Optional[int] = None) -> npt.NDArray[np.float64]: ...
     @overload
     def directional_depth(self, t: Points, d: Triple, *, exact: Literal[True], threads: Optional[int] = None) -> list[DirectionalDepthResult]: ...
+
+class RigidBody:
+    def __init__(self, p: Operand) -> None: ...
+    @property
+    def polytope(self) -> Polytope: ...
+
+# t: an (N, 3) or (3,) array or None; r: (N, 4) / (4,) integer quaternions, (N, 3, 3) / (3, 3) float matrices, or None.
+def collide_rigid(
+    a: RigidBody,
+    b: RigidBody,
+    t_b: Optional[npt.ArrayLike] = None,
+    r_b: Optional[npt.ArrayLike] = None,
+    t_a: Optional[npt.ArrayLike] = None,
+    r_a: Optional[npt.ArrayLike] = None,
+    *,
+    threads: Optional[int] = None,
+) -> npt.NDArray[np.int8]: ...

@@ -1,0 +1,217 @@
+// minksum — exact signs on points placed by affine maps x ↦ A x + t: the
+// predicates of proximity under rigid motion (proximity/rigid.cpp,
+// docs/proximity.md "Rigid motion").
+//
+// A placement is exact: A and t have rational entries (a rotation by an
+// integer quaternion is the rational matrix of transform.hpp; a 3×3 matrix of
+// doubles is taken exactly as given, each double a dyadic rational).  The
+// placed point A p + t of an exact vertex p is never rounded: every sign below
+// is the sign of an exact polynomial in the entries of A, t, p and of the
+// direction n (a double vector, taken exactly).
+//
+// Filters.  Two stages before rationals.
+//
+// Stage 1, doubles (the common case: A, t, n and the points all doubles, as
+// for a double rotation matrix and vertices read from a mesh file), with a
+// derived error bound.  u = 2^-52 bounds the relative error of one IEEE 754
+// operation in ANY rounding mode when its result is normal (and an addition
+// whose result is subnormal is exact); γ_k = k u / (1 − k u).  Every input
+// must be zero or of magnitude in [2^-240, 2^240) (checked; else stage 2):
+// then every product of two or three inputs lies in [2^-720, 2^720), every
+// non-zero difference of two inputs is at least 2^-292, and no operation
+// below overflows or leaves the normal range except exact additions.
+//  * Climb sign S = Σ_c u_c (b_c − a_c), u_c = Σ_r A_rc n_r (exact).  The
+//    doubles û_c = fl(Σ_r A_rc n_r) (three products, two additions, at most
+//    four roundings per term: |û_c − u_c| ≤ γ_3 U_c with U_c = Σ_r |A_rc||n_r|),
+//    d̂_c = fl(b_c − a_c) (|d̂_c − d_c| ≤ u |d_c| ≤ u D_c, D_c = |a_c| + |b_c|)
+//    and ŝ = fl(Σ_c û_c d̂_c) give
+//      |ŝ − S| ≤ Σ_c |û_c d̂_c − u_c d_c| + γ_3 Σ_c |û_c d̂_c|
+//              ≤ [γ_3 (1 + u) + u + γ_3 (1 + γ_3)(1 + u)] Σ_c U_c D_c < 7.01 u B
+//    with B = Σ_c U_c D_c.  The bound computed, B̂, is the same expression on
+//    the absolute values: at most seven roundings of non-negative normal
+//    doubles on any path, so B̂ ≥ (1 − u)^7 B.  The test 2^49 |ŝ| > B̂ (the
+//    scaling is exact) means |ŝ| > 8 u B̂ ≥ 8 (1 − u)^7 u B > 7.01 u B ≥
+//    |ŝ − S|, so sign ŝ = sign S.  B̂ = 0 only when every U_c D_c is 0 (no
+//    product of inputs in range rounds to 0): then every term of S is 0.
+//  * Gap sign G = Σ_r n_r (x_r − y_r), x = A_q q + t_q, y = A_p p + t_p.  x̂_r
+//    = fl(Σ_c A_q,rc q_c + t_q,r) (four terms, at most four roundings each:
+//    |x̂_r − x_r| ≤ γ_4 X_r^q with X_r^q the sum of the terms' absolute
+//    values), ŷ_r likewise, the difference one rounding more, and ĝ =
+//    fl(Σ_r n_r fl(x̂_r − ŷ_r)):
+//      |ĝ − G| ≤ (1 + γ_3)(γ_4 + u (1 + γ_4)) Σ_r |n_r| X_r + γ_3 (1 + γ_4)(1 + u) Σ_r |n_r| X_r
+//              < 8.01 u B,   B = Σ_r |n_r| X_r, X_r = X_r^q + X_r^p.
+//    B̂ takes at most eight roundings: B̂ ≥ (1 − u)^8 B, and the test
+//    2^48 |ĝ| > B̂ gives |ĝ| > 16 (1 − u)^8 u B > |ĝ − G|.
+//  * The analysis holds if the compiler contracts a product and a sum into
+//    an FMA (one rounding fewer); not under -ffast-math, which the kernel
+//    refuses.
+//
+// Stage 2 (any input: rationals, or out of stage 1's range): each sign is
+// evaluated in interval arithmetic
+// (CGAL::Interval_nt, every operation rounded outward under a guard that sets
+// the rounding mode upward and restores the caller's), on enclosures of the
+// exact inputs (Bounds: the two doubles around a rational, a point interval
+// when it is a double).  Interval arithmetic is an inclusion: the computed
+// interval contains the exact value of the polynomial, whatever the caller's
+// rounding mode, through overflow (bounds go to ±∞) and underflow (directed
+// rounding); so an interval that excludes 0 gives the exact sign, [0, 0]
+// proves the value 0, and anything else falls back to the same polynomial in
+// GMP rationals.  No bound to derive, and none to get wrong: the enclosure is
+// the proof (R. E. Moore, "Interval Analysis", Prentice-Hall 1966; the
+// technique of CGAL's filtered predicates, S. Pion, "Interval arithmetic: an
+// efficient implementation and an application to computational geometry",
+// Workshop on Applications of Interval Analysis to Systems and Control, 1999).
+// The tests (PlacedPredicates.*) check every sign against the rational
+// evaluation in all four rounding modes, on and near zero, with inputs in
+// and out of stage 1's range.
+#pragma once
+
+#include <minksum/kernel.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+namespace minksum {
+
+// An interval of doubles [lo, hi] that contains an exact rational.
+struct Bounds {
+  double lo = 0, hi = 0;
+};
+struct PointBounds {
+  Bounds x, y, z;
+  // Each coordinate is a double (lo = hi), zero or of magnitude in
+  // [2^-240, 2^240): the point may enter the doubles stage (set by
+  // point_bounds).
+  bool doubles = false;
+};
+// The smallest such interval around q (lo = hi = q when q is a double).
+Bounds rational_bounds(const Rational& q);
+PointBounds point_bounds(const Point3& p);
+
+// x ↦ A x + t with exact rational entries, kept in their cheapest exact
+// form: doubles when the caller gave doubles (no GMP number is made for them
+// until an exact stage needs one), rationals otherwise.
+class PlacedMap {
+ public:
+  // The identity.
+  PlacedMap();
+  // A matrix of doubles (row-major) and a translation of doubles, each taken
+  // exactly as given.  The constructors throw UsageError for a non-finite
+  // entry and unless det A > 0 (decided exactly): an invertible map that
+  // keeps orientation maps a convex polytope onto one with the same faces
+  // and the same outward sides.
+  PlacedMap(const std::array<double, 9>& a, const Vec3d& t);
+  PlacedMap(const std::array<double, 9>& a, const Point3& t);
+  // A rational matrix and translation.
+  PlacedMap(const std::array<std::array<Rational, 3>, 3>& a, const Point3& t);
+  // The rotation of the non-zero integer quaternion q = (a, b, c, d) (the
+  // matrix of transform.hpp) followed by the translation t.
+  static PlacedMap rotation(const std::array<Integer, 4>& q, const Point3& t);
+
+  // The nearest doubles of A (row-major) and t: for the searches, never for
+  // a decision.
+  const std::array<double, 9>& approx_a() const { return approx_a_; }
+  const Vec3d& approx_t() const { return approx_t_; }
+  const std::array<Bounds, 9>& bounds_a() const { return bounds_a_; }
+  const PointBounds& bounds_t() const { return bounds_t_; }
+  // The exact entries (made on each call when they are doubles: the exact
+  // stages only).
+  Rational a(int row, int col) const;
+  Point3 t() const;
+  // True when A's entries and t's coordinates are all doubles.
+  bool doubles() const { return !exact_a_ && !exact_t_; }
+  // A p + t and A p, exactly.
+  Point3 apply(const Point3& p) const;
+  Point3 apply_linear(const Point3& p) const;
+
+ private:
+  void set_rational_a(const std::array<std::array<Rational, 3>, 3>& a);
+  void set_double_a(const std::array<double, 9>& a);
+  void set_t(const Point3& t);
+  void check_determinant() const;
+  void set_fast();
+  std::array<double, 9> approx_a_{};
+  Vec3d approx_t_;
+  std::array<Bounds, 9> bounds_a_{};
+  PointBounds bounds_t_;
+  // The exact values when they are not the doubles above.
+  std::shared_ptr<const std::array<std::array<Rational, 3>, 3>> exact_a_;
+  std::shared_ptr<const Point3> exact_t_;
+  // Stage 1 may read approx_a_ and approx_t_: they are the exact entries,
+  // each zero or of magnitude in [2^-240, 2^240).
+  bool fast_ = false;
+
+ public:
+  bool filter_ready() const { return fast_; }
+};
+
+// A direction n (doubles, taken exactly) pulled back through the linear part
+// of a placement: u = Aᵀ n, so that n · (A x) = u · x.  Built once per
+// direction; the signs below read its enclosure and, when it cannot decide,
+// the exact u (computed on first use).
+class PulledDirection {
+ public:
+  // Throws UsageError unless n is finite.
+  PulledDirection(const PlacedMap& m, const Vec3d& n);
+  // sign n · A (b − a) = sign u · (b − a): whether b lies beyond a along n
+  // once both are placed (the step of a support climb).  Degree 3 in the
+  // entries of n, A and the points.
+  int difference_sign(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const {
+    if (fast_ && ab.doubles && bb.doubles) {
+      // Stage 1 (the bound at the top of this header).
+      const double ax = ab.x.lo, ay = ab.y.lo, az = ab.z.lo, bx = bb.x.lo, by = bb.y.lo, bz = bb.z.lo;
+      const double s = (uf_[0] * (bx - ax) + uf_[1] * (by - ay)) + uf_[2] * (bz - az);
+      const double m = (um_[0] * (std::fabs(ax) + std::fabs(bx)) + um_[1] * (std::fabs(ay) + std::fabs(by))) +
+                       um_[2] * (std::fabs(az) + std::fabs(bz));
+      const double scaled = 0x1p+49 * s;
+      if (scaled > m) return 1;
+      if (scaled < -m) return -1;
+      if (m == 0) return 0;
+    }
+    return difference_sign_later(a, ab, b, bb);
+  }
+  const Vec3d& direction() const { return n_; }
+
+ private:
+  const PlacedMap* m_;
+  Vec3d n_;
+  mutable std::array<Bounds, 3> u_{};
+  mutable bool enclosure_ = false;
+  void make_enclosure() const;
+  // Stages 2 and 3.
+  int difference_sign_later(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
+  // Stage 1: û and U (see the top), when A and n are doubles in range.
+  bool fast_ = false;
+  std::array<double, 3> uf_{}, um_{};
+  mutable std::optional<Point3> exact_;
+};
+
+// sign n · ((A_q q + t_q) − (A_p p + t_p)): the gap along n between the
+// placed points p of P and q of Q.  With p the support of placed P along n
+// and q the support of placed Q along −n, a positive sign proves that the
+// plane normal to n separates them strictly, zero that it touches both.
+// Throws UsageError unless n is finite.
+int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const PointBounds& pb, const PlacedMap& mq,
+                    const Point3& q, const PointBounds& qb);
+
+// Whether the origin lies strictly inside the tetrahedron of the four points
+// d_k = (A_p p_k + t_p) − (A_q q_k + t_q), points of the Minkowski difference
+// of placed P and placed Q: orient3d(d_0, d_1, d_2, d_3) ≠ 0 and each of the
+// four orientations with d_k replaced by the origin has its sign (the
+// barycentric coordinates of the origin are all positive).  False for a flat
+// tetrahedron and for the origin on its boundary.  Degree 3 in the d_k.
+bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 4>& p,
+                                     const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
+                                     const std::array<const PointBounds*, 4>& qb);
+
+// How often the interval stage decided and how often the rationals did, on
+// the calling thread since it started (the doubles stage is not counted).
+struct PlacedPredicateCounts {
+  std::uint64_t filtered = 0, exact = 0;
+};
+PlacedPredicateCounts placed_predicate_counts();
+
+}  // namespace minksum

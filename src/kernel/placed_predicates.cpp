@@ -1,0 +1,313 @@
+// Exact signs on placed points: interval filter, then rationals
+// (placed_predicates.hpp gives the argument).
+#include "kernel/interval.hpp"
+
+#include <minksum/error.hpp>
+#include <minksum/placed_predicates.hpp>
+
+#include <cmath>
+
+namespace minksum {
+namespace {
+
+thread_local PlacedPredicateCounts g_counts;
+
+// Every function below evaluates in FastInterval under one
+// CGAL::Protect_FPU_rounding<true> guard (upward rounding for the whole
+// evaluation, the caller's mode restored on return).
+FastInterval iv(const Bounds& b) { return FastInterval(b.lo, b.hi); }
+FastIPoint iv(const PointBounds& b) { return {iv(b.x), iv(b.y), iv(b.z)}; }
+
+// A x + t (or A x) in intervals.
+FastIPoint apply(const PlacedMap& m, const FastIPoint& x, bool translate) {
+  const auto& a = m.bounds_a();
+  FastIPoint r{iv(a[0]) * x.x + iv(a[1]) * x.y + iv(a[2]) * x.z, iv(a[3]) * x.x + iv(a[4]) * x.y + iv(a[5]) * x.z,
+               iv(a[6]) * x.x + iv(a[7]) * x.y + iv(a[8]) * x.z};
+  if (translate) r = r + iv(m.bounds_t());
+  return r;
+}
+
+int exact_sign(const Rational& q) {
+  ++g_counts.exact;
+  return sgn(q);
+}
+
+Rational det3(const Point3& a, const Point3& b, const Point3& c) { return dot(a, cross(b, c)); }
+
+// Stage 1's range (placed_predicates.hpp): zero, or |x| in [2^-240, 2^240).
+constexpr double kFastMin = 0x1p-240, kFastMax = 0x1p+240;
+inline bool in_range(double x) {
+  const double a = std::fabs(x);
+  return a == 0 || (a >= kFastMin && a < kFastMax);
+}
+
+}  // namespace
+
+Bounds rational_bounds(const Rational& q) {
+  const Interval i = to_interval(q);
+  return {i.inf(), i.sup()};
+}
+
+PointBounds point_bounds(const Point3& p) {
+  PointBounds b{rational_bounds(p.x), rational_bounds(p.y), rational_bounds(p.z)};
+  b.doubles = b.x.lo == b.x.hi && b.y.lo == b.y.hi && b.z.lo == b.z.hi && in_range(b.x.lo) && in_range(b.y.lo) &&
+              in_range(b.z.lo);
+  return b;
+}
+
+PlacedMap::PlacedMap() : PlacedMap(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}, Vec3d{0, 0, 0}) {}
+
+PlacedMap::PlacedMap(const std::array<double, 9>& a, const Vec3d& t) {
+  for (double x : {t.x, t.y, t.z})
+    if (!std::isfinite(x)) throw UsageError("a placement's translation must be finite");
+  set_double_a(a);
+  approx_t_ = t;
+  bounds_t_ = {{t.x, t.x}, {t.y, t.y}, {t.z, t.z}};
+  check_determinant();
+  set_fast();
+}
+
+PlacedMap::PlacedMap(const std::array<double, 9>& a, const Point3& t) {
+  set_double_a(a);
+  set_t(t);
+  check_determinant();
+  set_fast();
+}
+
+PlacedMap::PlacedMap(const std::array<std::array<Rational, 3>, 3>& a, const Point3& t) {
+  set_rational_a(a);
+  set_t(t);
+  check_determinant();
+  set_fast();
+}
+
+PlacedMap PlacedMap::rotation(const std::array<Integer, 4>& q, const Point3& t) {
+  const Integer &a = q[0], &b = q[1], &c = q[2], &d = q[3];
+  const Integer aa = a * a, bb = b * b, cc = c * c, dd = d * d;
+  const Integer n = aa + bb + cc + dd;
+  if (sgn(n) == 0) throw UsageError("a rotation needs a non-zero quaternion, got 0,0,0,0");
+  const Integer e[3][3] = {
+      {aa + bb - cc - dd, 2 * (b * c - a * d), 2 * (b * d + a * c)},
+      {2 * (b * c + a * d), aa - bb + cc - dd, 2 * (c * d - a * b)},
+      {2 * (b * d - a * c), 2 * (c * d + a * b), aa - bb - cc + dd},
+  };
+  std::array<std::array<Rational, 3>, 3> r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      r[i][j] = Rational(e[i][j], n);
+      r[i][j].canonicalize();
+    }
+  PlacedMap m;
+  m.set_rational_a(r);
+  m.set_t(t);  // det = 1: the matrix of a unit quaternion is a rotation
+  m.set_fast();
+  return m;
+}
+
+void PlacedMap::set_double_a(const std::array<double, 9>& a) {
+  for (int k = 0; k < 9; ++k) {
+    if (!std::isfinite(a[k])) throw UsageError("a placement's matrix must have finite entries");
+    approx_a_[k] = a[k];
+    bounds_a_[k] = {a[k], a[k]};
+  }
+  exact_a_.reset();
+}
+
+void PlacedMap::set_rational_a(const std::array<std::array<Rational, 3>, 3>& a) {
+  bool doubles = true;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      approx_a_[3 * i + j] = to_double(a[i][j]);
+      bounds_a_[3 * i + j] = rational_bounds(a[i][j]);
+      doubles = doubles && bounds_a_[3 * i + j].lo == bounds_a_[3 * i + j].hi;
+    }
+  if (doubles) exact_a_.reset();
+  else exact_a_ = std::make_shared<const std::array<std::array<Rational, 3>, 3>>(a);
+}
+
+void PlacedMap::set_t(const Point3& t) {
+  approx_t_ = to_double(t);
+  bounds_t_ = point_bounds(t);
+  if (is_double(t)) exact_t_.reset();
+  else exact_t_ = std::make_shared<const Point3>(t);
+}
+
+void PlacedMap::set_fast() {
+  fast_ = doubles();
+  for (double x : approx_a_) fast_ = fast_ && in_range(x);
+  for (double x : {approx_t_.x, approx_t_.y, approx_t_.z}) fast_ = fast_ && in_range(x);
+}
+
+void PlacedMap::check_determinant() const {
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const auto& b = bounds_a_;
+    const FastIPoint r0{iv(b[0]), iv(b[1]), iv(b[2])}, r1{iv(b[3]), iv(b[4]), iv(b[5])},
+        r2{iv(b[6]), iv(b[7]), iv(b[8])};
+    const FastInterval det = dot(r0, cross(r1, r2));
+    if (det.inf() > 0) return;
+    if (det.sup() <= 0) throw UsageError("a placement's matrix must have a positive determinant (a rotation)");
+  }
+  const Point3 r0(a(0, 0), a(0, 1), a(0, 2)), r1(a(1, 0), a(1, 1), a(1, 2)), r2(a(2, 0), a(2, 1), a(2, 2));
+  if (sgn(det3(r0, r1, r2)) <= 0)
+    throw UsageError("a placement's matrix must have a positive determinant (a rotation)");
+}
+
+Rational PlacedMap::a(int row, int col) const {
+  if (exact_a_) return (*exact_a_)[row][col];
+  return Rational(approx_a_[3 * row + col]);
+}
+
+Point3 PlacedMap::t() const {
+  if (exact_t_) return *exact_t_;
+  return Point3(approx_t_.x, approx_t_.y, approx_t_.z);
+}
+
+Point3 PlacedMap::apply_linear(const Point3& p) const {
+  Point3 r;
+  for (int i = 0; i < 3; ++i) r[i] = a(i, 0) * p.x + a(i, 1) * p.y + a(i, 2) * p.z;
+  return r;
+}
+
+Point3 PlacedMap::apply(const Point3& p) const { return apply_linear(p) + t(); }
+
+PulledDirection::PulledDirection(const PlacedMap& m, const Vec3d& n) : m_(&m), n_(n) {
+  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
+    throw UsageError("a direction must have finite coordinates");
+  fast_ = m.filter_ready() && in_range(n.x) && in_range(n.y) && in_range(n.z);
+  if (fast_) {
+    const auto& a = m.approx_a();
+    for (int c = 0; c < 3; ++c) {
+      uf_[c] = (a[c] * n.x + a[3 + c] * n.y) + a[6 + c] * n.z;
+      um_[c] = (std::fabs(a[c]) * std::fabs(n.x) + std::fabs(a[3 + c]) * std::fabs(n.y)) +
+               std::fabs(a[6 + c]) * std::fabs(n.z);
+    }
+    return;  // the enclosure u_ is made on first need (stage 2)
+  }
+  make_enclosure();
+}
+
+void PulledDirection::make_enclosure() const {
+  enclosure_ = true;
+  const PlacedMap& m = *m_;
+  const Vec3d& n = n_;
+  CGAL::Protect_FPU_rounding<true> upward;
+  const auto& a = m.bounds_a();
+  const FastInterval nx(n.x), ny(n.y), nz(n.z);
+  for (int c = 0; c < 3; ++c) {
+    const FastInterval u = iv(a[c]) * nx + iv(a[3 + c]) * ny + iv(a[6 + c]) * nz;
+    u_[c] = {u.inf(), u.sup()};
+  }
+}
+
+int PulledDirection::difference_sign_later(const Point3& a, const PointBounds& ab, const Point3& b,
+                                           const PointBounds& bb) const {
+  if (!enclosure_) make_enclosure();
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const FastIPoint d = iv(bb) - iv(ab);
+    const int s = sign_of(iv(u_[0]) * d.x + iv(u_[1]) * d.y + iv(u_[2]) * d.z);
+    if (s != kUncertain) {
+      ++g_counts.filtered;
+      return s;
+    }
+  }
+  if (!exact_) {
+    Point3 u;
+    const Point3 n(n_.x, n_.y, n_.z);
+    for (int c = 0; c < 3; ++c) u[c] = m_->a(0, c) * n.x + m_->a(1, c) * n.y + m_->a(2, c) * n.z;
+    exact_ = std::move(u);
+  }
+  return exact_sign(dot(*exact_, b - a));
+}
+
+int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const PointBounds& pb, const PlacedMap& mq,
+                    const Point3& q, const PointBounds& qb) {
+  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
+    throw UsageError("a direction must have finite coordinates");
+  if (mp.filter_ready() && mq.filter_ready() && in_range(n.x) && in_range(n.y) && in_range(n.z) && pb.doubles &&
+      qb.doubles) {
+    const auto &ap = mp.approx_a(), &aq = mq.approx_a();
+    const Vec3d &tp = mp.approx_t(), &tq = mq.approx_t();
+    const double P[3] = {pb.x.lo, pb.y.lo, pb.z.lo}, Q[3] = {qb.x.lo, qb.y.lo, qb.z.lo};
+    const double T[2][3] = {{tp.x, tp.y, tp.z}, {tq.x, tq.y, tq.z}}, N[3] = {n.x, n.y, n.z};
+    double g = 0, b = 0;
+    for (int r = 0; r < 3; ++r) {
+      const double x = ((aq[3 * r] * Q[0] + aq[3 * r + 1] * Q[1]) + aq[3 * r + 2] * Q[2]) + T[1][r];
+      const double y = ((ap[3 * r] * P[0] + ap[3 * r + 1] * P[1]) + ap[3 * r + 2] * P[2]) + T[0][r];
+      const double mx = ((std::fabs(aq[3 * r]) * std::fabs(Q[0]) + std::fabs(aq[3 * r + 1]) * std::fabs(Q[1])) +
+                         std::fabs(aq[3 * r + 2]) * std::fabs(Q[2])) + std::fabs(T[1][r]);
+      const double my = ((std::fabs(ap[3 * r]) * std::fabs(P[0]) + std::fabs(ap[3 * r + 1]) * std::fabs(P[1])) +
+                         std::fabs(ap[3 * r + 2]) * std::fabs(P[2])) + std::fabs(T[0][r]);
+      // Summed in the order of the analysis: ((t_0 + t_1) + t_2).
+      g = r == 0 ? N[r] * (x - y) : g + N[r] * (x - y);
+      b = r == 0 ? std::fabs(N[r]) * (mx + my) : b + std::fabs(N[r]) * (mx + my);
+    }
+    const double scaled = 0x1p+48 * g;
+    if (scaled > b || scaled < -b || b == 0) {
+      ++g_counts.filtered;
+      return scaled > b ? 1 : (scaled < -b ? -1 : 0);
+    }
+  }
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const FastIPoint d = apply(mq, iv(qb), true) - apply(mp, iv(pb), true);
+    const int s = sign_of(FastInterval(n.x) * d.x + FastInterval(n.y) * d.y + FastInterval(n.z) * d.z);
+    if (s != kUncertain) {
+      ++g_counts.filtered;
+      return s;
+    }
+  }
+  return exact_sign(dot(Point3(n.x, n.y, n.z), mq.apply(q) - mp.apply(p)));
+}
+
+bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 4>& p,
+                                     const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
+                                     const std::array<const PointBounds*, 4>& qb) {
+  // The five signed volumes, orient3d(d0, d1, d2, d3) = det(d1 − d0, d2 − d0,
+  // d3 − d0) and the same with d_k the origin, evaluated on intervals first.
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    std::array<FastIPoint, 4> d;
+    for (int k = 0; k < 4; ++k) d[k] = apply(mp, iv(*pb[k]), true) - apply(mq, iv(*qb[k]), true);
+    const auto volume = [&](const FastIPoint& a, const FastIPoint& b, const FastIPoint& c, const FastIPoint& e) {
+      return sign_of(dot(b - a, cross(c - a, e - a)));
+    };
+    const FastIPoint o{FastInterval(0), FastInterval(0), FastInterval(0)};
+    const int total = volume(d[0], d[1], d[2], d[3]);
+    bool decided = total != kUncertain;
+    bool inside = decided && total != 0;
+    for (int k = 0; k < 4 && decided && inside; ++k) {
+      std::array<FastIPoint, 4> e = d;
+      e[k] = o;
+      const int s = volume(e[0], e[1], e[2], e[3]);
+      if (s == kUncertain) decided = false;
+      else if (s != total) inside = false;
+    }
+    if (decided) {
+      ++g_counts.filtered;
+      return inside;
+    }
+  }
+  ++g_counts.exact;
+  std::array<Point3, 4> d;
+  for (int k = 0; k < 4; ++k) d[k] = mp.apply(*p[k]) - mq.apply(*q[k]);
+  const Point3 o(0, 0, 0);
+  const auto volume = [](const Point3& a, const Point3& b, const Point3& c, const Point3& e) {
+    return sgn(det3(b - a, c - a, e - a));
+  };
+  const int total = volume(d[0], d[1], d[2], d[3]);
+  if (total == 0) return false;
+  for (int k = 0; k < 4; ++k) {
+    std::array<Point3, 4> e = d;
+    e[k] = o;
+    if (volume(e[0], e[1], e[2], e[3]) != total) return false;
+  }
+  return true;
+}
+
+PlacedPredicateCounts placed_predicate_counts() {
+  return g_counts;
+}
+
+}  // namespace minksum

@@ -1,0 +1,135 @@
+// minksum — exact collision of two convex polytopes each under its own pose
+// (rotation and translation), without building P ⊕ (−Q).
+//
+// P is placed by x ↦ R_P x + t_P and Q by x ↦ R_Q x + t_Q.  A rotation is an
+// integer quaternion (the exact rational matrix of transform.hpp, as
+// "@rot:A,B,C,D") or a 3×3 matrix of doubles taken exactly as given: the
+// answer is exact for that matrix (which need not be exactly orthogonal; it
+// must have a positive determinant, so that it maps a convex polytope onto a
+// convex polytope with the same faces).
+//
+// The status follows the translation queries' convention (proximity.hpp):
+// separate (no common point), touching (common points, interiors disjoint),
+// penetrating (the interiors meet).  The search runs on doubles — GJK on the
+// Minkowski difference D of the placed bodies, each support found by hill
+// climbing on the body's vertex graph from the previous witness — and the
+// answer is certified exactly (docs/proximity.md "Rigid motion"):
+//   * separate: a direction n (doubles, taken exactly), a vertex p of P and a
+//     vertex q of Q such that p is a maximum of n · x over placed P and q a
+//     minimum over placed Q (no neighbour in the vertex graph is further,
+//     exact signs) and n · (q' − p') > 0 (exact sign);
+//   * penetrating: four pairs (p_k, q_k) whose differences, points of D,
+//     span a tetrahedron that holds the origin strictly inside (exact
+//     signs);
+//   * anything else — touching poses, and poses the double search leaves
+//     undecided — is decided in exact arithmetic: M = R_P P ⊕ (−R_Q Q) is
+//     built exactly and asked for t_Q − t_P.  This is the slow path (the
+//     cost of building M), taken where the exact answer is touching or
+//     within rounding of it.
+// Every sign is an exact sign (placed_predicates.hpp: interval filter, then
+// rationals).
+#pragma once
+
+#include <minksum/placed_predicates.hpp>
+#include <minksum/polytope.hpp>
+#include <minksum/proximity.hpp>
+#include <minksum/transform.hpp>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+
+namespace minksum {
+
+// A rigid placement x ↦ R x + t (see the top of this header).
+class RigidPose {
+ public:
+  RigidPose() = default;  // the identity
+  explicit RigidPose(PlacedMap map) : map_(std::move(map)) {}
+  static RigidPose translation(const Point3& t);
+  // The rotation of the non-zero integer quaternion q, then t.
+  static RigidPose quaternion(const Quaternion& q, const Point3& t);
+  // A row-major matrix of doubles, taken exactly, then t.  Throws
+  // UsageError for a non-finite entry or a determinant ≤ 0.
+  static RigidPose matrix(const std::array<double, 9>& r, const Point3& t);
+  static RigidPose matrix(const std::array<double, 9>& r, const Vec3d& t);
+  const PlacedMap& map() const { return map_; }
+
+ private:
+  PlacedMap map_;
+};
+
+// A convex polytope prepared for queries under rigid motion: its vertex
+// graph, its vertices as doubles and their interval enclosures.  Built once
+// (O(V + E)); copies share it, and every pose and every thread reads it
+// without synchronisation.
+class RigidBody {
+ public:
+  explicit RigidBody(ConvexPolytope p);
+  const ConvexPolytope& polytope() const;
+  struct Data;
+  const Data& data() const { return *d_; }
+
+ private:
+  std::shared_ptr<const Data> d_;
+};
+
+// How an answer was proved.
+enum class RigidCertificate : std::uint8_t {
+  separating_plane,  // separate: the plane of `normal` between the supports p and q
+  simplex,           // penetrating: a tetrahedron of D holding the origin strictly
+  exact,             // built M exactly (touching, or undecided by the search)
+};
+// "separating_plane", "simplex", "exact".
+const char* rigid_certificate_name(RigidCertificate c);
+
+struct RigidCollision {
+  ContactStatus status = ContactStatus::separate;
+  RigidCertificate certificate = RigidCertificate::exact;
+  // separating_plane: the direction n (taken exactly) and the vertices p of
+  // P and q of Q with n·p' = max over placed P, n·q' = min over placed Q,
+  // n·p' < n·q'.  Otherwise n is zero and p, q the last support pair of the
+  // search.
+  Vec3d normal;
+  Index p = kNoIndex, q = kNoIndex;
+};
+
+// The witnesses a query starts from and leaves for the next one: the last
+// support vertices of P and Q and the last search direction (zero: none).
+// A coherent sequence of poses passed with the same RigidWarmStart costs a
+// few support steps per query.
+struct RigidWarmStart {
+  Index p = 0, q = 0;
+  Vec3d direction;
+};
+
+// Counters of the calling thread since it started: queries and how they were
+// proved, GJK iterations, support-climb steps.
+struct RigidStats {
+  std::uint64_t queries = 0, separating_plane = 0, simplex = 0, exact = 0;
+  std::uint64_t iterations = 0, climb_steps = 0;
+};
+RigidStats rigid_stats();
+
+// Collision of placed P and placed Q.  `warm` (optional) is read and updated.
+RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                       RigidWarmStart* warm = nullptr);
+
+// The same for N poses: poses_p and poses_q each hold N poses or a single one
+// (the same pose for every query); out must hold N answers.  The poses are
+// split into runs of consecutive poses over `threads` threads (0: one per
+// hardware thread, 1: the calling thread), each run warm-started from its
+// previous pose, so a trajectory stays coherent within a run.  Throws
+// UsageError for mismatched sizes.
+void collide(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
+             std::span<const RigidPose> poses_q, std::span<RigidCollision> out, unsigned threads = 0);
+
+// The exact answer by building M = R_P P ⊕ (−R_Q Q) (the fall-back above,
+// on its own: an independent check of the search; O(cost of the sum)).
+ContactStatus collide_exact(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q);
+
+// The polytope R P (the linear part of the pose only), exactly.
+ConvexPolytope placed_linear(const ConvexPolytope& p, const PlacedMap& map);
+
+}  // namespace minksum

@@ -1,0 +1,430 @@
+// Collision of two placed convex polytopes: GJK on doubles with supports by
+// hill climbing, certified by exact signs (rigid_proximity.hpp,
+// docs/proximity.md "Rigid motion").
+#include <minksum/error.hpp>
+#include <minksum/parallel.hpp>
+#include <minksum/rigid_proximity.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace minksum {
+
+struct RigidBody::Data {
+  ConvexPolytope poly;
+  std::vector<Vec3d> approx;          // vertices, nearest doubles
+  std::vector<PointBounds> bounds;    // their enclosures
+  std::vector<Index> first;           // neighbours of v: nbr[first[v] .. first[v + 1])
+  std::vector<Index> nbr;
+  Vec3d centroid;                     // of the vertices (doubles): the first search direction
+  const Point3* exact = nullptr;      // poly.points(), exact (built once)
+};
+
+namespace {
+
+thread_local RigidStats g_stats;
+
+struct V3 {
+  double x = 0, y = 0, z = 0;
+};
+inline V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 operator*(double s, const V3& a) { return {s * a.x, s * a.y, s * a.z}; }
+inline V3 operator-(const V3& a) { return {-a.x, -a.y, -a.z}; }
+inline double dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V3 cross(const V3& a, const V3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline V3 v3(const Vec3d& v) { return {v.x, v.y, v.z}; }
+
+// One placed body for the search: the pose's doubles.
+struct Placed {
+  const RigidBody::Data& d;
+  const PlacedMap& map;
+  const std::array<double, 9>& a;
+  V3 t;
+  Placed(const RigidBody::Data& data, const PlacedMap& m) : d(data), map(m), a(m.approx_a()), t(v3(m.approx_t())) {}
+  // Aᵀ n (doubles).
+  V3 pull(const V3& n) const {
+    return {a[0] * n.x + a[3] * n.y + a[6] * n.z, a[1] * n.x + a[4] * n.y + a[7] * n.z,
+            a[2] * n.x + a[5] * n.y + a[8] * n.z};
+  }
+  V3 point(Index v) const {
+    const Vec3d& p = d.approx[v];
+    return {a[0] * p.x + a[1] * p.y + a[2] * p.z + t.x, a[3] * p.x + a[4] * p.y + a[5] * p.z + t.y,
+            a[6] * p.x + a[7] * p.y + a[8] * p.z + t.z};
+  }
+  // A vertex maximising n · x over the placed body, by steepest ascent on
+  // the vertex graph from `v` (doubles: a guess, certified separately).
+  Index support(const V3& n, Index v) const {
+    const V3 u = pull(n);
+    double best = dot(u, v3(d.approx[v]));
+    for (;;) {
+      Index next = v;
+      for (Index k = d.first[v]; k < d.first[v + 1]; ++k) {
+        const Index w = d.nbr[k];
+        const double s = dot(u, v3(d.approx[w]));
+        if (s > best) best = s, next = w;
+      }
+      if (next == v) return v;
+      v = next;
+      ++g_stats.climb_steps;
+    }
+  }
+  // The same with exact signs: from v, move to a neighbour that is further
+  // along n (exactly) until none is.  A vertex no neighbour of which is
+  // further is a maximum over the polytope (its cone of edges holds the
+  // polytope).
+  Index certified_support(const Vec3d& n, Index v) const {
+    const PulledDirection u(map, n);
+    for (;;) {
+      Index next = v;
+      const Point3& pv = d.exact[v];
+      for (Index k = d.first[v]; k < d.first[v + 1]; ++k) {
+        const Index w = d.nbr[k];
+        if (u.difference_sign(pv, d.bounds[v], d.exact[w], d.bounds[w]) > 0) {
+          next = w;
+          break;
+        }
+      }
+      if (next == v) return v;
+      v = next;
+      ++g_stats.climb_steps;
+    }
+  }
+};
+
+// A vertex of the GJK simplex: w = p' − q'.
+struct SimplexVertex {
+  V3 w;
+  Index p, q;
+};
+
+// The closest point to the origin of the simplex s (1–4 vertices), s
+// reduced to the vertices of the smallest face holding it.  Returns false
+// when the origin lies inside the tetrahedron (s keeps its 4 vertices).
+// Doubles only (C. Ericson, "Real-Time Collision Detection", Morgan
+// Kaufmann 2005, §5.1.5–5.1.6): a guide for the search, never a decision.
+V3 closest_on_triangle(const SimplexVertex& A, const SimplexVertex& B, const SimplexVertex& C,
+                       std::array<SimplexVertex, 4>& out, int& n) {
+  const V3 a = A.w, b = B.w, c = C.w;
+  const V3 ab = b - a, ac = c - a, ap = -a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) {
+    out[0] = A, n = 1;
+    return a;
+  }
+  const V3 bp = -b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) {
+    out[0] = B, n = 1;
+    return b;
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    out[0] = A, out[1] = B, n = 2;
+    return a + v * ab;
+  }
+  const V3 cp = -c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) {
+    out[0] = C, n = 1;
+    return c;
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    out[0] = A, out[1] = C, n = 2;
+    return a + w * ac;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    out[0] = B, out[1] = C, n = 2;
+    return b + w * (c - b);
+  }
+  const double denom = 1 / (va + vb + vc);
+  out[0] = A, out[1] = B, out[2] = C, n = 3;
+  return a + (vb * denom) * ab + (vc * denom) * ac;
+}
+
+bool closest_on_simplex(std::array<SimplexVertex, 4>& s, int& n, V3& v) {
+  if (n == 1) {
+    v = s[0].w;
+    return true;
+  }
+  if (n == 2) {
+    const V3 a = s[0].w, ab = s[1].w - a;
+    const double l = dot(ab, ab);
+    const double t = l > 0 ? -dot(a, ab) / l : 0;
+    if (t <= 0) {
+      n = 1;
+      v = a;
+    } else if (t >= 1) {
+      s[0] = s[1], n = 1;
+      v = s[0].w;
+    } else {
+      v = a + t * ab;
+    }
+    return true;
+  }
+  if (n == 3) {
+    std::array<SimplexVertex, 4> out;
+    int m = 0;
+    v = closest_on_triangle(s[0], s[1], s[2], out, m);
+    s = out, n = m;
+    return true;
+  }
+  // A tetrahedron: the origin is inside unless it lies beyond the plane of a
+  // face (on the side away from the fourth vertex); then the closest point
+  // is on such a face.  A flat tetrahedron has no inside: every face is a
+  // candidate.
+  const V3 a = s[0].w, b = s[1].w, c = s[2].w, d = s[3].w;
+  const double vol = dot(b - a, cross(c - a, d - a));
+  const double scale = std::max({dot(b - a, b - a), dot(c - a, c - a), dot(d - a, d - a)});
+  const bool flat = !(std::fabs(vol) > 1e-12 * scale * std::sqrt(scale));
+  static constexpr int faces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
+  double best = std::numeric_limits<double>::infinity();
+  std::array<SimplexVertex, 4> best_s;
+  int best_n = 0;
+  bool outside = false;
+  for (const auto& f : faces) {
+    const V3 p0 = s[f[0]].w, p1 = s[f[1]].w, p2 = s[f[2]].w, p3 = s[f[3]].w;
+    const V3 nf = cross(p1 - p0, p2 - p0);
+    const double so = dot(-p0, nf), sd = dot(p3 - p0, nf);
+    if (!flat && !(so * sd < 0)) continue;
+    outside = true;
+    std::array<SimplexVertex, 4> out;
+    int m = 0;
+    const V3 x = closest_on_triangle(s[f[0]], s[f[1]], s[f[2]], out, m);
+    const double dd = dot(x, x);
+    if (dd < best) best = dd, best_s = out, best_n = m, v = x;
+  }
+  if (!outside) return false;
+  s = best_s, n = best_n;
+  return true;
+}
+
+struct Query {
+  Placed P, Q;
+  const RigidBody::Data& dp;
+  const RigidBody::Data& dq;
+
+  // Certify "separate" along n from the supports' guesses ip, iq.
+  bool certify_separation(const Vec3d& n, Index& ip, Index& iq) const {
+    ip = P.certified_support(n, ip);
+    iq = Q.certified_support(Vec3d{-n.x, -n.y, -n.z}, iq);
+    return placed_gap_sign(n, P.map, dp.exact[ip], dp.bounds[ip], Q.map, dq.exact[iq], dq.bounds[iq]) > 0;
+  }
+  bool certify_tetrahedron(const std::array<SimplexVertex, 4>& s) const {
+    std::array<const Point3*, 4> p, q;
+    std::array<const PointBounds*, 4> pb, qb;
+    for (int k = 0; k < 4; ++k) {
+      p[k] = &dp.exact[s[k].p], pb[k] = &dp.bounds[s[k].p];
+      q[k] = &dq.exact[s[k].q], qb[k] = &dq.bounds[s[k].q];
+    }
+    return placed_tetrahedron_holds_origin(P.map, Q.map, p, pb, q, qb);
+  }
+  SimplexVertex support(const V3& dir, Index ip, Index iq) const {
+    // The support of D = P' − Q' along dir: P's along dir minus Q's along −dir.
+    const Index a = P.support(dir, ip), b = Q.support(-dir, iq);
+    return {P.point(a) - Q.point(b), a, b};
+  }
+};
+
+constexpr int kMaxIterations = 128;
+
+}  // namespace
+
+const char* rigid_certificate_name(RigidCertificate c) {
+  switch (c) {
+    case RigidCertificate::separating_plane:
+      return "separating_plane";
+    case RigidCertificate::simplex:
+      return "simplex";
+    case RigidCertificate::exact:
+      return "exact";
+  }
+  return "exact";
+}
+
+RigidPose RigidPose::translation(const Point3& t) {
+  return RigidPose(PlacedMap(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}, t));
+}
+RigidPose RigidPose::quaternion(const Quaternion& q, const Point3& t) { return RigidPose(PlacedMap::rotation(q, t)); }
+RigidPose RigidPose::matrix(const std::array<double, 9>& r, const Point3& t) { return RigidPose(PlacedMap(r, t)); }
+RigidPose RigidPose::matrix(const std::array<double, 9>& r, const Vec3d& t) { return RigidPose(PlacedMap(r, t)); }
+
+RigidBody::RigidBody(ConvexPolytope p) {
+  auto d = std::make_shared<Data>();
+  d->poly = std::move(p);
+  const ConvexPolytope& poly = d->poly;
+  const Index nv = poly.num_vertices();
+  d->approx.resize(nv);
+  d->bounds.resize(nv);
+  d->first.assign(nv + 1, 0);
+  double cx = 0, cy = 0, cz = 0;
+  for (Index v = 0; v < nv; ++v) {
+    d->approx[v] = poly.approx(v);
+    d->bounds[v] = point_bounds(poly.point(v));
+    cx += d->approx[v].x, cy += d->approx[v].y, cz += d->approx[v].z;
+    d->first[v + 1] = d->first[v] + poly.vertex_degree(v);
+  }
+  d->centroid = {cx / nv, cy / nv, cz / nv};
+  d->exact = poly.points().data();
+  d->nbr.resize(d->first[nv]);
+  for (Index v = 0; v < nv; ++v) {
+    Index k = d->first[v];
+    for (Index w : poly.vertex_neighbours(v)) d->nbr[k++] = w;
+  }
+  d_ = std::move(d);
+}
+
+const ConvexPolytope& RigidBody::polytope() const { return d_->poly; }
+
+RigidStats rigid_stats() { return g_stats; }
+
+ConvexPolytope placed_linear(const ConvexPolytope& p, const PlacedMap& map) {
+  Mesh m = p.to_mesh();
+  m.points.transform([&](const Point3& x) { return map.apply_linear(x); });
+  return ConvexPolytope::from_mesh(m, "placed polytope");
+}
+
+ContactStatus collide_exact(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q) {
+  TranslationalObstacle ob(placed_linear(p.polytope(), pose_p.map()), placed_linear(q.polytope(), pose_q.map()));
+  return ob.collide(pose_p.map().t(), pose_q.map().t()).status;
+}
+
+RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                       RigidWarmStart* warm) {
+  ++g_stats.queries;
+  const Query qu{Placed(p.data(), pose_p.map()), Placed(q.data(), pose_q.map()), p.data(), q.data()};
+  RigidWarmStart start;
+  if (warm) start = *warm;
+  if (start.p >= p.data().approx.size()) start.p = 0;
+  if (start.q >= q.data().approx.size()) start.q = 0;
+  V3 dir = v3(start.direction);
+  if (!(dot(dir, dir) > 0) || !std::isfinite(dot(dir, dir))) {
+    // From the centre of placed Q towards the centre of placed P: the
+    // support of D along −dir is near the closest point of D to the origin.
+    const auto centre = [](const Placed& b) {
+      const Vec3d& c = b.d.centroid;
+      const auto& a = b.a;
+      return V3{a[0] * c.x + a[1] * c.y + a[2] * c.z + b.t.x, a[3] * c.x + a[4] * c.y + a[5] * c.z + b.t.y,
+                a[6] * c.x + a[7] * c.y + a[8] * c.z + b.t.z};
+    };
+    dir = centre(qu.P) - centre(qu.Q);
+    if (!(dot(dir, dir) > 0)) dir = {1, 0, 0};
+  }
+
+  RigidCollision r;
+  std::array<SimplexVertex, 4> s;
+  int n = 1;
+  s[0] = qu.support(-dir, start.p, start.q);
+  V3 v = s[0].w;
+  Index ip = s[0].p, iq = s[0].q;
+  bool decided = false;
+  double last = std::numeric_limits<double>::infinity();
+  // A separating plane of normal nrm (doubles, taken exactly), from the
+  // support guesses cp, cq: certified or not.
+  const auto try_plane = [&](const Vec3d& nrm, Index cp, Index cq) {
+    // A normal that is zero, or not finite (the search's doubles overflow or
+    // underflow on bodies of extreme size), proves nothing.
+    const double l1 = std::fabs(nrm.x) + std::fabs(nrm.y) + std::fabs(nrm.z);
+    if (!(l1 > 0) || !std::isfinite(l1)) return false;
+    if (!qu.certify_separation(nrm, cp, cq)) return false;
+    r.status = ContactStatus::separate;
+    r.certificate = RigidCertificate::separating_plane;
+    r.normal = nrm;
+    r.p = cp, r.q = cq;
+    return true;
+  };
+  // The normal of the simplex's triangle, turned towards the origin.  Near
+  // contact the closest point v is tiny and its direction is only as good
+  // as its absolute rounding (about 1e-16 over |v|), while the triangle,
+  // which lies on the facet of D nearest to the origin, gives that facet's
+  // normal to about 1e-16 relative whatever the distance.
+  const auto triangle_normal = [&]() {
+    V3 nt = cross(s[1].w - s[0].w, s[2].w - s[0].w);
+    if (dot(nt, s[0].w) > 0) nt = -nt;
+    return Vec3d{nt.x, nt.y, nt.z};
+  };
+  bool tried_triangle = false;
+  for (int it = 0; it < kMaxIterations && !decided; ++it) {
+    ++g_stats.iterations;
+    const double vv = dot(v, v);
+    if (!(vv > 0)) break;  // the origin on the simplex (in doubles): touching or near it
+    const SimplexVertex w = qu.support(-v, ip, iq);
+    ip = w.p, iq = w.q;
+    const double vw = dot(v, w.w);
+    if (vw > 0) {
+      // −v separates in doubles; certify it, or the triangle's normal.
+      decided = try_plane(Vec3d{-v.x, -v.y, -v.z}, w.p, w.q);
+      if (!decided && n == 3) {
+        tried_triangle = true;
+        decided = try_plane(triangle_normal(), s[0].p, s[0].q);
+      }
+      if (decided) break;
+    }
+    bool repeated = false;
+    for (int k = 0; k < n; ++k) repeated = repeated || (s[k].p == w.p && s[k].q == w.q);
+    if (repeated || !(vv < last) || vv - vw <= 1e-15 * vv) break;  // converged without a certificate
+    last = vv;
+    s[n++] = w;
+    tried_triangle = false;
+    if (!closest_on_simplex(s, n, v)) {
+      if (qu.certify_tetrahedron(s)) {
+        r.status = ContactStatus::penetrating;
+        r.certificate = RigidCertificate::simplex;
+        r.p = w.p, r.q = w.q;
+        decided = true;
+      }
+      break;
+    }
+  }
+  if (!decided && n == 3 && !tried_triangle) decided = try_plane(triangle_normal(), s[0].p, s[0].q);
+  if (!decided) {
+    r.status = collide_exact(p, pose_p, q, pose_q);
+    r.certificate = RigidCertificate::exact;
+    r.p = ip, r.q = iq;
+  }
+  switch (r.certificate) {
+    case RigidCertificate::separating_plane:
+      ++g_stats.separating_plane;
+      break;
+    case RigidCertificate::simplex:
+      ++g_stats.simplex;
+      break;
+    case RigidCertificate::exact:
+      ++g_stats.exact;
+      break;
+  }
+  if (warm) {
+    warm->p = r.p, warm->q = r.q;
+    warm->direction = {v.x, v.y, v.z};
+  }
+  return r;
+}
+
+void collide(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
+             std::span<const RigidPose> poses_q, std::span<RigidCollision> out, unsigned threads) {
+  const std::size_t n = out.size();
+  const auto fits = [n](std::size_t k) { return k == n || k == 1; };
+  if (!fits(poses_p.size()) || !fits(poses_q.size()))
+    throw UsageError("collide: " + std::to_string(n) + " answers need " + std::to_string(n) +
+                     " poses (or one) of each body, got " + std::to_string(poses_p.size()) + " and " +
+                     std::to_string(poses_q.size()));
+  if (n == 0) return;
+  constexpr std::size_t kRun = 256;  // consecutive poses per job, warm-started along the run
+  const std::size_t runs = (n + kRun - 1) / kRun;
+  parallel_for(runs, threads, [&](std::size_t run) {
+    RigidWarmStart warm;
+    const std::size_t end = std::min(n, (run + 1) * kRun);
+    for (std::size_t i = run * kRun; i < end; ++i)
+      out[i] = collide(p, poses_p[poses_p.size() == 1 ? 0 : i], q, poses_q[poses_q.size() == 1 ? 0 : i], &warm);
+  });
+}
+
+}  // namespace minksum

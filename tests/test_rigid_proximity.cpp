@@ -1,0 +1,493 @@
+// Collision of two convex polytopes under rigid motion (rigid_proximity.hpp)
+// and the placed predicates behind it (placed_predicates.hpp): every answer
+// against exact arithmetic.
+#include <gtest/gtest.h>
+
+#include <minksum/catalog.hpp>
+#include <minksum/error.hpp>
+#include <minksum/placed_predicates.hpp>
+#include <minksum/rigid_proximity.hpp>
+
+#include <cfenv>
+#include <cstdio>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+
+using namespace minksum;
+using minksum::testing::P;
+
+namespace {
+
+// ---------------------------------------------------------------------------
+// Exact references.
+
+Point3 pull_exact(const PlacedMap& m, const Vec3d& n) {
+  const Point3 e(n.x, n.y, n.z);
+  Point3 u;
+  for (int c = 0; c < 3; ++c) u[c] = m.a(0, c) * e.x + m.a(1, c) * e.y + m.a(2, c) * e.z;
+  return u;
+}
+
+int tetra_reference(const std::array<Point3, 4>& d) {
+  const auto vol = [](const Point3& a, const Point3& b, const Point3& c, const Point3& e) {
+    return sgn(dot(b - a, cross(c - a, e - a)));
+  };
+  const int total = vol(d[0], d[1], d[2], d[3]);
+  if (total == 0) return 0;
+  for (int k = 0; k < 4; ++k) {
+    auto e = d;
+    e[k] = P(0, 0, 0);
+    if (vol(e[0], e[1], e[2], e[3]) != total) return 0;
+  }
+  return 1;
+}
+
+// The status by separating axes, exactly: the largest gap
+// min over Q' of n·x − max over P' of n·x over the facet normals of both
+// placed bodies and the cross products of their edges (every facet normal of
+// P' ⊕ (−Q') is one of them, up to sign): > 0 separate, 0 touching, < 0
+// penetrating.  O((F + E²)·V) rationals: small bodies only.
+ContactStatus sat_status(const ConvexPolytope& a, const PlacedMap& ma, const ConvexPolytope& b, const PlacedMap& mb) {
+  std::vector<Point3> pa, pb;
+  for (Index v = 0; v < a.num_vertices(); ++v) pa.push_back(ma.apply(a.point(v)));
+  for (Index v = 0; v < b.num_vertices(); ++v) pb.push_back(mb.apply(b.point(v)));
+  std::vector<Point3> axes;
+  const auto facet_normals = [&](const ConvexPolytope& p, const std::vector<Point3>& x) {
+    for (Index f = 0; f < p.num_facets(); ++f) {
+      const auto vs = p.facet_vertices(f);
+      axes.push_back(cross(x[vs[1]] - x[vs[0]], x[vs[2]] - x[vs[0]]));
+    }
+  };
+  facet_normals(a, pa);
+  facet_normals(b, pb);
+  for (Index e = 0; e < a.num_edges(); ++e)
+    for (Index g = 0; g < b.num_edges(); ++g) {
+      const Point3 c = cross(pa[a.target(2 * e)] - pa[a.origin(2 * e)], pb[b.target(2 * g)] - pb[b.origin(2 * g)]);
+      if (!is_zero(c)) axes.push_back(c);
+    }
+  int best = -1;
+  for (const Point3& n0 : axes)
+    for (int sign : {1, -1}) {
+      const Point3 n = Rational(sign) * n0;
+      Rational maxa = dot(n, pa[0]), minb = dot(n, pb[0]);
+      for (const Point3& x : pa) maxa = std::max(maxa, dot(n, x));
+      for (const Point3& x : pb) minb = std::min(minb, dot(n, x));
+      best = std::max(best, sgn(Rational(minb - maxa)));
+      if (best > 0) return ContactStatus::separate;
+    }
+  return best == 0 ? ContactStatus::touching : ContactStatus::penetrating;
+}
+
+// ---------------------------------------------------------------------------
+// Random poses.
+
+struct Rng {
+  std::mt19937_64 g;
+  explicit Rng(std::uint64_t seed) : g(seed) {}
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(g); }
+  long integer(long lo, long hi) { return std::uniform_int_distribution<long>(lo, hi)(g); }
+};
+
+Quaternion random_quaternion(Rng& r) {
+  for (;;) {
+    Quaternion q{Integer(r.integer(-9, 9)), Integer(r.integer(-9, 9)), Integer(r.integer(-9, 9)),
+                 Integer(r.integer(-9, 9))};
+    if (sgn(q[0]) || sgn(q[1]) || sgn(q[2]) || sgn(q[3])) return q;
+  }
+}
+
+// The doubles of a rotation by a random unit quaternion: near orthogonal,
+// not exactly; taken exactly as given.
+std::array<double, 9> random_matrix(Rng& r) {
+  double a = r.uniform(-1, 1), b = r.uniform(-1, 1), c = r.uniform(-1, 1), d = r.uniform(-1, 1);
+  const double l = std::sqrt(a * a + b * b + c * c + d * d);
+  a /= l, b /= l, c /= l, d /= l;
+  return {a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c),
+          2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b),
+          2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d};
+}
+
+RigidPose random_pose(Rng& r, double spread, bool quaternion) {
+  const Point3 t(r.uniform(-spread, spread), r.uniform(-spread, spread), r.uniform(-spread, spread));
+  return quaternion ? RigidPose::quaternion(random_quaternion(r), t) : RigidPose::matrix(random_matrix(r), t);
+}
+
+struct RoundingMode {
+  explicit RoundingMode(int m) { std::fesetround(m); }
+  ~RoundingMode() { std::fesetround(FE_TONEAREST); }
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// The placed predicates.
+
+TEST(PlacedPredicates, AgreeWithRationalsInAllRoundingModes) {
+  const std::uint64_t seed = 3901;
+  Rng r(seed);
+  int zeros = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
+    const bool quat = trial % 2 == 0;
+    const PlacedMap m = random_pose(r, 3, quat).map();
+    const PlacedMap m2 = random_pose(r, 3, !quat).map();
+    // Points: doubles, thirds (not doubles), and some on purpose equal.
+    const auto point = [&](int k) {
+      if (k % 3 == 0) return Point3(Rational(r.integer(-30, 30), 3), Rational(r.integer(-30, 30), 7), Rational(1, 5));
+      return Point3(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
+    };
+    const Point3 a = point(trial), b = trial % 5 == 0 ? a : point(trial + 1);
+    Vec3d n{r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1)};
+    if (trial % 7 == 0) {
+      // n orthogonal to A (b − a) in exact arithmetic where that is a double
+      // direction: A the identity.
+      n = {0, 0, 1};
+    }
+    const PlacedMap& mm = trial % 7 == 0 ? PlacedMap() : m;
+    const Point3 b2 = trial % 7 == 0 ? Point3(b.x, b.y, a.z) : b;
+    const int want_diff = sgn(dot(pull_exact(mm, n), b2 - a));
+    const int want_gap = sgn(dot(Point3(n.x, n.y, n.z), m2.apply(b2) - m.apply(a)));
+    std::array<Point3, 4> ps{a, b2, point(trial + 2), point(trial + 3)}, qs{point(trial + 4), b2, a, point(trial + 5)};
+    std::array<Point3, 4> d;
+    for (int k = 0; k < 4; ++k) d[k] = m.apply(ps[k]) - m2.apply(qs[k]);
+    const int want_tetra = tetra_reference(d);
+    zeros += want_diff == 0;
+    for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+      RoundingMode guard(mode);
+      const PulledDirection u(mm, n);
+      EXPECT_EQ(u.difference_sign(a, point_bounds(a), b2, point_bounds(b2)), want_diff) << "mode " << mode;
+      EXPECT_EQ(placed_gap_sign(n, m, a, point_bounds(a), m2, b2, point_bounds(b2)), want_gap) << "mode " << mode;
+      std::array<PointBounds, 4> pb, qb;
+      std::array<const Point3*, 4> pp, qp;
+      std::array<const PointBounds*, 4> pbp, qbp;
+      for (int k = 0; k < 4; ++k) {
+        pb[k] = point_bounds(ps[k]), qb[k] = point_bounds(qs[k]);
+        pp[k] = &ps[k], qp[k] = &qs[k], pbp[k] = &pb[k], qbp[k] = &qb[k];
+      }
+      EXPECT_EQ(placed_tetrahedron_holds_origin(m, m2, pp, pbp, qp, qbp), want_tetra == 1) << "mode " << mode;
+    }
+  }
+  EXPECT_GT(zeros, 20);  // the zero cases were exercised
+}
+
+TEST(PlacedPredicates, NearZeroFallsBackToRationals) {
+  // b − a = (1, 2^-60, 0) against n = (2^-60, −1, 0) under the identity:
+  // n·(b − a) = 2^-60 − 2^-60 = 0 exactly, and (2^-60, −1 + 2^-52, 0) a
+  // hair away.  The interval cannot always decide; the sign is exact.
+  const Point3 a = P(0, 0, 0), b(1.0, std::ldexp(1.0, -60), 0.0);
+  const PlacedMap id;
+  const auto before = placed_predicate_counts();
+  EXPECT_EQ(PulledDirection(id, Vec3d{std::ldexp(1.0, -60), -1, 0}).difference_sign(a, point_bounds(a), b, point_bounds(b)), 0);
+  EXPECT_EQ(PulledDirection(id, Vec3d{std::ldexp(1.0, -60), -1 + std::ldexp(1.0, -52), 0})
+                .difference_sign(a, point_bounds(a), b, point_bounds(b)),
+            1);
+  // A rotation by thirds: the intervals are wide, the zero is exact.
+  const PlacedMap third({{{Rational(1, 3), Rational(2, 3), Rational(2, 3)},
+                          {Rational(2, 3), Rational(1, 3), Rational(-2, 3)},
+                          {Rational(-2, 3), Rational(2, 3), Rational(-1, 3)}}},
+                        P(0, 0, 0));
+  // Row 0 of the matrix is (1, 2, 2)/3: n = (1, 0, 0) pulls back to it, and
+  // b − a = (2, −1, 0) is orthogonal.
+  EXPECT_EQ(PulledDirection(third, Vec3d{1, 0, 0}).difference_sign(a, point_bounds(a), P(2, -1, 0), point_bounds(P(2, -1, 0))), 0);
+  EXPECT_GT(placed_predicate_counts().exact, before.exact);
+  // Out of the doubles stage's range (2^-300, 2^250): the later stages answer.
+  const Point3 tiny(std::ldexp(1.0, -300), 0.0, 0.0), huge(std::ldexp(1.0, 250), 1.0, 0.0);
+  EXPECT_EQ(PulledDirection(id, Vec3d{1, 0, 0}).difference_sign(a, point_bounds(a), tiny, point_bounds(tiny)), 1);
+  EXPECT_EQ(PulledDirection(id, Vec3d{-1, 0, 0}).difference_sign(a, point_bounds(a), huge, point_bounds(huge)), -1);
+  EXPECT_EQ(placed_gap_sign(Vec3d{0, 1, 0}, id, huge, point_bounds(huge), id, a, point_bounds(a)), -1);
+  EXPECT_EQ(placed_gap_sign(Vec3d{1, 0, 0}, id, a, point_bounds(a), id, tiny, point_bounds(tiny)), 1);
+  // The doubles stage on an exact zero it cannot see as zero: 0.1 + 0.2 − 0.3
+  // style cancellations are decided exactly (1 · (2^53 + 1) − (2^53 + 1)).
+  const double big = std::ldexp(1.0, 53);
+  const PlacedMap shear(std::array<double, 9>{1, 1, 0, 0, 1, 0, 0, 0, 1}, Vec3d{0, 0, 0});
+  const Point3 c(big, 1.0, 0.0), e(0.0, 0.0, 0.0);
+  // n · A (c − e) with n = (1, −(2^53 + 2), 0): (2^53 + 1) − (2^53 + 2) = −1.
+  EXPECT_EQ(PulledDirection(shear, Vec3d{1, -(big + 2), 0}).difference_sign(e, point_bounds(e), c, point_bounds(c)), -1);
+}
+
+TEST(PlacedMap, RejectsSingularReflectedAndNonFiniteMatrices) {
+  EXPECT_THROW(PlacedMap({1, 0, 0, 0, 1, 0, 0, 0, 0}, Vec3d{0, 0, 0}), UsageError);    // singular
+  EXPECT_THROW(PlacedMap({1, 0, 0, 0, 1, 0, 0, 0, -1}, Vec3d{0, 0, 0}), UsageError);   // a reflection
+  EXPECT_THROW(PlacedMap({NAN, 0, 0, 0, 1, 0, 0, 0, 1}, Vec3d{0, 0, 0}), UsageError);
+  EXPECT_THROW(PlacedMap({1, 0, 0, 0, 1, 0, 0, 0, 1}, Vec3d{INFINITY, 0, 0}), UsageError);
+  EXPECT_THROW(PlacedMap::rotation({Integer(0), Integer(0), Integer(0), Integer(0)}, P(0, 0, 0)), UsageError);
+  // Determinant 2^-200 > 0: accepted (exact, not "near singular").
+  const double tiny = std::ldexp(1.0, -100);
+  EXPECT_NO_THROW(PlacedMap({tiny, 0, 0, 0, tiny, 0, 0, 0, 1}, Vec3d{0, 0, 0}));
+  const PlacedMap q = PlacedMap::rotation({Integer(1), Integer(2), Integer(3), Integer(4)}, P(1, 2, 3));
+  EXPECT_EQ(q.a(0, 0), Rational(-2, 3));  // (1 + 4 − 9 − 16) / 30
+  EXPECT_EQ(q.apply(P(0, 0, 0)), P(1, 2, 3));
+  EXPECT_FALSE(q.doubles());
+  EXPECT_TRUE(PlacedMap().doubles());
+}
+
+// ---------------------------------------------------------------------------
+// Collision.
+
+namespace {
+
+void expect_agrees_with_sat(const std::string& a, const std::string& b, int poses, double spread, std::uint64_t seed) {
+  const RigidBody pa(catalog_polytope(a)), pb(catalog_polytope(b));
+  Rng r(seed);
+  RigidWarmStart warm;
+  int counts[3] = {0, 0, 0};
+  const RigidStats before = rigid_stats();
+  for (int i = 0; i < poses; ++i) {
+    const bool quat = i % 2 == 0;
+    const RigidPose pp = random_pose(r, spread, quat), pq = random_pose(r, spread, !quat);
+    const ContactStatus want = sat_status(pa.polytope(), pp.map(), pb.polytope(), pq.map());
+    const RigidCollision got = collide(pa, pp, pb, pq, i % 3 ? &warm : nullptr);
+    ASSERT_EQ(got.status, want) << a << " / " << b << ", seed " << seed << ", pose " << i;
+    ++counts[int(want)];
+    if (got.certificate == RigidCertificate::separating_plane) {
+      // The certificate's plane separates: checked on every vertex, exactly.
+      const Point3 n(got.normal.x, got.normal.y, got.normal.z);
+      const Rational hp = dot(n, pp.map().apply(pa.polytope().point(got.p)));
+      const Rational hq = dot(n, pq.map().apply(pb.polytope().point(got.q)));
+      EXPECT_LT(hp, hq);
+      for (Index v = 0; v < pa.polytope().num_vertices(); ++v)
+        EXPECT_LE(dot(n, pp.map().apply(pa.polytope().point(v))), hp);
+      for (Index v = 0; v < pb.polytope().num_vertices(); ++v)
+        EXPECT_GE(dot(n, pq.map().apply(pb.polytope().point(v))), hq);
+    }
+  }
+  // The spread gives both outcomes; no pose is exactly touching, and the
+  // search certifies nearly all of them (the exact path only within
+  // rounding of contact).
+  EXPECT_GT(counts[int(ContactStatus::separate)], poses / 10) << a << " / " << b;
+  EXPECT_GT(counts[int(ContactStatus::penetrating)], poses / 10) << a << " / " << b;
+  EXPECT_EQ(counts[int(ContactStatus::touching)], 0) << a << " / " << b;
+  const RigidStats after = rigid_stats();
+  EXPECT_LE(after.exact - before.exact, std::uint64_t(poses / 100)) << a << " / " << b;
+  std::printf("%s / %s: %d poses, %llu separating planes, %llu simplices, %llu exact\n", a.c_str(), b.c_str(), poses,
+              (unsigned long long)(after.separating_plane - before.separating_plane),
+              (unsigned long long)(after.simplex - before.simplex), (unsigned long long)(after.exact - before.exact));
+}
+
+}  // namespace
+
+TEST(RigidCollide, AgreesWithSeparatingAxesOnRandomPoses) {
+  expect_agrees_with_sat("cube", "cube", 300, 1.5, 11);
+  expect_agrees_with_sat("tetra", "octahedron", 300, 1.5, 12);
+  expect_agrees_with_sat("dodecahedron", "cube", 120, 2.5, 13);
+  expect_agrees_with_sat("random:12:1", "random:10:2", 200, 1.5, 14);
+}
+
+namespace {
+
+// Random poses of a and b with translations in [-spread, spread]^3 (exact),
+// every answer against the exact obstacle; both outcomes occur.
+void expect_agrees_with_exact(const std::string& a, const std::string& b, double spread, std::uint64_t seed) {
+  const RigidBody pa(catalog_polytope(a)), pb(catalog_polytope(b));
+  Rng r(seed);
+  int separate = 0;
+  for (int i = 0; i < 60; ++i) {
+    const RigidPose pp = random_pose(r, 0, i % 2 == 0);
+    const RigidPose pq0 = random_pose(r, 0, i % 2 == 1);
+    const Point3 t(r.uniform(-spread, spread), r.uniform(-spread, spread), r.uniform(-spread, spread));
+    std::array<std::array<Rational, 3>, 3> m;
+    for (int x = 0; x < 3; ++x)
+      for (int y = 0; y < 3; ++y) m[x][y] = pq0.map().a(x, y);
+    const RigidPose pq(PlacedMap(m, t));
+    const ContactStatus want = collide_exact(pa, pp, pb, pq);
+    separate += want == ContactStatus::separate;
+    EXPECT_EQ(collide(pa, pp, pb, pq).status, want) << a << " / " << b << ", seed " << seed << ", pose " << i;
+  }
+  EXPECT_GT(separate, 5) << a;
+  EXPECT_LT(separate, 55) << a;
+}
+
+}  // namespace
+
+TEST(RigidCollide, RationalCoordinatesTakeTheIntervalStage) {
+  // Vertices p/q (cube@scale:1/3): no doubles stage.
+  expect_agrees_with_exact("cube@scale:1/3", "tetra@rot:2", 2.0, 41);
+}
+
+TEST(RigidCollide, TinyAndHugeBodiesWhoseSearchUnderflowsOrOverflows) {
+  // Bodies of size 1e-80: the search's products of four coordinates
+  // underflow and its closest point of a triangle divided by zero, which
+  // made an infinite normal reach the interval stage (an assertion of
+  // CGAL's Interval_nt).  A normal that is not finite certifies nothing now.
+  expect_agrees_with_exact("dodecahedron@scale:1e-80", "cube@scale:1e-80", 5e-80, 42);
+  // Size 1e80: the same products overflow.
+  expect_agrees_with_exact("dodecahedron@scale:1e80", "cube@scale:1e80", 5e80, 43);
+  const PlacedMap id;
+  const Point3 o(0, 0, 0);
+  EXPECT_THROW(PulledDirection(id, Vec3d{INFINITY, 0, 0}), UsageError);
+  EXPECT_THROW(placed_gap_sign(Vec3d{NAN, 0, 0}, id, o, point_bounds(o), id, o, point_bounds(o)), UsageError);
+}
+
+TEST(RigidCollide, AgreesWithTheExactObstacleOnLargerPairs) {
+  for (const auto& [a, b, seed] : std::vector<std::tuple<std::string, std::string, std::uint64_t>>{
+           {"sphere:2", "sphere:2", 21}, {"random:50:1", "random:50:2", 22}, {"sphere:3", "cube", 23}}) {
+    const RigidBody pa(catalog_polytope(a)), pb(catalog_polytope(b));
+    Rng r(seed);
+    RigidWarmStart warm;
+    for (int i = 0; i < 60; ++i) {
+      const RigidPose pp = random_pose(r, 1.5, i % 2 == 0), pq = random_pose(r, 1.5, i % 2 == 1);
+      const ContactStatus want = collide_exact(pa, pp, pb, pq);
+      EXPECT_EQ(collide(pa, pp, pb, pq, &warm).status, want) << a << " / " << b << ", seed " << seed << ", pose " << i;
+    }
+  }
+}
+
+namespace {
+
+// Q placed on top of P = cube ([-1, 1]^3, identity) by the rotation `rot`,
+// translated so that its lowest point along z, the vertex `low` of Q, goes
+// to (x, y, 1 + dz).
+RigidPose on_top(const ConvexPolytope& q, const PlacedMap& rot, Index low, const Rational& x, const Rational& y,
+                 const Rational& dz, bool matrix, const std::array<double, 9>& m) {
+  const Point3 image = rot.apply_linear(q.point(low));
+  const Point3 t = Point3(x, y, Rational(1) + dz) - image;
+  return matrix ? RigidPose::matrix(m, t) : RigidPose(PlacedMap(
+                                               [&] {
+                                                 std::array<std::array<Rational, 3>, 3> a;
+                                                 for (int i = 0; i < 3; ++i)
+                                                   for (int j = 0; j < 3; ++j) a[i][j] = rot.a(i, j);
+                                                 return a;
+                                               }(),
+                                               t));
+}
+
+Index lowest(const ConvexPolytope& q, const PlacedMap& rot) {
+  Index best = 0;
+  for (Index v = 1; v < q.num_vertices(); ++v)
+    if (rot.apply_linear(q.point(v)).z < rot.apply_linear(q.point(best)).z) best = v;
+  return best;
+}
+
+void expect_contact(const RigidBody& p, const RigidBody& q, const PlacedMap& rot, const Rational& x, const Rational& y,
+                    bool matrix, const std::array<double, 9>& m, const std::string& what) {
+  const Index low = lowest(q.polytope(), rot);
+  const Rational hair(1, Integer(1) << 40);
+  for (const auto& [dz, want] : std::vector<std::pair<Rational, ContactStatus>>{
+           {Rational(0), ContactStatus::touching},
+           {hair, ContactStatus::separate},
+           {-hair, ContactStatus::penetrating}}) {
+    const RigidPose pq = on_top(q.polytope(), rot, low, x, y, dz, matrix, m);
+    const RigidCollision c = collide(p, RigidPose(), q, pq);
+    EXPECT_EQ(c.status, want) << what << ", dz " << dz.get_str();
+    // 2^-40 from contact is far above the rounding of the search: the
+    // answer is certified without the exact path (the separating plane of
+    // the nearest triangle of D, or a tetrahedron).
+    const RigidCertificate proof = want == ContactStatus::separate      ? RigidCertificate::separating_plane
+                                   : want == ContactStatus::penetrating ? RigidCertificate::simplex
+                                                                        : RigidCertificate::exact;
+    EXPECT_EQ(c.certificate, proof) << what << ", dz " << dz.get_str();
+    EXPECT_EQ(sat_status(p.polytope(), PlacedMap(), q.polytope(), pq.map()), want) << what;
+  }
+}
+
+}  // namespace
+
+TEST(RigidCollide, ExactlyTouchingPoses) {
+  const RigidBody cube(catalog_polytope("cube"));
+  const std::array<double, 9> none{};
+  // Face on face: Q a cube turned about z by the rational rotation of
+  // (2, 0, 0, 1) (cos = 3/5), its bottom face on P's top face.
+  const PlacedMap about_z = PlacedMap::rotation({Integer(2), Integer(0), Integer(0), Integer(1)}, P(0, 0, 0));
+  expect_contact(cube, cube, about_z, Rational(1, 2), Rational(0), false, none, "face-face");
+  // Edge on face: turned about x (2, 1, 0, 0); its lowest edge on P's top.
+  const PlacedMap about_x = PlacedMap::rotation({Integer(2), Integer(1), Integer(0), Integer(0)}, P(0, 0, 0));
+  expect_contact(cube, cube, about_x, Rational(0), Rational(0), false, none, "edge-face");
+  // Vertex on face: a generic rational rotation, the lowest vertex at the
+  // centre of P's top face.
+  const PlacedMap generic = PlacedMap::rotation({Integer(1), Integer(2), Integer(3), Integer(4)}, P(0, 0, 0));
+  expect_contact(cube, cube, generic, Rational(0), Rational(0), false, none, "vertex-face");
+  // Vertex on face with a double matrix taken exactly as given (the doubles
+  // of a random rotation, near orthogonal, not exactly).
+  Rng r(5);
+  const std::array<double, 9> m = random_matrix(r);
+  const PlacedMap dm(m, P(0, 0, 0));
+  expect_contact(cube, cube, dm, Rational(1, 3), Rational(-1, 5), true, m, "vertex-face, double matrix");
+  // A dodecahedron on the cube: vertex or edge down.
+  const RigidBody dodeca(catalog_polytope("dodecahedron"));
+  expect_contact(cube, dodeca, generic, Rational(1, 7), Rational(0), false, none, "dodecahedron vertex-face");
+}
+
+TEST(RigidCollide, EdgeCrossingEdge) {
+  // P turned about y so that its top is an edge along y; Q turned about x so
+  // that its bottom is an edge along x: the two edges cross at one point.
+  const RigidBody cube(catalog_polytope("cube"));
+  // (2, 0, 1, 0) turns about y by an angle of cosine 3/5: the top of P is
+  // the edge through its two highest vertices.
+  const PlacedMap py = PlacedMap::rotation({Integer(2), Integer(0), Integer(1), Integer(0)}, P(0, 0, 0));
+  const PlacedMap qx = PlacedMap::rotation({Integer(2), Integer(1), Integer(0), Integer(0)}, P(0, 0, 0));
+  const ConvexPolytope& c = cube.polytope();
+  Index top = 0, low = 0;
+  for (Index v = 1; v < c.num_vertices(); ++v) {
+    if (py.apply_linear(c.point(v)).z > py.apply_linear(c.point(top)).z) top = v;
+    if (qx.apply_linear(c.point(v)).z < qx.apply_linear(c.point(low)).z) low = v;
+  }
+  const Point3 pt = py.apply_linear(c.point(top)), ql = qx.apply_linear(c.point(low));
+  // The top edge of P runs along y (y from -1 to 1) at x = pt.x; the bottom
+  // edge of Q runs along x from ql to ql ∓ (2, 0, 0) (ql.x = ±1).  Placed by
+  // t = (pt.x, −ql.y, pt.z − ql.z), it runs from x = pt.x − 1 to pt.x + 1 at
+  // y = 0: the edges cross at (pt.x, 0, pt.z).
+  const Rational hair(1, Integer(1) << 40);
+  std::array<std::array<Rational, 3>, 3> qa;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) qa[i][j] = qx.a(i, j);
+  const RigidPose pp = RigidPose(py);
+  for (const auto& [dz, want] : std::vector<std::pair<Rational, ContactStatus>>{
+           {Rational(0), ContactStatus::touching},
+           {hair, ContactStatus::separate},
+           {-hair, ContactStatus::penetrating}}) {
+    const RigidPose pq(PlacedMap(qa, Point3(pt.x, -ql.y, pt.z - ql.z + dz)));
+    EXPECT_EQ(sat_status(c, pp.map(), c, pq.map()), want);
+    EXPECT_EQ(collide(cube, pp, cube, pq).status, want) << "dz " << dz.get_str();
+  }
+}
+
+TEST(RigidCollide, BatchEqualsSingleQueries) {
+  const RigidBody a(catalog_polytope("random:50:1")), b(catalog_polytope("sphere:2"));
+  Rng r(31);
+  std::vector<RigidPose> pp, pq;
+  for (int i = 0; i < 700; ++i) {
+    pp.push_back(random_pose(r, 1.5, i % 3 == 0));
+    pq.push_back(random_pose(r, 1.5, i % 3 == 1));
+  }
+  std::vector<RigidCollision> out(pp.size()), one(pp.size());
+  collide(a, pp, b, pq, out, 2);
+  for (std::size_t i = 0; i < pp.size(); ++i) {
+    EXPECT_EQ(out[i].status, collide(a, pp[i], b, pq[i]).status) << "pose " << i;
+    if (i % 50 == 0) {
+      EXPECT_EQ(out[i].status, collide_exact(a, pp[i], b, pq[i])) << "pose " << i;
+    }
+  }
+  // One pose of P for all the poses of Q.
+  collide(a, std::span<const RigidPose>(pp.data(), 1), b, pq, one, 0);
+  for (std::size_t i = 0; i < pp.size(); i += 7) EXPECT_EQ(one[i].status, collide(a, pp[0], b, pq[i]).status);
+  std::vector<RigidCollision> wrong(3);
+  EXPECT_THROW(collide(a, pp, b, pq, wrong, 1), UsageError);
+}
+
+TEST(RigidCollide, CoherentTrajectoryStaysCheap) {
+  // A small rotation and translation per step, warm-started: most steps
+  // take a few climb steps, and every answer agrees with the exact one.
+  const RigidBody a(catalog_polytope("sphere:3")), b(catalog_polytope("sphere:3"));
+  RigidWarmStart warm;
+  const auto before = rigid_stats();
+  int exact_checked = 0;
+  for (int i = 0; i < 400; ++i) {
+    const double ang = 0.01 * i, c = std::cos(ang), s = std::sin(ang);
+    const std::array<double, 9> rz{c, -s, 0, s, c, 0, 0, 0, 1};
+    const RigidPose pq = RigidPose::matrix(rz, Vec3d{3.0 - 0.01 * i, 0.1, 0.05});
+    const RigidCollision got = collide(a, RigidPose(), b, pq, &warm);
+    if (i % 40 == 0) {
+      EXPECT_EQ(got.status, collide_exact(a, RigidPose(), b, pq)) << "step " << i;
+      ++exact_checked;
+    }
+  }
+  const auto after = rigid_stats();
+  EXPECT_EQ(after.queries - before.queries, 400u);
+  EXPECT_EQ(exact_checked, 10);
+  // Far fewer climb steps than a scan of the 642 vertices per query would be.
+  EXPECT_LT(after.climb_steps - before.climb_steps, 400u * 60u);
+}

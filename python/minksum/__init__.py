@@ -11,7 +11,9 @@ array ``Polytope.vertices`` holds the nearest doubles, without a copy.
 
 Non-convex solids: ``Solid(vertices, faces)`` or ``Solid.load("tube")``;
 ``minkowski_sum`` with a ``Solid`` operand (or a name that is not a convex
-polytope) returns a ``SolidSum``.
+polytope) returns a ``SolidSum``; so do ``erode``, ``opening`` (also
+``minksum.open``) and ``closing`` (also ``minksum.close``) of a solid by a
+convex polytope.
 
 Many sums: ``minkowski_sum_many`` runs them on a pool of C++ threads;
 ``minksum.dask`` spreads them over a Dask cluster.
@@ -31,10 +33,19 @@ from ._minksum import (
     SolidSum,
     Sum,
     Witness,
+    closing,
+    erode,
     load,
     minkowski_sum,
     minkowski_sum_many,
+    opening,
 )
+
+#: ``minksum.open`` and ``minksum.close`` are ``opening`` and ``closing``
+#: (``open`` is left out of ``__all__``: ``from minksum import *`` would hide
+#: the builtin).
+open = opening  # noqa: A001
+close = closing
 
 __all__ = [
     "METHODS",
@@ -51,7 +62,11 @@ __all__ = [
     "SolidSum",
     "Sum",
     "Witness",
+    "close",
+    "closing",
+    "erode",
     "load",
     "minkowski_sum",
     "minkowski_sum_many",
+    "opening",
 ]

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 using namespace minksum;
 using namespace minksum::testing;
 
@@ -59,6 +61,53 @@ TEST(ErosionOracle, StarByIcosahedron) { expect_like_oracle("star:5", "sphere:1@
 TEST(ErosionOracle, BallOffCentre) { expect_like_oracle("lshape@rot:5", "sphere:1@scale:1/10@translate:1/7,0,1/9"); }
 TEST(ErosionOracle, CubeOffCentre) { expect_like_oracle("lshape", "cube@scale:1/10@translate:1/8,0,0"); }
 TEST(ErosionOracle, ConvexA) { expect_like_oracle("sphere:1", "tetra@scale:1/5"); }
+
+// Random unions of boxes with small integer corners (those that are solids:
+// no two boxes touching along an edge only) eroded by random small convex
+// polytopes (hulls of a few points of a grid of 1/4, off the origin):
+// against CGAL.
+TEST(ErosionOracle, RandomBoxUnionsByRandomPolytopes) {
+  int checked = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> coord(0, 4), count(1, 3), quarter(-3, 3), points(4, 7);
+    std::vector<ConvexPolytope> parts;
+    for (int n = count(rng); int(parts.size()) < n;) {
+      int c[6];
+      for (int& x : c) x = coord(rng);
+      if (c[0] == c[1] || c[2] == c[3] || c[4] == c[5]) continue;
+      parts.push_back(ConvexPolytope::from_mesh(
+          box_mesh(Rational(std::min(c[0], c[1])), Rational(std::max(c[0], c[1])), Rational(std::min(c[2], c[3])),
+                   Rational(std::max(c[2], c[3])), Rational(std::min(c[4], c[5])), Rational(std::max(c[4], c[5]))),
+          "box"));
+    }
+    std::optional<ConvexPolytope> b;
+    while (!b) {
+      std::vector<Point3> p;
+      for (int k = points(rng); int(p.size()) < k;)
+        p.emplace_back(Rational(quarter(rng), 4), Rational(quarter(rng), 4), Rational(quarter(rng), 4));
+      try {
+        b = ConvexPolytope::hull(p, "random");
+      } catch (const InputError&) {  // flat: draw again
+      }
+    }
+    Solid a;
+    try {
+      a = union_solid(parts);
+    } catch (const InputError&) {  // boxes touching along an edge: not a solid
+      continue;
+    }
+    const Solid sb = solid_of(*b);
+    const NonconvexSum r = erode(a, sb);
+    const Mesh o = reference_erosion(a, sb);
+    EXPECT_EQ(r.volume, mesh_volume(o));
+    EXPECT_EQ(face_planes(r.mesh), face_planes(o));
+    if (!r.mesh.faces.empty()) expect_closed_oriented(r);
+    ++checked;
+  }
+  EXPECT_GE(checked, 6);
+}
 
 // --- closed forms ------------------------------------------------------------
 
@@ -169,6 +218,21 @@ TEST(Erosion, OpeningOfErosionTouchingItselfAlongAnEdge) {
   const NonconvexSum o = opening(a, c);
   expect_closed_oriented(o);
   expect_same(o.mesh, solid_faces(a));
+}
+
+TEST(Erosion, ClosingOfASumTouchingItselfAlongAnEdge) {
+  // Two unit cubes diagonal to each other, ⊕ [-1/2,1/2]^3: two boxes
+  // touching along the edge x = y = 3/2 (swept reversed, cut apart across
+  // the complement); eroded back, the two cubes.
+  const Solid a = validate_solid(join(box_mesh(R("0"), R("1"), R("0"), R("1"), R("0"), R("1")),
+                                      box_mesh(R("2"), R("3"), R("2"), R("3"), R("0"), R("1"))),
+                                 "two cubes");
+  const Solid c = solid("cube@scale:1/2");
+  EXPECT_EQ(minkowski_sum_nonconvex(a, c).non_manifold_edges, 1u);
+  const NonconvexSum k = closing(a, c);
+  expect_closed_oriented(k);
+  EXPECT_EQ(k.shells, 2u);
+  expect_same(k.mesh, solid_faces(a));
 }
 
 TEST(Erosion, ClosingFillsTheNotchOfAnL) {

@@ -6,6 +6,7 @@
 #include <minksum/minkowski.hpp>
 #include <minksum/nonconvex.hpp>
 
+#include "nonconvex/morphology.hpp"
 #include "nonconvex/union.hpp"
 #include "nonconvex_support.hpp"
 #include "test_support.hpp"
@@ -138,6 +139,29 @@ TEST(Erosion, ConvexAIsItsFacetsMovedBySupport) {
   }
   for (Index f = 0; f < e.num_facets(); ++f) EXPECT_TRUE(moved.count(e.plane(f))) << "facet " << f;
   EXPECT_LT(e.volume(), a.volume);
+}
+
+// For convex A, the intersection of A's facet half-spaces moved by B's
+// support (convex_erosion, CGAL's halfspace_intersection_3 on exact points)
+// against erode's sweep: the same polytope exactly.
+TEST(Erosion, ConvexAIsTheIntersectionOfTheMovedHalfSpaces) {
+  for (const auto& [a, b] : std::vector<std::pair<std::string, std::string>>{
+           {"sphere:2", "cube@scale:1/9@rot:4"},
+           {"dodecahedron", "tetra@scale:1/5@translate:1/3,1/7,0"},
+           {"box:4:6:8", "cube@rot:3@scale:1/2"},
+           {"cube", "sphere:1@scale:1/3"},
+           {"octahedron@rot:2", "octahedron@scale:1/2"}}) {
+    SCOPED_TRACE(a + " eroded by " + b);
+    const Solid sa = solid(a), sb = solid(b);
+    const NonconvexSum swept = erode(sa, sb);
+    const std::optional<ConvexPolytope> direct = nonconvex_detail::convex_erosion(*sa.convex, *sb.convex);
+    ASSERT_TRUE(direct);
+    expect_closed_oriented(swept);
+    expect_same(swept.mesh, direct->to_mesh());
+  }
+  // Empty, and exactly the size of A (a point): no point strictly inside.
+  EXPECT_FALSE(nonconvex_detail::convex_erosion(catalog_polytope("cube"), catalog_polytope("cube@scale:2")));
+  EXPECT_FALSE(nonconvex_detail::convex_erosion(catalog_polytope("cube"), catalog_polytope("cube")));
 }
 
 TEST(Erosion, SumThenErosionGivesBackTheSummand) {

@@ -10,9 +10,12 @@
 // ∂A, b inside B, and the union's boundary components whose points p have
 // p + b outside A are dropped.  What is left bounds the cavities of the
 // union that lie in the erosion; reversed, it is the erosion's boundary.
+// For a convex A the erosion is also the intersection of A's facet
+// half-spaces moved by B's support (convex_erosion.cpp), which the tests
+// compare with the sweep; the sweep is faster, so erode sweeps every A.
 #include <minksum/nonconvex.hpp>
 
-#include "nonconvex/contacts.hpp"
+#include "nonconvex/morphology.hpp"
 
 #include <algorithm>
 #include <stdexcept>

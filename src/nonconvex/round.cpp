@@ -40,7 +40,7 @@
 #include <minksum/error.hpp>
 #include <minksum/nonconvex.hpp>
 
-#include "nonconvex/contacts.hpp"
+#include "nonconvex/morphology.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>

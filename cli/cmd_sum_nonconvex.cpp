@@ -61,7 +61,7 @@ AnyOperand load_any_operand_from(const std::string& spec, LoadPhases* phases, st
 
 int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<AnyOperand>& operands,
                       const LoadPhases& load, const std::optional<MeshOutput>& output, bool json, Method method,
-                      NonconvexMethod how) {
+                      NonconvexMethod how, SolidOperation operation) {
   if (operands.size() != 2)
     throw UsageError("a sum with a non-convex operand takes exactly two operands A B (" +
                      std::to_string(operands.size()) + " given)");
@@ -77,20 +77,33 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
   }
   const double validate_seconds =
       load.validate + std::chrono::duration<double>(std::chrono::steady_clock::now() - v0).count();
+  static const char* const kCommand[] = {"sum", "erode", "open", "close"};
+  const char* command = kCommand[int(operation)];
+  if (operation != SolidOperation::sum && !solids[1].convex)
+    throw InputError(names[1] == "-" ? "<stdin>" : names[1], "", std::string("is not convex: 'minksum ") + command +
+                     "' takes a convex polytope B (a solid A of any shape)");
   NonconvexSum r;
   {
-    ProgressTicker ticker("minksum sum");
-    r = minkowski_sum_nonconvex(solids[0], solids[1], ticker.sum_options(), 0,
-                                method == Method::automatic ? Method::walk : method, how);
+    ProgressTicker ticker(std::string("minksum ") + command);
+    const Method m = method == Method::automatic ? Method::walk : method;
+    switch (operation) {
+      case SolidOperation::sum: r = minkowski_sum_nonconvex(solids[0], solids[1], ticker.sum_options(), 0, m, how); break;
+      case SolidOperation::erode: r = erode(solids[0], solids[1], ticker.sum_options(), 0, m); break;
+      case SolidOperation::open: r = opening(solids[0], solids[1], ticker.sum_options(), 0, m); break;
+      case SolidOperation::close: r = closing(solids[0], solids[1], ticker.sum_options(), 0, m); break;
+    }
   }
+  const bool empty = r.mesh.faces.empty();
   const auto w0 = std::chrono::steady_clock::now();
   RoundedSolid rounding;
-  if (output) write_solid_mesh(*output, r.mesh, nullptr, &rounding);
+  if (output && empty) write_mesh_as_is(*output, r.mesh);  // (a file of the format with no faces)
+  else if (output) write_solid_mesh(*output, r.mesh, nullptr, &rounding, r.operation);
   const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
   const MeshCounts c = mesh_counts(r.mesh);
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {
-    report << "{\"vertices\": " << c.vertices << ", \"edges\": " << c.edges << ", \"facets\": " << c.faces
+    report << "{\"operation\": \"" << r.operation << "\", \"empty\": " << (empty ? "true" : "false")
+           << ", \"vertices\": " << c.vertices << ", \"edges\": " << c.edges << ", \"facets\": " << c.faces
            << ", \"dimension\": 3, \"kind\": \"solid\", \"method\": \"nonconvex\", \"pair_method\": \""
            << (r.pieces_from_maps ? "gaussian_map" : method_name(r.pair_method)) << "\", \"seconds\": " << json_number(r.seconds())
            << ", \"phases\": {\"read\": " << json_number(load.read) << ", \"validate\": " << json_number(validate_seconds)
@@ -116,17 +129,26 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
     else report << "\"" << json_escape(output->to_stdout() ? "-" : output->path) << "\"";
     report << ", \"rounding\": " << solid_rounding_json(rounding) << "}\n";
   } else {
+    static const char* const kFormula[][3] = {{"", " ⊕ ", ""}, {"", " ⊖ ", ""}, {"(", " ⊖ ", ") ⊕ B"}, {"(", " ⊕ ", ") ⊖ B"}};
+    const auto& formula = kFormula[int(operation)];
+    report << formula[0];
     for (std::size_t i = 0; i < 2; ++i)
-      report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << solids[i].vertices << " V, " << solids[i].faces
+      report << (i ? formula[1] : "") << printable(names[i]) << " (" << solids[i].vertices << " V, " << solids[i].faces
              << " F, "
              << (solids[i].convex ? std::string("convex")
                  : r.swept == "ab"[i] ? std::to_string(i ? r.pieces_b : r.pieces_a) + " triangles swept"
                                       : std::to_string(i ? r.pieces_b : r.pieces_a) + " convex pieces")
              << ")";
-    report << "\n  = " << c.vertices << " vertices, " << c.edges << " edges, " << c.faces << " faces"
-           << (r.shells > 1 ? ", " + std::to_string(r.shells) + " shells" : std::string())
-           << (r.non_manifold_edges ? ", " + std::to_string(r.non_manifold_edges) + " non-manifold edges" : std::string())
-           << "\n  non-convex sum (" << r.method << "): " << r.pairs << " convex pieces, "
+    report << formula[2];
+    if (empty)
+      report << "\n  = empty: B fits nowhere inside A" << (operation == SolidOperation::open ? " (A ⊖ B is empty)" : "");
+    else
+      report << "\n  = " << c.vertices << " vertices, " << c.edges << " edges, " << c.faces << " faces"
+             << (r.shells > 1 ? ", " + std::to_string(r.shells) + " shells" : std::string())
+             << (r.non_manifold_edges ? ", " + std::to_string(r.non_manifold_edges) + " non-manifold edges"
+                                      : std::string());
+    report << "\n  " << (operation == SolidOperation::sum ? "non-convex sum" : r.operation)
+           << " (" << r.method << "): " << r.pairs << " convex pieces, "
            << (r.culled_facets ? std::to_string(r.culled_facets) + " of " + std::to_string(r.pair_facets) +
                                      " facets culled, "
                                : std::string())

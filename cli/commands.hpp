@@ -9,6 +9,9 @@ namespace minksum::cli {
 
 // Each returns the exit status; throws UsageError / InputError / OutputError.
 int run_sum(const std::vector<std::string>& args);
+int run_erode(const std::vector<std::string>& args);  // cmd_morphology.cpp
+int run_open(const std::vector<std::string>& args);
+int run_close(const std::vector<std::string>& args);
 int run_stats(const std::vector<std::string>& args);
 int run_gen(const std::vector<std::string>& args);
 int run_query(const std::vector<std::string>& args);

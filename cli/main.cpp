@@ -22,6 +22,8 @@ const char* kMainHelp = R"(minksum — exact Minkowski sums of convex polyhedra 
 Usage:
   minksum sum A B [C ...] [-o OUT] [--method M] [--exact] [--binary] [--json]
                 [--hull] [--scene] [--nonconvex-method sweep|decomposition] [--format F]
+  minksum erode|open|close A B [-o OUT] [--method walk|chms] [--exact]
+                [--binary] [--json] [--format F]
   minksum stats P [--json] [--hull] [--format F]
   minksum gen NAME -o OUT [--exact] [--binary] [--format F]
   minksum convert IN -o OUT [--hull] [--exact] [--binary] [--format F]
@@ -49,7 +51,8 @@ Files take the catalog's transforms too: part.stl@neg, part.stl@scale:2@rot:5.
 -o - writes the mesh to standard output (with --format; the summary then goes
 to stderr).  What minksum writes reads back as a valid convex polytope, or,
 for a non-convex result, as a valid closed solid: sum, stats, convert and view
-take closed solids that are not convex (docs/nonconvex.md).
+take closed solids that are not convex (docs/nonconvex.md), and erode, open and
+close offset such a solid inwards, or both ways, by a convex B.
 
 Every computation is exact: coordinates are rationals, every geometric
 decision is the sign of an exact polynomial.
@@ -65,6 +68,9 @@ struct Command {
 };
 constexpr Command kCommands[] = {
     {"sum", run_sum},
+    {"erode", run_erode},
+    {"open", run_open},
+    {"close", run_close},
     {"stats", run_stats},
     {"gen", run_gen},
     {"query", run_query},

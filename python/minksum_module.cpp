@@ -566,6 +566,10 @@ struct SolidSum : SolidPy {
   NonconvexSum report;
 };
 
+// An operation on a solid and a convex polytope (erode, opening, closing)
+// with progress and cancellation, all threads.
+using SolidOperation = NonconvexSum (*)(const Solid&, const Solid&, const SumOptions&, unsigned, Method);
+
 // An operand of minkowski_sum that may be a solid: a Solid, a Polytope, or a
 // name loaded later (load_any_operand) with the GIL released.
 using AnyOperandPy = std::variant<SolidPtr, PolytopePtr, std::string>;
@@ -627,6 +631,25 @@ std::shared_ptr<SolidSum> solid_sum(const AnyOperandPy& a, const AnyOperandPy& b
   out->faces = std::move(out->report.mesh);
   out->report.mesh = Mesh{};
   out->volume = out->report.volume;
+  return out;
+}
+
+// fn(A, B) on two operands with the GIL released (Ctrl-C stops it between
+// its phases), as a SolidSum.
+std::shared_ptr<SolidSum> solid_operation(const AnyOperandPy (&any)[2], Method method, SolidOperation fn) {
+  auto out = std::make_shared<SolidSum>();
+  std::atomic<bool> cancel{false};
+  SumOptions options;
+  options.cancel = &cancel;
+  run_interruptible(
+      [&] {
+        const Solid sa = operand_solid(any[0]), sb = operand_solid(any[1]);
+        out->report = fn(sa, sb, options, 0, method == Method::automatic ? Method::walk : method);
+        out->faces = std::move(out->report.mesh);
+        out->report.mesh = Mesh{};
+        out->volume = out->report.volume;
+      },
+      cancel);
   return out;
 }
 
@@ -1322,8 +1345,13 @@ prints of the sum: method ("sweep"), swept ("a", "b" or None), pieces (the
 triangles swept and the convex pieces of the other operand, (a, b)), pairs,
 pair_facets, candidate_facets, culled_facets, clips, shells,
 non_manifold_edges, dropped_components, phases (seconds of "decompose",
-"pairs", "union", "boundary") and seconds (their sum).)")
+"pairs", "union", "boundary") and seconds (their sum).  erode, opening and
+closing return one too: operation is then "erosion", "opening" or "closing"
+(else "sum"), empty is True when nothing is left (no faces, volume 0), and
+the counts and seconds are those of all the steps together.)")
       .def_property_readonly("method", [](const SolidSum& s) { return std::string(s.report.method); })
+      .def_property_readonly("operation", [](const SolidSum& s) { return std::string(s.report.operation); })
+      .def_property_readonly("empty", [](const SolidSum& s) { return s.faces.faces.empty(); })
       .def_property_readonly("swept",
                              [](const SolidSum& s) -> py::object {
                                if (!s.report.swept) return py::none();
@@ -1411,6 +1439,42 @@ ValueError for a name that is neither a file nor a catalog spec.)");
         return py::cast(r);
       },
       py::arg("a"), py::arg("b"), py::arg("method") = "auto", with_methods(kMinkowskiSumDoc).c_str());
+
+  // erode, opening, closing (<minksum/nonconvex.hpp>): a solid A and a convex B.
+  auto morphology = [](SolidOperation fn) {
+    return [fn](py::object a, py::object b, const std::string& method) {
+      const AnyOperandPy any[2] = {to_any_operand(a, "a"), to_any_operand(b, "b")};
+      return solid_operation(any, to_method(method), fn);
+    };
+  };
+  const char* kMorphologyArgs = R"(
+
+a is a Solid, a Polytope, a file path or a catalog name (any closed solid,
+convex or not, of any genus, several shells allowed); b must be a convex
+polytope (a Polytope, or a Solid or name that is one), the structuring
+element.  The result is a SolidSum (operation, the exact boundary and volume,
+shells, and the work done, as 'minksum %s --json' reports it).  An empty
+result is a SolidSum with empty=True, no faces and volume 0.  method builds
+the sweep's pieces: "walk" (also "auto") or "chms"; the same exact result.
+Raises ValueError when b is not convex or for an unknown method, InputError
+for a bad file, KeyboardInterrupt when interrupted.  The GIL is released
+while it runs.)";
+  auto morphology_doc = [&](const char* head, const char* command) {
+    char buffer[1024];
+    std::snprintf(buffer, sizeof buffer, kMorphologyArgs, command);
+    return std::string(head) + buffer;
+  };
+  static const std::string erode_doc = morphology_doc(
+      "A ⊖ B = {x : x + B ⊆ A}, exactly: the erosion of solid a by convex b (docs/nonconvex.md).", "erode");
+  static const std::string opening_doc = morphology_doc(
+      "(A ⊖ B) ⊕ B, exactly: the opening of solid a by convex b, the union of the copies of b inside a (a's convex "
+      "edges rounded).",
+      "open");
+  static const std::string closing_doc = morphology_doc(
+      "(A ⊕ B) ⊖ B, exactly: the closing of solid a by convex b (a's concave edges filled: fillets).", "close");
+  m.def("erode", morphology(&erode), py::arg("a"), py::arg("b"), py::arg("method") = "auto", erode_doc.c_str());
+  m.def("opening", morphology(&opening), py::arg("a"), py::arg("b"), py::arg("method") = "auto", opening_doc.c_str());
+  m.def("closing", morphology(&closing), py::arg("a"), py::arg("b"), py::arg("method") = "auto", closing_doc.c_str());
 
   m.def(
       "minkowski_sum_many",

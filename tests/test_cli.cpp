@@ -1753,3 +1753,66 @@ TEST_F(Cli, NonConvexSumJsonHasTheConvexSumsKeys) {
   for (const char* gone : {"\"faces\"", "\"rounded_coordinates\""})
     EXPECT_EQ(third.out.find(gone), std::string::npos) << gone << " in " << third.out;
 }
+
+// minksum erode / open / close (docs/nonconvex.md, "Erosion, opening,
+// closing"): exact results, JSON, the empty erosion, bad input and usage.
+TEST_F(Cli, ErodeOpenCloseJsonExactAndEmpty) {
+  // The L prism [-1,1]^2 minus (0,1]^2, height 1, eroded by [-1/4,1/4]^3:
+  // an L of arms 1/2 wide, 1/2 high: volume 5/8.
+  CmdResult e = run("erode lshape cube@scale:1/4 --json --exact -o " + path("e.off"));
+  ASSERT_EQ(e.status, 0) << e.err;
+  EXPECT_EQ(e.err, "");
+  EXPECT_NE(e.out.find("\"operation\": \"erosion\", \"empty\": false"), std::string::npos) << e.out;
+  EXPECT_NE(e.out.find("\"volume\": \"5/8\""), std::string::npos) << e.out;
+  EXPECT_EQ(json_int(e.out, "facets"), 8);
+  EXPECT_EQ(json_int(e.out, "shells"), 1);
+  for (const char* key : {"decompose", "pairs", "union", "boundary", "candidate_facets", "culled_facets", "clips"})
+    EXPECT_NE(e.out.find(std::string("\"") + key + "\""), std::string::npos) << key;
+  CmdResult back = run("stats " + path("e.off") + " --json");
+  ASSERT_EQ(back.status, 0) << back.err;
+  EXPECT_NE(back.out.find("\"volume\": \"5/8\""), std::string::npos) << back.out;
+  // Opened and closed by the smaller cube: the L itself (volume 3).
+  for (const char* op : {"open", "close"}) {
+    CmdResult o = run(std::string(op) + " lshape cube@scale:1/4 --json -o " + path("o.stl") + " --binary");
+    ASSERT_EQ(o.status, 0) << op << o.err;
+    EXPECT_NE(o.out.find(std::string("\"operation\": \"") + (op[0] == 'o' ? "opening" : "closing") + "\""),
+              std::string::npos) << o.out;
+    EXPECT_NE(o.out.find("\"volume\": \"3\""), std::string::npos) << o.out;
+  }
+  // The summary names the operation.
+  CmdResult text = run("close tube sphere:1@scale:1/4");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("(tube ("), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find(") ⊖ B"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("closing (sweep)"), std::string::npos) << text.out;
+  // B fits nowhere: an empty result, exit 0, a file with no faces.
+  CmdResult empty = run("erode cube cube@scale:2 --json -o " + path("empty.off"));
+  ASSERT_EQ(empty.status, 0) << empty.err;
+  EXPECT_NE(empty.out.find("\"operation\": \"erosion\", \"empty\": true"), std::string::npos) << empty.out;
+  EXPECT_NE(empty.out.find("\"volume\": \"0\""), std::string::npos) << empty.out;
+  EXPECT_EQ(json_int(empty.out, "facets"), 0);
+  EXPECT_NE(slurp(path("empty.off")).find("0 0 0"), std::string::npos) << slurp(path("empty.off"));
+  CmdResult summary = run("open lshape cube@scale:3/4");
+  ASSERT_EQ(summary.status, 0) << summary.err;
+  EXPECT_NE(summary.out.find("= empty: B fits nowhere inside A (A ⊖ B is empty)"), std::string::npos) << summary.out;
+  // B not convex: bad input, one line naming B.
+  CmdResult notconvex = run("erode cube lshape");
+  EXPECT_EQ(notconvex.status, 3) << notconvex.err;
+  EXPECT_NE(notconvex.err.find("lshape: is not convex: 'minksum erode' takes a convex polytope B"), std::string::npos)
+      << notconvex.err;
+  EXPECT_EQ(std::count(notconvex.err.begin(), notconvex.err.end(), '\n'), 1);
+  // A bad A: the sum's validation message, exit 3.
+  std::ofstream(path("open.off")) << "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n";
+  CmdResult bad = run("open " + path("open.off") + " cube");
+  EXPECT_EQ(bad.status, 3) << bad.err;
+  EXPECT_NE(bad.err.find("open.off"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::ifstream(path("never.off")).good());
+  // Usage.
+  EXPECT_EQ(run("erode cube").status, 2);
+  EXPECT_EQ(run("erode cube cube --method cvms").status, 2);
+  EXPECT_EQ(run("erode cube segment:0,0,0:1,0,0").status, 2);
+  CmdResult help = run("erode --help");
+  ASSERT_EQ(help.status, 0);
+  EXPECT_NE(help.out.find("A ⊖ B = { x : x + B ⊆ A }"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("empty"), std::string::npos);
+}

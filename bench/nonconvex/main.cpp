@@ -2,7 +2,7 @@
 // and CGAL's Nef minkowski_sum_3 on the same exact inputs, one after the
 // other in this process; prints a Markdown table (docs/nonconvex.md).
 //
-// Usage: bench_nonconvex [--json] [--side both|minksum|cgal] [--reps R] [A:B | A|B ...]
+// Usage: bench_nonconvex [--json] [--side both|minksum|cgal] [--reps R] [--operation sum|erode] [A:B | A|B ...]
 //          bench_nonconvex --check FILE
 //   A:B      catalog specs (default: the table's rows)
 //   A|B      each a catalog spec or a mesh file (.off .obj .ply .stl .wrl)
@@ -13,6 +13,9 @@
 //            its own, under a time limit)
 //   --reps   minksum's sum R times, the median reported (default 1); CGAL
 //            runs once
+//   --operation  sum (default: A ⊕ B; CGAL's minkowski_sum_3) or erode
+//            (A ⊖ B for a convex B: minksum's erode, CGAL's
+//            reference_erosion, A minus minkowski_sum_3(box − A, −B))
 //   --check  the independent check of a written sum: FILE read by minksum's
 //            reader, then CGAL's Polygon_mesh_processing on a Surface_mesh of
 //            exact points (is_closed, does_self_intersect,
@@ -119,11 +122,11 @@ struct Ours {
   std::vector<double> runs;
 };
 
-Ours run_minksum(const Solid& sa, const Solid& sb, int reps) {
+Ours run_minksum(const Solid& sa, const Solid& sb, int reps, bool erosion) {
   std::vector<std::pair<double, NonconvexSum>> all;
   for (int r = 0; r < reps; ++r) {
     const auto t = Clock::now();
-    NonconvexSum s = minkowski_sum_nonconvex(sa, sb);
+    NonconvexSum s = erosion ? erode(sa, sb) : minkowski_sum_nonconvex(sa, sb);
     all.emplace_back(since(t), std::move(s));
   }
   Ours o;
@@ -145,7 +148,8 @@ void json_string(const std::string& s) {
 
 [[noreturn]] void usage(const std::string& problem) {
   std::fprintf(stderr,
-               "bench_nonconvex: %s\nusage: bench_nonconvex [--json] [--side both|minksum|cgal] [--reps R] [A:B ...]\n",
+               "bench_nonconvex: %s\nusage: bench_nonconvex [--json] [--side both|minksum|cgal] [--reps R] "
+               "[--operation sum|erode] [A:B ...]\n",
                problem.c_str());
   std::exit(2);
 }
@@ -154,7 +158,7 @@ void json_string(const std::string& s) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> rows;
-  bool json = false, ours = true, theirs = true;
+  bool json = false, ours = true, theirs = true, erosion = false;
   int reps = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -165,6 +169,10 @@ int main(int argc, char** argv) {
       if (side != "both" && side != "minksum" && side != "cgal") usage("--side needs both, minksum or cgal");
       ours = side != "cgal";
       theirs = side != "minksum";
+    } else if (arg == "--operation") {
+      const std::string op = i + 1 < argc ? argv[++i] : "";
+      if (op != "sum" && op != "erode") usage("--operation needs sum or erode");
+      erosion = op == "erode";
     } else if (arg == "--reps") {
       const std::string r = i + 1 < argc ? argv[++i] : "";
       reps = r.size() >= 1 && r.size() <= 3 && std::all_of(r.begin(), r.end(), ::isdigit) ? std::stoi(r) : 0;
@@ -187,7 +195,7 @@ int main(int argc, char** argv) {
     rows = {"tube:sphere:1@scale:1/4", "tube:sphere:2@scale:1/4", "tube:sphere:3@scale:1/4",
             "lshape:sphere:2@scale:1/4", "gear:8:cube@scale:1/16@rot:3", "tube:lshape@scale:1/4@rot:7"};
   if (!json)
-    std::printf("| A ⊕ B | V(B) | pieces | pairs | minksum s (decompose / pairs / union / boundary) | CGAL minkowski_sum_3 s | "
+    std::printf("| A ⊕ B (⊖ for --operation erode) | V(B) | pieces | pairs | minksum s (decompose / pairs / union / boundary) | CGAL s | "
                 "ratio | same volume |\n|---|---|---|---|---|---|---|---|\n");
   for (const std::string& row : rows) {
     std::string a, b;
@@ -203,11 +211,12 @@ int main(int argc, char** argv) {
       return 3;
     }
     Ours o;
-    if (ours) o = run_minksum(sa, sb, reps);
+    if (erosion && !sb.convex) usage("--operation erode needs a convex B, not '" + b + "'");
+    if (ours) o = run_minksum(sa, sb, reps, erosion);
     const NonconvexSum& r = o.sum;
     double cgal = 0;
     Mesh m;
-    if (theirs) m = reference_minkowski_sum(sa, sb, &cgal);
+    if (theirs) m = erosion ? reference_erosion(sa, sb, &cgal) : reference_minkowski_sum(sa, sb, &cgal);
     if (json) {
       std::printf("{\"a\": ");
       json_string(a);
@@ -233,12 +242,12 @@ int main(int argc, char** argv) {
       }
       std::printf("}\n");
     } else if (ours && theirs) {
-      std::printf("| %s ⊕ %s | %zu | %zu + %zu | %zu | %.3f (%.3f / %.3f / %.3f / %.3f) | %.3f | %.1f× | %s |\n",
-                  a.c_str(), b.c_str(), sb.vertices, r.pieces_a, r.pieces_b, r.pairs, o.seconds, r.seconds_decompose,
+      std::printf("| %s %s %s | %zu | %zu + %zu | %zu | %.3f (%.3f / %.3f / %.3f / %.3f) | %.3f | %.1f× | %s |\n",
+                  a.c_str(), erosion ? "⊖" : "⊕", b.c_str(), sb.vertices, r.pieces_a, r.pieces_b, r.pairs, o.seconds, r.seconds_decompose,
                   r.seconds_pairs, r.seconds_union, r.seconds_boundary, cgal, cgal / o.seconds,
                   mesh_volume(m) == r.volume ? "yes" : "NO");
     } else {
-      std::printf("| %s ⊕ %s | %zu | %s | %s | %s | %s | | |\n", a.c_str(), b.c_str(), sb.vertices,
+      std::printf("| %s %s %s | %zu | %s | %s | %s | %s | | |\n", a.c_str(), erosion ? "⊖" : "⊕", b.c_str(), sb.vertices,
                   ours ? (std::to_string(r.pieces_a) + " + " + std::to_string(r.pieces_b)).c_str() : "",
                   ours ? std::to_string(r.pairs).c_str() : "", ours ? std::to_string(o.seconds).c_str() : "",
                   theirs ? std::to_string(cgal).c_str() : "");

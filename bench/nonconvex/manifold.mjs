@@ -1,9 +1,11 @@
 #!/usr/bin/env node
 // manifold.mjs: A ⊕ B by Manifold's minkowskiSum (npm manifold-3d, pinned in
 // package-lock.json beside this file; WebAssembly under Node), the inexact
-// competitor of bench/nonconvex (docs/nonconvex.md, "Speed").
+// competitor of bench/nonconvex (docs/nonconvex.md, "Speed"); with --op
+// erode, A ⊖ B by its minkowskiDifference, and with --op open,
+// (A ⊖ B) ⊕ B by minkowskiDifference then minkowskiSum.
 //
-// Usage: node manifold.mjs A.stl B.stl [--reps R]
+// Usage: node manifold.mjs A.stl B.stl [--reps R] [--op sum|erode|open]
 //
 // A and B are binary STL files, as `minksum gen SPEC -o A.stl --binary`
 // writes them: minksum's exact triangulation of every face, each coordinate
@@ -12,7 +14,7 @@
 // corners of the triangles are welded by equal coordinates into an indexed
 // mesh and given to `new Manifold(mesh)`.
 //
-// Timed: `a.minkowskiSum(b)` and the evaluation of its result (`status()`),
+// Timed: `a.minkowskiSum(b)` (or the --op's calls) and the evaluation of its result (`status()`),
 // R times (default 3), each time on operands built afresh; the median is
 // reported.  Not timed: loading the module, reading the files, building the
 // operands.  The WebAssembly build of manifold-3d runs on one thread.  Prints one JSON object on standard output:
@@ -29,7 +31,21 @@ import { performance } from 'node:perf_hooks';
 import { fileURLToPath } from 'node:url';
 import Module from 'manifold-3d';
 
-const usage = 'usage: node manifold.mjs A.stl B.stl [--reps R]';
+const usage = 'usage: node manifold.mjs A.stl B.stl [--reps R] [--op sum|erode|open]';
+const OPS = {
+  sum: { call: 'Manifold.minkowskiSum', symbol: '⊕', run: (a, b) => a.minkowskiSum(b) },
+  erode: { call: 'Manifold.minkowskiDifference', symbol: '⊖', run: (a, b) => a.minkowskiDifference(b) },
+  open: {
+    call: 'Manifold.minkowskiDifference, then minkowskiSum',
+    symbol: 'opened by',
+    run: (a, b) => {
+      const e = a.minkowskiDifference(b);
+      const o = e.minkowskiSum(b);
+      e.delete();
+      return o;
+    },
+  },
+};
 
 function die(status, message) {
   process.stderr.write(`manifold.mjs: ${message}\n`);
@@ -39,10 +55,12 @@ function die(status, message) {
 function parseArgs(argv) {
   const files = [];
   let reps = 3;
+  let op = 'sum';
   for (let i = 0; i < argv.length; ++i) {
     const arg = argv[i];
     if (arg === '--help' || arg === '-h') {
-      writeSync(1, `${usage}\n\nA ⊕ B by Manifold's minkowskiSum; A and B binary STL (minksum gen SPEC -o A.stl --binary).\n` +
+      writeSync(1, `${usage}\n\nA ⊕ B by Manifold's minkowskiSum (--op erode: A ⊖ B by minkowskiDifference; --op open: ` +
+        'minkowskiDifference then minkowskiSum); A and B binary STL (minksum gen SPEC -o A.stl --binary).\n' +
         'Times minkowskiSum and status() R times (default 3) and prints the median, the volume, the counts\n' +
         'and Manifold\'s version as one JSON object.\n');
       process.exit(0);
@@ -50,6 +68,9 @@ function parseArgs(argv) {
       const r = argv[++i];
       if (r === undefined || !/^[1-9][0-9]{0,3}$/.test(r)) die(2, `--reps needs an integer 1..9999, got '${r ?? ''}'\n${usage}`);
       reps = Number(r);
+    } else if (arg === '--op') {
+      op = argv[++i];
+      if (!Object.hasOwn(OPS, op ?? '')) die(2, `--op needs sum, erode or open, got '${op ?? ''}'\n${usage}`);
     } else if (arg.startsWith('-')) {
       die(2, `unknown option '${arg}'\n${usage}`);
     } else {
@@ -57,7 +78,7 @@ function parseArgs(argv) {
     }
   }
   if (files.length !== 2) die(2, `needs two files, got ${files.length}\n${usage}`);
-  return { files, reps };
+  return { files, reps, op };
 }
 
 // A binary STL as an indexed mesh: corners welded by equal float coordinates.
@@ -119,7 +140,7 @@ function median(xs) {
   return n % 2 ? s[(n - 1) / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
 }
 
-const { files, reps } = parseArgs(process.argv.slice(2));
+const { files, reps, op } = parseArgs(process.argv.slice(2));
 // The installed version: the package.json of the directory the module was
 // loaded from (the package exports neither that file nor a require() entry).
 function manifoldVersion() {
@@ -147,15 +168,15 @@ for (let r = 0; r < reps; ++r) {
   a = solid(wasm, files[0], meshes[0]);
   b = solid(wasm, files[1], meshes[1]);
   const t = performance.now();
-  result = a.minkowskiSum(b);
+  result = OPS[op].run(a, b);
   const status = result.status();
   runs.push((performance.now() - t) / 1000);
-  if (status !== 'NoError') die(3, `${files[0]} ⊕ ${files[1]}: minkowskiSum gave status ${status}`);
+  if (status !== 'NoError') die(3, `${files[0]} ${OPS[op].symbol} ${files[1]}: ${OPS[op].call} gave status ${status}`);
 }
 
 const answer = {
   manifold: version,
-  call: 'Manifold.minkowskiSum',
+  call: OPS[op].call,
   reps,
   seconds: median(runs),
   runs,

@@ -1,9 +1,9 @@
 #!/usr/bin/python3
-"""Non-convex sums, three programs in one run: minksum, Manifold, CGAL.
+"""Non-convex sums, erosions and openings, three programs in one run: minksum, Manifold, CGAL.
 
     /usr/bin/python3 bench/nonconvex/run.py [--build build-bench] [--reps 3] [--timeout 120]
         [--meshes DIR] [--work DIR] [--resume] [--minksum-timeout S] [--manifold-timeout S]
-        [--page docs/generated/benchmarks-nonconvex.md]
+        [--operations sum,erode,open] [--page docs/generated/benchmarks-nonconvex.md]
         [--command "make bench-nonconvex"] [A:B ...]
 
 Rows: A:B catalog specs (default: a triangulated torus family ⊕ a level-2
@@ -11,7 +11,10 @@ geodesic ball, a torus ⊕ a torus, and the catalog rows of docs/nonconvex.md),
 then, with --meshes DIR, every mesh file of DIR ⊕ a level-2 geodesic ball
 (`sphere:2`, radius 1) scaled to 2 % of the mesh's bounding-box diagonal.
 
-For each row:
+Each row is run for each of --operations (default all three): sum A ⊕ B,
+erode A ⊖ B and open (A ⊖ B) ⊕ B (`minksum erode|open`, Manifold's
+minkowskiDifference, then minkowskiSum for the opening; CGAL's
+reference_erosion for erode and nothing for open).  For each row:
 
 1. minksum, as a user runs it: the whole process
    `minksum sum A B -o OUT.stl --binary --json` (A a catalog spec or the
@@ -217,12 +220,15 @@ def split_row(row):
 
 # ---------------------------------------------------------------------------
 
-def bench_row(args, a, b, index, label, triangles):
+OPERATIONS = {"sum": "%s ⊕ %s", "erode": "%s ⊖ %s", "open": "(%s ⊖ %s) ⊕ B"}
+
+
+def bench_row(args, a, b, index, label, triangles, op="sum"):
     minksum = os.path.join(args.build, "bin", "minksum")
     bench = os.path.join(args.build, "bin", "bench_nonconvex")
     work = args.work
-    out_stl = os.path.join(work, "row%d-sum.stl" % index)
-    argv = [minksum, "sum", a, b, "-o", out_stl, "--binary", "--json"]
+    out_stl = os.path.join(work, "row%d-%s.stl" % (index, op))
+    argv = [minksum, op, a, b, "-o", out_stl, "--binary", "--json"]
     runs = []
     report = None
     for r in range(args.reps):
@@ -230,6 +236,8 @@ def bench_row(args, a, b, index, label, triangles):
                                              args.minksum_timeout)
         if status is None:
             return {"label": label, "refused": "minksum stopped after %d s" % args.minksum_timeout}
+        if status == 3 and op != "sum" and "is not convex" in err:
+            return None  # erode and open take a convex B: no such row for this pair
         if status in (1, 3):  # not a solid (3), or a sum that could not be written (1): reported as is
             return {"label": label, "refused": err.strip().splitlines()[-1] if err.strip() else "exit %d" % status}
         if status != 0:
@@ -245,11 +253,14 @@ def bench_row(args, a, b, index, label, triangles):
     wall, cpu, peak = runs[len(runs) // 2]
     peak = max(r[2] for r in runs)
     reps = len(runs)
-    # The written file, checked by CGAL.
-    argv = [bench, "--check", out_stl]
-    _, out, _, _ = run(argv)
-    chk = one_json(out, argv)
+    # The written file, checked by CGAL (an empty result has nothing to check).
     exact = Fraction(report["volume"])
+    if report.get("empty"):
+        chk = {"closed": True, "self_intersects": False, "outward": True, "volume": None, "empty": True}
+    else:
+        argv = [bench, "--check", out_stl]
+        _, out, _, _ = run(argv)
+        chk = one_json(out, argv)
     # Manifold on float operands.
     stl = []
     for k, spec in enumerate((a, b)):
@@ -259,7 +270,7 @@ def bench_row(args, a, b, index, label, triangles):
         else:
             run([minksum, "gen", spec, "-o", path, "--binary"])
         stl.append(path)
-    argv = ["node", os.path.join(HERE, "manifold.mjs"), stl[0], stl[1], "--reps", str(reps)]
+    argv = ["node", os.path.join(HERE, "manifold.mjs"), stl[0], stl[1], "--reps", str(reps), "--op", op]
     status, out, err, _ = run(argv, timeout=args.manifold_timeout, allow=(0, 3))
     theirs = None
     if status == 0:
@@ -268,11 +279,13 @@ def bench_row(args, a, b, index, label, triangles):
         theirs = {"timeout": args.manifold_timeout}
     else:
         theirs = {"error": err.strip()}
-    # CGAL on the exact operands.
-    argv = [bench, "--json", "--side", "cgal", a + "|" + b]
-    status, out, _, cgal_wall = run(argv, timeout=args.timeout)
-    cgal = one_json(out, argv)["cgal"] if status == 0 else None
-    return {"label": label, "a": a, "b": b, "triangles": triangles, "wall": wall, "cpu": cpu, "peak": peak,
+    # CGAL on the exact operands (the sum or the erosion; not the opening).
+    cgal, cgal_wall = None, 0.0
+    if op != "open":
+        argv = [bench, "--json", "--side", "cgal", "--operation", op, a + "|" + b]
+        status, out, _, cgal_wall = run(argv, timeout=args.timeout)
+        cgal = one_json(out, argv)["cgal"] if status == 0 else None
+    return {"label": label, "op": op, "a": a, "b": b, "triangles": triangles, "wall": wall, "cpu": cpu, "peak": peak,
             "reps": reps, "report": report, "check": chk, "exact": exact, "moved": moved, "manifold": theirs,
             "cgal": cgal, "cgal_wall": cgal_wall}
 
@@ -287,7 +300,7 @@ def relative(value, exact):
 
 
 def table(results, timeout):
-    head = ("| A ⊕ B | triangles of A | minksum wall s (CPU s) | pairs / union / boundary s | pieces kept facets / culled "
+    head = ("| A ⊕ B, A ⊖ B, (A ⊖ B) ⊕ B | triangles of A | minksum wall s (CPU s) | pairs / union / boundary s | pieces kept facets / culled "
             "| peak MiB | Manifold s | Manifold / minksum | CGAL s | CGAL / minksum | exact volume "
             "| written STL: closed, no self-intersection; volume − exact (relative); largest displacement "
             "| Manifold volume − exact (relative) |\n"
@@ -311,8 +324,10 @@ def table(results, timeout):
         else:
             man = fmt_s(m["seconds"])
             mratio = "%.2f×" % (m["seconds"] / r["wall"])
-            mvol = relative(m["volume"], r["exact"])
-        if c is None:
+            mvol = relative(m["volume"], r["exact"]) if r["exact"] else "%.3g (exact 0)" % m["volume"]
+        if c is None and r.get("op") == "open":
+            cg, cratio = "—", "—"
+        elif c is None:
             q = timeout / r["wall"]
             cg, cratio = "> %d" % timeout, ("> %.0f×" if q >= 10 else "> %.1f×") % q
         else:
@@ -321,7 +336,7 @@ def table(results, timeout):
             cratio = "%.1f×" % (c["seconds"] / r["wall"])
         k = r["check"]
         ok = "yes" if k["closed"] and not k["self_intersects"] and k["outward"] else "NO (%s)" % json.dumps(k)
-        wvol = relative(Fraction(k["volume"]), r["exact"]) if k["volume"] else "—"
+        wvol = relative(Fraction(k["volume"]), r["exact"]) if k["volume"] and r["exact"] else "—"
         rows.append("| %s | %d | %s (%s) | %s | %s | %.0f | %s | %s | %s | %s | %.9g | %s; %s; %.2g | %s |" % (
             r["label"], r["triangles"], fmt_s(r["wall"]), fmt_s(r["cpu"]), phases, kept, r["peak"], man, mratio, cg,
             cratio, float(r["exact"]), ok, wvol, r["moved"], mvol))
@@ -331,10 +346,20 @@ def table(results, timeout):
 def targets(results, timeout):
     ok = [r for r in results if "refused" not in r]
     lines = []
-    big = [r for r in ok if r["triangles"] >= 1024 and r["manifold"] and "seconds" in r["manifold"]]
-    met = [r for r in big if r["manifold"]["seconds"] >= 10 * r["wall"]]
-    lines.append("* ≥ 10× faster than Manifold on every row of ≥ 1 024 triangles: %d of %d rows%s." % (
-        len(met), len(big), "" if len(met) == len(big) else " (not met)"))
+    for op, what in (("sum", "sums"), ("erode", "erosions"), ("open", "openings")):
+        big = [r for r in ok if r.get("op", "sum") == op and r["triangles"] >= 1024 and r["manifold"]
+               and "seconds" in r["manifold"]]
+        if not big and op != "sum":
+            continue
+        met = [r for r in big if r["manifold"]["seconds"] >= 10 * r["wall"]]
+        lines.append("* %s: ≥ 10× faster than Manifold on every row of ≥ 1 024 triangles: %d of %d rows%s." % (
+            what, len(met), len(big), "" if len(met) == len(big) else " (not met)"))
+    sums = {(r["a"], r["b"]): r for r in ok if r.get("op", "sum") == "sum"}
+    opened = [(r, sums[(r["a"], r["b"])]) for r in ok if r.get("op") == "open" and (r["a"], r["b"]) in sums]
+    if opened:
+        within = [o for o, s in opened if o["wall"] <= 3 * s["wall"]]
+        lines.append("* openings within 3× the time of the same sum: %d of %d rows (%s)." % (
+            len(within), len(opened), ", ".join("%.1f×" % (o["wall"] / s["wall"]) for o, s in opened)))
     timed_rows = [r for r in ok if r["manifold"] and "seconds" in r["manifold"]]
     faster = [r for r in timed_rows if r["manifold"]["seconds"] > r["wall"]]
     lines.append("* faster than Manifold: %d of %d rows." % (len(faster), len(timed_rows)))
@@ -366,6 +391,8 @@ def main():
     ap.add_argument("--minksum-timeout", type=int, default=1800, help="seconds after which minksum's run is stopped")
     ap.add_argument("--meshes", help="a directory of mesh files: each ⊕ a ball of 2 %% of its bounding-box diagonal")
     ap.add_argument("--work", help="directory for the operands' STL files (default BUILD/nonconvex)")
+    ap.add_argument("--operations", default="sum,erode,open",
+                    help="comma-separated operations of every row: sum, erode, open (default all three)")
     ap.add_argument("--page", help="write the page here (e.g. docs/generated/benchmarks-nonconvex.md)")
     ap.add_argument("--command", default="/usr/bin/python3 bench/nonconvex/run.py",
                     help="the command named in the page's header")
@@ -374,6 +401,9 @@ def main():
         fail("--reps and --timeout need positive integers", 2)
     if args.meshes and not os.path.isdir(args.meshes):
         fail("--meshes: %s is not a directory" % args.meshes, 2)
+    args.operations = [o for o in args.operations.split(",") if o]
+    if not args.operations or any(o not in OPERATIONS for o in args.operations):
+        fail("--operations takes a comma-separated list of sum, erode, open", 2)
     args.work = args.work or os.path.join(args.build, "nonconvex")
     os.makedirs(args.work, exist_ok=True)
     args.reused = 0
@@ -404,24 +434,32 @@ def main():
         if job[1] is None:
             results.append({"label": job[2], "refused": job[4]})
             continue
-        a, b, label, tri = job
-        cache = os.path.join(args.work, "result-%s.json" % re.sub(r"[^A-Za-z0-9.@:_-]+", "_", label))
-        if args.resume and os.path.isfile(cache):
-            args.reused += 1
-            with open(cache) as f:
-                r = json.load(f)
-            if "exact" in r:
-                r["exact"] = Fraction(r["exact"])
+        a, b, sum_label, tri = job
+        shown_a, shown_b = sum_label.split(" ⊕ ", 1)
+        for op in args.operations:
+            label = OPERATIONS[op] % (shown_a, shown_b)
+            cache = os.path.join(args.work, "result-%s.json" % re.sub(r"[^A-Za-z0-9.@:_-]+", "_", op + "-" + label))
+            if args.resume and os.path.isfile(cache):
+                args.reused += 1
+                with open(cache) as f:
+                    r = json.load(f)
+                if "exact" in r:
+                    r["exact"] = Fraction(r["exact"])
+                results.append(r)
+                continue
+            if not tri:
+                # A catalog solid: its triangles as minksum writes them.
+                path = os.path.join(args.work, "count%d.stl" % i)
+                run([os.path.join(args.build, "bin", "minksum"), "gen", a, "-o", path, "--binary"])
+                tri = len(read_triangles(path))
+            if op != "sum":
+                sys.stderr.write("run.py: %s\n" % label)
+            r = bench_row(args, a, b, i, label, tri, op)
+            if r is None:
+                continue
             results.append(r)
-            continue
-        if not tri:
-            # A catalog solid: its triangles as minksum writes them.
-            path = os.path.join(args.work, "count%d.stl" % i)
-            run([os.path.join(args.build, "bin", "minksum"), "gen", a, "-o", path, "--binary"])
-            tri = len(read_triangles(path))
-        results.append(bench_row(args, a, b, i, label, tri))
-        with open(cache, "w") as f:
-            json.dump(results[-1], f, default=str)
+            with open(cache, "w") as f:
+                json.dump(results[-1], f, default=str)
     wall = time.perf_counter() - started
     if args.meshes:
         # Messages name the directory as the command line does: DIR.
@@ -441,7 +479,7 @@ def write_page(args, results, md, load_start, load_end, wall):
     done = [r for r in results if "refused" not in r and r["manifold"] and "manifold" in r["manifold"]]
     manifold = done[0]["manifold"]["manifold"] if done else "?"
     node = subprocess.run(["node", "--version"], capture_output=True, text=True).stdout.strip()
-    text = """# Non-convex sums: minksum, Manifold's minkowskiSum and CGAL's minkowski_sum_3
+    text = """# Non-convex sums and erosions: minksum, Manifold's minkowskiSum and minkowskiDifference, CGAL's minkowski_sum_3
 
 <!-- Generated by `{command}` (bench/nonconvex/run.py, bench/nonconvex/main.cpp, bench/nonconvex/manifold.mjs). Do not edit by hand: every figure below comes from that command. -->
 
@@ -449,16 +487,19 @@ Generated by `{command}` on {date}, {wall:.0f} s in all{reused}, on {machine} wi
 load average {load_start} at the start and {load_end} at the end.
 Method and reading of the columns: [docs/nonconvex.md](../nonconvex.md), "Speed".
 
-* minksum: the whole process `minksum sum A B -o OUT.stl --binary --json` as a user runs it (reading,
+* minksum: the whole process `minksum sum A B -o OUT.stl --binary --json` (`erode`, `open` for the rows
+  A ⊖ B and (A ⊖ B) ⊕ B) as a user runs it (reading,
   validation, the sum on every hardware thread, the rounded write), the median wall time of up to {reps}
   runs (one when a run takes over 2 s), its CPU time (user + system) and peak memory; the phases are the
   sum's own.
 * the written STL: read back and checked by CGAL's Polygon_mesh_processing on exact points (closed, outward,
   no self-intersection), its exact volume against the exact sum's, and the largest displacement minksum's
   rounding reported.
-* Manifold: `Manifold.minkowskiSum` of manifold-3d {manifold} (WebAssembly, one thread) under Node {node}, on
+* Manifold: `Manifold.minkowskiSum` (erosions: `minkowskiDifference`; openings: both in turn) of
+  manifold-3d {manifold} (WebAssembly, one thread) under Node {node}, on
   the operands as float STL, only the call timed, the median of as many runs as minksum's.
-* CGAL: `minkowski_sum_3` on the same exact operands as Nef polyhedra, once, stopped after {timeout} s.
+* CGAL: `minkowski_sum_3` on the same exact operands as Nef polyhedra (erosions: A minus
+  `minkowski_sum_3`(box − A, −B); openings: not run), once, stopped after {timeout} s.
 
 {md}
 ## Targets (docs/nonconvex.md, "Speed")

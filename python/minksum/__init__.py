@@ -11,7 +11,9 @@ array ``Polytope.vertices`` holds the nearest doubles, without a copy.
 
 Non-convex solids: ``Solid(vertices, faces)`` or ``Solid.load("tube")``;
 ``minkowski_sum`` with a ``Solid`` operand (or a name that is not a convex
-polytope) returns a ``SolidSum``.
+polytope) returns a ``SolidSum``; so do ``erode``, ``opening`` (also
+``minksum.open``) and ``closing`` (also ``minksum.close``) of a solid by a
+convex polytope.
 
 Collision under rigid motion: ``collide_rigid(RigidBody(a), RigidBody(b), t_b,
 r_b)`` for N poses (quaternions or rotation matrices) in one call.
@@ -35,11 +37,20 @@ from ._minksum import (
     SolidSum,
     Sum,
     Witness,
+    closing,
     collide_rigid,
+    erode,
     load,
     minkowski_sum,
     minkowski_sum_many,
+    opening,
 )
+
+#: ``minksum.open`` and ``minksum.close`` are ``opening`` and ``closing``
+#: (``open`` is left out of ``__all__``: ``from minksum import *`` would hide
+#: the builtin).
+open = opening  # noqa: A001
+close = closing
 
 __all__ = [
     "METHODS",
@@ -57,8 +68,12 @@ __all__ = [
     "SolidSum",
     "Sum",
     "Witness",
+    "close",
+    "closing",
     "collide_rigid",
+    "erode",
     "load",
     "minkowski_sum",
     "minkowski_sum_many",
+    "opening",
 ]

@@ -40,6 +40,8 @@
 #include <minksum/error.hpp>
 #include <minksum/nonconvex.hpp>
 
+#include "nonconvex/morphology.hpp"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
@@ -878,5 +880,30 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
   throw RoundingError("the rounded surface is not a valid solid even with points snapped to 2^-20 of the largest "
                       "coordinate (" + last_problem + ")");
 }
+
+namespace nonconvex_detail {
+
+// The cut of round_solid's step 2 without the push: each fan of faces
+// around a point gets its own copy of the exact point (contacts.hpp).
+Mesh separate_contacts(const Mesh& triangles) {
+  const std::vector<Point3> pts = triangles.points.to_points();
+  std::vector<Vec3d> approx;
+  approx.reserve(pts.size());
+  for (const Point3& p : pts) approx.push_back(to_double(p));
+  std::vector<Tri> tris;
+  tris.reserve(triangles.faces.size());
+  for (const auto& f : triangles.faces) {
+    if (f.size() != 3) throw std::logic_error("separate_contacts: a face that is not a triangle");
+    tris.push_back(Tri{f[0], f[1], f[2]});
+  }
+  const Fans fans = separate_fans(tris, pts, approx);
+  if (fans.split_vertices == 0) return triangles;
+  Mesh out;
+  for (Index v : fans.vertex) out.points.push_back(pts[v]);
+  for (const Tri& t : fans.tris) out.faces.push_back({t[0], t[1], t[2]});
+  return out;
+}
+
+}  // namespace nonconvex_detail
 
 }  // namespace minksum

@@ -164,7 +164,10 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
   out.seconds_pairs = since(t0);
 
   nonconvex_detail::union_boundary(sums, options, out, threads,
-                                   [&](const Point3& p) { return cones.strictly_inside(p - inner); });
+                                   [&](const Point3& p) {
+                                     // (For the complement of a solid, its inside is the solid's outside.)
+                                     return cones.strictly_inside(p - inner) != s.complement;
+                                   });
   // The pieces' millions of exact integers freed on every thread rather
   // than one by one on return.
   parallel_for(n, workers, [&](std::size_t i) { sums[i] = nonconvex_detail::Piece(); });

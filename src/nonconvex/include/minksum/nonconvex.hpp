@@ -52,6 +52,11 @@ struct Solid {
   // The solid as a convex polytope when it is one (then sums with it take
   // the convex path); empty for a non-convex solid.
   std::optional<ConvexPolytope> convex;
+  // True for the closure of the complement of a solid, an unbounded set that
+  // erosion sweeps (A ⊖ B is the complement of Aᶜ ⊕ (−B)): `triangles` is
+  // then the solid's surface reversed, facing into the solid.  validate_solid
+  // and solid_of never make one.
+  bool complement = false;
 };
 
 // Validate `mesh` as a closed solid.  Checks, in this order, each failure
@@ -124,6 +129,9 @@ struct NonconvexSum {
   std::size_t clips = 0;                   // facets cut by a pair sum that overlaps them (the union's work)
   std::size_t shells = 0;                  // boundary shells (outer ones and cavities)
   std::size_t non_manifold_edges = 0;      // edges of the boundary shared by more than two faces
+  // "sum", or "erosion", "opening", "closing" (erode, opening, closing: the
+  // counts and seconds are then those of all their steps together).
+  const char* operation = "sum";
   // Seconds spent in each step.
   double seconds_decompose = 0, seconds_pairs = 0, seconds_union = 0, seconds_boundary = 0;
   double seconds() const { return seconds_decompose + seconds_pairs + seconds_union + seconds_boundary; }
@@ -155,12 +163,41 @@ NonconvexSum minkowski_sum_nonconvex(const Solid& a, const Solid& b, const SumOp
                                      unsigned threads = 0, Method method = Method::walk,
                                      NonconvexMethod how = NonconvexMethod::sweep);
 
+// Erosion, opening and closing of a solid A (convex or not, any genus, any
+// number of shells) by a convex polytope B (docs/nonconvex.md, "Erosion,
+// opening, closing"), exactly, as NonconvexSum's boundary (closed, outward,
+// exact coordinates, several parts as several shells of one solid):
+//   erode(A, B)   = A ⊖ B = {x : x + B ⊆ A}, regularised (the closure of
+//                   its interior), computed as the complement of
+//                   Aᶜ ⊕ (−B) by the boundary sweep of Aᶜ's surface;
+//   opening(A, B) = (A ⊖ B) ⊕ B, the union of the translates of B inside A
+//                   (rounds A's convex edges and corners);
+//   closing(A, B) = (A ⊕ B) ⊖ B (fills its concave ones).
+// An empty result (B fits nowhere inside A) is an empty mesh with volume 0,
+// not an error.  threads, method and options as minkowski_sum_nonconvex's
+// (progress reports the phases of each step in turn).  Throws
+// std::invalid_argument when B is not convex.
+NonconvexSum erode(const Solid& a, const Solid& b, const SumOptions& options = {}, unsigned threads = 0,
+                   Method method = Method::walk);
+NonconvexSum opening(const Solid& a, const Solid& b, const SumOptions& options = {}, unsigned threads = 0,
+                     Method method = Method::walk);
+NonconvexSum closing(const Solid& a, const Solid& b, const SumOptions& options = {}, unsigned threads = 0,
+                     Method method = Method::walk);
+
 // The reference: A ⊕ B by CGAL's minkowski_sum_3 on the solids' Nef
 // polyhedra (Hachenberger's implementation: its own decomposition, pair sums
 // and union), its boundary as NonconvexSum::mesh is.  Slow; the oracle of the
 // tests and the competitor of bench/nonconvex.  `seconds`, when given,
 // receives the time of minkowski_sum_3 alone.
 Mesh reference_minkowski_sum(const Solid& a, const Solid& b, double* seconds = nullptr);
+
+// The reference erosion: A ⊖ B for a convex B by CGAL's Nef polyhedra,
+// through complements: A minus minkowski_sum_3(K − A, −B) for a box K
+// around A ⊕ B, regularised; its boundary as NonconvexSum::mesh is (empty
+// when the erosion is).  Slow; the oracle of the tests and the competitor
+// of bench/nonconvex.  `seconds` receives the time of minkowski_sum_3 and
+// the difference.
+Mesh reference_erosion(const Solid& a, const Solid& b, double* seconds = nullptr);
 
 // The faces of `mesh` (simple planar polygons, as a NonconvexSum's) cut into
 // triangles by exact ear clipping, same orientation, same points; for formats

@@ -1,0 +1,136 @@
+// Erosion, opening and closing of a solid by a convex polytope
+// (docs/nonconvex.md, "Erosion, opening, closing").
+//
+// A ⊖ B = {x : x + B ⊆ A} is the complement of Aᶜ ⊕ (−B), Aᶜ the closure of
+// A's complement: x + B ⊆ A fails exactly when some x + b lies outside A,
+// that is when x ∈ Aᶜ − b.  Aᶜ is unbounded, but its surface is A's, and the
+// boundary sweep needs only the surface (its triangles reversed, so that
+// their local normal cones are Aᶜ's) and an inside test (Aᶜ's inside is
+// A's outside): Aᶜ ⊕ (−B) = (Aᶜ − b) ∪ ⋃ (t ⊕ (−B)) over the triangles t of
+// ∂A, b inside B, and the union's boundary components whose points p have
+// p + b outside A are dropped.  What is left bounds the cavities of the
+// union that lie in the erosion; reversed, it is the erosion's boundary.
+// For a convex A the erosion is also the intersection of A's facet
+// half-spaces moved by B's support (convex_erosion.cpp), which the tests
+// compare with the sweep; the sweep is faster, so erode sweeps every A.
+#include <minksum/nonconvex.hpp>
+
+#include "nonconvex/morphology.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace minksum {
+
+namespace {
+
+// The faces of `m` reversed (each polygon's order).
+void reverse_faces(Mesh& m) {
+  for (auto& f : m.faces) std::reverse(f.begin() + 1, f.end());
+}
+
+const ConvexPolytope& convex_operand(const Solid& b, const char* operation) {
+  if (!b.convex)
+    throw std::invalid_argument(std::string(operation) + " needs a convex B (the structuring element): B is not convex");
+  return *b.convex;
+}
+
+// A boundary that a step computed (a NonconvexSum's mesh, exact, possibly
+// touching itself along edges or at points) as a Solid to sweep: its
+// triangles (reversed for the complement), cut apart where it touches
+// itself, so that each part's cones are read off its own faces.  `convex`:
+// the boundary is known to bound a convex polytope (a step on convex
+// operands), which then takes the convex path.
+Solid solid_of_boundary(const NonconvexSum& r, bool complement, bool convex) {
+  Solid s;
+  if (convex && !complement) {
+    s = solid_of(ConvexPolytope::from_mesh(r.mesh, r.operation));
+    return s;
+  }
+  Mesh tri = triangulate(r.mesh, r.operation);
+  if (complement) reverse_faces(tri);
+  s.triangles = nonconvex_detail::separate_contacts(tri);
+  s.volume = complement ? -r.volume : r.volume;
+  s.faces = r.mesh.faces.size();
+  s.vertices = r.mesh.points.size();
+  s.complement = complement;
+  return s;
+}
+
+Solid complement_of(const Solid& a) {
+  Solid c;
+  c.triangles = a.triangles;
+  reverse_faces(c.triangles);
+  c.volume = -a.volume;
+  c.faces = a.faces;
+  c.vertices = a.vertices;
+  c.complement = true;
+  return c;
+}
+
+// The complement of c ⊕ (−B) for c the complement of a solid: the erosion.
+NonconvexSum erode_complement(const Solid& c, const ConvexPolytope& b, const SumOptions& options, unsigned threads,
+                              Method method) {
+  NonconvexSum r =
+      minkowski_sum_nonconvex(c, solid_of(b.negated()), options, threads, method, NonconvexMethod::sweep);
+  reverse_faces(r.mesh);
+  r.volume = -r.volume;
+  r.operation = "erosion";
+  return r;
+}
+
+// `step`'s work added to `total`'s (the boundary, volume and shells are the
+// last step's).
+void add_work(NonconvexSum& total, const NonconvexSum& step) {
+  total.pieces_a += step.pieces_a;
+  total.pieces_b += step.pieces_b;
+  total.pairs += step.pairs;
+  total.candidate_facets += step.candidate_facets;
+  total.culled_facets += step.culled_facets;
+  total.dropped_components += step.dropped_components;
+  total.pair_vertices += step.pair_vertices;
+  total.pair_facets += step.pair_facets;
+  total.clips += step.clips;
+  total.seconds_decompose += step.seconds_decompose;
+  total.seconds_pairs += step.seconds_pairs;
+  total.seconds_union += step.seconds_union;
+  total.seconds_boundary += step.seconds_boundary;
+}
+
+NonconvexSum then(NonconvexSum first, NonconvexSum second, const char* operation) {
+  add_work(second, first);
+  second.operation = operation;
+  return second;
+}
+
+}  // namespace
+
+NonconvexSum erode(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads, Method method) {
+  const ConvexPolytope& pb = convex_operand(b, "erosion");
+  if (a.complement) throw std::invalid_argument("erosion of the complement of a solid");
+  return erode_complement(complement_of(a), pb, options, threads, method);
+}
+
+NonconvexSum opening(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads, Method method) {
+  const ConvexPolytope& pb = convex_operand(b, "opening");
+  NonconvexSum e = erode(a, b, options, threads, method);
+  if (e.mesh.faces.empty()) {  // B fits nowhere inside A: the opening is empty too
+    e.operation = "opening";
+    return e;
+  }
+  // For convex A the erosion is convex, and its sum with B is the convex path's.
+  const Solid inner = solid_of_boundary(e, false, bool(a.convex));
+  NonconvexSum s = minkowski_sum_nonconvex(inner, solid_of(pb), options, threads, method);
+  return then(std::move(e), std::move(s), "opening");
+}
+
+NonconvexSum closing(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads, Method method) {
+  const ConvexPolytope& pb = convex_operand(b, "closing");
+  NonconvexSum s = minkowski_sum_nonconvex(a, b, options, threads, method);
+  const Solid outer = solid_of_boundary(s, true, false);
+  NonconvexSum e = erode_complement(outer, pb, options, threads, method);
+  return then(std::move(s), std::move(e), "closing");
+}
+
+}  // namespace minksum

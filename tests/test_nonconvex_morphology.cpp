@@ -1,0 +1,307 @@
+// Erosion, opening and closing of solids by convex polytopes
+// (docs/nonconvex.md, "Erosion, opening, closing"): against CGAL's Nef
+// polyhedra through complements (reference_erosion), closed forms, and
+// properties.
+#include <minksum/catalog.hpp>
+#include <minksum/minkowski.hpp>
+#include <minksum/nonconvex.hpp>
+
+#include "nonconvex/morphology.hpp"
+#include "nonconvex/union.hpp"
+#include "nonconvex_support.hpp"
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace minksum;
+using namespace minksum::testing;
+
+namespace {
+
+Solid solid(const std::string& spec) { return validate_solid(catalog_mesh(spec), spec); }
+
+Rational R(const char* s) { return Rational(s); }
+
+ConvexPolytope box(const char* x0, const char* x1, const char* y0, const char* y1, const char* z0, const char* z1) {
+  return ConvexPolytope::from_mesh(box_mesh(R(x0), R(x1), R(y0), R(y1), R(z0), R(z1)), "box");
+}
+
+// The union of boxes as a validated solid (minksum's exact union).
+Solid union_solid(const std::vector<ConvexPolytope>& parts) {
+  NonconvexSum u;
+  nonconvex_detail::union_boundary(parts, {}, u);
+  return validate_solid(u.mesh, "union");
+}
+
+// The same solid: exact volume, vertex set and face planes (faces merged).
+void expect_same(const Mesh& got, const Mesh& want) {
+  EXPECT_EQ(mesh_volume(got), mesh_volume(want));
+  EXPECT_EQ(face_planes(got), face_planes(want));
+  EXPECT_EQ(vertex_set(got), vertex_set(want));
+}
+
+void expect_like_oracle(const std::string& a, const std::string& b) {
+  SCOPED_TRACE(a + " eroded by " + b);
+  const Solid sa = solid(a), sb = solid(b);
+  const NonconvexSum r = erode(sa, sb);
+  const Mesh o = reference_erosion(sa, sb);
+  EXPECT_EQ(r.volume, mesh_volume(o));
+  EXPECT_EQ(face_planes(r.mesh), face_planes(o));
+  if (!r.mesh.faces.empty()) expect_closed_oriented(r);
+}
+
+}  // namespace
+
+// --- against CGAL: A minus minkowski_sum_3(box - A, -B) ----------------------
+
+TEST(ErosionOracle, LShapeByOctahedron) { expect_like_oracle("lshape", "octahedron@scale:1/5"); }
+TEST(ErosionOracle, TubeByRotatedCube) { expect_like_oracle("tube", "cube@scale:1/8@rot:3"); }
+TEST(ErosionOracle, StarByIcosahedron) { expect_like_oracle("star:5", "sphere:1@scale:1/12"); }
+TEST(ErosionOracle, BallOffCentre) { expect_like_oracle("lshape@rot:5", "sphere:1@scale:1/10@translate:1/7,0,1/9"); }
+TEST(ErosionOracle, CubeOffCentre) { expect_like_oracle("lshape", "cube@scale:1/10@translate:1/8,0,0"); }
+TEST(ErosionOracle, ConvexA) { expect_like_oracle("sphere:1", "tetra@scale:1/5"); }
+
+// Random unions of boxes with small integer corners (those that are solids:
+// no two boxes touching along an edge only) eroded by random small convex
+// polytopes (hulls of a few points of a grid of 1/4, off the origin):
+// against CGAL.
+TEST(ErosionOracle, RandomBoxUnionsByRandomPolytopes) {
+  int checked = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> coord(0, 4), count(1, 3), quarter(-3, 3), points(4, 7);
+    std::vector<ConvexPolytope> parts;
+    for (int n = count(rng); int(parts.size()) < n;) {
+      int c[6];
+      for (int& x : c) x = coord(rng);
+      if (c[0] == c[1] || c[2] == c[3] || c[4] == c[5]) continue;
+      parts.push_back(ConvexPolytope::from_mesh(
+          box_mesh(Rational(std::min(c[0], c[1])), Rational(std::max(c[0], c[1])), Rational(std::min(c[2], c[3])),
+                   Rational(std::max(c[2], c[3])), Rational(std::min(c[4], c[5])), Rational(std::max(c[4], c[5]))),
+          "box"));
+    }
+    std::optional<ConvexPolytope> b;
+    while (!b) {
+      std::vector<Point3> p;
+      for (int k = points(rng); int(p.size()) < k;)
+        p.emplace_back(Rational(quarter(rng), 4), Rational(quarter(rng), 4), Rational(quarter(rng), 4));
+      try {
+        b = ConvexPolytope::hull(p, "random");
+      } catch (const InputError&) {  // flat: draw again
+      }
+    }
+    Solid a;
+    try {
+      a = union_solid(parts);
+    } catch (const InputError&) {  // boxes touching along an edge: not a solid
+      continue;
+    }
+    const Solid sb = solid_of(*b);
+    const NonconvexSum r = erode(a, sb);
+    const Mesh o = reference_erosion(a, sb);
+    EXPECT_EQ(r.volume, mesh_volume(o));
+    EXPECT_EQ(face_planes(r.mesh), face_planes(o));
+    if (!r.mesh.faces.empty()) expect_closed_oriented(r);
+    ++checked;
+  }
+  EXPECT_GE(checked, 6);
+}
+
+// --- closed forms ------------------------------------------------------------
+
+TEST(Erosion, BoxByBoxIsABox) {
+  const Solid a = solid("box:4:6:8"), b = solid("box:1:2:3@translate:1/2,0,-1/4");
+  const NonconvexSum r = erode(a, b);
+  expect_closed_oriented(r);
+  EXPECT_EQ(r.volume, Rational(3 * 4 * 5));
+  EXPECT_EQ(r.shells, 1u);
+  // A = [-2,2] x [-3,3] x [-4,4], B = [0,1] x [-1,1] x [-7/4,5/4]: each of
+  // A's faces moved in by B's support along its normal.
+  expect_same(r.mesh, box_mesh(R("-2"), R("1"), R("-2"), R("2"), R("-9/4"), R("11/4")));
+  EXPECT_EQ(r.operation, std::string("erosion"));
+}
+
+TEST(Erosion, ConvexAIsItsFacetsMovedBySupport) {
+  // A ⊖ B for convex A: the half-spaces a.x <= d - h_B(a) of A's facets.
+  const Solid a = solid("sphere:2"), b = solid("cube@scale:1/40@rot:4");
+  const NonconvexSum r = erode(a, b);
+  expect_closed_oriented(r);
+  const ConvexPolytope e = ConvexPolytope::from_mesh(r.mesh, "erosion");  // convex
+  std::set<Plane> moved;
+  for (Index f = 0; f < a.convex->num_facets(); ++f) {
+    const Plane& h = a.convex->plane(f);
+    Rational support = dot(h.normal(), b.convex->points().front());
+    for (const Point3& p : b.convex->points()) support = std::max(support, Rational(dot(h.normal(), p)));
+    moved.insert(canonical_plane(h.normal(), Rational(Rational(h.d) - support) / dot(h.normal(), h.normal()) * h.normal()));
+  }
+  for (Index f = 0; f < e.num_facets(); ++f) EXPECT_TRUE(moved.count(e.plane(f))) << "facet " << f;
+  EXPECT_LT(e.volume(), a.volume);
+}
+
+// For convex A, the intersection of A's facet half-spaces moved by B's
+// support (convex_erosion, CGAL's halfspace_intersection_3 on exact points)
+// against erode's sweep: the same polytope exactly.
+TEST(Erosion, ConvexAIsTheIntersectionOfTheMovedHalfSpaces) {
+  for (const auto& [a, b] : std::vector<std::pair<std::string, std::string>>{
+           {"sphere:2", "cube@scale:1/9@rot:4"},
+           {"dodecahedron", "tetra@scale:1/5@translate:1/3,1/7,0"},
+           {"box:4:6:8", "cube@rot:3@scale:1/2"},
+           {"cube", "sphere:1@scale:1/3"},
+           {"octahedron@rot:2", "octahedron@scale:1/2"}}) {
+    SCOPED_TRACE(a + " eroded by " + b);
+    const Solid sa = solid(a), sb = solid(b);
+    const NonconvexSum swept = erode(sa, sb);
+    const std::optional<ConvexPolytope> direct = nonconvex_detail::convex_erosion(*sa.convex, *sb.convex);
+    ASSERT_TRUE(direct);
+    expect_closed_oriented(swept);
+    expect_same(swept.mesh, direct->to_mesh());
+  }
+  // Empty, and exactly the size of A (a point): no point strictly inside.
+  EXPECT_FALSE(nonconvex_detail::convex_erosion(catalog_polytope("cube"), catalog_polytope("cube@scale:2")));
+  EXPECT_FALSE(nonconvex_detail::convex_erosion(catalog_polytope("cube"), catalog_polytope("cube")));
+}
+
+TEST(Erosion, SumThenErosionGivesBackTheSummand) {
+  const ConvexPolytope p = catalog_polytope("octahedron@rot:2"), b = catalog_polytope("dodecahedron@scale:1/3");
+  const ConvexPolytope s = minkowski_sum(p, b).polytope;
+  const NonconvexSum r = erode(solid_of(s), solid_of(b));
+  const ConvexPolytope e = ConvexPolytope::from_mesh(r.mesh, "erosion");
+  EXPECT_EQ(e.volume(), p.volume());
+  std::set<Point3> want, got;
+  for (const Point3& q : p.points()) want.insert(q);
+  for (const Point3& q : e.points()) got.insert(q);
+  EXPECT_EQ(got, want);
+}
+
+TEST(Erosion, LShapeOpenedOrClosedByASmallerCubeIsItself) {
+  const Solid l = solid("lshape"), c = solid("cube@scale:1/8");
+  const Mesh want = solid_faces(l);
+  const NonconvexSum o = opening(l, c);
+  expect_closed_oriented(o);
+  expect_same(o.mesh, want);
+  EXPECT_EQ(o.operation, std::string("opening"));
+  const NonconvexSum k = closing(l, c);
+  expect_closed_oriented(k);
+  expect_same(k.mesh, want);
+  EXPECT_EQ(k.operation, std::string("closing"));
+}
+
+TEST(Erosion, ThatEmptiesTheSolid) {
+  const Solid a = solid("cube"), b = solid("cube@scale:3/2");
+  const NonconvexSum r = erode(a, b);
+  EXPECT_TRUE(r.mesh.faces.empty());
+  EXPECT_TRUE(r.mesh.points.empty());
+  EXPECT_EQ(r.volume, Rational(0));
+  EXPECT_EQ(r.shells, 0u);
+  EXPECT_GE(r.dropped_components, 1u);
+  // B exactly A's size: the erosion is one point, empty once regularised.
+  EXPECT_TRUE(erode(a, solid("cube")).mesh.faces.empty());
+  // The opening of nothing is nothing.
+  EXPECT_TRUE(opening(solid("lshape"), solid("cube@scale:3/4")).mesh.faces.empty());
+}
+
+TEST(Erosion, ThatSplitsTheSolidIntoTwoShells) {
+  // Two cubes of side 2 joined by a bar of side 1/2: a cube of side 1 fits
+  // in the cubes only.
+  const Solid a = union_solid({box("0", "2", "0", "2", "0", "2"), box("2", "4", "3/4", "5/4", "3/4", "5/4"),
+                               box("4", "6", "0", "2", "0", "2")});
+  const NonconvexSum r = erode(a, solid("cube@scale:1/2"));
+  expect_closed_oriented(r);
+  EXPECT_EQ(r.shells, 2u);
+  EXPECT_EQ(r.volume, Rational(2));
+  expect_same(r.mesh, join(box_mesh(R("1/2"), R("3/2"), R("1/2"), R("3/2"), R("1/2"), R("3/2")),
+                           box_mesh(R("9/2"), R("11/2"), R("1/2"), R("3/2"), R("1/2"), R("3/2"))));
+  // Opened, the bar is gone.
+  const NonconvexSum o = opening(a, solid("cube@scale:1/2"));
+  EXPECT_EQ(o.volume, Rational(16));
+  EXPECT_EQ(o.shells, 2u);
+}
+
+TEST(Erosion, WithACavityKeepsAndGrowsIt) {
+  // The hollow cube [-2,2]^3 minus [-1,1]^3 eroded by a cube of side 1/2:
+  // [-7/4,7/4]^3 minus [-5/4,5/4]^3.
+  const Solid a = validate_solid(hollow_cube(), "hollow");
+  const NonconvexSum r = erode(a, solid("cube@scale:1/4"));
+  expect_closed_oriented(r);
+  EXPECT_EQ(r.shells, 2u);
+  EXPECT_EQ(r.volume, Rational(343, 8) - Rational(125, 8));
+}
+
+TEST(Erosion, OpeningOfErosionTouchingItselfAlongAnEdge) {
+  // Two boxes overlapping in a column: eroded by the cube of side 1, two
+  // boxes touching along an edge (a non-manifold edge); opened, A itself.
+  const Solid a = union_solid({box("0", "2", "0", "2", "0", "2"), box("1", "3", "1", "3", "0", "2")});
+  const Solid c = solid("cube@scale:1/2");
+  const NonconvexSum e = erode(a, c);
+  expect_closed_oriented(e);
+  EXPECT_EQ(e.non_manifold_edges, 1u);
+  EXPECT_EQ(e.volume, Rational(2));
+  const NonconvexSum o = opening(a, c);
+  expect_closed_oriented(o);
+  expect_same(o.mesh, solid_faces(a));
+}
+
+TEST(Erosion, ClosingOfASumTouchingItselfAlongAnEdge) {
+  // Two unit cubes diagonal to each other, ⊕ [-1/2,1/2]^3: two boxes
+  // touching along the edge x = y = 3/2 (swept reversed, cut apart across
+  // the complement); eroded back, the two cubes.
+  const Solid a = validate_solid(join(box_mesh(R("0"), R("1"), R("0"), R("1"), R("0"), R("1")),
+                                      box_mesh(R("2"), R("3"), R("2"), R("3"), R("0"), R("1"))),
+                                 "two cubes");
+  const Solid c = solid("cube@scale:1/2");
+  EXPECT_EQ(minkowski_sum_nonconvex(a, c).non_manifold_edges, 1u);
+  const NonconvexSum k = closing(a, c);
+  expect_closed_oriented(k);
+  EXPECT_EQ(k.shells, 2u);
+  expect_same(k.mesh, solid_faces(a));
+}
+
+TEST(Erosion, ClosingFillsTheNotchOfAnL) {
+  // The L's reflex edge filled by a ball: more than the L, less than its hull.
+  const Solid l = solid("lshape"), b = solid("sphere:1@scale:1/4");
+  const NonconvexSum k = closing(l, b);
+  expect_closed_oriented(k);
+  EXPECT_GT(k.volume, l.volume);
+  EXPECT_LT(k.volume, Rational(4));
+  const NonconvexSum o = opening(l, b);
+  expect_closed_oriented(o);
+  EXPECT_LT(o.volume, l.volume);
+}
+
+// --- properties ------------------------------------------------------------
+
+TEST(Erosion, OpeningInsideAInsideClosingOnATorus) {
+  const Solid t = solid("torus:16:8"), b = solid("sphere:1@scale:1/12");
+  const NonconvexSum e = erode(t, b);
+  expect_closed_oriented(e);
+  EXPECT_EQ(solid_stats(e.mesh).genus, 1u);  // the hole kept
+  EXPECT_EQ(e.shells, 1u);
+  EXPECT_LT(e.volume, t.volume);
+  const NonconvexSum o = opening(t, b), k = closing(t, b);
+  expect_closed_oriented(o);
+  expect_closed_oriented(k);
+  EXPECT_LE(o.volume, t.volume);
+  EXPECT_GE(k.volume, t.volume);
+  EXPECT_LT(e.volume, o.volume);
+  // Opening is idempotent: opening the opening gives it back.
+  const Solid os = validate_solid(o.mesh, "opening");
+  EXPECT_EQ(opening(os, b).volume, o.volume);
+}
+
+TEST(Erosion, TranslationOfBMovesTheErosionBack) {
+  const Solid a = solid("tube"), b = solid("octahedron@scale:1/6"), bt = solid("octahedron@scale:1/6@translate:1/3,-1/5,1/7");
+  const NonconvexSum r = erode(a, b), rt = erode(a, bt);
+  EXPECT_EQ(r.volume, rt.volume);
+  std::set<Point3> moved;
+  for (const Point3& p : vertex_set(rt.mesh)) moved.insert(p + Point3(R("1/3"), R("-1/5"), R("1/7")));
+  EXPECT_EQ(moved, vertex_set(r.mesh));
+}
+
+TEST(Erosion, BMustBeConvex) {
+  EXPECT_THROW(erode(solid("cube"), solid("lshape")), std::invalid_argument);
+  EXPECT_THROW(opening(solid("cube"), solid("lshape")), std::invalid_argument);
+  EXPECT_THROW(closing(solid("cube"), solid("lshape")), std::invalid_argument);
+}

@@ -72,6 +72,7 @@ SUM_SET = SUM.extend("sum (sweep)", {"method": METHODS, "route": "string",
                                      "rounding": ("nullable", ROUNDING_POLYTOPE)},
                      {"a": OPERAND, "b": OPERAND})
 SUM_SOLID = SUM.extend("sum (solid)", {
+    "operation": ("enum", "sum", "erosion", "opening", "closing"), "empty": "bool",
     "method": ("enum", "nonconvex"), "pair_method": "string", "nonconvex_method": ("enum", "sweep", "decomposition"),
     "swept": ("nullable", ("enum", "a", "b")), "pieces": Obj("pieces", {"a": "int", "b": "int"}),
     "pairs": "int", "pair_vertices": ("nullable", "int"), "pair_facets": "int", "candidate_facets": "int",
@@ -244,6 +245,10 @@ def main():
         (["sum", "tube", "cube@scale:1/4", "-o", w("t.off")], SUM_SOLID),
         (["sum", "lshape", "cube@scale:1/3", "-o", w("third.off")], SUM_SOLID),
         (["sum", "tube", "cube", "--nonconvex-method", "decomposition"], SUM_SOLID),
+        (["erode", "lshape", "cube@scale:1/4", "-o", w("eroded.stl")], SUM_SOLID),
+        (["erode", "cube", "cube@scale:3"], SUM_SOLID),
+        (["open", "tube", "sphere:1@scale:1/8", "-o", w("opened.off")], SUM_SOLID),
+        (["close", "lshape", "cube@scale:1/4"], SUM_SOLID),
         (["stats", "cube"], STATS_POLYTOPE),
         (["stats", w("r.off")], STATS_POLYTOPE),
         (["stats", "tube"], STATS_SOLID),

@@ -184,6 +184,8 @@ bool closest_on_simplex(std::array<SimplexVertex, 4>& s, int& n, V3& v) {
   const V3 a = s[0].w, b = s[1].w, c = s[2].w, d = s[3].w;
   const double vol = dot(b - a, cross(c - a, d - a));
   const double scale = std::max({dot(b - a, b - a), dot(c - a, c - a), dot(d - a, d - a)});
+  // Only the search's choice of faces, not a decision: the answer is
+  // certified afterwards by exact signs whatever simplex the search keeps.
   const bool flat = !(std::fabs(vol) > 1e-12 * scale * std::sqrt(scale));
   static constexpr int faces[4][4] = {{0, 1, 2, 3}, {0, 2, 3, 1}, {0, 3, 1, 2}, {1, 3, 2, 0}};
   double best = std::numeric_limits<double>::infinity();
@@ -370,6 +372,8 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
     }
     bool repeated = false;
     for (int k = 0; k < n; ++k) repeated = repeated || (s[k].p == w.p && s[k].q == w.q);
+    // When the search in doubles stops (no decision: an answer it did not
+    // certify goes to the exact path).
     if (repeated || !(vv < last) || vv - vw <= 1e-15 * vv) break;  // converged without a certificate
     last = vv;
     s[n++] = w;

@@ -129,6 +129,30 @@ TEST(RoundedPredicates, SupportCompareAgreesAndBoundHolds) {
   }
 }
 
+TEST(RoundedPredicates, ArcSideAgreesAndBoundHolds) {
+  // sign <(p1 - p0) x (q1 - q0), (r1 - r0) x (r2 - r0)>, as the union's
+  // crossing test uses it: p0 = q0 = r0 = a, p1 = r1 = b, q1 = c, r2 = d, a
+  // b c d coplanar; in a third of the cases c on the line ab (the exact
+  // answer is 0), in a third d on the other side of it.
+  for (std::uint64_t seed = 1; seed <= 600; ++seed) {
+    Gen g(seed);
+    Rounded a(g.point()), b(g.point()), e(g.point());
+    Rational s(mpz_class(long(g.integer(-5, 5))), mpz_class(7)), t(mpz_class(long(g.integer(1, 5))), mpz_class(3));
+    s.canonicalize(), t.canonicalize();
+    const Point3 u = b.exact - a.exact, w = e.exact - a.exact;
+    Rounded c(seed % 3 == 0 ? Point3(a.exact + s * u) : Point3(a.exact + s * u + t * w));
+    Rounded d(seed % 3 == 1 ? Point3(a.exact + t * u - s * w) : Point3(a.exact - s * u + t * w));
+    const Rational P = dot(cross(u, c.exact - a.exact), cross(u, d.exact - a.exact));
+    in_all_modes([&](int mode) {
+      const RoundedPoint3 ra = a.ref(), rb = b.ref(), rc = c.ref(), rd = d.ref();
+      const auto approx = detail::approx_rounded<detail::ArcSidePred>({&ra, &rb, &ra, &rc, &ra, &rb, &rd});
+      check_bound(approx, P, seed, mode);
+      ASSERT_EQ(arc_side(ra, rb, ra, rc, ra, rb, rd), sgn(P)) << "seed " << seed << " mode " << mode;
+      ASSERT_EQ(arc_side(a.exact, b.exact, a.exact, c.exact, a.exact, b.exact, d.exact), sgn(P)) << "seed " << seed;
+    });
+  }
+}
+
 TEST(RoundedPredicates, Orient3dDeclinesOnUnusableRoundings) {
   // A coordinate below the subnormal range rounds to zero: unusable.
   const Point3 tiny(Rational(1) / Rational(mpz_class(1) << 1100), Rational(0), Rational(0));

@@ -111,6 +111,11 @@ int arc_side(const Point3& p0, const Point3& p1, const Point3& q0, const Point3&
              const Point3& r0, const Point3& r1, const Point3& r2) {
   return filtered<ArcSidePred>(p0, p1, q0, q1, r0, r1, r2);
 }
+int arc_side(const RoundedPoint3& p0, const RoundedPoint3& p1, const RoundedPoint3& q0,
+             const RoundedPoint3& q1, const RoundedPoint3& r0, const RoundedPoint3& r1,
+             const RoundedPoint3& r2) {
+  return filtered<ArcSidePred>(p0, p1, q0, q1, r0, r1, r2);
+}
 int normals_dot_sign(const Vec3d& a0, const Vec3d& a1, const Vec3d& a2, const Vec3d& b0,
                      const Vec3d& b1, const Vec3d& b2) {
   return filtered<NormalsDotPred>(a0, a1, a2, b0, b1, b2);

@@ -902,9 +902,20 @@ struct V2 {
 };
 
 // The points where two of the edges cross, inside both (not at an end of
-// either), found among the pairs whose rounded boxes meet.
+// either), found among the pairs whose rounded boxes meet (approx: the
+// points' nearest doubles).  Segments ab and cd cross inside both exactly
+// when they are coplanar, c and d lie strictly on either side of the line
+// ab in their plane, and a and b strictly on either side of the line cd:
+// with u = b − a, the sides of c and d are opposite when
+// ⟨u × (c − a), u × (d − a)⟩ < 0 (both vectors are normals of the common
+// plane, of the same direction when c and d are on the same side, zero
+// when one is on the line), which is arc_side(a, b, a, c, a, b, d).  Two
+// parallel segments fail the first test (c and d on one side or on the
+// line).  Only a crossing is computed, in rationals.  The pairs of one
+// segment in parallel; the points in the order of the segments.
 std::vector<Point3> crossings(const std::vector<std::vector<std::pair<Index, Index>>>& edges,
-                              const std::vector<Point3>& pts) {
+                              const std::vector<Point3>& pts, const std::vector<Vec3d>& approx,
+                              unsigned threads) {
   std::vector<std::pair<Index, Index>> all;
   for (const auto& plane : edges)
     for (auto [a, b] : plane) all.emplace_back(std::min(a, b), std::max(a, b));
@@ -912,28 +923,32 @@ std::vector<Point3> crossings(const std::vector<std::vector<std::pair<Index, Ind
   all.erase(std::unique(all.begin(), all.end()), all.end());
   std::vector<Box> box(all.size());
   for (std::size_t i = 0; i < all.size(); ++i) {
-    box[i].add(to_double(pts[all[i].first]));
-    box[i].add(to_double(pts[all[i].second]));
+    box[i].add(approx[all[i].first]);
+    box[i].add(approx[all[i].second]);
   }
   std::vector<std::size_t> order(all.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return box[x].lo[0] < box[y].lo[0]; });
-  std::vector<Point3> out;
-  for (std::size_t i = 0; i < order.size(); ++i) {
+  auto rounded = [&](Index v) { return RoundedPoint3{pts[v], approx[v]}; };
+  std::vector<std::vector<Point3>> found(order.size());
+  parallel_for(order.size(), parallel_threads(threads, order.size() / 1024 + 1), [&](std::size_t i) {
     const auto [a, b] = all[order[i]];
+    const RoundedPoint3 ra = rounded(a), rb = rounded(b);
     for (std::size_t j = i + 1; j < order.size() && box[order[j]].lo[0] <= box[order[i]].hi[0]; ++j) {
       const auto [c, d] = all[order[j]];
       if (a == c || a == d || b == c || b == d || !box[order[i]].meets(box[order[j]])) continue;
-      if (orient3d(pts[a], pts[b], pts[c], pts[d]) != 0) continue;
+      const RoundedPoint3 rc = rounded(c), rd = rounded(d);
+      if (orient3d(ra, rb, rc, rd) != 0) continue;
+      if (arc_side(ra, rb, ra, rc, ra, rb, rd) >= 0 || arc_side(rc, rd, rc, ra, rc, rd, rb) >= 0) continue;
+      // a + s u = c + t v: s = ((w x v) . (u x v)) / |u x v|^2.
       const Point3 u = pts[b] - pts[a], v = pts[d] - pts[c], w = pts[c] - pts[a];
       const Point3 uv = cross(u, v);
-      if (is_zero(uv)) continue;  // parallel: an end inside the other is a vertex already
-      // a + s u = c + t v: s = ((w x v) . (u x v)) / |u x v|^2, t = ((w x u) . (u x v)) / |u x v|^2.
-      const Rational n2 = dot(uv, uv), sn = dot(cross(w, v), uv), tn = dot(cross(w, u), uv);
-      if (sgn(sn) > 0 && cmp(sn, n2) < 0 && sgn(tn) > 0 && cmp(tn, n2) < 0)
-        out.push_back(pts[a] + Rational(sn / n2) * u);
+      found[i].push_back(pts[a] + Rational(dot(cross(w, v), uv) / dot(uv, uv)) * u);
     }
-  }
+  });
+  std::vector<Point3> out;
+  for (auto& f : found)
+    for (Point3& p : f) out.push_back(std::move(p));
   return out;
 }
 
@@ -1433,7 +1448,7 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
   end_approx.clear();
   // Two edges crossing at a point inside both (the solid touching itself at
   // a point there): the point becomes a vertex of both.
-  for (Point3& x : crossings(edges, pts)) {
+  for (Point3& x : crossings(edges, pts, approx, threads)) {
     const Vec3d d = to_double(x);
     weld(x, d);
   }

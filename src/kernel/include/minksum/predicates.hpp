@@ -159,10 +159,13 @@ struct RoundedPoint3 {
 // orient3d(a.exact, b.exact, c.exact, d.exact); counted as orient3d.
 int orient3d(const RoundedPoint3& a, const RoundedPoint3& b, const RoundedPoint3& c,
              const RoundedPoint3& d);
-// support_compare, dot_sign and edge_normal_side on rounded points; counted
-// as those.
+// support_compare, arc_side, dot_sign and edge_normal_side on rounded
+// points; counted as those.
 int support_compare(const RoundedPoint3& a0, const RoundedPoint3& a1, const RoundedPoint3& a2,
                     const RoundedPoint3& bi, const RoundedPoint3& bj);
+int arc_side(const RoundedPoint3& p0, const RoundedPoint3& p1, const RoundedPoint3& q0,
+             const RoundedPoint3& q1, const RoundedPoint3& r0, const RoundedPoint3& r1,
+             const RoundedPoint3& r2);
 int dot_sign(const RoundedPoint3& p0, const RoundedPoint3& p1, const RoundedPoint3& q0,
              const RoundedPoint3& q1);
 int edge_normal_side(const RoundedPoint3& a, const RoundedPoint3& b, const RoundedPoint3& n,

@@ -9,6 +9,8 @@
 #include "nonconvex/sweep.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <map>
 #include <numeric>
 #include <unordered_map>
@@ -255,21 +257,60 @@ Mesh triangulate(const Mesh& mesh, const std::string& source) {
 }
 
 // Six times the signed volume of each face's fan from the origin, summed
-// pairwise: the terms' denominators differ, and a running sum's grows with
-// every term, so adding them one by one costs the final sum's size per
-// term; the pairwise sums of equal-sized halves cost about the final size
-// per level.  The terms in parallel, each level too.
-// Each fan triangle's term in integers: with the points as P / D over one
-// denominator each (ScaledPoint), det(p0, p1, p2) = det(P0, P1, P2) /
-// (D0 D1 D2), one gcd per triangle instead of one per rational operation.
+// in a tree.  Each fan triangle's term in integers: with the points as
+// P / D over one denominator each (ScaledPoint), det(p0, p1, p2) =
+// det(P0, P1, P2) / (D0 D1 D2), one gcd per triangle instead of one per
+// rational operation.  The terms' denominators differ (a vertex of the
+// union is a cut point with its own denominator, and the exact volume's
+// denominator is about the product of all of them), so a running sum would
+// cost the final size per term; the pairwise sums of equal halves cost
+// about the final size per level.  The faces are summed in the order of a
+// Morton code of their first vertex's doubles, so that each node of the
+// tree holds a patch of the surface: two sibling patches share the vertices
+// of their common border only.  The lower levels (many small sums, in
+// parallel) are reduced at every addition; the top levels (a few huge sums,
+// one at a time) are added as n1/d1 + n2/d2 = (n1 d2 + n2 d1) / (d1 d2)
+// without the gcds that reduce them, which cost several multiplications
+// each: the denominators grow by the factors of the shared border vertices
+// only, and the final sum is reduced once.  Exact in any order.
 Rational mesh_volume(const Mesh& mesh) {
-  std::vector<Rational> term(mesh.faces.size());
-  const unsigned workers = parallel_threads(0, term.size() / 256 + 1);
+  const std::size_t nf = mesh.faces.size();
+  const unsigned workers = parallel_threads(0, nf / 256 + 1);
   std::vector<ScaledPoint> scaled(mesh.points.size());
   parallel_for(scaled.size(), parallel_threads(0, scaled.size() / 256 + 1),
                [&](std::size_t v) { scaled[v] = scaled_point(mesh.points[v]); });
-  parallel_for(term.size(), workers, [&](std::size_t k) {
-    const auto& f = mesh.faces[k];
+  // The faces in Morton order of their first vertex (the order decides the
+  // cost only).
+  std::vector<std::pair<std::uint64_t, Index>> order(nf);
+  {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    std::vector<Vec3d> at(nf);
+    for (std::size_t k = 0; k < nf; ++k) {
+      at[k] = mesh.faces[k].empty() ? Vec3d{0, 0, 0} : to_double(mesh.points[mesh.faces[k][0]]);
+      for (int i = 0; i < 3; ++i) {
+        lo[i] = std::min(lo[i], at[k][i]);
+        hi[i] = std::max(hi[i], at[k][i]);
+      }
+    }
+    for (std::size_t k = 0; k < nf; ++k) {
+      std::uint64_t code = 0;
+      std::uint32_t cell[3];
+      for (int i = 0; i < 3; ++i) {
+        const double span = hi[i] - lo[i];
+        double t = span > 0 && std::isfinite(span) ? (at[k][i] - lo[i]) / span : 0.0;
+        if (!(t > 0)) t = 0;  // (also NaN)
+        if (t > 1) t = 1;
+        cell[i] = std::uint32_t(t * 2097151.0);  // 21 bits
+      }
+      for (int b = 20; b >= 0; --b)
+        for (int i = 0; i < 3; ++i) code = (code << 1) | ((cell[i] >> b) & 1u);
+      order[k] = {code, Index(k)};
+    }
+    std::sort(order.begin(), order.end());
+  }
+  std::vector<Rational> term(nf);
+  parallel_for(nf, workers, [&](std::size_t k) {
+    const auto& f = mesh.faces[order[k].second];
     const ScaledPoint& p0 = scaled[f[0]];
     Integer c[3], det, den;
     Rational t;
@@ -292,15 +333,48 @@ Rational mesh_volume(const Mesh& mesh) {
       term[k] += t;
     }
   });
+  if (term.empty()) return Rational(0);
+  // Reduced levels while a level has enough sums for every thread.
   std::vector<Rational> next;
-  while (term.size() > 1) {
+  while (term.size() > 1 && term.size() / 2 >= 64) {
     const std::size_t half = term.size() / 2;
     next.resize(half + term.size() % 2);
-    parallel_for(half, half >= 64 ? workers : 1, [&](std::size_t k) { next[k] = term[2 * k] + term[2 * k + 1]; });
+    parallel_for(half, workers, [&](std::size_t k) { next[k] = term[2 * k] + term[2 * k + 1]; });
     if (term.size() % 2) next[half] = std::move(term.back());
     term.swap(next);
   }
-  return term.empty() ? Rational(0) : Rational(term[0] / 6);
+  // The top levels unreduced (denominators stay positive), then one reduction.
+  std::vector<std::pair<Integer, Integer>> frac(term.size());
+  for (std::size_t k = 0; k < term.size(); ++k) {
+    mpz_swap(frac[k].first.get_mpz_t(), term[k].get_num_mpz_t());
+    mpz_swap(frac[k].second.get_mpz_t(), term[k].get_den_mpz_t());
+  }
+  Integer cross;
+  while (frac.size() > 1) {
+    const std::size_t half = frac.size() / 2;
+    for (std::size_t k = 0; k < half; ++k) {
+      auto& [n1, d1] = frac[2 * k];
+      auto& [n2, d2] = frac[2 * k + 1];
+      mpz_mul(cross.get_mpz_t(), n2.get_mpz_t(), d1.get_mpz_t());
+      mpz_mul(n1.get_mpz_t(), n1.get_mpz_t(), d2.get_mpz_t());
+      mpz_add(n1.get_mpz_t(), n1.get_mpz_t(), cross.get_mpz_t());
+      mpz_mul(d1.get_mpz_t(), d1.get_mpz_t(), d2.get_mpz_t());
+      if (k != 0) {
+        mpz_swap(frac[k].first.get_mpz_t(), n1.get_mpz_t());
+        mpz_swap(frac[k].second.get_mpz_t(), d1.get_mpz_t());
+      }
+    }
+    if (frac.size() % 2) {
+      mpz_swap(frac[half].first.get_mpz_t(), frac.back().first.get_mpz_t());
+      mpz_swap(frac[half].second.get_mpz_t(), frac.back().second.get_mpz_t());
+    }
+    frac.resize(half + frac.size() % 2);
+  }
+  Rational sum;
+  mpz_swap(sum.get_num_mpz_t(), frac[0].first.get_mpz_t());
+  mpz_swap(sum.get_den_mpz_t(), frac[0].second.get_mpz_t());
+  sum.canonicalize();
+  return sum / 6;
 }
 
 Solid validate_solid(const Mesh& mesh, const std::string& source) {

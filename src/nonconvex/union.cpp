@@ -126,36 +126,51 @@ struct Arena {
   std::deque<Plane> planes;
 };
 
-// The point where three planes (a x + b y + c z = d) meet, by Cramer's rule
-// in integers; the planes' normals are independent.
-CutPoint meet(const Plane& p, const Plane& q, const Plane& r) {
-  CutPoint out;
-  Integer& det = out.W;
-  Integer& x = out.X;
-  Integer& y = out.Y;
-  Integer& z = out.Z;
-  // Minors of the last two rows.
-  auto minor = [](Integer& out, const Integer& u1, const Integer& v1, const Integer& u2, const Integer& v2) {
+// The points where two fixed planes p and r meet a third plane q (a x +
+// b y + c z = d; the three normals independent), by Cramer's rule in
+// integers, each determinant expanded along q's row: the six 2×2 minors of
+// p's and r's rows are made once, then each point costs 12 products.
+// (The determinants are those of the rows p, q, r.)
+class Meet {
+ public:
+  Meet(const Plane& p, const Plane& r) {
+    minor(bc_, p.b, p.c, r.b, r.c);
+    minor(ac_, p.a, p.c, r.a, r.c);
+    minor(ab_, p.a, p.b, r.a, r.b);
+    minor(dc_, p.d, p.c, r.d, r.c);
+    minor(db_, p.d, p.b, r.d, r.b);
+    minor(ad_, p.a, p.d, r.a, r.d);
+  }
+  CutPoint with(const Plane& q) const {
+    CutPoint out;
+    // det = −q.a m_bc + q.b m_ac − q.c m_ab;  X = −q.d m_bc + q.b m_dc − q.c m_db;
+    // Y = −q.a m_dc + q.d m_ac − q.c m_ad;    Z = q.a m_db + q.b m_ad − q.d m_ab.
+    expand(out.W, q.b, ac_, q.a, bc_, q.c, ab_);
+    expand(out.X, q.b, dc_, q.d, bc_, q.c, db_);
+    expand(out.Y, q.d, ac_, q.a, dc_, q.c, ad_);
+    mpz_mul(out.Z.get_mpz_t(), q.a.get_mpz_t(), db_.get_mpz_t());
+    mpz_addmul(out.Z.get_mpz_t(), q.b.get_mpz_t(), ad_.get_mpz_t());
+    mpz_submul(out.Z.get_mpz_t(), q.d.get_mpz_t(), ab_.get_mpz_t());
+    if (sgn(out.W) == 0) throw std::logic_error("union: a cut point of parallel planes");
+    if (sgn(out.W) < 0)
+      for (Integer* v : {&out.W, &out.X, &out.Y, &out.Z}) mpz_neg(v->get_mpz_t(), v->get_mpz_t());
+    return out;
+  }
+
+ private:
+  static void minor(Integer& out, const Integer& u1, const Integer& v1, const Integer& u2, const Integer& v2) {
     mpz_mul(out.get_mpz_t(), u1.get_mpz_t(), v2.get_mpz_t());
     mpz_submul(out.get_mpz_t(), u2.get_mpz_t(), v1.get_mpz_t());
-  };
-  Integer bc, ac, ab, dc, db, ad, bd;
-  minor(bc, q.b, q.c, r.b, r.c);  // b2 c3 - b3 c2
-  minor(ac, q.a, q.c, r.a, r.c);
-  minor(ab, q.a, q.b, r.a, r.b);
-  minor(dc, q.d, q.c, r.d, r.c);
-  minor(db, q.d, q.b, r.d, r.b);
-  minor(ad, q.a, q.d, r.a, r.d);
-  minor(bd, q.b, q.d, r.b, r.d);
-  det = p.a * bc - p.b * ac + p.c * ab;
-  x = p.d * bc - p.b * dc + p.c * db;
-  y = p.a * dc - p.d * ac + p.c * ad;
-  z = p.a * bd - p.b * ad + p.d * ab;
-  if (sgn(det) == 0) throw std::logic_error("union: a cut point of parallel planes");
-  if (sgn(det) < 0)
-    for (Integer* v : {&det, &x, &y, &z}) mpz_neg(v->get_mpz_t(), v->get_mpz_t());
-  return out;
-}
+  }
+  // out = x1 m1 − x2 m2 − x3 m3.
+  static void expand(Integer& out, const Integer& x1, const Integer& m1, const Integer& x2, const Integer& m2,
+                     const Integer& x3, const Integer& m3) {
+    mpz_mul(out.get_mpz_t(), x1.get_mpz_t(), m1.get_mpz_t());
+    mpz_submul(out.get_mpz_t(), x2.get_mpz_t(), m2.get_mpz_t());
+    mpz_submul(out.get_mpz_t(), x3.get_mpz_t(), m3.get_mpz_t());
+  }
+  Integer bc_, ac_, ab_, dc_, db_, ad_;
+};
 
 // The sign of a X + b Y + c Z - d W for a cut point (W > 0): the plane's
 // side of the point, in integers.
@@ -269,6 +284,7 @@ void cut(const Poly& g, const Half& h, const std::vector<int>& sg, Poly& outside
     arena.planes.push_back(built_plane(h));
     cutting = &arena.planes.back();
   }
+  std::optional<Meet> meet;  // face and cutting plane: made at the first cut point
   // The edges of g each vertex of a part lies on: g[i] on edges i - 1 and i,
   // a cut point of edge i on edge i only.
   std::vector<std::array<std::size_t, 2>> on_out, on_in;
@@ -283,7 +299,8 @@ void cut(const Poly& g, const Half& h, const std::vector<int>& sg, Poly& outside
       on_in.push_back({before, i});
     }
     if (sg[i] * sg[j] < 0) {
-      arena.points.push_back(meet(face, *g[i].edge, *cutting));
+      if (!meet) meet.emplace(face, *cutting);
+      arena.points.push_back(meet->with(*g[i].edge));
       V3 x = make_v3(arena.points.back());
       outside.push_back(x);
       on_out.push_back({i, i});

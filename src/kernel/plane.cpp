@@ -110,15 +110,14 @@ Plane canonical_plane_through_sum(const Integer n[3], const ScaledPoint& p, cons
 double truncated_ratio(const Integer& X, const Integer& W) {
   if (sgn(X) == 0) return 0.0;
   const long s = 56 + long(mpz_sizeinbase(W.get_mpz_t(), 2)) - long(mpz_sizeinbase(X.get_mpz_t(), 2));
-  Integer num, den, q;
+  // q = floor(|X| 2^s / W); for s < 0, floor(floor(|X| / 2^-s) / W), the
+  // same integer (nested floors of divisions by positive integers).  The
+  // scratch numbers are the thread's own, kept between calls.
+  thread_local Integer num, q;
   mpz_abs(num.get_mpz_t(), X.get_mpz_t());
-  if (s >= 0) {
-    mpz_mul_2exp(num.get_mpz_t(), num.get_mpz_t(), mp_bitcnt_t(s));
-    mpz_tdiv_q(q.get_mpz_t(), num.get_mpz_t(), W.get_mpz_t());
-  } else {
-    mpz_mul_2exp(den.get_mpz_t(), W.get_mpz_t(), mp_bitcnt_t(-s));
-    mpz_tdiv_q(q.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
-  }
+  if (s >= 0) mpz_mul_2exp(num.get_mpz_t(), num.get_mpz_t(), mp_bitcnt_t(s));
+  else mpz_fdiv_q_2exp(num.get_mpz_t(), num.get_mpz_t(), mp_bitcnt_t(-s));
+  mpz_tdiv_q(q.get_mpz_t(), num.get_mpz_t(), W.get_mpz_t());
   const double r = std::ldexp(mpz_get_d(q.get_mpz_t()), int(std::clamp<long>(-s, -100000, 100000)));
   return sgn(X) < 0 ? -r : r;
 }

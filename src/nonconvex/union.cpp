@@ -370,11 +370,12 @@ struct PolyBox {
   }
 };
 
-bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out, Arena& arena,
-              const Plane& face, const RejectOrder& order = {}) {
-  std::vector<int> sg;
-  bool pos = false, neg = false;
-  const PolyBox box(g);
+// Whether one of `halves` has all of g on or outside it and some of g
+// outside: then the piece and g's interior do not meet, and neither do the
+// piece and any polygon of positive area inside g (its points are on or
+// outside that plane too, and not all on its line in g's plane).  The
+// planes in `order`'s order.
+bool rejected(const Poly& g, const PolyBox& box, const std::vector<Half>& halves, const RejectOrder& order) {
   // First the signs only: a plane with all of g on or outside it rejects the
   // piece before any cut is made.
   auto rejects = [&](const Half& h) {
@@ -394,11 +395,20 @@ bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>&
     return false;
   };
   for (std::size_t i = 0; i < order.count; ++i)
-    if (order.first[i] < n && rejects(halves[order.first[i]])) return false;
+    if (order.first[i] < n && rejects(halves[order.first[i]])) return true;
   for (std::size_t k = std::min(order.extra_from, n); k < n; ++k)
-    if (rejects(halves[k])) return false;
+    if (rejects(halves[k])) return true;
   for (std::size_t k = 0; k < std::min(order.extra_from, n); ++k)
-    if (!preferred(k) && rejects(halves[k])) return false;
+    if (!preferred(k) && rejects(halves[k])) return true;
+  return false;
+}
+
+bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out, Arena& arena,
+              const Plane& face, const RejectOrder& order = {}) {
+  std::vector<int> sg;
+  bool pos = false, neg = false;
+  const PolyBox box(g);
+  if (rejected(g, box, halves, order)) return false;
   const std::size_t mark = out.size();
   Poly rem = g;
   PolyBox rem_box = box;
@@ -819,6 +829,8 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
       arena.planes.push_back(edge_plane(scaled[k], scaled[(k + 1) % loop.size()], normal_integers));
       frags[0].back().edge = &arena.planes.back();
     }
+    const Poly whole = frags[0];
+    const PolyBox whole_box(whole);
     grid.query(box, near);
     for (std::size_t k = 0; k < near.size() && !frags.empty(); ++k) {
       const Index j = near[k];
@@ -840,6 +852,9 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
         order.count = other.directions->best(d, order.first);
         order.extra_from = other.directions->size();
       }
+      // A piece that misses the whole facet misses each of its fragments:
+      // one test instead of one per fragment.
+      if (frags.size() > 1 && rejected(whole, whole_box, halves[j], order)) continue;
       for (Poly& g : frags)
         if (subtract(g, halves[j], next, arena, plane, order))
           ++r.clips;

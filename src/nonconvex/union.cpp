@@ -1440,51 +1440,102 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
   t0 = Clock::now();
   options.report("boundary", -1.0);
   // Weld exactly equal points: looked up by their nearest doubles (equal
-  // points have equal ones; the doubles of the segments' ends in parallel),
-  // then compared exactly among the points with the same doubles.
-  std::vector<std::vector<std::array<Vec3d, 2>>> end_approx(n);
+  // points have equal ones), then compared exactly among the points with
+  // the same doubles.  The segments' ends are spread over partitions by the
+  // hash of their doubles, each partition sorted and grouped on its own (in
+  // parallel); a point's number is the order of its first appearance, plane
+  // after plane, segment after segment, a before b.
+  std::vector<std::size_t> base(n + 1, 0);
+  for (std::size_t g = 0; g < n; ++g) base[g + 1] = base[g] + results[g].segments.size();
+  struct End {
+    std::array<double, 3> key;
+    std::size_t at;  // 2 (segment number) + 0 for a, 1 for b
+    Point3* p;  // (moved into pts when it is the first of its value)
+  };
+  auto key_hash = [](const std::array<double, 3>& k) {
+    std::size_t h = 0;
+    for (double x : k) h = h * 1000003u ^ std::hash<double>()(x);
+    return h;
+  };
+  auto key_less = [](const End& x, const End& y) { return x.key != y.key ? x.key < y.key : x.at < y.at; };
+  const std::size_t ends = 2 * base[n];
+  std::vector<End> end(ends);
   parallel_for(n, workers, [&](std::size_t g) {
-    end_approx[g].reserve(results[g].segments.size());
-    for (const Segment& sg : results[g].segments) end_approx[g].push_back({to_double(sg.a), to_double(sg.b)});
-  });
-  struct ApproxHash {
-    std::size_t operator()(const std::array<double, 3>& k) const {
-      std::size_t h = 0;
-      for (double x : k) h = h * 1000003u ^ std::hash<double>()(x);
-      return h;
-    }
-  };
-  std::unordered_multimap<std::array<double, 3>, Index, ApproxHash> index;
-  std::vector<Point3> pts;
-  std::vector<Vec3d> approx;
-  auto weld = [&](Point3& p, const Vec3d& d) {
-    const std::array<double, 3> key{d.x, d.y, d.z};
-    auto range = index.equal_range(key);
-    for (auto it = range.first; it != range.second; ++it)
-      if (pts[it->second] == p) return std::make_pair(it->second, false);
-    const Index id = Index(pts.size());
-    index.emplace(key, id);
-    pts.push_back(std::move(p));
-    approx.push_back(d);
-    return std::make_pair(id, true);
-  };
-  std::vector<std::vector<std::pair<Index, Index>>> edges(n);
-  for (std::size_t g = 0; g < n; ++g)
     for (std::size_t i = 0; i < results[g].segments.size(); ++i) {
       Segment& sg = results[g].segments[i];
-      const Index a = weld(sg.a, end_approx[g][i][0]).first;
-      const Index b = weld(sg.b, end_approx[g][i][1]).first;
-      edges[g].emplace_back(a, b);
+      const std::size_t at = 2 * (base[g] + i);
+      const Vec3d a = to_double(sg.a), b = to_double(sg.b);
+      end[at] = End{{a.x, a.y, a.z}, at, &sg.a};
+      end[at + 1] = End{{b.x, b.y, b.z}, at + 1, &sg.b};
     }
-  results.clear();
-  end_approx.clear();
+  });
+  const std::size_t parts_count = std::max<std::size_t>(1, std::min<std::size_t>(256, ends / 4096 + 1));
+  std::vector<std::vector<End>> part(parts_count);
+  for (const End& e : end) part[key_hash(e.key) % parts_count].push_back(e);
+  // first[at]: the position of the first end exactly equal to this one.
+  std::vector<std::size_t> first(ends);
+  parallel_for(parts_count, parallel_threads(threads, parts_count), [&](std::size_t q) {
+    std::vector<End>& v = part[q];
+    std::sort(v.begin(), v.end(), key_less);
+    std::vector<const End*> reps;  // of one run of equal doubles, in order of position
+    for (std::size_t i = 0; i < v.size();) {
+      std::size_t j = i;
+      reps.clear();
+      for (; j < v.size() && v[j].key == v[i].key; ++j) {
+        const End* rep = nullptr;
+        for (const End* r : reps)
+          if (*r->p == *v[j].p) {
+            rep = r;
+            break;
+          }
+        if (!rep) reps.push_back(rep = &v[j]);
+        first[v[j].at] = rep->at;
+      }
+      i = j;
+    }
+  });
+  std::vector<Point3> pts;
+  std::vector<Vec3d> approx;
+  std::vector<Index> id(ends);
+  for (std::size_t at = 0; at < ends; ++at) {
+    if (first[at] != at) {
+      id[at] = id[first[at]];
+      continue;
+    }
+    id[at] = Index(pts.size());
+    pts.push_back(std::move(*end[at].p));
+    approx.push_back(Vec3d{end[at].key[0], end[at].key[1], end[at].key[2]});
+  }
+  std::vector<std::vector<std::pair<Index, Index>>> edges(n);
+  for (std::size_t g = 0; g < n; ++g)
+    for (std::size_t i = 0; i < results[g].segments.size(); ++i)
+      edges[g].emplace_back(id[2 * (base[g] + i)], id[2 * (base[g] + i) + 1]);
+  // A point not among the ends (a crossing below): looked up in its
+  // partition, then among the points added so far.
+  std::unordered_multimap<std::array<double, 3>, Index, decltype(key_hash)> added(16, key_hash);
+  auto weld = [&](Point3& p, const Vec3d& d) {
+    const std::array<double, 3> key{d.x, d.y, d.z};
+    const std::vector<End>& v = part[key_hash(key) % parts_count];
+    for (auto it = std::lower_bound(v.begin(), v.end(), End{key, 0, nullptr}, key_less);
+         it != v.end() && it->key == key; ++it)
+      if (pts[id[it->at]] == p) return;
+    auto range = added.equal_range(key);
+    for (auto it = range.first; it != range.second; ++it)
+      if (pts[it->second] == p) return;
+    added.emplace(key, Index(pts.size()));
+    pts.push_back(std::move(p));
+    approx.push_back(d);
+  };
   // Two edges crossing at a point inside both (the solid touching itself at
   // a point there): the point becomes a vertex of both.
   for (Point3& x : crossings(edges, pts, approx, threads)) {
     const Vec3d d = to_double(x);
     weld(x, d);
   }
-  index.clear();
+  results.clear();
+  part.clear();
+  end.clear();
+  added.clear();
   std::vector<Index> order(pts.size());
   std::iota(order.begin(), order.end(), Index(0));
   std::sort(order.begin(), order.end(), [&](Index x, Index y) { return approx[x].x < approx[y].x; });

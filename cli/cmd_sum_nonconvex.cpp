@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <iostream>
 #include <sstream>
 
@@ -86,19 +87,27 @@ int run_nonconvex_sum(const std::vector<std::string>& names, const std::vector<A
   {
     ProgressTicker ticker(std::string("minksum ") + command);
     const Method m = method == Method::automatic ? Method::walk : method;
+    // The exact volume is computed below, while the file is written.
+    SumOptions options = ticker.sum_options();
+    options.volume = false;
     switch (operation) {
-      case SolidOperation::sum: r = minkowski_sum_nonconvex(solids[0], solids[1], ticker.sum_options(), 0, m, how); break;
-      case SolidOperation::erode: r = erode(solids[0], solids[1], ticker.sum_options(), 0, m); break;
-      case SolidOperation::open: r = opening(solids[0], solids[1], ticker.sum_options(), 0, m); break;
-      case SolidOperation::close: r = closing(solids[0], solids[1], ticker.sum_options(), 0, m); break;
+      case SolidOperation::sum: r = minkowski_sum_nonconvex(solids[0], solids[1], options, 0, m, how); break;
+      case SolidOperation::erode: r = erode(solids[0], solids[1], options, 0, m); break;
+      case SolidOperation::open: r = opening(solids[0], solids[1], options, 0, m); break;
+      case SolidOperation::close: r = closing(solids[0], solids[1], options, 0, m); break;
     }
   }
   const bool empty = r.mesh.faces.empty();
+  // Both only read r.mesh; the volume's thread is joined before r changes
+  // (get() below, or the future's destructor when the write throws).
+  std::future<Rational> volume =
+      std::async(std::launch::async, [&r, empty] { return empty ? Rational(0) : mesh_volume(r.mesh); });
   const auto w0 = std::chrono::steady_clock::now();
   RoundedSolid rounding;
   if (output && empty) write_mesh_as_is(*output, r.mesh);  // (a file of the format with no faces)
   else if (output) write_solid_mesh(*output, r.mesh, nullptr, &rounding, r.operation);
   const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+  r.volume = volume.get();
   const MeshCounts c = mesh_counts(r.mesh);
   std::ostream& report = output ? output->report_stream() : std::cout;
   if (json) {

@@ -305,3 +305,30 @@ TEST(Erosion, BMustBeConvex) {
   EXPECT_THROW(opening(solid("cube"), solid("lshape")), std::invalid_argument);
   EXPECT_THROW(closing(solid("cube"), solid("lshape")), std::invalid_argument);
 }
+
+// SumOptions::volume false: the same boundary, volume left 0, and
+// mesh_volume of that boundary is the volume the default computes; for the
+// two-step operations the first step's volume is still there for the
+// second (the same result as with the volume).
+TEST(NonconvexVolumeOption, LeftForTheCallerOnEveryOperation) {
+  const Solid a = solid("lshape"), b = solid("sphere:1@scale:1/5");
+  SumOptions without;
+  without.volume = false;
+  auto check = [&](const char* name, const NonconvexSum& with, const NonconvexSum& off) {
+    SCOPED_TRACE(name);
+    ASSERT_FALSE(with.mesh.faces.empty());
+    EXPECT_GT(sgn(with.volume), 0);
+    EXPECT_EQ(sgn(off.volume), 0);
+    EXPECT_EQ(mesh_volume(off.mesh), with.volume);
+    EXPECT_EQ(off.mesh.faces, with.mesh.faces);
+    EXPECT_EQ(off.mesh.points.size(), with.mesh.points.size());
+    EXPECT_EQ(off.shells, with.shells);
+  };
+  check("sum", minkowski_sum_nonconvex(a, b), minkowski_sum_nonconvex(a, b, without));
+  check("sum by decomposition",
+        minkowski_sum_nonconvex(a, b, {}, 0, Method::walk, NonconvexMethod::decomposition),
+        minkowski_sum_nonconvex(a, b, without, 0, Method::walk, NonconvexMethod::decomposition));
+  check("erosion", erode(a, b), erode(a, b, without));
+  check("opening", opening(a, b), opening(a, b, without));
+  check("closing", closing(a, b), closing(a, b, without));
+}

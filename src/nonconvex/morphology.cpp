@@ -98,6 +98,14 @@ void add_work(NonconvexSum& total, const NonconvexSum& step) {
   total.seconds_boundary += step.seconds_boundary;
 }
 
+// The options of a first step: its volume is the next operand's (a Solid's
+// volume is always set), whatever the caller asked of the last step.
+SumOptions first_step(const SumOptions& options) {
+  SumOptions o = options;
+  o.volume = true;
+  return o;
+}
+
 NonconvexSum then(NonconvexSum first, NonconvexSum second, const char* operation) {
   add_work(second, first);
   second.operation = operation;
@@ -114,7 +122,7 @@ NonconvexSum erode(const Solid& a, const Solid& b, const SumOptions& options, un
 
 NonconvexSum opening(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads, Method method) {
   const ConvexPolytope& pb = convex_operand(b, "opening");
-  NonconvexSum e = erode(a, b, options, threads, method);
+  NonconvexSum e = erode(a, b, first_step(options), threads, method);
   if (e.mesh.faces.empty()) {  // B fits nowhere inside A: the opening is empty too
     e.operation = "opening";
     return e;
@@ -127,7 +135,7 @@ NonconvexSum opening(const Solid& a, const Solid& b, const SumOptions& options, 
 
 NonconvexSum closing(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads, Method method) {
   const ConvexPolytope& pb = convex_operand(b, "closing");
-  NonconvexSum s = minkowski_sum_nonconvex(a, b, options, threads, method);
+  NonconvexSum s = minkowski_sum_nonconvex(a, b, first_step(options), threads, method);
   const Solid outer = solid_of_boundary(s, true, false);
   NonconvexSum e = erode_complement(outer, pb, options, threads, method);
   return then(std::move(s), std::move(e), "closing");

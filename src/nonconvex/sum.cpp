@@ -72,7 +72,7 @@ NonconvexSum sum_by_decomposition(const Solid& a, const Solid& b, const SumOptio
   out.seconds_pairs = since(t0);
 
   nonconvex_detail::union_boundary(sums, options, out, threads);
-  out.volume = mesh_volume(out.mesh);
+  if (options.volume) out.volume = mesh_volume(out.mesh);
   return out;
 }
 
@@ -171,7 +171,7 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
   // The pieces' millions of exact integers freed on every thread rather
   // than one by one on return.
   parallel_for(n, workers, [&](std::size_t i) { sums[i] = nonconvex_detail::Piece(); });
-  out.volume = mesh_volume(out.mesh);
+  if (options.volume) out.volume = mesh_volume(out.mesh);
   return out;
 }
 

@@ -105,7 +105,7 @@ struct NonconvexSum {
   // are: an edge where the solid touches itself belongs to four faces, a
   // vertex where it touches itself to several fans (docs/nonconvex.md).
   Mesh mesh;
-  Rational volume;  // exact volume of A ⊕ B
+  Rational volume;  // exact volume of A ⊕ B (0 when SumOptions::volume is false)
   // The method (NonconvexMethod) and, for the boundary sweep, which operand's
   // surface was swept ('a' or 'b'; 0 for the decomposition).
   const char* method = "sweep";

@@ -123,6 +123,12 @@ struct SumOptions {
   // walked; the other methods between their stages), so a stage under way
   // finishes first.  The flag must outlive the call.
   const std::atomic<bool>* cancel = nullptr;
+  // Non-convex sums (<minksum/nonconvex.hpp>): whether the exact volume of
+  // the result (NonconvexSum::volume) is computed before the sum returns.
+  // When false it is left 0, and a caller with other work to do meanwhile
+  // computes it with mesh_volume(result.mesh) (the command line does, while
+  // it writes the file: the two take about as long on real meshes).
+  bool volume = true;
 
   // A report point, as the methods call it: throw Cancelled if the flag is
   // set, then call progress if there is one.

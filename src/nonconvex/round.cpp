@@ -41,6 +41,7 @@
 #include <minksum/nonconvex.hpp>
 
 #include "nonconvex/morphology.hpp"
+#include "nonconvex/validate.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
@@ -644,7 +645,7 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
     if (stuck.empty() && !tris.empty()) {
       Mesh m = mesh_of();
       try {
-        validate_solid(m, name);
+        nonconvex_detail::validate_surface(m, name);
         return finish(std::move(m));
       } catch (const InputError&) {
         // Repaired below.
@@ -764,7 +765,7 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
       if (count == 0) {
         Mesh m = mesh_of();
         try {
-          validate_solid(m, name);
+          nonconvex_detail::validate_surface(m, name);
           finish(std::move(m));
           return true;
         } catch (const InputError& err) {

@@ -7,6 +7,7 @@
 #include "kernel/plane.hpp"
 #include "nonconvex/nef.hpp"
 #include "nonconvex/sweep.hpp"
+#include "nonconvex/validate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -382,8 +383,12 @@ Solid validate_solid(const Mesh& mesh, const std::string& source) {
   try {
     return solid_of(ConvexPolytope::from_mesh(mesh, source));
   } catch (const InputError&) {
-    // Not convex (or not valid at all): the general checks below say why.
+    // Not convex (or not valid at all): the general checks say why.
   }
+  return nonconvex_detail::validate_surface(mesh, source);
+}
+
+Solid nonconvex_detail::validate_surface(const Mesh& mesh, const std::string& source) {
   // Weld exactly equal points: canonical index = first of its value.
   const std::size_t n = mesh.points.size();
   std::vector<Point3> exact = mesh.points.to_points();

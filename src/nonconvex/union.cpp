@@ -377,15 +377,31 @@ struct PolyBox {
 // planes in `order`'s order.
 bool rejected(const Poly& g, const PolyBox& box, const std::vector<Half>& halves, const RejectOrder& order) {
   // First the signs only: a plane with all of g on or outside it rejects the
-  // piece before any cut is made.
+  // piece before any cut is made.  Per plane the filter's signs first (the
+  // box's, then the vertices'), then the exact ones it left open (vertices
+  // on or very near the plane: those shared with the piece), only when no
+  // vertex is known to be inside.
   auto rejects = [&](const Half& h) {
     if (const auto s = box.side(h)) return *s > 0;
-    bool above = false;
+    bool above = false, open = false;
+    std::uint64_t decided = 0;  // bit i: vertex i's sign known (i < 64)
     for (std::size_t i = 0; i < g.size(); ++i) {
-      const int c = side(h, g[i]);
-      if (c < 0) return false;
-      above |= c > 0;
+      const auto c = side_filter(h, g[i]);
+      if (!c) {
+        open = true;
+        continue;
+      }
+      if (*c < 0) return false;
+      above |= *c > 0;
+      if (i < 64) decided |= std::uint64_t(1) << i;
     }
+    if (open)
+      for (std::size_t i = 0; i < g.size(); ++i) {
+        if (i < 64 ? (decided >> i & 1) != 0 : side_filter(h, g[i]).has_value()) continue;  // (decided above)
+        const int c = side(h, g[i]);
+        if (c < 0) return false;
+        above |= c > 0;
+      }
     return above;
   };
   const std::size_t n = halves.size();

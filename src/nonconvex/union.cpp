@@ -917,7 +917,10 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
 // Assembly.
 
 // Every vertex lying strictly inside the segment a b, ordered from a to b.
-// `order` sorts the vertices by their rounded x.
+// `order` sorts the vertices by their rounded x.  On the cached roundings:
+// m is on the line ab when |u × (m − a)|² = 0 (u = b − a; arc_side), inside
+// the segment when ⟨m − a, u⟩ > 0 > ⟨m − b, u⟩ (dot_sign), and x comes
+// before y along it when ⟨y − x, u⟩ > 0.
 std::vector<Index> inner_vertices(Index a, Index b, const std::vector<Point3>& pts, const std::vector<Vec3d>& approx,
                                   const std::vector<Index>& order) {
   Box box;
@@ -925,22 +928,21 @@ std::vector<Index> inner_vertices(Index a, Index b, const std::vector<Point3>& p
   box.add(approx[b]);
   auto first = std::lower_bound(order.begin(), order.end(), box.lo[0],
                                 [&](Index v, double x) { return approx[v].x < x; });
-  const Point3 d = pts[b] - pts[a];
-  const Rational len = dot(d, d);
-  std::vector<std::pair<Rational, Index>> inside;
+  auto rounded = [&](Index v) { return RoundedPoint3{pts[v], approx[v]}; };
+  const RoundedPoint3 ra = rounded(a), rb = rounded(b);
+  std::vector<Index> out;
   for (auto it = first; it != order.end() && approx[*it].x <= box.hi[0]; ++it) {
     const Index m = *it;
     if (m == a || m == b) continue;
     const Vec3d& q = approx[m];
     if (q.y < box.lo[1] || q.y > box.hi[1] || q.z < box.lo[2] || q.z > box.hi[2]) continue;
-    const Point3 am = pts[m] - pts[a];
-    if (!is_zero(cross(d, am))) continue;
-    Rational t = dot(am, d);
-    if (sgn(t) > 0 && cmp(t, len) < 0) inside.emplace_back(std::move(t), m);
+    const RoundedPoint3 rm = rounded(m);
+    if (arc_side(ra, rb, ra, rm, ra, rb, rm) != 0) continue;
+    if (dot_sign(ra, rm, ra, rb) > 0 && dot_sign(rb, rm, ra, rb) < 0) out.push_back(m);
   }
-  std::sort(inside.begin(), inside.end(), [](const auto& x, const auto& y) { return cmp(x.first, y.first) < 0; });
-  std::vector<Index> out;
-  for (auto& [t, m] : inside) out.push_back(m);
+  if (out.size() > 1)
+    std::sort(out.begin(), out.end(),
+              [&](Index x, Index y) { return dot_sign(rounded(x), rounded(y), ra, rb) > 0; });
   return out;
 }
 

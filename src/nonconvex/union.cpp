@@ -728,13 +728,24 @@ std::vector<Segment> merge_fragments(const Plane& plane, const Frame& frame, con
     ev.push_back(Event{up ? &p : &q, kind, 1});
     ev.push_back(Event{up ? &q : &p, kind, -1});
   };
-  Line2 line;
+  // The line of an edge's plane, made once per plane (the fragments of one
+  // facet share its edges' planes, the two sides of a cut its plane).
+  std::unordered_map<const Plane*, std::optional<Line2>> line_of_plane;
   for (const Poly& g : fragments)
     for (std::size_t i = 0; i < g.size(); ++i) {
       const V3& p = g[i];
       const V3& q = g[(i + 1) % g.size()];
-      if (!p.edge || !line_of(plane, *p.edge, frame, line)) line = line_through(frame, p.exact(), q.exact());
-      add(line, p, q, 0);
+      std::optional<Line2>* known = nullptr;
+      if (p.edge) {
+        auto [it, fresh] = line_of_plane.try_emplace(p.edge);
+        known = &it->second;
+        if (fresh) {
+          Line2 l;
+          if (line_of(plane, *p.edge, frame, l)) *known = std::move(l);
+        }
+      }
+      if (known && *known) add(**known, p, q, 0);
+      else add(line_through(frame, p.exact(), q.exact()), p, q, 0);
     }
   std::vector<V3> slit_ends;
   slit_ends.reserve(2 * slits.size());

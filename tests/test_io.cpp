@@ -1,6 +1,6 @@
 // Readers and writers of src/io/include/minksum/io.hpp: round trips through every
 // format, parsing details of each format, malformed input, atomic writes and
-// operand resolution.
+// operand resolution (<minksum/operand.hpp>).
 #include <minksum/catalog.hpp>
 #include <minksum/cubical_gaussian_map.hpp>
 #include <minksum/error.hpp>

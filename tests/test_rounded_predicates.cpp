@@ -23,6 +23,7 @@
 #include <random>
 #include <vector>
 
+#include "kernel/det3_filter.hpp"
 #include "kernel/plane.hpp"
 #include "kernel/predicates_internal.hpp"
 
@@ -688,6 +689,79 @@ TEST(HalfSpaceSide, BoxOfASetOfPointsDecidesOnlyWhatHolds) {
 // (to nearest or towards zero, mixed), in all four rounding modes: every
 // decided sign is exact; equal values, and values closer than the bound, are
 // never decided; values apart by more than 2^-40 of their size always are.
+// The walk's det3 filter (kernel/det3_filter.hpp): on exact doubles and on
+// rounded rationals, in every rounding mode, every sign it decides is the
+// exact sign of <x - y, (f1 - f0) x (f2 - f0)>; it answers 0 only for x = y
+// and leaves an exactly coplanar difference undecided; far from zero it
+// decides.
+TEST(Det3Filter, DecidesOnlyWhatHolds) {
+  std::size_t decided = 0, clear = 0, coplanar = 0;
+  auto cmax = [](const Vec3d& p) { return std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}); };
+  // The walk's condition on a rational operand: every rounded coordinate
+  // zero only when the coordinate is, and normal otherwise.
+  auto filterable = [](const Point3& p, const Vec3d& a) {
+    for (int i = 0; i < 3; ++i)
+      if (a[i] == 0 ? sgn(p[i]) != 0 : std::fabs(a[i]) < 0x1p-1022) return false;
+    return true;
+  };
+  auto scaled = [](const Point3& v, const Rational& k) { return Point3(v.x * k, v.y * k, v.z * k); };
+  for (std::uint64_t seed = 1; seed <= 6000; ++seed) {
+    Gen gen(seed);
+    const bool doubles = seed % 2 == 0;
+    std::array<Point3, 5> p;  // f0, f1, f2, x, y
+    if (doubles) {
+      const int scale = int(gen.integer(-40, 40));
+      auto coord = [&] { return Rational(std::ldexp(double(gen.integer(-(1 << 20), 1 << 20)), scale)); };
+      for (auto& q : p) q = Point3(coord(), coord(), coord());
+      const int kind = int(gen.integer(0, 3));
+      if (kind >= 1) {  // y = x + a u + b v: x - y in the facet's plane
+        const Rational a(long(gen.integer(-3, 3))), b(long(gen.integer(-3, 3)));
+        p[4] = p[3] + scaled(p[1] - p[0], a) + scaled(p[2] - p[0], b);
+      }
+      if (kind == 2) {  // then one coordinate moved by one ulp
+        const double y = to_double(p[4].x);
+        p[4] = Point3(Rational(std::nextafter(y, gen.integer(0, 1) ? INFINITY : -INFINITY)), p[4].y, p[4].z);
+      }
+      if (kind == 3) p[4] = p[3];
+    } else {
+      for (auto& q : p) q = gen.point();
+      if (gen.integer(0, 1)) p[4] = p[3] + scaled(p[1] - p[0], Rational(1, 3)) + scaled(p[2] - p[0], Rational(-2, 7));
+    }
+    std::array<Vec3d, 5> a;
+    bool all_double = true, ok = true;
+    for (int i = 0; i < 5; ++i) {
+      a[i] = to_double(p[i]);
+      ok = ok && filterable(p[i], a[i]);
+      for (int k = 0; k < 3; ++k) all_double = all_double && Rational(a[i][k]) == p[i][k];
+    }
+    ASSERT_EQ(all_double, doubles || all_double) << "seed " << seed;
+    const Rational value = dot(p[3] - p[4], cross(p[1] - p[0], p[2] - p[0]));
+    const int exact = sgn(value);
+    const bool same_point = p[3] == p[4];
+    coplanar += exact == 0 && !same_point;
+    const bool far = doubles && abs(value) > Rational(0x1p-30) * [&]() -> Rational {
+      auto m = [](const Point3& v) { return std::max({Rational(abs(v.x)), Rational(abs(v.y)), Rational(abs(v.z))}); };
+      return m(p[3] - p[4]) * m(p[1] - p[0]) * m(p[2] - p[0]);
+    }();
+    clear += far;
+    in_all_modes([&](int mode) {
+      detail::Det3Facet g;
+      detail::make_det3_facet(a[0], a[1], a[2], cmax(a[0]), cmax(a[1]), cmax(a[2]), all_double || ok, g);
+      const detail::Det3Diff d = detail::make_det3_diff(a[3], a[4], cmax(a[3]), cmax(a[4]));
+      const int s = detail::det3_filter(g, all_double, all_double || ok, d);
+      if (s != 2) ASSERT_EQ(s, exact) << "seed " << seed << " mode " << mode;
+      if (s == 0) ASSERT_TRUE(same_point) << "seed " << seed << " mode " << mode;
+      if (exact == 0 && !same_point) ASSERT_EQ(s, 2) << "seed " << seed << " mode " << mode;
+      if (far) ASSERT_NE(s, 2) << "seed " << seed << " mode " << mode;
+      if (mode == FE_TONEAREST) decided += s != 2;
+    });
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  EXPECT_GT(coplanar, 1000u);
+  EXPECT_GT(clear, 500u);
+  EXPECT_GT(decided, clear);
+}
+
 TEST(HalfSpaceSide, CompareFilterDecidesOnlyWhatHolds) {
   std::size_t decided = 0, apart = 0;
   const auto cached = [](const Rational& q, bool nearest) {

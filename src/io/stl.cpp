@@ -14,7 +14,7 @@
 //     any case; coordinates read with parse_number; the normal is ignored; a
 //     loop with more than 3 vertices is read as one polygon; several
 //     solid ... endsolid blocks in one file are read as one mesh;
-//   * exactly equal vertices are welded (hashing the exact Point3), so the
+//   * exactly equal vertices are welded (weld_exact, by exact value), so the
 //     triangles share indices; vertex indices follow first appearance.
 //
 // Writer: polygons are fan-triangulated (facets of a polytope are convex);
@@ -23,84 +23,30 @@
 // double; binary STL stores 32-bit floats, so each coordinate is rounded to
 // the nearest float (a coordinate beyond the float range is refused).
 #include "io/readers.hpp"
+#include "mesh/weld.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <ostream>
-#include <unordered_map>
 
 namespace minksum::io_detail {
 
 namespace {
 
-// Welds exactly equal points: an open-addressing table of indices into
-// mesh.points (so each point is stored once, in the mesh).  Double points are
-// compared by their bits (zeros unsigned), rational ones by value; the two
-// kinds never coincide (a rational token equal to a double is read as it).
-class Welder {
- public:
-  explicit Welder(Mesh& mesh) : mesh_(mesh), slots_(64, kNoIndex) {}
-  Index add(Coordinate (&c)[3]) {
-    const bool dbl = !c[0].exact && !c[1].exact && !c[2].exact;
-    std::uint64_t h;
-    Point3 p;
-    if (dbl) {
-      h = 0x9e3779b97f4a7c15ULL;
-      for (int k = 0; k < 3; ++k) {
-        const double d = c[k].d == 0 ? 0.0 : c[k].d;
-        std::uint64_t b;
-        std::memcpy(&b, &d, 8);
-        h = (h ^ b) * 0xbf58476d1ce4e5b9ULL;
-        h ^= h >> 31;
-      }
-    } else {
-      auto value = [](Coordinate& x) { return x.exact ? std::move(*x.exact) : Rational(x.d); };
-      p = Point3(value(c[0]), value(c[1]), value(c[2]));
-      h = hash_value(p);
-      h ^= h >> 33;  // spread the bits: the table uses the low ones
-      h *= 0xff51afd7ed558ccdULL;
-      h ^= h >> 33;
-    }
-    std::size_t mask = slots_.size() - 1;
-    for (std::size_t i = h & mask;; i = (i + 1) & mask) {
-      const Index s = slots_[i];
-      if (s == kNoIndex) break;
-      if (hashes_[s] != h || mesh_.points.is_double(s) != dbl) continue;
-      if (dbl) {
-        const Vec3d& q = mesh_.points.approx(s);
-        if (q.x == c[0].d && q.y == c[1].d && q.z == c[2].d) return s;
-      } else if (mesh_.points.exact_ref(s) == p) {
-        return s;
-      }
-    }
-    const auto index = static_cast<Index>(mesh_.points.size());
-    if (dbl) mesh_.points.push_back(Vec3d{c[0].d, c[1].d, c[2].d});
-    else mesh_.points.push_back(p);
-    hashes_.push_back(h);
-    if (2 * hashes_.size() > slots_.size()) {
-      std::vector<Index>(slots_.size() * 2, kNoIndex).swap(slots_);
-      for (Index v = 0; v < hashes_.size(); ++v) place(v);
-    } else {
-      place(index);
-    }
-    return index;
-  }
-
- private:
-  void place(Index v) {
-    const std::size_t mask = slots_.size() - 1;
-    std::size_t i = hashes_[v] & mask;
-    while (slots_[i] != kNoIndex) i = (i + 1) & mask;
-    slots_[i] = v;
-  }
-
-  Mesh& mesh_;
-  std::vector<Index> slots_;
-  std::vector<std::uint64_t> hashes_;
-};
+// The mesh of the corners read (raw, one point per corner, faces on them)
+// with exactly equal points welded (weld_exact): vertex numbers follow
+// first appearance.
+Mesh welded_mesh(const PointList& raw, std::vector<std::vector<Index>>&& faces) {
+  Welded w = welded(raw, weld_exact(raw));
+  for (auto& face : faces)
+    for (Index& v : face) v = w.id[v];
+  Mesh mesh;
+  mesh.points = std::move(w.points);
+  mesh.faces = std::move(faces);
+  return mesh;
+}
 
 std::uint32_t le32(const char* p) {
   const auto* b = reinterpret_cast<const unsigned char*>(p);
@@ -130,55 +76,37 @@ Mesh read_binary(std::string_view data, const std::string& name) {
     throw InputError(name, "byte " + std::to_string(need),
                      std::to_string(data.size() - need) + " bytes of unexpected data after the last of " +
                          std::to_string(count) + " triangles");
-  // Welding on the float bit patterns is welding on exact values once -0 is
-  // made +0 (NaN is rejected): two finite floats are equal iff their bits
-  // are.  Open addressing over indices into `keys`.
-  using Key = std::array<std::uint32_t, 3>;
-  auto hash = [](const Key& k) {
-    std::uint64_t h = (std::uint64_t(k[0]) << 32 | k[1]) * 0x9e3779b97f4a7c15ULL;
-    h ^= k[2] + (h >> 29);
-    h *= 0xff51afd7ed558ccdULL;
-    return h ^ (h >> 32);
-  };
-  Mesh mesh;
-  std::vector<Key> keys;
-  std::size_t table = 64;
-  while (table < 6 * count) table *= 2;  // at most 3 * count distinct points, load <= 1/2
-  std::vector<Index> slots(table, kNoIndex);
-  const std::size_t mask = table - 1;
-  mesh.faces.reserve(count);
+  // The floats as doubles (exact; PointList stores zeros unsigned), welded
+  // after: two finite floats are equal iff their doubles are (NaN is
+  // rejected).
+  PointList raw;
+  raw.reserve(3 * count);
+  std::vector<std::vector<Index>> faces;
+  faces.reserve(count);
   for (std::uint64_t t = 0; t < count; ++t) {
     const char* rec = data.data() + 84 + 50 * t + 12;
     std::vector<Index> tri(3);
     for (int v = 0; v < 3; ++v) {
-      Key key;
       float c[3];
       for (int k = 0; k < 3; ++k) {
         std::uint32_t u = le32(rec + 12 * v + 4 * k);
         std::memcpy(&c[k], &u, 4);
         if (std::isnan(c[k])) throw InputError(name, "triangle " + std::to_string(t), "coordinate is NaN");
         if (std::isinf(c[k])) throw InputError(name, "triangle " + std::to_string(t), "coordinate is infinite");
-        key[k] = c[k] == 0.0f ? 0u : u;
       }
-      std::size_t i = hash(key) & mask;
-      while (slots[i] != kNoIndex && keys[slots[i]] != key) i = (i + 1) & mask;
-      if (slots[i] == kNoIndex) {
-        slots[i] = static_cast<Index>(keys.size());
-        keys.push_back(key);
-        mesh.points.push_back(Vec3d{double(c[0]), double(c[1]), double(c[2])});
-      }
-      tri[v] = slots[i];
+      tri[v] = static_cast<Index>(raw.size());
+      raw.push_back(Vec3d{double(c[0]), double(c[1]), double(c[2])});
     }
-    mesh.faces.push_back(std::move(tri));
+    faces.push_back(std::move(tri));
   }
-  return mesh;
+  return welded_mesh(raw, std::move(faces));
 }
 
 Mesh read_ascii(std::string_view data, const std::string& name) {
   TextCursor cur(data, 0);
   std::string_view t;
-  Mesh mesh;
-  Welder weld(mesh);
+  PointList raw;  // one point per corner, welded at the end
+  std::vector<std::vector<Index>> faces;
   auto here = [&] { return line_place(cur.token_line()); };
   auto need = [&](const char* what) {
     if (!cur.next(t))
@@ -231,16 +159,22 @@ Mesh read_ascii(std::string_view data, const std::string& name) {
         need("a coordinate");
         c[k] = read_coordinate(t, name, cur.token_line());
       }
-      face.push_back(weld.add(c));
-      if (mesh.points.size() + 1 >= kNoIndex) throw InputError(name, here(), "too many vertices");
+      face.push_back(static_cast<Index>(raw.size()));
+      if (c[0].exact || c[1].exact || c[2].exact) {
+        auto value = [](Coordinate& x) { return x.exact ? std::move(*x.exact) : Rational(x.d); };
+        raw.push_back(Point3(value(c[0]), value(c[1]), value(c[2])));
+      } else {
+        raw.push_back(Vec3d{c[0].d, c[1].d, c[2].d});
+      }
+      if (raw.size() + 1 >= kNoIndex) throw InputError(name, here(), "too many vertices");
     }
     if (face.size() < 3)
       throw InputError(name, line_place(loop_line),
                        "facet has " + std::to_string(face.size()) + " vertices (at least 3 needed)");
     expect("endfacet");
-    mesh.faces.push_back(std::move(face));
+    faces.push_back(std::move(face));
   }
-  return mesh;
+  return welded_mesh(raw, std::move(faces));
 }
 
 // Unit normal of triangle (a, b, c), rounded (readers ignore it; it is

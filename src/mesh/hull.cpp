@@ -7,6 +7,7 @@
 //
 // This is the only translation unit of src/mesh that includes CGAL.
 #include "mesh/builder.hpp"
+#include "mesh/weld.hpp"
 #include "kernel/big_array.hpp"
 
 #include <minksum/error.hpp>
@@ -65,15 +66,39 @@ void check_dimension(const std::vector<Point3>& pts, const std::string& source) 
       [&](std::size_t, std::size_t, std::size_t i) { return sgn(dot(nrm, pts[i] - pts[0])) == 0; }, source);
 }
 
+[[noreturn]] void not_an_input_point() {
+  throw std::logic_error("convex hull produced a point that is not an input point");
+}
+
+// The first input point exactly equal to each vertex of the hull's surface
+// mesh (indexed by vertex): weld_exact over the input points `all`
+// followed by the hull's vertices (`add(all, p)` appends hull point p).
+template <class SurfaceMesh, class Add>
+std::vector<Index> inputs_of_vertices(const SurfaceMesh& sm, PointList all, Add add) {
+  const Index n = Index(all.size());
+  std::size_t slots = 0;
+  for (auto v : sm.vertices()) slots = std::max(slots, std::size_t(v) + 1);
+  std::vector<Index> at(slots, kNoIndex);
+  for (auto v : sm.vertices()) {
+    at[std::size_t(v)] = Index(all.size());
+    add(all, sm.point(v));
+  }
+  const std::vector<Index> canon = weld_exact(all);
+  for (Index& i : at)
+    if (i != kNoIndex && (i = canon[i]) >= n) not_an_input_point();
+  return at;
+}
+
 // The hull's surface mesh as a canonical Mesh, whatever order CGAL produced
 // (it varies between calls): vertices in the order of the input points
-// (`input_of(p)`: the first input index of hull point p; `push(points, i)`
+// (`input_of[v]`: the first input index of hull vertex v; `push(points, i)`
 // appends input point i), each triangle starting at its smallest vertex,
 // triangles sorted.  input_index[v] = the input point of mesh vertex v.
-template <class SurfaceMesh, class InputOf, class Push>
-Mesh canonical_mesh(const SurfaceMesh& sm, InputOf input_of, Push push, std::vector<Index>& input_index) {
+template <class SurfaceMesh, class Push>
+Mesh canonical_mesh(const SurfaceMesh& sm, const std::vector<Index>& input_of, Push push,
+                    std::vector<Index>& input_index) {
   std::vector<std::pair<Index, std::size_t>> order;  // (input index, surface-mesh vertex)
-  for (auto v : sm.vertices()) order.emplace_back(input_of(sm.point(v)), std::size_t(v));
+  for (auto v : sm.vertices()) order.emplace_back(input_of[std::size_t(v)], std::size_t(v));
   std::sort(order.begin(), order.end());
   Mesh m;
   std::unordered_map<std::size_t, Index> local;  // surface-mesh vertex -> mesh index
@@ -90,10 +115,6 @@ Mesh canonical_mesh(const SurfaceMesh& sm, InputOf input_of, Push push, std::vec
   }
   std::sort(m.faces.begin(), m.faces.end());
   return m;
-}
-
-[[noreturn]] void not_an_input_point() {
-  throw std::logic_error("convex hull produced a point that is not an input point");
 }
 
 // The polytope of a triangulated hull: validated (coplanar triangles
@@ -139,17 +160,9 @@ ConvexPolytope ConvexPolytope::hull(const std::vector<Point3>& points, const std
   CGAL::convex_hull_3(kp.begin(), kp.end(), sm);
 
   // Map hull vertices back to the input points (first occurrence).
-  std::unordered_map<Point3, Index, Point3Hash> index_of;
-  index_of.reserve(points.size());
-  for (Index i = 0; i < points.size(); ++i) index_of.try_emplace(points[i], i);
   std::vector<Index> input_index;
   const Mesh m = canonical_mesh(
-      sm,
-      [&](const KPoint& p) {
-        auto it = index_of.find(to_point3(p));
-        if (it == index_of.end()) not_an_input_point();
-        return it->second;
-      },
+      sm, inputs_of_vertices(sm, PointList(points), [](PointList& all, const KPoint& p) { all.push_back(to_point3(p)); }),
       [&](PointList& out, Index i) { out.push_back(points[i]); }, input_index);
   ConvexPolytope result = validated_hull(m, source);
   for (auto& s : result.source_vertex_) s = input_index[s];
@@ -166,24 +179,11 @@ ConvexPolytope ConvexPolytope::hull(const PointList& points, const std::string& 
 
   CGAL::Surface_mesh<E::Point_3> sm;
   CGAL::convex_hull_3(ep.begin(), ep.end(), sm);
-  struct Hash {
-    std::size_t operator()(const E::Point_3& p) const {
-      std::size_t h = 0;
-      for (int k = 0; k < 3; ++k) h = (h ^ std::hash<double>()(p[k])) * 0x9e3779b97f4a7c15ULL;
-      return h;
-    }
-  };
-  std::unordered_map<E::Point_3, Index, Hash> index_of;
-  index_of.reserve(ep.size());
-  for (Index i = 0; i < ep.size(); ++i) index_of.try_emplace(ep[i], i);
   std::vector<Index> input_index;
   const Mesh m = canonical_mesh(
       sm,
-      [&](const E::Point_3& p) {
-        auto it = index_of.find(p);
-        if (it == index_of.end()) not_an_input_point();
-        return it->second;
-      },
+      inputs_of_vertices(sm, points,
+                         [](PointList& all, const E::Point_3& p) { all.push_back(Vec3d{p.x(), p.y(), p.z()}); }),
       [&](PointList& out, Index i) { out.push_back(points.approx(i)); }, input_index);
   ConvexPolytope result = validated_hull(m, source);
   for (auto& s : result.source_vertex_) s = input_index[s];

@@ -13,6 +13,7 @@
 // bounds a convex body (Hadamard; van Heijenoort), so (1)-(4) are equivalent
 // to the mesh being the boundary of a convex polytope.
 #include "mesh/builder.hpp"
+#include "mesh/weld.hpp"
 #include "kernel/big_array.hpp"
 #include "kernel/interval.hpp"
 #include "kernel/plane.hpp"
@@ -24,7 +25,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstring>
 #include <memory>
 #include <mutex>
 #include <numeric>
@@ -45,15 +45,6 @@ std::string edge_place(Index u, Index w, const PointList& named) {
          format_point(named[w]);
 }
 std::string fct(Index f) { return "facet " + std::to_string(f); }
-
-inline std::uint64_t mix64(std::uint64_t h) {
-  h ^= h >> 33;
-  h *= 0xff51afd7ed558ccdULL;
-  h ^= h >> 33;
-  h *= 0xc4ceb9fe1a85ec53ULL;
-  h ^= h >> 33;
-  return h;
-}
 
 struct UnionFind {
   std::vector<Index> parent;
@@ -602,18 +593,110 @@ std::optional<Vec3d> reference_point(const std::vector<Vec3d>& v) {
   return c;
 }
 
-}  // namespace
+// The state of one validation, PolytopeBuilder::build, stage by stage (the
+// numbers are the steps named in the comments): check_indices (1), weld (2),
+// link (3), check_facets (4), orientation (5), merge_coplanar (6),
+// drop_vertices (7), check_convexity (8); build makes the polytope (9).
+// Each stage reads what the earlier ones left in the state.  From
+// check_facets on, the caller keeps the FPU rounding upward (the interval
+// operations are unprotected).
+struct Validation {
+  const Mesh& mesh;
+  const std::string& source;
 
+  // weld: the points used, welded, numbered in input order; the user's
+  // numbers of the vertices (vname) and facets (fname).  same_faces: the
+  // facets are the caller's mesh.faces as they are (faces_own stays empty).
+  PointList pts;
+  std::vector<Index> vname, fname;
+  bool same_faces = false;
+  std::vector<std::vector<Index>> faces_own;
+  const std::vector<std::vector<Index>>& faces() const { return same_faces ? mesh.faces : faces_own; }
 
-ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& source) {
+  // link
+  Graph g;
+
+  // check_facets: point and normal intervals, exact normals where a filter
+  // could not decide, six times the volume as an interval.
+  Index nf = 0;
+  bool threads = false, triangles_on_doubles = false;
+  std::vector<FastIPoint> ip;    // (triangles on doubles: made by fill_ip when needed)
+  std::vector<FastIPoint> inrm;  // (triangles on doubles: made by fill_inrm when needed)
+  DoubleIntervals dip{nullptr};
+  std::vector<std::unique_ptr<Point3>> xnrm;
+  FastInterval six{0};
+
+  // merge_coplanar: the merged facets (empty when none merged: they are
+  // faces()), the user's number and the representative input facet of each.
+  bool any_merge = false;
+  std::vector<FastIPoint> edge_cross;
+  std::vector<signed char> edge_orient;
+  std::vector<std::vector<Index>> merged;
+  std::vector<Index> merged_name, merged_rep;
+
+  // drop_vertices: unchanged (the usual case for a valid mesh) keeps the
+  // structure linked above; otherwise the final one is the *_own below.
+  bool unchanged = false;
+  PointList fpts_own;
+  std::vector<FastIPoint> fip_own, finrm_own;
+  std::vector<Index> fname_v_own;
+  Graph fg_own;
+  const PointList& fpts() const { return unchanged ? pts : fpts_own; }
+  const std::vector<FastIPoint>& fip() const { return unchanged ? ip : fip_own; }
+  std::vector<Index>& fname_v() { return unchanged ? vname : fname_v_own; }
+  Graph& fg() { return unchanged ? g : fg_own; }
+  const std::vector<std::vector<Index>>& final_faces() const { return unchanged ? faces() : merged; }
+  const std::vector<FastIPoint>& finrm() const { return unchanged ? inrm : finrm_own; }  // (unchanged: merged_rep[f] == f)
+  const Point3& fnormal(Index f) { return exact_normal(merged_rep[f]); }
+
+  Validation(const Mesh& m, const std::string& s) : mesh(m), source(s) {}
+
+  void check_indices();
+  void weld();
+  void link_faces() { g = link(Index(pts.size()), faces(), source, vname, fname, mesh.points); }
+  void prepare_intervals();
+  void check_facets();
+  int volume_sign();
+  void reverse_own_facets();
+  void merge_coplanar();
+  void drop_vertices();
+  void check_convexity();
+
+  void fill_ip();
+  void fill_inrm();
+  // Exact normals, made only where a filter cannot decide (a default Point3
+  // would cost three GMP rationals per facet).
+  const Point3& exact_normal(Index f) {
+    if (!xnrm[f]) xnrm[f] = std::make_unique<Point3>(polygon_normal(pts, faces()[f]));
+    return *xnrm[f];
+  }
+  // The interval Newell normal of facet f: sum (p_i - p_0) x (p_(i+1) - p_0).
+  template <class IPoints>
+  FastIPoint newell(const IPoints& ipa, Index f) const {
+    const auto& poly = faces()[f];
+    FastIPoint n{FastInterval(0), FastInterval(0), FastInterval(0)};
+    const FastIPoint o = ipa[poly[0]];
+    FastIPoint prev = ipa[poly[1]] - o;
+    for (std::size_t i = 2; i < poly.size(); ++i) {
+      FastIPoint cur = ipa[poly[i]] - o;
+      n = n + cross(prev, cur);
+      prev = cur;
+    }
+    return n;
+  }
+  bool planar_on_doubles(const std::vector<Index>& poly) const;
+  template <class IPoints>
+  void facets_pass(const IPoints& ipa);
+};
+
+// 1. Index range, facet sizes.
+void Validation::check_indices() {
   const Index n_in = Index(mesh.points.size());
   if (n_in == 0) throw InputError(source, "", "no vertices");
   if (mesh.faces.empty())
     throw InputError(source, "",
                      "no facets, only " + std::to_string(n_in) +
                          " points (use --hull to take the convex hull of a point cloud)");
-
-  // 1. Index range, facet sizes.
   for (Index f = 0; f < mesh.faces.size(); ++f) {
     const auto& poly = mesh.faces[f];
     if (poly.size() < 3)
@@ -624,68 +707,20 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
                          "refers to vertex " + std::to_string(v) + " but there are only " +
                              std::to_string(n_in) + " vertices");
   }
+}
 
-  // 2. Weld exactly equal points; number the used vertices in input order.
-  //    Points in the doubles / double-pairs forms are equal exactly when
-  //    their bits are (zeros are stored unsigned), so they are welded by
-  //    their bits; rationals by their exact value.
-  std::vector<Index> canon = big_array(n_in, kNoIndex);
+// 2. Weld exactly equal points (weld_exact); number the used vertices in
+//    input order.
+void Validation::weld() {
+  const Index n_in = Index(mesh.points.size());
+  std::vector<Index> canon;
   {
     std::vector<char> used = big_array<char>(n_in, 0);
     for (const auto& poly : mesh.faces)
       for (Index v : poly) used[v] = 1;
-    const PointList& mp = mesh.points;
-    if (mp.form() == PointList::Form::rationals) {
-      std::unordered_map<Point3, Index, Point3Hash> first;
-      first.reserve(n_in);
-      for (Index v = 0; v < n_in; ++v)
-        if (used[v]) canon[v] = first.try_emplace(mp.exact_ref(v), v).first->second;
-    } else {
-      // Open addressing on the coordinates' bits (hash, then exact compare).
-      const bool pairs = mp.form() == PointList::Form::double_pairs;
-      auto bits = [](double d) {
-        std::uint64_t b;
-        std::memcpy(&b, &d, 8);
-        return b;
-      };
-      auto hash = [&](Index v) {
-        const Vec3d& a = mp.approx(v);
-        std::uint64_t h = mix64(bits(a.x)) ^ (mix64(bits(a.y) + 0x9e3779b97f4a7c15ULL) * 3) ^
-                          (mix64(bits(a.z) + 0x3c6ef372fe94f82aULL) * 7);
-        if (pairs) {
-          const Vec3d& l = mp.low(v);
-          h ^= mix64(bits(l.x) ^ (bits(l.y) << 1) ^ (bits(l.z) << 2));
-        }
-        return h;
-      };
-      auto same = [&](Index u, Index v) {
-        const Vec3d &a = mp.approx(u), &b = mp.approx(v);
-        if (a.x != b.x || a.y != b.y || a.z != b.z) return false;
-        if (!pairs) return true;
-        const Vec3d &c = mp.low(u), &d = mp.low(v);
-        return c.x == d.x && c.y == d.y && c.z == d.z;
-      };
-      std::size_t n = 16;
-      while (n < 2 * std::size_t(n_in) + 2) n *= 2;
-      std::vector<Index> slot = big_array(n, kNoIndex);
-      for (Index v = 0; v < n_in; ++v) {
-        if (!used[v]) continue;
-        for (std::size_t i = hash(v) & (n - 1);; i = (i + 1) & (n - 1)) {
-          if (slot[i] == kNoIndex) {
-            slot[i] = v;
-            canon[v] = v;
-            break;
-          }
-          if (same(slot[i], v)) {
-            canon[v] = slot[i];
-            break;
-          }
-        }
-      }
-    }
+    canon = weld_exact(mesh.points, &used);
   }
-  std::vector<Index> new_id = big_array(n_in, kNoIndex), vname;
-  PointList pts;
+  std::vector<Index> new_id = big_array(n_in, kNoIndex);
   if (mesh.points.form() == PointList::Form::doubles &&
       std::all_of(canon.begin(), canon.end(), [v = Index(0)](Index c) mutable { return c == v++; })) {
     // Every point used, none welded: the list as it is.
@@ -707,7 +742,7 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
   // corners (a collapsed sliver, common in exported STL) is dropped whole.
   //    The usual valid input (every point used, none welded, no facet
   //    visiting a vertex twice) keeps its facets as they are: no copy.
-  bool same_faces = pts.size() == n_in;  // then new_id[canon[v]] == v for every v
+  same_faces = pts.size() == n_in;  // then new_id[canon[v]] == v for every v
   for (std::size_t f = 0; same_faces && f < mesh.faces.size(); ++f) {
     const auto& poly = mesh.faces[f];
     if (poly.size() > 16) same_faces = false;
@@ -715,8 +750,6 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
       for (std::size_t j = 0; j < i; ++j)
         if (poly[j] == poly[i]) same_faces = false;
   }
-  std::vector<std::vector<Index>> faces_own;
-  std::vector<Index> fname;
   fname.reserve(mesh.faces.size());
   if (same_faces)
     for (Index f = 0; f < mesh.faces.size(); ++f) fname.push_back(f);
@@ -755,13 +788,11 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     faces_own.push_back(std::move(poly));
     fname.push_back(f);
   }
-  std::vector<std::vector<Index>>& faces_edit = faces_own;  // (only when !same_faces)
-  const std::vector<std::vector<Index>>& faces = same_faces ? mesh.faces : faces_own;
-  if (faces.empty()) throw InputError(source, "", "every facet collapses to a segment or a point");
-  if (faces.size() != mesh.faces.size()) {
+  if (faces().empty()) throw InputError(source, "", "every facet collapses to a segment or a point");
+  if (faces().size() != mesh.faces.size()) {
     // Dropped facets may leave vertices unused: number the used ones again.
     std::vector<Index> renum(pts.size(), kNoIndex);
-    for (const auto& poly : faces)
+    for (const auto& poly : faces())
       for (Index v : poly) renum[v] = 0;
     PointList kept_pts;
     std::vector<Index> kept_names;
@@ -771,183 +802,166 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
         kept_pts.push_from(pts, v);
         kept_names.push_back(vname[v]);
       }
-    for (auto& poly : faces_edit)
+    for (auto& poly : faces_own)  // (same_faces keeps every facet)
       for (Index& v : poly) v = renum[v];
     pts = std::move(kept_pts);
     vname = std::move(kept_names);
   }
+}
 
-  // 3. Topology: closed, manifold, consistently oriented, connected sphere.
-  Graph g = link(Index(pts.size()), faces, source, vname, fname, mesh.points);
+// 3. Topology: closed, manifold, consistently oriented, connected sphere
+//    (link_faces).
 
-  // 4. Nonzero area, planar facets (exactly).  Signs are filtered with
-  //    interval arithmetic; exact Newell normals are computed only when a
-  //    filter cannot decide (and for the final planes).
-  const Index nf = Index(faces.size());
-  // From here on every interval operation runs with the FPU rounding upward,
-  // set once (unprotected intervals); the guard restores the mode, also when
-  // an InputError leaves.  Exact fallbacks use GMP integers and rationals,
-  // which do not depend on the rounding mode.
-  //    Intervals of the exact coordinates: point intervals for doubles,
-  //    hi + lo (rounded outward under the guard) for double pairs, the
-  //    enclosing doubles of each rational.
-  //    Triangles on doubles (what most large files are) need no stored
-  //    intervals: a triangle is planar, the convexity of its edges and its
-  //    coplanarity with a neighbour are one orient3d each (the kernel's
-  //    filtered predicate), and the intervals of points and normals that a
-  //    fallback needs are made on demand (DoubleIntervals,
-  //    TriangleNormals).  Every decision is the same as on stored intervals.
-  const bool threads = nf >= parallel_items();
-  const bool triangles_on_doubles =
+// 4. Nonzero area, planar facets (exactly).  Signs are filtered with
+//    interval arithmetic; exact Newell normals are computed only when a
+//    filter cannot decide (and for the final planes).
+//    Intervals of the exact coordinates: point intervals for doubles,
+//    hi + lo (rounded outward under the guard) for double pairs, the
+//    enclosing doubles of each rational.
+//    Triangles on doubles (what most large files are) need no stored
+//    intervals: a triangle is planar, the convexity of its edges and its
+//    coplanarity with a neighbour are one orient3d each (the kernel's
+//    filtered predicate), and the intervals of points and normals that a
+//    fallback needs are made on demand (DoubleIntervals,
+//    TriangleNormals).  Every decision is the same as on stored intervals.
+// prepare_intervals runs before the rounding is set upward (to_interval
+// uses protected intervals), the other stages after.
+void Validation::prepare_intervals() {
+  nf = Index(faces().size());
+  threads = nf >= parallel_items();
+  triangles_on_doubles =
       pts.form() == PointList::Form::doubles &&
-      std::all_of(faces.begin(), faces.end(), [](const std::vector<Index>& poly) { return poly.size() == 3; });
-  std::vector<FastIPoint> ip;  // (triangles on doubles: made by fill_ip when needed)
-  if (pts.form() == PointList::Form::rationals) {  // (to_interval uses protected intervals)
+      std::all_of(faces().begin(), faces().end(), [](const std::vector<Index>& poly) { return poly.size() == 3; });
+  if (pts.form() == PointList::Form::rationals) {
     ip.resize(pts.size());
     for (Index v = 0; v < pts.size(); ++v) ip[v] = to_fast(to_interval(pts.exact_ref(v)));
   }
-  CGAL::Protect_FPU_rounding<true> upward;
-  auto fill_ip = [&] {
-    if (!ip.empty()) return;
-    ip.resize(pts.size());
-    for (Index v = 0; v < pts.size(); ++v) {
-      const Vec3d& a = pts.approx(v);
-      if (pts.form() == PointList::Form::doubles) {
-        ip[v] = {FastInterval(a.x), FastInterval(a.y), FastInterval(a.z)};
-      } else {
-        const Vec3d& l = pts.low(v);
-        ip[v] = {FastInterval(a.x) + FastInterval(l.x), FastInterval(a.y) + FastInterval(l.y),
-                 FastInterval(a.z) + FastInterval(l.z)};
-      }
+  dip = DoubleIntervals{&pts.approx()};
+  xnrm.resize(nf);
+}
+
+void Validation::fill_ip() {
+  if (!ip.empty()) return;
+  ip.resize(pts.size());
+  for (Index v = 0; v < pts.size(); ++v) {
+    const Vec3d& a = pts.approx(v);
+    if (pts.form() == PointList::Form::doubles) {
+      ip[v] = {FastInterval(a.x), FastInterval(a.y), FastInterval(a.z)};
+    } else {
+      const Vec3d& l = pts.low(v);
+      ip[v] = {FastInterval(a.x) + FastInterval(l.x), FastInterval(a.y) + FastInterval(l.y),
+               FastInterval(a.z) + FastInterval(l.z)};
     }
-  };
-  if (!triangles_on_doubles) fill_ip();
-  const DoubleIntervals dip{&pts.approx()};
-  // Exact normals, made only where a filter cannot decide (a default Point3
-  // would cost three GMP rationals per facet).
-  std::vector<std::unique_ptr<Point3>> xnrm(nf);
-  auto exact_normal = [&](Index f) -> const Point3& {
-    if (!xnrm[f]) xnrm[f] = std::make_unique<Point3>(polygon_normal(pts, faces[f]));
-    return *xnrm[f];
-  };
-  // The interval Newell normal of facet f: sum (p_i - p_0) x (p_(i+1) - p_0).
-  auto newell = [&](const auto& ipa, Index f) {
-    const auto& poly = faces[f];
-    FastIPoint n{FastInterval(0), FastInterval(0), FastInterval(0)};
-    const FastIPoint o = ipa[poly[0]];
-    FastIPoint prev = ipa[poly[1]] - o;
-    for (std::size_t i = 2; i < poly.size(); ++i) {
-      FastIPoint cur = ipa[poly[i]] - o;
-      n = n + cross(prev, cur);
-      prev = cur;
-    }
-    return n;
-  };
-  // An exactly planar polygon (a parallelogram of a Minkowski sum, written
-  // rounded) leaves every vertex's sign above at an exact zero that
-  // intervals cannot decide.  On doubles one decision covers the polygon:
-  // when its first three corners are not collinear and every other corner
-  // lies on their plane (the kernel's orient3d, exact), all its points are
-  // coplanar, the Newell normal is normal to that plane, and every sign is
-  // 0.  When that is not shown, each vertex is decided exactly as before
-  // (and the error names the same vertex).
-  auto planar_on_doubles = [&](const std::vector<Index>& poly) {
-    if (pts.form() != PointList::Form::doubles) return false;
-    const FastIPoint e = cross(dip[poly[1]] - dip[poly[0]], dip[poly[2]] - dip[poly[0]]);
-    auto nonzero = [](const FastInterval& c) { const int s = sign_of(c); return s == 1 || s == -1; };
-    if (!nonzero(e.x) && !nonzero(e.y) && !nonzero(e.z)) return false;
-    const std::vector<Vec3d>& v = pts.approx();
-    for (std::size_t i = 3; i < poly.size(); ++i)
-      if (orient3d(v[poly[0]], v[poly[1]], v[poly[2]], v[poly[i]]) != 0) return false;
-    return true;
-  };
-  std::vector<FastIPoint> inrm;  // (triangles on doubles: made by fill_inrm when needed)
-  auto fill_inrm = [&] {
-    if (!inrm.empty()) return;
-    fill_ip();
-    inrm.resize(nf);
-    for (Index f = 0; f < nf; ++f) inrm[f] = newell(ip, f);
-  };
-  // Six times the volume, for step 5: sum over the facets of <p_0(f) - p_0, n(f)>,
-  // summed per block of facets, then the blocks in order (the same interval
-  // on any number of threads).
+  }
+}
+
+void Validation::fill_inrm() {
+  if (!inrm.empty()) return;
+  fill_ip();
+  inrm.resize(nf);
+  for (Index f = 0; f < nf; ++f) inrm[f] = newell(ip, f);
+}
+
+// An exactly planar polygon (a parallelogram of a Minkowski sum, written
+// rounded) leaves every vertex's sign in check_facets at an exact zero that
+// intervals cannot decide.  On doubles one decision covers the polygon:
+// when its first three corners are not collinear and every other corner
+// lies on their plane (the kernel's orient3d, exact), all its points are
+// coplanar, the Newell normal is normal to that plane, and every sign is
+// 0.  When that is not shown, each vertex is decided exactly as before
+// (and the error names the same vertex).
+bool Validation::planar_on_doubles(const std::vector<Index>& poly) const {
+  if (pts.form() != PointList::Form::doubles) return false;
+  const FastIPoint e = cross(dip[poly[1]] - dip[poly[0]], dip[poly[2]] - dip[poly[0]]);
+  auto nonzero = [](const FastInterval& c) { const int s = sign_of(c); return s == 1 || s == -1; };
+  if (!nonzero(e.x) && !nonzero(e.y) && !nonzero(e.z)) return false;
+  const std::vector<Vec3d>& v = pts.approx();
+  for (std::size_t i = 3; i < poly.size(); ++i)
+    if (orient3d(v[poly[0]], v[poly[1]], v[poly[2]], v[poly[i]]) != 0) return false;
+  return true;
+}
+
+// Six times the volume, for step 5: sum over the facets of <p_0(f) - p_0, n(f)>,
+// summed per block of facets, then the blocks in order (the same interval
+// on any number of threads).
+template <class IPoints>
+void Validation::facets_pass(const IPoints& ipa) {
   std::vector<FastInterval> six_part((nf + kValidationBlock - 1) / kValidationBlock, FastInterval(0));
-  auto facets_pass = [&](const auto& ipa) {
-    if (!triangles_on_doubles) inrm.resize(nf);
-    const FastIPoint origin = ipa[0];
-    in_blocks(nf, threads, [&](std::size_t begin, std::size_t end) {
-      FastInterval six(0);
-      for (Index f = Index(begin); f < end; ++f) {
-        const auto& poly = faces[f];
-        const FastIPoint n = newell(ipa, f);
-        if (!triangles_on_doubles) inrm[f] = n;
-        auto certainly_nonzero = [](const FastInterval& c) { int s = sign_of(c); return s == 1 || s == -1; };
-        if (!certainly_nonzero(n.x) && !certainly_nonzero(n.y) && !certainly_nonzero(n.z) &&
-            is_zero(exact_normal(f)))
-          throw InputError(source, fct(fname[f]), "has zero area");
-        const FastIPoint o = ipa[poly[0]];
-        if (poly.size() > 3) {
-          int planar = 0;  // 1: exactly planar (planar_on_doubles), -1: not shown, 0: not asked yet
-          for (Index v : poly) {
-            int s = sign_of(dot(n, ipa[v] - o));
-            if (s == kUncertain && planar == 0) planar = planar_on_doubles(poly) ? 1 : -1;
-            if (s == kUncertain) s = planar == 1 ? 0 : sgn(dot(exact_normal(f), pts.exact(v) - pts.exact(poly[0])));
-            if (s != 0)
-              throw NotConvexError(source, fct(fname[f]),
-                                   "is not planar (" + vtx(vname[v]) + " is off the plane of the others)");
-          }
+  if (!triangles_on_doubles) inrm.resize(nf);
+  const FastIPoint origin = ipa[0];
+  const auto& faces = this->faces();
+  in_blocks(nf, threads, [&](std::size_t begin, std::size_t end) {
+    FastInterval six(0);
+    for (Index f = Index(begin); f < end; ++f) {
+      const auto& poly = faces[f];
+      const FastIPoint n = newell(ipa, f);
+      if (!triangles_on_doubles) inrm[f] = n;
+      auto certainly_nonzero = [](const FastInterval& c) { int s = sign_of(c); return s == 1 || s == -1; };
+      if (!certainly_nonzero(n.x) && !certainly_nonzero(n.y) && !certainly_nonzero(n.z) &&
+          is_zero(exact_normal(f)))
+        throw InputError(source, fct(fname[f]), "has zero area");
+      const FastIPoint o = ipa[poly[0]];
+      if (poly.size() > 3) {
+        int planar = 0;  // 1: exactly planar (planar_on_doubles), -1: not shown, 0: not asked yet
+        for (Index v : poly) {
+          int s = sign_of(dot(n, ipa[v] - o));
+          if (s == kUncertain && planar == 0) planar = planar_on_doubles(poly) ? 1 : -1;
+          if (s == kUncertain) s = planar == 1 ? 0 : sgn(dot(exact_normal(f), pts.exact(v) - pts.exact(poly[0])));
+          if (s != 0)
+            throw NotConvexError(source, fct(fname[f]),
+                                 "is not planar (" + vtx(vname[v]) + " is off the plane of the others)");
         }
-        six += dot(o - origin, n);
       }
-      six_part[begin / kValidationBlock] = six;
-    });
-  };
+      six += dot(o - origin, n);
+    }
+    six_part[begin / kValidationBlock] = six;
+  });
+  for (const FastInterval& part : six_part) this->six += part;
+}
+
+void Validation::check_facets() {
+  if (!triangles_on_doubles) fill_ip();
   if (triangles_on_doubles) facets_pass(dip);
   else facets_pass(ip);
-  FastInterval six(0);
-  for (const FastInterval& part : six_part) six += part;
+}
 
-  // 5. Orientation from the sign of the volume; flip a consistently inward mesh.
-  int vol_sign;
-  {
-    vol_sign = sign_of(six);
-    if (vol_sign == kUncertain) {
-      Rational exact_six = 0;
-      const Point3 o = pts.exact(0);
-      for (Index f = 0; f < nf; ++f) exact_six += dot(pts.exact(faces[f][0]) - o, exact_normal(f));
-      vol_sign = sgn(exact_six);
-    }
+// 5. Orientation from the sign of the volume (the caller flips a
+//    consistently inward mesh).
+int Validation::volume_sign() {
+  int vol_sign = sign_of(six);
+  if (vol_sign == kUncertain) {
+    Rational exact_six = 0;
+    const Point3 o = pts.exact(0);
+    for (Index f = 0; f < nf; ++f) exact_six += dot(pts.exact(faces()[f][0]) - o, exact_normal(f));
+    vol_sign = sgn(exact_six);
   }
   if (vol_sign == 0)
     throw InputError(source, "", "zero volume: the solid is flat (all its points are coplanar)");
-  if (vol_sign < 0) {
-    if (same_faces) {
-      // The facets are the caller's: validate the reversed mesh instead
-      // (the same numbering, so the same result and the same messages).
-      Mesh flipped;
-      flipped.points = mesh.points;
-      flipped.faces = mesh.faces;
-      for (auto& poly : flipped.faces) std::reverse(poly.begin(), poly.end());
-      return build(flipped, source);
-    }
-    for (auto& poly : faces_edit) std::reverse(poly.begin(), poly.end());
-    for (auto& n : inrm) n = -n;
-    for (Index f = 0; f < nf; ++f)
-      if (xnrm[f]) *xnrm[f] = -*xnrm[f];
-    g = link(Index(pts.size()), faces, source, vname, fname, mesh.points);
-  }
+  return vol_sign;
+}
 
-  // 6. Merge adjacent coplanar facets: adjacent facets are coplanar exactly
-  //    when their normals are parallel (they share an edge); same
-  //    orientation merges, opposite orientation is a zero-thickness fold.
+// The facets (own, not the caller's) reversed, with their normals, and
+// linked again.
+void Validation::reverse_own_facets() {
+  for (auto& poly : faces_own) std::reverse(poly.begin(), poly.end());
+  for (auto& n : inrm) n = -n;
+  for (Index f = 0; f < nf; ++f)
+    if (xnrm[f]) *xnrm[f] = -*xnrm[f];
+  link_faces();
+}
+
+// 6. Merge adjacent coplanar facets: adjacent facets are coplanar exactly
+//    when their normals are parallel (they share an edge); same
+//    orientation merges, opposite orientation is a zero-thickness fold.
+void Validation::merge_coplanar() {
+  const auto& faces = this->faces();
   UnionFind uf(nf);
-  bool any_merge = false;
   // n(f) x n(o) per edge, kept for the edge convexity test below when the
   // structure stays unchanged.
   // Triangles on doubles: orient3d(p, q, c, d) per edge instead (see
   // triangle_pair_orient; the corner after q in f is c, after p in o is d).
-  std::vector<FastIPoint> edge_cross(triangles_on_doubles ? 0 : g.num_halfedges() / 2);
-  std::vector<signed char> edge_orient = big_array<signed char>(triangles_on_doubles ? g.num_halfedges() / 2 : 0);
+  edge_cross.resize(triangles_on_doubles ? 0 : g.num_halfedges() / 2);
+  edge_orient = big_array<signed char>(triangles_on_doubles ? g.num_halfedges() / 2 : 0);
   if (triangles_on_doubles)
     in_blocks(edge_orient.size(), threads, [&](std::size_t begin, std::size_t end) {
       const std::vector<Vec3d>& v = pts.approx();
@@ -978,112 +992,103 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
                        "lies back to back with " + fct(fname[o]) + " (zero thickness)");
     }
   }
-  std::vector<std::vector<Index>> merged;
-  std::vector<Index> merged_name, merged_rep;  // user's facet number, representative input facet
   if (!any_merge) {
-    merged_name = fname;  // merged stays empty: the facets are `faces`
+    merged_name = fname;  // merged stays empty: the facets are faces()
     merged_rep.resize(nf);
     std::iota(merged_rep.begin(), merged_rep.end(), 0);
-  } else {
-    std::vector<Index> group_of(nf);
-    std::vector<Index> group_id(nf, kNoIndex);
-    for (Index f = 0; f < nf; ++f) {
-      Index r = uf.find(f);
-      if (group_id[r] == kNoIndex) {
-        group_id[r] = Index(merged.size());
-        merged.emplace_back();
-        merged_name.push_back(fname[r]);
-        merged_rep.push_back(r);
-      }
-      group_of[f] = group_id[r];
-    }
-    // Boundary halfedges of each group, keyed by (group, origin).
-    std::unordered_map<std::uint64_t, Index> out;
-    std::vector<Index> boundary_count(merged.size(), 0), start(merged.size(), kNoIndex);
-    for (Index h = 0; h < g.num_halfedges(); ++h) {
-      Index gr = group_of[g.facet[h]];
-      if (gr == group_of[g.facet[h ^ 1u]]) continue;
-      auto [it, ok] = out.try_emplace((std::uint64_t(gr) << 32) | g.origin[h], h);
-      if (!ok)
-        throw NotConvexError(source, fct(merged_name[gr]),
-                         "coplanar facets around " + vtx(vname[g.origin[h]]) +
-                             " do not form one convex polygon (the solid is not convex)");
-      ++boundary_count[gr];
-      if (start[gr] == kNoIndex) start[gr] = h;
-    }
-    for (Index gr = 0; gr < merged.size(); ++gr) {
-      Index h = start[gr];
-      if (h == kNoIndex)
-        throw InputError(source, fct(merged_name[gr]), "all facets are coplanar (zero volume)");
-      do {
-        merged[gr].push_back(g.origin[h]);
-        h = out.find((std::uint64_t(gr) << 32) | g.origin[h ^ 1u])->second;
-      } while (h != start[gr] && merged[gr].size() <= boundary_count[gr]);
-      if (merged[gr].size() != boundary_count[gr])
-        throw NotConvexError(source, fct(merged_name[gr]),
-                         "coplanar facets form a polygon with a hole (the solid is not convex)");
-    }
+    return;
   }
+  std::vector<Index> group_of(nf);
+  std::vector<Index> group_id(nf, kNoIndex);
+  for (Index f = 0; f < nf; ++f) {
+    Index r = uf.find(f);
+    if (group_id[r] == kNoIndex) {
+      group_id[r] = Index(merged.size());
+      merged.emplace_back();
+      merged_name.push_back(fname[r]);
+      merged_rep.push_back(r);
+    }
+    group_of[f] = group_id[r];
+  }
+  // Boundary halfedges of each group, keyed by (group, origin).
+  std::unordered_map<std::uint64_t, Index> out;
+  std::vector<Index> boundary_count(merged.size(), 0), start(merged.size(), kNoIndex);
+  for (Index h = 0; h < g.num_halfedges(); ++h) {
+    Index gr = group_of[g.facet[h]];
+    if (gr == group_of[g.facet[h ^ 1u]]) continue;
+    auto [it, ok] = out.try_emplace((std::uint64_t(gr) << 32) | g.origin[h], h);
+    if (!ok)
+      throw NotConvexError(source, fct(merged_name[gr]),
+                           "coplanar facets around " + vtx(vname[g.origin[h]]) +
+                               " do not form one convex polygon (the solid is not convex)");
+    ++boundary_count[gr];
+    if (start[gr] == kNoIndex) start[gr] = h;
+  }
+  for (Index gr = 0; gr < merged.size(); ++gr) {
+    Index h = start[gr];
+    if (h == kNoIndex)
+      throw InputError(source, fct(merged_name[gr]), "all facets are coplanar (zero volume)");
+    do {
+      merged[gr].push_back(g.origin[h]);
+      h = out.find((std::uint64_t(gr) << 32) | g.origin[h ^ 1u])->second;
+    } while (h != start[gr] && merged[gr].size() <= boundary_count[gr]);
+    if (merged[gr].size() != boundary_count[gr])
+      throw NotConvexError(source, fct(merged_name[gr]),
+                           "coplanar facets form a polygon with a hole (the solid is not convex)");
+  }
+}
 
-  // 7. Drop vertices of degree 2 (in the middle of an edge) and vertices that
-  //    vanished inside merged facets; renumber.
+// 7. Drop vertices of degree 2 (in the middle of an edge) and vertices that
+//    vanished inside merged facets; renumber.
+void Validation::drop_vertices() {
   std::vector<Index> degree(pts.size(), 0);
-  for (const auto& poly : any_merge ? merged : faces)
+  for (const auto& poly : any_merge ? merged : faces())
     for (Index v : poly) ++degree[v];
-  const bool unchanged =
-      !any_merge && std::all_of(degree.begin(), degree.end(), [](Index d) { return d >= 3; });
-  // Unchanged (the usual case for a valid mesh): the final structure is the
-  // one linked above.  Otherwise renumber and link again.
-  PointList fpts_own;
-  std::vector<FastIPoint> fip_own;
-  std::vector<Index> fname_v_own;
-  Graph fg_own;
-  if (!unchanged) {
-    fill_ip();
-    fill_inrm();
-    if (!any_merge) merged = faces;
-    std::vector<Index> final_id(pts.size(), kNoIndex);
-    fpts_own.reserve(pts.size());
-    fip_own.reserve(pts.size());
-    for (Index v = 0; v < pts.size(); ++v)
-      if (degree[v] >= 3) {
-        final_id[v] = Index(fpts_own.size());
-        fpts_own.push_from(pts, v);
-        fip_own.push_back(ip[v]);
-        fname_v_own.push_back(vname[v]);
-      }
-    for (Index f = 0; f < merged.size(); ++f) {
-      auto& poly = merged[f];
-      std::vector<Index> kept;
-      kept.reserve(poly.size());
-      for (Index v : poly)
-        if (final_id[v] != kNoIndex) kept.push_back(final_id[v]);
-      if (kept.size() < 3)
-        throw InputError(source, fct(merged_name[f]), "degenerates to fewer than 3 corners");
-      poly = std::move(kept);
+  unchanged = !any_merge && std::all_of(degree.begin(), degree.end(), [](Index d) { return d >= 3; });
+  // Unchanged: the final structure is the one linked above.  Otherwise
+  // renumber and link again.
+  if (unchanged) return;
+  fill_ip();
+  fill_inrm();
+  if (!any_merge) merged = faces();
+  std::vector<Index> final_id(pts.size(), kNoIndex);
+  fpts_own.reserve(pts.size());
+  fip_own.reserve(pts.size());
+  for (Index v = 0; v < pts.size(); ++v)
+    if (degree[v] >= 3) {
+      final_id[v] = Index(fpts_own.size());
+      fpts_own.push_from(pts, v);
+      fip_own.push_back(ip[v]);
+      fname_v_own.push_back(vname[v]);
     }
-    fg_own = link(Index(fpts_own.size()), merged, source, fname_v_own, merged_name, mesh.points);
+  for (Index f = 0; f < merged.size(); ++f) {
+    auto& poly = merged[f];
+    std::vector<Index> kept;
+    kept.reserve(poly.size());
+    for (Index v : poly)
+      if (final_id[v] != kNoIndex) kept.push_back(final_id[v]);
+    if (kept.size() < 3)
+      throw InputError(source, fct(merged_name[f]), "degenerates to fewer than 3 corners");
+    poly = std::move(kept);
   }
-  const PointList& fpts = unchanged ? pts : fpts_own;
-  const std::vector<FastIPoint>& fip = unchanged ? ip : fip_own;
-  std::vector<Index>& fname_v = unchanged ? vname : fname_v_own;
-  Graph& fg = unchanged ? g : fg_own;
-  const std::vector<std::vector<Index>>& final_faces = unchanged ? faces : merged;
-
+  fg_own = link(Index(fpts_own.size()), merged, source, fname_v_own, merged_name, mesh.points);
   // The outward normal of each facet, from its representative input facet:
   //    intervals for the filters, the exact Newell normal only when a filter
   //    cannot decide.  (The canonical planes are computed on demand later.)
-  std::vector<FastIPoint> finrm_own;
-  if (!unchanged) {
-    finrm_own.resize(final_faces.size());
-    for (Index f = 0; f < final_faces.size(); ++f) finrm_own[f] = inrm[merged_rep[f]];
-  }
-  const std::vector<FastIPoint>& finrm = unchanged ? inrm : finrm_own;  // (unchanged: merged_rep[f] == f)
-  auto fnormal = [&](Index f) -> const Point3& { return exact_normal(merged_rep[f]); };
-  auto fpoint = [&](Index v) { return fpts.exact(v); };
+  finrm_own.resize(merged.size());
+  for (Index f = 0; f < merged.size(); ++f) finrm_own[f] = inrm[merged_rep[f]];
+}
 
-  // 8. Convexity: facets, edges, vertices (see the comment at the top).
-  //    Each test runs on intervals first and exactly when undecided.
+// 8. Convexity: facets, edges, vertices (see the comment at the top).
+//    Each test runs on intervals first and exactly when undecided.
+void Validation::check_convexity() {
+  const PointList& fpts = this->fpts();
+  const std::vector<FastIPoint>& fip = this->fip();
+  const std::vector<FastIPoint>& finrm = this->finrm();
+  const std::vector<std::vector<Index>>& final_faces = this->final_faces();
+  const std::vector<Index>& fname_v = this->fname_v();
+  const Graph& fg = this->fg();
+  auto fpoint = [&](Index v) { return fpts.exact(v); };
   FanScratch scratch;
   for (Index f = 0; f < final_faces.size(); ++f) {
     const auto& poly = final_faces[f];
@@ -1105,13 +1110,14 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
     }
     if (s <= 0)
       throw NotConvexError(source, edge_place(fname_v[fg.origin[h]], fname_v[fg.origin[h + 1]], mesh.points),
-                       "reflex edge between " + fct(merged_name[f]) + " and " + fct(merged_name[o]) +
-                           " (the solid is not convex)");
+                           "reflex edge between " + fct(merged_name[f]) + " and " + fct(merged_name[o]) +
+                               " (the solid is not convex)");
   }
   if (unchanged && triangles_on_doubles) {
-    // The test on doubles first; step 8's test where it does not accept.
-    // Every facet is a triangle, the wedge of each of its corners: its sign
-    // is computed once per triangle, not once per corner (as in moved).
+    // The test on doubles first; the vertex test below where it does not
+    // accept.  Every facet is a triangle, the wedge of each of its corners:
+    // its sign is computed once per triangle, not once per corner (as in
+    // moved).
     const std::optional<Vec3d> c = reference_point(pts.approx());
     std::vector<signed char> below = big_array<signed char>(c ? final_faces.size() : 0);
     if (c)
@@ -1140,11 +1146,45 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
                          scratch))
         throw NotConvexError(source, vertex_place(fname_v[v], mesh.points), "the solid is not convex around this vertex");
   }
+}
+
+}  // namespace
+
+ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& source) {
+  Validation s(mesh, source);
+  s.check_indices();
+  s.weld();
+  s.link_faces();
+  s.prepare_intervals();
+  {
+    // From here on every interval operation runs with the FPU rounding
+    // upward, set once (unprotected intervals); the guard restores the mode,
+    // also when an InputError leaves.  Exact fallbacks use GMP integers and
+    // rationals, which do not depend on the rounding mode.
+    CGAL::Protect_FPU_rounding<true> upward;
+    s.check_facets();
+    if (s.volume_sign() < 0) {
+      if (s.same_faces) {
+        // The facets are the caller's: validate the reversed mesh instead
+        // (the same numbering, so the same result and the same messages).
+        Mesh flipped;
+        flipped.points = mesh.points;
+        flipped.faces = mesh.faces;
+        for (auto& poly : flipped.faces) std::reverse(poly.begin(), poly.end());
+        return build(flipped, source);
+      }
+      s.reverse_own_facets();
+    }
+    s.merge_coplanar();
+    s.drop_vertices();
+    s.check_convexity();
+  }
 
   // 9. The polytope.
   ConvexPolytope p;
-  p.coords_ = unchanged ? std::move(pts) : std::move(fpts_own);
-  p.source_vertex_ = std::move(fname_v);
+  p.coords_ = s.unchanged ? std::move(s.pts) : std::move(s.fpts_own);
+  p.source_vertex_ = std::move(s.fname_v());
+  Graph& fg = s.fg();
   p.he_origin_ = std::move(fg.origin);
   p.he_facet_ = std::move(fg.facet);
   p.he_next_ = std::move(fg.next);
@@ -1178,30 +1218,11 @@ std::optional<ConvexPolytope> PolytopeBuilder::moved(const ConvexPolytope& p, co
   const Index nv = p.num_vertices(), nf0 = p.num_facets(), nh0 = p.num_halfedges();
   if (points.form() != PointList::Form::doubles || points.size() != nv) return std::nullopt;
   const std::vector<Vec3d>& v = points.approx();
-  // Pairwise distinct: open addressing on the coordinates' bits (zeros are
-  // stored unsigned, so equal points have equal bits).
+  // Pairwise distinct.
   {
-    auto bits = [](double d) {
-      std::uint64_t b;
-      std::memcpy(&b, &d, 8);
-      return b;
-    };
-    std::size_t n = 16;
-    while (n < 2 * std::size_t(nv) + 2) n *= 2;
-    std::vector<Index> slot(n, kNoIndex);
-    for (Index i = 0; i < nv; ++i) {
-      const Vec3d& a = v[i];
-      const std::uint64_t h = mix64(bits(a.x)) ^ (mix64(bits(a.y) + 0x9e3779b97f4a7c15ULL) * 3) ^
-                              (mix64(bits(a.z) + 0x3c6ef372fe94f82aULL) * 7);
-      for (std::size_t j = h & (n - 1);; j = (j + 1) & (n - 1)) {
-        if (slot[j] == kNoIndex) {
-          slot[j] = i;
-          break;
-        }
-        const Vec3d& b = v[slot[j]];
-        if (a.x == b.x && a.y == b.y && a.z == b.z) return std::nullopt;
-      }
-    }
+    const std::vector<Index> canon = weld_exact(points);
+    for (Index i = 0; i < nv; ++i)
+      if (canon[i] != i) return std::nullopt;
   }
   // Facets still planar; a quadrilateral that is not is cut along the
   // diagonal that folds outwards (1: a-c, when d lies below the plane of

@@ -33,6 +33,7 @@
 #include "kernel/predicates_internal.hpp"
 #include "mesh/support.hpp"
 #include "proximity/obstacle_geometry.hpp"
+#include "proximity/obstacle_state.hpp"
 
 namespace minksum {
 
@@ -57,32 +58,32 @@ Point3 average(const std::vector<Point3>& pts) {
 
 }  // namespace
 
-TranslationalObstacle::TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method) : method_(method) {
+detail::ObstacleState::ObstacleState(ConvexPolytope p, ConvexPolytope q, Method method) : method_(method) {
   rebuild(std::move(p), std::move(q));
 }
-TranslationalObstacle::TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method,
-                                             const SumOptions& options)
+detail::ObstacleState::ObstacleState(ConvexPolytope p, ConvexPolytope q, Method method,
+                             const SumOptions& options)
     : method_(method) {
   rebuild(std::move(p), std::move(q), options);
 }
 
 // The operand kept by a rebuild: moved out of the current geometry when no
 // answer shares it, copied otherwise.
-void TranslationalObstacle::set_p(ConvexPolytope p) {
+void detail::ObstacleState::set_p(ConvexPolytope p) {
   rebuild(std::move(p), g_.use_count() == 1 ? std::move(g_->q) : g_->q);
 }
-void TranslationalObstacle::set_q(ConvexPolytope q) {
+void detail::ObstacleState::set_q(ConvexPolytope q) {
   rebuild(g_.use_count() == 1 ? std::move(g_->p) : g_->p, std::move(q));
 }
-void TranslationalObstacle::set_operands(ConvexPolytope p, ConvexPolytope q) { rebuild(std::move(p), std::move(q)); }
+void detail::ObstacleState::set_operands(ConvexPolytope p, ConvexPolytope q) { rebuild(std::move(p), std::move(q)); }
 
-const ConvexPolytope& TranslationalObstacle::p() const { return g_->p; }
-const ConvexPolytope& TranslationalObstacle::q() const { return g_->q; }
-const ConvexPolytope& TranslationalObstacle::obstacle() const { return g_->sum.polytope; }
-const SumResult& TranslationalObstacle::sum() const { return g_->sum; }
-const Point3& TranslationalObstacle::interior_point() const { return g_->center; }
+const ConvexPolytope& detail::ObstacleState::p() const { return g_->p; }
+const ConvexPolytope& detail::ObstacleState::q() const { return g_->q; }
+const ConvexPolytope& detail::ObstacleState::obstacle() const { return g_->sum.polytope; }
+const SumResult& detail::ObstacleState::sum() const { return g_->sum; }
+const Point3& detail::ObstacleState::interior_point() const { return g_->center; }
 
-void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q, const SumOptions& options) {
+void detail::ObstacleState::rebuild(ConvexPolytope p, ConvexPolytope q, const SumOptions& options) {
   // A new geometry: the answers given so far keep the one they were answered on.
   auto g = std::make_shared<detail::ObstacleGeometry>();
   g->p = std::move(p);
@@ -140,7 +141,7 @@ void TranslationalObstacle::rebuild(ConvexPolytope p, ConvexPolytope q, const Su
 // ---------------------------------------------------------------------------
 // Witness helpers.
 
-Feature TranslationalObstacle::feature_on_facet(Index f, const Point3& x) const {
+Feature detail::ObstacleState::feature_on_facet(Index f, const Point3& x) const {
   const ConvexPolytope& m = obstacle();
   const Index h0 = m.facet_halfedge(f);
   Index h = h0;
@@ -169,7 +170,7 @@ Feature TranslationalObstacle::feature_on_facet(Index f, const Point3& x) const 
 // lies on the edge a→b exactly when edge_normal_side(a, b, n, s) = 0: the
 // face is read off s itself, with no rational point formed.  Two such edges
 // meet at x's vertex.
-Feature TranslationalObstacle::foot_feature(Index f, const Point3& s, const Vec3d& sd) const {
+Feature detail::ObstacleState::foot_feature(Index f, const Point3& s, const Vec3d& sd) const {
   const ConvexPolytope& m = obstacle();
   const RoundedPoint3 rs{s, sd}, rn{g_->normal[f], normal_approx_[f]};
   const Index h0 = m.facet_halfedge(f);
@@ -186,7 +187,7 @@ Feature TranslationalObstacle::foot_feature(Index f, const Point3& s, const Vec3
   return Feature::facet(f);
 }
 
-void TranslationalObstacle::fill_operand_features(Witness& w) const {
+void detail::ObstacleState::fill_operand_features(Witness& w) const {
   const detail::ObstacleGeometry& g = *g_;
   if (w.m.dim == FeatureDim::vertex) {  // a vertex of M is a vertex of P plus a vertex of −Q
     w.p = Feature::vertex(g.sum.vertex_origin[w.m.index].first);
@@ -215,21 +216,21 @@ void TranslationalObstacle::fill_operand_features(Witness& w) const {
   known[w.m.index] = 1;
 }
 
-std::pair<Point3, Point3> TranslationalObstacle::decompose(const Feature& feat, const Point3& x) const {
+std::pair<Point3, Point3> detail::ObstacleState::decompose(const Feature& feat, const Point3& x) const {
   return g_->decompose(feat, x);
 }
 
 // ---------------------------------------------------------------------------
 // Ray stabbing.
 
-struct TranslationalObstacle::RayApprox {
+struct detail::ObstacleState::RayApprox {
   Vec3d apex, through;
   bool through_usable = false;  // detail::rounded_usable of the ray point's rounding
 };
 
 // orient3d(apex, m[a], m[b], through) on the cached roundings of M's
 // vertices, the apex and the ray point (kernel: orient3d on RoundedPoint3).
-int TranslationalObstacle::orient_filtered(const Point3& apex, Index a, Index b, const Point3& through,
+int detail::ObstacleState::orient_filtered(const Point3& apex, Index a, Index b, const Point3& through,
                                            const RayApprox& ra) const {
   const ConvexPolytope& m = obstacle();
   return orient3d(RoundedPoint3{apex, ra.apex}, RoundedPoint3{m.point(a), m.approx(a)},
@@ -238,11 +239,11 @@ int TranslationalObstacle::orient_filtered(const Point3& apex, Index a, Index b,
 
 // The side of s with respect to facet f's plane, filtered on the plane's
 // cached roundings (kernel: plane_side).
-int TranslationalObstacle::side_filtered(Index f, const Point3& s, const Vec3d& sd) const {
+int detail::ObstacleState::side_filtered(Index f, const Point3& s, const Vec3d& sd) const {
   return plane_side(obstacle().plane(f), plane_approx_[f], RoundedPoint3{s, sd});
 }
 
-bool TranslationalObstacle::in_cone(Index f, const Point3& apex, const Point3& through, const RayApprox& ra,
+bool detail::ObstacleState::in_cone(Index f, const Point3& apex, const Point3& through, const RayApprox& ra,
                                     Index* exit) {
   const ConvexPolytope& m = obstacle();
   Index h0 = m.facet_halfedge(f);
@@ -268,7 +269,7 @@ bool TranslationalObstacle::in_cone(Index f, const Point3& apex, const Point3& t
 // plane is computed exactly on the halfedge's first use (canonical integers
 // and their roundings) and kept; then each test is the plane_side filter, a
 // degree-1 polynomial in s, instead of orient3d's degree 3.
-int TranslationalObstacle::center_side(Index h, const Point3& s, const Vec3d& sd, bool usable) {
+int detail::ObstacleState::center_side(Index h, const Point3& s, const Vec3d& sd, bool usable) {
   if (!center_plane_known_[h]) {
     const ConvexPolytope& m = obstacle();
     const Point3& c = g_->center;
@@ -289,7 +290,7 @@ int TranslationalObstacle::center_side(Index h, const Point3& s, const Vec3d& sd
   return plane_side(center_plane_[h], center_plane_approx_[h], RoundedPoint3{s, sd});
 }
 
-Index TranslationalObstacle::stab_scan(const Point3& apex, const Point3& through) const {
+Index detail::ObstacleState::stab_scan(const Point3& apex, const Point3& through) const {
   const ConvexPolytope& m = obstacle();
   for (Index f = 0; f < m.num_facets(); ++f) {
     bool inside = true;
@@ -307,7 +308,7 @@ Index TranslationalObstacle::stab_scan(const Point3& apex, const Point3& through
   throw std::logic_error("proximity: no facet of M is hit by the ray");
 }
 
-Index TranslationalObstacle::stab(const Point3& apex, const Point3& through, const RayApprox& ra, Index start) {
+Index detail::ObstacleState::stab(const Point3& apex, const Point3& through, const RayApprox& ra, Index start) {
   const ConvexPolytope& m = obstacle();
   Index f = start < m.num_facets() ? start : 0;
   const std::uint64_t limit = std::uint64_t(m.num_facets()) + 16;
@@ -324,9 +325,9 @@ Index TranslationalObstacle::stab(const Point3& apex, const Point3& through, con
 // ---------------------------------------------------------------------------
 // Collision.
 
-CollisionResult TranslationalObstacle::collide_point(const Point3& s) { return collide_rounded(s, to_double(s)); }
+CollisionResult detail::ObstacleState::collide_point(const Point3& s) { return collide_rounded(s, to_double(s)); }
 
-CollisionResult TranslationalObstacle::collide_rounded(const Point3& s, const Vec3d& sd) {
+CollisionResult detail::ObstacleState::collide_rounded(const Point3& s, const Vec3d& sd) {
   ++stats_.queries;
   CollisionResult r;
   const ConvexPolytope& m = obstacle();
@@ -348,7 +349,7 @@ CollisionResult TranslationalObstacle::collide_rounded(const Point3& s, const Ve
   return r;
 }
 
-CollisionResult TranslationalObstacle::collide(const Point3& u, const Point3& w) { return collide_point(w - u); }
+CollisionResult detail::ObstacleState::collide(const Point3& u, const Point3& w) { return collide_point(w - u); }
 
 // ---------------------------------------------------------------------------
 // Separation distance.
@@ -403,7 +404,7 @@ Closest boundary_closest(const ConvexPolytope& m, Index f, const Point3& s) {
 }
 }  // namespace
 
-Rational TranslationalObstacle::squared_distance_by_scan(const Point3& s) const {
+Rational detail::ObstacleState::squared_distance_by_scan(const Point3& s) const {
   const ConvexPolytope& m = obstacle();
   for (Index f = 0; f < m.num_facets(); ++f)
     if (m.plane(f).side(s) > 0) {
@@ -416,7 +417,7 @@ Rational TranslationalObstacle::squared_distance_by_scan(const Point3& s) const 
   return 0;
 }
 
-Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const {
+Feature detail::ObstacleState::closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const {
   const ConvexPolytope& m = obstacle();
   bool found = false;
   Feature best = Feature::facet(0);
@@ -464,7 +465,7 @@ Feature TranslationalObstacle::closest_feature_scan(const Point3& s, Point3& x, 
 // A certified feature contains the closest point x (for a facet, x lies on
 // the edges whose test is exactly 0, on their common vertex for two).  The
 // walk is bounded; beyond the bound it scans all facets exactly.
-Feature TranslationalObstacle::closest_feature(const Point3& s, const Vec3d& sd, std::optional<Feature> start,
+Feature detail::ObstacleState::closest_feature(const Point3& s, const Vec3d& sd, std::optional<Feature> start,
                                               Index& facet, bool first) {
   const ConvexPolytope& m = obstacle();
   // The walk before the collision query is short: a pose that moved far
@@ -591,7 +592,7 @@ Feature TranslationalObstacle::closest_feature(const Point3& s, const Vec3d& sd,
   return scanned.dim == FeatureDim::facet ? foot_feature(facet, s, sd) : scanned;
 }
 
-void TranslationalObstacle::keep_point(const Point3& s, const Vec3d& sd, Vec3d& kept, std::shared_ptr<Point3>& exact) {
+void detail::ObstacleState::keep_point(const Point3& s, const Vec3d& sd, Vec3d& kept, std::shared_ptr<Point3>& exact) {
   kept = sd;
   if (is_double(s)) {
     exact.reset();
@@ -633,7 +634,7 @@ void attach_spare(std::array<std::shared_ptr<E>, N>& spare, std::shared_ptr<E>& 
 }
 }  // namespace
 
-DistanceResult TranslationalObstacle::distance_point(const Point3& s) {
+DistanceResult detail::ObstacleState::distance_point(const Point3& s) {
   DistanceResult r;
   distance_into(s, r, true);
   return r;
@@ -642,7 +643,7 @@ DistanceResult TranslationalObstacle::distance_point(const Point3& s) {
 // The distance query written into r: its status and witness, and what its
 // accessors need to compute the exact values (the geometry and s, assigned
 // into r's storage; no rational arithmetic).
-void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r, bool single) {
+void detail::ObstacleState::distance_into(const Point3& s, DistanceResult& r, bool single) {
   const Vec3d sd = to_double(s);
   if (r.geo_ != g_) r.geo_ = g_;
   keep_point(s, sd, r.sd_, r.s_exact_);
@@ -684,22 +685,22 @@ void TranslationalObstacle::distance_into(const Point3& s, DistanceResult& r, bo
   fill_operand_features(r.witness);
 }
 
-void TranslationalObstacle::collide_points(std::span<const Point3> s, std::vector<CollisionResult>& out) {
+void detail::ObstacleState::collide_points(std::span<const Point3> s, std::vector<CollisionResult>& out) {
   out.resize(s.size());
   for (std::size_t i = 0; i < s.size(); ++i) out[i] = collide_point(s[i]);
 }
 
-void TranslationalObstacle::distance_points(std::span<const Point3> s, std::vector<DistanceResult>& out) {
+void detail::ObstacleState::distance_points(std::span<const Point3> s, std::vector<DistanceResult>& out) {
   out.resize(s.size());
   for (std::size_t i = 0; i < s.size(); ++i) distance_into(s[i], out[i], false);
 }
 
-void TranslationalObstacle::penetration_depth_points(std::span<const Point3> s, std::vector<DepthResult>& out) {
+void detail::ObstacleState::penetration_depth_points(std::span<const Point3> s, std::vector<DepthResult>& out) {
   out.resize(s.size());
   for (std::size_t i = 0; i < s.size(); ++i) depth_into(s[i], out[i], false);
 }
 
-DistanceResult TranslationalObstacle::distance(const Point3& u, const Point3& w) {
+DistanceResult detail::ObstacleState::distance(const Point3& u, const Point3& w) {
   DistanceResult r = distance_point(w - u);
   detail::DistanceExact& e = r.exact();
   e.u = u;
@@ -710,13 +711,13 @@ DistanceResult TranslationalObstacle::distance(const Point3& u, const Point3& w)
 // ---------------------------------------------------------------------------
 // Penetration depth.
 
-DepthResult TranslationalObstacle::penetration_depth_point(const Point3& s) {
+DepthResult detail::ObstacleState::penetration_depth_point(const Point3& s) {
   DepthResult r;
   depth_into(s, r, true);
   return r;
 }
 
-void TranslationalObstacle::depth_into(const Point3& s, DepthResult& r, bool single) {
+void detail::ObstacleState::depth_into(const Point3& s, DepthResult& r, bool single) {
   const Vec3d sd = to_double(s);
   CollisionResult c = collide_rounded(s, sd);
   r.status = c.status;
@@ -746,14 +747,14 @@ void TranslationalObstacle::depth_into(const Point3& s, DepthResult& r, bool sin
   fill_operand_features(r.witness);
 }
 
-DepthResult TranslationalObstacle::penetration_depth(const Point3& u, const Point3& w) {
+DepthResult detail::ObstacleState::penetration_depth(const Point3& u, const Point3& w) {
   return penetration_depth_point(w - u);
 }
 
 // ---------------------------------------------------------------------------
 // Directional penetration depth.
 
-DirectionalDepthResult TranslationalObstacle::directional_depth_point(const Point3& s, const Point3& d) {
+DirectionalDepthResult detail::ObstacleState::directional_depth_point(const Point3& s, const Point3& d) {
   if (is_zero(d)) throw UsageError("the direction of a directional penetration depth must not be zero");
   CollisionResult c = collide_point(s);
   DirectionalDepthResult r;
@@ -777,8 +778,64 @@ DirectionalDepthResult TranslationalObstacle::directional_depth_point(const Poin
   return r;
 }
 
-DirectionalDepthResult TranslationalObstacle::directional_depth(const Point3& u, const Point3& w, const Point3& d) {
+DirectionalDepthResult detail::ObstacleState::directional_depth(const Point3& u, const Point3& w, const Point3& d) {
   return directional_depth_point(w - u, d);
+}
+
+// The obstacle: its state, and every query forwarded to it.
+TranslationalObstacle::TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method)
+    : s_(std::make_unique<detail::ObstacleState>(std::move(p), std::move(q), method)) {}
+TranslationalObstacle::TranslationalObstacle(ConvexPolytope p, ConvexPolytope q, Method method,
+                                             const SumOptions& options)
+    : s_(std::make_unique<detail::ObstacleState>(std::move(p), std::move(q), method, options)) {}
+TranslationalObstacle::TranslationalObstacle(const TranslationalObstacle& o)
+    : s_(std::make_unique<detail::ObstacleState>(*o.s_)) {}
+TranslationalObstacle::TranslationalObstacle(TranslationalObstacle&&) noexcept = default;
+TranslationalObstacle& TranslationalObstacle::operator=(const TranslationalObstacle& o) {
+  if (this != &o) s_ = std::make_unique<detail::ObstacleState>(*o.s_);
+  return *this;
+}
+TranslationalObstacle& TranslationalObstacle::operator=(TranslationalObstacle&&) noexcept = default;
+TranslationalObstacle::~TranslationalObstacle() = default;
+
+void TranslationalObstacle::set_p(ConvexPolytope p) { s_->set_p(std::move(p)); }
+void TranslationalObstacle::set_q(ConvexPolytope q) { s_->set_q(std::move(q)); }
+void TranslationalObstacle::set_operands(ConvexPolytope p, ConvexPolytope q) { s_->set_operands(std::move(p), std::move(q)); }
+const ConvexPolytope& TranslationalObstacle::p() const { return s_->p(); }
+const ConvexPolytope& TranslationalObstacle::q() const { return s_->q(); }
+const ConvexPolytope& TranslationalObstacle::obstacle() const { return s_->obstacle(); }
+const SumResult& TranslationalObstacle::sum() const { return s_->sum(); }
+const Point3& TranslationalObstacle::interior_point() const { return s_->interior_point(); }
+CollisionResult TranslationalObstacle::collide(const Point3& u, const Point3& w) { return s_->collide(u, w); }
+DistanceResult TranslationalObstacle::distance(const Point3& u, const Point3& w) { return s_->distance(u, w); }
+DepthResult TranslationalObstacle::penetration_depth(const Point3& u, const Point3& w) {
+  return s_->penetration_depth(u, w);
+}
+DirectionalDepthResult TranslationalObstacle::directional_depth(const Point3& u, const Point3& w, const Point3& d) {
+  return s_->directional_depth(u, w, d);
+}
+CollisionResult TranslationalObstacle::collide_point(const Point3& s) { return s_->collide_point(s); }
+DistanceResult TranslationalObstacle::distance_point(const Point3& s) { return s_->distance_point(s); }
+DepthResult TranslationalObstacle::penetration_depth_point(const Point3& s) { return s_->penetration_depth_point(s); }
+DirectionalDepthResult TranslationalObstacle::directional_depth_point(const Point3& s, const Point3& d) {
+  return s_->directional_depth_point(s, d);
+}
+void TranslationalObstacle::collide_points(std::span<const Point3> s, std::vector<CollisionResult>& out) {
+  s_->collide_points(s, out);
+}
+void TranslationalObstacle::distance_points(std::span<const Point3> s, std::vector<DistanceResult>& out) {
+  s_->distance_points(s, out);
+}
+void TranslationalObstacle::penetration_depth_points(std::span<const Point3> s, std::vector<DepthResult>& out) {
+  s_->penetration_depth_points(s, out);
+}
+Rational TranslationalObstacle::squared_distance_by_scan(const Point3& s) const { return s_->squared_distance_by_scan(s); }
+const ProximityStats& TranslationalObstacle::stats() const { return s_->stats(); }
+void TranslationalObstacle::reset_stats() { s_->reset_stats(); }
+Feature TranslationalObstacle::feature_on_facet(Index f, const Point3& x) const { return s_->feature_on_facet(f, x); }
+void TranslationalObstacle::fill_operand_features(Witness& w) const { s_->fill_operand_features(w); }
+std::pair<Point3, Point3> TranslationalObstacle::decompose(const Feature& m, const Point3& x) const {
+  return s_->decompose(m, x);
 }
 
 }  // namespace minksum

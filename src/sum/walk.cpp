@@ -21,12 +21,12 @@
 // operand and n(f) = (f1 − f0) × (f2 − f0) the normal of a facet f of either
 // operand (f0, f1, f2: the facet's first three vertices; every corner of a
 // facet is strictly convex, so n(f) is a positive multiple of its outer
-// normal).  It is evaluated with the det3 filter of the kernel (same
-// evaluation tree and error bound, predicates_internal.hpp, with the per-
-// facet cross product cached) and, when the filter cannot decide, by the
-// error-free certificates of det3_slow (exact double evaluations, axis-
-// parallel differences, a difference equal to ± an edge of the facet: the
-// kernel's same_difference) or exactly by support_compare().
+// normal).  It is evaluated with the kernel's det3 filter, the per-facet
+// cross product cached (kernel/det3_filter.hpp, with its error bound), and,
+// when the filter cannot decide, by the error-free certificates of det3_slow
+// (exact double evaluations, axis-parallel differences, a difference equal
+// to ± an edge of the facet: the kernel's same_difference) or exactly by
+// support_compare().
 #include <minksum/predicates.hpp>
 #include <minksum/walk.hpp>
 
@@ -42,6 +42,7 @@
 #include <string>
 
 #include "kernel/big_array.hpp"
+#include "kernel/det3_filter.hpp"
 #include "kernel/difference.hpp"
 #include "kernel/predicates_internal.hpp"
 #include "mesh/builder.hpp"
@@ -56,9 +57,6 @@ std::uint64_t WalkSum::features(const ConvexPolytope& a, const ConvexPolytope& b
 
 namespace {
 
-using detail::kShapeDet3;
-using detail::kSlack;
-constexpr double kEpsSlack = 0x1.00001p-52;  // ε (1 + 2^-20)
 
 // Error-free checks, valid in round-to-nearest without overflow or
 // underflow (operands are 0 or at least 2^-300 in magnitude, at most 2^333):
@@ -85,17 +83,9 @@ struct Operand {
   bool filterable = true;    // every rounded coordinate within the filters' assumptions
   const Vec3d* x = nullptr;  // nearest doubles (exact when `doubles`): P's own approximations
   std::vector<double> cmax;  // max |coordinate| of x[v]
-  // Per facet, what the filter reads (hot) and what the exact stages need.
-  struct Facet {
-    double nx, ny, nz;  // fl((f1 − f0) × (f2 − f0)) on the rounded coordinates
-    // Bound coefficients (NaN when out of the filter's range, so that no
-    // comparison succeeds): with D_u, D_v the largest coordinates of the
-    // rounded f1 − f0, f2 − f0 and ρ_u, ρ_v their error bounds,
-    //   kv = c_vec D_u D_v, kr = c_rat D_u D_v,
-    //   a1 = (D_u + ρ_u)(D_v + ρ_v), a2 = ρ_u (D_v + ρ_v) + ρ_v (D_u + ρ_u),
-    // so that the kernel's rational bound is kr D_e + T (1 + 2^-20) (ρ_e a1 + (D_e + ρ_e) a2).
-    double kv, kr, a1, a2;
-  };
+  // Per facet, what the filter reads (hot: kernel/det3_filter.hpp) and what
+  // the exact stages need.
+  using Facet = detail::Det3Facet;
   struct FacetCorners {
     Index v0, v1, v2;
     // (nx, ny, nz) is exactly n(f): 1 yes, 0 no, 2 not checked yet (on
@@ -132,7 +122,6 @@ struct Operand {
 
   explicit Operand(const ConvexPolytope& p) : P(&p), doubles(p.coordinates_are_doubles()) {
     const bool nearest = round_to_nearest();
-    const double lo = kShapeDet3.lo, hi = kShapeDet3.hi;
     x = p.num_vertices() ? &p.approx(0) : nullptr;
     cmax.resize(p.num_vertices());
     for (Index v = 0; v < p.num_vertices(); ++v) {
@@ -155,70 +144,21 @@ struct Operand {
       FacetCorners& gc = fc[k];
       const Index h = p.facet_halfedge(k);
       gc.v0 = p.origin(h), gc.v1 = p.target(h), gc.v2 = p.target(p.next(h));
-      const Vec3d &a = x[gc.v0], &b = x[gc.v1], &c = x[gc.v2];
-      const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
-      const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
-      g.nx = uy * vz - uz * vy;
-      g.ny = uz * vx - ux * vz;
-      g.nz = ux * vy - uy * vx;
-      const double du = std::max({std::fabs(ux), std::fabs(uy), std::fabs(uz)});
-      const double dv = std::max({std::fabs(vx), std::fabs(vy), std::fabs(vz)});
-      const double cu = std::max(cmax[gc.v0], cmax[gc.v1]), cv = std::max(cmax[gc.v0], cmax[gc.v2]);
-      const double ru = kEpsSlack * (du + 8 * cu), rv = kEpsSlack * (dv + 8 * cv);
-      const bool ok = filterable && du >= lo && du <= hi && dv >= lo && dv <= hi && cu <= hi && cv <= hi;
-      if (ok) {
-        g.kv = kShapeDet3.c_vec * du * dv;
-        g.kr = kShapeDet3.c_rat * du * dv;
-        g.a1 = (du + ru) * (dv + rv);
-        g.a2 = ru * (dv + rv) + rv * (du + ru);
-      } else {
-        g.kv = g.kr = g.a1 = g.a2 = std::numeric_limits<double>::quiet_NaN();
-      }
+      const bool ok = detail::make_det3_facet(x[gc.v0], x[gc.v1], x[gc.v2], cmax[gc.v0], cmax[gc.v1],
+                                              cmax[gc.v2], filterable, g);
       gc.exact = doubles && ok && nearest ? 2 : 0;
     }
   }
 };
 
-// sign <X(xi) − X(yi), n(F facet fi)>: degree 3, the det3 shape with
-// e = xi − yi, u = f1 − f0, v = f2 − f0, evaluated as
-// (e_x (u×v)_x + e_y (u×v)_y) + e_z (u×v)_z, (u×v)_x = u_y v_z − u_z v_y, ...
-// — the tree of kernel predicate 2, so its bounds apply:
-//  * exact double coordinates: |value − P| ≤ c_vec · M_e M_u M_v;
-//  * otherwise (rounded rationals): c_rat Π D + T (1 + 2^-20) Σ_k ρ_k Π_{h≠k} (D_h + ρ_h)
-// (derivations in src/kernel/include/kernel/filter.hpp).
-// A difference of two vertices of one operand, rounded, with what the
-// filter needs: its largest coordinate and the operands' coordinates' bound.
-struct Diff {
-  double ex, ey, ez, de, ce;
-};
+// sign <X(xi) − X(yi), n(F facet fi)>: the kernel's det3 filter with the
+// facet's normal cached (kernel/det3_filter.hpp, with its proof), then
+// det3_slow.
+using Diff = detail::Det3Diff;
 inline Diff make_diff(const Operand& X, Index xi, Index yi) {
-  const Vec3d &p = X.x[xi], &q = X.x[yi];
-  Diff d;
-  d.ex = p.x - q.x, d.ey = p.y - q.y, d.ez = p.z - q.z;
-  d.de = std::max({std::fabs(d.ex), std::fabs(d.ey), std::fabs(d.ez)});
-  d.ce = std::max(X.cmax[xi], X.cmax[yi]);
-  return d;
+  return detail::make_det3_diff(X.x[xi], X.x[yi], X.cmax[xi], X.cmax[yi]);
 }
-
-// The filter: the sign, or 2 when it cannot decide.
-inline int det3_filter(const Operand::Facet& g, bool doubles, bool filterable, const Diff& d) {
-  if (!filterable) return 2;
-  const double value = (d.ex * g.nx + d.ey * g.ny) + d.ez * g.nz;
-  if (doubles) {
-    if (d.de == 0) return 0;  // the same point
-    if (d.de >= kShapeDet3.lo && d.de <= kShapeDet3.hi) {
-      const double bound = g.kv * d.de;
-      if (value > bound) return 1;
-      if (value < -bound) return -1;
-    }
-  } else if (d.de >= kShapeDet3.lo && d.de <= kShapeDet3.hi && d.ce <= kShapeDet3.hi) {
-    const double re = kEpsSlack * (d.de + 8 * d.ce);
-    const double bound = g.kr * d.de + (kShapeDet3.terms * kSlack) * (re * g.a1 + (d.de + re) * g.a2);
-    if (value > bound) return 1;
-    if (value < -bound) return -1;
-  }
-  return 2;
-}
+using detail::det3_filter;
 
 int det3_slow(const Operand& F, Index fi, const Operand& X, Index xi, Index yi, Stats& st);
 

@@ -119,6 +119,7 @@ class DepthResult;
 class TranslationalObstacle;
 namespace detail {
 struct ObstacleGeometry;  // M, P, Q and their exact data, shared by an obstacle and its answers
+struct ObstacleState;     // an obstacle's machinery
 struct DistanceExact;     // a distance answer's exact values, allocated on first use
 struct DepthExact;        // a depth answer's
 struct ReferenceDistance;
@@ -183,7 +184,7 @@ class DistanceResult {
   const Point3& direction() const;
 
  private:
-  friend class TranslationalObstacle;
+  friend struct detail::ObstacleState;
   friend detail::ReferenceDistance detail::reference_values(const DistanceResult&);
   detail::DistanceExact& exact() const;
   // The offset s − x and |s − x|² (the squared distance's work), then the
@@ -199,7 +200,7 @@ class DistanceResult {
   std::shared_ptr<Point3> s_exact_;
   // The translation u of P (added to the closest points) and the values
   // computed so far; copies of a result share them.  The obstacle attaches
-  // storage it recycles (TranslationalObstacle::spare_distance_).
+  // storage it recycles (proximity/obstacle_state.hpp).
   mutable std::shared_ptr<detail::DistanceExact> exact_;
 };
 
@@ -229,7 +230,7 @@ class DepthResult {
   const Point3& direction() const;
 
  private:
-  friend class TranslationalObstacle;
+  friend struct detail::ObstacleState;
   friend detail::ReferenceDepth detail::reference_values(const DepthResult&);
   detail::DepthExact& exact() const;
   Point3 point() const;  // s
@@ -309,8 +310,8 @@ class TranslationalObstacle {
   // distance_point, O(F·deg) rational operations.
   Rational squared_distance_by_scan(const Point3& s) const;
 
-  const ProximityStats& stats() const { return stats_; }
-  void reset_stats() { stats_ = {}; }
+  const ProximityStats& stats() const;
+  void reset_stats();
 
   // Witness helpers (public for tests and tools): the smallest face of M
   // containing the point x of facet f (precondition: x lies in facet f), and
@@ -322,63 +323,15 @@ class TranslationalObstacle {
   // coordinates of x in m).
   std::pair<Point3, Point3> decompose(const Feature& m, const Point3& x) const;
 
- private:
-  void rebuild(ConvexPolytope p, ConvexPolytope q, const SumOptions& options = {});
-  // `single`: a single query (not a batch), see spare_distance_.
-  void distance_into(const Point3& s, DistanceResult& r, bool single);
-  void depth_into(const Point3& s, DepthResult& r, bool single);
-  // Collision on s with its rounding sd (computed once per query).
-  CollisionResult collide_rounded(const Point3& s, const Vec3d& sd);
-  // Facet of M whose cone from `apex` (strictly inside M) contains the ray
-  // through `through` (≠ apex); walks from `start`.
-  struct RayApprox;  // the apex and the ray point rounded to doubles, for the filters
-  Index stab(const Point3& apex, const Point3& through, const RayApprox& ra, Index start);
-  Index stab_scan(const Point3& apex, const Point3& through) const;
-  bool in_cone(Index f, const Point3& apex, const Point3& through, const RayApprox& ra, Index* exit_halfedge);
-  int orient_filtered(const Point3& apex, Index a, Index b, const Point3& through, const RayApprox& ra) const;
-  int side_filtered(Index f, const Point3& s, const Vec3d& sd) const;
-  // orient3d(interior point, origin(h), target(h), s) by the plane through
-  // the three (computed on first use).
-  int center_side(Index h, const Point3& s, const Vec3d& sd, bool usable);
-  // The smallest feature of M holding the point x of M closest to s (s
-  // outside M), and in `facet` a facet holding x that s sees.  On entry
-  // `facet` is a facet s sees (the stabbed one); the filtered walk starts
-  // from `start` (none: from that facet).  With `first` (s not yet known
-  // to be outside M, no stabbed facet): a feature only when its certificate
-  // proves s ≠ x, i.e. s outside M; else a vertex of index kNoIndex.
-  Feature closest_feature(const Point3& s, const Vec3d& sd, std::optional<Feature> start, Index& facet, bool first);
-  Feature closest_feature_scan(const Point3& s, Point3& x, Rational& d2, Index& facet) const;
-  // The smallest face of facet f holding the foot of s on f's plane (which
-  // lies in the facet): its edges with edge_normal_side 0 for s.
-  Feature foot_feature(Index f, const Point3& s, const Vec3d& sd) const;
-  // Keeps s in an answer: its doubles when it is exactly a double, else the
-  // rational point (in `exact`'s storage when no other answer shares it).
-  static void keep_point(const Point3& s, const Vec3d& sd, Vec3d& kept, std::shared_ptr<Point3>& exact);
+  // Copies share nothing but the answers' exact data (as the answers do).
+  TranslationalObstacle(const TranslationalObstacle& o);
+  TranslationalObstacle(TranslationalObstacle&&) noexcept;
+  TranslationalObstacle& operator=(const TranslationalObstacle& o);
+  TranslationalObstacle& operator=(TranslationalObstacle&&) noexcept;
+  ~TranslationalObstacle();
 
-  std::shared_ptr<detail::ObstacleGeometry> g_;  // shared with the answers
-  Method method_;
-  std::vector<std::array<double, 4>> plane_approx_;  // a, b, c, d rounded to doubles
-  std::vector<Vec3d> normal_approx_;                 // (a, b, c) rounded to doubles
-  std::vector<UnitPlane> unit_plane_;                // unit normals and offsets (penetration depth)
-  std::vector<const Plane*> plane_ptr_;              // &obstacle().plane(f)
-  Vec3d center_approx_;
-  // Features of P and Q behind each facet and each edge of M, filled on first use.
-  mutable std::vector<std::array<Feature, 2>> facet_features_, edge_features_;
-  mutable std::vector<char> facet_features_known_, edge_features_known_;
-  // Per halfedge of M: the plane through the interior point and the edge.
-  std::vector<Plane> center_plane_;
-  std::vector<std::array<double, 4>> center_plane_approx_;
-  std::vector<char> center_plane_known_;
-  Index last_stab_ = 0, last_exit_ = 0, last_depth_ = 0;
-  std::optional<Feature> last_closest_;  // none before the first distance query
-  bool last_separate_ = false;           // the last distance answer was separate
-  std::uint64_t rng_ = 0x9e3779b97f4a7c15ull;
-  // Storage for the exact values of the answers, handed to a new answer
-  // when no answer holds it any more (its integers keep their limbs: no
-  // allocation per query); see attach_spare in obstacle.cpp.
-  std::array<std::shared_ptr<detail::DistanceExact>, 4> spare_distance_;
-  std::array<std::shared_ptr<detail::DepthExact>, 4> spare_depth_;
-  ProximityStats stats_;
+ private:
+  std::unique_ptr<detail::ObstacleState> s_;  // proximity/obstacle_state.hpp
 };
 
 }  // namespace minksum

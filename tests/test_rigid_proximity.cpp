@@ -491,3 +491,211 @@ TEST(RigidCollide, CoherentTrajectoryStaysCheap) {
   // Far fewer climb steps than a scan of the 642 vertices per query would be.
   EXPECT_LT(after.climb_steps - before.climb_steps, 400u * 60u);
 }
+
+// ---------------------------------------------------------------------------
+// Distance under rigid motion, against M built exactly.
+
+namespace {
+
+// The answer's exact values against the obstacle's: the same status and
+// squared distance, closest points |v| apart, the certified bounds around
+// the exact distance.
+void expect_distance_agrees(const RigidBody& a, const RigidPose& pa, const RigidBody& b, const RigidPose& pb,
+                            const RigidDistance& d, const std::string& what) {
+  const RigidDistanceExact want = distance_exact(a, pa, b, pb);
+  const RigidDistanceExact got = exact_values(a, pa, b, pb, d);
+  EXPECT_EQ(got.squared_distance, want.squared_distance) << what;
+  const Point3 gap = got.point_q - got.point_p;
+  EXPECT_EQ(dot(gap, gap), want.squared_distance) << what;
+  EXPECT_EQ(d.status == ContactStatus::separate, sgn(want.squared_distance) > 0) << what;
+  const Rational lo(d.lower), hi(d.upper);
+  EXPECT_LE(lo * lo, want.squared_distance) << what;
+  EXPECT_GE(hi * hi, want.squared_distance) << what;
+  EXPECT_LE(d.lower, d.distance) << what;
+  EXPECT_LE(d.distance, d.upper) << what;
+  if (d.status != ContactStatus::separate) {
+    // A common point: in both placed bodies (P' and Q' as half-spaces).
+    EXPECT_EQ(got.point_p, got.point_q) << what;
+  }
+}
+
+void expect_distances_agree(const std::string& a, const std::string& b, int poses, double spread, std::uint64_t seed,
+                            int max_exact) {
+  const RigidBody pa(catalog_polytope(a)), pb(catalog_polytope(b));
+  Rng r(seed);
+  RigidWarmStart warm;
+  int separate = 0;
+  const RigidStats before = rigid_stats();
+  for (int i = 0; i < poses; ++i) {
+    const RigidPose pp = random_pose(r, spread, i % 2 == 0), pq = random_pose(r, spread, i % 2 == 1);
+    const RigidDistance d = distance(pa, pp, pb, pq, &warm);
+    separate += d.status == ContactStatus::separate;
+    expect_distance_agrees(pa, pp, pb, pq, d,
+                           a + " / " + b + ", seed " + std::to_string(seed) + ", pose " + std::to_string(i));
+  }
+  EXPECT_GT(separate, poses / 10) << a;
+  EXPECT_LT(separate, poses - poses / 10) << a;
+  // Random poses are certified by the search (closest points or a
+  // tetrahedron): M is built for (nearly) none of them.
+  EXPECT_LE(int(rigid_stats().exact - before.exact), max_exact) << a << " / " << b;
+}
+
+}  // namespace
+
+TEST(RigidDistance, AgreesWithTheExactObstacleOnRandomPoses) {
+  expect_distances_agree("cube", "cube", 80, 2.5, 61, 0);
+  expect_distances_agree("tetra", "octahedron", 80, 2.0, 62, 0);
+  expect_distances_agree("dodecahedron", "cube@rot:3", 80, 2.5, 63, 0);
+  expect_distances_agree("sphere:2", "random:50:2", 60, 2.0, 64, 0);
+  expect_distances_agree("cube@scale:1/3", "tetra@rot:2", 60, 0.8, 65, 0);  // rationals: no doubles stage
+}
+
+TEST(RigidDistance, FaceOnFaceEdgeOnFaceAndVertexOnFaceAtAHair) {
+  // The contacts of RigidCollide.ExactlyTouchingPoses, moved 2^-40 up: the
+  // closest features are a face pair (four level vertices on each side), an
+  // edge over a face and a vertex over a face; the distance is 2^-40
+  // exactly.  At contact the distance is 0 (touching, on M).
+  const RigidBody cube(catalog_polytope("cube")), dodeca(catalog_polytope("dodecahedron"));
+  const std::array<double, 9> none{};
+  const Rational hair(1, Integer(1) << 40);
+  Rng r(5);
+  const std::array<double, 9> m = random_matrix(r);
+  const PlacedMap dm(m, P(0, 0, 0));
+  struct Case {
+    const RigidBody* q;
+    PlacedMap rot;
+    Rational x, y;
+    bool matrix;
+    const char* what;
+  };
+  const std::vector<Case> cases{
+      {&cube, PlacedMap::rotation({Integer(2), Integer(0), Integer(0), Integer(1)}, P(0, 0, 0)), Rational(1, 2), 0,
+       false, "face-face"},
+      {&cube, PlacedMap::rotation({Integer(2), Integer(1), Integer(0), Integer(0)}, P(0, 0, 0)), 0, 0, false,
+       "edge-face"},
+      {&cube, PlacedMap::rotation({Integer(1), Integer(2), Integer(3), Integer(4)}, P(0, 0, 0)), 0, 0, false,
+       "vertex-face"},
+      {&cube, dm, Rational(1, 3), Rational(-1, 5), true, "vertex-face, double matrix"},
+      {&dodeca, PlacedMap::rotation({Integer(1), Integer(2), Integer(3), Integer(4)}, P(0, 0, 0)), Rational(1, 7),
+       0, false, "dodecahedron"}};
+  for (const Case& c : cases) {
+    const Index low = lowest(c.q->polytope(), c.rot);
+    for (const Rational& dz : std::vector<Rational>{hair, Rational(0), Rational(-hair)}) {
+      const RigidPose pq = on_top(c.q->polytope(), c.rot, low, c.x, c.y, dz, c.matrix, c.matrix ? m : none);
+      const RigidDistance d = distance(cube, RigidPose(), *c.q, pq);
+      const std::string what = std::string(c.what) + ", dz " + dz.get_str();
+      expect_distance_agrees(cube, RigidPose(), *c.q, pq, d, what);
+      const RigidDistanceExact e = exact_values(cube, RigidPose(), *c.q, pq, d);
+      if (sgn(dz) > 0) {
+        EXPECT_EQ(d.certificate, RigidCertificate::closest_points) << what;
+        EXPECT_EQ(e.squared_distance, hair * hair) << what;
+        EXPECT_EQ(e.point_q - e.point_p, Point3(0, 0, hair)) << what;
+      } else {
+        EXPECT_EQ(e.squared_distance, 0) << what;
+        EXPECT_EQ(d.status, sgn(dz) == 0 ? ContactStatus::touching : ContactStatus::penetrating) << what;
+      }
+    }
+  }
+}
+
+TEST(RigidDistance, ParallelEdgesAndTheClosestPointInsideAFace) {
+  // Two unit cubes side by side along x, 1/3 apart, Q shifted by (…, 1/2,
+  // 1/4): the closest points form a whole rectangle of the facing faces
+  // (no unique pair); any certified pair is 1/3 apart.
+  const RigidBody cube(catalog_polytope("cube"));
+  const RigidPose pq = RigidPose::translation(Point3(Rational(7, 3), Rational(1, 2), Rational(1, 4)));
+  const RigidDistance d = distance(cube, RigidPose(), cube, pq);
+  expect_distance_agrees(cube, RigidPose(), cube, pq, d, "face-face, offset");
+  EXPECT_EQ(exact_values(cube, RigidPose(), cube, pq, d).squared_distance, Rational(1, 9));
+  // Turned by 45° in doubles about z (a matrix taken exactly): an edge of Q
+  // parallel to a face of P.
+  const double c = std::sqrt(0.5);
+  const RigidPose turned = RigidPose::matrix({c, -c, 0, c, c, 0, 0, 0, 1}, Point3(3, Rational(1, 5), 0));
+  const RigidDistance e = distance(cube, RigidPose(), cube, turned);
+  expect_distance_agrees(cube, RigidPose(), cube, turned, e, "edge-face, turned");
+}
+
+TEST(RigidDistance, BatchEqualsSingleQueries) {
+  const RigidBody a(catalog_polytope("random:50:1")), b(catalog_polytope("sphere:2"));
+  Rng r(71);
+  std::vector<RigidPose> pp, pq;
+  for (int i = 0; i < 600; ++i) {
+    pp.push_back(random_pose(r, 2.0, i % 3 == 0));
+    pq.push_back(random_pose(r, 2.0, i % 3 == 1));
+  }
+  std::vector<RigidDistance> out(pp.size());
+  distance(a, pp, b, pq, out, 2);
+  for (std::size_t i = 0; i < pp.size(); ++i) {
+    const RigidDistance one = distance(a, pp[i], b, pq[i]);
+    EXPECT_EQ(out[i].status, one.status) << "pose " << i;
+    EXPECT_EQ(exact_values(a, pp[i], b, pq[i], out[i]).squared_distance,
+              exact_values(a, pp[i], b, pq[i], one).squared_distance)
+        << "pose " << i;
+    if (i % 60 == 0) expect_distance_agrees(a, pp[i], b, pq[i], out[i], "pose " + std::to_string(i));
+  }
+  std::vector<RigidDistance> wrong(3);
+  EXPECT_THROW(distance(a, pp, b, pq, wrong, 1), UsageError);
+  RigidDistance bad = out[0];
+  bad.k = 0;
+  bad.certificate = RigidCertificate::closest_points;
+  EXPECT_THROW(exact_values(a, pp[0], b, pq[0], bad), UsageError);
+}
+
+TEST(PlacedSimplexPoint, AgreesWithRationals) {
+  // Random pairs on random placements, in all four rounding modes: λ signs,
+  // independence, |v|² inside its enclosure, and the climb signs against
+  // the exact direction −v pulled through A_p.
+  Rng r(81);
+  for (int i = 0; i < 200; ++i) {
+    const RigidPose pp = random_pose(r, 1.0, i % 2 == 0), pq = random_pose(r, 1.0, i % 2 == 1);
+    const int k = 1 + i % 3;
+    std::array<Point3, 3> p, q;
+    std::array<PointBounds, 3> pb, qb;
+    for (int j = 0; j < k; ++j) {
+      // Sometimes the same vertex twice (a dependent simplex).
+      p[j] = (j > 0 && i % 7 == 0) ? p[0] : Point3(Rational(Rational(r.integer(-9, 9)) / 4), Rational(r.integer(-9, 9)), Rational(r.uniform(-1, 1)));
+      q[j] = (j > 0 && i % 7 == 0) ? q[0] : Point3(Rational(r.uniform(-1, 1)), Rational(Rational(r.integer(-9, 9)) / 3), Rational(r.integer(-9, 9)));
+      pb[j] = point_bounds(p[j]), qb[j] = point_bounds(q[j]);
+    }
+    std::array<const Point3*, 3> pp3{&p[0], &p[1], &p[2]}, qp3{&q[0], &q[1], &q[2]};
+    std::array<const PointBounds*, 3> pbb{&pb[0], &pb[1], &pb[2]}, qbb{&qb[0], &qb[1], &qb[2]};
+    // The reference: v by least squares in rationals.
+    std::array<Point3, 3> d;
+    for (int j = 0; j < k; ++j) d[j] = pp.map().apply(p[j]) - pq.map().apply(q[j]);
+    for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+      const RoundingMode guard(mode);
+      const PlacedSimplexPoint sp(pp.map(), pq.map(), k, pp3, pbb, qp3, qbb);
+      bool independent = true;
+      if (k == 2) independent = !is_zero(d[1] - d[0]);
+      if (k == 3) independent = !is_zero(cross(d[1] - d[0], d[2] - d[0]));
+      ASSERT_EQ(sp.independent(), independent) << "seed 81, case " << i;
+      if (!independent) continue;
+      Point3 v(0, 0, 0);
+      Rational sum = 0;
+      for (int j = 0; j < k; ++j) {
+        v = v + sp.lambda(j) * d[j];
+        sum += sp.lambda(j);
+        EXPECT_EQ(sp.lambda_sign(j), sgn(sp.lambda(j))) << "case " << i;
+      }
+      EXPECT_EQ(sum, 1) << "case " << i;
+      for (int j = 1; j < k; ++j) EXPECT_EQ(dot(v, d[j] - d[0]), 0) << "case " << i;  // v ⊥ the hull
+      EXPECT_EQ(sp.squared_norm(), dot(v, v)) << "case " << i;
+      const Bounds b = sp.squared_norm_bounds();
+      EXPECT_LE(Rational(b.lo), dot(v, v)) << "case " << i;
+      EXPECT_GE(Rational(b.hi), dot(v, v)) << "case " << i;
+      EXPECT_EQ(sp.nonzero(), !is_zero(v)) << "case " << i;
+      const Point3 a(Rational(r.integer(-3, 3)), Rational(1, 3), Rational(0));
+      const Point3 c(Rational(0), Rational(r.uniform(-1, 1)), Rational(Rational(r.integer(-5, 5)) / 7));
+      Point3 up, uq;
+      for (int col = 0; col < 3; ++col) {
+        up[col] = -(pp.map().a(0, col) * v.x + pp.map().a(1, col) * v.y + pp.map().a(2, col) * v.z);
+        uq[col] = pq.map().a(0, col) * v.x + pq.map().a(1, col) * v.y + pq.map().a(2, col) * v.z;
+      }
+      EXPECT_EQ(sp.climb_sign_p(a, point_bounds(a), c, point_bounds(c)), sgn(dot(up, c - a))) << "case " << i;
+      EXPECT_EQ(sp.climb_sign_q(a, point_bounds(a), c, point_bounds(c)), sgn(dot(uq, c - a))) << "case " << i;
+      // Level by construction: the climb sign between two points of a pair
+      // set with the same partner is exactly 0.
+      if (k >= 2) EXPECT_EQ(sp.climb_sign_p(a, point_bounds(a), a, point_bounds(a)), 0);
+    }
+  }
+}

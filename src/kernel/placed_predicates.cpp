@@ -6,6 +6,8 @@
 #include <minksum/placed_predicates.hpp>
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 namespace minksum {
 namespace {
@@ -304,6 +306,172 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
     if (volume(e[0], e[1], e[2], e[3]) != total) return false;
   }
   return true;
+}
+
+struct PlacedSimplexPoint::Exact {
+  Rational g;
+  std::array<Rational, 3> l;
+  Point3 v, up, uq;  // V = g v, −A_pᵀ V, A_qᵀ V
+};
+
+namespace {
+FastInterval iv_scaled(const FastInterval& s, const FastInterval& x) { return s * x; }
+FastIPoint scaled(const FastInterval& s, const FastIPoint& p) {
+  return {iv_scaled(s, p.x), iv_scaled(s, p.y), iv_scaled(s, p.z)};
+}
+Bounds to_bounds(const FastInterval& i) { return {i.inf(), i.sup()}; }
+// Aᵀ x for the linear part of a placement, in intervals and exactly.
+FastIPoint pull(const PlacedMap& m, const FastIPoint& x) {
+  const auto& a = m.bounds_a();
+  return {iv(a[0]) * x.x + iv(a[3]) * x.y + iv(a[6]) * x.z, iv(a[1]) * x.x + iv(a[4]) * x.y + iv(a[7]) * x.z,
+          iv(a[2]) * x.x + iv(a[5]) * x.y + iv(a[8]) * x.z};
+}
+Point3 pull(const PlacedMap& m, const Point3& x) {
+  Point3 u;
+  for (int c = 0; c < 3; ++c) u[c] = m.a(0, c) * x.x + m.a(1, c) * x.y + m.a(2, c) * x.z;
+  return u;
+}
+}  // namespace
+
+PlacedSimplexPoint::PlacedSimplexPoint(const PlacedMap& mp, const PlacedMap& mq, int k,
+                                       const std::array<const Point3*, 3>& p,
+                                       const std::array<const PointBounds*, 3>& pb,
+                                       const std::array<const Point3*, 3>& q,
+                                       const std::array<const PointBounds*, 3>& qb)
+    : mp_(&mp), mq_(&mq), k_(k), p_(p), q_(q) {
+  if (k < 1 || k > 3) throw std::invalid_argument("PlacedSimplexPoint: k must be 1, 2 or 3");
+  CGAL::Protect_FPU_rounding<true> upward;
+  std::array<FastIPoint, 3> d;
+  for (int j = 0; j < k; ++j) d[j] = apply(mp, iv(*pb[j]), true) - apply(mq, iv(*qb[j]), true);
+  FastInterval g(1);
+  std::array<FastInterval, 3> l{FastInterval(1), FastInterval(0), FastInterval(0)};
+  FastIPoint V = d[0];
+  if (k == 2) {
+    const FastIPoint e = d[1] - d[0];
+    g = dot(e, e);
+    l[0] = dot(d[1], e), l[1] = -dot(d[0], e);
+    V = scaled(l[0], d[0]) + scaled(l[1], d[1]);
+  } else if (k == 3) {
+    const FastIPoint n = cross(d[1] - d[0], d[2] - d[0]);
+    g = dot(n, n);
+    l[0] = dot(n, cross(d[1], d[2])), l[1] = dot(n, cross(d[2], d[0])), l[2] = dot(n, cross(d[0], d[1]));
+    V = scaled(dot(d[0], n), n);
+  }
+  g_ = to_bounds(g);
+  for (int j = 0; j < 3; ++j) l_[j] = to_bounds(l[j]);
+  v_ = {to_bounds(V.x), to_bounds(V.y), to_bounds(V.z)};
+  vv_ = g.inf() > 0 ? to_bounds(dot(V, V) / (g * g)) : Bounds{0, std::numeric_limits<double>::infinity()};
+  const FastIPoint up = -pull(mp, V), uq = pull(mq, V);
+  up_ = {to_bounds(up.x), to_bounds(up.y), to_bounds(up.z)};
+  uq_ = {to_bounds(uq.x), to_bounds(uq.y), to_bounds(uq.z)};
+}
+
+PlacedSimplexPoint::~PlacedSimplexPoint() = default;
+
+const PlacedSimplexPoint::Exact& PlacedSimplexPoint::exact() const {
+  if (exact_) return *exact_;
+  auto e = std::make_unique<Exact>();
+  std::array<Point3, 3> d;
+  for (int j = 0; j < k_; ++j) d[j] = mp_->apply(*p_[j]) - mq_->apply(*q_[j]);
+  e->g = 1;
+  e->l = {Rational(1), Rational(0), Rational(0)};
+  e->v = d[0];
+  if (k_ == 2) {
+    const Point3 ed = d[1] - d[0];
+    e->g = dot(ed, ed);
+    e->l[0] = dot(d[1], ed), e->l[1] = -dot(d[0], ed);
+    e->v = e->l[0] * d[0] + e->l[1] * d[1];
+  } else if (k_ == 3) {
+    const Point3 n = cross(d[1] - d[0], d[2] - d[0]);
+    e->g = dot(n, n);
+    e->l[0] = dot(n, cross(d[1], d[2])), e->l[1] = dot(n, cross(d[2], d[0])), e->l[2] = dot(n, cross(d[0], d[1]));
+    e->v = dot(d[0], n) * n;
+  }
+  e->up = -pull(*mp_, e->v);
+  e->uq = pull(*mq_, e->v);
+  exact_ = std::move(e);
+  return *exact_;
+}
+
+bool PlacedSimplexPoint::independent() const {
+  if (g_.lo > 0) {
+    ++g_counts.filtered;
+    return true;
+  }
+  if (g_.hi <= 0) {  // g ≥ 0 as a sum of squares: [.., ≤ 0] holds only 0
+    ++g_counts.filtered;
+    return false;
+  }
+  return exact_sign(exact().g) > 0;
+}
+
+int PlacedSimplexPoint::lambda_sign(int j) const {
+  if (j < 0 || j >= k_) throw std::invalid_argument("PlacedSimplexPoint: no such point");
+  const Bounds& b = l_[j];
+  if (b.lo > 0 || b.hi < 0 || (b.lo == 0 && b.hi == 0)) {
+    ++g_counts.filtered;
+    return b.lo > 0 ? 1 : (b.hi < 0 ? -1 : 0);
+  }
+  return exact_sign(exact().l[j]);
+}
+
+bool PlacedSimplexPoint::nonzero() const {
+  for (const Bounds& b : v_)
+    if (b.lo > 0 || b.hi < 0) {
+      ++g_counts.filtered;
+      return true;
+    }
+  const Point3& v = exact().v;
+  ++g_counts.exact;
+  return sgn(v.x) != 0 || sgn(v.y) != 0 || sgn(v.z) != 0;
+}
+
+int PlacedSimplexPoint::climb_sign(bool on_p, const Point3& a, const PointBounds& ab, const Point3& b,
+                                   const PointBounds& bb) const {
+  {
+    const auto& u = on_p ? up_ : uq_;
+    CGAL::Protect_FPU_rounding<true> upward;
+    const FastIPoint d = iv(bb) - iv(ab);
+    const int s = sign_of(iv(u[0]) * d.x + iv(u[1]) * d.y + iv(u[2]) * d.z);
+    if (s != kUncertain) {
+      ++g_counts.filtered;
+      return s;
+    }
+  }
+  const Exact& e = exact();
+  return exact_sign(dot(on_p ? e.up : e.uq, b - a));
+}
+
+int PlacedSimplexPoint::climb_sign_p(const Point3& a, const PointBounds& ab, const Point3& b,
+                                     const PointBounds& bb) const {
+  return climb_sign(true, a, ab, b, bb);
+}
+int PlacedSimplexPoint::climb_sign_q(const Point3& a, const PointBounds& ab, const Point3& b,
+                                     const PointBounds& bb) const {
+  return climb_sign(false, a, ab, b, bb);
+}
+
+Bounds PlacedSimplexPoint::squared_norm_bounds() const {
+  if (g_.lo > 0) return vv_;
+  return rational_bounds(squared_norm());
+}
+
+double PlacedSimplexPoint::lambda_approx(int j) const {
+  if (j < 0 || j >= k_) throw std::invalid_argument("PlacedSimplexPoint: no such point");
+  const double g = 0.5 * (g_.lo + g_.hi), l = 0.5 * (l_[j].lo + l_[j].hi);
+  if (g > 0 && std::isfinite(g) && std::isfinite(l)) return l / g;
+  return to_double(lambda(j));
+}
+
+Rational PlacedSimplexPoint::squared_norm() const {
+  const Exact& e = exact();
+  return dot(e.v, e.v) / (e.g * e.g);
+}
+
+Rational PlacedSimplexPoint::lambda(int j) const {
+  if (j < 0 || j >= k_) throw std::invalid_argument("PlacedSimplexPoint: no such point");
+  const Exact& e = exact();
+  return e.l[j] / e.g;
 }
 
 PlacedPredicateCounts placed_predicate_counts() {

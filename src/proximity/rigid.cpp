@@ -6,6 +6,7 @@
 #include <minksum/rigid_proximity.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -238,6 +239,53 @@ struct Query {
 
 constexpr int kMaxIterations = 128;
 
+// The warm start's direction, or from the centre of placed Q towards the
+// centre of placed P: the support of D along −dir is near the closest point
+// of D to the origin.
+V3 initial_direction(const Query& qu, const RigidWarmStart& start) {
+  V3 dir = v3(start.direction);
+  if (dot(dir, dir) > 0 && std::isfinite(dot(dir, dir))) return dir;
+  const auto centre = [](const Placed& b) {
+    const Vec3d& c = b.d.centroid;
+    const auto& a = b.a;
+    return V3{a[0] * c.x + a[1] * c.y + a[2] * c.z + b.t.x, a[3] * c.x + a[4] * c.y + a[5] * c.z + b.t.y,
+              a[6] * c.x + a[7] * c.y + a[8] * c.z + b.t.z};
+  };
+  dir = centre(qu.P) - centre(qu.Q);
+  if (!(dot(dir, dir) > 0) || !std::isfinite(dot(dir, dir))) dir = {1, 0, 0};
+  return dir;
+}
+
+RigidWarmStart checked_start(const RigidBody& p, const RigidBody& q, const RigidWarmStart* warm) {
+  RigidWarmStart start;
+  if (warm) start = *warm;
+  if (start.p >= p.data().approx.size()) start.p = 0;
+  if (start.q >= q.data().approx.size()) start.q = 0;
+  return start;
+}
+
+// The batches: N answers from N poses (or one) of each body, in runs of
+// consecutive poses over threads, each run warm-started along itself.
+template <class Answer, class One>
+void batch(const char* what, std::span<const RigidPose> poses_p, std::span<const RigidPose> poses_q,
+           std::span<Answer> out, unsigned threads, const One& one) {
+  const std::size_t n = out.size();
+  const auto fits = [n](std::size_t k) { return k == n || k == 1; };
+  if (!fits(poses_p.size()) || !fits(poses_q.size()))
+    throw UsageError(std::string(what) + ": " + std::to_string(n) + " answers need " + std::to_string(n) +
+                     " poses (or one) of each body, got " + std::to_string(poses_p.size()) + " and " +
+                     std::to_string(poses_q.size()));
+  if (n == 0) return;
+  constexpr std::size_t kRun = 256;  // consecutive poses per job, warm-started along the run
+  const std::size_t runs = (n + kRun - 1) / kRun;
+  parallel_for(runs, threads, [&](std::size_t run) {
+    RigidWarmStart warm;
+    const std::size_t end = std::min(n, (run + 1) * kRun);
+    for (std::size_t i = run * kRun; i < end; ++i)
+      out[i] = one(poses_p[poses_p.size() == 1 ? 0 : i], poses_q[poses_q.size() == 1 ? 0 : i], &warm);
+  });
+}
+
 }  // namespace
 
 const char* rigid_certificate_name(RigidCertificate c) {
@@ -248,6 +296,8 @@ const char* rigid_certificate_name(RigidCertificate c) {
       return "simplex";
     case RigidCertificate::exact:
       return "exact";
+    case RigidCertificate::closest_points:
+      return "closest_points";
   }
   return "exact";
 }
@@ -303,23 +353,8 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
                        RigidWarmStart* warm) {
   ++g_stats.queries;
   const Query qu{Placed(p.data(), pose_p.map()), Placed(q.data(), pose_q.map()), p.data(), q.data()};
-  RigidWarmStart start;
-  if (warm) start = *warm;
-  if (start.p >= p.data().approx.size()) start.p = 0;
-  if (start.q >= q.data().approx.size()) start.q = 0;
-  V3 dir = v3(start.direction);
-  if (!(dot(dir, dir) > 0) || !std::isfinite(dot(dir, dir))) {
-    // From the centre of placed Q towards the centre of placed P: the
-    // support of D along −dir is near the closest point of D to the origin.
-    const auto centre = [](const Placed& b) {
-      const Vec3d& c = b.d.centroid;
-      const auto& a = b.a;
-      return V3{a[0] * c.x + a[1] * c.y + a[2] * c.z + b.t.x, a[3] * c.x + a[4] * c.y + a[5] * c.z + b.t.y,
-                a[6] * c.x + a[7] * c.y + a[8] * c.z + b.t.z};
-    };
-    dir = centre(qu.P) - centre(qu.Q);
-    if (!(dot(dir, dir) > 0)) dir = {1, 0, 0};
-  }
+  const RigidWarmStart start = checked_start(p, q, warm);
+  const V3 dir = initial_direction(qu, start);
 
   RigidCollision r;
   std::array<SimplexVertex, 4> s;
@@ -404,6 +439,8 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
     case RigidCertificate::exact:
       ++g_stats.exact;
       break;
+    case RigidCertificate::closest_points:  // not an answer of collide
+      break;
   }
   if (warm) {
     warm->p = r.p, warm->q = r.q;
@@ -414,21 +451,264 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
 
 void collide(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
              std::span<const RigidPose> poses_q, std::span<RigidCollision> out, unsigned threads) {
-  const std::size_t n = out.size();
-  const auto fits = [n](std::size_t k) { return k == n || k == 1; };
-  if (!fits(poses_p.size()) || !fits(poses_q.size()))
-    throw UsageError("collide: " + std::to_string(n) + " answers need " + std::to_string(n) +
-                     " poses (or one) of each body, got " + std::to_string(poses_p.size()) + " and " +
-                     std::to_string(poses_q.size()));
-  if (n == 0) return;
-  constexpr std::size_t kRun = 256;  // consecutive poses per job, warm-started along the run
-  const std::size_t runs = (n + kRun - 1) / kRun;
-  parallel_for(runs, threads, [&](std::size_t run) {
-    RigidWarmStart warm;
-    const std::size_t end = std::min(n, (run + 1) * kRun);
-    for (std::size_t i = run * kRun; i < end; ++i)
-      out[i] = collide(p, poses_p[poses_p.size() == 1 ? 0 : i], q, poses_q[poses_q.size() == 1 ? 0 : i], &warm);
+  batch("collide", poses_p, poses_q, out, threads, [&](const RigidPose& a, const RigidPose& b, RigidWarmStart* w) {
+    return collide(p, a, q, b, w);
   });
+}
+
+namespace {
+
+// The answer on M built exactly, with its status.
+struct ExactDistance {
+  ContactStatus status;
+  RigidDistanceExact values;
+};
+ExactDistance distance_on_m(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q) {
+  TranslationalObstacle ob(placed_linear(p.polytope(), pose_p.map()), placed_linear(q.polytope(), pose_q.map()));
+  const DistanceResult d = ob.distance(pose_p.map().t(), pose_q.map().t());
+  return {d.status, {d.squared_distance(), d.point_p(), d.point_q()}};
+}
+
+// sqrt of an enclosure of a square, rounded outward.
+void set_bounds(RigidDistance& r, const Bounds& sq) {
+  r.lower = sq.lo > 0 ? std::nextafter(std::sqrt(sq.lo), 0.0) : 0.0;
+  r.upper = std::nextafter(std::sqrt(sq.hi), std::numeric_limits<double>::infinity());
+  if (r.lower < 0) r.lower = 0;
+  r.distance = std::clamp(r.distance, r.lower, r.upper);
+}
+
+// The certificate of a distance (rigid_proximity.hpp) on the pairs of
+// `pairs` (1 to 3 of the final simplex).  On success fills r.
+bool certify_closest(const Query& qu, const std::array<SimplexVertex, 4>& pairs, int k, RigidDistance& r) {
+  const RigidBody::Data &dp = qu.dp, &dq = qu.dq;
+  std::array<const Point3*, 3> p{}, q{};
+  std::array<const PointBounds*, 3> pb{}, qb{};
+  for (int j = 0; j < k; ++j) {
+    p[j] = &dp.exact[pairs[j].p], pb[j] = &dp.bounds[pairs[j].p];
+    q[j] = &dq.exact[pairs[j].q], qb[j] = &dq.bounds[pairs[j].q];
+  }
+  const PlacedSimplexPoint sp(qu.P.map, qu.Q.map, k, p, pb, q, qb);
+  if (!sp.independent()) return false;
+  for (int j = 0; j < k; ++j)
+    if (sp.lambda_sign(j) < 0) return false;
+  if (!sp.nonzero()) return false;  // the origin in D: not separate
+  // A neighbour whose climb sign is 0 by construction: V is orthogonal to
+  // d_i − d_j for the pairs i, j of the simplex, so V · (p_i' − p_j') = 0
+  // when q_i = q_j (and likewise on Q).
+  const auto zero_on_p = [&](Index a, Index w) {
+    for (int i = 0; i < k; ++i)
+      if (pairs[i].p == w)
+        for (int j = 0; j < k; ++j)
+          if (pairs[j].p == a && pairs[j].q == pairs[i].q) return true;
+    return false;
+  };
+  const auto zero_on_q = [&](Index a, Index w) {
+    for (int i = 0; i < k; ++i)
+      if (pairs[i].q == w)
+        for (int j = 0; j < k; ++j)
+          if (pairs[j].q == a && pairs[j].p == pairs[i].p) return true;
+    return false;
+  };
+  // One pair (p_a, q_a) suffices: with p_a a maximum of −v · x over P' and
+  // q_a a minimum over Q', the gap between the two planes is
+  // (−v) · (q_a' − p_a') = v · d_a = |v|² / |v| · |v| (v · d_j = |v|² for
+  // every j).  Take the pair with the most neighbours known to be level.
+  int anchor = 0, best = -1;
+  for (int a = 0; a < k; ++a) {
+    int known = 0;
+    const Index ia = pairs[a].p, ja = pairs[a].q;
+    for (Index e = dp.first[ia]; e < dp.first[ia + 1]; ++e) known += zero_on_p(ia, dp.nbr[e]);
+    for (Index e = dq.first[ja]; e < dq.first[ja + 1]; ++e) known += zero_on_q(ja, dq.nbr[e]);
+    if (known > best) best = known, anchor = a;
+  }
+  const Index ia = pairs[anchor].p, ja = pairs[anchor].q;
+  for (Index e = dp.first[ia]; e < dp.first[ia + 1]; ++e) {
+    const Index w = dp.nbr[e];
+    if (zero_on_p(ia, w)) continue;
+    if (sp.climb_sign_p(dp.exact[ia], dp.bounds[ia], dp.exact[w], dp.bounds[w]) > 0) return false;
+  }
+  for (Index e = dq.first[ja]; e < dq.first[ja + 1]; ++e) {
+    const Index w = dq.nbr[e];
+    if (zero_on_q(ja, w)) continue;
+    if (sp.climb_sign_q(dq.exact[ja], dq.bounds[ja], dq.exact[w], dq.bounds[w]) > 0) return false;
+  }
+  r.status = ContactStatus::separate;
+  r.certificate = RigidCertificate::closest_points;
+  r.k = k;
+  V3 x, y;
+  for (int j = 0; j < k; ++j) {
+    r.p[j] = pairs[j].p, r.q[j] = pairs[j].q;
+    const double l = sp.lambda_approx(j);
+    x = x + l * qu.P.point(pairs[j].p);
+    y = y + l * qu.Q.point(pairs[j].q);
+  }
+  r.point_p = {x.x, x.y, x.z}, r.point_q = {y.x, y.y, y.z};
+  const V3 v = x - y;
+  r.distance = std::sqrt(dot(v, v));
+  set_bounds(r, sp.squared_norm_bounds());
+  return true;
+}
+
+// The subsets of the simplex's pairs to try, largest first: the double
+// search's reduction may keep a pair whose exact λ is negative (the closest
+// point then lies on a smaller face) or drop to a degenerate one.
+bool certify_closest_subsets(const Query& qu, const std::array<SimplexVertex, 4>& s, int n, RigidDistance& r) {
+  if (certify_closest(qu, s, n, r)) return true;
+  for (int size = n - 1; size >= 1; --size)
+    for (unsigned mask = 1; mask < (1u << n); ++mask) {
+      if (std::popcount(mask) != size) continue;
+      std::array<SimplexVertex, 4> sub;
+      int m = 0;
+      for (int j = 0; j < n; ++j)
+        if (mask & (1u << j)) sub[m++] = s[j];
+      if (certify_closest(qu, sub, m, r)) return true;
+    }
+  return false;
+}
+
+}  // namespace
+
+RigidDistanceExact distance_exact(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q,
+                                  const RigidPose& pose_q) {
+  return distance_on_m(p, pose_p, q, pose_q).values;
+}
+
+RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                       RigidWarmStart* warm) {
+  ++g_stats.queries;
+  const Query qu{Placed(p.data(), pose_p.map()), Placed(q.data(), pose_q.map()), p.data(), q.data()};
+  const RigidWarmStart start = checked_start(p, q, warm);
+  const V3 dir = initial_direction(qu, start);
+  std::array<SimplexVertex, 4> s;
+  int n = 1;
+  s[0] = qu.support(-dir, start.p, start.q);
+  V3 v = s[0].w;
+  Index ip = s[0].p, iq = s[0].q;
+  double last = std::numeric_limits<double>::infinity();
+  bool tetrahedron = false;
+  // GJK to convergence (doubles: the search proposes, the certificate
+  // decides).
+  for (int it = 0; it < kMaxIterations; ++it) {
+    ++g_stats.iterations;
+    const double vv = dot(v, v);
+    if (!(vv > 0) || !std::isfinite(vv)) break;
+    const SimplexVertex w = qu.support(-v, ip, iq);
+    ip = w.p, iq = w.q;
+    const double vw = dot(v, w.w);
+    bool repeated = false;
+    for (int k = 0; k < n; ++k) repeated = repeated || (s[k].p == w.p && s[k].q == w.q);
+    if (repeated || !(vv < last) || vv - vw <= 1e-15 * vv) break;
+    last = vv;
+    s[n++] = w;
+    if (!closest_on_simplex(s, n, v)) {
+      tetrahedron = true;
+      break;
+    }
+  }
+  RigidDistance r;
+  bool decided = false;
+  if (tetrahedron) {
+    if (qu.certify_tetrahedron(s)) {
+      r.status = ContactStatus::penetrating;
+      r.certificate = RigidCertificate::simplex;
+      r.k = 4;
+      for (int j = 0; j < 4; ++j) r.p[j] = s[j].p, r.q[j] = s[j].q;
+      const V3 x = qu.P.point(s[0].p);  // a point of P' (the common point: exact_values)
+      r.point_p = r.point_q = {x.x, x.y, x.z};
+      decided = true;
+    }
+  } else {
+    decided = certify_closest_subsets(qu, s, n, r);
+  }
+  if (!decided) {
+    ExactDistance e = distance_on_m(p, pose_p, q, pose_q);
+    r = RigidDistance{};
+    r.status = e.status;
+    r.certificate = RigidCertificate::exact;
+    r.point_p = to_double(e.values.point_p), r.point_q = to_double(e.values.point_q);
+    r.distance = std::sqrt(to_double(e.values.squared_distance));
+    const Bounds sq = rational_bounds(e.values.squared_distance);
+    set_bounds(r, sq);
+    r.exact = std::make_shared<const RigidDistanceExact>(std::move(e.values));
+  }
+  switch (r.certificate) {
+    case RigidCertificate::separating_plane:
+      ++g_stats.separating_plane;
+      break;
+    case RigidCertificate::closest_points:
+      ++g_stats.closest_points;
+      break;
+    case RigidCertificate::simplex:
+      ++g_stats.simplex;
+      break;
+    case RigidCertificate::exact:
+      ++g_stats.exact;
+      break;
+  }
+  if (warm) {
+    warm->p = ip, warm->q = iq;
+    warm->direction = {v.x, v.y, v.z};
+  }
+  return r;
+}
+
+void distance(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
+              std::span<const RigidPose> poses_q, std::span<RigidDistance> out, unsigned threads) {
+  batch("distance", poses_p, poses_q, out, threads, [&](const RigidPose& a, const RigidPose& b, RigidWarmStart* w) {
+    return distance(p, a, q, b, w);
+  });
+}
+
+RigidDistanceExact exact_values(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q,
+                                const RigidPose& pose_q, const RigidDistance& d) {
+  if (d.certificate == RigidCertificate::exact) {
+    if (d.exact) return *d.exact;
+    return distance_exact(p, pose_p, q, pose_q);
+  }
+  const RigidBody::Data &dp = p.data(), &dq = q.data();
+  const int k = d.k;
+  const bool fits = (d.certificate == RigidCertificate::closest_points && k >= 1 && k <= 3) ||
+                    (d.certificate == RigidCertificate::simplex && k == 4);
+  if (!fits) throw UsageError("exact_values: the answer is not one of distance()");
+  for (int j = 0; j < k; ++j)
+    if (d.p[j] >= dp.approx.size() || d.q[j] >= dq.approx.size())
+      throw UsageError("exact_values: the answer's vertices do not fit the bodies");
+  const PlacedMap &mp = pose_p.map(), &mq = pose_q.map();
+  RigidDistanceExact e;
+  if (k == 4) {
+    // The origin = Σ μ_j d_j with μ_j the barycentric coordinates (ratios of
+    // signed volumes): Σ μ_j p_j' = Σ μ_j q_j' is a common point.
+    std::array<Point3, 4> pp, dd;
+    for (int j = 0; j < 4; ++j) pp[j] = mp.apply(dp.exact[d.p[j]]), dd[j] = pp[j] - mq.apply(dq.exact[d.q[j]]);
+    const auto volume = [](const Point3& a, const Point3& b, const Point3& c, const Point3& f) {
+      return dot(b - a, cross(c - a, f - a));
+    };
+    const Rational total = volume(dd[0], dd[1], dd[2], dd[3]);
+    Point3 x(0, 0, 0);
+    for (int j = 0; j < 4; ++j) {
+      std::array<Point3, 4> f = dd;
+      f[j] = Point3(0, 0, 0);
+      x = x + (volume(f[0], f[1], f[2], f[3]) / total) * pp[j];
+    }
+    e.squared_distance = 0;
+    e.point_p = e.point_q = x;
+    return e;
+  }
+  std::array<const Point3*, 3> ps{}, qs{};
+  std::array<const PointBounds*, 3> pb{}, qb{};
+  for (int j = 0; j < k; ++j) {
+    ps[j] = &dp.exact[d.p[j]], pb[j] = &dp.bounds[d.p[j]];
+    qs[j] = &dq.exact[d.q[j]], qb[j] = &dq.bounds[d.q[j]];
+  }
+  const PlacedSimplexPoint sp(mp, mq, k, ps, pb, qs, qb);
+  e.point_p = e.point_q = Point3(0, 0, 0);
+  for (int j = 0; j < k; ++j) {
+    const Rational l = sp.lambda(j);
+    e.point_p = e.point_p + l * mp.apply(*ps[j]);
+    e.point_q = e.point_q + l * mq.apply(*qs[j]);
+  }
+  e.squared_distance = sp.squared_norm();
+  return e;
 }
 
 }  // namespace minksum

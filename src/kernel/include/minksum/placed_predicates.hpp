@@ -207,6 +207,64 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
                                      const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
                                      const std::array<const PointBounds*, 4>& qb);
 
+// The point v nearest the origin of the affine hull of k = 1, 2 or 3 points
+// d_j = (A_p p_j + t_p) − (A_q q_j + t_q) of the Minkowski difference of
+// placed P and placed Q, with v = Σ λ_j d_j, Σ λ_j = 1: the certificate of a
+// separation distance under rigid motion (rigid_proximity.hpp).  Every value
+// is a polynomial in the d_j, so every sign below is exact:
+//   k = 1: v = d_0, λ_0 = 1;
+//   k = 2: e = d_1 − d_0, g = e·e, λ_0 = (d_1·e)/g, λ_1 = −(d_0·e)/g,
+//          g v = V = (d_1·e) d_0 − (d_0·e) d_1;
+//   k = 3: n = (d_1 − d_0) × (d_2 − d_0), g = n·n, λ_0 = n·(d_1 × d_2)/g,
+//          λ_1 = n·(d_2 × d_0)/g, λ_2 = n·(d_0 × d_1)/g (the areas of the
+//          triangles the projection of the origin makes), g v = V = (d_0·n) n.
+// g > 0 exactly when the d_j are affinely independent.  Signs are evaluated
+// on intervals (enclosures of the exact inputs, outward rounding), then in
+// rationals when an interval holds 0 — stage 2 and 3 of the top of this
+// header.
+class PlacedSimplexPoint {
+ public:
+  // The k pairs (p_j, q_j); the pointers must outlive the object.
+  PlacedSimplexPoint(const PlacedMap& mp, const PlacedMap& mq, int k, const std::array<const Point3*, 3>& p,
+                     const std::array<const PointBounds*, 3>& pb, const std::array<const Point3*, 3>& q,
+                     const std::array<const PointBounds*, 3>& qb);
+  ~PlacedSimplexPoint();
+  int k() const { return k_; }
+  // g > 0: the d_j are affinely independent.
+  bool independent() const;
+  // The sign of λ_j (requires independent()).
+  int lambda_sign(int j) const;
+  // v ≠ 0 (requires independent()).
+  bool nonzero() const;
+  // sign (−v) · A_p (b − a) for points a, b of P (toward_q: whether b lies
+  // further than a from placed P towards placed Q along −v), and sign
+  // v · A_q (b − a) for points of Q (whether b lies further back along
+  // −v).  A vertex of P no neighbour of which has a positive sign maximises
+  // −v · x over placed P; one of Q with none minimises it over placed Q.
+  int climb_sign_p(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
+  int climb_sign_q(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
+  // An enclosure of |v|² (requires independent()).
+  Bounds squared_norm_bounds() const;
+  // Doubles near λ_j (requires independent()): for the caller's doubles only.
+  double lambda_approx(int j) const;
+  // The exact values (rational arithmetic; requires independent()).
+  Rational squared_norm() const;
+  Rational lambda(int j) const;
+
+ private:
+  struct Exact;
+  const Exact& exact() const;
+  int climb_sign(bool on_p, const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
+  const PlacedMap *mp_, *mq_;
+  int k_;
+  std::array<const Point3*, 3> p_, q_;
+  // Interval stage: g, the λ numerators l_j (λ_j = l_j / g), V = g v and
+  // the pulled directions −A_pᵀ V and A_qᵀ V.
+  Bounds g_{}, vv_{};
+  std::array<Bounds, 3> l_{}, v_{}, up_{}, uq_{};
+  mutable std::unique_ptr<Exact> exact_;
+};
+
 // How often the interval stage decided and how often the rationals did, on
 // the calling thread since it started (the doubles stage is not counted).
 struct PlacedPredicateCounts {

@@ -80,8 +80,9 @@ enum class RigidCertificate : std::uint8_t {
   separating_plane,  // separate: the plane of `normal` between the supports p and q
   simplex,           // penetrating: a tetrahedron of D holding the origin strictly
   exact,             // built M exactly (touching, or undecided by the search)
+  closest_points,    // separate, with its distance: closest points whose difference's plane supports both bodies
 };
-// "separating_plane", "simplex", "exact".
+// "separating_plane", "simplex", "exact", "closest_points".
 const char* rigid_certificate_name(RigidCertificate c);
 
 struct RigidCollision {
@@ -104,10 +105,10 @@ struct RigidWarmStart {
   Vec3d direction;
 };
 
-// Counters of the calling thread since it started: queries and how they were
-// proved, GJK iterations, support-climb steps.
+// Counters of the calling thread since it started: queries (collide and
+// distance) and how they were proved, GJK iterations, support-climb steps.
 struct RigidStats {
-  std::uint64_t queries = 0, separating_plane = 0, simplex = 0, exact = 0;
+  std::uint64_t queries = 0, separating_plane = 0, simplex = 0, exact = 0, closest_points = 0;
   std::uint64_t iterations = 0, climb_steps = 0;
 };
 RigidStats rigid_stats();
@@ -125,9 +126,69 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
 void collide(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
              std::span<const RigidPose> poses_q, std::span<RigidCollision> out, unsigned threads = 0);
 
+// The exact values of a distance answer.
+struct RigidDistanceExact {
+  Rational squared_distance;  // dist(P', Q')², 0 unless separate
+  Point3 point_p, point_q;    // closest points of placed P and placed Q (equal unless separate)
+};
+
+// Separation distance of placed P and placed Q, with closest points.
+//
+// The search is GJK run to convergence in doubles; its last simplex gives k
+// (1 to 3) pairs (p_j, q_j) of vertices of P and Q whose differences d_j =
+// p_j' − q_j' (placed points) are points of D = P' ⊕ (−Q').  The answer is
+// certified (certificate closest_points) when, in exact signs
+// (placed_predicates.hpp, PlacedSimplexPoint):
+//   * the point v of the affine hull of the d_j nearest the origin is
+//     v = Σ λ_j d_j with every λ_j ≥ 0 (so v ∈ D, x = Σ λ_j p_j' ∈ P',
+//     y = Σ λ_j q_j' ∈ Q', v = x − y) and v ≠ 0;
+//   * p_0 is a maximum of −v · z over placed P and q_0 a minimum over
+//     placed Q (no neighbour in the vertex graph further, exact signs).
+// Then |v| = dist(P', Q') (the plane normal to v through x supports P', the
+// one through y supports Q', and they are |v| apart) and x, y are closest
+// points.  Penetrating answers are certified as by collide (simplex);
+// everything else — touching poses and what the search leaves undecided —
+// is answered on M = R_P P ⊕ (−R_Q Q) built exactly (certificate exact).
+struct RigidDistance {
+  ContactStatus status = ContactStatus::separate;
+  RigidCertificate certificate = RigidCertificate::exact;
+  // lower ≤ dist(P', Q') ≤ upper, certified (0 unless separate), and a
+  // double within them (the search's).  The exact value: exact_values().
+  double distance = 0, lower = 0, upper = 0;
+  // The k pairs of vertices (indices of P and of Q as given) behind the
+  // answer: closest_points, the 1 to 3 pairs of the closest points (x = Σ
+  // λ_j p_j', y = Σ λ_j q_j'); simplex, the 4 pairs of the tetrahedron
+  // holding the origin; exact, none (k = 0).
+  int k = 0;
+  std::array<Index, 4> p{kNoIndex, kNoIndex, kNoIndex, kNoIndex}, q{kNoIndex, kNoIndex, kNoIndex, kNoIndex};
+  // The closest points of placed P and placed Q (a common point when they
+  // meet), doubles near the exact ones.
+  Vec3d point_p, point_q;
+  // exact: the exact values, found while answering (on M).
+  std::shared_ptr<const RigidDistanceExact> exact;
+};
+
+RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                       RigidWarmStart* warm = nullptr);
+
+// The same for N poses, as the batch collide above.
+void distance(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
+              std::span<const RigidPose> poses_q, std::span<RigidDistance> out, unsigned threads = 0);
+
+// The exact squared distance and closest points of an answer of distance()
+// for the same bodies and poses: rational arithmetic on its certified pairs
+// (closest_points: the λ_j solved exactly; simplex: the origin's barycentric
+// coordinates in the tetrahedron give a common point), or the values kept
+// from M (exact).  Throws UsageError when the answer's indices do not fit
+// the bodies.
+RigidDistanceExact exact_values(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q,
+                                const RigidPose& pose_q, const RigidDistance& d);
+
 // The exact answer by building M = R_P P ⊕ (−R_Q Q) (the fall-back above,
 // on its own: an independent check of the search; O(cost of the sum)).
 ContactStatus collide_exact(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q);
+RigidDistanceExact distance_exact(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q,
+                                  const RigidPose& pose_q);
 
 // The polytope R P (the linear part of the pose only), exactly.
 ConvexPolytope placed_linear(const ConvexPolytope& p, const PlacedMap& map);

@@ -699,3 +699,21 @@ TEST(PlacedSimplexPoint, AgreesWithRationals) {
     }
   }
 }
+
+TEST(RigidDistance, SymmetricPenetrationOnACoplanarTriangle) {
+  // A cube turned about z by the rational rotation of (2, 0, 0, 1) and a
+  // cube shifted by 1/2 along x: every support of the search has z = ±1 in
+  // pairs, its triangle holds the origin and no tetrahedron of the search
+  // does.  The supports along the triangle's normals give one: penetrating,
+  // certified without M (it used to be decided on M).
+  const RigidBody cube(catalog_polytope("cube"));
+  const RigidPose pa = RigidPose::translation(Point3(Rational(1, 2), 0, 0));
+  const RigidPose pb = RigidPose::quaternion({Integer(2), Integer(0), Integer(0), Integer(1)}, P(0, 0, 0));
+  const RigidDistance d = distance(cube, pa, cube, pb);
+  EXPECT_EQ(d.status, ContactStatus::penetrating);
+  EXPECT_EQ(d.certificate, RigidCertificate::simplex);
+  expect_distance_agrees(cube, pa, cube, pb, d, "turned cube");
+  const RigidCollision c = collide(cube, pa, cube, pb);
+  EXPECT_EQ(c.status, ContactStatus::penetrating);
+  EXPECT_EQ(c.certificate, RigidCertificate::simplex);
+}

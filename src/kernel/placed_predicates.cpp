@@ -311,7 +311,9 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
 struct PlacedSimplexPoint::Exact {
   Rational g;
   std::array<Rational, 3> l;
-  Point3 v, up, uq;  // V = g v, −A_pᵀ V, A_qᵀ V
+  Point3 v;           // V = g v
+  Rational vv;        // |v|² g: |d_0 × d_1|² (k = 2), (d_0·n)² (k = 3)
+  mutable std::optional<Point3> up, uq;  // −A_pᵀ V, A_qᵀ V (climbs only)
 };
 
 namespace {
@@ -381,14 +383,18 @@ const PlacedSimplexPoint::Exact& PlacedSimplexPoint::exact() const {
     e->g = dot(ed, ed);
     e->l[0] = dot(d[1], ed), e->l[1] = -dot(d[0], ed);
     e->v = e->l[0] * d[0] + e->l[1] * d[1];
+    const Point3 c = cross(d[0], d[1]);  // |v| |e| = |d_0 × d_1| (the distance to a line)
+    e->vv = dot(c, c);
   } else if (k_ == 3) {
     const Point3 n = cross(d[1] - d[0], d[2] - d[0]);
     e->g = dot(n, n);
     e->l[0] = dot(n, cross(d[1], d[2])), e->l[1] = dot(n, cross(d[2], d[0])), e->l[2] = dot(n, cross(d[0], d[1]));
-    e->v = dot(d[0], n) * n;
+    const Rational h = dot(d[0], n);  // |v| |n| = |d_0 · n| (the distance to a plane)
+    e->v = h * n;
+    e->vv = h * h;
+  } else {
+    e->vv = dot(d[0], d[0]);
   }
-  e->up = -pull(*mp_, e->v);
-  e->uq = pull(*mq_, e->v);
   exact_ = std::move(e);
   return *exact_;
 }
@@ -439,7 +445,9 @@ int PlacedSimplexPoint::climb_sign(bool on_p, const Point3& a, const PointBounds
     }
   }
   const Exact& e = exact();
-  return exact_sign(dot(on_p ? e.up : e.uq, b - a));
+  std::optional<Point3>& u = on_p ? e.up : e.uq;
+  if (!u) u = on_p ? Point3(-pull(*mp_, e.v)) : pull(*mq_, e.v);
+  return exact_sign(dot(*u, b - a));
 }
 
 int PlacedSimplexPoint::climb_sign_p(const Point3& a, const PointBounds& ab, const Point3& b,
@@ -465,7 +473,7 @@ double PlacedSimplexPoint::lambda_approx(int j) const {
 
 Rational PlacedSimplexPoint::squared_norm() const {
   const Exact& e = exact();
-  return dot(e.v, e.v) / (e.g * e.g);
+  return k_ == 1 ? e.vv : Rational(e.vv / e.g);
 }
 
 Rational PlacedSimplexPoint::lambda(int j) const {

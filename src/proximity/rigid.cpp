@@ -239,6 +239,28 @@ struct Query {
 
 constexpr int kMaxIterations = 128;
 
+// When the search's triangle holds the origin in doubles (symmetric poses
+// of bodies with parallel faces make the supports coplanar), no
+// tetrahedron of the search holds it: take the supports a+ and a− of D
+// along the triangle's two normals; the three tetrahedra (a+, a−, two
+// vertices of the triangle) cover the double pyramid, and one of them
+// holds an origin that lies inside it strictly.  True when one is
+// certified (s then holds it).
+bool blow_up_triangle(const Query& qu, std::array<SimplexVertex, 4>& s) {
+  const V3 nrm = cross(s[1].w - s[0].w, s[2].w - s[0].w);
+  if (!(dot(nrm, nrm) > 0) || !std::isfinite(dot(nrm, nrm))) return false;
+  const SimplexVertex up = qu.support(nrm, s[0].p, s[0].q), down = qu.support(-nrm, s[0].p, s[0].q);
+  static constexpr int pairs[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  for (const auto& e : pairs) {
+    const std::array<SimplexVertex, 4> t{up, down, s[e[0]], s[e[1]]};
+    if (qu.certify_tetrahedron(t)) {
+      s = t;
+      return true;
+    }
+  }
+  return false;
+}
+
 // The warm start's direction, or from the centre of placed Q towards the
 // centre of placed P: the support of D along −dir is near the closest point
 // of D to the origin.
@@ -424,6 +446,12 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
     }
   }
   if (!decided && n == 3 && !tried_triangle) decided = try_plane(triangle_normal(), s[0].p, s[0].q);
+  if (!decided && n == 3 && blow_up_triangle(qu, s)) {
+    r.status = ContactStatus::penetrating;
+    r.certificate = RigidCertificate::simplex;
+    r.p = s[0].p, r.q = s[0].q;
+    decided = true;
+  }
   if (!decided) {
     r.status = collide_exact(p, pose_p, q, pose_q);
     r.certificate = RigidCertificate::exact;
@@ -606,19 +634,23 @@ RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidB
     }
   }
   RigidDistance r;
+  // Penetrating, certified by the tetrahedron s.
+  const auto simplex_answer = [&] {
+    r = RigidDistance{};
+    r.status = ContactStatus::penetrating;
+    r.certificate = RigidCertificate::simplex;
+    r.k = 4;
+    for (int j = 0; j < 4; ++j) r.p[j] = s[j].p, r.q[j] = s[j].q;
+    const V3 x = qu.P.point(s[0].p);  // a point of P' (the common point: exact_values)
+    r.point_p = r.point_q = {x.x, x.y, x.z};
+    return true;
+  };
   bool decided = false;
   if (tetrahedron) {
-    if (qu.certify_tetrahedron(s)) {
-      r.status = ContactStatus::penetrating;
-      r.certificate = RigidCertificate::simplex;
-      r.k = 4;
-      for (int j = 0; j < 4; ++j) r.p[j] = s[j].p, r.q[j] = s[j].q;
-      const V3 x = qu.P.point(s[0].p);  // a point of P' (the common point: exact_values)
-      r.point_p = r.point_q = {x.x, x.y, x.z};
-      decided = true;
-    }
+    if (qu.certify_tetrahedron(s)) decided = simplex_answer();
   } else {
     decided = certify_closest_subsets(qu, s, n, r);
+    if (!decided && n == 3 && blow_up_triangle(qu, s)) decided = simplex_answer();
   }
   if (!decided) {
     ExactDistance e = distance_on_m(p, pose_p, q, pose_q);

@@ -3,8 +3,11 @@
 #include <minksum/io.hpp>
 #include <minksum/operand.hpp>
 #include <minksum/proximity.hpp>
+#include <minksum/rigid_proximity.hpp>
 
 #include <chrono>
+#include <cmath>
+#include <optional>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -65,21 +68,29 @@ Options:
                         is "PX,PY,PZ [QX,QY,QZ] [rp=A,B,C,D] [rq=A,B,C,D]":
                         the translation of P, optionally of Q (else
                         --translate-q), optional rotations of P and Q relative
-                        to their input orientation (M is recomputed when one
-                        changes).  Blank lines and lines starting with '#' are
-                        skipped.  Output: one line (or JSON object) per pose.
+                        to their input orientation.  Blank lines and lines
+                        starting with '#' are skipped.  Output: one line (or
+                        JSON object) per pose.
                         The poses are answered in batches (the library's
                         trajectory API: up to 4096 poses, or as many as the
                         input has ready); seconds is then the batch's query
                         time per pose (exact values are computed when
                         printed).
+  Under a rotation (--rotate-p, --rotate-q, or rp=/rq= in effect on a
+  trajectory line) collide and distance are answered on the placed bodies
+  without computing M (exact, certified: a separating plane, a tetrahedron
+  of P − Q holding the origin, closest points whose planes support both
+  bodies, or M built exactly where the search cannot decide — touching
+  poses); the answer names its certificate instead of a facet of M.  depth
+  and ddepth recompute M when a rotation changes.
   --json                print JSON: query, status, squared_distance /
                         squared_depth / t as exact rationals in strings
                         ("p/q" or an integer), distance / depth (double;
                         null when beyond the double range: JSON has no
                         infinity), direction (exact strings), point_p /
                         point_q (doubles) and point_p_exact / point_q_exact
-                        (exact strings) for distance, witness, seconds
+                        (exact strings) for distance, witness (or
+                        certificate under a rotation), seconds
 
 Coordinates accept integers, exact rationals (1/3,0,-2/7) and decimals (the
 nearest double, then exact).
@@ -176,6 +187,64 @@ std::string format_answer(const DirectionalDepthResult& r, double sec, bool json
     o << contact_status_name(r.status) << "  t = " << format_exact(r.t) << "  depth ≈ " << format_double(r.depth)
       << "  translate P by " << vector_text(r.translation) << "  [" << witness_text(r.witness) << "]";
   return o.str();
+}
+
+// The output line of an answer under rigid motion (collide or distance).
+std::string format_rigid(ContactStatus status, const char* certificate, const RigidDistanceExact* e, double sec,
+                         bool json, const char* kind_name) {
+  std::ostringstream o;
+  if (json) {
+    o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(status) << "\"";
+    if (e) {
+      const double dist = std::sqrt(to_double(e->squared_distance));
+      o << ", \"squared_distance\": \"" << format_exact(e->squared_distance) << "\", \"distance\": "
+        << json_number(dist) << ", \"direction\": " << exact_vector_json(e->point_q - e->point_p)
+        << ", \"point_p\": " << double_vector_json(e->point_p) << ", \"point_p_exact\": "
+        << exact_vector_json(e->point_p) << ", \"point_q\": " << double_vector_json(e->point_q)
+        << ", \"point_q_exact\": " << exact_vector_json(e->point_q);
+    }
+    o << ", \"certificate\": \"" << certificate << "\", \"seconds\": " << json_number(sec) << "}";
+  } else {
+    o << contact_status_name(status);
+    if (e)
+      o << "  distance² = " << format_exact(e->squared_distance) << "  distance ≈ "
+        << format_double(std::sqrt(to_double(e->squared_distance))) << "  closest points "
+        << vector_text(e->point_p) << " on P, " << vector_text(e->point_q) << " on Q";
+    o << "  [certificate: " << certificate
+      << (std::string(certificate) == "exact" ? ", M built exactly for this pose]" : ", without M]");
+  }
+  return o.str();
+}
+
+// The answers for rigid poses (collide or distance, kind), one line each:
+// the library's batch over the poses on the calling thread, warm-started
+// from pose to pose.
+std::vector<std::string> answer_rigid(const RigidBody& bp, const RigidBody& bq, Kind kind,
+                                      const std::vector<RigidPose>& pp, const std::vector<RigidPose>& pq, bool json,
+                                      const char* kind_name, double& total, RigidWarmStart& warm) {
+  std::vector<std::string> lines(pp.size());
+  const auto t0 = std::chrono::steady_clock::now();
+  auto per_query = [&] {
+    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    total += sec;
+    return pp.empty() ? 0.0 : sec / double(pp.size());
+  };
+  if (kind == Kind::collide) {
+    std::vector<RigidCollision> r(pp.size());
+    for (std::size_t i = 0; i < pp.size(); ++i) r[i] = collide(bp, pp[i], bq, pq[i], &warm);
+    const double sec = per_query();
+    for (std::size_t i = 0; i < pp.size(); ++i)
+      lines[i] = format_rigid(r[i].status, rigid_certificate_name(r[i].certificate), nullptr, sec, json, kind_name);
+  } else {
+    std::vector<RigidDistance> r(pp.size());
+    for (std::size_t i = 0; i < pp.size(); ++i) r[i] = distance(bp, pp[i], bq, pq[i], &warm);
+    const double sec = per_query();
+    for (std::size_t i = 0; i < pp.size(); ++i) {
+      const RigidDistanceExact e = exact_values(bp, pp[i], bq, pq[i], r[i]);
+      lines[i] = format_rigid(r[i].status, rigid_certificate_name(r[i].certificate), &e, sec, json, kind_name);
+    }
+  }
+  return lines;
 }
 
 // The answers for the poses (u[i], w[i]) in order, one line each, through
@@ -276,12 +345,38 @@ int run_query(const std::vector<std::string>& argv) {
   }
   const ConvexPolytope& p0 = ps.polytope();
   const ConvexPolytope& q0 = qs.polytope();
-  TranslationalObstacle ob(rp ? rotated(p0, *rp) : p0, rq ? rotated(q0, *rq) : q0, *method);
+  // collide and distance under a rotation: on the placed bodies (no M).
+  const bool rigid_kind = kind == Kind::collide || kind == Kind::distance;
+  std::optional<RigidBody> bp, bq;
+  const auto rigid_pose = [](const std::optional<Quaternion>& r, const Point3& t) {
+    return r ? RigidPose::quaternion(*r, t) : RigidPose::translation(t);
+  };
+  // M for the current rotations, computed on first need.
+  std::optional<TranslationalObstacle> ob;
+  std::optional<Quaternion> ob_rp = rp, ob_rq = rq;
+  const auto obstacle = [&](const std::optional<Quaternion>& r1, const std::optional<Quaternion>& r2)
+      -> TranslationalObstacle& {
+    if (!ob) ob.emplace(r1 ? rotated(p0, *r1) : p0, r2 ? rotated(q0, *r2) : q0, *method);
+    else if (r1 != ob_rp || r2 != ob_rq) ob->set_operands(r1 ? rotated(p0, *r1) : p0, r2 ? rotated(q0, *r2) : q0);
+    ob_rp = r1, ob_rq = r2;
+    return *ob;
+  };
+  const auto rigid_for = [&](const std::optional<Quaternion>& r1, const std::optional<Quaternion>& r2) {
+    if (!rigid_kind || (!r1 && !r2)) return false;
+    if (!bp) bp.emplace(p0), bq.emplace(q0);
+    return true;
+  };
+  RigidWarmStart warm;
 
   const auto trajectory = a.value("--trajectory");
   if (!trajectory) {
     double total = 0;
-    std::cout << answer_batch(ob, kind, {u}, {w}, d, json, kind_name.c_str(), total)[0] << "\n";
+    if (rigid_for(rp, rq))
+      std::cout << answer_rigid(*bp, *bq, kind, {rigid_pose(rp, u)}, {rigid_pose(rq, w)}, json, kind_name.c_str(),
+                                total, warm)[0]
+                << "\n";
+    else
+      std::cout << answer_batch(obstacle(rp, rq), kind, {u}, {w}, d, json, kind_name.c_str(), total)[0] << "\n";
     return 0;
   }
 
@@ -307,8 +402,20 @@ int run_query(const std::vector<std::string>& argv) {
   constexpr std::size_t kBatch = 4096;
   std::vector<Point3> bu, bw;
   std::vector<long> blines;
+  std::uint64_t rigid_poses = 0;
+  const RigidStats rigid_before = rigid_stats();
   auto flush = [&] {
-    const std::vector<std::string> out = answer_batch(ob, kind, bu, bw, d, json, kind_name.c_str(), total);
+    std::vector<std::string> out;
+    if (bu.empty()) {
+    } else if (rigid_for(cur_rp, cur_rq)) {
+      std::vector<RigidPose> pp, pq;
+      for (std::size_t i = 0; i < bu.size(); ++i)
+        pp.push_back(rigid_pose(cur_rp, bu[i])), pq.push_back(rigid_pose(cur_rq, bw[i]));
+      out = answer_rigid(*bp, *bq, kind, pp, pq, json, kind_name.c_str(), total, warm);
+      rigid_poses += bu.size();
+    } else {
+      out = answer_batch(obstacle(cur_rp, cur_rq), kind, bu, bw, d, json, kind_name.c_str(), total);
+    }
     for (std::size_t i = 0; i < out.size(); ++i) {
       ++poses;
       if (json) std::cout << out[i] << "\n";
@@ -333,7 +440,6 @@ int run_query(const std::vector<std::string>& argv) {
       const std::optional<Quaternion> nrp = pose->rp ? pose->rp : cur_rp, nrq = pose->rq ? pose->rq : cur_rq;
       if (nrp != cur_rp || nrq != cur_rq) {
         flush();
-        ob.set_operands(nrp ? rotated(p0, *nrp) : p0, nrq ? rotated(q0, *nrq) : q0);
         cur_rp = nrp, cur_rq = nrq;
       }
       bu.push_back(pose->p);
@@ -347,9 +453,17 @@ int run_query(const std::vector<std::string>& argv) {
   if (!json && poses > 0) {
     char us[32];
     std::snprintf(us, sizeof us, "%.2f", total / double(poses) * 1e6);
-    std::cout << poses << " poses, " << us << " µs per query, "
-              << ob.stats().walk_steps << " walk steps, " << ob.stats().full_scans << " full scans, "
-              << ob.stats().rebuilds << " computations of M\n";
+    std::cout << poses << " poses, " << us << " µs per query";
+    if (ob)
+      std::cout << ", " << ob->stats().walk_steps << " walk steps, " << ob->stats().full_scans << " full scans, "
+                << ob->stats().rebuilds << " computations of M";
+    if (rigid_poses > 0) {
+      const RigidStats st = rigid_stats();
+      const std::uint64_t on_m = st.exact - rigid_before.exact;
+      std::cout << ", " << rigid_poses << " under rotation (" << rigid_poses - on_m << " certified without M, "
+                << on_m << " on M built exactly)";
+    }
+    std::cout << "\n";
   }
   return 0;
 }

@@ -541,6 +541,36 @@ TEST_F(Cli, QueryJsonClosestPointsExact) {
   EXPECT_NE(t.out.find("closest points (1, 1/6, 0) on P, (2, 1/6, 0) on Q"), std::string::npos) << t.out;
 }
 
+// Under --rotate-q, collide and distance are answered on the placed bodies
+// (no M): the same exact values as on M of the rotated operand, with the
+// certificate named; a trajectory that turns does not compute M.
+TEST_F(Cli, QueryUnderRotationWithoutM) {
+  const CmdResult rigid = run("query distance cube dodecahedron --rotate-q 1,2,3,4 --translate-q 4,1/3,0 --json");
+  const CmdResult on_m = run("query distance cube dodecahedron@rot:1,2,3,4 --translate-q 4,1/3,0 --json");
+  ASSERT_EQ(rigid.status, 0) << rigid.err;
+  ASSERT_EQ(on_m.status, 0) << on_m.err;
+  EXPECT_NE(rigid.out.find(R"("certificate": "closest_points")"), std::string::npos) << rigid.out;
+  EXPECT_EQ(rigid.out.find("witness"), std::string::npos) << rigid.out;
+  const auto field = [](const std::string& out, const std::string& key) {
+    const std::size_t at = out.find("\"" + key + "\": ");
+    return at == std::string::npos ? std::string("missing") : out.substr(at, out.find(']', at) - at);
+  };
+  for (const char* key : {"squared_distance", "point_p_exact", "point_q_exact", "direction"})
+    EXPECT_EQ(field(rigid.out, key), field(on_m.out, key)) << key << "\n" << rigid.out << "\n" << on_m.out;
+  // Touching corner to corner: decided on M built exactly for that pose.
+  const CmdResult touch = run("query collide cube cube --rotate-q 1,0,0,0 --translate-q 2,2,2");
+  EXPECT_NE(touch.out.find("touching  [certificate: exact, M built exactly for this pose]"), std::string::npos)
+      << touch.out;
+  std::ofstream(path("poses.txt")) << "3,0,0 rq=1,2,3,4\n3,1/10,0\n1/2,0,0 rq=2,0,0,1\n";
+  const CmdResult traj = run("query distance cube cube --trajectory " + path("poses.txt"));
+  ASSERT_EQ(traj.status, 0) << traj.err;
+  EXPECT_NE(traj.out.find("3 poses"), std::string::npos) << traj.out;
+  EXPECT_NE(traj.out.find("3 under rotation (3 certified without M, 0 on M built exactly)"), std::string::npos)
+      << traj.out;
+  EXPECT_EQ(traj.out.find("computations of M"), std::string::npos) << traj.out;
+  EXPECT_NE(traj.out.find("pose 3 (line 3): penetrating"), std::string::npos) << traj.out;
+}
+
 // A misspelt catalog name as an operand or for gen gets the catalog's
 // suggestion (docs/catalog.md shows it).
 TEST_F(Cli, MisspeltCatalogNameSuggestsClosest) {

@@ -6,6 +6,7 @@
 #include <minksum/placed_predicates.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -309,6 +310,10 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
 }
 
 struct PlacedSimplexPoint::Exact {
+  // The placed points A_p p_j + t_p and A_q q_j + t_q over `scale` (a
+  // power of two, integers, when the inputs are doubles; else 1).
+  std::array<Point3, 3> pp, qp;
+  Rational scale = 1;
   Rational g;
   std::array<Rational, 3> l;
   Point3 v;           // V = g v
@@ -335,13 +340,65 @@ Point3 pull(const PlacedMap& m, const Point3& x) {
 }
 }  // namespace
 
+namespace {
+
+// A double as m 2^e, m an integer of at most 53 bits (0 for zero).
+struct Dyadic {
+  std::int64_t m = 0;
+  int e = 0;
+};
+Dyadic dyadic(double x) {
+  if (x == 0) return {};
+  int e = 0;
+  const double f = std::frexp(x, &e);  // x = f 2^e, 1/2 ≤ |f| < 1
+  return {static_cast<std::int64_t>(std::ldexp(f, 53)), e - 53};
+}
+
+// The smallest exponent e of the non-zero terms m 2^e of coordinate r of
+// A x + t (three products and t_r; A, t and x doubles), lowered into e0.
+void lower_exponent(const PlacedMap& m, const PointBounds& x, int r, int& e0) {
+  const auto& a = m.approx_a();
+  const double t[3] = {m.approx_t().x, m.approx_t().y, m.approx_t().z};
+  const double c[3] = {x.x.lo, x.y.lo, x.z.lo};
+  for (int k = 0; k < 3; ++k) {
+    const Dyadic u = dyadic(a[3 * r + k]), v = dyadic(c[k]);
+    if (u.m != 0 && v.m != 0) e0 = std::min(e0, u.e + v.e);
+  }
+  const Dyadic w = dyadic(t[r]);
+  if (w.m != 0) e0 = std::min(e0, w.e);
+}
+
+// The coordinate r of A x + t as an integer over 2^e0 (e0 at most the
+// exponent of every non-zero term).
+Integer placed_integer(const PlacedMap& m, const PointBounds& x, int r, int e0) {
+  const auto& a = m.approx_a();
+  const double t[3] = {m.approx_t().x, m.approx_t().y, m.approx_t().z};
+  const double c[3] = {x.x.lo, x.y.lo, x.z.lo};
+  Integer sum = 0, term;
+  for (int k = 0; k < 3; ++k) {
+    const Dyadic u = dyadic(a[3 * r + k]), v = dyadic(c[k]);
+    if (u.m == 0 || v.m == 0) continue;
+    term = Integer(static_cast<long>(u.m)) * Integer(static_cast<long>(v.m));
+    sum += term << static_cast<unsigned long>(u.e + v.e - e0);
+  }
+  const Dyadic w = dyadic(t[r]);
+  if (w.m != 0) sum += Integer(static_cast<long>(w.m)) << static_cast<unsigned long>(w.e - e0);
+  return sum;
+}
+
+bool exact_double(const PointBounds& b) { return b.x.lo == b.x.hi && b.y.lo == b.y.hi && b.z.lo == b.z.hi; }
+
+}  // namespace
+
 PlacedSimplexPoint::PlacedSimplexPoint(const PlacedMap& mp, const PlacedMap& mq, int k,
                                        const std::array<const Point3*, 3>& p,
                                        const std::array<const PointBounds*, 3>& pb,
                                        const std::array<const Point3*, 3>& q,
                                        const std::array<const PointBounds*, 3>& qb)
-    : mp_(&mp), mq_(&mq), k_(k), p_(p), q_(q) {
+    : mp_(&mp), mq_(&mq), k_(k), p_(p), q_(q), pb_(pb), qb_(qb) {
   if (k < 1 || k > 3) throw std::invalid_argument("PlacedSimplexPoint: k must be 1, 2 or 3");
+  dyadic_ = mp.doubles() && mq.doubles();
+  for (int j = 0; j < k && dyadic_; ++j) dyadic_ = exact_double(*pb[j]) && exact_double(*qb[j]);
   CGAL::Protect_FPU_rounding<true> upward;
   std::array<FastIPoint, 3> d;
   for (int j = 0; j < k; ++j) d[j] = apply(mp, iv(*pb[j]), true) - apply(mq, iv(*qb[j]), true);
@@ -370,11 +427,32 @@ PlacedSimplexPoint::PlacedSimplexPoint(const PlacedMap& mp, const PlacedMap& mq,
 
 PlacedSimplexPoint::~PlacedSimplexPoint() = default;
 
+
 const PlacedSimplexPoint::Exact& PlacedSimplexPoint::exact() const {
   if (exact_) return *exact_;
   auto e = std::make_unique<Exact>();
+  if (dyadic_) {
+    // One exponent e0 below every term of every coordinate: the placed
+    // points are integers over 2^e0, and every polynomial below is a
+    // polynomial in integers (λ and signs are free of the scale).
+    int e0 = std::numeric_limits<int>::max();
+    for (int j = 0; j < k_; ++j)
+      for (int r = 0; r < 3; ++r)
+        lower_exponent(*mp_, *pb_[j], r, e0), lower_exponent(*mq_, *qb_[j], r, e0);
+    if (e0 == std::numeric_limits<int>::max()) e0 = 0;
+    for (int j = 0; j < k_; ++j)
+      for (int r = 0; r < 3; ++r) {
+        e->pp[j][r] = Rational(placed_integer(*mp_, *pb_[j], r, e0));
+        e->qp[j][r] = Rational(placed_integer(*mq_, *qb_[j], r, e0));
+      }
+    Integer two = 1;
+    if (e0 >= 0) e->scale = Rational(two << static_cast<unsigned long>(e0));
+    else e->scale = Rational(Integer(1), two << static_cast<unsigned long>(-e0));
+  } else {
+    for (int j = 0; j < k_; ++j) e->pp[j] = mp_->apply(*p_[j]), e->qp[j] = mq_->apply(*q_[j]);
+  }
   std::array<Point3, 3> d;
-  for (int j = 0; j < k_; ++j) d[j] = mp_->apply(*p_[j]) - mq_->apply(*q_[j]);
+  for (int j = 0; j < k_; ++j) d[j] = e->pp[j] - e->qp[j];
   e->g = 1;
   e->l = {Rational(1), Rational(0), Rational(0)};
   e->v = d[0];
@@ -473,7 +551,19 @@ double PlacedSimplexPoint::lambda_approx(int j) const {
 
 Rational PlacedSimplexPoint::squared_norm() const {
   const Exact& e = exact();
-  return k_ == 1 ? e.vv : Rational(e.vv / e.g);
+  // |v|² has degree 2 in the points: the scale twice.
+  return (k_ == 1 ? e.vv : Rational(e.vv / e.g)) * e.scale * e.scale;
+}
+
+std::pair<Point3, Point3> PlacedSimplexPoint::points() const {
+  const Exact& e = exact();
+  Point3 x(0, 0, 0), y(0, 0, 0);
+  for (int j = 0; j < k_; ++j) {
+    x = x + e.l[j] * e.pp[j];
+    y = y + e.l[j] * e.qp[j];
+  }
+  const Rational f = e.scale / e.g;
+  return {f * x, f * y};
 }
 
 Rational PlacedSimplexPoint::lambda(int j) const {

@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace minksum {
 
@@ -733,12 +734,7 @@ RigidDistanceExact exact_values(const RigidBody& p, const RigidPose& pose_p, con
     qs[j] = &dq.exact[d.q[j]], qb[j] = &dq.bounds[d.q[j]];
   }
   const PlacedSimplexPoint sp(mp, mq, k, ps, pb, qs, qb);
-  e.point_p = e.point_q = Point3(0, 0, 0);
-  for (int j = 0; j < k; ++j) {
-    const Rational l = sp.lambda(j);
-    e.point_p = e.point_p + l * mp.apply(*ps[j]);
-    e.point_q = e.point_q + l * mq.apply(*qs[j]);
-  }
+  std::tie(e.point_p, e.point_q) = sp.points();
   e.squared_distance = sp.squared_norm();
   return e;
 }

@@ -73,6 +73,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 
 namespace minksum {
 
@@ -250,6 +251,8 @@ class PlacedSimplexPoint {
   // The exact values (rational arithmetic; requires independent()).
   Rational squared_norm() const;
   Rational lambda(int j) const;
+  // x = Σ λ_j (A_p p_j + t_p) and y = Σ λ_j (A_q q_j + t_q): x − y = v.
+  std::pair<Point3, Point3> points() const;
 
  private:
   struct Exact;
@@ -258,6 +261,10 @@ class PlacedSimplexPoint {
   const PlacedMap *mp_, *mq_;
   int k_;
   std::array<const Point3*, 3> p_, q_;
+  // The exact stage works on integers when the maps and the points are
+  // doubles (all dyadic: one common power of two scales them to integers).
+  bool dyadic_ = false;
+  std::array<const PointBounds*, 3> pb_, qb_;
   // Interval stage: g, the λ numerators l_j (λ_j = l_j / g), V = g v and
   // the pulled directions −A_pᵀ V and A_qᵀ V.
   Bounds g_{}, vv_{};

@@ -527,7 +527,9 @@ void expect_distances_agree(const std::string& a, const std::string& b, int pose
   int separate = 0;
   const RigidStats before = rigid_stats();
   for (int i = 0; i < poses; ++i) {
-    const RigidPose pp = random_pose(r, spread, i % 2 == 0), pq = random_pose(r, spread, i % 2 == 1);
+    // Quaternion and matrix, matrix and quaternion, two matrices (then
+    // every input is a double: the exact stage's integers).
+    const RigidPose pp = random_pose(r, spread, i % 3 == 0), pq = random_pose(r, spread, i % 3 == 1);
     const RigidDistance d = distance(pa, pp, pb, pq, &warm);
     separate += d.status == ContactStatus::separate;
     expect_distance_agrees(pa, pp, pb, pq, d,
@@ -647,14 +649,19 @@ TEST(PlacedSimplexPoint, AgreesWithRationals) {
   // the exact direction −v pulled through A_p.
   Rng r(81);
   for (int i = 0; i < 200; ++i) {
-    const RigidPose pp = random_pose(r, 1.0, i % 2 == 0), pq = random_pose(r, 1.0, i % 2 == 1);
-    const int k = 1 + i % 3;
+    // Every third case: both maps doubles and every point a double (the
+    // exact stage on integers over a power of two).
+    const bool doubles = i % 3 == 2;
+    const RigidPose pp = random_pose(r, 1.0, !doubles && i % 2 == 0), pq = random_pose(r, 1.0, !doubles && i % 2 == 1);
+    const int k = 1 + (i / 3) % 3;
     std::array<Point3, 3> p, q;
     std::array<PointBounds, 3> pb, qb;
     for (int j = 0; j < k; ++j) {
       // Sometimes the same vertex twice (a dependent simplex).
       p[j] = (j > 0 && i % 7 == 0) ? p[0] : Point3(Rational(Rational(r.integer(-9, 9)) / 4), Rational(r.integer(-9, 9)), Rational(r.uniform(-1, 1)));
-      q[j] = (j > 0 && i % 7 == 0) ? q[0] : Point3(Rational(r.uniform(-1, 1)), Rational(Rational(r.integer(-9, 9)) / 3), Rational(r.integer(-9, 9)));
+      q[j] = (j > 0 && i % 7 == 0) ? q[0]
+             : Point3(Rational(r.uniform(-1, 1)), Rational(Rational(r.integer(-9, 9)) / (doubles ? 8 : 3)),
+                      Rational(r.integer(-9, 9)));
       pb[j] = point_bounds(p[j]), qb[j] = point_bounds(q[j]);
     }
     std::array<const Point3*, 3> pp3{&p[0], &p[1], &p[2]}, qp3{&q[0], &q[1], &q[2]};

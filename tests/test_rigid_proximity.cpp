@@ -724,3 +724,56 @@ TEST(RigidDistance, SymmetricPenetrationOnACoplanarTriangle) {
   EXPECT_EQ(c.status, ContactStatus::penetrating);
   EXPECT_EQ(c.certificate, RigidCertificate::simplex);
 }
+
+// ---------------------------------------------------------------------------
+// Penetration depth under rigid motion, against M built exactly.
+
+namespace {
+
+void expect_depth_agrees(const RigidBody& a, const RigidPose& pa, const RigidBody& b, const RigidPose& pb,
+                         const RigidDepth& d, const std::string& what) {
+  const RigidDepthExact want = depth_exact(a, pa, b, pb);
+  const RigidDepthExact got = exact_values(a, pa, b, pb, d);
+  EXPECT_EQ(got.squared_depth, want.squared_depth) << what;
+  EXPECT_EQ(dot(got.direction, got.direction), want.squared_depth) << what;
+  EXPECT_EQ(d.status, collide_exact(a, pa, b, pb)) << what;
+  const Rational lo(d.lower), hi(d.upper);
+  EXPECT_LE(lo * lo, want.squared_depth) << what;
+  EXPECT_GE(hi * hi, want.squared_depth) << what;
+  if (d.status == ContactStatus::penetrating) {
+    // Translated by the direction, the bodies touch.
+    Point3 t = pa.map().t() + got.direction;
+    std::array<std::array<Rational, 3>, 3> m;
+    for (int x = 0; x < 3; ++x)
+      for (int y = 0; y < 3; ++y) m[x][y] = pa.map().a(x, y);
+    EXPECT_EQ(collide_exact(a, RigidPose(PlacedMap(m, t)), b, pb), ContactStatus::touching) << what;
+  }
+}
+
+void expect_depths_agree(const std::string& a, const std::string& b, int poses, double spread, std::uint64_t seed,
+                         int max_exact) {
+  const RigidBody pa(catalog_polytope(a)), pb(catalog_polytope(b));
+  Rng r(seed);
+  RigidWarmStart warm;
+  int penetrating = 0;
+  const RigidStats before = rigid_stats();
+  for (int i = 0; i < poses; ++i) {
+    const RigidPose pp = random_pose(r, spread, i % 3 == 0), pq = random_pose(r, spread, i % 3 == 1);
+    const RigidDepth d = penetration_depth(pa, pp, pb, pq, &warm);
+    penetrating += d.status == ContactStatus::penetrating;
+    expect_depth_agrees(pa, pp, pb, pq, d,
+                        a + " / " + b + ", seed " + std::to_string(seed) + ", pose " + std::to_string(i));
+  }
+  EXPECT_GT(penetrating, poses / 2) << a;
+  EXPECT_LE(int(rigid_stats().exact - before.exact), max_exact) << a << " / " << b;
+}
+
+}  // namespace
+
+TEST(RigidDepth, AgreesWithTheExactObstacleOnRandomPoses) {
+  expect_depths_agree("cube", "cube", 60, 1.0, 91, 0);
+  expect_depths_agree("tetra", "octahedron", 60, 0.6, 92, 0);
+  expect_depths_agree("dodecahedron", "cube@rot:3", 60, 1.0, 93, 0);
+  expect_depths_agree("sphere:2", "random:50:2", 40, 0.8, 94, 0);
+  expect_depths_agree("cube@scale:1/3", "tetra@rot:2", 40, 0.3, 95, 0);
+}

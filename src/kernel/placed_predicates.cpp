@@ -388,6 +388,42 @@ Integer placed_integer(const PlacedMap& m, const PointBounds& x, int r, int e0) 
 
 bool exact_double(const PointBounds& b) { return b.x.lo == b.x.hi && b.y.lo == b.y.hi && b.z.lo == b.z.hi; }
 
+// Whether the exact stage may take the integers below: both maps doubles
+// and every point a double.
+bool all_dyadic(const PlacedMap& mp, const PlacedMap& mq, int k, const std::array<const PointBounds*, 3>& pb,
+                const std::array<const PointBounds*, 3>& qb) {
+  bool d = mp.doubles() && mq.doubles();
+  for (int j = 0; j < k && d; ++j) d = exact_double(*pb[j]) && exact_double(*qb[j]);
+  return d;
+}
+
+// The placed points A_p p_j + t_p and A_q q_j + t_q (j < k) over the
+// returned scale: with dyadic inputs, one exponent e0 below every term of
+// every coordinate makes them integers over 2^e0 (every polynomial in them
+// is then a polynomial in integers, and signs and ratios of homogeneous
+// ones are free of the scale); otherwise the rationals, over 1.
+Rational placed_points(const PlacedMap& mp, const PlacedMap& mq, int k, bool dyadic,
+                       const std::array<const Point3*, 3>& p, const std::array<const PointBounds*, 3>& pb,
+                       const std::array<const Point3*, 3>& q, const std::array<const PointBounds*, 3>& qb,
+                       std::array<Point3, 3>& pp, std::array<Point3, 3>& qp) {
+  if (!dyadic) {
+    for (int j = 0; j < k; ++j) pp[j] = mp.apply(*p[j]), qp[j] = mq.apply(*q[j]);
+    return Rational(1);
+  }
+  int e0 = std::numeric_limits<int>::max();
+  for (int j = 0; j < k; ++j)
+    for (int r = 0; r < 3; ++r) lower_exponent(mp, *pb[j], r, e0), lower_exponent(mq, *qb[j], r, e0);
+  if (e0 == std::numeric_limits<int>::max()) e0 = 0;
+  for (int j = 0; j < k; ++j)
+    for (int r = 0; r < 3; ++r) {
+      pp[j][r] = Rational(placed_integer(mp, *pb[j], r, e0));
+      qp[j][r] = Rational(placed_integer(mq, *qb[j], r, e0));
+    }
+  const Integer one = 1;
+  if (e0 >= 0) return Rational(one << static_cast<unsigned long>(e0));
+  return Rational(one, one << static_cast<unsigned long>(-e0));
+}
+
 }  // namespace
 
 PlacedSimplexPoint::PlacedSimplexPoint(const PlacedMap& mp, const PlacedMap& mq, int k,
@@ -397,8 +433,7 @@ PlacedSimplexPoint::PlacedSimplexPoint(const PlacedMap& mp, const PlacedMap& mq,
                                        const std::array<const PointBounds*, 3>& qb)
     : mp_(&mp), mq_(&mq), k_(k), p_(p), q_(q), pb_(pb), qb_(qb) {
   if (k < 1 || k > 3) throw std::invalid_argument("PlacedSimplexPoint: k must be 1, 2 or 3");
-  dyadic_ = mp.doubles() && mq.doubles();
-  for (int j = 0; j < k && dyadic_; ++j) dyadic_ = exact_double(*pb[j]) && exact_double(*qb[j]);
+  dyadic_ = all_dyadic(mp, mq, k, pb, qb);
   CGAL::Protect_FPU_rounding<true> upward;
   std::array<FastIPoint, 3> d;
   for (int j = 0; j < k; ++j) d[j] = apply(mp, iv(*pb[j]), true) - apply(mq, iv(*qb[j]), true);
@@ -431,26 +466,7 @@ PlacedSimplexPoint::~PlacedSimplexPoint() = default;
 const PlacedSimplexPoint::Exact& PlacedSimplexPoint::exact() const {
   if (exact_) return *exact_;
   auto e = std::make_unique<Exact>();
-  if (dyadic_) {
-    // One exponent e0 below every term of every coordinate: the placed
-    // points are integers over 2^e0, and every polynomial below is a
-    // polynomial in integers (λ and signs are free of the scale).
-    int e0 = std::numeric_limits<int>::max();
-    for (int j = 0; j < k_; ++j)
-      for (int r = 0; r < 3; ++r)
-        lower_exponent(*mp_, *pb_[j], r, e0), lower_exponent(*mq_, *qb_[j], r, e0);
-    if (e0 == std::numeric_limits<int>::max()) e0 = 0;
-    for (int j = 0; j < k_; ++j)
-      for (int r = 0; r < 3; ++r) {
-        e->pp[j][r] = Rational(placed_integer(*mp_, *pb_[j], r, e0));
-        e->qp[j][r] = Rational(placed_integer(*mq_, *qb_[j], r, e0));
-      }
-    Integer two = 1;
-    if (e0 >= 0) e->scale = Rational(two << static_cast<unsigned long>(e0));
-    else e->scale = Rational(Integer(1), two << static_cast<unsigned long>(-e0));
-  } else {
-    for (int j = 0; j < k_; ++j) e->pp[j] = mp_->apply(*p_[j]), e->qp[j] = mq_->apply(*q_[j]);
-  }
+  e->scale = placed_points(*mp_, *mq_, k_, dyadic_, p_, pb_, q_, qb_, e->pp, e->qp);
   std::array<Point3, 3> d;
   for (int j = 0; j < k_; ++j) d[j] = e->pp[j] - e->qp[j];
   e->g = 1;
@@ -570,6 +586,125 @@ Rational PlacedSimplexPoint::lambda(int j) const {
   if (j < 0 || j >= k_) throw std::invalid_argument("PlacedSimplexPoint: no such point");
   const Exact& e = exact();
   return e.l[j] / e.g;
+}
+
+struct PlacedTriangle::Exact {
+  Point3 n;
+  Rational h, nn;  // of the points over `scale`: the squared distance is h² / nn · scale²
+  Rational scale, scale2;
+  mutable std::optional<Point3> up, uq;  // A_pᵀ n, −A_qᵀ n (climbs only)
+};
+
+PlacedTriangle::PlacedTriangle(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 3>& p,
+                               const std::array<const PointBounds*, 3>& pb, const std::array<const Point3*, 3>& q,
+                               const std::array<const PointBounds*, 3>& qb)
+    : mp_(&mp), mq_(&mq), p_(p), q_(q), pb_(pb), qb_(qb) {
+  CGAL::Protect_FPU_rounding<true> upward;
+  std::array<FastIPoint, 3> d;
+  for (int j = 0; j < 3; ++j) d[j] = apply(mp, iv(*pb[j]), true) - apply(mq, iv(*qb[j]), true);
+  const FastIPoint n = cross(d[1] - d[0], d[2] - d[0]);
+  const FastInterval h = dot(n, d[0]), nn = dot(n, n);
+  h_ = to_bounds(h), nn_ = to_bounds(nn);
+  n_ = {to_bounds(n.x), to_bounds(n.y), to_bounds(n.z)};
+  const FastIPoint up = pull(mp, n), uq = -pull(mq, n);
+  up_ = {to_bounds(up.x), to_bounds(up.y), to_bounds(up.z)};
+  uq_ = {to_bounds(uq.x), to_bounds(uq.y), to_bounds(uq.z)};
+}
+
+PlacedTriangle::~PlacedTriangle() = default;
+PlacedTriangle::PlacedTriangle(PlacedTriangle&&) noexcept = default;
+
+const PlacedTriangle::Exact& PlacedTriangle::exact() const {
+  if (exact_) return *exact_;
+  auto e = std::make_unique<Exact>();
+  std::array<Point3, 3> pp, qp, d;
+  const Rational scale = placed_points(*mp_, *mq_, 3, all_dyadic(*mp_, *mq_, 3, pb_, qb_), p_, pb_, q_, qb_, pp, qp);
+  e->scale = scale;
+  e->scale2 = scale * scale;
+  for (int j = 0; j < 3; ++j) d[j] = pp[j] - qp[j];
+  e->n = cross(d[1] - d[0], d[2] - d[0]);
+  e->h = dot(e->n, d[0]);
+  e->nn = dot(e->n, e->n);
+  exact_ = std::move(e);
+  return *exact_;
+}
+
+int PlacedTriangle::offset_sign() const {
+  if (h_.lo > 0 || h_.hi < 0 || (h_.lo == 0 && h_.hi == 0)) {
+    ++g_counts.filtered;
+    return h_.lo > 0 ? 1 : (h_.hi < 0 ? -1 : 0);
+  }
+  return exact_sign(exact().h);
+}
+
+int compare_distance(const PlacedTriangle& a, const PlacedTriangle& b) {
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const FastInterval ha = iv(a.h_), hb = iv(b.h_);
+    const int s = sign_of(ha * ha * iv(b.nn_) - hb * hb * iv(a.nn_));
+    if (s != kUncertain) {
+      ++g_counts.filtered;
+      return s;
+    }
+  }
+  const PlacedTriangle::Exact &ea = a.exact(), &eb = b.exact();
+  return exact_sign(ea.h * ea.h * eb.nn * ea.scale2 - eb.h * eb.h * ea.nn * eb.scale2);
+}
+
+int PlacedTriangle::climb_sign(bool on_p, const Point3& a, const PointBounds& ab, const Point3& b,
+                               const PointBounds& bb) const {
+  {
+    const auto& u = on_p ? up_ : uq_;
+    CGAL::Protect_FPU_rounding<true> upward;
+    const FastIPoint d = iv(bb) - iv(ab);
+    const int s = sign_of(iv(u[0]) * d.x + iv(u[1]) * d.y + iv(u[2]) * d.z);
+    if (s != kUncertain) {
+      ++g_counts.filtered;
+      return s;
+    }
+  }
+  const Exact& e = exact();
+  std::optional<Point3>& u = on_p ? e.up : e.uq;
+  if (!u) u = on_p ? pull(*mp_, e.n) : Point3(-pull(*mq_, e.n));
+  return exact_sign(dot(*u, b - a));
+}
+
+int PlacedTriangle::climb_sign_p(const Point3& a, const PointBounds& ab, const Point3& b,
+                                 const PointBounds& bb) const {
+  return climb_sign(true, a, ab, b, bb);
+}
+int PlacedTriangle::climb_sign_q(const Point3& a, const PointBounds& ab, const Point3& b,
+                                 const PointBounds& bb) const {
+  return climb_sign(false, a, ab, b, bb);
+}
+
+Bounds PlacedTriangle::squared_distance_bounds() const {
+  if (nn_.lo > 0) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const FastInterval h = iv(h_);
+    return to_bounds(h * h / iv(nn_));
+  }
+  return rational_bounds(squared_distance());
+}
+
+Rational PlacedTriangle::squared_distance() const {
+  const Exact& e = exact();
+  if (sgn(e.nn) == 0) throw std::invalid_argument("PlacedTriangle: the points are collinear");
+  return e.h * e.h / e.nn * e.scale2;
+}
+
+Point3 PlacedTriangle::nearest_point() const {
+  const Exact& e = exact();
+  if (sgn(e.nn) == 0) throw std::invalid_argument("PlacedTriangle: the points are collinear");
+  // (h / nn) n has degree 1 in the points: the scale once.
+  return Rational(e.h / e.nn * e.scale) * e.n;
+}
+
+Vec3d PlacedTriangle::unit_normal() const {
+  const double x = 0.5 * (n_[0].lo + n_[0].hi), y = 0.5 * (n_[1].lo + n_[1].hi), z = 0.5 * (n_[2].lo + n_[2].hi);
+  const double l = std::sqrt(x * x + y * y + z * z);
+  if (l > 0 && std::isfinite(l)) return {x / l, y / l, z / l};
+  return to_double(exact().n);
 }
 
 PlacedPredicateCounts placed_predicate_counts() {

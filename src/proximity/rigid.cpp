@@ -321,6 +321,8 @@ const char* rigid_certificate_name(RigidCertificate c) {
       return "exact";
     case RigidCertificate::closest_points:
       return "closest_points";
+    case RigidCertificate::nearest_facet:
+      return "nearest_facet";
   }
   return "exact";
 }
@@ -468,7 +470,8 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
     case RigidCertificate::exact:
       ++g_stats.exact;
       break;
-    case RigidCertificate::closest_points:  // not an answer of collide
+    case RigidCertificate::closest_points:  // not answers of collide
+    case RigidCertificate::nearest_facet:
       break;
   }
   if (warm) {
@@ -498,12 +501,15 @@ ExactDistance distance_on_m(const RigidBody& p, const RigidPose& pose_p, const R
   return {d.status, {d.squared_distance(), d.point_p(), d.point_q()}};
 }
 
-// sqrt of an enclosure of a square, rounded outward.
-void set_bounds(RigidDistance& r, const Bounds& sq) {
+// lower and upper from an enclosure of the square (sqrt rounded outward)
+// and the value within them.
+template <class Answer>
+void set_bounds(Answer& r, const Bounds& sq, double value) {
   r.lower = sq.lo > 0 ? std::nextafter(std::sqrt(sq.lo), 0.0) : 0.0;
   r.upper = std::nextafter(std::sqrt(sq.hi), std::numeric_limits<double>::infinity());
-  if (r.lower < 0) r.lower = 0;
-  r.distance = std::clamp(r.distance, r.lower, r.upper);
+  const double x = std::clamp(value, r.lower, r.upper);
+  if constexpr (requires { r.distance; }) r.distance = x;
+  else r.depth = x;
 }
 
 // The certificate of a distance (rigid_proximity.hpp) on the pairs of
@@ -573,8 +579,7 @@ bool certify_closest(const Query& qu, const std::array<SimplexVertex, 4>& pairs,
   }
   r.point_p = {x.x, x.y, x.z}, r.point_q = {y.x, y.y, y.z};
   const V3 v = x - y;
-  r.distance = std::sqrt(dot(v, v));
-  set_bounds(r, sp.squared_norm_bounds());
+  set_bounds(r, sp.squared_norm_bounds(), std::sqrt(dot(v, v)));
   return true;
 }
 
@@ -659,9 +664,7 @@ RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidB
     r.status = e.status;
     r.certificate = RigidCertificate::exact;
     r.point_p = to_double(e.values.point_p), r.point_q = to_double(e.values.point_q);
-    r.distance = std::sqrt(to_double(e.values.squared_distance));
-    const Bounds sq = rational_bounds(e.values.squared_distance);
-    set_bounds(r, sq);
+    set_bounds(r, rational_bounds(e.values.squared_distance), std::sqrt(to_double(e.values.squared_distance)));
     r.exact = std::make_shared<const RigidDistanceExact>(std::move(e.values));
   }
   switch (r.certificate) {
@@ -670,6 +673,8 @@ RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidB
       break;
     case RigidCertificate::closest_points:
       ++g_stats.closest_points;
+      break;
+    case RigidCertificate::nearest_facet:  // not an answer of distance
       break;
     case RigidCertificate::simplex:
       ++g_stats.simplex;
@@ -737,6 +742,246 @@ RigidDistanceExact exact_values(const RigidBody& p, const RigidPose& pose_p, con
   std::tie(e.point_p, e.point_q) = sp.points();
   e.squared_distance = sp.squared_norm();
   return e;
+}
+
+namespace {
+
+// EPA's surface: triangles of vertices of D, each outward (the origin on
+// the inner side), with the unit normal and distance of its plane.
+struct EpaFace {
+  std::array<int, 3> v;
+  V3 n;
+  double dist;
+  bool alive;
+};
+
+bool epa_face(const std::vector<SimplexVertex>& verts, int a, int b, int c, EpaFace& f) {
+  const V3 n = cross(verts[b].w - verts[a].w, verts[c].w - verts[a].w);
+  const double l = std::sqrt(dot(n, n));
+  if (!(l > 0) || !std::isfinite(l)) return false;
+  f.v = {a, b, c};
+  f.n = (1 / l) * n;
+  f.dist = dot(f.n, verts[a].w);
+  f.alive = true;
+  return true;
+}
+
+// Grows the tetrahedron s (holding the origin) towards ∂D in doubles.
+// False when the search degenerates (the certificate is then not tried).
+bool epa(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<SimplexVertex>& verts,
+         std::vector<EpaFace>& faces) {
+  verts.assign(s.begin(), s.end());
+  faces.clear();
+  static constexpr int tri[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
+  for (const auto& t : tri) {
+    EpaFace f;
+    if (!epa_face(verts, t[0], t[1], t[2], f)) return false;
+    if (dot(f.n, verts[t[3]].w - verts[t[0]].w) > 0 && !epa_face(verts, t[0], t[2], t[1], f)) return false;
+    faces.push_back(f);
+  }
+  std::vector<std::pair<int, int>> edges;
+  for (int it = 0; it < 4 * kMaxIterations; ++it) {
+    ++g_stats.iterations;
+    int best = -1;
+    for (int k = 0; k < int(faces.size()); ++k)
+      if (faces[k].alive && (best < 0 || faces[k].dist < faces[best].dist)) best = k;
+    if (best < 0) return false;
+    const EpaFace f = faces[best];
+    const SimplexVertex& a0 = verts[f.v[0]];
+    const SimplexVertex w = qu.support(f.n, a0.p, a0.q);
+    const double gain = dot(f.n, w.w) - f.dist;
+    bool known = false;
+    for (const SimplexVertex& x : verts) known = known || (x.p == w.p && x.q == w.q);
+    if (known || gain <= 1e-14 * std::max(1.0, std::fabs(f.dist))) return true;
+    const int iw = int(verts.size());
+    verts.push_back(w);
+    edges.clear();
+    for (EpaFace& g : faces) {
+      if (!g.alive || !(dot(g.n, w.w - verts[g.v[0]].w) > 0)) continue;
+      g.alive = false;
+      for (int e = 0; e < 3; ++e) edges.push_back({g.v[e], g.v[(e + 1) % 3]});
+    }
+    const std::size_t old = faces.size();
+    for (const auto& [a, b] : edges) {
+      bool twin = false;
+      for (const auto& [c, d] : edges) twin = twin || (c == b && d == a);
+      if (twin) continue;
+      EpaFace g;
+      if (!epa_face(verts, a, b, iw, g)) return false;
+      faces.push_back(g);
+    }
+    if (faces.size() == old) return false;
+  }
+  return false;
+}
+
+// The certificate of a depth (rigid_proximity.hpp) on EPA's surface.
+bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, const std::vector<EpaFace>& faces,
+                   RigidDepth& r) {
+  // A closed, consistently oriented surface of genus 0.
+  std::vector<std::pair<int, int>> edges;
+  std::vector<int> used;
+  std::vector<const EpaFace*> alive;
+  for (const EpaFace& f : faces) {
+    if (!f.alive) continue;
+    alive.push_back(&f);
+    for (int e = 0; e < 3; ++e) edges.push_back({f.v[e], f.v[(e + 1) % 3]}), used.push_back(f.v[e]);
+  }
+  const int nf = int(alive.size());
+  std::sort(edges.begin(), edges.end());
+  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
+  for (const auto& [a, b] : edges)
+    if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(b, a))) return false;
+  std::sort(used.begin(), used.end());
+  const int nv = int(std::unique(used.begin(), used.end()) - used.begin());
+  if (nv - int(edges.size()) / 2 + nf != 2) return false;
+  const RigidBody::Data &dp = qu.dp, &dq = qu.dq;
+  std::vector<PlacedTriangle> tris;
+  tris.reserve(nf);
+  int nearest = 0;
+  for (int k = 0; k < nf; ++k) {
+    std::array<const Point3*, 3> p, q;
+    std::array<const PointBounds*, 3> pb, qb;
+    for (int j = 0; j < 3; ++j) {
+      const SimplexVertex& x = verts[alive[k]->v[j]];
+      p[j] = &dp.exact[x.p], pb[j] = &dp.bounds[x.p], q[j] = &dq.exact[x.q], qb[j] = &dq.bounds[x.q];
+    }
+    tris.emplace_back(qu.P.map, qu.Q.map, p, pb, q, qb);
+    if (tris.back().offset_sign() <= 0) return false;
+    if (alive[k]->dist < alive[nearest]->dist) nearest = k;
+  }
+  const PlacedTriangle& F = tris[nearest];
+  for (int k = 0; k < nf; ++k)
+    if (k != nearest && compare_distance(tris[k], F) < 0) return false;
+  // F's plane supports D, checked at the pair of F's vertex 0.  A
+  // neighbour w of p_a is level by construction when F has the pairs
+  // (w, q_i) and (p_a, q_i): n · (d − d′) = 0 for two vertices of F (and
+  // likewise on Q).
+  const EpaFace& f = *alive[nearest];
+  const Index ia = verts[f.v[0]].p, ja = verts[f.v[0]].q;
+  const auto has = [&](Index pv, Index qv) {
+    for (int j = 0; j < 3; ++j)
+      if (verts[f.v[j]].p == pv && verts[f.v[j]].q == qv) return true;
+    return false;
+  };
+  const auto level_p = [&](Index w) {
+    for (int j = 0; j < 3; ++j)
+      if (verts[f.v[j]].p == w && has(ia, verts[f.v[j]].q)) return true;
+    return false;
+  };
+  const auto level_q = [&](Index w) {
+    for (int j = 0; j < 3; ++j)
+      if (verts[f.v[j]].q == w && has(verts[f.v[j]].p, ja)) return true;
+    return false;
+  };
+  for (Index e = dp.first[ia]; e < dp.first[ia + 1]; ++e)
+    if (!level_p(dp.nbr[e]) &&
+        F.climb_sign_p(dp.exact[ia], dp.bounds[ia], dp.exact[dp.nbr[e]], dp.bounds[dp.nbr[e]]) > 0)
+      return false;
+  for (Index e = dq.first[ja]; e < dq.first[ja + 1]; ++e)
+    if (!level_q(dq.nbr[e]) &&
+        F.climb_sign_q(dq.exact[ja], dq.bounds[ja], dq.exact[dq.nbr[e]], dq.bounds[dq.nbr[e]]) > 0)
+      return false;
+  for (int j = 0; j < 3; ++j) r.p[j] = verts[f.v[j]].p, r.q[j] = verts[f.v[j]].q;
+  r.status = ContactStatus::penetrating;
+  r.certificate = RigidCertificate::nearest_facet;
+  set_bounds(r, F.squared_distance_bounds(), std::max(f.dist, 0.0));
+  r.direction = {-r.depth * f.n.x, -r.depth * f.n.y, -r.depth * f.n.z};
+  return true;
+}
+
+RigidDepthExact depth_on_m(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                           ContactStatus* status) {
+  TranslationalObstacle ob(placed_linear(p.polytope(), pose_p.map()), placed_linear(q.polytope(), pose_q.map()));
+  const DepthResult d = ob.penetration_depth(pose_p.map().t(), pose_q.map().t());
+  if (status) *status = d.status;
+  return {d.squared_depth(), d.direction()};
+}
+
+}  // namespace
+
+RigidDepthExact depth_exact(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q) {
+  return depth_on_m(p, pose_p, q, pose_q, nullptr);
+}
+
+RigidDepth penetration_depth(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                             RigidWarmStart* warm) {
+  RigidDepth r;
+  const RigidCollision c = collide(p, pose_p, q, pose_q, warm);
+  r.status = c.status;
+  r.certificate = c.certificate;
+  if (c.status != ContactStatus::penetrating) return r;
+  const Query qu{Placed(p.data(), pose_p.map()), Placed(q.data(), pose_q.map()), p.data(), q.data()};
+  // A tetrahedron of D holding the origin: the search again from the
+  // witnesses collide left (a few steps).
+  const RigidWarmStart start = checked_start(p, q, warm);
+  const V3 dir = initial_direction(qu, start);
+  std::array<SimplexVertex, 4> s;
+  int n = 1;
+  s[0] = qu.support(-dir, start.p, start.q);
+  V3 v = s[0].w;
+  Index ip = s[0].p, iq = s[0].q;
+  bool tetrahedron = false;
+  double last = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < kMaxIterations; ++it) {
+    const double vv = dot(v, v);
+    if (!(vv > 0) || !std::isfinite(vv)) break;
+    const SimplexVertex w = qu.support(-v, ip, iq);
+    ip = w.p, iq = w.q;
+    bool repeated = false;
+    for (int k = 0; k < n; ++k) repeated = repeated || (s[k].p == w.p && s[k].q == w.q);
+    if (repeated || !(vv < last)) break;
+    last = vv;
+    s[n++] = w;
+    if (!closest_on_simplex(s, n, v)) {
+      tetrahedron = true;
+      break;
+    }
+  }
+  if (!tetrahedron && n == 3) tetrahedron = blow_up_triangle(qu, s);
+  std::vector<SimplexVertex> verts;
+  std::vector<EpaFace> faces;
+  if (tetrahedron && epa(qu, s, verts, faces) && certify_depth(qu, verts, faces, r)) {
+    ++g_stats.nearest_facet;
+    return r;
+  }
+  ++g_stats.exact;
+  ContactStatus st;
+  RigidDepthExact e = depth_on_m(p, pose_p, q, pose_q, &st);
+  r = RigidDepth{};
+  r.status = st;
+  r.certificate = RigidCertificate::exact;
+  r.direction = to_double(e.direction);
+  set_bounds(r, rational_bounds(e.squared_depth), std::sqrt(to_double(e.squared_depth)));
+  r.exact = std::make_shared<const RigidDepthExact>(std::move(e));
+  return r;
+}
+
+void penetration_depth(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
+                       std::span<const RigidPose> poses_q, std::span<RigidDepth> out, unsigned threads) {
+  batch("penetration_depth", poses_p, poses_q, out, threads,
+        [&](const RigidPose& a, const RigidPose& b, RigidWarmStart* w) { return penetration_depth(p, a, q, b, w); });
+}
+
+RigidDepthExact exact_values(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                             const RigidDepth& d) {
+  if (d.status != ContactStatus::penetrating) return {Rational(0), Point3(0, 0, 0)};
+  if (d.certificate == RigidCertificate::exact) {
+    if (d.exact) return *d.exact;
+    return depth_exact(p, pose_p, q, pose_q);
+  }
+  if (d.certificate != RigidCertificate::nearest_facet)
+    throw UsageError("exact_values: the answer is not one of penetration_depth()");
+  const RigidBody::Data &dp = p.data(), &dq = q.data();
+  std::array<const Point3*, 3> ps, qs;
+  std::array<const PointBounds*, 3> pb, qb;
+  for (int j = 0; j < 3; ++j) {
+    if (d.p[j] >= dp.approx.size() || d.q[j] >= dq.approx.size())
+      throw UsageError("exact_values: the answer's vertices do not fit the bodies");
+    ps[j] = &dp.exact[d.p[j]], pb[j] = &dp.bounds[d.p[j]], qs[j] = &dq.exact[d.q[j]], qb[j] = &dq.bounds[d.q[j]];
+  }
+  const PlacedTriangle t(pose_p.map(), pose_q.map(), ps, pb, qs, qb);
+  return {t.squared_distance(), -t.nearest_point()};
 }
 
 }  // namespace minksum

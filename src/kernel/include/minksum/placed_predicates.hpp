@@ -272,6 +272,50 @@ class PlacedSimplexPoint {
   mutable std::unique_ptr<Exact> exact_;
 };
 
+// The plane through three points d_j = (A_p p_j + t_p) − (A_q q_j + t_q) of
+// the Minkowski difference D of placed P and placed Q, with normal
+// n = (d_1 − d_0) × (d_2 − d_0) and offset h = n · d_0 = det(d_0, d_1, d_2):
+// the faces of the certificate of a penetration depth under rigid motion
+// (rigid_proximity.hpp).  The plane's distance to the origin is
+// |h| / |n|.  Signs on intervals, then rationals, as above.
+class PlacedTriangle {
+ public:
+  PlacedTriangle(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 3>& p,
+                 const std::array<const PointBounds*, 3>& pb, const std::array<const Point3*, 3>& q,
+                 const std::array<const PointBounds*, 3>& qb);
+  ~PlacedTriangle();
+  PlacedTriangle(PlacedTriangle&&) noexcept;
+  // sign h = orient(0, d_0, d_1, d_2): positive when the origin lies
+  // strictly on the inner side of the plane (n points away from it).
+  int offset_sign() const;
+  // sign (h_a² |n_b|² − h_b² |n_a|²): whether a's plane is further from the
+  // origin than b's (degree 10 in the points).
+  friend int compare_distance(const PlacedTriangle& a, const PlacedTriangle& b);
+  // sign n · A_p (b − a) for points of P (b further than a along n: the
+  // climb to P's maximum of n · x) and sign −n · A_q (b − a) for points of
+  // Q (the climb to Q's minimum).
+  int climb_sign_p(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
+  int climb_sign_q(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
+  // An enclosure of h² / |n|² (the squared distance of the plane) and the
+  // exact value; the point (h / |n|²) n of the plane nearest the origin.
+  Bounds squared_distance_bounds() const;
+  Rational squared_distance() const;
+  Point3 nearest_point() const;
+  // Doubles near n / |n| (for the caller's doubles only).
+  Vec3d unit_normal() const;
+
+ private:
+  struct Exact;
+  const Exact& exact() const;
+  int climb_sign(bool on_p, const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
+  const PlacedMap *mp_, *mq_;
+  std::array<const Point3*, 3> p_, q_;
+  std::array<const PointBounds*, 3> pb_, qb_;
+  Bounds h_{}, nn_{};
+  std::array<Bounds, 3> n_{}, up_{}, uq_{};
+  mutable std::unique_ptr<Exact> exact_;
+};
+
 // How often the interval stage decided and how often the rationals did, on
 // the calling thread since it started (the doubles stage is not counted).
 struct PlacedPredicateCounts {

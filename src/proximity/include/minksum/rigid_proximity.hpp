@@ -81,8 +81,9 @@ enum class RigidCertificate : std::uint8_t {
   simplex,           // penetrating: a tetrahedron of D holding the origin strictly
   exact,             // built M exactly (touching, or undecided by the search)
   closest_points,    // separate, with its distance: closest points whose difference's plane supports both bodies
+  nearest_facet,     // penetrating, with its depth: a star of triangles of D around the origin, the nearest plane supporting D
 };
-// "separating_plane", "simplex", "exact", "closest_points".
+// "separating_plane", "simplex", "exact", "closest_points", "nearest_facet".
 const char* rigid_certificate_name(RigidCertificate c);
 
 struct RigidCollision {
@@ -108,7 +109,7 @@ struct RigidWarmStart {
 // Counters of the calling thread since it started: queries (collide and
 // distance) and how they were proved, GJK iterations, support-climb steps.
 struct RigidStats {
-  std::uint64_t queries = 0, separating_plane = 0, simplex = 0, exact = 0, closest_points = 0;
+  std::uint64_t queries = 0, separating_plane = 0, simplex = 0, exact = 0, closest_points = 0, nearest_facet = 0;
   std::uint64_t iterations = 0, climb_steps = 0;
 };
 RigidStats rigid_stats();
@@ -183,6 +184,61 @@ void distance(const RigidBody& p, std::span<const RigidPose> poses_p, const Rigi
 // the bodies.
 RigidDistanceExact exact_values(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q,
                                 const RigidPose& pose_q, const RigidDistance& d);
+
+// The exact values of a penetration-depth answer.
+struct RigidDepthExact {
+  Rational squared_depth;  // 0 unless penetrating
+  Point3 direction;        // the shortest translation of P that brings the bodies out of overlap (0 unless penetrating)
+};
+
+// Penetration depth of placed P and placed Q: dist(0, ∂D) for D = P′ ⊕
+// (−Q′) when the origin is inside D, and the shortest translation of P
+// that ends the overlap.
+//
+// The search is GJK (a tetrahedron of D holding the origin), then EPA
+// (G. van den Bergen, "Proximity queries and penetration depth computation
+// on 3D game objects", Game Developers Conference 2001) in doubles: a closed
+// surface of triangles with vertices in D, grown towards ∂D.  The answer is
+// certified (nearest_facet) when, in exact signs (PlacedTriangle):
+//   * the triangles form a closed, consistently oriented surface of genus 0
+//     (every directed edge has its reverse once, V − E + F = 2) and the
+//     origin lies strictly inside every triangle's plane: then the cones
+//     from the origin over the triangles tile space (the radial projection
+//     is a covering of the sphere by a sphere, hence one sheet), so every
+//     ray from the origin leaves their union through one triangle;
+//   * the plane of one triangle F is no further from the origin than any
+//     other's: the ball of radius r = dist(0, plane F) lies in the union,
+//     which lies in D (its vertices are points of D), so depth ≥ r;
+//   * F's plane supports D: for one of F's pairs (p_a, q_a), p_a maximises
+//     n · x over placed P and q_a minimises it over placed Q (no neighbour
+//     further): then D lies on one side of F's plane, so depth ≤ r.
+// Answers that are not penetrating are collide's (depth 0); anything the
+// search leaves undecided is answered on M built exactly (exact).
+struct RigidDepth {
+  ContactStatus status = ContactStatus::separate;
+  RigidCertificate certificate = RigidCertificate::exact;
+  // lower ≤ depth ≤ upper, certified (0 unless penetrating), and a double
+  // within them.  The exact value: exact_values().
+  double depth = 0, lower = 0, upper = 0;
+  // nearest_facet: the three pairs of vertices (of P and of Q as given)
+  // whose differences span F; otherwise kNoIndex.
+  std::array<Index, 3> p{kNoIndex, kNoIndex, kNoIndex}, q{kNoIndex, kNoIndex, kNoIndex};
+  // Doubles near the shortest translation of P out of overlap.
+  Vec3d direction;
+  // exact: the exact values, found while answering (on M).
+  std::shared_ptr<const RigidDepthExact> exact;
+};
+
+RigidDepth penetration_depth(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                             RigidWarmStart* warm = nullptr);
+void penetration_depth(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
+                       std::span<const RigidPose> poses_q, std::span<RigidDepth> out, unsigned threads = 0);
+// The exact squared depth and translation of an answer of
+// penetration_depth() for the same bodies and poses.
+RigidDepthExact exact_values(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                             const RigidDepth& d);
+// The same on M built exactly (a reference).
+RigidDepthExact depth_exact(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q);
 
 // The exact answer by building M = R_P P ⊕ (−R_Q Q) (the fall-back above,
 // on its own: an independent check of the search; O(cost of the sum)).

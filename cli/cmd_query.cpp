@@ -77,12 +77,13 @@ Options:
                         time per pose (exact values are computed when
                         printed).
   Under a rotation (--rotate-p, --rotate-q, or rp=/rq= in effect on a
-  trajectory line) collide and distance are answered on the placed bodies
-  without computing M (exact, certified: a separating plane, a tetrahedron
-  of P − Q holding the origin, closest points whose planes support both
-  bodies, or M built exactly where the search cannot decide — touching
-  poses); the answer names its certificate instead of a facet of M.  depth
-  and ddepth recompute M when a rotation changes.
+  trajectory line) collide, distance and depth are answered on the placed
+  bodies without computing M (exact, certified: a separating plane, a
+  tetrahedron of P − Q holding the origin, closest points whose planes
+  support both bodies, a closed star of triangles of P − Q around the origin
+  whose nearest plane supports it, or M built exactly where the search
+  cannot decide — touching poses); the answer names its certificate instead
+  of a facet of M.  ddepth recomputes M when a rotation changes.
   --json                print JSON: query, status, squared_distance /
                         squared_depth / t as exact rationals in strings
                         ("p/q" or an integer), distance / depth (double;
@@ -216,7 +217,23 @@ std::string format_rigid(ContactStatus status, const char* certificate, const Ri
   return o.str();
 }
 
-// The answers for rigid poses (collide or distance, kind), one line each:
+std::string format_rigid_depth(ContactStatus status, const char* certificate, const RigidDepthExact& e, double sec,
+                               bool json, const char* kind_name) {
+  std::ostringstream o;
+  const double depth = std::sqrt(to_double(e.squared_depth));
+  if (json)
+    o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(status)
+      << "\", \"squared_depth\": \"" << format_exact(e.squared_depth) << "\", \"depth\": " << json_number(depth)
+      << ", \"direction\": " << exact_vector_json(e.direction) << ", \"certificate\": \"" << certificate
+      << "\", \"seconds\": " << json_number(sec) << "}";
+  else
+    o << contact_status_name(status) << "  depth² = " << format_exact(e.squared_depth) << "  depth ≈ "
+      << format_double(depth) << "  translate P by " << vector_text(e.direction) << "  [certificate: " << certificate
+      << (std::string(certificate) == "exact" ? ", M built exactly for this pose]" : ", without M]");
+  return o.str();
+}
+
+// The answers for rigid poses (collide, distance or depth), one line each:
 // the library's batch over the poses on the calling thread, warm-started
 // from pose to pose.
 std::vector<std::string> answer_rigid(const RigidBody& bp, const RigidBody& bq, Kind kind,
@@ -235,6 +252,14 @@ std::vector<std::string> answer_rigid(const RigidBody& bp, const RigidBody& bq, 
     const double sec = per_query();
     for (std::size_t i = 0; i < pp.size(); ++i)
       lines[i] = format_rigid(r[i].status, rigid_certificate_name(r[i].certificate), nullptr, sec, json, kind_name);
+  } else if (kind == Kind::depth) {
+    std::vector<RigidDepth> r(pp.size());
+    for (std::size_t i = 0; i < pp.size(); ++i) r[i] = penetration_depth(bp, pp[i], bq, pq[i], &warm);
+    const double sec = per_query();
+    for (std::size_t i = 0; i < pp.size(); ++i) {
+      const RigidDepthExact e = exact_values(bp, pp[i], bq, pq[i], r[i]);
+      lines[i] = format_rigid_depth(r[i].status, rigid_certificate_name(r[i].certificate), e, sec, json, kind_name);
+    }
   } else {
     std::vector<RigidDistance> r(pp.size());
     for (std::size_t i = 0; i < pp.size(); ++i) r[i] = distance(bp, pp[i], bq, pq[i], &warm);
@@ -346,7 +371,7 @@ int run_query(const std::vector<std::string>& argv) {
   const ConvexPolytope& p0 = ps.polytope();
   const ConvexPolytope& q0 = qs.polytope();
   // collide and distance under a rotation: on the placed bodies (no M).
-  const bool rigid_kind = kind == Kind::collide || kind == Kind::distance;
+  const bool rigid_kind = kind != Kind::ddepth;
   std::optional<RigidBody> bp, bq;
   const auto rigid_pose = [](const std::optional<Quaternion>& r, const Point3& t) {
     return r ? RigidPose::quaternion(*r, t) : RigidPose::translation(t);

@@ -541,7 +541,7 @@ TEST_F(Cli, QueryJsonClosestPointsExact) {
   EXPECT_NE(t.out.find("closest points (1, 1/6, 0) on P, (2, 1/6, 0) on Q"), std::string::npos) << t.out;
 }
 
-// Under --rotate-q, collide and distance are answered on the placed bodies
+// Under --rotate-q, collide, distance and depth are answered on the placed bodies
 // (no M): the same exact values as on M of the rotated operand, with the
 // certificate named; a trajectory that turns does not compute M.
 TEST_F(Cli, QueryUnderRotationWithoutM) {
@@ -557,6 +557,11 @@ TEST_F(Cli, QueryUnderRotationWithoutM) {
   };
   for (const char* key : {"squared_distance", "point_p_exact", "point_q_exact", "direction"})
     EXPECT_EQ(field(rigid.out, key), field(on_m.out, key)) << key << "\n" << rigid.out << "\n" << on_m.out;
+  const CmdResult deep = run("query depth cube dodecahedron --rotate-q 1,2,3,4 --translate-q 1/2,1/3,0 --json");
+  const CmdResult deep_m = run("query depth cube dodecahedron@rot:1,2,3,4 --translate-q 1/2,1/3,0 --json");
+  EXPECT_NE(deep.out.find(R"("certificate": "nearest_facet")"), std::string::npos) << deep.out;
+  for (const char* key : {"squared_depth", "direction"})
+    EXPECT_EQ(field(deep.out, key), field(deep_m.out, key)) << key << "\n" << deep.out << "\n" << deep_m.out;
   // Touching corner to corner: decided on M built exactly for that pose.
   const CmdResult touch = run("query collide cube cube --rotate-q 1,0,0,0 --translate-q 2,2,2");
   EXPECT_NE(touch.out.find("touching  [certificate: exact, M built exactly for this pose]"), std::string::npos)

@@ -777,3 +777,43 @@ TEST(RigidDepth, AgreesWithTheExactObstacleOnRandomPoses) {
   expect_depths_agree("sphere:2", "random:50:2", 40, 0.8, 94, 0);
   expect_depths_agree("cube@scale:1/3", "tetra@rot:2", 40, 0.3, 95, 0);
 }
+
+TEST(RigidDepth, AxisAlignedOverlapAndContactsAtAHair) {
+  // Aligned cubes overlapping by 1/2 along x: D's nearest facet is a square
+  // (the surface's triangles on it are coplanar: ties decided exactly).
+  const RigidBody cube(catalog_polytope("cube"));
+  const RigidPose pq = RigidPose::translation(Point3(Rational(3, 2), Rational(1, 5), Rational(-1, 7)));
+  const RigidDepth d = penetration_depth(cube, RigidPose(), cube, pq);
+  expect_depth_agrees(cube, RigidPose(), cube, pq, d, "aligned cubes");
+  const RigidDepthExact e = exact_values(cube, RigidPose(), cube, pq, d);
+  EXPECT_EQ(e.squared_depth, Rational(1, 4));
+  EXPECT_EQ(e.direction, Point3(Rational(-1, 2), 0, 0));
+  // The contacts of RigidCollide.ExactlyTouchingPoses pushed 2^-40 in: the
+  // depth is 2^-40 exactly, upwards; at contact 0 (touching), above 0.
+  const Rational hair(1, Integer(1) << 40);
+  const std::array<double, 9> none{};
+  for (const auto& [quat, what] : std::vector<std::pair<Quaternion, std::string>>{
+           {{Integer(2), Integer(0), Integer(0), Integer(1)}, "face-face"},
+           {{Integer(2), Integer(1), Integer(0), Integer(0)}, "edge-face"},
+           {{Integer(1), Integer(2), Integer(3), Integer(4)}, "vertex-face"}}) {
+    const PlacedMap rot = PlacedMap::rotation(quat, P(0, 0, 0));
+    const Index low = lowest(cube.polytope(), rot);
+    for (const Rational& dz : std::vector<Rational>{Rational(-hair), Rational(0), hair}) {
+      const RigidPose pose = on_top(cube.polytope(), rot, low, Rational(1, 3), 0, dz, false, none);
+      const RigidDepth r = penetration_depth(cube, RigidPose(), cube, pose);
+      expect_depth_agrees(cube, RigidPose(), cube, pose, r, what + ", dz " + dz.get_str());
+      const RigidDepthExact x = exact_values(cube, RigidPose(), cube, pose, r);
+      if (sgn(dz) < 0) {
+        EXPECT_EQ(x.squared_depth, hair * hair) << what;
+        EXPECT_EQ(x.direction, Point3(0, 0, -hair)) << what;
+      } else {
+        EXPECT_EQ(x.squared_depth, 0) << what;
+      }
+    }
+  }
+  std::vector<RigidDepth> out(2);
+  const std::vector<RigidPose> poses{RigidPose(), pq};
+  penetration_depth(cube, std::span<const RigidPose>(poses.data(), 1), cube, poses, out, 1);
+  EXPECT_EQ(exact_values(cube, RigidPose(), cube, pq, out[1]).squared_depth, Rational(1, 4));
+  EXPECT_EQ(out[0].status, ContactStatus::penetrating);  // the same cube twice
+}

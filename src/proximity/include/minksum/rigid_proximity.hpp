@@ -1,5 +1,7 @@
-// minksum — exact collision of two convex polytopes each under its own pose
-// (rotation and translation), without building P ⊕ (−Q).
+// minksum — exact collision, separation distance and penetration depth of
+// two convex polytopes each under its own pose (rotation and translation),
+// without building P ⊕ (−Q).  Collision is described here; distance and
+// depth below, at their functions.
 //
 // P is placed by x ↦ R_P x + t_P and Q by x ↦ R_Q x + t_Q.  A rotation is an
 // integer quaternion (the exact rational matrix of transform.hpp, as

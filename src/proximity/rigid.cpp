@@ -851,35 +851,60 @@ bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, con
     if (alive[k]->dist < alive[nearest]->dist) nearest = k;
   }
   const PlacedTriangle& F = tris[nearest];
-  for (int k = 0; k < nf; ++k)
-    if (k != nearest && compare_distance(tris[k], F) < 0) return false;
-  // F's plane supports D, checked at the pair of F's vertex 0.  A
-  // neighbour w of p_a is level by construction when F has the pairs
-  // (w, q_i) and (p_a, q_i): n · (d − d′) = 0 for two vertices of F (and
-  // likewise on Q).
   const EpaFace& f = *alive[nearest];
-  const Index ia = verts[f.v[0]].p, ja = verts[f.v[0]].q;
-  const auto has = [&](Index pv, Index qv) {
-    for (int j = 0; j < 3; ++j)
-      if (verts[f.v[j]].p == pv && verts[f.v[j]].q == qv) return true;
-    return false;
+  // The vertices of P (of Q) level with F's vertex 0 along F's normal n by
+  // construction: n is orthogonal to d_j − d_i for F's pairs i, j, so
+  // n · (p_j′ − p_i′) = 0 when q_i = q_j (and n · (q_j′ − q_i′) = 0 when
+  // p_i = p_j).  Three distinct vertices of P so joined span F's plane (h ≠
+  // 0 was proved, so n ≠ 0 and they are not collinear): when a facet of P
+  // holds them, all its vertices are level.  The climbs skip level
+  // neighbours, and a triangle whose pairs are all level on both sides lies
+  // in F's plane (no comparison needed).
+  std::array<Index, 3> fp, fq;
+  for (int j = 0; j < 3; ++j) fp[j] = verts[f.v[j]].p, fq[j] = verts[f.v[j]].q;
+  std::vector<Index> level_p{fp[0]}, level_q{fq[0]};
+  const auto in = [](const std::vector<Index>& v, Index x) { return std::find(v.begin(), v.end(), x) != v.end(); };
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        if (fq[i] == fq[j] && in(level_p, fp[i]) && !in(level_p, fp[j])) level_p.push_back(fp[j]), grew = true;
+        if (fp[i] == fp[j] && in(level_q, fq[i]) && !in(level_q, fq[j])) level_q.push_back(fq[j]), grew = true;
+      }
+  }
+  const auto facet_of = [](const ConvexPolytope& poly, std::vector<Index>& level) {
+    if (level.size() < 3) return;
+    const Index h0 = poly.vertex_halfedge(level[0]);
+    Index h = h0;
+    do {
+      const std::vector<Index> fv = poly.facet_vertices(poly.facet(h));
+      bool all = true;
+      for (Index x : level) all = all && std::find(fv.begin(), fv.end(), x) != fv.end();
+      if (all) {
+        for (Index x : fv)
+          if (std::find(level.begin(), level.end(), x) == level.end()) level.push_back(x);
+        return;
+      }
+      h = poly.next_around_vertex(h);
+    } while (h != h0);
   };
-  const auto level_p = [&](Index w) {
-    for (int j = 0; j < 3; ++j)
-      if (verts[f.v[j]].p == w && has(ia, verts[f.v[j]].q)) return true;
-    return false;
-  };
-  const auto level_q = [&](Index w) {
-    for (int j = 0; j < 3; ++j)
-      if (verts[f.v[j]].q == w && has(verts[f.v[j]].p, ja)) return true;
-    return false;
-  };
+  facet_of(dp.poly, level_p);
+  facet_of(dq.poly, level_q);
+  for (int k = 0; k < nf; ++k) {
+    if (k == nearest) continue;
+    bool coplanar = true;
+    for (int j = 0; j < 3 && coplanar; ++j)
+      coplanar = in(level_p, verts[alive[k]->v[j]].p) && in(level_q, verts[alive[k]->v[j]].q);
+    if (!coplanar && compare_distance(tris[k], F) < 0) return false;
+  }
+  // F's plane supports D, checked at F's vertex 0.
+  const Index ia = fp[0], ja = fq[0];
   for (Index e = dp.first[ia]; e < dp.first[ia + 1]; ++e)
-    if (!level_p(dp.nbr[e]) &&
+    if (!in(level_p, dp.nbr[e]) &&
         F.climb_sign_p(dp.exact[ia], dp.bounds[ia], dp.exact[dp.nbr[e]], dp.bounds[dp.nbr[e]]) > 0)
       return false;
   for (Index e = dq.first[ja]; e < dq.first[ja + 1]; ++e)
-    if (!level_q(dq.nbr[e]) &&
+    if (!in(level_q, dq.nbr[e]) &&
         F.climb_sign_q(dq.exact[ja], dq.bounds[ja], dq.exact[dq.nbr[e]], dq.bounds[dq.nbr[e]]) > 0)
       return false;
   for (int j = 0; j < 3; ++j) r.p[j] = verts[f.v[j]].p, r.q[j] = verts[f.v[j]].q;

@@ -77,13 +77,13 @@ Options:
                         time per pose (exact values are computed when
                         printed).
   Under a rotation (--rotate-p, --rotate-q, or rp=/rq= in effect on a
-  trajectory line) collide, distance and depth are answered on the placed
-  bodies without computing M (exact, certified: a separating plane, a
+  trajectory line) every query is answered on the placed bodies without
+  computing M (exact, certified: a separating plane, a
   tetrahedron of P − Q holding the origin, closest points whose planes
   support both bodies, a closed star of triangles of P − Q around the origin
-  whose nearest plane supports it, or M built exactly where the search
-  cannot decide — touching poses); the answer names its certificate instead
-  of a facet of M.  ddepth recomputes M when a rotation changes.
+  whose nearest plane supports it, the triangle of P − Q the ray leaves by,
+  or M built exactly where the search cannot decide — touching poses); the
+  answer names its certificate instead of a facet of M.
   --json                print JSON: query, status, squared_distance /
                         squared_depth / t as exact rationals in strings
                         ("p/q" or an integer), distance / depth (double;
@@ -237,8 +237,9 @@ std::string format_rigid_depth(ContactStatus status, const char* certificate, co
 // the library's batch over the poses on the calling thread, warm-started
 // from pose to pose.
 std::vector<std::string> answer_rigid(const RigidBody& bp, const RigidBody& bq, Kind kind,
-                                      const std::vector<RigidPose>& pp, const std::vector<RigidPose>& pq, bool json,
-                                      const char* kind_name, double& total, RigidWarmStart& warm) {
+                                      const std::vector<RigidPose>& pp, const std::vector<RigidPose>& pq,
+                                      const Point3& d, bool json, const char* kind_name, double& total,
+                                      RigidWarmStart& warm) {
   std::vector<std::string> lines(pp.size());
   const auto t0 = std::chrono::steady_clock::now();
   auto per_query = [&] {
@@ -252,6 +253,27 @@ std::vector<std::string> answer_rigid(const RigidBody& bp, const RigidBody& bq, 
     const double sec = per_query();
     for (std::size_t i = 0; i < pp.size(); ++i)
       lines[i] = format_rigid(r[i].status, rigid_certificate_name(r[i].certificate), nullptr, sec, json, kind_name);
+  } else if (kind == Kind::ddepth) {
+    std::vector<RigidDirectionalDepth> r(pp.size());
+    for (std::size_t i = 0; i < pp.size(); ++i) r[i] = directional_depth(bp, pp[i], bq, pq[i], d, &warm);
+    const double sec = per_query();
+    for (std::size_t i = 0; i < pp.size(); ++i) {
+      const Rational t = exact_values(bp, pp[i], bq, pq[i], d, r[i]);
+      const Point3 move = t * d;
+      const double depth = std::sqrt(to_double(dot(move, move)));
+      const char* cert = rigid_certificate_name(r[i].certificate);
+      std::ostringstream o;
+      if (json)
+        o << "{\"query\": \"" << kind_name << "\", \"status\": \"" << contact_status_name(r[i].status)
+          << "\", \"t\": \"" << format_exact(t) << "\", \"depth\": " << json_number(depth)
+          << ", \"direction\": " << exact_vector_json(move) << ", \"certificate\": \"" << cert
+          << "\", \"seconds\": " << json_number(sec) << "}";
+      else
+        o << contact_status_name(r[i].status) << "  t = " << format_exact(t) << "  depth ≈ " << format_double(depth)
+          << "  translate P by " << vector_text(move) << "  [certificate: " << cert
+          << (std::string(cert) == "exact" ? ", M built exactly for this pose]" : ", without M]");
+      lines[i] = o.str();
+    }
   } else if (kind == Kind::depth) {
     std::vector<RigidDepth> r(pp.size());
     for (std::size_t i = 0; i < pp.size(); ++i) r[i] = penetration_depth(bp, pp[i], bq, pq[i], &warm);
@@ -371,7 +393,7 @@ int run_query(const std::vector<std::string>& argv) {
   const ConvexPolytope& p0 = ps.polytope();
   const ConvexPolytope& q0 = qs.polytope();
   // collide and distance under a rotation: on the placed bodies (no M).
-  const bool rigid_kind = kind != Kind::ddepth;
+  const bool rigid_kind = true;  // every kind is answered on the placed bodies under a rotation
   std::optional<RigidBody> bp, bq;
   const auto rigid_pose = [](const std::optional<Quaternion>& r, const Point3& t) {
     return r ? RigidPose::quaternion(*r, t) : RigidPose::translation(t);
@@ -397,7 +419,7 @@ int run_query(const std::vector<std::string>& argv) {
   if (!trajectory) {
     double total = 0;
     if (rigid_for(rp, rq))
-      std::cout << answer_rigid(*bp, *bq, kind, {rigid_pose(rp, u)}, {rigid_pose(rq, w)}, json, kind_name.c_str(),
+      std::cout << answer_rigid(*bp, *bq, kind, {rigid_pose(rp, u)}, {rigid_pose(rq, w)}, d, json, kind_name.c_str(),
                                 total, warm)[0]
                 << "\n";
     else
@@ -436,7 +458,7 @@ int run_query(const std::vector<std::string>& argv) {
       std::vector<RigidPose> pp, pq;
       for (std::size_t i = 0; i < bu.size(); ++i)
         pp.push_back(rigid_pose(cur_rp, bu[i])), pq.push_back(rigid_pose(cur_rq, bw[i]));
-      out = answer_rigid(*bp, *bq, kind, pp, pq, json, kind_name.c_str(), total, warm);
+      out = answer_rigid(*bp, *bq, kind, pp, pq, d, json, kind_name.c_str(), total, warm);
       rigid_poses += bu.size();
     } else {
       out = answer_batch(obstacle(cur_rp, cur_rq), kind, bu, bw, d, json, kind_name.c_str(), total);

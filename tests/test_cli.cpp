@@ -562,6 +562,12 @@ TEST_F(Cli, QueryUnderRotationWithoutM) {
   EXPECT_NE(deep.out.find(R"("certificate": "nearest_facet")"), std::string::npos) << deep.out;
   for (const char* key : {"squared_depth", "direction"})
     EXPECT_EQ(field(deep.out, key), field(deep_m.out, key)) << key << "\n" << deep.out << "\n" << deep_m.out;
+  const std::string dd = " --translate-q 1/2,1/3,0 --direction 1,2,0 --json";
+  const CmdResult dir = run("query ddepth cube dodecahedron --rotate-q 1,2,3,4" + dd);
+  const CmdResult dir_m = run("query ddepth cube dodecahedron@rot:1,2,3,4" + dd);
+  EXPECT_NE(dir.out.find(R"("certificate": "exit_facet")"), std::string::npos) << dir.out;
+  for (const char* key : {"t", "direction"})
+    EXPECT_EQ(field(dir.out, key), field(dir_m.out, key)) << key << "\n" << dir.out << "\n" << dir_m.out;
   // Touching corner to corner: decided on M built exactly for that pose.
   const CmdResult touch = run("query collide cube cube --rotate-q 1,0,0,0 --translate-q 2,2,2");
   EXPECT_NE(touch.out.find("touching  [certificate: exact, M built exactly for this pose]"), std::string::npos)

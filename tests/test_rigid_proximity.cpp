@@ -817,3 +817,40 @@ TEST(RigidDepth, AxisAlignedOverlapAndContactsAtAHair) {
   EXPECT_EQ(exact_values(cube, RigidPose(), cube, pq, out[1]).squared_depth, Rational(1, 4));
   EXPECT_EQ(out[0].status, ContactStatus::penetrating);  // the same cube twice
 }
+
+TEST(RigidDirectionalDepth, AgreesWithTheExactObstacleOnRandomPoses) {
+  // Random poses and random directions (exact: doubles and p/q); every α
+  // equal to M's; moved by α·d, P touches Q exactly.
+  for (const auto& [a, b, spread, seed] : std::vector<std::tuple<std::string, std::string, double, std::uint64_t>>{
+           {"cube", "cube", 1.0, 101}, {"dodecahedron", "cube@rot:3", 1.0, 102}, {"sphere:2", "random:50:2", 0.8, 103},
+           {"cube@scale:1/3", "tetra@rot:2", 0.3, 104}}) {
+    const RigidBody pa(catalog_polytope(a)), pb(catalog_polytope(b));
+    Rng r(seed);
+    RigidWarmStart warm;
+    int penetrating = 0;
+    const RigidStats before = rigid_stats();
+    for (int i = 0; i < 40; ++i) {
+      const RigidPose pp = random_pose(r, spread, i % 3 == 0), pq = random_pose(r, spread, i % 3 == 1);
+      const Point3 d = i % 2 ? Point3(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1))
+                             : Point3(Rational(r.integer(-5, 5)), Rational(1, 3), Rational(r.integer(1, 4)));
+      const std::string what = a + " / " + b + ", seed " + std::to_string(seed) + ", pose " + std::to_string(i);
+      const RigidDirectionalDepth dd = directional_depth(pa, pp, pb, pq, d, &warm);
+      const Rational want = directional_depth_exact(pa, pp, pb, pq, d);
+      const Rational got = exact_values(pa, pp, pb, pq, d, dd);
+      EXPECT_EQ(got, want) << what;
+      EXPECT_LE(Rational(dd.lower), want) << what;
+      EXPECT_GE(Rational(dd.upper), want) << what;
+      if (dd.status != ContactStatus::penetrating) continue;
+      ++penetrating;
+      std::array<std::array<Rational, 3>, 3> m;
+      for (int x = 0; x < 3; ++x)
+        for (int y = 0; y < 3; ++y) m[x][y] = pp.map().a(x, y);
+      EXPECT_EQ(collide_exact(pa, RigidPose(PlacedMap(m, pp.map().t() + got * d)), pb, pq), ContactStatus::touching)
+          << what;
+    }
+    EXPECT_GT(penetrating, 20) << a;
+    EXPECT_EQ(rigid_stats().exact - before.exact, 0u) << a << " / " << b;
+  }
+  const RigidBody cube(catalog_polytope("cube"));
+  EXPECT_THROW(directional_depth(cube, RigidPose(), cube, RigidPose(), Point3(0, 0, 0)), UsageError);
+}

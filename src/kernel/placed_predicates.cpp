@@ -590,6 +590,7 @@ Rational PlacedSimplexPoint::lambda(int j) const {
 
 struct PlacedTriangle::Exact {
   Point3 n;
+  std::array<Point3, 3> d;  // the points over `scale`
   Rational h, nn;  // of the points over `scale`: the squared distance is h² / nn · scale²
   Rational scale, scale2;
   mutable std::optional<Point3> up, uq;  // A_pᵀ n, −A_qᵀ n (climbs only)
@@ -605,6 +606,7 @@ PlacedTriangle::PlacedTriangle(const PlacedMap& mp, const PlacedMap& mq, const s
   const FastIPoint n = cross(d[1] - d[0], d[2] - d[0]);
   const FastInterval h = dot(n, d[0]), nn = dot(n, n);
   h_ = to_bounds(h), nn_ = to_bounds(nn);
+  for (int j = 0; j < 3; ++j) d_[j] = {to_bounds(d[j].x), to_bounds(d[j].y), to_bounds(d[j].z)};
   n_ = {to_bounds(n.x), to_bounds(n.y), to_bounds(n.z)};
   const FastIPoint up = pull(mp, n), uq = -pull(mq, n);
   up_ = {to_bounds(up.x), to_bounds(up.y), to_bounds(up.z)};
@@ -622,6 +624,7 @@ const PlacedTriangle::Exact& PlacedTriangle::exact() const {
   e->scale = scale;
   e->scale2 = scale * scale;
   for (int j = 0; j < 3; ++j) d[j] = pp[j] - qp[j];
+  e->d = d;
   e->n = cross(d[1] - d[0], d[2] - d[0]);
   e->h = dot(e->n, d[0]);
   e->nn = dot(e->n, e->n);
@@ -698,6 +701,51 @@ Point3 PlacedTriangle::nearest_point() const {
   if (sgn(e.nn) == 0) throw std::invalid_argument("PlacedTriangle: the points are collinear");
   // (h / nn) n has degree 1 in the points: the scale once.
   return Rational(e.h / e.nn * e.scale) * e.n;
+}
+
+int PlacedTriangle::edge_sign(int i, const Point3& u, const PointBounds& ub) const {
+  if (i < 0 || i > 2) throw std::invalid_argument("PlacedTriangle: no such edge");
+  const int j = (i + 1) % 3;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const auto pt = [](const std::array<Bounds, 3>& b) { return FastIPoint{iv(b[0]), iv(b[1]), iv(b[2])}; };
+    const int s = sign_det(pt(d_[i]), pt(d_[j]), iv(ub));
+    if (s != kUncertain) {
+      ++g_counts.filtered;
+      return s;
+    }
+  }
+  const Exact& e = exact();
+  return exact_sign(det3(e.d[i], e.d[j], u));
+}
+
+int PlacedTriangle::direction_sign(const Point3& u, const PointBounds& ub) const {
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const FastIPoint x = iv(ub);
+    const int s = sign_of(iv(n_[0]) * x.x + iv(n_[1]) * x.y + iv(n_[2]) * x.z);
+    if (s != kUncertain) {
+      ++g_counts.filtered;
+      return s;
+    }
+  }
+  return exact_sign(dot(exact().n, u));
+}
+
+Rational PlacedTriangle::ray_parameter(const Point3& u) const {
+  const Exact& e = exact();
+  const Rational nu = dot(e.n, u);
+  if (sgn(nu) == 0) throw std::invalid_argument("PlacedTriangle: the ray is parallel to the plane");
+  // h has degree 3 in the points, n · u degree 2: the scale once.
+  return e.h / nu * e.scale;
+}
+
+Bounds PlacedTriangle::ray_parameter_bounds(const PointBounds& ub) const {
+  CGAL::Protect_FPU_rounding<true> upward;
+  const FastIPoint x = iv(ub);
+  const FastInterval nu = iv(n_[0]) * x.x + iv(n_[1]) * x.y + iv(n_[2]) * x.z;
+  if (nu.inf() > 0 || nu.sup() < 0) return to_bounds(iv(h_) / nu);
+  return {-std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
 }
 
 Vec3d PlacedTriangle::unit_normal() const {

@@ -323,6 +323,8 @@ const char* rigid_certificate_name(RigidCertificate c) {
       return "closest_points";
     case RigidCertificate::nearest_facet:
       return "nearest_facet";
+    case RigidCertificate::exit_facet:
+      return "exit_facet";
   }
   return "exact";
 }
@@ -472,6 +474,7 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
       break;
     case RigidCertificate::closest_points:  // not answers of collide
     case RigidCertificate::nearest_facet:
+    case RigidCertificate::exit_facet:
       break;
   }
   if (warm) {
@@ -674,7 +677,8 @@ RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidB
     case RigidCertificate::closest_points:
       ++g_stats.closest_points;
       break;
-    case RigidCertificate::nearest_facet:  // not an answer of distance
+    case RigidCertificate::nearest_facet:  // not answers of distance
+    case RigidCertificate::exit_facet:
       break;
     case RigidCertificate::simplex:
       ++g_stats.simplex;
@@ -766,10 +770,13 @@ bool epa_face(const std::vector<SimplexVertex>& verts, int a, int b, int c, EpaF
   return true;
 }
 
-// Grows the tetrahedron s (holding the origin) towards ∂D in doubles.
-// False when the search degenerates (the certificate is then not tried).
-bool epa(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<SimplexVertex>& verts,
-         std::vector<EpaFace>& faces) {
+// Grows the tetrahedron s (holding the origin) towards ∂D in doubles, each
+// time at the face `select` picks (EPA: the nearest; a ray: the one it
+// crosses), until the support along that face's normal brings no new
+// vertex.  False when the search degenerates (no certificate is tried).
+template <class Select>
+bool grow(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<SimplexVertex>& verts,
+          std::vector<EpaFace>& faces, const Select& select) {
   verts.assign(s.begin(), s.end());
   faces.clear();
   static constexpr int tri[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
@@ -782,9 +789,7 @@ bool epa(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<Sim
   std::vector<std::pair<int, int>> edges;
   for (int it = 0; it < 4 * kMaxIterations; ++it) {
     ++g_stats.iterations;
-    int best = -1;
-    for (int k = 0; k < int(faces.size()); ++k)
-      if (faces[k].alive && (best < 0 || faces[k].dist < faces[best].dist)) best = k;
+    const int best = select(verts, faces);
     if (best < 0) return false;
     const EpaFace f = faces[best];
     const SimplexVertex& a0 = verts[f.v[0]];
@@ -815,6 +820,105 @@ bool epa(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<Sim
   return false;
 }
 
+int nearest_face(const std::vector<SimplexVertex>&, const std::vector<EpaFace>& faces) {
+  int best = -1;
+  for (int k = 0; k < int(faces.size()); ++k)
+    if (faces[k].alive && (best < 0 || faces[k].dist < faces[best].dist)) best = k;
+  return best;
+}
+
+// The face whose cone from the origin holds the direction u best (the
+// largest of the smallest of its three edge determinants, normalised).
+struct CrossedFace {
+  V3 u;
+  int operator()(const std::vector<SimplexVertex>& verts, const std::vector<EpaFace>& faces) const {
+    int best = -1;
+    double best_score = -std::numeric_limits<double>::infinity();
+    for (int k = 0; k < int(faces.size()); ++k) {
+      if (!faces[k].alive) continue;
+      double score = std::numeric_limits<double>::infinity();
+      for (int e = 0; e < 3; ++e) {
+        const V3 a = verts[faces[k].v[e]].w, b = verts[faces[k].v[(e + 1) % 3]].w;
+        const V3 c = cross(a, b);
+        const double l = std::sqrt(dot(c, c));
+        score = std::min(score, l > 0 ? dot(c, u) / l : 0.0);
+      }
+      if (dot(faces[k].n, u) > 0 && score > best_score) best = k, best_score = score;
+    }
+    return best;
+  }
+};
+
+// The vertices of P (of Q) level with the vertex 0 of the triangle f of
+// D along its normal n by construction: n is orthogonal to d_j − d_i for
+// f's pairs i, j, so n · (p_j′ − p_i′) = 0 when q_i = q_j (and n · (q_j′ −
+// q_i′) = 0 when p_i = p_j).  Three distinct vertices of P so joined span
+// f's plane (once h ≠ 0 is proved, n ≠ 0 and they are not collinear): when a
+// facet of P holds them, all its vertices are level.
+struct LevelSets {
+  std::vector<Index> p, q;
+};
+bool in(const std::vector<Index>& v, Index x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+
+LevelSets level_sets(const Query& qu, const std::vector<SimplexVertex>& verts, const EpaFace& f) {
+  std::array<Index, 3> fp, fq;
+  for (int j = 0; j < 3; ++j) fp[j] = verts[f.v[j]].p, fq[j] = verts[f.v[j]].q;
+  LevelSets l{{fp[0]}, {fq[0]}};
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        if (fq[i] == fq[j] && in(l.p, fp[i]) && !in(l.p, fp[j])) l.p.push_back(fp[j]), grew = true;
+        if (fp[i] == fp[j] && in(l.q, fq[i]) && !in(l.q, fq[j])) l.q.push_back(fq[j]), grew = true;
+      }
+  }
+  const auto facet_of = [](const ConvexPolytope& poly, std::vector<Index>& level) {
+    if (level.size() < 3) return;
+    const Index h0 = poly.vertex_halfedge(level[0]);
+    Index h = h0;
+    do {
+      const std::vector<Index> fv = poly.facet_vertices(poly.facet(h));
+      bool all = true;
+      for (Index x : level) all = all && std::find(fv.begin(), fv.end(), x) != fv.end();
+      if (all) {
+        for (Index x : fv)
+          if (!in(level, x)) level.push_back(x);
+        return;
+      }
+      h = poly.next_around_vertex(h);
+    } while (h != h0);
+  };
+  facet_of(qu.dp.poly, l.p);
+  facet_of(qu.dq.poly, l.q);
+  return l;
+}
+
+// Whether the plane of F supports D, checked at the pair (ia, ja) of F:
+// no neighbour of ia further along n on placed P, none of ja further back
+// on placed Q (level neighbours skipped).
+bool plane_supports(const Query& qu, const PlacedTriangle& F, const LevelSets& level, Index ia, Index ja) {
+  const RigidBody::Data &dp = qu.dp, &dq = qu.dq;
+  for (Index e = dp.first[ia]; e < dp.first[ia + 1]; ++e)
+    if (!in(level.p, dp.nbr[e]) &&
+        F.climb_sign_p(dp.exact[ia], dp.bounds[ia], dp.exact[dp.nbr[e]], dp.bounds[dp.nbr[e]]) > 0)
+      return false;
+  for (Index e = dq.first[ja]; e < dq.first[ja + 1]; ++e)
+    if (!in(level.q, dq.nbr[e]) &&
+        F.climb_sign_q(dq.exact[ja], dq.bounds[ja], dq.exact[dq.nbr[e]], dq.bounds[dq.nbr[e]]) > 0)
+      return false;
+  return true;
+}
+
+PlacedTriangle placed_triangle(const Query& qu, const std::vector<SimplexVertex>& verts, const EpaFace& f) {
+  std::array<const Point3*, 3> p, q;
+  std::array<const PointBounds*, 3> pb, qb;
+  for (int j = 0; j < 3; ++j) {
+    const SimplexVertex& x = verts[f.v[j]];
+    p[j] = &qu.dp.exact[x.p], pb[j] = &qu.dp.bounds[x.p], q[j] = &qu.dq.exact[x.q], qb[j] = &qu.dq.bounds[x.q];
+  }
+  return PlacedTriangle(qu.P.map, qu.Q.map, p, pb, q, qb);
+}
+
 // The certificate of a depth (rigid_proximity.hpp) on EPA's surface.
 bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, const std::vector<EpaFace>& faces,
                    RigidDepth& r) {
@@ -835,84 +939,61 @@ bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, con
   std::sort(used.begin(), used.end());
   const int nv = int(std::unique(used.begin(), used.end()) - used.begin());
   if (nv - int(edges.size()) / 2 + nf != 2) return false;
-  const RigidBody::Data &dp = qu.dp, &dq = qu.dq;
   std::vector<PlacedTriangle> tris;
   tris.reserve(nf);
   int nearest = 0;
   for (int k = 0; k < nf; ++k) {
-    std::array<const Point3*, 3> p, q;
-    std::array<const PointBounds*, 3> pb, qb;
-    for (int j = 0; j < 3; ++j) {
-      const SimplexVertex& x = verts[alive[k]->v[j]];
-      p[j] = &dp.exact[x.p], pb[j] = &dp.bounds[x.p], q[j] = &dq.exact[x.q], qb[j] = &dq.bounds[x.q];
-    }
-    tris.emplace_back(qu.P.map, qu.Q.map, p, pb, q, qb);
+    tris.push_back(placed_triangle(qu, verts, *alive[k]));
     if (tris.back().offset_sign() <= 0) return false;
     if (alive[k]->dist < alive[nearest]->dist) nearest = k;
   }
   const PlacedTriangle& F = tris[nearest];
   const EpaFace& f = *alive[nearest];
-  // The vertices of P (of Q) level with F's vertex 0 along F's normal n by
-  // construction: n is orthogonal to d_j − d_i for F's pairs i, j, so
-  // n · (p_j′ − p_i′) = 0 when q_i = q_j (and n · (q_j′ − q_i′) = 0 when
-  // p_i = p_j).  Three distinct vertices of P so joined span F's plane (h ≠
-  // 0 was proved, so n ≠ 0 and they are not collinear): when a facet of P
-  // holds them, all its vertices are level.  The climbs skip level
-  // neighbours, and a triangle whose pairs are all level on both sides lies
-  // in F's plane (no comparison needed).
-  std::array<Index, 3> fp, fq;
-  for (int j = 0; j < 3; ++j) fp[j] = verts[f.v[j]].p, fq[j] = verts[f.v[j]].q;
-  std::vector<Index> level_p{fp[0]}, level_q{fq[0]};
-  const auto in = [](const std::vector<Index>& v, Index x) { return std::find(v.begin(), v.end(), x) != v.end(); };
-  for (bool grew = true; grew;) {
-    grew = false;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        if (fq[i] == fq[j] && in(level_p, fp[i]) && !in(level_p, fp[j])) level_p.push_back(fp[j]), grew = true;
-        if (fp[i] == fp[j] && in(level_q, fq[i]) && !in(level_q, fq[j])) level_q.push_back(fq[j]), grew = true;
-      }
-  }
-  const auto facet_of = [](const ConvexPolytope& poly, std::vector<Index>& level) {
-    if (level.size() < 3) return;
-    const Index h0 = poly.vertex_halfedge(level[0]);
-    Index h = h0;
-    do {
-      const std::vector<Index> fv = poly.facet_vertices(poly.facet(h));
-      bool all = true;
-      for (Index x : level) all = all && std::find(fv.begin(), fv.end(), x) != fv.end();
-      if (all) {
-        for (Index x : fv)
-          if (std::find(level.begin(), level.end(), x) == level.end()) level.push_back(x);
-        return;
-      }
-      h = poly.next_around_vertex(h);
-    } while (h != h0);
-  };
-  facet_of(dp.poly, level_p);
-  facet_of(dq.poly, level_q);
+  const LevelSets level = level_sets(qu, verts, f);
   for (int k = 0; k < nf; ++k) {
     if (k == nearest) continue;
     bool coplanar = true;
     for (int j = 0; j < 3 && coplanar; ++j)
-      coplanar = in(level_p, verts[alive[k]->v[j]].p) && in(level_q, verts[alive[k]->v[j]].q);
+      coplanar = in(level.p, verts[alive[k]->v[j]].p) && in(level.q, verts[alive[k]->v[j]].q);
     if (!coplanar && compare_distance(tris[k], F) < 0) return false;
   }
-  // F's plane supports D, checked at F's vertex 0.
-  const Index ia = fp[0], ja = fq[0];
-  for (Index e = dp.first[ia]; e < dp.first[ia + 1]; ++e)
-    if (!in(level_p, dp.nbr[e]) &&
-        F.climb_sign_p(dp.exact[ia], dp.bounds[ia], dp.exact[dp.nbr[e]], dp.bounds[dp.nbr[e]]) > 0)
-      return false;
-  for (Index e = dq.first[ja]; e < dq.first[ja + 1]; ++e)
-    if (!in(level_q, dq.nbr[e]) &&
-        F.climb_sign_q(dq.exact[ja], dq.bounds[ja], dq.exact[dq.nbr[e]], dq.bounds[dq.nbr[e]]) > 0)
-      return false;
+  if (!plane_supports(qu, F, level, verts[f.v[0]].p, verts[f.v[0]].q)) return false;
   for (int j = 0; j < 3; ++j) r.p[j] = verts[f.v[j]].p, r.q[j] = verts[f.v[j]].q;
   r.status = ContactStatus::penetrating;
   r.certificate = RigidCertificate::nearest_facet;
   set_bounds(r, F.squared_distance_bounds(), std::max(f.dist, 0.0));
   r.direction = {-r.depth * f.n.x, -r.depth * f.n.y, -r.depth * f.n.z};
   return true;
+}
+
+// A tetrahedron of D holding the origin (in doubles), by the search again
+// from the witnesses collide left (a few steps); a triangle holding it is
+// blown up as collide does.
+bool search_tetrahedron(const Query& qu, const RigidWarmStart& start, std::array<SimplexVertex, 4>& s) {
+  const V3 dir = initial_direction(qu, start);
+  int n = 1;
+  s[0] = qu.support(-dir, start.p, start.q);
+  V3 v = s[0].w;
+  Index ip = s[0].p, iq = s[0].q;
+  bool tetrahedron = false;
+  double last = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < kMaxIterations; ++it) {
+    const double vv = dot(v, v);
+    if (!(vv > 0) || !std::isfinite(vv)) break;
+    const SimplexVertex w = qu.support(-v, ip, iq);
+    ip = w.p, iq = w.q;
+    bool repeated = false;
+    for (int k = 0; k < n; ++k) repeated = repeated || (s[k].p == w.p && s[k].q == w.q);
+    if (repeated || !(vv < last)) break;
+    last = vv;
+    s[n++] = w;
+    if (!closest_on_simplex(s, n, v)) {
+      tetrahedron = true;
+      break;
+    }
+  }
+  if (!tetrahedron && n == 3) tetrahedron = blow_up_triangle(qu, s);
+  return tetrahedron;
 }
 
 RigidDepthExact depth_on_m(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
@@ -937,36 +1018,11 @@ RigidDepth penetration_depth(const RigidBody& p, const RigidPose& pose_p, const 
   r.certificate = c.certificate;
   if (c.status != ContactStatus::penetrating) return r;
   const Query qu{Placed(p.data(), pose_p.map()), Placed(q.data(), pose_q.map()), p.data(), q.data()};
-  // A tetrahedron of D holding the origin: the search again from the
-  // witnesses collide left (a few steps).
-  const RigidWarmStart start = checked_start(p, q, warm);
-  const V3 dir = initial_direction(qu, start);
   std::array<SimplexVertex, 4> s;
-  int n = 1;
-  s[0] = qu.support(-dir, start.p, start.q);
-  V3 v = s[0].w;
-  Index ip = s[0].p, iq = s[0].q;
-  bool tetrahedron = false;
-  double last = std::numeric_limits<double>::infinity();
-  for (int it = 0; it < kMaxIterations; ++it) {
-    const double vv = dot(v, v);
-    if (!(vv > 0) || !std::isfinite(vv)) break;
-    const SimplexVertex w = qu.support(-v, ip, iq);
-    ip = w.p, iq = w.q;
-    bool repeated = false;
-    for (int k = 0; k < n; ++k) repeated = repeated || (s[k].p == w.p && s[k].q == w.q);
-    if (repeated || !(vv < last)) break;
-    last = vv;
-    s[n++] = w;
-    if (!closest_on_simplex(s, n, v)) {
-      tetrahedron = true;
-      break;
-    }
-  }
-  if (!tetrahedron && n == 3) tetrahedron = blow_up_triangle(qu, s);
+  const bool tetrahedron = search_tetrahedron(qu, checked_start(p, q, warm), s);
   std::vector<SimplexVertex> verts;
   std::vector<EpaFace> faces;
-  if (tetrahedron && epa(qu, s, verts, faces) && certify_depth(qu, verts, faces, r)) {
+  if (tetrahedron && grow(qu, s, verts, faces, nearest_face) && certify_depth(qu, verts, faces, r)) {
     ++g_stats.nearest_facet;
     return r;
   }
@@ -1007,6 +1063,76 @@ RigidDepthExact exact_values(const RigidBody& p, const RigidPose& pose_p, const 
   }
   const PlacedTriangle t(pose_p.map(), pose_q.map(), ps, pb, qs, qb);
   return {t.squared_distance(), -t.nearest_point()};
+}
+
+Rational directional_depth_exact(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q,
+                                 const RigidPose& pose_q, const Point3& d) {
+  TranslationalObstacle ob(placed_linear(p.polytope(), pose_p.map()), placed_linear(q.polytope(), pose_q.map()));
+  return ob.directional_depth(pose_p.map().t(), pose_q.map().t(), d).t;
+}
+
+RigidDirectionalDepth directional_depth(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q,
+                                        const RigidPose& pose_q, const Point3& d, RigidWarmStart* warm) {
+  if (is_zero(d)) throw UsageError("directional_depth: the direction must not be the zero vector");
+  RigidDirectionalDepth r;
+  const RigidCollision c = collide(p, pose_p, q, pose_q, warm);
+  r.status = c.status;
+  r.certificate = c.certificate;
+  if (c.status != ContactStatus::penetrating) return r;
+  const Query qu{Placed(p.data(), pose_p.map()), Placed(q.data(), pose_q.map()), p.data(), q.data()};
+  std::array<SimplexVertex, 4> s;
+  const Point3 u = -d;  // the ray leaves D at −α d
+  const PointBounds ub = point_bounds(u);
+  const Vec3d ud = to_double(u);
+  std::vector<SimplexVertex> verts;
+  std::vector<EpaFace> faces;
+  const CrossedFace crossed{V3{ud.x, ud.y, ud.z}};
+  if (search_tetrahedron(qu, checked_start(p, q, warm), s) && grow(qu, s, verts, faces, crossed)) {
+    const int k = crossed(verts, faces);
+    if (k >= 0) {
+      const EpaFace& f = faces[k];
+      const PlacedTriangle T = placed_triangle(qu, verts, f);
+      bool ok = T.offset_sign() > 0 && T.direction_sign(u, ub) > 0;
+      for (int e = 0; e < 3 && ok; ++e) ok = T.edge_sign(e, u, ub) >= 0;
+      if (ok && plane_supports(qu, T, level_sets(qu, verts, f), verts[f.v[0]].p, verts[f.v[0]].q)) {
+        ++g_stats.exit_facet;
+        r.certificate = RigidCertificate::exit_facet;
+        for (int j = 0; j < 3; ++j) r.p[j] = verts[f.v[j]].p, r.q[j] = verts[f.v[j]].q;
+        const Bounds b = T.ray_parameter_bounds(ub);
+        r.lower = std::max(0.0, b.lo), r.upper = b.hi;
+        const V3 a = verts[f.v[0]].w;
+        const double nu = dot(f.n, V3{ud.x, ud.y, ud.z});
+        r.t = std::clamp(nu > 0 ? dot(f.n, a) / nu : r.lower, r.lower, r.upper);
+        return r;
+      }
+    }
+  }
+  ++g_stats.exact;
+  r = RigidDirectionalDepth{};
+  r.status = ContactStatus::penetrating;
+  r.certificate = RigidCertificate::exact;
+  Rational t = directional_depth_exact(p, pose_p, q, pose_q, d);
+  const Bounds b = rational_bounds(t);
+  r.lower = b.lo, r.upper = b.hi, r.t = to_double(t);
+  r.exact = std::make_shared<const Rational>(std::move(t));
+  return r;
+}
+
+Rational exact_values(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                      const Point3& d, const RigidDirectionalDepth& r) {
+  if (r.status != ContactStatus::penetrating) return Rational(0);
+  if (r.certificate == RigidCertificate::exact) return r.exact ? *r.exact : directional_depth_exact(p, pose_p, q, pose_q, d);
+  if (r.certificate != RigidCertificate::exit_facet)
+    throw UsageError("exact_values: the answer is not one of directional_depth()");
+  const RigidBody::Data &dp = p.data(), &dq = q.data();
+  std::array<const Point3*, 3> ps, qs;
+  std::array<const PointBounds*, 3> pb, qb;
+  for (int j = 0; j < 3; ++j) {
+    if (r.p[j] >= dp.approx.size() || r.q[j] >= dq.approx.size())
+      throw UsageError("exact_values: the answer's vertices do not fit the bodies");
+    ps[j] = &dp.exact[r.p[j]], pb[j] = &dp.bounds[r.p[j]], qs[j] = &dq.exact[r.q[j]], qb[j] = &dq.bounds[r.q[j]];
+  }
+  return PlacedTriangle(pose_p.map(), pose_q.map(), ps, pb, qs, qb).ray_parameter(-d);
 }
 
 }  // namespace minksum

@@ -99,7 +99,7 @@ QUERY_DISTANCE = QUERY.extend("query distance", {
     "squared_distance": "exact", "distance": ("nullable", "number"), "direction": ("triple", "exact"),
     "point_p": ("triple", "number"), "point_p_exact": ("triple", "exact"), "point_q": ("triple", "number"),
     "point_q_exact": ("triple", "exact"), "witness": WITNESS})
-CERTIFICATE = ("enum", "separating_plane", "simplex", "exact", "closest_points", "nearest_facet")
+CERTIFICATE = ("enum", "separating_plane", "simplex", "exact", "closest_points", "nearest_facet", "exit_facet")
 QUERY_RIGID_COLLIDE = QUERY.extend("query collide (rotation)", {"certificate": CERTIFICATE})
 QUERY_RIGID_DISTANCE = QUERY.extend("query distance (rotation)", {
     "squared_distance": "exact", "distance": ("nullable", "number"), "direction": ("triple", "exact"),
@@ -108,6 +108,8 @@ QUERY_RIGID_DISTANCE = QUERY.extend("query distance (rotation)", {
 QUERY_RIGID_DEPTH = QUERY.extend("query depth (rotation)", {
     "squared_depth": "exact", "depth": ("nullable", "number"), "direction": ("triple", "exact"),
     "certificate": CERTIFICATE})
+QUERY_RIGID_DDEPTH = QUERY.extend("query ddepth (rotation)", {
+    "t": "exact", "depth": ("nullable", "number"), "direction": ("triple", "exact"), "certificate": CERTIFICATE})
 QUERY_DEPTH = QUERY.extend("query depth", {"squared_depth": "exact", "depth": ("nullable", "number"),
                                            "direction": ("triple", "exact"), "witness": WITNESS})
 QUERY_DDEPTH = QUERY.extend("query ddepth", {"t": "exact", "depth": ("nullable", "number"),
@@ -282,6 +284,8 @@ def main():
          QUERY_RIGID_DISTANCE),
         (["query", "depth", "cube", "dodecahedron", "--rotate-q", "1,2,3,4", "--translate-q", "1/2,1/3,0"],
          QUERY_RIGID_DEPTH),
+        (["query", "ddepth", "cube", "dodecahedron", "--rotate-q", "1,2,3,4", "--translate-q", "1/2,1/3,0",
+          "--direction", "1,2,0"], QUERY_RIGID_DDEPTH),
         (["query", "distance", "cube", "segment:0,0,0:1,1,1", "--translate-q", "5,0,0"], QUERY_SET),
         (["query", "collide", "cube", "segment:3,0,0:5,0,0"], QUERY_SET),
         (["query", "depth", "cube", "point:1/2,0,0"], QUERY_SET),
@@ -333,7 +337,7 @@ def main():
         doc = f.read()
     keys = set()
     for t in [SUM_POLYTOPE, SUM_SET, SUM_SOLID, STATS_POLYTOPE, STATS_SOLID, CONVERT_POLYTOPE, CONVERT_SOLID,
-              QUERY_COLLIDE, QUERY_DISTANCE, QUERY_RIGID_COLLIDE, QUERY_RIGID_DISTANCE, QUERY_RIGID_DEPTH, QUERY_DEPTH, QUERY_DDEPTH, QUERY_SET, CGM, FRAME, BATCH_RESULT,
+              QUERY_COLLIDE, QUERY_DISTANCE, QUERY_RIGID_COLLIDE, QUERY_RIGID_DISTANCE, QUERY_RIGID_DEPTH, QUERY_RIGID_DDEPTH, QUERY_DEPTH, QUERY_DDEPTH, QUERY_SET, CGM, FRAME, BATCH_RESULT,
               ERROR, VIEW_ONE, VIEW_SUM, VIEW_SCENE]:
         keys_of(t, keys)
     for k in sorted(keys):

@@ -303,6 +303,14 @@ class PlacedTriangle {
   Point3 nearest_point() const;
   // Doubles near n / |n| (for the caller's doubles only).
   Vec3d unit_normal() const;
+  // The ray {t u : t > 0} and the triangle: sign det(d_i, d_{i+1}, u) for
+  // the edge i (i + 1 mod 3), and sign n · u.  With offset_sign() > 0, the
+  // ray meets the triangle when n · u > 0 and the three edge signs are ≥ 0.
+  int edge_sign(int i, const Point3& u, const PointBounds& ub) const;
+  int direction_sign(const Point3& u, const PointBounds& ub) const;
+  // h / (n · u): the ray meets the plane at t u (requires n · u ≠ 0).
+  Rational ray_parameter(const Point3& u) const;
+  Bounds ray_parameter_bounds(const PointBounds& ub) const;  // an enclosure of it
 
  private:
   struct Exact;
@@ -313,6 +321,7 @@ class PlacedTriangle {
   std::array<const PointBounds*, 3> pb_, qb_;
   Bounds h_{}, nn_{};
   std::array<Bounds, 3> n_{}, up_{}, uq_{};
+  std::array<std::array<Bounds, 3>, 3> d_{};
   mutable std::unique_ptr<Exact> exact_;
 };
 

@@ -84,8 +84,10 @@ enum class RigidCertificate : std::uint8_t {
   exact,             // built M exactly (touching, or undecided by the search)
   closest_points,    // separate, with its distance: closest points whose difference's plane supports both bodies
   nearest_facet,     // penetrating, with its depth: a star of triangles of D around the origin, the nearest plane supporting D
+  exit_facet,        // penetrating, with a directional depth: the triangle of D the ray leaves by, its plane supporting D
 };
-// "separating_plane", "simplex", "exact", "closest_points", "nearest_facet".
+// "separating_plane", "simplex", "exact", "closest_points", "nearest_facet",
+// "exit_facet".
 const char* rigid_certificate_name(RigidCertificate c);
 
 struct RigidCollision {
@@ -111,7 +113,8 @@ struct RigidWarmStart {
 // Counters of the calling thread since it started: queries (collide and
 // distance) and how they were proved, GJK iterations, support-climb steps.
 struct RigidStats {
-  std::uint64_t queries = 0, separating_plane = 0, simplex = 0, exact = 0, closest_points = 0, nearest_facet = 0;
+  std::uint64_t queries = 0, separating_plane = 0, simplex = 0, exact = 0, closest_points = 0, nearest_facet = 0,
+                exit_facet = 0;
   std::uint64_t iterations = 0, climb_steps = 0;
 };
 RigidStats rigid_stats();
@@ -241,6 +244,33 @@ RigidDepthExact exact_values(const RigidBody& p, const RigidPose& pose_p, const 
                              const RigidDepth& d);
 // The same on M built exactly (a reference).
 RigidDepthExact depth_exact(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q);
+
+// Directional penetration depth along d (exact, not normalised): the
+// smallest α ≥ 0 such that placed P translated by α·d no longer overlaps
+// the interior of placed Q — the exit parameter of the ray {−α d} from the
+// origin out of D.  The search grows the tetrahedron of collide towards the
+// face the ray crosses (EPA's insertions); the answer is certified
+// (exit_facet) by a triangle T of D with, in exact signs: the origin
+// strictly inside its plane, n · (−d) > 0, the ray's point on the plane
+// inside T (three edge signs ≥ 0, so it is a point of D), and T's plane
+// supporting D (climbs as for depth).  Then points of the ray before it are
+// interior to D (the origin is) and points after it are beyond a
+// supporting plane: α is the ray's parameter there, exactly.
+struct RigidDirectionalDepth {
+  ContactStatus status = ContactStatus::separate;
+  RigidCertificate certificate = RigidCertificate::exact;
+  double t = 0, lower = 0, upper = 0;  // α, certified enclosure (0 unless penetrating)
+  std::array<Index, 3> p{kNoIndex, kNoIndex, kNoIndex}, q{kNoIndex, kNoIndex, kNoIndex};  // exit_facet: T's pairs
+  std::shared_ptr<const Rational> exact;  // exact: α, found on M
+};
+RigidDirectionalDepth directional_depth(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q,
+                                        const RigidPose& pose_q, const Point3& d, RigidWarmStart* warm = nullptr);
+// α exactly, for an answer of directional_depth() with the same inputs.
+Rational exact_values(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                      const Point3& d, const RigidDirectionalDepth& r);
+// α on M built exactly (a reference).
+Rational directional_depth_exact(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q,
+                                 const RigidPose& pose_q, const Point3& d);
 
 // The exact answer by building M = R_P P ⊕ (−R_Q Q) (the fall-back above,
 // on its own: an independent check of the search; O(cost of the sum)).

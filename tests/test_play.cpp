@@ -197,8 +197,22 @@ TEST(Play, AnswersEqualMinksumQueryForTheSamePoses) {
     ASSERT_TRUE(r);
     ASSERT_EQ(r->status, 200) << r->body;
     const std::string& a = r->body;
-    const std::string args = std::string(kP) + " " + kQ + " --translate-p " + t + (rot.empty() ? "" : " --rotate-p " + rot) + " --json";
+    // The query on M of the turned operand (as play answers), and the query
+    // under --rotate-p on the placed bodies (the same exact values; its
+    // common point of penetrating bodies may be another one, and it names a
+    // certificate instead of a witness).
+    const std::string args = std::string(kP) + (rot.empty() ? "" : "@rot:" + rot) + " " + kQ + " --translate-p " + t + " --json";
     const CmdRun d = run("query distance " + args);
+    if (!rot.empty()) {
+      const CmdRun g = run("query distance " + std::string(kP) + " " + kQ + " --translate-p " + t + " --rotate-p " + rot + " --json");
+      ASSERT_EQ(g.status, 0) << g.out;
+      EXPECT_EQ(json_field(a, "status"), json_field(g.out, "status"));
+      EXPECT_EQ(json_field(a, "squared_distance"), json_field(g.out, "squared_distance"));
+      if (json_field(a, "status") == "\"separate\"") {
+        EXPECT_EQ(json_field(a, "point_p_exact"), json_field(g.out, "point_p_exact"));
+        EXPECT_EQ(json_field(a, "direction"), json_field(g.out, "direction"));
+      }
+    }
     ASSERT_EQ(d.status, 0) << args;
     SCOPED_TRACE(args + "\nserver: " + a + "\nquery:  " + d.out);
     const std::string status = json_field(a, "status");

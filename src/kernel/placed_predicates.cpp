@@ -386,6 +386,23 @@ Integer placed_integer(const PlacedMap& m, const PointBounds& x, int r, int e0) 
   return sum;
 }
 
+// sign u · (b − a) for a pulled direction u: on its enclosure first, then
+// on the exact u that `exact_u` makes (the climbs of the certificates).
+template <class ExactU>
+int pulled_sign(const std::array<Bounds, 3>& u, const Point3& a, const PointBounds& ab, const Point3& b,
+                const PointBounds& bb, const ExactU& exact_u) {
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const FastIPoint d = iv(bb) - iv(ab);
+    const int s = sign_of(iv(u[0]) * d.x + iv(u[1]) * d.y + iv(u[2]) * d.z);
+    if (s != kUncertain) {
+      ++g_counts.filtered;
+      return s;
+    }
+  }
+  return exact_sign(dot(exact_u(), b - a));
+}
+
 bool exact_double(const PointBounds& b) { return b.x.lo == b.x.hi && b.y.lo == b.y.hi && b.z.lo == b.z.hi; }
 
 // Whether the exact stage may take the integers below: both maps doubles
@@ -528,20 +545,12 @@ bool PlacedSimplexPoint::nonzero() const {
 
 int PlacedSimplexPoint::climb_sign(bool on_p, const Point3& a, const PointBounds& ab, const Point3& b,
                                    const PointBounds& bb) const {
-  {
-    const auto& u = on_p ? up_ : uq_;
-    CGAL::Protect_FPU_rounding<true> upward;
-    const FastIPoint d = iv(bb) - iv(ab);
-    const int s = sign_of(iv(u[0]) * d.x + iv(u[1]) * d.y + iv(u[2]) * d.z);
-    if (s != kUncertain) {
-      ++g_counts.filtered;
-      return s;
-    }
-  }
-  const Exact& e = exact();
-  std::optional<Point3>& u = on_p ? e.up : e.uq;
-  if (!u) u = on_p ? Point3(-pull(*mp_, e.v)) : pull(*mq_, e.v);
-  return exact_sign(dot(*u, b - a));
+  return pulled_sign(on_p ? up_ : uq_, a, ab, b, bb, [&]() -> const Point3& {
+    const Exact& e = exact();
+    std::optional<Point3>& u = on_p ? e.up : e.uq;
+    if (!u) u = on_p ? Point3(-pull(*mp_, e.v)) : pull(*mq_, e.v);
+    return *u;
+  });
 }
 
 int PlacedSimplexPoint::climb_sign_p(const Point3& a, const PointBounds& ab, const Point3& b,
@@ -656,20 +665,12 @@ int compare_distance(const PlacedTriangle& a, const PlacedTriangle& b) {
 
 int PlacedTriangle::climb_sign(bool on_p, const Point3& a, const PointBounds& ab, const Point3& b,
                                const PointBounds& bb) const {
-  {
-    const auto& u = on_p ? up_ : uq_;
-    CGAL::Protect_FPU_rounding<true> upward;
-    const FastIPoint d = iv(bb) - iv(ab);
-    const int s = sign_of(iv(u[0]) * d.x + iv(u[1]) * d.y + iv(u[2]) * d.z);
-    if (s != kUncertain) {
-      ++g_counts.filtered;
-      return s;
-    }
-  }
-  const Exact& e = exact();
-  std::optional<Point3>& u = on_p ? e.up : e.uq;
-  if (!u) u = on_p ? pull(*mp_, e.n) : Point3(-pull(*mq_, e.n));
-  return exact_sign(dot(*u, b - a));
+  return pulled_sign(on_p ? up_ : uq_, a, ab, b, bb, [&]() -> const Point3& {
+    const Exact& e = exact();
+    std::optional<Point3>& u = on_p ? e.up : e.uq;
+    if (!u) u = on_p ? pull(*mp_, e.n) : Point3(-pull(*mq_, e.n));
+    return *u;
+  });
 }
 
 int PlacedTriangle::climb_sign_p(const Point3& a, const PointBounds& ab, const Point3& b,

@@ -240,6 +240,30 @@ struct Query {
 
 constexpr int kMaxIterations = 128;
 
+// The calling thread's count of answers proved by c.
+void count(RigidCertificate c) {
+  switch (c) {
+    case RigidCertificate::separating_plane:
+      ++g_stats.separating_plane;
+      break;
+    case RigidCertificate::simplex:
+      ++g_stats.simplex;
+      break;
+    case RigidCertificate::exact:
+      ++g_stats.exact;
+      break;
+    case RigidCertificate::closest_points:
+      ++g_stats.closest_points;
+      break;
+    case RigidCertificate::nearest_facet:
+      ++g_stats.nearest_facet;
+      break;
+    case RigidCertificate::exit_facet:
+      ++g_stats.exit_facet;
+      break;
+  }
+}
+
 // When the search's triangle holds the origin in doubles (symmetric poses
 // of bodies with parallel faces make the supports coplanar), no
 // tetrahedron of the search holds it: take the supports a+ and a− of D
@@ -462,21 +486,7 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
     r.certificate = RigidCertificate::exact;
     r.p = ip, r.q = iq;
   }
-  switch (r.certificate) {
-    case RigidCertificate::separating_plane:
-      ++g_stats.separating_plane;
-      break;
-    case RigidCertificate::simplex:
-      ++g_stats.simplex;
-      break;
-    case RigidCertificate::exact:
-      ++g_stats.exact;
-      break;
-    case RigidCertificate::closest_points:  // not answers of collide
-    case RigidCertificate::nearest_facet:
-    case RigidCertificate::exit_facet:
-      break;
-  }
+  count(r.certificate);
   if (warm) {
     warm->p = r.p, warm->q = r.q;
     warm->direction = {v.x, v.y, v.z};
@@ -509,7 +519,8 @@ ExactDistance distance_on_m(const RigidBody& p, const RigidPose& pose_p, const R
 template <class Answer>
 void set_bounds(Answer& r, const Bounds& sq, double value) {
   r.lower = sq.lo > 0 ? std::nextafter(std::sqrt(sq.lo), 0.0) : 0.0;
-  r.upper = std::nextafter(std::sqrt(sq.hi), std::numeric_limits<double>::infinity());
+  // [0, 0] holds only 0: the bounds stay 0 (touching or overlapping bodies).
+  r.upper = sq.hi > 0 ? std::nextafter(std::sqrt(sq.hi), std::numeric_limits<double>::infinity()) : 0.0;
   const double x = std::clamp(value, r.lower, r.upper);
   if constexpr (requires { r.distance; }) r.distance = x;
   else r.depth = x;
@@ -650,7 +661,18 @@ RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidB
     r.certificate = RigidCertificate::simplex;
     r.k = 4;
     for (int j = 0; j < 4; ++j) r.p[j] = s[j].p, r.q[j] = s[j].q;
-    const V3 x = qu.P.point(s[0].p);  // a point of P' (the common point: exact_values)
+    // Doubles near the common point of exact_values: Σ μ_j p_j′ with μ_j the
+    // origin's barycentric coordinates in the tetrahedron.
+    const auto volume = [](const V3& a, const V3& b, const V3& c, const V3& e) {
+      return dot(b - a, cross(c - a, e - a));
+    };
+    const double total = volume(s[0].w, s[1].w, s[2].w, s[3].w);
+    V3 x;
+    for (int j = 0; j < 4; ++j) {
+      std::array<V3, 4> f{s[0].w, s[1].w, s[2].w, s[3].w};
+      f[j] = V3{};
+      x = x + (volume(f[0], f[1], f[2], f[3]) / total) * qu.P.point(s[j].p);
+    }
     r.point_p = r.point_q = {x.x, x.y, x.z};
     return true;
   };
@@ -670,23 +692,7 @@ RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidB
     set_bounds(r, rational_bounds(e.values.squared_distance), std::sqrt(to_double(e.values.squared_distance)));
     r.exact = std::make_shared<const RigidDistanceExact>(std::move(e.values));
   }
-  switch (r.certificate) {
-    case RigidCertificate::separating_plane:
-      ++g_stats.separating_plane;
-      break;
-    case RigidCertificate::closest_points:
-      ++g_stats.closest_points;
-      break;
-    case RigidCertificate::nearest_facet:  // not answers of distance
-    case RigidCertificate::exit_facet:
-      break;
-    case RigidCertificate::simplex:
-      ++g_stats.simplex;
-      break;
-    case RigidCertificate::exact:
-      ++g_stats.exact;
-      break;
-  }
+  count(r.certificate);
   if (warm) {
     warm->p = ip, warm->q = iq;
     warm->direction = {v.x, v.y, v.z};
@@ -1023,10 +1029,10 @@ RigidDepth penetration_depth(const RigidBody& p, const RigidPose& pose_p, const 
   std::vector<SimplexVertex> verts;
   std::vector<EpaFace> faces;
   if (tetrahedron && grow(qu, s, verts, faces, nearest_face) && certify_depth(qu, verts, faces, r)) {
-    ++g_stats.nearest_facet;
+    count(r.certificate);
     return r;
   }
-  ++g_stats.exact;
+  count(RigidCertificate::exact);
   ContactStatus st;
   RigidDepthExact e = depth_on_m(p, pose_p, q, pose_q, &st);
   r = RigidDepth{};
@@ -1095,8 +1101,8 @@ RigidDirectionalDepth directional_depth(const RigidBody& p, const RigidPose& pos
       bool ok = T.offset_sign() > 0 && T.direction_sign(u, ub) > 0;
       for (int e = 0; e < 3 && ok; ++e) ok = T.edge_sign(e, u, ub) >= 0;
       if (ok && plane_supports(qu, T, level_sets(qu, verts, f), verts[f.v[0]].p, verts[f.v[0]].q)) {
-        ++g_stats.exit_facet;
         r.certificate = RigidCertificate::exit_facet;
+        count(r.certificate);
         for (int j = 0; j < 3; ++j) r.p[j] = verts[f.v[j]].p, r.q[j] = verts[f.v[j]].q;
         const Bounds b = T.ray_parameter_bounds(ub);
         r.lower = std::max(0.0, b.lo), r.upper = b.hi;
@@ -1107,7 +1113,7 @@ RigidDirectionalDepth directional_depth(const RigidBody& p, const RigidPose& pos
       }
     }
   }
-  ++g_stats.exact;
+  count(RigidCertificate::exact);
   r = RigidDirectionalDepth{};
   r.status = ContactStatus::penetrating;
   r.certificate = RigidCertificate::exact;

@@ -33,10 +33,12 @@ const url = await new Promise((res, rej) => {
 check(/^http:\/\/127\.0\.0\.1:\d+\/$/.test(url), `play: the first line is not the loopback URL: ${url}`);
 const origin = url.replace(/\/$/, '');
 
+// The same pose answered on M of the turned operand (play computes M; a
+// query with --rotate-p would answer on the placed bodies, whose common
+// point of penetrating bodies may be another one).
 function query(kind, pose) {
-  const args = ['query', kind, P, Q, '--translate-p', pose.translate_p, '--json'];
-  if (pose.rotate_p) args.push('--rotate-p', pose.rotate_p);
-  return minksumJson(o.minksum, args);
+  const p = pose.rotate_p ? `${P}@rot:${pose.rotate_p}` : P;
+  return minksumJson(o.minksum, ['query', kind, p, Q, '--translate-p', pose.translate_p, '--json']);
 }
 
 const browser = await launch({ offline: false });

@@ -923,6 +923,26 @@ std::vector<RigidPose> to_poses(const PoseInput& in, const std::string& rn) {
   return out;
 }
 
+// The poses of a and b of collide_rigid / distance_rigid: each an input of
+// N poses or of one, the larger count N, and the thread count (0: one per
+// core).
+struct RigidPoses {
+  unsigned threads = 0;
+  PoseInput b, a;
+  std::size_t n = 1;
+  static unsigned thread_count(std::optional<long long> t) {
+    if (t && *t < 1) throw py::value_error("threads must be at least 1 (or None: one per core)");
+    return t ? static_cast<unsigned>(*t) : 0u;
+  }
+  RigidPoses(py::handle tb, py::handle rb, py::handle ta, py::handle ra, std::optional<long long> t)
+      : threads(thread_count(t)), b(to_pose_input(tb, rb, "t_b", "r_b")), a(to_pose_input(ta, ra, "t_a", "r_a")) {
+    if (a.count != 1 && b.count != 1 && a.count != b.count)
+      throw py::value_error("poses of a and b: " + std::to_string(a.count) + " and " + std::to_string(b.count) +
+                            " (the counts must agree, or one be a single pose)");
+    n = std::max(a.count, b.count);
+  }
+};
+
 struct WitnessPy {
   Witness w;
 };
@@ -1737,7 +1757,7 @@ released.)")
 
 RigidBody(p) (a Polytope, a file path or a catalog name) keeps its vertex
 graph, the doubles of its vertices and their enclosures, built once and
-shared by every pose and thread of collide_rigid.)")
+shared by every pose and thread of collide_rigid and distance_rigid.)")
       .def(py::init([](py::object p) { return RigidBody(*resolve(to_operand(p, "p"))); }), py::arg("p"))
       .def_property_readonly(
           "polytope", [](const RigidBody& b) { return std::make_shared<ConvexPolytope>(b.polytope()); })
@@ -1748,20 +1768,15 @@ shared by every pose and thread of collide_rigid.)")
       "collide_rigid",
       [](const RigidBody& a, const RigidBody& b, py::object tb, py::object rb, py::object ta, py::object ra,
          std::optional<long long> threads) {
-        if (threads && *threads < 1) throw py::value_error("threads must be at least 1 (or None: one per core)");
-        const PoseInput ib = to_pose_input(tb, rb, "t_b", "r_b"), ia = to_pose_input(ta, ra, "t_a", "r_a");
-        if (ia.count != 1 && ib.count != 1 && ia.count != ib.count)
-          throw py::value_error("poses of a and b: " + std::to_string(ia.count) + " and " + std::to_string(ib.count) +
-                                " (the counts must agree, or one be a single pose)");
-        const std::size_t n = std::max(ia.count, ib.count);
-        py::array_t<std::int8_t> codes(static_cast<py::ssize_t>(n));
+        const RigidPoses poses(tb, rb, ta, ra, threads);
+        py::array_t<std::int8_t> codes(static_cast<py::ssize_t>(poses.n));
         std::int8_t* w = codes.mutable_data();
         {
           py::gil_scoped_release nogil;
-          const std::vector<RigidPose> pa = to_poses(ia, "r_a"), pb = to_poses(ib, "r_b");
-          std::vector<RigidCollision> out(n);
-          collide(a, pa, b, pb, out, threads ? static_cast<unsigned>(*threads) : 0u);
-          for (std::size_t i = 0; i < n; ++i) w[i] = static_cast<std::int8_t>(out[i].status);
+          const std::vector<RigidPose> pa = to_poses(poses.a, "r_a"), pb = to_poses(poses.b, "r_b");
+          std::vector<RigidCollision> out(poses.n);
+          collide(a, pa, b, pb, out, poses.threads);
+          for (std::size_t i = 0; i < poses.n; ++i) w[i] = static_cast<std::int8_t>(out[i].status);
         }
         return codes;
       },
@@ -1778,6 +1793,76 @@ positive), or None (no rotation).  One pose stands for all N.  Returns an
 int8 array of N status codes (minksum.STATUS[code]: 0 separate, 1 touching,
 2 penetrating), each certified exactly (docs/proximity.md, "Rigid motion").
 Runs with the GIL released on `threads` threads (None: one per core).)");
+  m.def(
+      "distance_rigid",
+      [](const RigidBody& a, const RigidBody& b, py::object tb, py::object rb, py::object ta, py::object ra,
+         std::optional<long long> threads, bool exact) {
+        const RigidPoses poses(tb, rb, ta, ra, threads);
+        const std::size_t n = poses.n;
+        const auto sn = static_cast<py::ssize_t>(n);
+        py::array_t<std::int8_t> status(sn);
+        py::array_t<double> dist(sn), lower(sn), upper(sn), point_a({sn, py::ssize_t(3)}), point_b({sn, py::ssize_t(3)});
+        std::int8_t* ws = status.mutable_data();
+        double *wd = dist.mutable_data(), *wl = lower.mutable_data(), *wu = upper.mutable_data();
+        double *wa = point_a.mutable_data(), *wb = point_b.mutable_data();
+        std::vector<RigidDistanceExact> values;
+        {
+          py::gil_scoped_release nogil;
+          const std::vector<RigidPose> pa = to_poses(poses.a, "r_a"), pb = to_poses(poses.b, "r_b");
+          std::vector<RigidDistance> out(n);
+          distance(a, pa, b, pb, out, poses.threads);
+          for (std::size_t i = 0; i < n; ++i) {
+            const RigidDistance& d = out[i];
+            ws[i] = static_cast<std::int8_t>(d.status);
+            wd[i] = d.distance, wl[i] = d.lower, wu[i] = d.upper;
+            for (int k = 0; k < 3; ++k) wa[3 * i + k] = d.point_p[k], wb[3 * i + k] = d.point_q[k];
+          }
+          if (exact) {
+            // The exact values of each answer, in blocks of consecutive poses.
+            values.resize(n);
+            const std::size_t block = 64, blocks = (n + block - 1) / block;
+            parallel_for(blocks, poses.threads, [&](std::size_t k) {
+              for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i)
+                values[i] = exact_values(a, pa[pa.size() == 1 ? 0 : i], b, pb[pb.size() == 1 ? 0 : i], out[i]);
+            });
+          }
+        }
+        py::dict r;
+        r["status"] = status;
+        r["distance"] = dist;
+        r["lower"] = lower;
+        r["upper"] = upper;
+        r["point_a"] = point_a;
+        r["point_b"] = point_b;
+        if (exact) {
+          py::list sq, ea, eb;
+          for (const RigidDistanceExact& v : values) {
+            sq.append(to_fraction(v.squared_distance));
+            ea.append(to_fractions(v.point_p));
+            eb.append(to_fractions(v.point_q));
+          }
+          r["squared_distance"] = sq;
+          r["exact_point_a"] = ea;
+          r["exact_point_b"] = eb;
+        }
+        return r;
+      },
+      py::arg("a"), py::arg("b"), py::arg("t_b") = py::none(), py::arg("r_b") = py::none(),
+      py::arg("t_a") = py::none(), py::arg("r_a") = py::none(), py::kw_only(), py::arg("threads") = py::none(),
+      py::arg("exact") = false,
+      R"(Exact separation distance of a and b (RigidBody), each under a rotation and a translation, for N poses in one call.
+
+The poses are those of collide_rigid (b rotated by r_b then translated by
+t_b, a by r_a and t_a; one pose stands for all N).  Returns a dict of numpy
+arrays: status (int8 (N,), minksum.STATUS[code]), distance (float64 (N,),
+0 unless separate), lower and upper (float64 (N,): lower <= the exact
+distance <= upper, certified), point_a and point_b (float64 (N, 3): closest
+points of placed a and placed b, a common point when they meet).
+exact=True adds squared_distance (a list of N fractions.Fraction, the exact
+squared distance, 0 unless separate) and exact_point_a, exact_point_b
+(lists of N exact Fraction triples: closest points, or a common point when
+the bodies meet, not necessarily that of point_a).  Runs with the GIL released on
+`threads` threads (None: one per core); docs/proximity.md, "Rigid motion".)");
 
   py::list names;
   for (const MethodInfo& mi : methods()) names.append(mi.name);

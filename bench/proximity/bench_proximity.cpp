@@ -19,8 +19,8 @@
 //            (the same distance values in lowest terms) (divide by N).
 //        bench_proximity --count-trajectory P Q N   the coherent trajectory of N
 //            steps: count_ours_trajectory (distance_points), count_fcl_trajectory.
-//        bench_proximity --rotation [--poses N] [--meshes DIR]   collision under
-//            rigid motion against FCL (rotation.cpp); DIR holds the robot-link
+//        bench_proximity --rotation [--poses N] [--meshes DIR]   collision and
+//            distance under rigid motion against FCL (rotation.cpp); DIR holds the robot-link
 //            meshes (ur5e_forearm.stl, ur5e_upperarm.stl, franka_link1.stl).
 #include <ccd/ccd.h>
 #include <ccd/quat.h>

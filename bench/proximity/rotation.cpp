@@ -1,7 +1,8 @@
-// The rotation section of bench_proximity: collision of two placed convex
-// polytopes (minksum::collide on RigidBody / RigidPose, no M built per pose)
-// against FCL's collide (libccd GJK solver) on the same poses, every answer
-// checked against the exact status.
+// The rotation section of bench_proximity: collision and separation
+// distance of two placed convex polytopes (minksum::collide and
+// minksum::distance on RigidBody / RigidPose, no M built per pose) against
+// FCL's collide and distance (libccd GJK solver) on the same poses, every
+// answer checked against the exact status and the exact squared distance.
 //
 //   bench_proximity --rotation [--poses N] [--meshes DIR]
 //
@@ -12,13 +13,17 @@
 // translated by s = c + f·α*·u, c the interior point of M, u a random
 // direction (doubles), α* the exact exit parameter of the ray: f = 1.5
 // separated, 1 touching (s exact, a rational: FCL gets its nearest doubles),
-// 1 ± 1e-9 near-touching (s rounded to doubles), 0.5 penetrating.
+// 1 ± 1e-9 near-touching (s rounded to doubles), 0.5 penetrating.  The
+// distance table takes the separated and near-touching-out poses of the
+// collision table; the exact squared distance of a pose is that of the
+// orientation pair's TranslationalObstacle at s.
 #include "rotation.hpp"
 
 #include "fcl_convex.hpp"
 
 #ifdef MINKSUM_HAVE_FCL
 #include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
 #endif
 
 #include <minksum/catalog.hpp>
@@ -65,7 +70,8 @@ fcl::Transform3d transform(const std::array<double, 9>& r, const Vec3d& t) {
 struct Pose {
   int orientation;
   RigidPose q;
-  Vec3d t;  // its translation in doubles (FCL's input)
+  Point3 s;  // its translation
+  Vec3d t;   // s in doubles (FCL's input)
   ContactStatus exact;
 };
 
@@ -76,6 +82,37 @@ struct Pair {
 
 double us(Clock::time_point t0, std::size_t n) {
   return std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / double(n);
+}
+
+#ifdef MINKSUM_HAVE_FCL
+// FCL's distance request of the translation tables (bench_proximity.cpp):
+// the libccd solver, signed distance, nearest points.
+fcl::DistanceRequestd fcl_distance_request() {
+  fcl::DistanceRequestd r;
+  r.gjk_solver_type = fcl::GST_LIBCCD;
+  r.enable_signed_distance = true;
+  r.enable_nearest_points = true;
+  return r;
+}
+
+// An FCL distance d_F of a pose with exact squared distance sq (d = √ of
+// the nearest double of sq) is wrong when the pose is separate and
+// |d_F − d| > 1e-9·max(1, d), or when it is not separate and d_F > 1e-9
+// (FCL reports a separation).
+bool fcl_distance_wrong(double fcl, const Rational& sq) {
+  if (sgn(sq) == 0) return fcl > 1e-9;
+  const double d = std::sqrt(to_double(sq));
+  return std::fabs(fcl - d) > 1e-9 * std::max(1.0, d);
+}
+#endif
+
+// printf into a string (the distance table's rows, printed after the
+// collision table).
+template <class... A>
+std::string format(const char* f, A... a) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, f, a...);
+  return buf;
 }
 
 }  // namespace
@@ -111,13 +148,17 @@ int rotation_section(int argc, char** argv) {
   struct Config {
     const char* name;
     double f;
-  } configs[] = {{"separated", 1.5}, {"touching", 1.0}, {"near-touching out", 1 + 1e-9},
-                 {"near-touching in", 1 - 1e-9}, {"penetrating", 0.5}};
+    bool distance;  // a row of the distance table too
+  } configs[] = {{"separated", 1.5, true},
+                 {"touching", 1.0, false},
+                 {"near-touching out", 1 + 1e-9, true},
+                 {"near-touching in", 1 - 1e-9, false},
+                 {"penetrating", 0.5, false}};
   const std::size_t orientations = 16;
   // Touching poses take the exact path (M built per pose): far fewer of them.
   const std::size_t touching_poses = std::min<std::size_t>(poses, 64);
 
-  std::printf("## Collision under rigid motion: exact minksum (no M per pose) vs FCL\n\n");
+  std::printf("## Collision and distance under rigid motion: exact minksum (no M per pose) vs FCL\n\n");
   std::printf("bench_proximity --rotation --poses %zu%s%s: per pair, %zu orientation pairs (random rotations of\n"
               "P and Q as double matrices, taken exactly), Q translated by s = c + f·α*·u (u random; f = 1.5\n"
               "separated, 1 touching with s exact, 1 ± 1e-9 near-touching, 0.5 penetrating).  %zu poses per\n"
@@ -133,6 +174,7 @@ int rotation_section(int argc, char** argv) {
   std::printf("|---|---|---|---:|---:|---:|\n");
 #endif
   std::mt19937_64 g(20261202);
+  std::vector<std::string> distance_rows;
   for (const Pair& pr : pairs) {
     const RigidBody bp(pr.p), bq(pr.q);
     std::vector<std::array<double, 9>> rp, rq;
@@ -149,6 +191,11 @@ int rotation_section(int argc, char** argv) {
     fcl::CollisionObjectd fa(fcl_convex(pr.p)), fb(fcl_convex(pr.q));
     fcl::CollisionRequestd req;
     req.gjk_solver_type = fcl::GST_LIBCCD;
+    const fcl::DistanceRequestd dreq = fcl_distance_request();
+    const auto place_fcl = [&](const Pose& x) {  // FCL's objects at pose x
+      fa.setTransform(transform(rp[x.orientation], Vec3d{0, 0, 0}));
+      fb.setTransform(transform(rq[x.orientation], x.t));
+    };
 #endif
     std::normal_distribution<double> nd(0, 1);
     for (const Config& cf : configs) {
@@ -164,7 +211,7 @@ int rotation_section(int argc, char** argv) {
         const Rational alpha = ob.directional_depth_point(c, -u).t;
         Point3 s = c + (alpha * Rational(cf.f)) * u;
         if (!touching) s = Point3(to_double(s.x), to_double(s.y), to_double(s.z));
-        ps.push_back({k, RigidPose::matrix(rq[k], s), to_double(s), ob.collide_point(s).status});
+        ps.push_back({k, RigidPose::matrix(rq[k], s), s, to_double(s), ob.collide_point(s).status});
       }
       std::size_t wrong = 0;
       const RigidStats before = rigid_stats();
@@ -180,8 +227,7 @@ int rotation_section(int argc, char** argv) {
       std::vector<char> hit(n);
       t0 = Clock::now();
       for (std::size_t i = 0; i < n; ++i) {
-        fa.setTransform(transform(rp[ps[i].orientation], Vec3d{0, 0, 0}));
-        fb.setTransform(transform(rq[ps[i].orientation], ps[i].t));
+        place_fcl(ps[i]);
         fcl::CollisionResultd r;
         fcl::collide(&fa, &fb, req, r);
         hit[i] = r.isCollision();
@@ -196,8 +242,72 @@ int rotation_section(int argc, char** argv) {
                   pr.p.num_vertices(), pr.q.num_vertices(), cf.name, ours, (unsigned long long)exact_path, wrong);
 #endif
       std::fflush(stdout);
+      if (!cf.distance) continue;
+
+      // Distance on the same poses: the exact squared distance of each from
+      // the orientation pair's obstacle (not timed).
+      std::vector<Rational> exact_sq(n);
+      for (std::size_t i = 0; i < n; ++i)
+        exact_sq[i] = obs[ps[i].orientation]->distance_point(ps[i].s).squared_distance();
+      std::vector<RigidDistance> dist(n);
+      RigidWarmStart dwarm;
+      t0 = Clock::now();
+      for (std::size_t i = 0; i < n; ++i) dist[i] = distance(bp, pose_p[ps[i].orientation], bq, ps[i].q, &dwarm);
+      const double ours_d = us(t0, n);
+      std::vector<Rational> ours_sq(n);
+      RigidWarmStart ewarm;
+      t0 = Clock::now();
+      for (std::size_t i = 0; i < n; ++i) {
+        const RigidDistance d = distance(bp, pose_p[ps[i].orientation], bq, ps[i].q, &ewarm);
+        ours_sq[i] = exact_values(bp, pose_p[ps[i].orientation], bq, ps[i].q, d).squared_distance;
+      }
+      const double ours_de = us(t0, n);
+      std::size_t d_wrong = 0, d_exact_path = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        d_wrong += ours_sq[i] != exact_sq[i] || (dist[i].status == ContactStatus::separate) != (sgn(exact_sq[i]) > 0);
+        d_exact_path += dist[i].certificate == RigidCertificate::exact;
+      }
+#ifdef MINKSUM_HAVE_FCL
+      std::vector<double> fd(n);
+      t0 = Clock::now();
+      for (std::size_t i = 0; i < n; ++i) {
+        place_fcl(ps[i]);
+        fcl::DistanceResultd r;
+        fcl::distance(&fa, &fb, dreq, r);
+        fd[i] = r.min_distance;
+      }
+      const double fcl_d = us(t0, n);
+      std::size_t fcl_d_wrong = 0;
+      for (std::size_t i = 0; i < n; ++i) fcl_d_wrong += fcl_distance_wrong(fd[i], exact_sq[i]);
+      distance_rows.push_back(format("| %s / %s | %u / %u | %s | %.3g | %.3g | %.3g | %.2f | %zu | %zu | %zu |\n",
+                                     pr.name_p.c_str(), pr.name_q.c_str(), pr.p.num_vertices(), pr.q.num_vertices(),
+                                     cf.name, ours_d, ours_de, fcl_d, fcl_d / ours_d, d_exact_path, d_wrong,
+                                     fcl_d_wrong));
+#else
+      distance_rows.push_back(format("| %s / %s | %u / %u | %s | %.3g | %.3g | %zu | %zu |\n", pr.name_p.c_str(),
+                                     pr.name_q.c_str(), pr.p.num_vertices(), pr.q.num_vertices(), cf.name, ours_d,
+                                     ours_de, d_exact_path, d_wrong));
+#endif
     }
   }
+
+  std::printf("\nSeparation distance, on the separated and near-touching-out poses above: 'ours' is\n"
+              "minksum::distance warm-started from the previous pose (a certified enclosure and closest\n"
+              "points in doubles); '+ exact' adds exact_values (the exact squared distance and closest\n"
+              "points, rationals).  Ours wrong: the exact squared distance from exact_values differs\n"
+              "from that of the orientation pair's TranslationalObstacle at s, or the status differs.\n"
+#ifdef MINKSUM_HAVE_FCL
+              "FCL: fcl::distance with the libccd solver, signed distance and nearest points (the\n"
+              "translation tables' request); wrong when |FCL distance - d| > 1e-9·max(1, d), d the exact\n"
+              "distance (the square root of the nearest double of its square).\n\n"
+              "| pair | vertices | configuration | ours µs | ours + exact µs | FCL µs | FCL/ours | ours exact-path poses | ours wrong | FCL wrong |\n"
+              "|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+#else
+              "\n| pair | vertices | configuration | ours µs | ours + exact µs | ours exact-path poses | ours wrong |\n"
+              "|---|---|---|---:|---:|---:|---:|\n");
+#endif
+  for (const std::string& r : distance_rows) std::fputs(r.c_str(), stdout);
+  std::fflush(stdout);
 
   // The coherent trajectory: Q turns about a fixed axis by 0.001 rad per
   // step while its centre runs along a circle through P (a third of the
@@ -205,6 +315,7 @@ int rotation_section(int argc, char** argv) {
   // one; the exact status (M built exactly) checked every 1000th step.
   std::printf("\n| pair | steps | ours µs / step | FCL µs / step | FCL/ours | steps checked exactly | ours wrong | FCL wrong (checked steps) |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::vector<std::string> trajectory_distance_rows;
   for (const Pair& pr : pairs) {
     const RigidBody bp(pr.p), bq(pr.q);
     double radius = 0;
@@ -263,6 +374,50 @@ int rotation_section(int argc, char** argv) {
                 checked, wrong);
 #endif
     std::fflush(stdout);
+
+    // Distance along the same trajectory; the exact squared distance (M
+    // built exactly, distance_exact) at the same checked steps.
+    std::vector<RigidDistance> dist(poses);
+    RigidWarmStart dwarm;
+    t0 = Clock::now();
+    for (std::size_t i = 0; i < poses; ++i) dist[i] = distance(bp, id, bq, traj[i], &dwarm);
+    const double ours_d = us(t0, poses);
+    std::size_t d_wrong = 0, d_exact_path = 0;
+    std::vector<Rational> exact_sq(check.size());
+    for (std::size_t k = 0; k < check.size(); ++k) {
+      const std::size_t i = check[k];
+      exact_sq[k] = distance_exact(bp, id, bq, traj[i]).squared_distance;
+      d_wrong += exact_values(bp, id, bq, traj[i], dist[i]).squared_distance != exact_sq[k] ||
+                 (dist[i].status == ContactStatus::separate) != (sgn(exact_sq[k]) > 0);
+    }
+    for (const RigidDistance& d : dist) d_exact_path += d.certificate == RigidCertificate::exact;
+#ifdef MINKSUM_HAVE_FCL
+    const fcl::DistanceRequestd dreq = fcl_distance_request();
+    std::vector<double> fd(poses);
+    t0 = Clock::now();
+    for (std::size_t i = 0; i < poses; ++i) {
+      fb.setTransform(transform(rot[i], tr[i]));
+      fcl::DistanceResultd r;
+      fcl::distance(&fa, &fb, dreq, r);
+      fd[i] = r.min_distance;
+    }
+    const double fcl_d = us(t0, poses);
+    std::size_t fcl_d_wrong = 0;
+    for (std::size_t k = 0; k < check.size(); ++k) fcl_d_wrong += fcl_distance_wrong(fd[check[k]], exact_sq[k]);
+    trajectory_distance_rows.push_back(format("| %s / %s | %zu | %.3g | %.3g | %.2f | %zu | %zu | %zu | %zu |\n",
+                                              pr.name_p.c_str(), pr.name_q.c_str(), poses, ours_d, fcl_d,
+                                              fcl_d / ours_d, d_exact_path, checked, d_wrong, fcl_d_wrong));
+#else
+    trajectory_distance_rows.push_back(format("| %s / %s | %zu | %.3g | | | %zu | %zu | %zu | |\n", pr.name_p.c_str(),
+                                              pr.name_q.c_str(), poses, ours_d, d_exact_path, checked, d_wrong));
+#endif
   }
+
+  std::printf("\nDistance along the same trajectory, warm-started; checked against the exact squared distance\n"
+              "(M built exactly) at the steps the collision table checks (FCL: the rule of the distance\n"
+              "table; at a step that is not separate FCL is wrong when its signed distance is > 1e-9).\n\n"
+              "| pair | steps | ours µs / step | FCL µs / step | FCL/ours | ours exact-path steps | steps checked exactly | ours wrong | FCL wrong (checked steps) |\n"
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const std::string& r : trajectory_distance_rows) std::fputs(r.c_str(), stdout);
   return 0;
 }

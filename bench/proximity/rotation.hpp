@@ -2,5 +2,5 @@
 #pragma once
 
 // bench_proximity --rotation [--poses N] [--meshes DIR]: prints the section's
-// markdown table on stdout; returns the exit status.
+// markdown tables on stdout; returns the exit status.
 int rotation_section(int argc, char** argv);

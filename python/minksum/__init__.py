@@ -15,8 +15,9 @@ polytope) returns a ``SolidSum``; so do ``erode``, ``opening`` (also
 ``minksum.open``) and ``closing`` (also ``minksum.close``) of a solid by a
 convex polytope.
 
-Collision under rigid motion: ``collide_rigid(RigidBody(a), RigidBody(b), t_b,
-r_b)`` for N poses (quaternions or rotation matrices) in one call.
+Collision and separation distance under rigid motion: ``collide_rigid(RigidBody(a),
+RigidBody(b), t_b, r_b)`` and ``distance_rigid(...)`` for N poses (quaternions
+or rotation matrices) in one call.
 
 Many sums: ``minkowski_sum_many`` runs them on a pool of C++ threads;
 ``minksum.dask`` spreads them over a Dask cluster.
@@ -39,6 +40,7 @@ from ._minksum import (
     Witness,
     closing,
     collide_rigid,
+    distance_rigid,
     erode,
     load,
     minkowski_sum,
@@ -71,6 +73,7 @@ __all__ = [
     "close",
     "closing",
     "collide_rigid",
+    "distance_rigid",
     "erode",
     "load",
     "minkowski_sum",

@@ -244,3 +244,42 @@ def collide_rigid(
     *,
     threads: Optional[int] = None,
 ) -> npt.NDArray[np.int8]: ...
+
+class RigidDistances(TypedDict):
+    status: npt.NDArray[np.int8]  # (N,): minksum.STATUS[code]
+    distance: npt.NDArray[np.float64]  # (N,): 0 unless separate
+    lower: npt.NDArray[np.float64]  # (N,): certified lower <= exact distance <= upper
+    upper: npt.NDArray[np.float64]
+    point_a: npt.NDArray[np.float64]  # (N, 3): closest points of placed a and placed b
+    point_b: npt.NDArray[np.float64]
+
+class RigidDistancesExact(RigidDistances):  # exact=True
+    squared_distance: list[Fraction]
+    exact_point_a: list[Tuple[Fraction, Fraction, Fraction]]
+    exact_point_b: list[Tuple[Fraction, Fraction, Fraction]]
+
+# The poses of collide_rigid; a dict of arrays (exact=True: with the exact values).
+@overload
+def distance_rigid(
+    a: RigidBody,
+    b: RigidBody,
+    t_b: Optional[npt.ArrayLike] = None,
+    r_b: Optional[npt.ArrayLike] = None,
+    t_a: Optional[npt.ArrayLike] = None,
+    r_a: Optional[npt.ArrayLike] = None,
+    *,
+    threads: Optional[int] = None,
+    exact: Literal[False] = False,
+) -> RigidDistances: ...
+@overload
+def distance_rigid(
+    a: RigidBody,
+    b: RigidBody,
+    t_b: Optional[npt.ArrayLike] = None,
+    r_b: Optional[npt.ArrayLike] = None,
+    t_a: Optional[npt.ArrayLike] = None,
+    r_a: Optional[npt.ArrayLike] = None,
+    *,
+    threads: Optional[int] = None,
+    exact: Literal[True],
+) -> RigidDistancesExact: ...

@@ -1,4 +1,6 @@
-"""collide_rigid: collision under rigid motion for N poses in one call, against the exact Obstacle."""
+"""collide_rigid and distance_rigid: collision and distance under rigid motion for N poses in one call, against the exact Obstacle."""
+
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -62,3 +64,118 @@ def test_matrices_one_pose_for_all_and_errors():
         minksum.collide_rigid(a, b, t[:3], r[:2])
     with pytest.raises(ValueError, match="zero quaternion"):
         minksum.collide_rigid(a, b, t[:1], np.zeros((1, 4), dtype=np.int64))
+
+
+def rotated(polytope, r):
+    """The polytope r·polytope, exactly: r a float (3, 3) matrix taken exactly."""
+    m = [[Fraction(x) for x in row] for row in r]
+    return minksum.Polytope.hull([tuple(sum(m[i][k] * v[k] for k in range(3)) for i in range(3))
+                                  for v in polytope.exact_vertices()])
+
+
+def check_distances(got, ref, t_rel, seed, what):
+    """got: distance_rigid(..., exact=True); ref: the Obstacle's exact answers at the translations t_rel."""
+    n = len(ref)
+    for key in ("status", "distance", "lower", "upper"):
+        assert got[key].shape == (n,), (key, seed)
+    assert got["point_a"].shape == got["point_b"].shape == (n, 3)
+    for i, r in enumerate(ref):
+        where = f"seed {seed}, {what}, pose {i}, t = {t_rel[i]}"
+        assert minksum.STATUS[got["status"][i]] == r.status, where
+        sq = got["squared_distance"][i]
+        assert isinstance(sq, Fraction) and sq == r.squared_distance, where
+        # The certified enclosure holds the exact distance.
+        lo, hi = Fraction(float(got["lower"][i])), Fraction(float(got["upper"][i]))
+        assert 0 <= lo <= hi and lo * lo <= sq <= hi * hi, where
+        assert got["lower"][i] <= got["distance"][i] <= got["upper"][i], where
+        # The exact closest points are sq apart; the doubles of a separate
+        # answer are near them.  When the bodies meet both are common points
+        # (not necessarily the same one: they are not unique).
+        pa, pb = got["exact_point_a"][i], got["exact_point_b"][i]
+        assert sum((x - y) ** 2 for x, y in zip(pa, pb)) == sq, where
+        if r.status == "separate":
+            assert np.allclose(got["point_a"][i], [float(x) for x in pa], rtol=0, atol=1e-9), where
+            assert np.allclose(got["point_b"][i], [float(x) for x in pb], rtol=0, atol=1e-9), where
+        else:
+            assert pa == pb and (got["point_a"][i] == got["point_b"][i]).all(), where
+
+
+def test_distance_with_quaternions_equals_the_exact_obstacle():
+    rng = np.random.default_rng(SEED + 2)
+    a, b = minksum.RigidBody("cube"), minksum.RigidBody("random:50:3")
+    seen = set()
+    for qa, qb in [((1, 0, 0, 0), (1, 2, 3, 4)), ((2, -1, 0, 3), (0, 1, 1, 0)), ((3, 1, 4, 1), (5, -2, 0, 1))]:
+        t_a = rng.uniform(-1, 1, size=(100, 3))
+        t_b = rng.uniform(-4, 4, size=(100, 3))
+        got = minksum.distance_rigid(a, b, t_b, np.array([qb] * 100), t_a, np.array(qa), exact=True, threads=2)
+        o = minksum.Obstacle("cube@rot:%d,%d,%d,%d" % qa, "random:50:3@rot:%d,%d,%d,%d" % qb)
+        t_rel = [tuple(Fraction(float(y)) - Fraction(float(x)) for x, y in zip(ta, tb)) for ta, tb in zip(t_a, t_b)]
+        check_distances(got, o.distance(t_rel, exact=True), t_rel, SEED + 2, (qa, qb))
+        seen |= set(got["status"].tolist())
+    assert {0, 2} <= seen
+
+
+def test_distance_with_float_matrices_equals_the_exact_obstacle():
+    rng = np.random.default_rng(SEED + 3)
+    p, q = minksum.load("sphere:2"), minksum.load("random:50:4")
+    a, b = minksum.RigidBody(p), minksum.RigidBody(q)
+    seen = set()
+    for r_a, r_b in zip(random_matrices(rng, 2), random_matrices(rng, 2)):
+        t_b = rng.uniform(-3.5, 3.5, size=(120, 3))
+        got = minksum.distance_rigid(a, b, t_b, r_b, None, r_a, exact=True)
+        o = minksum.Obstacle(rotated(p, r_a), rotated(q, r_b))
+        t_rel = [tuple(Fraction(float(x)) for x in t) for t in t_b]
+        check_distances(got, o.distance(t_rel, exact=True), t_rel, SEED + 3, "matrices")
+        seen |= set(got["status"].tolist())
+    assert {0, 2} <= seen
+
+
+def test_distance_exact_contacts_and_the_plain_arrays():
+    c = minksum.RigidBody("cube")
+    # Two cubes [-1, 1]³: face, face, edge and vertex contacts; 1 and √2 apart; overlapping.
+    t = np.array([[2.0, 0, 0], [2.0, 0.5, 0], [2.0, 2.0, 1.0], [2.0, 2.0, 2.0], [3.0, 0, 0], [3.0, 3.0, 0], [0.5, 0, 0]])
+    got = minksum.distance_rigid(c, c, t, exact=True)
+    assert [minksum.STATUS[s] for s in got["status"]] == ["touching"] * 4 + ["separate"] * 2 + ["penetrating"]
+    assert got["squared_distance"] == [0, 0, 0, 0, 1, 2, 0]
+    assert got["exact_point_a"][3] == got["exact_point_b"][3] == (1, 1, 1)
+    assert got["distance"][4] == 1.0 and got["lower"][4] <= 1.0 <= got["upper"][4]
+    assert Fraction(float(got["lower"][5])) ** 2 <= 2 <= Fraction(float(got["upper"][5])) ** 2
+    assert (got["distance"][[0, 1, 2, 3, 6]] == 0).all() and (got["lower"][[0, 1, 2, 3, 6]] == 0).all()
+    plain = minksum.distance_rigid(c, c, t, threads=1)
+    assert set(plain) == {"status", "distance", "lower", "upper", "point_a", "point_b"}
+    for key in plain:
+        assert (plain[key] == got[key]).all(), key
+
+
+def test_distance_one_pose_for_all_and_errors():
+    rng = np.random.default_rng(SEED + 4)
+    a, b = minksum.RigidBody("sphere:2"), minksum.RigidBody("random:50:3")
+    r = random_matrices(rng, 200)
+    t = rng.uniform(-3, 3, size=(200, 3))
+    # One rotation, or one translation, for every pose equals it repeated.
+    one = minksum.distance_rigid(a, b, t, r[0])
+    same = minksum.distance_rigid(a, b, t, np.repeat(r[:1], 200, axis=0))
+    for key in one:
+        assert (one[key] == same[key]).all(), key
+    one = minksum.distance_rigid(a, b, t[7], r, exact=True)
+    same = minksum.distance_rigid(a, b, np.repeat(t[7:8], 200, axis=0), r, exact=True)
+    assert one["squared_distance"] == same["squared_distance"] and (one["distance"] == same["distance"]).all()
+    # A single pose of both bodies: arrays of one.
+    single = minksum.distance_rigid(a, b, [3, 0, 0])
+    assert single["status"].shape == (1,) and single["point_a"].shape == (1, 3)
+    # The statuses are collide_rigid's.
+    assert (minksum.distance_rigid(a, b, t, r)["status"] == minksum.collide_rigid(a, b, t, r)).all()
+    with pytest.raises(ValueError, match="counts must agree"):
+        minksum.distance_rigid(a, b, t[:3], r[:2])
+    with pytest.raises(ValueError, match="poses of a and b: 2 and 3"):
+        minksum.distance_rigid(a, b, t[:3], t_a=t[:2])
+    with pytest.raises(ValueError, match="expected quaternions"):
+        minksum.distance_rigid(a, b, t[:2], np.ones((2, 5), dtype=np.int64))
+    with pytest.raises(ValueError, match="t_b"):
+        minksum.distance_rigid(a, b, np.ones((2, 4)))
+    with pytest.raises(ValueError, match="positive determinant"):
+        minksum.distance_rigid(a, b, t[:1], np.diag([1.0, -1.0, 1.0]))
+    with pytest.raises(TypeError, match="quaternions must be integers"):
+        minksum.distance_rigid(a, b, t[:1], r_a=np.array([1.0, 0, 0, 0]))
+    with pytest.raises(ValueError, match="threads"):
+        minksum.distance_rigid(a, b, t, threads=0)

@@ -1,5 +1,6 @@
 // minksum batch: many independent Minkowski sums on a pool of threads.
 #include <minksum/parallel.hpp>
+#include <minksum/sum.hpp>
 
 #include <cstddef>
 #include <exception>
@@ -28,7 +29,10 @@ standard input) holds one pair per line, either as a JSON object
 ("method" and "hull" optional: --method and --hull give the defaults) or as
 two names separated by white space
     parts/gear.off tools/ball.stl
-A and B are files ({formats}) or catalog names, as for 'minksum sum'.  Empty
+A and B are files ({formats}) or catalog names, as for 'minksum sum': convex
+polytopes, points, segments and flat polygons (docs/sweeps.md), or closed
+solids that are not convex (docs/nonconvex.md; each such sum on one thread,
+the pairs in parallel).  Empty
 lines and lines starting with '#' are skipped; nothing but white space may
 follow a JSON object, and no line may hold a NUL byte.
 
@@ -42,7 +46,10 @@ Output, one line per pair:
   {"line": 1, "a": "cube", "b": "sphere:3", "method": "walk", "vertices": V,
    "edges": E, "facets": F, "dimension": 3, "kind": "polytope", "volume": "p/q",
    "volume_double": x, "seconds": s}
-volume is exact (an integer or p/q); seconds is the sum's computation alone.
+with the result's dimension and kind as 'minksum sum' reports them (a
+sum with a non-convex solid: "method": "nonconvex", "kind": "solid", its
+boundary's vertices, edges and faces).  volume is exact (an integer or p/q);
+seconds is the sum's computation alone.
 A pair that fails (a missing or bad file, an unknown catalog name) gets
   {"line": 3, "a": "...", "b": "...", "error": "FILE: PLACE: PROBLEM", "status": 3}
 (status 3: bad input data, 2: bad usage) and the other pairs go on.  Every
@@ -127,13 +134,21 @@ std::vector<Pair> read_pairs(std::istream& in, const std::string& file, Method m
 Outcome compute(const Pair& p) {
   Outcome o;
   try {
-    const ConvexPolytope a = load_operand(p.a, p.hull, nullptr);
-    const ConvexPolytope b = load_operand(p.b, p.hull, nullptr);
-    const SumResult r = minkowski_sum(a, b, p.method);
-    const Rational volume = sum_volume(a, b, r);  // by mixed volumes, from the operands
-    o.json = ", \"method\": \"" + std::string(method_name(r.method)) + "\", " + polytope_json(r.polytope) +
-             ", \"volume\": \"" + format_exact(volume) + "\", \"volume_double\": " + json_number(to_double(volume)) +
-             ", \"seconds\": " + json_number(r.seconds);
+    // Any kind of operand (<minksum/sum.hpp>): convex polytopes, points,
+    // segments, polygons, closed solids; the pairs already run in parallel.
+    std::vector<Operand> operands;
+    operands.push_back(Operand::load(p.a, {p.hull, std::nullopt}));
+    operands.push_back(Operand::load(p.b, {p.hull, std::nullopt}));
+    SumRequest request;
+    request.method = p.method;
+    request.threads = 1;
+    request.provenance = false;
+    const SumReport r = minkowski_sum(operands, request).report;
+    const Rational volume = r.volume ? *r.volume : Rational(0);
+    o.json = ", \"method\": \"" + json_escape(r.method) + "\", \"vertices\": " + std::to_string(r.vertices) +
+             ", \"edges\": " + std::to_string(r.edges) + ", \"facets\": " + std::to_string(r.facets) + ", " +
+             kind_json(r.dimension, r.kind) + ", \"volume\": \"" + format_exact(volume) +
+             "\", \"volume_double\": " + json_number(to_double(volume)) + ", \"seconds\": " + json_number(r.seconds);
   } catch (const InputError& e) {
     o.status = 3;
     o.error = e.what();

@@ -1,12 +1,14 @@
 // minksum gen NAME -o OUT: write a catalog polytope.
 #include <minksum/catalog.hpp>
+#include <minksum/nonconvex.hpp>
 
 #include <iostream>
 
 #include "commands.hpp"
 #include "common.hpp"
 #include "mesh_io.hpp"
-#include "nonconvex_sum.hpp"
+#include "solid.hpp"
+#include "text.hpp"
 #include "sweep.hpp"
 
 namespace minksum::cli {
@@ -25,6 +27,23 @@ Rounding).
 
 Catalog (names are accepted anywhere a file path is):
 )";
+
+
+// A non-convex solid of the catalog: validated, written like a sum's
+// boundary, one summary line.
+int write_nonconvex_catalog_solid(const std::string& spec, const MeshOutput& output) {
+  const Solid s = validate_solid(catalog_mesh(spec), spec);
+  const Mesh m = catalog_mesh(spec);
+  Mesh written_mesh;
+  write_solid_mesh(output, m, &written_mesh, nullptr, "solid");
+  const std::size_t written = written_mesh.faces.size();
+  output.report_stream() << printable(spec) << ": " << s.vertices << " vertices, " << s.faces
+                         << " faces, non-convex, written to "
+                         << (output.to_stdout() ? std::string("standard output") : printable(output.path));
+  if (written != s.faces) output.report_stream() << " as " << written << " triangles";
+  output.report_stream() << "\n";
+  return 0;
+}
 
 }  // namespace
 

@@ -8,7 +8,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "mesh_io.hpp"
-#include "nonconvex_sum.hpp"
+#include "sum_command.hpp"
 
 namespace minksum::cli {
 
@@ -73,7 +73,7 @@ Examples:
   minksum close lshape sphere:2@scale:1/4 -o filleted.stl --binary
 )";
 
-int run_morphology(const std::vector<std::string>& argv, const char* command, SolidOperation operation) {
+int run_morphology(const std::vector<std::string>& argv, const char* command, SumOperation operation) {
   const Args a = parse_args(argv, command,
                             {{"--output", "-o", true}, {"--method", "", true}, {"--exact"}, {"--binary"},
                              {"--json"}, kFormatOption});
@@ -89,25 +89,20 @@ int run_morphology(const std::vector<std::string>& argv, const char* command, So
     throw UsageError("unknown --method '" + method_text + "' for '" + command + "' (walk, chms)");
   const auto format = format_option(a);
   const std::optional<MeshOutput> output = output_option(a);
-  std::vector<AnyOperand> any;
-  LoadPhases load;
-  for (const std::string& name : a.positional) {
-    LoadPhases l;
-    any.push_back(load_any_operand_from(name, &l, format));
-    if (any.back().flat)
-      throw UsageError(std::string("'") + command + "' takes solids: '" + name +
-                       "' is a point, a segment or a flat polygon");
-    load.read += l.read;
-    load.validate += l.validate;
-  }
-  return run_nonconvex_sum(a.positional, any, load, output, a.flag("--json"), *method, NonconvexMethod::sweep,
-                           operation);
+  SumCommand c;
+  c.names = a.positional;
+  c.format = format;
+  c.output = output;
+  c.json = a.flag("--json");
+  c.request.operation = operation;
+  c.request.method = *method;
+  return run_sum_command(c);
 }
 
 }  // namespace
 
-int run_erode(const std::vector<std::string>& args) { return run_morphology(args, "erode", SolidOperation::erode); }
-int run_open(const std::vector<std::string>& args) { return run_morphology(args, "open", SolidOperation::open); }
-int run_close(const std::vector<std::string>& args) { return run_morphology(args, "close", SolidOperation::close); }
+int run_erode(const std::vector<std::string>& args) { return run_morphology(args, "erode", SumOperation::erode); }
+int run_open(const std::vector<std::string>& args) { return run_morphology(args, "open", SumOperation::open); }
+int run_close(const std::vector<std::string>& args) { return run_morphology(args, "close", SumOperation::close); }
 
 }  // namespace minksum::cli

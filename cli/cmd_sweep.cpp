@@ -67,53 +67,6 @@ ConvexSet load_set_operand(const std::string& spec, bool hull, LoadPhases* phase
   }
 }
 
-int sum_sets(const std::vector<std::string>& names, const std::vector<ConvexSet>& operands, Method method,
-             const std::optional<MeshOutput>& output, bool json, const LoadPhases& load) {
-  SetSumResult r;
-  double seconds = 0;
-  {
-    ProgressTicker ticker("minksum sum");
-    for (std::size_t i = 1; i < operands.size(); ++i) {
-      r = minkowski_sum_sets(i == 1 ? operands[0] : r.set, operands[i], method, ticker.sum_options());
-      seconds += r.seconds;
-    }
-  }
-  const ConvexSet& s = r.set;
-  const auto w0 = std::chrono::steady_clock::now();
-  RoundingReport rounding;
-  if (output) rounding = write_set_output(*output, s);
-  const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
-  std::ostream& report = output ? output->report_stream() : std::cout;
-  if (json) {
-    const Rational vol = s.volume();
-    report << "{" << set_counts_json(s) << ", \"method\": \"" << method_name(r.method) << "\", \"route\": \""
-           << r.route << "\", \"seconds\": " << json_number(seconds)
-           << ", \"phases\": {\"read\": " << json_number(load.read) << ", \"validate\": " << json_number(load.validate)
-           << ", \"sum\": " << json_number(seconds) << ", \"explicit\": 0, \"write\": " << json_number(write_seconds)
-           << "}, \"volume\": \"" << format_exact(vol) << "\", \"volume_double\": " << json_number(to_double(vol));
-    if (names.size() == 2)
-      report << ", \"a\": {\"name\": \"" << json_escape(names[0]) << "\", " << set_counts_json(operands[0])
-             << "}, \"b\": {\"name\": \"" << json_escape(names[1]) << "\", " << set_counts_json(operands[1]) << "}";
-    report << ", \"operands\": [";
-    for (std::size_t i = 0; i < names.size(); ++i)
-      report << (i ? ", " : "") << "{\"name\": \"" << json_escape(names[i]) << "\", " << set_counts_json(operands[i])
-             << "}";
-    report << "]" << output_json_tail(output, rounding) << "\n";
-  } else {
-    for (std::size_t i = 0; i < names.size(); ++i)
-      report << (i ? " ⊕ " : "") << printable(names[i]) << " (" << dimension_name(operands[i].dimension()) << ", "
-             << operands[i].num_vertices() << " V)";
-    report << "\n  = a " << dimension_name(s.dimension()) << ": " << s.num_vertices() << " vertices, "
-           << s.num_edges() << (s.num_edges() == 1 ? " edge, " : " edges, ") << s.num_facets()
-           << (s.num_facets() == 1 ? " facet\n" : " facets\n")
-           << "  method " << method_name(r.method) << " (" << r.route << "), " << format_double(seconds) << " s\n";
-    if (output)
-      report << "  written to " << (output->to_stdout() ? std::string("standard output") : printable(output->path))
-             << (s.full() ? "" : s.dimension() == 2 ? " (one face)" : " (its points, no faces)") << "\n";
-  }
-  return 0;
-}
-
 void append_set_json(std::string& out, const ConvexSet& s, const std::string& name, const std::string& role) {
   if (s.full()) return append_solid_json(out, s.polytope(), name, role);
   const std::vector<Point3>& v = s.vertices();

@@ -2,12 +2,13 @@
 // operands and their Minkowski sum, in 3D (cli/page.hpp, web/src/viewer.js).
 #include <minksum/operand.hpp>
 
+#include <algorithm>
 #include <iostream>
 
 #include "commands.hpp"
 #include "common.hpp"
 #include "memory.hpp"
-#include "nonconvex_sum.hpp"
+#include "sum_command.hpp"
 #include "page.hpp"
 #include "progress.hpp"
 #include "scene.hpp"
@@ -145,26 +146,17 @@ int view_scene(const Args& a, const LoadedScene& scene, const std::string& outpu
 
 // The page of one non-convex solid, or of A, B and A ⊕ B when an operand is
 // not convex (validated as 'sum' validates it, summed by the boundary sweep).
-int view_nonconvex(const Args& a, const std::string& output, const std::vector<AnyOperand>& any, Method method) {
+int view_nonconvex(const Args& a, const std::string& output, const std::vector<Operand>& operands, Method method) {
   const std::vector<std::string>& names = a.positional;
   const bool json = a.flag("--json");
-  std::vector<Solid> solids;
-  for (std::size_t i = 0; i < any.size(); ++i) {
-    if (any[i].flat)
-      throw UsageError("a point, segment or polygon operand is summed with convex operands only, not with a "
-                       "non-convex solid (docs/sweeps.md)");
-    solids.push_back(any[i].polytope ? solid_of(*any[i].polytope) : validate_operand_solid(any[i].mesh, names[i]));
-  }
   // A solid's JSON for the page: a convex operand as 'view' shows polytopes.
   auto append_operand = [&](std::string& data, std::size_t i, const std::string& role) {
-    if (any[i].polytope) append_solid_json(data, *any[i].polytope, names[i], role);
-    else append_mesh_solid_json(data, solid_faces(solids[i]), solids[i].volume, names[i], role);
+    if (const ConvexPolytope* p = operands[i].polytope()) append_solid_json(data, *p, names[i], role);
+    else append_mesh_solid_json(data, solid_faces(*operands[i].solid()), operands[i].solid()->volume, names[i], role);
   };
   auto counts_of = [&](std::size_t i) {
-    const MeshCounts c = any[i].polytope ? MeshCounts{any[i].polytope->num_vertices(), any[i].polytope->num_edges(),
-                                                      any[i].polytope->num_facets()}
-                                         : mesh_counts(solid_faces(solids[i]));
-    return c;
+    const Operand& o = operands[i];
+    return MeshCounts{o.num_vertices(), o.num_edges(), o.num_facets()};
   };
   auto counts_text = [](const MeshCounts& c, bool convex) {
     return "\"vertices\": " + std::to_string(c.vertices) + ", \"edges\": " + std::to_string(c.edges) +
@@ -179,7 +171,7 @@ int view_nonconvex(const Args& a, const std::string& output, const std::vector<A
     const MeshCounts c = counts_of(0);
     if (json)
       std::cout << "{\"page\": \"solid\", \"name\": \"" << json_escape(names[0]) << "\", " << counts_text(c, false)
-                << ", \"volume\": \"" << format_exact(solids[0].volume) << "\", \"convex\": false, \"output\": \""
+                << ", \"volume\": \"" << format_exact(operands[0].solid()->volume) << "\", \"convex\": false, \"output\": \""
                 << json_escape(output) << "\"}\n";
     else
       std::cout << printable(names[0]) << ": " << c.vertices << " vertices, " << c.edges << " edges, " << c.faces
@@ -187,12 +179,15 @@ int view_nonconvex(const Args& a, const std::string& output, const std::vector<A
     return 0;
   }
   allow_thread_arenas();
-  NonconvexSum r;
+  SumRequest request;
+  request.method = method;
+  OperandSum sum;
   {
     ProgressTicker ticker("minksum view");
-    r = minkowski_sum_nonconvex(solids[0], solids[1], ticker.sum_options(), 0,
-                                method == Method::automatic ? Method::walk : method);
+    request.options = ticker.sum_options();
+    sum = minkowski_sum(operands, request);
   }
+  const NonconvexSum& r = std::get<NonconvexSum>(sum.result);
   const std::string sum_name = names[0] + " ⊕ " + names[1];
   const std::string title = a.value_or("--title", sum_name);
   std::string data = "{\"kind\": \"sum\", \"title\": " + json_string(title) +
@@ -209,8 +204,8 @@ int view_nonconvex(const Args& a, const std::string& output, const std::vector<A
   if (json) {
     std::cout << "{\"page\": \"sum\", " << counts_text(c, false) << ", \"method\": \"nonconvex\", \"volume\": \""
               << format_exact(r.volume) << "\", \"a\": {\"name\": \"" << json_escape(names[0]) << "\", "
-              << counts_text(counts_of(0), solids[0].convex.has_value()) << "}, \"b\": {\"name\": \"" << json_escape(names[1])
-              << "\", " << counts_text(counts_of(1), solids[1].convex.has_value()) << "}, \"output\": \"" << json_escape(output)
+              << counts_text(counts_of(0), std::string(operands[0].kind_name()) == "polytope") << "}, \"b\": {\"name\": \"" << json_escape(names[1])
+              << "\", " << counts_text(counts_of(1), std::string(operands[1].kind_name()) == "polytope") << "}, \"output\": \"" << json_escape(output)
               << "\"}\n";
   } else {
     std::cout << printable(sum_name) << " = " << c.vertices << " vertices, " << c.edges << " edges, " << c.faces
@@ -251,14 +246,14 @@ int run_view(const std::vector<std::string>& argv) {
   // Points, segments, polygons (docs/sweeps.md): drawn by cmd_sweep.cpp.
   std::vector<ConvexSet> sets;
   if (!hull) {  // operands that may be non-convex solids (docs/nonconvex.md)
-    std::vector<AnyOperand> any;
+    std::vector<Operand> operands;
     bool convex = true;
     for (const std::string& name : a.positional) {
-      any.push_back(load_any_operand_from(name, nullptr, std::nullopt));
-      convex = convex && (any.back().polytope || any.back().flat);
+      operands.push_back(load_command_operand(name, false, std::nullopt));
+      convex = convex && !operands.back().solid();
     }
-    if (!convex) return view_nonconvex(a, *output, any, *method);
-    for (auto& o : any) sets.push_back(o.flat ? std::move(*o.flat) : ConvexSet(std::move(*o.polytope)));
+    if (!convex) return view_nonconvex(a, *output, operands, *method);
+    for (const Operand& o : operands) sets.push_back(o.to_set());
   }
   {
     for (std::size_t i = 0; hull && i < a.positional.size(); ++i)

@@ -10,33 +10,9 @@
 #include <unordered_map>
 
 #include "common.hpp"
-#include "nonconvex_sum.hpp"
 #include "text.hpp"
 
 namespace minksum::cli {
-
-Solid validate_operand_solid(const Mesh& mesh, const std::string& name) {
-  try {
-    return validate_solid(mesh, name);
-  } catch (const InputError& e) {
-    // The hint where --hull gives what was likely meant, as load_operand
-    // hints: a point cloud, or a closed surface whose fault the convex
-    // validator finds in its convexity or planarity (NotConvexError: a CAD
-    // tool's rounding, a surface crossing itself); not for a mesh whose
-    // surface is broken (open, non-manifold, oriented inwards).
-    bool hint = mesh.faces.empty();
-    if (!hint) {
-      try {
-        ConvexPolytope::from_mesh(mesh, name);
-      } catch (const NotConvexError&) {
-        hint = true;
-      } catch (const InputError&) {
-      }
-    }
-    if (!hint) throw;
-    throw InputError(e.file(), e.place(), e.problem() + "; --hull takes the convex hull of its points instead");
-  }
-}
 
 SolidOperand load_solid_operand(const std::string& spec, bool hull, LoadPhases* phases,
                                 std::optional<Format> format) {
@@ -55,16 +31,12 @@ SolidOperand load_solid_operand(const std::string& spec, bool hull, LoadPhases* 
   }
   const std::string name = spec == "-" ? "<stdin>" : spec;
   LoadPhases load;
-  AnyOperand any;
-  if (spec == "-") {
+  auto loaded = [&] {
+    if (spec != "-") return Operand::load(spec, {false, format}, &load);
     std::istringstream in(input);
-    any = load_any_operand(in, *format, name, &load);
-  } else {
-    any = load_any_operand(spec, &load, format);
-  }
-  if (any.polytope) {
-    o.polytope = std::move(*any.polytope);
-  } else if (any.flat) {  // not a solid: load_operand's refusal
+    return Operand::load(in, *format, name, false, &load);
+  }();
+  if (loaded.set()) {  // not a solid: load_operand's refusal
     if (spec != "-") {
       o.polytope = load_operand(spec, false, &load, format);
     } else {
@@ -75,10 +47,10 @@ SolidOperand load_solid_operand(const std::string& spec, bool hull, LoadPhases* 
         throw InputError(e.file(), e.place(), e.problem() + "; --hull takes the convex hull of its points instead");
       }
     }
+  } else if (loaded.polytope()) {
+    o.polytope = std::get<ConvexPolytope>(std::move(loaded).release());
   } else {
-    const auto t0 = std::chrono::steady_clock::now();
-    o.solid = validate_operand_solid(any.mesh, name);
-    load.validate += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    o.solid = std::get<Solid>(std::move(loaded).release());
   }
   if (phases) *phases = load;
   return o;

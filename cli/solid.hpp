@@ -5,6 +5,7 @@
 
 #include <minksum/nonconvex.hpp>
 #include <minksum/operand.hpp>
+#include <minksum/sum.hpp>
 #include <minksum/polytope.hpp>
 
 #include <cstddef>
@@ -14,13 +15,6 @@
 #include "mesh_io.hpp"
 
 namespace minksum::cli {
-
-// validate_solid (<minksum/nonconvex.hpp>) for an operand named `name`: a
-// mesh that is not a valid closed solid is refused (InputError, its words),
-// with the hint that --hull takes the convex hull of its points instead
-// where load_operand gives it: a point cloud, a closed surface that is not
-// exactly convex; not for an open, non-manifold or inward mesh.
-Solid validate_operand_solid(const Mesh& mesh, const std::string& name);
 
 // An operand of stats, convert and view: without `hull`, the convex
 // polytope when the mesh is one (exactly as load_operand gives it), else

@@ -24,13 +24,6 @@ ConvexSet load_set_operand(const std::string& spec, bool hull, LoadPhases* phase
 // OutputError for STL, which holds closed triangle meshes only).
 RoundingReport write_set_output(const MeshOutput& out, const ConvexSet& s);
 
-// The rest of 'minksum sum' when an operand is not full-dimensional: the sum
-// left to right by minkowski_sum_sets, written (a polytope as usual; a
-// polygon as one face; a point or a segment as its points without faces)
-// and reported, with the result's "dimension" in --json.
-int sum_sets(const std::vector<std::string>& names, const std::vector<ConvexSet>& operands, Method method,
-             const std::optional<MeshOutput>& output, bool json, const LoadPhases& load);
-
 // The page data of a set for 'minksum view' (cli/page.hpp's
 // append_solid_json, whose fields it has): a polytope as there; a polygon as
 // two facets, its loop and the reversed loop with opposite planes (a face

@@ -107,6 +107,34 @@ TEST_F(Batch, AgreesWithSumForOneAndTwoThreads) {
   }
 }
 
+// Every kind of operand 'minksum sum' takes: non-convex solids, points,
+// segments, polygons; the same kind, counts and exact volume as the sum.
+TEST_F(Batch, SolidsAndSweepsAgreeWithSum) {
+  const char* pairs[][2] = {{"tube", "cube@scale:1/8"},         {"lshape", "sphere:1@scale:1/4"},
+                            {"cube", "segment:0,0,0:3,1,2"},     {"segment:0,0,0:2,0,0", "segment:0,0,0:1,1,0"},
+                            {"point:1,2,3", "square"}};
+  std::string input;
+  for (const auto& p : pairs) input += std::string(p[0]) + " " + p[1] + "\n";
+  const CmdResult r = run("batch --threads 2", input);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto l = lines(r.out);
+  ASSERT_EQ(l.size(), std::size(pairs));
+  for (std::size_t i = 0; i < l.size(); ++i) {
+    SCOPED_TRACE(l[i]);
+    const CmdResult sum = run(std::string("sum ") + pairs[i][0] + " " + pairs[i][1] + " --json");
+    ASSERT_EQ(sum.status, 0) << sum.err;
+    for (const char* key : {"method", "vertices", "edges", "facets", "dimension", "kind", "volume"})
+      EXPECT_EQ(field(l[i], key), field(sum.out, key)) << key;
+  }
+  EXPECT_EQ(field(l[0], "kind"), "solid");
+  EXPECT_EQ(field(l[0], "method"), "nonconvex");
+  // A cube of side 2 swept along v = (3, 1, 2): its volume plus, per axis,
+  // |v_i| times the area of the faces across it, 8 + 4 · (3 + 1 + 2).
+  EXPECT_EQ(field(l[2], "volume"), "32");
+  EXPECT_EQ(field(l[3], "kind"), "polygon");
+  EXPECT_EQ(field(l[4], "dimension"), "2");
+}
+
 TEST_F(Batch, NamePairsFileAndMethods) {
   const fs::path file = write("pairs.txt", "cube tetra\n  sphere:2   cube  \n{\"a\": \"cube\", \"b\": \"tetra\", \"method\": \"chms\"}\n");
   const CmdResult r = run("batch " + file.string() + " --method cvms --threads 2");

@@ -1726,7 +1726,8 @@ TEST_F(Cli, ViewShowsNonConvexSolids) {
 
 // A refusal of a non-convex operand names --hull, and every command that
 // takes convex operands has it: cgm (which refused without the hint),
-// query, batch, simulate (which had no --hull).
+// query, simulate (which had no --hull); batch, which takes solids, names it
+// for a point cloud.
 TEST_F(Cli, RefusalsNameHullOnlyWhereTheCommandHasIt) {
   const std::string hint = "; --hull takes the convex hull of its points instead";
   for (const std::string& cmd : std::vector<std::string>{"cgm tube", "cgm cube tube", "query collide tube cube"}) {
@@ -1737,8 +1738,17 @@ TEST_F(Cli, RefusalsNameHullOnlyWhereTheCommandHasIt) {
     EXPECT_NE(r.err.find(hint), std::string::npos) << r.err;
     EXPECT_EQ(run(cmd + " --hull").status, 0) << cmd;
   }
+  // batch takes solids as sum does; a point cloud is refused naming --hull.
   CmdResult b = run_sh("echo 'tube cube' | minksum batch");
-  EXPECT_NE(b.out.find(hint), std::string::npos) << b.out;
+  EXPECT_EQ(b.status, 0) << b.err;
+  EXPECT_NE(b.out.find("\"kind\": \"solid\""), std::string::npos) << b.out;
+  EXPECT_EQ(b.out.find("--hull"), std::string::npos) << b.out;
+  std::ofstream(path("cloud.off")) << "OFF\n4 0 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  std::ofstream(path("pairs.txt")) << "cube " << path("cloud.off") << "\n";
+  CmdResult cloud = run("batch " + path("pairs.txt"));
+  EXPECT_EQ(cloud.status, 3) << cloud.err;
+  EXPECT_NE(cloud.out.find(hint), std::string::npos) << cloud.out;
+  EXPECT_EQ(run("batch " + path("pairs.txt") + " --hull").status, 0);
   CmdResult sim = run("simulate --obstacle tube --frames 4");
   EXPECT_EQ(sim.status, 3) << sim.err;
   EXPECT_EQ(lines(sim.err), 1u) << sim.err;
@@ -1748,7 +1758,8 @@ TEST_F(Cli, RefusalsNameHullOnlyWhereTheCommandHasIt) {
   EXPECT_NE(robot.err.find(hint), std::string::npos) << robot.err;
   // The commands that take solids take a valid one without a word of --hull.
   for (const std::string& cmd : std::vector<std::string>{"stats tube", "convert tube -o " + path("t.off"),
-                                                        "view tube -o " + path("t.html"), "sum tube cube"}) {
+                                                        "view tube -o " + path("t.html"), "sum tube cube",
+                                                        "erode tube cube@scale:1/8"}) {
     SCOPED_TRACE(cmd);
     CmdResult r = run(cmd);
     EXPECT_EQ(r.status, 0) << r.err;

@@ -130,7 +130,7 @@ FRAME = Obj("simulate frame", {"frame": "int", "orientation": "int", "rebuilt": 
 
 BATCH_LINE = Obj("", {"line": "int", "a": "string", "b": "string"})
 BATCH_RESULT = merge("batch result", BATCH_LINE, COUNTS, KIND, VOLUME,
-                     Obj("", {"method": METHODS, "seconds": "number"}))
+                     Obj("", {"method": ("enum", *METHODS[1:], "nonconvex"), "seconds": "number"}))
 ERROR = BATCH_LINE.extend("batch error", {"error": "string", "status": ("enum", 2, 3)})
 
 VIEW = Obj("view", {"page": ("enum", "polytope", "solid", "sum", "scene"), "output": "string"})
@@ -239,7 +239,8 @@ def main():
         f.write("5,0,0\n0.5,0,0 0,0,0\n# a comment\n1,1,1 rp=1,1,0,0\n")
     with open(w("pairs.jsonl"), "w") as f:
         f.write('{"a": "cube", "b": "tetra"}\n{"a": "cube", "b": "nosuch"}\n{"a": "tube", "b": "cube"}\n'
-                '{"a": "sphere:1", "b": "tetra", "method": "chms"}\n{"a": "tube", "b": "cube", "hull": true}\n')
+                '{"a": "sphere:1", "b": "tetra", "method": "chms"}\n{"a": "tube", "b": "cube", "hull": true}\n'
+                '{"a": "cube", "b": "segment:0,0,0:1,0,0"}\n{"a": "segment:0,0,0:1,0,0", "b": "point:1,2,3"}\n')
 
     # (arguments, schema of each line, at least this many lines, exit status)
     runs = [
@@ -295,7 +296,7 @@ def main():
         (["cgm", "tube", "--hull"], CGM),
         (["simulate", "--frames", "6"], FRAME, 6),
         (["simulate", "--frames", "8", "--obstacle", "tube", "--hull"], FRAME, 8),
-        (["batch", w("pairs.jsonl"), "--threads", "2"], ("one_of", BATCH_RESULT, ERROR), 5, 3),
+        (["batch", w("pairs.jsonl"), "--threads", "2"], ("one_of", BATCH_RESULT, ERROR), 7, 2),
         (["view", "cube", "-o", w("v1.html")], VIEW_ONE),
         (["view", "tube", "-o", w("v2.html")], VIEW_ONE),
         (["view", "point:1,2,3", "-o", w("v3.html")], VIEW_ONE),

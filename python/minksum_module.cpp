@@ -20,6 +20,7 @@
 #include <minksum/polytope.hpp>
 #include <minksum/proximity.hpp>
 #include <minksum/rigid_proximity.hpp>
+#include <minksum/sum.hpp>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -340,9 +341,9 @@ Method to_method(const std::string& name) {
 }
 
 // A polytope, or a name to load (a file path or catalog spec) later, with the GIL released.
-using Operand = std::variant<PolytopePtr, std::string>;
+using NamedOperand = std::variant<PolytopePtr, std::string>;
 
-Operand to_operand(py::handle h, const char* name) {
+NamedOperand to_operand(py::handle h, const char* name) {
   if (py::isinstance<ConvexPolytope>(h)) return PolytopePtr(py::cast<std::shared_ptr<ConvexPolytope>>(h));
   if (py::isinstance<py::str>(h)) return py::cast<std::string>(h);
   if (PyObject_HasAttrString(h.ptr(), "__fspath__"))  // os.PathLike
@@ -350,7 +351,7 @@ Operand to_operand(py::handle h, const char* name) {
   throw py::type_error(std::string(name) + ": expected a Polytope, a file path or a catalog name, got " + type_name(h));
 }
 
-PolytopePtr resolve(const Operand& o, bool hull = false) {
+PolytopePtr resolve(const NamedOperand& o, bool hull = false) {
   if (auto* p = std::get_if<PolytopePtr>(&o)) return *p;
   return std::make_shared<const ConvexPolytope>(load_polytope(std::get<std::string>(o), hull));
 }
@@ -364,6 +365,7 @@ struct Sum : ConvexPolytope {
   std::vector<FacetProvenance> provenance;  // computed on first use when the method does not record it
   std::vector<std::pair<std::string, long long>> counters;
   double seconds = 0;
+  const char* route = nullptr;  // a sum with a point, segment or polygon: how it was made
   PolytopePtr a, b;  // the operands, until the provenance is known
   std::mutex provenance_mutex;
 
@@ -384,10 +386,6 @@ struct Sum : ConvexPolytope {
     return provenance;
   }
 };
-
-std::shared_ptr<Sum> sum_of(const PolytopePtr& a, const PolytopePtr& b, Method method, const SumOptions& options = {}) {
-  return std::make_shared<Sum>(minkowski_sum(*a, *b, method, options), a, b);
-}
 
 // Ctrl-C during a long sum: the progress callback (run at the method's report
 // points, on the thread computing) checks for signals with the GIL held.
@@ -566,17 +564,29 @@ struct SolidSum : SolidPy {
   NonconvexSum report;
 };
 
-// An operation on a solid and a convex polytope (erode, opening, closing)
-// with progress and cancellation, all threads.
-using SolidOperation = NonconvexSum (*)(const Solid&, const Solid&, const SumOptions&, unsigned, Method);
+// A point, a segment or a flat convex polygon (a convex set of dimension
+// below 3, docs/sweeps.md), or the result of a sum that is one.
+struct SetPy {
+  ConvexSet set;
+  std::string name;           // the source named in errors ("" for arrays)
+  const char* method = nullptr;  // a sum's: its method and route (else null)
+  const char* route = nullptr;
+  double seconds = 0;
+};
+using SetPtr = std::shared_ptr<const SetPy>;
 
-// An operand of minkowski_sum that may be a solid: a Solid, a Polytope, or a
-// name loaded later (load_any_operand) with the GIL released.
-using AnyOperandPy = std::variant<SolidPtr, PolytopePtr, std::string>;
+// An operand of minkowski_sum: a Solid, a Polytope, a ConvexSet, or a name
+// loaded later (Operand::load, <minksum/sum.hpp>) with the GIL released.
+using AnyOperandPy = std::variant<SolidPtr, PolytopePtr, std::string, SetPtr>;
 
 AnyOperandPy to_any_operand(py::handle h, const char* name) {
   if (py::isinstance<SolidPy>(h)) return py::cast<SolidPtr>(h);
-  Operand o = to_operand(h, name);
+  if (py::isinstance<SetPy>(h)) return SetPtr(py::cast<std::shared_ptr<SetPy>>(h));
+  if (!py::isinstance<ConvexPolytope>(h) && !py::isinstance<py::str>(h) &&
+      !PyObject_HasAttrString(h.ptr(), "__fspath__"))
+    throw py::type_error(std::string(name) + ": expected a Polytope, a Solid, a ConvexSet, a file path or a catalog "
+                                             "name, got " + type_name(h));
+  NamedOperand o = to_operand(h, name);
   if (auto* p = std::get_if<PolytopePtr>(&o)) return *p;
   return std::get<std::string>(o);
 }
@@ -601,56 +611,147 @@ Solid load_solid(const std::string& spec) {
   throw InputError(spec, "", "not a solid");
 }
 
-// The solid of an operand (with the GIL released).
-Solid operand_solid(const AnyOperandPy& o) {
-  if (auto* s = std::get_if<SolidPtr>(&o)) return (*s)->validated();
-  if (auto* p = std::get_if<PolytopePtr>(&o)) return solid_of(**p);
-  return load_solid(std::get<std::string>(o));
+// The library's operand (with the GIL released): a name is read as what it
+// is (a convex polytope, a point, segment or polygon, or a closed solid).
+Operand library_operand(const AnyOperandPy& o) {
+  if (auto* s = std::get_if<SolidPtr>(&o)) return Operand((*s)->validated(), (*s)->name);
+  if (auto* p = std::get_if<PolytopePtr>(&o)) return Operand(**p);
+  if (auto* c = std::get_if<SetPtr>(&o)) return Operand((*c)->set, (*c)->name);
+  const std::string& name = std::get<std::string>(o);
+  return Operand::load(name);
 }
 
-// A name loaded (with the GIL released): a convex polytope when it is one,
-// else a solid (load_solid's refusal for what is neither).  Polytopes and
-// solids stay as they are.
-void load_name(AnyOperandPy& o) {
-  if (auto* name = std::get_if<std::string>(&o)) {
-    AnyOperand loaded = load_any_operand(*name);
-    if (loaded.polytope) o = std::make_shared<const ConvexPolytope>(std::move(*loaded.polytope));
-    else o = solid_from(load_solid(*name), *name);
+// What minkowski_sum returns: a Sum (a convex polytope), a SolidSum (the
+// boundary of a sum with a solid, an erosion, opening or closing) or a
+// ConvexSet (a point, segment or polygon).
+using SumPy = std::variant<std::shared_ptr<Sum>, std::shared_ptr<SolidSum>, std::shared_ptr<SetPy>>;
+
+// a ⊕ b (or the operation) of the library's operands by its one sum
+// (<minksum/sum.hpp>), with the GIL released; `a` and `b` as given (a
+// Polytope is kept for the provenance of a method that does not record it).
+// For erode, opening and closing a b that is not a convex polytope is a
+// ValueError.
+SumPy sum_operands(const AnyOperandPy& a, const AnyOperandPy& b, const std::vector<Operand>& operands, Method method,
+                   const SumOptions& options, unsigned threads, SumOperation operation = SumOperation::sum) {
+  if (operation != SumOperation::sum && !operands[1].polytope() &&
+      !(operands[1].solid() && operands[1].solid()->convex))
+    throw std::invalid_argument("b is not a convex polytope: erode, opening and closing take a convex b (a of any "
+                                "shape)");
+  SumRequest request;
+  request.operation = operation;
+  request.method = method;
+  request.options = options;
+  request.threads = threads;
+  OperandSum r = minkowski_sum(operands, request);
+  if (auto* convex = std::get_if<SumResult>(&r.result)) {
+    PolytopePtr pa, pb;
+    if (!r.report.route && convex->facet_provenance.empty()) {
+      auto kept = [](const AnyOperandPy& o, const Operand& loaded) {
+        if (auto* p = std::get_if<PolytopePtr>(&o)) return *p;
+        return std::make_shared<const ConvexPolytope>(*loaded.polytope());
+      };
+      pa = kept(a, operands[0]);
+      pb = kept(b, operands[1]);
+    }
+    auto out = std::make_shared<Sum>(std::move(*convex), pa, pb);
+    out->route = r.report.route;
+    return out;
   }
-}
-
-// The sum of two loaded operands (load_name) when one is a solid: the
-// boundary sweep (docs/nonconvex.md), with the GIL released; null when both
-// are convex polytopes (sum_of's case).
-std::shared_ptr<SolidSum> solid_sum(const AnyOperandPy& a, const AnyOperandPy& b, Method method,
-                                    const SumOptions& options) {
-  if (!std::holds_alternative<SolidPtr>(a) && !std::holds_alternative<SolidPtr>(b)) return nullptr;
+  if (auto* set = std::get_if<SetSumResult>(&r.result)) {
+    auto out = std::make_shared<SetPy>();
+    out->set = std::move(set->set);
+    out->method = method_name(set->method);
+    out->route = set->route;
+    out->seconds = r.report.seconds;
+    return out;
+  }
   auto out = std::make_shared<SolidSum>();
-  const Solid sa = operand_solid(a), sb = operand_solid(b);
-  out->report = minkowski_sum_nonconvex(sa, sb, options, 0, method == Method::automatic ? Method::walk : method);
+  out->report = std::move(std::get<NonconvexSum>(r.result));
   out->faces = std::move(out->report.mesh);
   out->report.mesh = Mesh{};
   out->volume = out->report.volume;
   return out;
 }
 
-// fn(A, B) on two operands with the GIL released (Ctrl-C stops it between
-// its phases), as a SolidSum.
-std::shared_ptr<SolidSum> solid_operation(const AnyOperandPy (&any)[2], Method method, SolidOperation fn) {
-  auto out = std::make_shared<SolidSum>();
-  std::atomic<bool> cancel{false};
-  SumOptions options;
-  options.cancel = &cancel;
-  run_interruptible(
-      [&] {
-        const Solid sa = operand_solid(any[0]), sb = operand_solid(any[1]);
-        out->report = fn(sa, sb, options, 0, method == Method::automatic ? Method::walk : method);
-        out->faces = std::move(out->report.mesh);
-        out->report.mesh = Mesh{};
-        out->volume = out->report.volume;
-      },
-      cancel);
+std::vector<Operand> library_operands(const AnyOperandPy& a, const AnyOperandPy& b) {
+  std::vector<Operand> operands;
+  operands.push_back(library_operand(a));
+  operands.push_back(library_operand(b));
+  return operands;
+}
+
+// sum_operands of two operands as given, names loaded (GIL released).
+SumPy sum_any(const AnyOperandPy& a, const AnyOperandPy& b, Method method, const SumOptions& options,
+              unsigned threads, SumOperation operation = SumOperation::sum) {
+  return sum_operands(a, b, library_operands(a, b), method, options, threads, operation);
+}
+
+// One sum from Python, GIL released, Ctrl-C honoured.  Convex sums and
+// sweeps run on the calling thread and check for signals at the method's
+// report points (KeyboardInterrupt raised inside the sum); a sum with a
+// solid runs on its own thread (its report points are on worker threads)
+// while this one checks for signals and cancels it (run_interruptible).
+py::object sum_interruptible(const AnyOperandPy& a, const AnyOperandPy& b, Method method,
+                             SumOperation operation = SumOperation::sum) {
+  std::vector<Operand> operands;
+  {
+    py::gil_scoped_release nogil;
+    operands = library_operands(a, b);
+  }
+  SumPy out;
+  if (operation == SumOperation::sum && !operands[0].solid() && !operands[1].solid()) {
+    SumOptions options;
+    options.progress = [](const char*, double) {
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) {
+        PyErr_Clear();
+        throw Interrupted{};
+      }
+    };
+    py::gil_scoped_release nogil;
+    out = sum_operands(a, b, operands, method, options, 0, operation);
+  } else {
+    std::atomic<bool> cancel{false};
+    SumOptions options;
+    options.cancel = &cancel;
+    run_interruptible([&] { out = sum_operands(a, b, operands, method, options, 0, operation); }, cancel);
+  }
+  return std::visit([](const auto& r) { return py::cast(r); }, out);
+}
+
+// Pickling of solids and convex sets (minksum.dask sends results between
+// processes): exact coordinates as text, faces as index lists.
+py::list exact_points_state(const PointList& pts) {
+  py::list out;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const Point3 q = pts.exact(i);
+    out.append(py::make_tuple(format_exact(q.x), format_exact(q.y), format_exact(q.z)));
+  }
   return out;
+}
+
+py::tuple solid_state(const SolidPy& s) {
+  py::list faces;
+  for (const auto& f : s.faces.faces) faces.append(py::cast(f));
+  return py::make_tuple(exact_points_state(s.faces.points), faces, format_exact(s.volume), s.name);
+}
+
+// The boundary as it was (a sum's boundary may touch itself: it is not
+// validated again until it is used as an operand).
+void solid_from_state(SolidPy& s, const py::tuple& t) {
+  if (t.size() != 4) throw py::value_error("Solid: bad pickled state");
+  s.faces.points = to_points(t[0], "vertices");
+  read_faces(s.faces, t[1]);
+  s.volume = Rational(py::cast<std::string>(t[2]));
+  s.volume.canonicalize();
+  s.name = py::cast<std::string>(t[3]);
+}
+
+// The literal among `names` equal to `text` (the report's names are string literals).
+const char* literal(const std::string& text, std::initializer_list<const char*> names, const char* what) {
+  for (const char* n : names)
+    if (text == n) return n;
+  throw py::value_error(std::string(what) + ": bad pickled state");
 }
 
 py::array_t<double> points_array(const PointList& pts) {
@@ -983,6 +1084,16 @@ method then sums the sweep's pieces: walk (also for "auto" and the
 methods other than chms) or chms.  A Polytope given with a Solid is taken
 as the convex solid it is.
 
+Sweeps: a or b may be a ConvexSet (a point, a segment or a flat convex
+polygon), or a name that is one ("segment:0,0,0:1,2,3", a file holding one
+face), docs/sweeps.md: a polytope ⊕ a segment is the solid it sweeps.  A
+full-dimensional result is a Sum whose route says how it was made (its
+vertex_origin and facet_provenance are then empty); a lower-dimensional one
+is a ConvexSet (a segment ⊕ a segment is a parallelogram).  Only walk (also
+"auto") and chms take them.  A ConvexSet with a non-convex solid is a
+ValueError.  The choice between these kinds is the library's, the same as
+'minksum sum' makes.
+
 Raises ValueError for an unknown method, InputError when a file named as an
 operand is bad, KeyboardInterrupt when interrupted (Ctrl-C).  The GIL is
 released while the sum is computed.)";
@@ -1184,6 +1295,14 @@ for each facet, (kind, feature of a, feature of b) with kind one of
 ("vertex" | "edge" | "facet", index).  seconds: the computation alone.
 counters: operation counts some methods record.)")
       .def_property_readonly("method", [](const Sum& s) { return method_name(s.method); })
+      .def_property_readonly("route",
+                             [](const Sum& s) -> py::object {
+                               if (!s.route) return py::none();
+                               return py::str(s.route);
+                             },
+                             "None for a sum of two polytopes; for a sum with a point, segment or polygon (a sweep,\n"
+                             "docs/sweeps.md) how it was made: \"translation\", \"sweep\" or \"hull\" (vertex_origin and\n"
+                             "facet_provenance are then empty).")
       .def_property_readonly("vertex_origin",
                              [](const Sum& s) {
                                py::array_t<std::int64_t> a({static_cast<py::ssize_t>(s.vertex_origin.size()),
@@ -1226,10 +1345,10 @@ counters: operation counts some methods record.)")
             for (const auto& p : s.provenance)
               prov.append(py::make_tuple(int(p.a.dim), p.a.index, int(p.b.dim), p.b.index));
             return py::make_tuple(polytope_state(s), method_name(s.method), origin, prov, s.seconds,
-                                  py::cast(s.counters));
+                                  py::cast(s.counters), s.route ? py::str(s.route) : py::object(py::none()));
           },
           [](const py::tuple& t) {
-            if (t.size() != 6) throw py::value_error("Sum: bad pickled state");
+            if (t.size() != 6 && t.size() != 7) throw py::value_error("Sum: bad pickled state");
             auto s = std::make_shared<Sum>();
             static_cast<ConvexPolytope&>(*s) = polytope_from_state(t[0]);
             s->method = to_method(py::cast<std::string>(t[1]));
@@ -1243,6 +1362,8 @@ counters: operation counts some methods record.)")
             }
             s->seconds = py::cast<double>(t[4]);
             s->counters = py::cast<std::vector<std::pair<std::string, long long>>>(t[5]);
+            if (t.size() == 7 && !t[6].is_none())
+              s->route = literal(py::cast<std::string>(t[6]), {"polytopes", "translation", "sweep", "hull"}, "Sum");
             return s;
           }));
 
@@ -1275,7 +1396,7 @@ arguments, TypeError for arguments of the wrong type.)")
       .def_static(
           "load",
           [](py::object spec) {
-            const Operand o = to_operand(spec, "path_or_name");
+            const NamedOperand o = to_operand(spec, "path_or_name");
             if (std::holds_alternative<PolytopePtr>(o))
               throw py::type_error("Solid.load: expected a file path or a catalog name");
             const std::string name = std::get<std::string>(o);
@@ -1351,10 +1472,130 @@ arguments, TypeError for arguments of the wrong type.)")
           "What 'minksum stats' prints of a solid, as a dict: vertices, edges, facets (ints), volume (exact\n"
           "Fraction), volume_float (its nearest double), genus (the sum of the shells' genera: a torus 1),\n"
           "shells (connected components of the surface), bounding_box ((min, max), exact Fraction triples).")
+      .def(py::pickle([](const SolidPy& s) { return solid_state(s); },
+                      [](const py::tuple& t) {
+                        auto s = std::make_shared<SolidPy>();
+                        solid_from_state(*s, t);
+                        return s;
+                      }))
       .def("__repr__", [](const SolidPy& s) {
         const SolidStats c = solid_stats(s.faces);
         return "<minksum.Solid: " + std::to_string(c.vertices) + " vertices, " + std::to_string(c.edges) +
                " edges, " + std::to_string(c.facets) + " faces>";
+      });
+
+  py::class_<SetPy, std::shared_ptr<SetPy>>(m, "ConvexSet", R"(A point, a segment or a flat convex polygon, with exact coordinates: an operand of a sweep.
+
+ConvexSet(points): the exact convex hull of the points in whatever dimension
+they span: one point, a segment, a polygon (or, for points spanning 3
+dimensions, a polytope).  points as for Polytope: an (n, 3) float64 array
+(each double taken exactly), an integer array, or a sequence of exact
+triples (int, Fraction, Decimal, float, text such as "1/3").
+ConvexSet.load(name) reads a file holding one face or builds a catalog set
+("point:1,2,3", "segment:0,0,0:1,0,0", "polygon:6", "square", with @
+transforms).
+
+minkowski_sum(a, b) takes a ConvexSet as either operand with a Polytope, a
+ConvexSet, a file or a catalog name (docs/sweeps.md: a polytope ⊕ a segment
+is the solid the polytope sweeps along it): the result is a Sum when it is
+full-dimensional (its route says how it was made), else a ConvexSet whose
+method, route and seconds say how it was computed.  A ConvexSet with a
+non-convex Solid is a ValueError.)")
+      .def(py::init([](py::object points) {
+             const PointList pts = to_points(points, "points");
+             py::gil_scoped_release nogil;
+             auto out = std::make_shared<SetPy>();
+             out->set = ConvexSet::hull(pts);
+             return out;
+           }),
+           py::arg("points"))
+      .def_static(
+          "load",
+          [](py::object spec, bool hull) {
+            const NamedOperand o = to_operand(spec, "path_or_name");
+            if (std::holds_alternative<PolytopePtr>(o))
+              throw py::type_error("ConvexSet.load: expected a file path or a catalog name");
+            const std::string name = std::get<std::string>(o);
+            py::gil_scoped_release nogil;
+            auto out = std::make_shared<SetPy>();
+            out->set = load_convex_set(name, hull);
+            out->name = name;
+            return out;
+          },
+          py::arg("path_or_name"), py::arg("hull") = false,
+          "A point, segment or polygon from the catalog (\"segment:0,0,0:1,2,3\", \"polygon:6\", \"square\") or a\n"
+          "file holding one face; a polytope for any other valid convex mesh.  hull=True takes the exact hull\n"
+          "of the points in whatever dimension they span.  Raises InputError for bad data, ValueError for a\n"
+          "name that is neither a file nor a catalog spec.")
+      .def_property_readonly("dimension", [](const SetPy& s) { return s.set.dimension(); },
+                             "0 (a point), 1 (a segment), 2 (a polygon) or 3 (a polytope).")
+      .def_property_readonly("kind", [](const SetPy& s) { return std::string(dimension_name(s.set.dimension())); },
+                             "\"point\", \"segment\", \"polygon\" or \"polytope\".")
+      .def_property_readonly(
+          "vertices",
+          [](const SetPy& s) {
+            const std::vector<Point3>& v = s.set.vertices();
+            py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+            auto r = a.mutable_unchecked<2>();
+            for (std::size_t i = 0; i < v.size(); ++i) {
+              const Vec3d d = to_double(v[i]);
+              r(static_cast<py::ssize_t>(i), 0) = d.x;
+              r(static_cast<py::ssize_t>(i), 1) = d.y;
+              r(static_cast<py::ssize_t>(i), 2) = d.z;
+            }
+            return a;
+          },
+          "The vertices as a float64 (n, 3) array (a polygon's in the order of its loop): the nearest doubles.")
+      .def(
+          "exact_vertices",
+          [](const SetPy& s) {
+            py::list out;
+            for (const Point3& p : s.set.vertices()) out.append(to_fractions(p));
+            return out;
+          },
+          "The exact vertices: a list of (x, y, z) tuples of fractions.Fraction.")
+      .def_property_readonly("num_vertices", [](const SetPy& s) { return s.set.num_vertices(); })
+      .def_property_readonly("num_edges", [](const SetPy& s) { return s.set.num_edges(); })
+      .def_property_readonly("num_facets", [](const SetPy& s) { return s.set.num_facets(); })
+      .def(
+          "volume", [](const SetPy& s) { return to_fraction(s.set.volume()); },
+          "The exact volume, a fractions.Fraction (0 below dimension 3).")
+      .def(
+          "area_squared", [](const SetPy& s) { return to_fraction(s.set.area_squared()); },
+          "The exact area of a polygon, squared (kept squared so that it stays rational); 0 otherwise.")
+      .def_property_readonly("method",
+                             [](const SetPy& s) -> py::object {
+                               if (!s.method) return py::none();
+                               return py::str(s.method);
+                             },
+                             "A sum's method (walk or chms); None for a set that is not a sum's result.")
+      .def_property_readonly("route",
+                             [](const SetPy& s) -> py::object {
+                               if (!s.route) return py::none();
+                               return py::str(s.route);
+                             },
+                             "How a sum was made (\"translation\", \"sweep\", \"hull\"); None otherwise.")
+      .def_readonly("seconds", &SetPy::seconds, "A sum's computation time (0 otherwise).")
+      .def(py::pickle(
+          [](const SetPy& s) {
+            const PointList pts(s.set.vertices());
+            return py::make_tuple(exact_points_state(pts), s.name, s.method ? py::str(s.method) : py::object(py::none()),
+                                  s.route ? py::str(s.route) : py::object(py::none()), s.seconds);
+          },
+          [](const py::tuple& t) {
+            if (t.size() != 5) throw py::value_error("ConvexSet: bad pickled state");
+            auto s = std::make_shared<SetPy>();
+            s->set = ConvexSet::hull(to_points(t[0], "vertices"));  // a polygon's vertices give it back
+            s->name = py::cast<std::string>(t[1]);
+            if (!t[2].is_none()) s->method = method_name(to_method(py::cast<std::string>(t[2])));
+            if (!t[3].is_none())
+              s->route = literal(py::cast<std::string>(t[3]), {"polytopes", "translation", "sweep", "hull"}, "ConvexSet");
+            s->seconds = py::cast<double>(t[4]);
+            return s;
+          }))
+      .def("__repr__", [](const SetPy& s) {
+        return "<minksum.ConvexSet: a " + std::string(dimension_name(s.set.dimension())) + ", " +
+               std::to_string(s.set.num_vertices()) + " vertices>";
       });
 
   py::class_<SolidSum, std::shared_ptr<SolidSum>, SolidPy>(m, "SolidSum", R"(The result of minkowski_sum with a non-convex operand: a Solid with its report.
@@ -1396,6 +1637,43 @@ the counts and seconds are those of all the steps together.)")
                                return d;
                              })
       .def_property_readonly("seconds", [](const SolidSum& s) { return s.report.seconds(); })
+      .def(py::pickle(
+          [](const SolidSum& s) {
+            const NonconvexSum& r = s.report;
+            return py::make_tuple(
+                solid_state(s),
+                py::make_tuple(r.method, std::string(r.swept ? 1 : 0, r.swept), method_name(r.pair_method),
+                               r.pieces_from_maps, r.pieces_a, r.pieces_b, r.pairs, r.candidate_facets,
+                               r.culled_facets, r.dropped_components, r.pair_vertices, r.pair_facets, r.clips, r.shells,
+                               r.non_manifold_edges, r.operation),
+                py::make_tuple(r.seconds_decompose, r.seconds_pairs, r.seconds_union, r.seconds_boundary));
+          },
+          [](const py::tuple& t) {
+            if (t.size() != 3) throw py::value_error("SolidSum: bad pickled state");
+            auto s = std::make_shared<SolidSum>();
+            solid_from_state(*s, py::cast<py::tuple>(t[0]));
+            const auto r = py::cast<py::tuple>(t[1]);
+            const auto sec = py::cast<py::tuple>(t[2]);
+            if (r.size() != 16 || sec.size() != 4) throw py::value_error("SolidSum: bad pickled state");
+            NonconvexSum& n = s->report;
+            n.method = literal(py::cast<std::string>(r[0]), {"sweep", "decomposition"}, "SolidSum");
+            const std::string swept = py::cast<std::string>(r[1]);
+            n.swept = swept.empty() ? 0 : swept[0];
+            n.pair_method = to_method(py::cast<std::string>(r[2]));
+            n.pieces_from_maps = py::cast<bool>(r[3]);
+            std::size_t* counts[] = {&n.pieces_a,      &n.pieces_b,           &n.pairs,         &n.candidate_facets,
+                                     &n.culled_facets, &n.dropped_components, &n.pair_vertices, &n.pair_facets,
+                                     &n.clips,         &n.shells,             &n.non_manifold_edges};
+            for (std::size_t i = 0; i < std::size(counts); ++i) *counts[i] = py::cast<std::size_t>(r[4 + i]);
+            n.operation =
+                literal(py::cast<std::string>(r[15]), {"sum", "erosion", "opening", "closing"}, "SolidSum");
+            n.seconds_decompose = py::cast<double>(sec[0]);
+            n.seconds_pairs = py::cast<double>(sec[1]);
+            n.seconds_union = py::cast<double>(sec[2]);
+            n.seconds_boundary = py::cast<double>(sec[3]);
+            n.volume = s->volume;
+            return s;
+          }))
       .def("__repr__", [](const SolidSum& s) {
         const SolidStats c = solid_stats(s.faces);
         return "<minksum.SolidSum (" + std::string(s.report.method) + "): " + std::to_string(c.vertices) +
@@ -1405,7 +1683,7 @@ the counts and seconds are those of all the steps together.)")
   m.def(
       "load",
       [](py::object spec, bool hull) {
-        const Operand o = to_operand(spec, "path_or_name");
+        const NamedOperand o = to_operand(spec, "path_or_name");
         if (std::holds_alternative<PolytopePtr>(o)) throw py::type_error("load: expected a file path or a catalog name");
         py::gil_scoped_release nogil;
         return std::const_pointer_cast<ConvexPolytope>(resolve(o, hull));
@@ -1426,45 +1704,16 @@ ValueError for a name that is neither a file nor a catalog spec.)");
   m.def(
       "minkowski_sum",
       [](py::object a, py::object b, const std::string& method) -> py::object {
-        AnyOperandPy any[2] = {to_any_operand(a, "a"), to_any_operand(b, "b")};
-        const Method mt = to_method(method);
-        // Names are loaded first: a name that is not a convex polytope is a
-        // solid.  Any solid makes the sum non-convex.
-        {
-          py::gil_scoped_release nogil;
-          for (AnyOperandPy& o : any) load_name(o);
-        }
-        if (std::holds_alternative<SolidPtr>(any[0]) || std::holds_alternative<SolidPtr>(any[1])) {
-          std::shared_ptr<SolidSum> out;
-          std::atomic<bool> cancel{false};
-          SumOptions options;
-          options.cancel = &cancel;
-          run_interruptible([&] { out = solid_sum(any[0], any[1], mt, options); }, cancel);
-          return py::cast(out);
-        }
-        const Operand oa = std::get<PolytopePtr>(any[0]), ob = std::get<PolytopePtr>(any[1]);
-        SumOptions options;
-        options.progress = [](const char*, double) {
-          py::gil_scoped_acquire gil;
-          if (PyErr_CheckSignals() != 0) {
-            PyErr_Clear();
-            throw Interrupted{};
-          }
-        };
-        std::shared_ptr<Sum> r;
-        {
-          py::gil_scoped_release nogil;
-          r = sum_of(resolve(oa), resolve(ob), mt, options);
-        }
-        return py::cast(r);
+        const AnyOperandPy oa = to_any_operand(a, "a"), ob = to_any_operand(b, "b");
+        return sum_interruptible(oa, ob, to_method(method));
       },
       py::arg("a"), py::arg("b"), py::arg("method") = "auto", with_methods(kMinkowskiSumDoc).c_str());
 
   // erode, opening, closing (<minksum/nonconvex.hpp>): a solid A and a convex B.
-  auto morphology = [](SolidOperation fn) {
-    return [fn](py::object a, py::object b, const std::string& method) {
-      const AnyOperandPy any[2] = {to_any_operand(a, "a"), to_any_operand(b, "b")};
-      return solid_operation(any, to_method(method), fn);
+  auto morphology = [](SumOperation operation) {
+    return [operation](py::object a, py::object b, const std::string& method) {
+      const AnyOperandPy oa = to_any_operand(a, "a"), ob = to_any_operand(b, "b");
+      return sum_interruptible(oa, ob, to_method(method), operation);
     };
   };
   const char* kMorphologyArgs = R"(
@@ -1492,9 +1741,9 @@ while it runs.)";
       "open");
   static const std::string closing_doc = morphology_doc(
       "(A ⊕ B) ⊖ B, exactly: the closing of solid a by convex b (a's concave edges filled: fillets).", "close");
-  m.def("erode", morphology(&erode), py::arg("a"), py::arg("b"), py::arg("method") = "auto", erode_doc.c_str());
-  m.def("opening", morphology(&opening), py::arg("a"), py::arg("b"), py::arg("method") = "auto", opening_doc.c_str());
-  m.def("closing", morphology(&closing), py::arg("a"), py::arg("b"), py::arg("method") = "auto", closing_doc.c_str());
+  m.def("erode", morphology(SumOperation::erode), py::arg("a"), py::arg("b"), py::arg("method") = "auto", erode_doc.c_str());
+  m.def("opening", morphology(SumOperation::open), py::arg("a"), py::arg("b"), py::arg("method") = "auto", opening_doc.c_str());
+  m.def("closing", morphology(SumOperation::close), py::arg("a"), py::arg("b"), py::arg("method") = "auto", closing_doc.c_str());
 
   m.def(
       "minkowski_sum_many",
@@ -1525,7 +1774,7 @@ while it runs.)";
           jobs.push_back(std::move(j));
         }
         // A convex sum, or the sum with a solid (exactly what minkowski_sum returns).
-        std::vector<std::variant<std::shared_ptr<Sum>, std::shared_ptr<SolidSum>>> results(jobs.size());
+        std::vector<SumPy> results(jobs.size());
         std::vector<std::exception_ptr> errors(jobs.size());
         std::atomic<bool> cancel{false};
         SumOptions options;
@@ -1536,10 +1785,7 @@ while it runs.)";
                 if (cancel) return;  // interrupted: the pairs not started are skipped
                 try {
                   Job& j = jobs[i];
-                  load_name(j.a);
-                  load_name(j.b);
-                  if (auto s = solid_sum(j.a, j.b, j.method, options)) results[i] = std::move(s);
-                  else results[i] = sum_of(std::get<PolytopePtr>(j.a), std::get<PolytopePtr>(j.b), j.method, options);
+                  results[i] = sum_any(j.a, j.b, j.method, options, 0);
                 } catch (...) {
                   errors[i] = std::current_exception();
                 }
@@ -1667,7 +1913,7 @@ moving query point costs little.  An Obstacle may be used from several
 Python threads; its queries and batches run one at a time, with the GIL
 released.)")
       .def(py::init([](py::object p, py::object q, const std::string& method) {
-             const Operand op = to_operand(p, "p"), oq = to_operand(q, "q");
+             const NamedOperand op = to_operand(p, "p"), oq = to_operand(q, "q");
              const Method mt = to_method(method);
              auto o = std::make_unique<Obstacle>();
              o->method = mt;

@@ -9,6 +9,9 @@ exact value of each double), every geometric decision is the sign of an exact
 polynomial.  Exact results are Python ints and fractions.Fraction; the float64
 array ``Polytope.vertices`` holds the nearest doubles, without a copy.
 
+Sweeps: ``ConvexSet(points)`` or ``ConvexSet.load("segment:0,0,0:1,0,0")`` (a
+point, a segment or a flat polygon) as an operand of ``minkowski_sum``.
+
 Non-convex solids: ``Solid(vertices, faces)`` or ``Solid.load("tube")``;
 ``minkowski_sum`` with a ``Solid`` operand (or a name that is not a convex
 polytope) returns a ``SolidSum``; so do ``erode``, ``opening`` (also
@@ -28,6 +31,7 @@ from ._minksum import (
     METHODS,
     STATUS,
     CollisionResult,
+    ConvexSet,
     DepthResult,
     DirectionalDepthResult,
     DistanceResult,
@@ -58,6 +62,7 @@ __all__ = [
     "METHODS",
     "STATUS",
     "CollisionResult",
+    "ConvexSet",
     "DepthResult",
     "DirectionalDepthResult",
     "DistanceResult",

@@ -33,6 +33,15 @@ def test_local_cluster_two_workers_equals_one_process(data):
         out = minksum.dask.minkowski_sum_many(client, many, chunk_size=4, on_error="return")
         assert [i for i, r in enumerate(out) if not isinstance(r, minksum.Sum)] == [15]
         assert out[15].file == bad and out[15].__notes__ == ["minksum.dask.minkowski_sum_many: pairs[15]"]
+        # solids and sweeps: every kind of result comes back from the workers exactly
+        mixed = [("tube", "cube@scale:1/8"), ("lshape", minksum.load("sphere:1@scale:1/4")),
+                 ("cube", "segment:0,0,0:3,1,2"), ("segment:0,0,0:2,0,0", minksum.ConvexSet.load("square")),
+                 (minksum.Solid.load("ring:6"), "tetra@scale:1/8")]
+        local = minksum.minkowski_sum_many(mixed, threads=1)
+        remote = minksum.dask.minkowski_sum_many(client, mixed, chunk_size=2, threads=1)
+        assert [type(r).__name__ for r in remote] == [type(r).__name__ for r in local]
+        assert [r.volume() for r in remote] == [r.volume() for r in local]
+        assert [sorted(r.exact_vertices()) for r in remote] == [sorted(r.exact_vertices()) for r in local]
 
 
 def test_chunks():

@@ -93,6 +93,41 @@ int view_scene(const Args& a, const LoadedScene& scene, const std::string& outpu
       }
     if (c.polytope_node != kNoNode) role[c.polytope_node] = "sum", caption[c.polytope_node] = "the sum " + sum;
   }
+  // What the comments of 'minksum sum --scene' say ("# A = cube", "# S = A ⊕ B ⊕ C"): the sum
+  // and its operands, in the colours of a sum's page; any other comment as the caption.
+  for (std::size_t i = 0; i < scene.polytopes.size(); ++i) {
+    const std::string& text = scene.comments[i];
+    if (text.empty() || !caption[i].empty()) continue;
+    std::vector<std::size_t> terms;
+    for (std::size_t at = 0;;) {
+      const std::size_t end = text.find(" ⊕ ", at);
+      const std::string term = text.substr(at, end == std::string::npos ? std::string::npos : end - at);
+      const auto it = std::find(scene.names.begin(), scene.names.end(), term);
+      if (it == scene.names.end() || std::size_t(it - scene.names.begin()) == i) {
+        terms.clear();
+        break;
+      }
+      terms.push_back(std::size_t(it - scene.names.begin()));
+      if (end == std::string::npos) break;
+      at = end + std::string(" ⊕ ").size();
+    }
+    if (terms.size() < 2) {
+      caption[i] = text;
+      continue;
+    }
+    const std::string sum = scene.names[i] + " = " + text;
+    role[i] = "sum";
+    caption[i] = "the sum " + sum;
+    static const char* const kOrdinal[] = {"first", "second", "third"};
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      const std::size_t t = terms[k];
+      if (!caption[t].empty() && role[t] != "polytope") continue;
+      role[t] = k ? "b" : "a";
+      const std::string which =
+          k < 3 ? std::string(kOrdinal[k]) + " operand of " : "operand " + std::to_string(k + 1) + " of ";
+      caption[t] = (scene.comments[t].empty() ? std::string() : scene.comments[t] + ", ") + which + sum;
+    }
+  }
   std::string roles_json;
   bool first = true;
   for (const SceneShape& sh : scene.shapes) {

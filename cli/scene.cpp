@@ -4,6 +4,8 @@
 #include <minksum/minkowski.hpp>
 
 #include <algorithm>
+#include <fstream>
+#include <map>
 #include <sys/stat.h>
 #include <tuple>
 
@@ -126,6 +128,25 @@ LoadedScene load_scene(const std::string& path) {
     check_claims(path, node, c.map);
     out.cgms.push_back(std::move(c));
   }
+  // The comment lines "# NAME = TEXT" naming DEF NAME (minksum sum --scene
+  // writes "# A = cube" and "# S = A ⊕ B"); VRML's reader skips comments.
+  out.comments.assign(out.polytopes.size(), std::string());
+  std::ifstream in(path, std::ios::binary);
+  std::map<std::string, std::string> said;
+  for (std::string line; std::getline(in, line);) {
+    if (line.size() < 2 || line[0] != '#') continue;
+    const std::size_t eq = line.find(" = ");
+    if (eq == std::string::npos) continue;
+    std::string name = line.substr(1, eq - 1);
+    name.erase(0, name.find_first_not_of(' '));
+    if (name.empty() || name.find(' ') != std::string::npos) continue;
+    std::string text = line.substr(eq + 3);
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    said.emplace(name, text);  // the first comment of a name
+  }
+  for (std::size_t i = 0; i < scene.polytopes.size(); ++i)
+    if (auto it = said.find(scene.polytopes[i].name); !scene.polytopes[i].name.empty() && it != said.end())
+      out.comments[i] = it->second;
   return out;
 }
 

@@ -27,6 +27,9 @@ struct LoadedCgm {
 struct LoadedScene {
   std::vector<ConvexPolytope> polytopes;  // Scene::polytopes, validated
   std::vector<std::string> names;         // their DEF names, or "ExactPolyhedron at line N"
+  // For each polytope, the text of a comment line "# NAME = TEXT" naming its
+  // DEF NAME ('minksum sum --scene' writes "# A = cube", "# S = A ⊕ B"); "".
+  std::vector<std::string> comments;
   std::vector<LoadedCgm> cgms;
   std::vector<SceneShape> shapes;
 };

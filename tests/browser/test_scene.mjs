@@ -5,7 +5,8 @@
 // scene's three polytopes against 'minksum sum/gen --json'), each map's facet
 // normals and edges against 'minksum cgm --json' of its polytope (the sum's
 // arcs of P and of Q both drawn), and a facet of the sum clicked against the
-// exact polytope 'minksum sum --exact' writes.
+// exact polytope 'minksum sum --exact' writes.  Then the scene of 'minksum
+// sum --scene': its shapes named by their comments, coloured as a sum's.
 import { check, checkDecimals, checkPage, checkPickedFacet, clickFacet, launch, minksum, minksumJson, open, options, readOff } from './lib.mjs';
 import { join } from 'node:path';
 
@@ -71,6 +72,23 @@ try {
   const picked = await clickFacet(page, 'solid2', f, 'scene');
   checkPickedFacet(picked, off, 'scene');
   console.log(`scene: ${view.shapes.length} shapes; maps ${s.cgms.map((c) => `${c.name} ${c.realVertices} normals`).join(', ')}; picked facet ${picked.facet} of S: ${picked.plane}`);
+
+  // The scene 'minksum sum --scene' writes (ExactPolyhedron nodes only, with
+  // comment lines "# A = NAME", "# S = A ⊕ B"): each shape named with its
+  // file or catalog name and what it is, in the colours of a sum.
+  const sumWrl = join(o.out, 'sum-scene.wrl'), sumHtml = join(o.out, 'sum-scene.html');
+  minksum(o.minksum, ['sum', P, Q, '--scene', '-o', sumWrl]);
+  minksum(o.minksum, ['view', sumWrl, '-o', sumHtml]);
+  const second = await open(browser.context, sumHtml);
+  await checkPage(second.page, second.log, 'sum scene');
+  const rows = await second.page.$$eval('#side [data-shape]', (rs) => rs.map((r) => ({
+    name: r.dataset.shape, role: r.dataset.role, text: r.textContent, swatch: getComputedStyle(r.querySelector('.sw')).backgroundColor })));
+  check(JSON.stringify(rows.map((r) => [r.name, r.role])) === JSON.stringify([['A', 'a'], ['B', 'b'], ['S', 'sum']]),
+        `sum scene: shapes ${JSON.stringify(rows)}`);
+  check(rows[0].text.includes(`${P}, first operand of S = A ⊕ B`) && rows[1].text.includes(`${Q}, second operand of S = A ⊕ B`) &&
+        rows[2].text.includes('the sum S = A ⊕ B'), `sum scene: shape captions ${rows.map((r) => r.text).join(' | ')}`);
+  check(new Set(rows.map((r) => r.swatch)).size === 3, `sum scene: the shapes share colours ${rows.map((r) => r.swatch)}`);
+  await second.page.screenshot({ path: join(o.out, 'sum-scene.png') });
 } finally {
   await browser.close();
 }

@@ -78,25 +78,17 @@ std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh, Mesh* writ
   const bool floats = out.format == Format::stl && out.options.binary;
   const std::string exact_hint = "; use --exact with " + extension_list(", ", " or ", true) + " to write exact rationals";
   // Without --exact: coordinates that are not doubles (binary STL: floats)
-  // rounded, the surface kept a valid solid (round_solid, docs/nonconvex.md).
+  // rounded, the surface kept a valid solid (writable_solid, docs/nonconvex.md).
   RoundedSolid rounded;
-  if (!out.options.exact) {
-    try {
-      rounded = round_solid(mesh, floats, name);
-    } catch (const RoundingError& e) {
-      throw OutputError("cannot write " + name + ": " + e.what() + exact_hint);
-    } catch (const InputError& e) {
-      throw OutputError(std::string("cannot write ") + e.what());
-    }
+  Mesh written;
+  try {
+    written = writable_solid(mesh, out.format, out.options, name, &rounded);
+  } catch (const RoundingError& e) {
+    throw OutputError("cannot write " + name + ": " + e.what() + exact_hint);
+  } catch (const InputError& e) {
+    throw OutputError(std::string("cannot write ") + e.what());
   }
-  // STL holds triangles only: faces cut exactly (an L-shaped cap fanned from
-  // a corner would cover its notch).
-  // round_solid's mesh also when nothing was rounded but the surface,
-  // touching itself, was cut apart (points moved).
   const bool changed = rounded.rounded_coordinates > 0 || rounded.max_displacement > 0;
-  Mesh written = changed ? std::move(rounded.mesh)
-                 : out.format == Format::stl  ? triangulate(mesh, name)
-                                              : mesh;
   try {
     write_mesh_as_is(out, written);
   } catch (const UnrepresentableError& e) {
@@ -120,13 +112,10 @@ std::size_t write_solid_mesh(const MeshOutput& out, const Mesh& mesh, Mesh* writ
                  "(checked exactly); --exact writes the exact "
               << what << "\n";
   }
+  const std::size_t count = rounded.rounded_coordinates;
   if (written_out) *written_out = std::move(written);
-  if (rounded_out) {
-    rounded_out->rounded_coordinates = rounded.rounded_coordinates;
-    rounded_out->max_displacement = rounded.max_displacement;
-    rounded_out->grid = rounded.grid;
-  }
-  return rounded.rounded_coordinates;
+  if (rounded_out) *rounded_out = std::move(rounded);
+  return count;
 }
 
 }  // namespace minksum::cli

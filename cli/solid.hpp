@@ -5,6 +5,7 @@
 
 #include <minksum/nonconvex.hpp>
 #include <minksum/operand.hpp>
+#include <minksum/solid_io.hpp>
 #include <minksum/sum.hpp>
 #include <minksum/polytope.hpp>
 

@@ -20,6 +20,7 @@
 #include <minksum/polytope.hpp>
 #include <minksum/proximity.hpp>
 #include <minksum/rigid_proximity.hpp>
+#include <minksum/solid_io.hpp>
 #include <minksum/sum.hpp>
 
 #include <pybind11/numpy.h>
@@ -1472,6 +1473,42 @@ arguments, TypeError for arguments of the wrong type.)")
           "What 'minksum stats' prints of a solid, as a dict: vertices, edges, facets (ints), volume (exact\n"
           "Fraction), volume_float (its nearest double), genus (the sum of the shells' genera: a torus 1),\n"
           "shells (connected components of the surface), bounding_box ((min, max), exact Fraction triples).")
+      .def(
+          "save",
+          [](const SolidPy& s, py::object path, bool exact, bool binary) -> py::object {
+            const std::string file = py::cast<std::string>(py::module_::import("os").attr("fsdecode")(path));
+            WriteOptions w;
+            w.exact = exact;
+            w.binary = binary;
+            RoundedSolid r;
+            try {
+              py::gil_scoped_release nogil;
+              r = write_solid(file, s.faces, w);
+            } catch (const RoundingError& e) {
+              throw py::value_error(std::string("cannot write ") + file + ": " + e.what() +
+                                    "; exact=True writes exact rationals (.off, .obj, .wrl)");
+            } catch (const UsageError&) {
+              throw;  // an unknown extension, exact rationals in STL or PLY: ValueError
+            } catch (const InputError& e) {  // the file system refused: not bad data
+              PyErr_SetString(PyExc_OSError, e.what());
+              throw py::error_already_set();
+            }
+            if (!r.rounded_coordinates && r.max_displacement == 0) return py::none();
+            py::dict d;
+            d["coordinates"] = r.rounded_coordinates;
+            d["max_displacement"] = r.max_displacement;
+            d["grid"] = r.grid;
+            return d;
+          },
+          py::arg("path"), py::arg("exact") = false, py::arg("binary") = false,
+          "Write the solid's faces to path (.off, .obj, .ply, .stl or .wrl, by extension), atomically, as\n"
+          "'minksum sum -o' writes a non-convex sum.  exact=True writes exact rationals (.off, .obj and\n"
+          ".wrl only); otherwise coordinates that are not doubles (binary=True .stl: 32-bit floats) are\n"
+          "rounded and the surface written as a valid closed solid without self-intersection (checked\n"
+          "exactly; docs/nonconvex.md, \"Output\"), STL as triangles.  Returns None when nothing moved, else\n"
+          "a dict of what rounding did (coordinates, max_displacement, grid), as 'rounding' in --json.\n"
+          "Raises ValueError for an unknown extension, a request the format cannot honour or a solid it\n"
+          "cannot represent, OSError when the file cannot be written.")
       .def(py::pickle([](const SolidPy& s) { return solid_state(s); },
                       [](const py::tuple& t) {
                         auto s = std::make_shared<SolidPy>();

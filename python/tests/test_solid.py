@@ -108,3 +108,39 @@ def test_bad_solids():
         minksum.Solid.load(minksum.load("cube"))
     with pytest.raises(TypeError, match=r"^a: expected a Polytope"):
         minksum.minkowski_sum(3, "tube")
+
+
+def test_save_then_the_commands_read_it(tmp_path):
+    # A sum from Python, written as 'minksum sum -o' writes it; then 'stats', 'convert' and 'view' of
+    # the file, and Solid.load of it: the exact file has the exact volume, the rounded one is a valid
+    # solid within the rounding's displacement.
+    import subprocess
+    from conftest import minksum_bin
+
+    s = minksum.minkowski_sum("tube", minksum.load("sphere:2@scale:1/4"))
+    exact = tmp_path / "sum.off"
+    assert s.save(exact, exact=True) is None
+    back = minksum.Solid.load(str(exact))
+    assert back.volume() == s.volume() and back.num_facets == s.num_facets
+    assert cli_json("stats", str(exact))["volume"] == str(s.volume())
+    stl = tmp_path / "sum.stl"
+    r = s.save(stl, binary=True)
+    assert r is not None and r["coordinates"] > 0 and 0 < r["max_displacement"] < 1e-5
+    st = cli_json("stats", str(stl))
+    assert st["kind"] == "solid" and st["genus"] == 1 == cli_json("stats", str(exact))["genus"]  # the hole stays
+    assert abs(Fraction(st["volume"]) - s.volume()) < 1e-4
+    out = cli_json("convert", str(stl), "-o", str(tmp_path / "sum.obj"))
+    assert out["facets"] == st["facets"]
+    page = tmp_path / "sum.html"
+    subprocess.run([minksum_bin(), "view", str(stl), "-o", str(page)], check=True, capture_output=True)
+    assert page.stat().st_size > 0
+    with pytest.raises(ValueError):
+        s.save(tmp_path / "sum.stl", exact=True)  # STL holds no rationals
+    with pytest.raises(ValueError):
+        s.save(tmp_path / "sum.xyz")
+    with pytest.raises(OSError):
+        s.save(tmp_path / "no" / "such" / "dir.off")
+    # an empty erosion: a file with no faces
+    e = minksum.erode("cube", "cube@scale:2")
+    assert e.empty and e.save(tmp_path / "empty.off") is None
+    assert (tmp_path / "empty.off").read_text().split()[:3] == ["OFF", "0", "0"]

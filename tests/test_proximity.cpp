@@ -1141,6 +1141,36 @@ TEST(ProximityCli, SimulateFramesEqualTheQueryOnMOfTheTurnedRobot) {
   EXPECT_FALSE(has(text.out, "recomputed")) << text.out;
 }
 
+// A first pass whose lines of translations lie in the boundary of S (cube
+// against a half-size cube, not turned, frames at x = ±3/2): no probe on such
+// a line can penetrate, so its top is read off the section of M of that
+// orientation; the height, and every frame, equal the answers on M.
+TEST(ProximityCli, SimulateGrazingHeightOnALineInTheBoundaryOfS) {
+  const std::string args = "--frames 10 --obstacle cube --robot cube@scale:1/2 --turn 1,0,0,0";
+  const CmdResult r = run("simulate " + args + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream lines(r.out);
+  int n = 0, touching = 0;
+  for (std::string line; std::getline(lines, line); ++n) {
+    SCOPED_TRACE(line);
+    const std::string status = json_value(line, "status");
+    const std::string key = status == "penetrating" ? "squared_depth" : "squared_distance";
+    std::smatch t;
+    ASSERT_TRUE(std::regex_search(line, t, std::regex("\"translation\": \\[\"([^\"]*)\", \"([^\"]*)\", \"([^\"]*)\"\\]")));
+    const CmdResult q = run(std::string("query ") + (status == "penetrating" ? "depth" : "distance") +
+                            " cube@scale:1/2 cube --translate-p " + std::string(t[1]) + "," + std::string(t[2]) + "," +
+                            std::string(t[3]) + " --json");
+    EXPECT_EQ(status, json_value(q.out, "status")) << q.out;
+    EXPECT_EQ(json_value(line, key), json_value(q.out, key)) << q.out;
+    if (n < 5) EXPECT_EQ(std::string(t[2]), "3/2");  // the height: the top face of the obstacle plus 1/2
+    touching += status == "touching";
+  }
+  EXPECT_EQ(n, 10);
+  EXPECT_EQ(touching, 5);
+  const CmdResult text = run("simulate " + args);
+  EXPECT_TRUE(has(text.out, "; the grazing height read off M of 2 orientations\n")) << text.out;
+}
+
 // The trail picture was titled "side view" but showed the x-y plane, had no
 // legend but a line of text, and its lower part was an empty band: now a top
 // view, a legend with the four colours, and the picture cut to what is drawn

@@ -226,9 +226,11 @@ int run_simulate(const std::vector<std::string>& argv) {
   // interval; the next probe is below the upper bound (by half the last
   // step) or between the bounds.  A penetrating probe is interior to S_k:
   // from there the directional depth along +y is the exact distance to the
-  // top.  A line that meets S_k in one point only, or a probe that touches,
-  // is answered instead on the section of M_k (built for that orientation
-  // alone): M_k's half-spaces cut L exactly.
+  // top.  A line that meets no interior point of S_k (it touches S_k in a
+  // point or along its boundary: no probe can penetrate), a probe that
+  // touches, or 64 probes without a penetrating one, and the top is read
+  // off the section of M_k instead (built for that orientation alone):
+  // M_k's half-spaces cut L exactly.
   const Point3 up(Rational(0), Rational(1), Rational(0));
   RigidWarmStart probe_warm;
   std::vector<std::optional<TranslationalObstacle>> sections(orientations);

@@ -33,11 +33,11 @@ common point) of P and Q with exact coordinates, the minimal translation of P
 that separates them, and the witness features of P and Q (drawn in the scene).
 M = P ⊕ (−Q) is computed once, for P as given, and answers the poses that
 move P without turning it.  A turned P is answered on the placed bodies
-(the rigid-motion queries of docs/proximity.md, as 'minksum query
---rotate-p'): the same exact values, each answer proved by a certificate
-that the page names, and no M built for the rotation; M is built for one
-pose alone only where no certificate without it exists (a touching pose:
-certificate "exact").
+(the rigid-motion queries of docs/proximity.md, as 'minksum query' answers
+a rotated operand): the same exact values, each answer proved by a certificate
+that the page names, and no M built for the rotation; M is built, for that
+pose alone, only where the search certifies no answer without it (touching
+poses, and poses it leaves undecided: certificate "exact").
 
 The first line on standard output is the page's URL (http://127.0.0.1:PORT/).
 Ctrl-C (SIGINT) or SIGTERM stops the server; it then exits with status 0.
@@ -68,8 +68,8 @@ depth_direction, witness, depth_witness, certificate, depth_certificate,
 features, m, recomputed, pose, seconds).  P as given: witness and m (M's
 counts), certificate null; P turned: certificate (and depth_certificate
 when the bodies overlap), witness and m null, recomputed true when M was
-built for that pose.  A rotation's integers are at most 10^6 in magnitude; a bad
-request gets HTTP 400 and one line saying why.
+built for that pose.  A rotation's integers are at most 10^6 in
+magnitude; a bad request gets HTTP 400 and one line saying why.
 
 What the server refuses, with one line saying why (an error answer closes
 the connection):

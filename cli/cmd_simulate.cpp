@@ -33,8 +33,9 @@ whose height is computed exactly so that the robot grazes the obstacle
 through the obstacle.  The robot turns about the z axis (exact rational
 rotation) every other frame.  Each frame is answered on the placed bodies
 (the rigid-motion queries of docs/proximity.md): no M = P ⊕ (−Q) is built
-for a turn, and M is built for one pose only where the answer cannot be
-certified otherwise (a touching pose: certificate "exact").  Each frame
+for a turn, and M is built, for one pose, only where the search certifies
+no answer without it (touching poses, and poses it leaves undecided:
+certificate "exact").  Each frame
 prints its status (separate / touching / penetrating), the exact distance or
 penetration depth, the time of its query and the certificate that proved
 it; a last line sums up (time per query, answers certified without M).

@@ -31,8 +31,13 @@ penetrating, in colour), the squared distance or squared penetration depth as
 an exact rational and its square root as a double, the closest points (or a
 common point) of P and Q with exact coordinates, the minimal translation of P
 that separates them, and the witness features of P and Q (drawn in the scene).
-M = P ⊕ (−Q) is computed once per orientation of P: turning P computes it
-again.
+M = P ⊕ (−Q) is computed once, for P as given, and answers the poses that
+move P without turning it.  A turned P is answered on the placed bodies
+(the rigid-motion queries of docs/proximity.md, as 'minksum query' answers
+a rotated operand): the same exact values, each answer proved by a certificate
+that the page names, and no M built for the rotation; M is built, for that
+pose alone, only where the search certifies no answer without it (touching
+poses, and poses it leaves undecided: certificate "exact").
 
 The first line on standard output is the page's URL (http://127.0.0.1:PORT/).
 Ctrl-C (SIGINT) or SIGTERM stops the server; it then exits with status 0.
@@ -51,7 +56,7 @@ syntax of 'minksum query' (X,Y,Z and A,B,C,D), which answers it alike.
 Options:
   --port N     listen on port N (default 0: a free port the system chooses)
   --no-open    do not open the page in a browser (else xdg-open is tried)
-  --method M   how M is computed: {methods}
+  --method M   how M (of P as given) is computed: {methods}
   --hull       take the convex hull of each input file's points
 
 The server: GET / is the page; POST /query takes a JSON object
@@ -59,9 +64,12 @@ The server: GET / is the page; POST /query takes a JSON object
 (rotate_p and translate_q optional; the syntax of 'minksum query') and
 answers a JSON object (status, squared_distance, distance, squared_depth,
 depth, point_p, point_p_exact, point_q, point_q_exact, direction,
-depth_direction, witness, depth_witness, features, m, recomputed, pose,
-seconds).  A rotation's integers are at most 10^6 in magnitude; a bad
-request gets HTTP 400 and one line saying why.
+depth_direction, witness, depth_witness, certificate, depth_certificate,
+features, m, recomputed, pose, seconds).  P as given: witness and m (M's
+counts), certificate null; P turned: certificate (and depth_certificate
+when the bodies overlap), witness and m null, recomputed true when M was
+built for that pose.  A rotation's integers are at most 10^6 in
+magnitude; a bad request gets HTTP 400 and one line saying why.
 
 What the server refuses, with one line saying why (an error answer closes
 the connection):

@@ -1,15 +1,19 @@
 // minksum simulate: Fig. 4 of Fogel and Halperin (2006) — a static obstacle and a robot moving
 // along a path that first grazes the obstacle without penetrating it and then
-// penetrates it; the robot rotates every other frame (M is recomputed then).
+// penetrates it; the robot rotates every other frame.  Every frame is answered
+// on the placed bodies (rigid_proximity.hpp): no M is built for a turn.
 #include <minksum/catalog.hpp>
 #include <minksum/io.hpp>
 #include <minksum/operand.hpp>
 #include <minksum/proximity.hpp>
+#include <minksum/rigid_proximity.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
@@ -27,11 +31,14 @@ the x-y plane.  In the first pass the robot slides along a horizontal line
 whose height is computed exactly so that the robot grazes the obstacle
 (touching, never penetrating) at one frame; in the second pass it slides back
 through the obstacle.  The robot turns about the z axis (exact rational
-rotation) every other frame; M = P ⊕ (−Q) is recomputed then.  Each frame
+rotation) every other frame.  Each frame is answered on the placed bodies
+(the rigid-motion queries of docs/proximity.md): no M = P ⊕ (−Q) is built
+for a turn, and M is built, for one pose, only where the search certifies
+no answer without it (touching poses, and poses it leaves undecided:
+certificate "exact").  Each frame
 prints its status (separate / touching / penetrating), the exact distance or
-penetration depth, and the time of the query (and of M's computation).  The
-frames of one orientation are answered as one batch of the library's
-trajectory API; a frame's query time is the batch's time per frame.
+penetration depth, the time of its query and the certificate that proved
+it; a last line sums up (time per query, answers certified without M).
 
 Options:
   --obstacle SPEC   the obstacle Q (file or catalog name; default dodecahedron@scale:2)
@@ -51,18 +58,30 @@ Options:
   --show-m          in the --html page, also the configuration-space obstacle
                     of the frame's orientation, Q ⊕ (−P) = −M (the robot
                     meets Q exactly when its reference point is in it), and
-                    that point
-  --json            one JSON object per frame instead of text
+                    that point; M of each orientation is then built for
+                    the drawing only (the answers do not use it)
+  --json            one JSON object per frame instead of text (no summary):
+                    frame, orientation, rotation (the robot's integer
+                    quaternion), translation, status, squared_distance or
+                    squared_depth (exact), certificate, query_seconds;
+                    rebuilt is true when M was built for the frame's pose
+                    (certificate exact; its time is in query_seconds) and
+                    build_seconds is 0
 )";
 
 struct Frame {
   Point3 u;         // translation of the robot
-  std::size_t orientation;
-  ContactStatus status;
+  std::size_t orientation = 0;
+  bool turned = false;  // the first frame of a new orientation
+  ContactStatus status = ContactStatus::separate;
+  RigidCertificate certificate = RigidCertificate::exact;  // how the frame's answer was proved
   Rational value;   // squared distance or squared depth
-  double query_seconds = 0, build_seconds = 0;
-  bool rebuilt = false;
+  double query_seconds = 0;
 };
+
+std::string quaternion_text(const Quaternion& q) {
+  return q[0].get_str() + "," + q[1].get_str() + "," + q[2].get_str() + "," + q[3].get_str();
+}
 
 struct P2 {
   double x, y;
@@ -158,14 +177,20 @@ int run_simulate(const std::vector<std::string>& argv) {
 
   // Orientation k (frames 2k, 2k+1): the robot turned k times.
   const std::size_t orientations = std::size_t((frames + 1) / 2);
-  std::vector<ConvexPolytope> robots;
+  // The turned robot P_k as a polytope, for the drawings and the M_k they
+  // show (the queries place the robot themselves), made on first use.
+  std::vector<std::optional<ConvexPolytope>> turned_robots;
   std::vector<Quaternion> turns;  // orientation k: robot rotated by turns[k]
   Quaternion q = {Integer(1), Integer(0), Integer(0), Integer(0)};
   for (std::size_t k = 0; k < orientations; ++k) {
-    robots.push_back(k == 0 ? robot : rotated(robot, q));
+    turned_robots.emplace_back();
     turns.push_back(q);
     q = quaternion_product(turn, q);
   }
+  const auto robots = [&](std::size_t k) -> const ConvexPolytope& {
+    if (!turned_robots[k]) turned_robots[k] = k == 0 ? robot : rotated(robot, turns[k]);
+    return *turned_robots[k];
+  };
 
   // x positions: pass 1 from −X to X, pass 2 back; X clears both bodies.
   double reach = 0;
@@ -183,98 +208,130 @@ int run_simulate(const std::vector<std::string>& argv) {
     return Rational(X) - step;
   };
 
-  // Grazing height: P+u meets Q iff s = −u ∈ M.  On the line s = (−x, y, 0)
-  // the lowest y inside M_k is an exact rational (intersection of M_k's
-  // half-spaces with the line); the robot flies at the highest of these over
-  // the first pass, so it touches at one frame and never penetrates.
+  const RigidBody body_p(robot), body_q(obstacle);
+  const RigidPose pose_q;  // the obstacle at the origin, as given
+  const auto pose_p = [&](std::size_t k, const Point3& u) {
+    return k == 0 ? RigidPose::translation(u) : RigidPose::quaternion(turns[k], u);
+  };
+
+  // Grazing height: the robot flies at the highest height at which it meets
+  // Q at some frame of the first pass, so it touches at one frame and never
+  // penetrates.  For the frame at x with orientation k, that height is the
+  // top of the segment where the line L = {(x, h, 0)} meets S_k = {u : P_k +
+  // u meets Q} = Q ⊕ (−P_k) (an interval: S_k is convex), found on the
+  // placed bodies.  A separate probe at height h gives the closest points,
+  // hence v = point_q − point_p with h + v the point of S_k nearest the
+  // probe, and S_k lies in the half-space v · (u − (x, h, 0)) ≥ |v|²: on L,
+  // every point of S_k is at or below h + |v|²/v_y when v_y < 0, at or above
+  // it when v_y > 0, and there is none when v_y = 0.  These cuts bound the
+  // interval; the next probe is below the upper bound (by half the last
+  // step) or between the bounds.  A penetrating probe is interior to S_k:
+  // from there the directional depth along +y is the exact distance to the
+  // top.  A line that meets no interior point of S_k (it touches S_k in a
+  // point or along its boundary: no probe can penetrate), a probe that
+  // touches, or 64 probes without a penetrating one, and the top is read
+  // off the section of M_k instead (built for that orientation alone):
+  // M_k's half-spaces cut L exactly.
+  const Point3 up(Rational(0), Rational(1), Rational(0));
+  RigidWarmStart probe_warm;
+  std::vector<std::optional<TranslationalObstacle>> sections(orientations);
+  const auto top_on_m = [&](std::size_t k, const Rational& x) -> std::optional<Rational> {
+    if (!sections[k]) sections[k].emplace(robots(k), obstacle);
+    const ConvexPolytope& m = sections[k]->obstacle();  // P+u meets Q iff s = −u ∈ M
+    const Rational sx = -x;
+    bool have_lo = false, have_hi = false;
+    Rational lo, hi;
+    for (Index f = 0; f < m.num_facets(); ++f) {
+      const Plane& pl = m.plane(f);
+      const Rational rhs = Rational(pl.d) - Rational(pl.a) * sx;  // b·y <= rhs on s = (−x, y, 0)
+      if (sgn(pl.b) == 0) {
+        if (sgn(rhs) < 0) return std::nullopt;
+      } else if (sgn(pl.b) > 0) {
+        Rational b = rhs / Rational(pl.b);
+        if (!have_hi || b < hi) hi = b, have_hi = true;
+      } else {
+        Rational b = rhs / Rational(pl.b);
+        if (!have_lo || b > lo) lo = b, have_lo = true;
+      }
+    }
+    if (!have_lo || (have_hi && hi < lo)) return std::nullopt;
+    return Rational(-lo);
+  };
+  const auto top = [&](std::size_t k, const Rational& x) -> std::optional<Rational> {
+    std::optional<Rational> upper, lower;  // L ∩ S_k lies within [lower, upper]
+    Rational h(X);                          // above both bodies
+    for (int probe = 0; probe < 64; ++probe) {
+      const RigidPose pp = pose_p(k, Point3(x, h, Rational(0)));
+      const RigidDistance d = distance(body_p, pp, body_q, pose_q, &probe_warm);
+      if (d.status == ContactStatus::penetrating) {
+        const RigidDirectionalDepth r = directional_depth(body_p, pp, body_q, pose_q, up, &probe_warm);
+        return Rational(h + exact_values(body_p, pp, body_q, pose_q, up, r));
+      }
+      if (d.status == ContactStatus::touching) break;
+      const RigidDistanceExact e = exact_values(body_p, pp, body_q, pose_q, d);
+      const Point3 v = e.point_q - e.point_p;
+      if (sgn(v.y) == 0) return std::nullopt;
+      const Rational cut = h + dot(v, v) / v.y;
+      if (sgn(v.y) < 0) {
+        if (!upper || cut < *upper) upper = cut;
+      } else if (!lower || cut > *lower) {
+        lower = cut;
+      }
+      if (upper && lower && *lower > *upper) return std::nullopt;
+      if (upper && lower) h = (*lower + *upper) / 2;
+      else if (upper) h = *upper - (h - *upper) / 2;
+      else h = *lower + (*lower - h) / 2;
+    }
+    return top_on_m(k, x);
+  };
   Rational height;
   bool have_height = false;
-  {
-    for (std::size_t k = 0; long(2 * k) < pass1; ++k) {
-      TranslationalObstacle ob(robots[k], obstacle);
-      const ConvexPolytope& m = ob.obstacle();
-      for (long j = long(2 * k); j < std::min(long(2 * k + 2), pass1); ++j) {
-        const Rational sx = -xpos(j);
-        bool feasible = true, have_lo = false, have_hi = false;
-        Rational lo, hi;
-        for (Index f = 0; f < m.num_facets() && feasible; ++f) {
-          const Plane& pl = m.plane(f);
-          const Rational rhs = Rational(pl.d) - Rational(pl.a) * sx;  // b·y <= rhs
-          if (sgn(pl.b) == 0) {
-            if (sgn(rhs) < 0) feasible = false;
-          } else if (sgn(pl.b) > 0) {
-            Rational b = rhs / Rational(pl.b);
-            if (!have_hi || b < hi) hi = b, have_hi = true;
-          } else {
-            Rational b = rhs / Rational(pl.b);
-            if (!have_lo || b > lo) lo = b, have_lo = true;
-          }
-        }
-        if (!feasible || !have_lo || (have_hi && hi < lo)) continue;
-        if (!have_height || -lo > height) height = -lo, have_height = true;
-      }
-    }
-    if (!have_height) height = Rational(X);
-  }
+  for (long j = 0; j < pass1; ++j)
+    if (const auto t = top(std::size_t(j / 2), xpos(j)); t && (!have_height || *t > height))
+      height = *t, have_height = true;
+  if (!have_height) height = Rational(X);
+  std::size_t sections_built = 0;
+  for (const auto& m : sections) sections_built += m.has_value();
 
-  TranslationalObstacle ob(robots[0], obstacle);
-  std::vector<ConvexPolytope> c_obstacles;  // −M_k per orientation, for --show-m
-  if (show_m) c_obstacles.push_back(ob.obstacle().negated());
+  // Every frame is answered on the placed bodies (rigid_proximity.hpp): the
+  // robot under its frame's rotation and translation, the obstacle fixed.
+  // No M is built for a turn; the library builds M for one pose only when
+  // it cannot certify the answer otherwise (certificate "exact": a touching
+  // pose).  The frames form one coherent trajectory: each query starts from
+  // the previous one's witnesses (RigidWarmStart).
+  RigidWarmStart warm;
+  long frames_on_m = 0;
   std::vector<Frame> trail;
-  std::size_t current = 0;
-  // The frames of one orientation are one batch of the trajectory API
-  // (distance_points, then penetration_depth_points on the penetrating
-  // poses); each frame's query time is the batch's time per frame.
-  std::vector<Frame> batch;
-  std::vector<Point3> batch_s, inside_s;
-  std::vector<DistanceResult> dist;
-  std::vector<DepthResult> depth;
+  double total_seconds = 0;
   for (long i = 0; i < frames; ++i) {
-    if (batch.empty()) {
-      const std::size_t orientation = std::size_t(i / 2);
-      Frame first;
-      if (orientation != current) {
-        const auto t0 = std::chrono::steady_clock::now();
-        ob.set_p(robots[orientation]);
-        first.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        first.rebuilt = true;
-        current = orientation;
-        if (show_m) c_obstacles.push_back(ob.obstacle().negated());
-      }
-      batch_s.clear();
-      for (long k = i; k < frames && std::size_t(k / 2) == orientation; ++k) {
-        Frame fr = batch.empty() ? first : Frame{};
-        fr.orientation = orientation;
-        fr.u = Point3(xpos(k), k < pass1 ? height : Rational(0), Rational(0));
-        batch_s.push_back(-fr.u);  // s = w − u with Q (w = 0) fixed
-        batch.push_back(std::move(fr));
-      }
-      const auto t0 = std::chrono::steady_clock::now();
-      ob.distance_points(batch_s, dist);
-      inside_s.clear();
-      for (std::size_t k = 0; k < dist.size(); ++k)
-        if (dist[k].status == ContactStatus::penetrating) inside_s.push_back(batch_s[k]);
-      ob.penetration_depth_points(inside_s, depth);
-      const double per_frame =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / double(batch.size());
-      for (std::size_t k = 0, j = 0; k < batch.size(); ++k) {
-        batch[k].status = dist[k].status;
-        batch[k].value = dist[k].status == ContactStatus::penetrating ? depth[j++].squared_depth()
-                                                                       : dist[k].squared_distance();
-        batch[k].query_seconds = per_frame;
-      }
-      std::reverse(batch.begin(), batch.end());  // taken from the back, in frame order
-    }
-    Frame fr = std::move(batch.back());
-    batch.pop_back();
+    Frame fr;
+    fr.orientation = std::size_t(i / 2);
+    fr.turned = fr.orientation > 0 && i % 2 == 0;
+    fr.u = Point3(xpos(i), i < pass1 ? height : Rational(0), Rational(0));
+    const RigidPose pp = pose_p(fr.orientation, fr.u);
+    const auto t0 = std::chrono::steady_clock::now();
+    const RigidDistance d = distance(body_p, pp, body_q, pose_q, &warm);
+    std::optional<RigidDepth> depth;
+    if (d.status == ContactStatus::penetrating) depth = penetration_depth(body_p, pp, body_q, pose_q, &warm);
+    fr.query_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    total_seconds += fr.query_seconds;
+    fr.status = d.status;
+    fr.certificate = depth ? depth->certificate : d.certificate;
+    // The exact values, after the timing (as `query` prints them).
+    fr.value = depth ? exact_values(body_p, pp, body_q, pose_q, *depth).squared_depth
+                     : exact_values(body_p, pp, body_q, pose_q, d).squared_distance;
+    // M built for this pose alone: a query that could not certify its answer without it.
+    const bool on_m =
+        d.certificate == RigidCertificate::exact || (depth && depth->certificate == RigidCertificate::exact);
+    frames_on_m += on_m;
     if (json) {
-      std::cout << "{\"frame\": " << i << ", \"orientation\": " << fr.orientation << ", \"rebuilt\": "
-                << (fr.rebuilt ? "true" : "false") << ", \"translation\": [\"" << format_exact(fr.u.x) << "\", \""
-                << format_exact(fr.u.y) << "\", \"" << format_exact(fr.u.z) << "\"], \"status\": \""
-                << contact_status_name(fr.status) << "\", \""
+      std::cout << "{\"frame\": " << i << ", \"orientation\": " << fr.orientation << ", \"rotation\": \""
+                << quaternion_text(turns[fr.orientation]) << "\", \"rebuilt\": " << (on_m ? "true" : "false")
+                << ", \"translation\": [\"" << format_exact(fr.u.x) << "\", \"" << format_exact(fr.u.y) << "\", \""
+                << format_exact(fr.u.z) << "\"], \"status\": \"" << contact_status_name(fr.status) << "\", \""
                 << (fr.status == ContactStatus::penetrating ? "squared_depth" : "squared_distance") << "\": \""
-                << format_exact(fr.value) << "\", \"query_seconds\": " << json_number(fr.query_seconds)
-                << ", \"build_seconds\": " << json_number(fr.build_seconds) << "}\n";
+                << format_exact(fr.value) << "\", \"certificate\": \"" << rigid_certificate_name(fr.certificate)
+                << "\", \"query_seconds\": " << json_number(fr.query_seconds) << ", \"build_seconds\": 0}\n";
     } else {
       std::cout << "frame " << i << (i < pass1 ? " (pass 1)" : " (pass 2)") << "  x = "
                 << format_double(to_double(fr.u.x)) << "  y = " << format_double(to_double(fr.u.y)) << "  "
@@ -283,13 +340,22 @@ int run_simulate(const std::vector<std::string>& argv) {
         std::cout << "  distance ≈ " << format_double(std::sqrt(to_double(fr.value)));
       else if (fr.status == ContactStatus::penetrating)
         std::cout << "  depth ≈ " << format_double(std::sqrt(to_double(fr.value)));
-      std::cout << "  query " << format_double(std::round(fr.query_seconds * 1e7) / 10) << " µs";
-      if (fr.rebuilt)
-        std::cout << "  (robot turned, M recomputed in " << format_double(std::round(fr.build_seconds * 1e5) / 100)
-                  << " ms)";
+      std::cout << "  query " << format_double(std::round(fr.query_seconds * 1e7) / 10) << " µs  ["
+                << rigid_certificate_name(fr.certificate) << (on_m ? "; M built exactly for this pose]" : "]");
+      if (fr.turned) std::cout << "  (robot turned)";
       std::cout << "\n";
     }
     trail.push_back(std::move(fr));
+  }
+  if (!json) {
+    char us[32];
+    std::snprintf(us, sizeof us, "%.2f", total_seconds / double(frames) * 1e6);
+    std::cout << frames << " frames, " << us << " µs per query, " << frames - frames_on_m
+              << " certified without M, " << frames_on_m << " on M built exactly for the pose";
+    if (sections_built > 0)
+      std::cout << "; the grazing height read off M of " << sections_built << " orientation"
+                << (sections_built == 1 ? "" : "s");
+    std::cout << "\n";
   }
 
   if (!output.empty()) {
@@ -299,7 +365,7 @@ int run_simulate(const std::vector<std::string>& argv) {
     shapes.push_back({outline(obstacle, Point3(Rational(0), Rational(0), Rational(0))),
                       "fill:#9db4d6;stroke:#2b4a7a;stroke-width:0.04"});
     for (const Frame& fr : trail)
-      shapes.push_back({outline(robots[fr.orientation], fr.u),
+      shapes.push_back({outline(robots(fr.orientation), fr.u),
                         std::string("fill:none;stroke-width:0.03;stroke:") + status_colour(fr.status)});
     double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
     for (const auto& [poly, style] : shapes)
@@ -346,6 +412,12 @@ int run_simulate(const std::vector<std::string>& argv) {
     for (std::size_t i = 0; i < trail.size(); ++i)
       frames_shown.push_back({trail[i].u, trail[i].orientation, int(trail[i].status), trail[i].value,
                               long(i) < pass1 ? 1 : 2});
+    // --show-m: M of each orientation, built here for the drawing only
+    // (the answers above never use it).
+    std::vector<ConvexPolytope> c_obstacles;  // −M_k = Q ⊕ (−P_k) per orientation
+    if (show_m)
+      for (std::size_t k = 0; k < orientations; ++k)
+        c_obstacles.push_back(TranslationalObstacle(robots(k), obstacle).obstacle().negated());
     write_motion_page(html_output, "minksum simulate: a robot passing an obstacle", obstacle, robot, turns,
                       frames_shown, 8, c_obstacles);
     if (!json) std::cout << "player written to " << html_output << "\n";

@@ -172,9 +172,24 @@ TEST(Play, StopsOnSigintWithStatusZero) {
   EXPECT_EQ(s.stop(SIGINT), 0);
 }
 
+// Whether the exact point "[\"x\", \"y\", \"z\"]" (a JSON triple) lies in
+// the body SPEC translated by T: `minksum query collide` of the point and
+// the body does not say separate.
+bool point_in(const std::string& triple, const std::string& spec, const std::string& t) {
+  std::string xyz;
+  for (char c : triple)
+    if (c != '[' && c != ']' && c != '"' && c != ' ') xyz += c;
+  const CmdRun r = run("query collide point:" + xyz + " " + spec + " --translate-q " + t + " --json");
+  return r.status == 0 && json_field(r.out, "status") != "\"separate\"" && json_field(r.out, "status").size() > 2;
+}
+
 // Random poses on a dyadic grid (the page's grid) and rotations, some of them
 // penetrating: each answer equals `minksum query distance` (and, when the
-// bodies overlap, `minksum query depth`) for the same pose.
+// bodies overlap, `minksum query depth`) on M of the turned operand for the
+// same pose — the way play answered a turned P before it answered on the
+// placed bodies — with exact values equal.  P as given is answered on M,
+// with M's witnesses; a turned P on the placed bodies, with certificates
+// and no M built (recomputed false, m null).
 TEST(Play, AnswersEqualMinksumQueryForTheSamePoses) {
   Server s({kP, kQ});
   ASSERT_GT(s.port(), 0) << "first line: " << s.url();
@@ -183,9 +198,8 @@ TEST(Play, AnswersEqualMinksumQueryForTheSamePoses) {
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> coordinate(-700, 700);  // in 1/256
   const std::vector<std::string> rotations = {"", "", "64,0,0,0", "60,12,-9,17", "60,12,-9,17", "7,1,2,3"};
-  std::string previous;  // the server starts with P as given
-  int seen[3] = {0, 0, 0};
-  for (int i = 0; i < 24; ++i) {
+  int seen[3] = {0, 0, 0}, turned_seen[3] = {0, 0, 0};
+  for (int i = 0; i < 36; ++i) {
     SCOPED_TRACE("seed " + std::to_string(seed) + ", pose " + std::to_string(i));
     const std::string t = std::to_string(coordinate(rng)) + "/256," + std::to_string(coordinate(rng)) + "/256," +
                           std::to_string(coordinate(rng) / 2) + "/256";
@@ -197,51 +211,94 @@ TEST(Play, AnswersEqualMinksumQueryForTheSamePoses) {
     ASSERT_TRUE(r);
     ASSERT_EQ(r->status, 200) << r->body;
     const std::string& a = r->body;
-    // The query on M of the turned operand (as play answers), and the query
-    // under --rotate-p on the placed bodies (the same exact values; its
-    // common point of penetrating bodies may be another one, and it names a
-    // certificate instead of a witness).
-    const std::string args = std::string(kP) + (rot.empty() ? "" : "@rot:" + rot) + " " + kQ + " --translate-p " + t + " --json";
+    // The query on M of the turned operand.
+    const std::string turned_p = std::string(kP) + (rot.empty() ? "" : "@rot:" + rot);
+    const std::string args = turned_p + " " + kQ + " --translate-p " + t + " --json";
     const CmdRun d = run("query distance " + args);
-    if (!rot.empty()) {
-      const CmdRun g = run("query distance " + std::string(kP) + " " + kQ + " --translate-p " + t + " --rotate-p " + rot + " --json");
-      ASSERT_EQ(g.status, 0) << g.out;
-      EXPECT_EQ(json_field(a, "status"), json_field(g.out, "status"));
-      EXPECT_EQ(json_field(a, "squared_distance"), json_field(g.out, "squared_distance"));
-      if (json_field(a, "status") == "\"separate\"") {
-        EXPECT_EQ(json_field(a, "point_p_exact"), json_field(g.out, "point_p_exact"));
-        EXPECT_EQ(json_field(a, "direction"), json_field(g.out, "direction"));
-      }
-    }
     ASSERT_EQ(d.status, 0) << args;
     SCOPED_TRACE(args + "\nserver: " + a + "\nquery:  " + d.out);
     const std::string status = json_field(a, "status");
     EXPECT_EQ(status, json_field(d.out, "status"));
     EXPECT_EQ(json_field(a, "squared_distance"), json_field(d.out, "squared_distance"));
     EXPECT_EQ(json_field(a, "distance"), json_field(d.out, "distance"));
-    EXPECT_EQ(json_field(a, "point_p_exact"), json_field(d.out, "point_p_exact"));
-    EXPECT_EQ(json_field(a, "point_q_exact"), json_field(d.out, "point_q_exact"));
-    EXPECT_EQ(json_field(a, "direction"), json_field(d.out, "direction"));
-    EXPECT_EQ(json_field(a, "witness"), json_field(d.out, "witness"));
-    if (status == "\"penetrating\"") {
+    const bool penetrating = status == "\"penetrating\"";
+    if (rot.empty()) {
+      EXPECT_EQ(json_field(a, "certificate"), "null");
+      EXPECT_EQ(json_field(a, "witness"), json_field(d.out, "witness"));
+      EXPECT_EQ(json_field(a, "recomputed"), "false");
+      EXPECT_NE(json_field(a, "m"), "null");
+    } else {
+      EXPECT_EQ(json_field(a, "witness"), "null");
+      EXPECT_EQ(json_field(a, "m"), "null");
+      EXPECT_EQ(json_field(a, "recomputed"), "false") << "M built for a turned pose that is not touching";
+      const std::string cert = json_field(a, "certificate");
+      EXPECT_EQ(cert, penetrating ? "\"simplex\"" : "\"closest_points\"");
+      EXPECT_EQ(json_field(a, "depth_certificate"), penetrating ? "\"nearest_facet\"" : "null");
+      ++turned_seen[penetrating ? 2 : status == "\"touching\"" ? 1 : 0];
+    }
+    if (!penetrating || rot.empty()) {
+      // Closest points (unique for these random polytopes) or M's common point.
+      EXPECT_EQ(json_field(a, "point_p_exact"), json_field(d.out, "point_p_exact"));
+      EXPECT_EQ(json_field(a, "point_q_exact"), json_field(d.out, "point_q_exact"));
+      EXPECT_EQ(json_field(a, "direction"), json_field(d.out, "direction"));
+    } else {
+      // A common point of the turned, overlapping bodies (another one than
+      // M's, perhaps): in both, exactly.
+      EXPECT_EQ(json_field(a, "point_p_exact"), json_field(a, "point_q_exact"));
+      EXPECT_TRUE(point_in(json_field(a, "point_p_exact"), turned_p, t)) << "not in P";
+      EXPECT_TRUE(point_in(json_field(a, "point_p_exact"), kQ, "0,0,0")) << "not in Q";
+      EXPECT_EQ(json_field(a, "direction"), "[\"0\", \"0\", \"0\"]");
+    }
+    if (penetrating) {
       const CmdRun p = run("query depth " + args);
       ASSERT_EQ(p.status, 0) << args;
       EXPECT_EQ(json_field(a, "squared_depth"), json_field(p.out, "squared_depth"));
       EXPECT_EQ(json_field(a, "depth"), json_field(p.out, "depth"));
       EXPECT_EQ(json_field(a, "depth_direction"), json_field(p.out, "direction"));
-      EXPECT_EQ(json_field(a, "depth_witness"), json_field(p.out, "witness"));
+      EXPECT_EQ(json_field(a, "depth_witness"), rot.empty() ? json_field(p.out, "witness") : "null");
       ++seen[2];
     } else {
       EXPECT_EQ(json_field(a, "squared_depth"), "\"0\"");
       EXPECT_EQ(json_field(a, "depth_witness"), "null");
       ++seen[status == "\"touching\"" ? 1 : 0];
     }
-    // M is computed again exactly when the rotation changes.
-    EXPECT_EQ(json_field(a, "recomputed"), rot == previous ? "false" : "true");
-    previous = rot;
   }
   EXPECT_GT(seen[0], 0) << "no separate pose";
   EXPECT_GT(seen[2], 0) << "no penetrating pose";
+  EXPECT_GT(turned_seen[0], 0) << "no separate pose of a turned P";
+  EXPECT_GT(turned_seen[2], 0) << "no penetrating pose of a turned P";
+  EXPECT_EQ(s.stop(SIGTERM), 0);
+}
+
+// A turned P touching Q exactly (cube on cube, turned by a quarter turn
+// about z, face to face): no certificate settles it without M, so M is
+// built for that pose alone (recomputed, certificate "exact"), and the
+// answer is the query's on M of the turned cube; the next pose, separate,
+// is certified without M again.
+TEST(Play, TurnedTouchingPoseBuildsMForThatPoseAlone) {
+  Server s({"cube", "cube"});
+  ASSERT_GT(s.port(), 0) << "first line: " << s.url();
+  httplib::Client c("127.0.0.1", s.port());
+  auto r = post(c, R"({"translate_p": "2,1/2,0", "rotate_p": "1,0,0,1"})");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200) << r->body;
+  EXPECT_EQ(json_field(r->body, "status"), "\"touching\"");
+  EXPECT_EQ(json_field(r->body, "squared_distance"), "\"0\"");
+  EXPECT_EQ(json_field(r->body, "certificate"), "\"exact\"");
+  EXPECT_EQ(json_field(r->body, "recomputed"), "true");
+  EXPECT_EQ(json_field(json_field(r->body, "features"), "index"), "null");
+  const CmdRun d = run("query distance cube@rot:1,0,0,1 cube --translate-p 2,1/2,0 --json");
+  EXPECT_EQ(json_field(r->body, "point_p_exact"), json_field(d.out, "point_p_exact"));
+  auto sep = post(c, R"({"translate_p": "5/2,1/2,0", "rotate_p": "1,0,0,1"})");
+  ASSERT_TRUE(sep);
+  EXPECT_EQ(json_field(sep->body, "status"), "\"separate\"");
+  EXPECT_EQ(json_field(sep->body, "squared_distance"), "\"1/4\"");
+  EXPECT_EQ(json_field(sep->body, "certificate"), "\"closest_points\"");
+  EXPECT_EQ(json_field(sep->body, "recomputed"), "false");
+  // The witness feature of the turned P: the face of its supporting plane,
+  // placed (x = 3/2 on every vertex drawn).
+  const std::string fp = json_field(json_field(sep->body, "features"), "p");
+  EXPECT_NE(fp.find("\"exact\": [\"3/2 "), std::string::npos) << fp;
   EXPECT_EQ(s.stop(SIGTERM), 0);
 }
 
@@ -558,8 +615,9 @@ TEST(Play, ForeignHostRefused) {
 
 // Any page can send a "simple" cross-origin POST (text/plain, no preflight):
 // the server refuses a POST from another origin or site and one that is not
-// application/json, before the body reaches the session (P is not turned:
-// the next good request computes M again).
+// application/json, before the body reaches the session (no answer of the
+// session's: none of its keys in the refusal); the page's own request with
+// the same body is answered, P turned on the placed bodies.
 TEST(Play, CrossOriginTextPlainPostRefused) {
   Server s({"cube", "cube"});
   ASSERT_GT(s.port(), 0) << "first line: " << s.url();
@@ -591,7 +649,9 @@ TEST(Play, CrossOriginTextPlainPostRefused) {
   auto r = c.Post("/query", page_headers, body, "application/json; charset=utf-8");
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 200) << r->body;
-  EXPECT_EQ(json_field(r->body, "recomputed"), "true");
+  EXPECT_EQ(json_field(r->body, "status"), "\"separate\"");
+  EXPECT_EQ(json_field(r->body, "certificate"), "\"closest_points\"");
+  EXPECT_EQ(json_field(r->body, "recomputed"), "false");
   EXPECT_EQ(r->get_header_value("Cross-Origin-Resource-Policy"), "same-origin");
   EXPECT_EQ(s.stop(SIGTERM), 0);
 }

@@ -1070,6 +1070,107 @@ TEST(ProximityCli, SimulateWritesItsPictureAtomically) {
   fs::remove_all(dir);
 }
 
+// The value of "key" in a one-line JSON object: a string's contents, or a
+// bare value as the text holds it ("<missing>" when absent).
+std::string json_value(const std::string& json, const std::string& key) {
+  std::smatch m;
+  if (std::regex_search(json, m, std::regex("\"" + key + "\": \"([^\"]*)\""))) return m[1];
+  if (std::regex_search(json, m, std::regex("\"" + key + "\": ([^,}]*)"))) return m[1];
+  return "<missing>";
+}
+
+// simulate answers its frames on the placed bodies, building no M for a
+// turn: for every frame of a robot that turns, the status and the exact
+// squared distance or squared depth equal those of `query` on M of the
+// turned robot (ROBOT@rot:A,B,C,D with the frame's rotation) at the frame's
+// translation, which is how simulate answered before.  The first pass
+// grazes the obstacle (a touching frame, none penetrating: the grazing
+// height is exact), the second goes through it; only the touching frame
+// needs M (certificate exact).
+TEST(ProximityCli, SimulateFramesEqualTheQueryOnMOfTheTurnedRobot) {
+  struct Case {
+    std::string args, robot, obstacle;
+    int frames;
+  };
+  const Case cases[] = {
+      {"--frames 12", "cube@scale:1/2", "dodecahedron@scale:2", 12},
+      {"--frames 10 --robot tetra@scale:2/3 --obstacle octahedron@scale:3/2 --turn 3,1,2,5", "tetra@scale:2/3",
+       "octahedron@scale:3/2", 10},
+      {"--frames 9 --robot random:12:5 --obstacle random:20:8 --turn 7,2,-1,3", "random:12:5", "random:20:8", 9},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE("simulate " + c.args);
+    const CmdResult r = run("simulate " + c.args + " --json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::istringstream lines(r.out);
+    int n = 0, turned = 0, touching_pass1 = 0, penetrating_pass1 = 0, penetrating_pass2 = 0;
+    for (std::string line; std::getline(lines, line); ++n) {
+      SCOPED_TRACE(line);
+      const std::string status = json_value(line, "status");
+      const bool deep = status == "penetrating";
+      const std::string key = deep ? "squared_depth" : "squared_distance";
+      const std::string rotation = json_value(line, "rotation");
+      std::smatch t;
+      ASSERT_TRUE(std::regex_search(line, t, std::regex("\"translation\": \\[\"([^\"]*)\", \"([^\"]*)\", \"([^\"]*)\"\\]")));
+      const CmdResult q = run(std::string("query ") + (deep ? "depth " : "distance ") + c.robot + "@rot:" + rotation +
+                              " " + c.obstacle + " --translate-p " + std::string(t[1]) + "," + std::string(t[2]) +
+                              "," + std::string(t[3]) + " --json");
+      ASSERT_EQ(q.status, 0) << q.err;
+      EXPECT_EQ(status, json_value(q.out, "status")) << q.out;
+      EXPECT_EQ(json_value(line, key), json_value(q.out, key)) << q.out;
+      EXPECT_EQ(json_value(line, "certificate") == "exact", status == "touching");
+      EXPECT_EQ(json_value(line, "rebuilt"), status == "touching" ? "true" : "false");
+      EXPECT_EQ(json_value(line, "build_seconds"), "0");
+      turned += rotation != "1,0,0,0";
+      const bool pass1 = n < c.frames / 2;
+      touching_pass1 += pass1 && status == "touching";
+      penetrating_pass1 += pass1 && deep;
+      penetrating_pass2 += !pass1 && deep;
+    }
+    EXPECT_EQ(n, c.frames);
+    EXPECT_GE(turned, c.frames - 2);
+    EXPECT_GE(touching_pass1, 1);
+    EXPECT_EQ(penetrating_pass1, 0);
+    EXPECT_GE(penetrating_pass2, 1);
+  }
+  const CmdResult text = run("simulate --frames 12");
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_TRUE(has(text.out, "12 frames, ")) << text.out;
+  EXPECT_TRUE(has(text.out, " µs per query, 11 certified without M, 1 on M built exactly for the pose\n")) << text.out;
+  EXPECT_TRUE(has(text.out, "(robot turned)")) << text.out;
+  EXPECT_FALSE(has(text.out, "recomputed")) << text.out;
+}
+
+// A first pass whose lines of translations lie in the boundary of S (cube
+// against a half-size cube, not turned, frames at x = ±3/2): no probe on such
+// a line can penetrate, so its top is read off the section of M of that
+// orientation; the height, and every frame, equal the answers on M.
+TEST(ProximityCli, SimulateGrazingHeightOnALineInTheBoundaryOfS) {
+  const std::string args = "--frames 10 --obstacle cube --robot cube@scale:1/2 --turn 1,0,0,0";
+  const CmdResult r = run("simulate " + args + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream lines(r.out);
+  int n = 0, touching = 0;
+  for (std::string line; std::getline(lines, line); ++n) {
+    SCOPED_TRACE(line);
+    const std::string status = json_value(line, "status");
+    const std::string key = status == "penetrating" ? "squared_depth" : "squared_distance";
+    std::smatch t;
+    ASSERT_TRUE(std::regex_search(line, t, std::regex("\"translation\": \\[\"([^\"]*)\", \"([^\"]*)\", \"([^\"]*)\"\\]")));
+    const CmdResult q = run(std::string("query ") + (status == "penetrating" ? "depth" : "distance") +
+                            " cube@scale:1/2 cube --translate-p " + std::string(t[1]) + "," + std::string(t[2]) + "," +
+                            std::string(t[3]) + " --json");
+    EXPECT_EQ(status, json_value(q.out, "status")) << q.out;
+    EXPECT_EQ(json_value(line, key), json_value(q.out, key)) << q.out;
+    if (n < 5) EXPECT_EQ(std::string(t[2]), "3/2");  // the height: the top face of the obstacle plus 1/2
+    touching += status == "touching";
+  }
+  EXPECT_EQ(n, 10);
+  EXPECT_EQ(touching, 5);
+  const CmdResult text = run("simulate " + args);
+  EXPECT_TRUE(has(text.out, "; the grazing height read off M of 2 orientations\n")) << text.out;
+}
+
 // The trail picture was titled "side view" but showed the x-y plane, had no
 // legend but a line of text, and its lower part was an empty band: now a top
 // view, a legend with the four colours, and the picture cut to what is drawn

@@ -3,12 +3,15 @@
 // proximity application.  A page served on
 // the loopback interface shows P and Q; the user drags and turns P, and the
 // page asks this server, on every move, for the exact state, distance or
-// penetration depth and witnesses (the library's TranslationalObstacle, the
-// same answers as 'minksum query').  docs/viewer.md describes the page and
+// penetration depth and witnesses (the same answers as 'minksum query': on
+// M = P ⊕ (−Q) built once for P as given, and on the placed bodies when P
+// is turned, without building M for the rotation).  docs/viewer.md describes the page and
 // the protocol.
 #include <minksum/feature.hpp>
 #include <minksum/operand.hpp>
 #include <minksum/proximity.hpp>
+#include <minksum/rigid_proximity.hpp>
+#include <minksum/transform.hpp>
 
 #include <httplib.h>
 
@@ -28,6 +31,7 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -362,18 +366,47 @@ std::string quoted(const std::string& s) {
   return "'" + printable(s.size() > 100 ? s.substr(0, 100) + "..." : s) + "'";
 }
 
-// The feature of a polytope as the page draws it: its vertices' coordinates.
-std::string feature_points_json(const ConvexPolytope& p, const Feature& f, const Point3& shift) {
+// The feature of a polytope as the page draws it: its vertices' coordinates
+// where the polytope is placed (rotated by `turn` when given, then shifted).
+std::string feature_points_json(const ConvexPolytope& p, const Feature& f, const Point3& shift,
+                                const std::optional<Quaternion>& turn = std::nullopt) {
   const std::vector<Index> vs = f.index != kNoIndex ? feature_vertices(p, f) : std::vector<Index>();
   std::string xyz, exact;
   for (std::size_t i = 0; i < vs.size(); ++i) {
-    const Point3 x = p.point(vs[i]) + shift;
+    const Point3 x = (turn ? rotate(*turn, p.point(vs[i])) : p.point(vs[i])) + shift;
     xyz += (i ? ", " : "") + json_number(to_double(x.x)) + ", " + json_number(to_double(x.y)) + ", " +
            json_number(to_double(x.z));
     exact += (i ? ", \"" : "\"") + format_exact(x.x) + " " + format_exact(x.y) + " " + format_exact(x.z) + "\"";
   }
-  return std::string("{\"type\": \"") + feature_type(f.dim) + "\", \"index\": " + std::to_string(f.index) +
-         ", \"points\": [" + xyz + "], \"exact\": [" + exact + "]}";
+  return std::string("{\"type\": \"") + feature_type(f.dim) + "\", \"index\": " +
+         (f.index != kNoIndex ? std::to_string(f.index) : std::string("null")) + ", \"points\": [" + xyz +
+         "], \"exact\": [" + exact + "]}";
+}
+
+// The smallest face of p that holds the vertices vs: the vertices of P (or
+// of Q) among a certificate's pairs, which lie on one face of the body (the
+// face its certified supporting plane touches).  No vertex: index kNoIndex.
+Feature face_of(const ConvexPolytope& p, std::vector<Index> vs) {
+  std::sort(vs.begin(), vs.end());
+  vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
+  if (vs.empty()) return {FeatureDim::vertex, kNoIndex};
+  if (vs.size() == 1) return Feature::vertex(vs[0]);
+  const Index h0 = p.vertex_halfedge(vs[0]);
+  if (vs.size() == 2) {
+    Index h = h0;
+    do {
+      if (p.target(h) == vs[1]) return Feature::edge(ConvexPolytope::edge(h));
+      h = p.next_around_vertex(h);
+    } while (h != h0);
+  }
+  Index h = h0;
+  do {
+    const std::vector<Index> fv = p.facet_vertices(p.facet(h));
+    if (std::all_of(vs.begin(), vs.end(), [&](Index v) { return std::find(fv.begin(), fv.end(), v) != fv.end(); }))
+      return Feature::facet(p.facet(h));
+    h = p.next_around_vertex(h);
+  } while (h != h0);
+  return Feature::vertex(vs[0]);
 }
 
 std::string quaternion_text(const Quaternion& q) {
@@ -422,21 +455,30 @@ QueryPose parse_query(const std::string& body) {
   return pose;
 }
 
-// The state of the session: P and Q as given, M for the current orientation
-// of P.  Requests are answered one at a time.
+// The state of the session: P and Q as given, M = P ⊕ (−Q) for P as given
+// (built once) and P and Q prepared for the queries under rigid motion.
+// A pose without a rotation is answered on M; a pose that turns P on the
+// placed bodies (rigid_proximity.hpp), without building M for the rotation.
+// Requests are answered one at a time.
 class Session {
  public:
   Session(ConvexPolytope p, ConvexPolytope q, Method method)
-      : p0_(std::move(p)), q0_(std::move(q)), obstacle_(p0_, q0_, method) {}
+      : p0_(std::move(p)), q0_(std::move(q)), obstacle_(p0_, q0_, method), body_p_(p0_), body_q_(q0_) {}
 
   std::string answer(const QueryPose& pose) {
     std::lock_guard<std::mutex> lock(mutex_);
+    return pose.rp ? answer_rigid(pose) : answer_on_m(pose);
+  }
+
+ private:
+  static std::string pose_json(const QueryPose& pose) {
+    return "{\"translate_p\": " + exact_vector_json(pose.u) + ", \"rotate_p\": " +
+           (pose.rp ? "\"" + quaternion_text(*pose.rp) + "\"" : std::string("null")) +
+           ", \"translate_q\": " + exact_vector_json(pose.w) + "}";
+  }
+
+  std::string answer_on_m(const QueryPose& pose) {
     const auto t0 = std::chrono::steady_clock::now();
-    const bool recompute = pose.rp != rp_;
-    if (recompute) {
-      obstacle_.set_p(pose.rp ? rotated(p0_, *pose.rp) : p0_);
-      rp_ = pose.rp;
-    }
     const DistanceResult d = obstacle_.distance(pose.u, pose.w);
     std::optional<DepthResult> depth;
     if (d.status == ContactStatus::penetrating) depth = obstacle_.penetration_depth(pose.u, pose.w);
@@ -444,10 +486,7 @@ class Session {
     // The features drawn: the distance's witness, or the depth's when the bodies overlap.
     const Witness& w = depth ? depth->witness : d.witness;
     const Point3 zero(Rational(0), Rational(0), Rational(0));
-    std::string o = "{\"status\": \"" + std::string(contact_status_name(d.status)) + "\", \"pose\": {\"translate_p\": " +
-                    exact_vector_json(pose.u) + ", \"rotate_p\": " +
-                    (pose.rp ? "\"" + quaternion_text(*pose.rp) + "\"" : std::string("null")) +
-                    ", \"translate_q\": " + exact_vector_json(pose.w) + "}";
+    std::string o = "{\"status\": \"" + std::string(contact_status_name(d.status)) + "\", \"pose\": " + pose_json(pose);
     o += ", \"squared_distance\": \"" + format_exact(d.squared_distance()) + "\", \"distance\": " +
          json_number(d.distance());
     o += ", \"squared_depth\": \"" + (depth ? format_exact(depth->squared_depth()) : std::string("0")) +
@@ -459,18 +498,67 @@ class Session {
          ", \"depth_direction_double\": " + double_vector_json(depth ? depth->direction() : zero);
     o += ", \"witness\": " + witness_json(d.witness);
     o += ", \"depth_witness\": " + (depth ? witness_json(depth->witness) : std::string("null"));
+    o += ", \"certificate\": null, \"depth_certificate\": null";
     o += ", \"features\": {\"p\": " + feature_points_json(obstacle_.p(), w.p, pose.u) +
          ", \"q\": " + feature_points_json(obstacle_.q(), w.q, pose.w) + "}";
-    o += ", \"m\": {" + counts_json(obstacle_.obstacle()) + "}, \"recomputed\": " + (recompute ? "true" : "false");
+    o += ", \"m\": {" + counts_json(obstacle_.obstacle()) + "}, \"recomputed\": false";
     o += ", \"seconds\": " + json_number(seconds) + "}";
     return o;
   }
 
- private:
+  // P turned: distance (and depth when the bodies overlap) on the placed
+  // bodies, warm-started from the previous turned pose.  The answer names
+  // its certificates instead of M's witnesses; M is built only when a query
+  // cannot certify its answer otherwise (certificate "exact": a touching
+  // pose), and then for that pose alone ("recomputed").
+  std::string answer_rigid(const QueryPose& pose) {
+    const RigidPose pp = RigidPose::quaternion(*pose.rp, pose.u), pq = RigidPose::translation(pose.w);
+    const auto t0 = std::chrono::steady_clock::now();
+    const RigidDistance d = distance(body_p_, pp, body_q_, pq, &warm_);
+    std::optional<RigidDepth> depth;
+    if (d.status == ContactStatus::penetrating) depth = penetration_depth(body_p_, pp, body_q_, pq, &warm_);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const RigidDistanceExact e = exact_values(body_p_, pp, body_q_, pq, d);
+    std::optional<RigidDepthExact> de;
+    if (depth) de = exact_values(body_p_, pp, body_q_, pq, *depth);
+    const bool on_m =
+        d.certificate == RigidCertificate::exact || (depth && depth->certificate == RigidCertificate::exact);
+    // The features drawn: the faces of P and Q the certified plane touches
+    // (the depth's when the bodies overlap); none for an answer on M.
+    std::vector<Index> fp, fq;
+    if (depth) {
+      for (int j = 0; j < 3; ++j)
+        if (depth->p[j] != kNoIndex) fp.push_back(depth->p[j]), fq.push_back(depth->q[j]);
+    } else if (d.certificate == RigidCertificate::closest_points) {
+      for (int j = 0; j < d.k; ++j) fp.push_back(d.p[j]), fq.push_back(d.q[j]);
+    }
+    const Point3 zero(Rational(0), Rational(0), Rational(0));
+    const Rational sq_depth = de ? de->squared_depth : Rational(0);
+    const Point3 depth_direction = de ? de->direction : zero;
+    std::string o = "{\"status\": \"" + std::string(contact_status_name(d.status)) + "\", \"pose\": " + pose_json(pose);
+    o += ", \"squared_distance\": \"" + format_exact(e.squared_distance) + "\", \"distance\": " +
+         json_number(std::sqrt(to_double(e.squared_distance)));
+    o += ", \"squared_depth\": \"" + format_exact(sq_depth) + "\", \"depth\": " + json_number(std::sqrt(to_double(sq_depth)));
+    o += ", \"point_p\": " + double_vector_json(e.point_p) + ", \"point_p_exact\": " + exact_vector_json(e.point_p);
+    o += ", \"point_q\": " + double_vector_json(e.point_q) + ", \"point_q_exact\": " + exact_vector_json(e.point_q);
+    o += ", \"direction\": " + exact_vector_json(e.point_q - e.point_p);
+    o += ", \"depth_direction\": " + exact_vector_json(depth_direction) +
+         ", \"depth_direction_double\": " + double_vector_json(depth_direction);
+    o += ", \"witness\": null, \"depth_witness\": null";
+    o += ", \"certificate\": \"" + std::string(rigid_certificate_name(d.certificate)) + "\", \"depth_certificate\": " +
+         (depth ? "\"" + std::string(rigid_certificate_name(depth->certificate)) + "\"" : std::string("null"));
+    o += ", \"features\": {\"p\": " + feature_points_json(p0_, face_of(p0_, fp), pose.u, pose.rp) +
+         ", \"q\": " + feature_points_json(q0_, face_of(q0_, fq), pose.w) + "}";
+    o += ", \"m\": null, \"recomputed\": " + std::string(on_m ? "true" : "false");
+    o += ", \"seconds\": " + json_number(seconds) + "}";
+    return o;
+  }
+
   std::mutex mutex_;
   ConvexPolytope p0_, q0_;
   TranslationalObstacle obstacle_;
-  std::optional<Quaternion> rp_;
+  RigidBody body_p_, body_q_;
+  RigidWarmStart warm_;
 };
 
 // Opens the URL with xdg-open when there is one; says so otherwise.

@@ -3,7 +3,8 @@
 // server itself, P dragged and turned with simulated mouse moves.  After each
 // move the answer the page shows (state, exact squared distance or depth,
 // closest or common point, separating translation) is checked exactly
-// against 'minksum query' for the pose the page reports; the round-trip
+// against 'minksum query' on M (of the turned P) for the pose the page
+// reports, and a turned P's answer names its certificate; the round-trip
 // latency of the queries, measured in the page, is printed.
 //   node test_play.mjs --minksum BIN --out DIR
 import { spawn } from 'node:child_process';
@@ -33,12 +34,18 @@ const url = await new Promise((res, rej) => {
 check(/^http:\/\/127\.0\.0\.1:\d+\/$/.test(url), `play: the first line is not the loopback URL: ${url}`);
 const origin = url.replace(/\/$/, '');
 
-// The same pose answered on M of the turned operand (play computes M; a
-// query with --rotate-p would answer on the placed bodies, whose common
-// point of penetrating bodies may be another one).
+// The same pose answered on M of the turned operand (play answers a turned
+// P on the placed bodies, without M: the same exact values, but a common
+// point of penetrating bodies may be another one than M's).
+const turnedP = (pose) => (pose.rotate_p ? `${P}@rot:${pose.rotate_p}` : P);
 function query(kind, pose) {
-  const p = pose.rotate_p ? `${P}@rot:${pose.rotate_p}` : P;
-  return minksumJson(o.minksum, ['query', kind, p, Q, '--translate-p', pose.translate_p, '--json']);
+  return minksumJson(o.minksum, ['query', kind, turnedP(pose), Q, '--translate-p', pose.translate_p, '--json']);
+}
+// Whether the exact point "x  y  z" (as the page shows it) lies in the body
+// SPEC translated by T: 'minksum query collide' of the point and the body.
+function pointIn(text, spec, t) {
+  const r = minksumJson(o.minksum, ['query', 'collide', `point:${text.trim().split(/\s+/).join(',')}`, spec, '--translate-q', t, '--json']);
+  return r.status !== 'separate';
 }
 
 const browser = await launch({ offline: false });
@@ -78,7 +85,8 @@ try {
       const t = (id) => { const e = document.getElementById(id); return e ? e.textContent : null; };
       return { pose: window.minksum.play.answeredPose, status: t('play-status'), value: t('play-value'),
         point: t('play-point-p'), pointQ: t('play-point-q'), direction: t('play-direction'),
-        recomputed: window.minksum.play.answer.recomputed, errors: window.minksum.play.errors.slice() };
+        recomputed: window.minksum.play.answer.recomputed, certificate: window.minksum.play.answer.certificate,
+        m: window.minksum.play.answer.m, how: t('play-m'), errors: window.minksum.play.errors.slice() };
     });
   }
   const seen = { separate: 0, touching: 0, penetrating: 0 };
@@ -89,7 +97,16 @@ try {
     const d = query('distance', s.pose);
     const ctx = `play: ${what}, pose ${JSON.stringify(s.pose)}`;
     check(s.status === d.status, `${ctx}: the page shows ${s.status}, minksum query says ${d.status}`);
-    check(s.point === d.point_p_exact.join('  '), `${ctx}: the page shows the point ${s.point}, minksum query ${d.point_p_exact}`);
+    if (d.status === 'penetrating' && s.pose.rotate_p)
+      check(pointIn(s.point, turnedP(s.pose), s.pose.translate_p) && pointIn(s.point, Q, '0,0,0'),
+            `${ctx}: the common point ${s.point} shown is not in both bodies`);
+    else
+      check(s.point === d.point_p_exact.join('  '), `${ctx}: the page shows the point ${s.point}, minksum query ${d.point_p_exact}`);
+    if (s.pose.rotate_p)
+      check(s.certificate && s.m === null && s.how.includes(`certificate: ${s.certificate}`),
+            `${ctx}: a turned P answered without a certificate named (${s.certificate}, ${s.how})`);
+    else
+      check(s.certificate === null && s.m && !s.recomputed, `${ctx}: P as given not answered on M (${s.certificate})`);
     await checkDecimals(page, ctx, 0, '#play-answer');  // each fraction shown (value, points) with its decimal
     if (d.status === 'penetrating') {
       const dp = query('depth', s.pose);
@@ -126,7 +143,8 @@ try {
   check(seen.penetrating > 0, `play: dragging P across Q never showed it penetrating (${JSON.stringify(seen)})`);
   await page.screenshot({ path: join(o.out, 'play-penetrating.png') });
 
-  // Turn P with shift-drag: M is computed again, the answers stay exact.
+  // Turn P with shift-drag: answered on the placed bodies (no M built for
+  // the rotation), the answers stay exact.
   const at2 = await page.evaluate(() => window.minksum.playScreenPoint());
   await page.keyboard.down('Shift');
   await page.mouse.move(at2.x, at2.y);
@@ -134,7 +152,8 @@ try {
   for (let i = 0; i < 5; ++i) {
     await page.mouse.move(at2.x + 12 * (i + 1), at2.y - 7 * (i + 1));
     const s = await checkShown(`turn step ${i + 1}`);
-    check(s.pose.rotate_p && s.recomputed, `play: turning P sent no rotation or M was not recomputed (${JSON.stringify(s.pose)})`);
+    check(s.pose.rotate_p && s.certificate,
+          `play: turning P sent no rotation, or its answer named no certificate (${JSON.stringify(s.pose)}, ${s.certificate})`);
   }
   await page.mouse.up();
   await page.keyboard.up('Shift');

@@ -123,9 +123,9 @@ CGM_MAP = Obj("map", {"id": "int", "vertices": "int", "halfedges": "int", "faces
 CGM = merge("cgm", Obj("", {"name": "string", "maps": ("list", CGM_MAP)}), COUNTS, KIND,
             optional={"seconds": "number"})
 
-FRAME = Obj("simulate frame", {"frame": "int", "orientation": "int", "rebuilt": "bool",
-                               "translation": ("triple", "exact"), "status": STATUS, "query_seconds": "number",
-                               "build_seconds": "number"},
+FRAME = Obj("simulate frame", {"frame": "int", "orientation": "int", "rotation": "string", "rebuilt": "bool",
+                               "translation": ("triple", "exact"), "status": STATUS, "certificate": CERTIFICATE,
+                               "query_seconds": "number", "build_seconds": "number"},
             {"squared_distance": "exact", "squared_depth": "exact"})
 
 BATCH_LINE = Obj("", {"line": "int", "a": "string", "b": "string"})

@@ -3,7 +3,8 @@
 // (shift-drag) with the mouse; on every move the page sends P's exact pose
 // to the server it came from (POST /query) and shows the exact answer: the
 // state in colour, the squared distance or depth, the closest points and the
-// witness features, drawn in the scene.
+// witness features, drawn in the scene, and how the answer was found (on M
+// of P as given, or, P turned, on the placed bodies with its certificate).
 //
 // Exact poses: P's translation lives on a grid of step 2^k (three integers
 // n, the translation n·2^k, written as exact rationals); its orientation is
@@ -155,7 +156,17 @@ export function initPlay(v) {
       const decimal = Array.isArray(value) ? decimalsText(value) : decimalText(value);
       return [el('div', { text: label }), exactWithDecimal(el, el('div', { class: 'exact', id, text }), decimal)];
     };
-    const featureText = (name, f) => `${f.type} ${f.index} of ${name}: ${f.exact.join('; ')}`;
+    const featureText = (name, f) => (f.index === null ? `none of ${name} (the answer was found on M)`
+      : `${f.type} ${f.index} of ${name}: ${f.exact.join('; ')}`);
+    // How the answer was found: on M of P as given, or, P turned, on the
+    // placed bodies with the certificates that prove it (M built for this
+    // pose only when one of them is "exact").
+    const certificates = a.certificate === null ? ''
+      : a.depth_certificate === null ? a.certificate : `${a.certificate}, depth: ${a.depth_certificate}`;
+    const howText = a.m
+      ? `M = P ⊕ (−Q): ${a.m.vertices} vertices, ${a.m.edges} edges, ${a.m.facets} facets (computed once, for P as given)`
+      : a.recomputed ? `P turned: M built exactly for this pose (certificate: ${certificates})`
+        : `P turned: answered on the placed bodies without M (certificate: ${certificates})`;
     statusBox.replaceChildren(
       el('div', { class: 'row' }, el('span', { class: 'sw', style: `background:${hex(COLOURS[a.status])}` }),
         el('b', { id: 'play-status', 'data-status': a.status, text: a.status })),
@@ -171,8 +182,7 @@ export function initPlay(v) {
       el('div', { text: 'witness features:' }),
       el('div', { class: 'exact', id: 'play-feature-p', text: featureText('P', a.features.p) }),
       el('div', { class: 'exact', id: 'play-feature-q', text: featureText('Q', a.features.q) }),
-      el('div', { id: 'play-m', text: `M = P ⊕ (−Q): ${a.m.vertices} vertices, ${a.m.edges} edges, ${a.m.facets} facets` +
-        (a.recomputed ? ' (computed for this orientation)' : '') }));
+      el('div', { id: 'play-m', text: howText }));
     poseBox.replaceChildren(el('div', { text: `minksum query distance ${dp.name} ${dq.name} ${queryLine(request)}` }));
     const sorted = [...play.latencies].sort((x, y) => x - y);
     latencyBox.textContent = `round trip ${ms.toFixed(1)} ms (median ${sorted[Math.floor(sorted.length / 2)].toFixed(1)} ms over ${sorted.length} queries)`;

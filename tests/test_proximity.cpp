@@ -1162,7 +1162,9 @@ TEST(ProximityCli, SimulateGrazingHeightOnALineInTheBoundaryOfS) {
                             std::string(t[3]) + " --json");
     EXPECT_EQ(status, json_value(q.out, "status")) << q.out;
     EXPECT_EQ(json_value(line, key), json_value(q.out, key)) << q.out;
-    if (n < 5) EXPECT_EQ(std::string(t[2]), "3/2");  // the height: the top face of the obstacle plus 1/2
+    if (n < 5) {
+      EXPECT_EQ(std::string(t[2]), "3/2");  // the height: the top face of the obstacle plus 1/2
+    }
     touching += status == "touching";
   }
   EXPECT_EQ(n, 10);

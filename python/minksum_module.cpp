@@ -2144,8 +2144,69 @@ points of placed a and placed b, a common point when they meet).
 exact=True adds squared_distance (a list of N fractions.Fraction, the exact
 squared distance, 0 unless separate) and exact_point_a, exact_point_b
 (lists of N exact Fraction triples: closest points, or a common point when
-the bodies meet, not necessarily that of point_a).  Runs with the GIL released on
+the bodies meet, the one point_a is near).  Runs with the GIL released on
 `threads` threads (None: one per core); docs/proximity.md, "Rigid motion".)");
+
+  m.def(
+      "depth_rigid",
+      [](const RigidBody& a, const RigidBody& b, py::object tb, py::object rb, py::object ta, py::object ra,
+         std::optional<long long> threads, bool exact) {
+        const RigidPoses poses(tb, rb, ta, ra, threads);
+        const std::size_t n = poses.n;
+        const auto sn = static_cast<py::ssize_t>(n);
+        py::array_t<std::int8_t> status(sn);
+        py::array_t<double> depth(sn), lower(sn), upper(sn), direction({sn, py::ssize_t(3)});
+        std::int8_t* ws = status.mutable_data();
+        double *wd = depth.mutable_data(), *wl = lower.mutable_data(), *wu = upper.mutable_data();
+        double* wt = direction.mutable_data();
+        std::vector<RigidDepthExact> values;
+        {
+          py::gil_scoped_release nogil;
+          const std::vector<RigidPose> pa = to_poses(poses.a, "r_a"), pb = to_poses(poses.b, "r_b");
+          std::vector<RigidDepth> out(n);
+          penetration_depth(a, pa, b, pb, out, poses.threads);
+          for (std::size_t i = 0; i < n; ++i) {
+            const RigidDepth& d = out[i];
+            ws[i] = static_cast<std::int8_t>(d.status);
+            wd[i] = d.depth, wl[i] = d.lower, wu[i] = d.upper;
+            for (int k = 0; k < 3; ++k) wt[3 * i + k] = d.direction[k];
+          }
+          if (exact) {
+            values.resize(n);
+            const std::size_t block = 64, blocks = (n + block - 1) / block;
+            parallel_for(blocks, poses.threads, [&](std::size_t k) {
+              for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i)
+                values[i] = exact_values(a, pa[pa.size() == 1 ? 0 : i], b, pb[pb.size() == 1 ? 0 : i], out[i]);
+            });
+          }
+        }
+        py::dict r;
+        r["status"] = status;
+        r["depth"] = depth;
+        r["lower"] = lower;
+        r["upper"] = upper;
+        r["direction"] = direction;
+        if (exact) {
+          py::list sq, dir;
+          for (const RigidDepthExact& v : values) sq.append(to_fraction(v.squared_depth)), dir.append(to_fractions(v.direction));
+          r["squared_depth"] = sq;
+          r["exact_direction"] = dir;
+        }
+        return r;
+      },
+      py::arg("a"), py::arg("b"), py::arg("t_b") = py::none(), py::arg("r_b") = py::none(),
+      py::arg("t_a") = py::none(), py::arg("r_a") = py::none(), py::kw_only(), py::arg("threads") = py::none(),
+      py::arg("exact") = false,
+      R"(Exact penetration depth of a and b (RigidBody), each under a rotation and a translation, for N poses in one call.
+
+The poses are those of collide_rigid.  Returns a dict of numpy arrays:
+status (int8 (N,), minksum.STATUS[code]), depth (float64 (N,), 0 unless
+penetrating), lower and upper (float64 (N,): lower <= the exact depth <=
+upper, certified), direction (float64 (N, 3): the shortest translation of
+a that ends the overlap).  exact=True adds squared_depth (a list of N
+fractions.Fraction) and exact_direction (a list of N Fraction triples).
+Runs with the GIL released on `threads` threads (None: one per core);
+docs/proximity.md, "Rigid motion".)");
 
   py::list names;
   for (const MethodInfo& mi : methods()) names.append(mi.name);

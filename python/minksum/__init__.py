@@ -18,9 +18,10 @@ polytope) returns a ``SolidSum``; so do ``erode``, ``opening`` (also
 ``minksum.open``) and ``closing`` (also ``minksum.close``) of a solid by a
 convex polytope.
 
-Collision and separation distance under rigid motion: ``collide_rigid(RigidBody(a),
-RigidBody(b), t_b, r_b)`` and ``distance_rigid(...)`` for N poses (quaternions
-or rotation matrices) in one call.
+Collision, separation distance and penetration depth under rigid motion:
+``collide_rigid(RigidBody(a), RigidBody(b), t_b, r_b)``, ``distance_rigid(...)``
+and ``depth_rigid(...)`` for N poses (quaternions or rotation matrices) in one
+call.
 
 Many sums: ``minkowski_sum_many`` runs them on a pool of C++ threads;
 ``minksum.dask`` spreads them over a Dask cluster.
@@ -44,6 +45,7 @@ from ._minksum import (
     Witness,
     closing,
     collide_rigid,
+    depth_rigid,
     distance_rigid,
     erode,
     load,
@@ -78,6 +80,7 @@ __all__ = [
     "close",
     "closing",
     "collide_rigid",
+    "depth_rigid",
     "distance_rigid",
     "erode",
     "load",

@@ -315,3 +315,40 @@ def distance_rigid(
     threads: Optional[int] = None,
     exact: Literal[True],
 ) -> RigidDistancesExact: ...
+
+class RigidDepths(TypedDict):
+    status: npt.NDArray[np.int8]  # (N,): minksum.STATUS[code]
+    depth: npt.NDArray[np.float64]  # (N,): 0 unless penetrating
+    lower: npt.NDArray[np.float64]  # (N,): certified lower <= exact depth <= upper
+    upper: npt.NDArray[np.float64]
+    direction: npt.NDArray[np.float64]  # (N, 3): the shortest translation of a out of overlap
+
+class RigidDepthsExact(RigidDepths):  # exact=True
+    squared_depth: list[Fraction]
+    exact_direction: list[Tuple[Fraction, Fraction, Fraction]]
+
+# The poses of collide_rigid; a dict of arrays (exact=True: with the exact values).
+@overload
+def depth_rigid(
+    a: RigidBody,
+    b: RigidBody,
+    t_b: Optional[npt.ArrayLike] = None,
+    r_b: Optional[npt.ArrayLike] = None,
+    t_a: Optional[npt.ArrayLike] = None,
+    r_a: Optional[npt.ArrayLike] = None,
+    *,
+    threads: Optional[int] = None,
+    exact: Literal[False] = False,
+) -> RigidDepths: ...
+@overload
+def depth_rigid(
+    a: RigidBody,
+    b: RigidBody,
+    t_b: Optional[npt.ArrayLike] = None,
+    r_b: Optional[npt.ArrayLike] = None,
+    t_a: Optional[npt.ArrayLike] = None,
+    r_a: Optional[npt.ArrayLike] = None,
+    *,
+    threads: Optional[int] = None,
+    exact: Literal[True],
+) -> RigidDepthsExact: ...

@@ -179,3 +179,33 @@ def test_distance_one_pose_for_all_and_errors():
         minksum.distance_rigid(a, b, t[:1], r_a=np.array([1.0, 0, 0, 0]))
     with pytest.raises(ValueError, match="threads"):
         minksum.distance_rigid(a, b, t, threads=0)
+
+
+def test_depth_with_quaternions_and_matrices_equals_the_exact_obstacle():
+    # Penetration depth under rigid motion: the exact squared depth and the
+    # shortest translation equal those of the Obstacle of the rotated operands
+    # (Obstacle's t moves Q: the translation of a is then that of P).
+    rng = np.random.default_rng(SEED + 7)
+    a, b = minksum.RigidBody("cube"), minksum.RigidBody("random:50:3")
+    qb = (1, 2, 3, 4)
+    t_b = rng.uniform(-1.2, 1.2, size=(80, 3))
+    got = minksum.depth_rigid(a, b, t_b, np.array(qb), exact=True, threads=2)
+    assert got["depth"].shape == (80,) and got["direction"].shape == (80, 3)
+    o = minksum.Obstacle("cube", "random:50:3@rot:%d,%d,%d,%d" % qb)
+    want = o.depth([tuple(Fraction(float(x)) for x in t) for t in t_b], exact=True)
+    penetrating = 0
+    for i in range(80):
+        where = (SEED + 7, i)
+        assert minksum.STATUS[got["status"][i]] == want[i].status, where
+        assert got["squared_depth"][i] == want[i].squared_depth, where
+        assert tuple(got["exact_direction"][i]) == tuple(want[i].direction), where
+        assert Fraction(got["lower"][i]) ** 2 <= want[i].squared_depth <= Fraction(got["upper"][i]) ** 2, where
+        assert got["lower"][i] <= got["depth"][i] <= got["upper"][i], where
+        penetrating += want[i].status == "penetrating"
+    assert penetrating > 20
+    # A float matrix for b, one pose for all.
+    r = random_matrices(rng, 1)[0]
+    one = minksum.depth_rigid(a, b, [0.25, 0, 0], r)
+    assert one["status"].shape == (1,) and minksum.STATUS[one["status"][0]] == "penetrating"
+    with pytest.raises(ValueError):
+        minksum.depth_rigid(a, b, np.zeros((3, 2)))

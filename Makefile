@@ -43,7 +43,7 @@ demo: build
 	@echo "demo: open $(abspath $(BUILD))/demo/scene.html in a browser (one file, works offline): A, B and A ⊕ B in 3D"
 
 # Fig. 4 of Fogel and Halperin (2006): a robot grazing, then penetrating an obstacle, turning every
-# other frame (M recomputed then); per-frame state and query time, and an SVG trail.
+# other frame (answered on the placed bodies, without M); per-frame state and query time, and an SVG trail.
 .PHONY: demo-motion
 demo-motion: build
 	@mkdir -p $(BUILD)/demo

@@ -75,6 +75,8 @@ SweptPolytope::SweptPolytope(const ConvexPolytope& b, const SurfaceCones* surfac
     unit.push_back(Vec3d{x.normal_approx.x / len, x.normal_approx.y / len, x.normal_approx.z / len});
   }
   directions_ = DirectionIndex(std::move(unit));
+  neighbours_.reserve(b.num_vertices());
+  for (Index v = 0; v < b.num_vertices(); ++v) neighbours_.push_back(b.vertex_neighbours(v));
   edges_.reserve(b.num_edges());
   for (Index e = 0; e < b.num_edges(); ++e) {
     const Index h = 2 * e;
@@ -223,6 +225,42 @@ Plane SweptPolytope::build(const Piece& piece, Index k) const {
   return canonical_from_offset(f, work);
 }
 
+// The vertices of B highest along sign · n_t (n_t the normal of t =
+// p0 p1 p2), ascending.  B is convex, so a vertex with no strictly higher
+// neighbour is highest of all, and the highest vertices (a vertex, an edge
+// or a facet of B) are connected by edges of B whose ends are equally high:
+// climb from the vertex highest by the doubles (`na`, the nearest doubles of
+// n_t; only a guess: the climb decides, by the exact support_compare), then
+// gather the equally high neighbours.  The same set as comparing every
+// vertex with the highest so far, in far fewer exact comparisons.
+void SweptPolytope::extreme_face(const RoundedPoint3 p[3], const Vec3d& na, int sign, std::vector<Index>& face) const {
+  Index v = 0;
+  double best = -HUGE_VAL;
+  for (Index w = 0; w < approx_.size(); ++w) {
+    const double h = sign * (na.x * approx_[w].x + na.y * approx_[w].y + na.z * approx_[w].z);
+    if (h > best) {
+      best = h;
+      v = w;
+    }
+  }
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (Index w : neighbours_[v])
+      if (support_compare(p[0], p[1], p[2], at(w), at(v)) * sign > 0) {
+        v = w;
+        moved = true;
+        break;
+      }
+  }
+  face.assign(1, v);
+  for (std::size_t i = 0; i < face.size(); ++i)
+    for (Index w : neighbours_[face[i]])
+      if (std::find(face.begin(), face.end(), w) == face.end() &&
+          support_compare(p[0], p[1], p[2], at(w), at(face[i])) == 0)
+        face.push_back(w);
+  std::sort(face.begin(), face.end());
+}
+
 Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   const auto& c = cones.triangle(t);
   const RoundedPoint3 p[3] = {cones.rounded(c[0]), cones.rounded(c[1]), cones.rounded(c[2])};
@@ -290,13 +328,8 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   // B. t plus the face of B extreme along n_t and along −n_t, when that face
   // is a vertex or an edge (a facet's sum is in A).
   {
-    std::vector<Index> faces[2] = {{0}, {0}};  // the vertices of B highest along n_t, and lowest
-    for (std::size_t v = 1; v < points_.size(); ++v)
-      for (int side = 0; side < 2; ++side) {
-        const int c = support_compare(p[0], p[1], p[2], at(Index(v)), at(faces[side].front())) * (side == 0 ? 1 : -1);
-        if (c > 0) faces[side].assign(1, Index(v));
-        else if (c == 0) faces[side].push_back(Index(v));
-      }
+    std::vector<Index> faces[2];  // the vertices of B highest along n_t, and lowest (ascending)
+    for (int side = 0; side < 2; ++side) extreme_face(p, cones.normal_approx(t), side == 0 ? 1 : -1, faces[side]);
     // n_t in integers: a positive multiple of (p1 - p0) x (p2 - p0).
     Integer n[2][3];
     if (faces[0].size() < 3 || faces[1].size() < 3) {

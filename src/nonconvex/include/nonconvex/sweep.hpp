@@ -145,6 +145,9 @@ class SweptPolytope final : public PlaneBuilder {
   // and SurfaceCones::candidate(t', u) holds: the test keeps every such
   // face (a superset; t' ranges over the triangles whose box meets B's).
   bool on_surface(Index x, const RoundedPoint3& u) const;
+  // The vertices of B highest along sign · n_t, t = p0 p1 p2 (na: n_t's
+  // nearest doubles), ascending.
+  void extreme_face(const RoundedPoint3 p[3], const Vec3d& na, int sign, std::vector<Index>& face) const;
   static void offset_along(const Facet& f, const ScaledPoint& q, Integer work[3]);
   static Plane canonical_from_offset(const Facet& f, Integer work[3]);
   RoundedPoint3 at(Index v) const { return RoundedPoint3{points_[v], approx_[v]}; }
@@ -154,6 +157,7 @@ class SweptPolytope final : public PlaneBuilder {
   std::vector<Vec3d> approx_;
   std::vector<Facet> facets_;
   std::vector<Edge> edges_;
+  std::vector<std::vector<Index>> neighbours_;  // per vertex of B
   Point3 lo_, hi_;  // exact bounding box
   DirectionIndex directions_;  // approximate unit facet normals (Piece::directions)
   const SurfaceCones* surface_ = nullptr;  // O's, when B is a piece of a non-convex O

@@ -170,6 +170,40 @@ void cross_integers(const Integer x[3], const Integer y[3], Integer out[3]) {
   }
 }
 
+// The canonical plane with normal a positive multiple of n (not zero)
+// through p + q, as canonical_plane_through_sum gives it, with smaller
+// gcds: n made primitive first (n' = n / gcd(n), numbers the size of n),
+// then the plane n' M . x = D with M = p.den q.den and D = n' . (p.num q.den
+// + q.num p.den), whose coefficients have the gcd gcd(M gcd(n'), D) =
+// gcd(M, D): one gcd with D instead of three with numbers the size of n M.
+Plane plane_through_sum(const Integer n[3], const ScaledPoint& p, const ScaledPoint& q) {
+  Integer g, m[3], dd, d, t;
+  mpz_gcd(g.get_mpz_t(), n[0].get_mpz_t(), n[1].get_mpz_t());
+  mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), n[2].get_mpz_t());
+  for (int j = 0; j < 3; ++j) {
+    if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) mpz_divexact(m[j].get_mpz_t(), n[j].get_mpz_t(), g.get_mpz_t());
+    else m[j] = n[j];
+  }
+  mpz_mul(dd.get_mpz_t(), p.den.get_mpz_t(), q.den.get_mpz_t());
+  for (const auto& [x, other] : {std::pair<const ScaledPoint*, const ScaledPoint*>{&p, &q}, {&q, &p}}) {
+    mpz_mul(t.get_mpz_t(), m[0].get_mpz_t(), x->num[0].get_mpz_t());
+    mpz_addmul(t.get_mpz_t(), m[1].get_mpz_t(), x->num[1].get_mpz_t());
+    mpz_addmul(t.get_mpz_t(), m[2].get_mpz_t(), x->num[2].get_mpz_t());
+    mpz_addmul(d.get_mpz_t(), t.get_mpz_t(), other->den.get_mpz_t());
+  }
+  mpz_gcd(g.get_mpz_t(), dd.get_mpz_t(), d.get_mpz_t());
+  if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) {
+    mpz_divexact(dd.get_mpz_t(), dd.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(d.get_mpz_t(), d.get_mpz_t(), g.get_mpz_t());
+  }
+  Plane out;
+  mpz_mul(out.a.get_mpz_t(), m[0].get_mpz_t(), dd.get_mpz_t());
+  mpz_mul(out.b.get_mpz_t(), m[1].get_mpz_t(), dd.get_mpz_t());
+  mpz_mul(out.c.get_mpz_t(), m[2].get_mpz_t(), dd.get_mpz_t());
+  mpz_swap(out.d.get_mpz_t(), d.get_mpz_t());
+  return out;
+}
+
 struct Built {
   Plane plane;
   std::vector<Point3> loop;  // empty: not a candidate
@@ -346,7 +380,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       const Vec3d ua = side == 0 ? cones.normal_approx(t) : Vec3d{-cones.normal_approx(t).x, -cones.normal_approx(t).y,
                                                                    -cones.normal_approx(t).z};
       Built x;
-      x.plane = canonical_plane_through_sum(n[side], scaled[0], scaled_[face[0]]);
+      x.plane = plane_through_sum(n[side], scaled[0], scaled_[face[0]]);
       const bool whole[3] = {true, true, true};  // t is face_u(t)
       if (cones.candidate(t, RoundedPoint3{u, ua}, whole) && on_surface(face[0], RoundedPoint3{u, ua})) {
         if (face.size() == 1) {
@@ -394,9 +428,10 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       if (sigma < 0)
         for (Integer& x : n) mpz_neg(x.get_mpz_t(), x.get_mpz_t());
       Built x;
-      x.plane = canonical_plane_through_sum(n, scaled[k], scaled_[g.v0]);
+      x.plane = plane_through_sum(n, scaled[k], scaled_[g.v0]);
       const Point3 u{Rational(n[0]), Rational(n[1]), Rational(n[2])};
-      const Vec3d ua = to_double(u);
+      // Faithful roundings (mpz_get_d truncates), as the cone tests allow.
+      const Vec3d ua{mpz_get_d(n[0].get_mpz_t()), mpz_get_d(n[1].get_mpz_t()), mpz_get_d(n[2].get_mpz_t())};
       bool on_edge[3] = {false, false, false};  // the edge a → b is face_u(t)
       on_edge[k] = on_edge[(k + 1) % 3] = true;
       if (cones.candidate(t, RoundedPoint3{u, ua}, on_edge) && cones.keeps(t, RoundedPoint3{u, ua}, on_edge) &&

@@ -95,14 +95,17 @@ struct V3 {
   const Point3& exact() const { return p ? *p : c->point(); }
 };
 
-V3 make_v3(const Point3& p) {
+// p with its nearest doubles d.
+V3 make_v3(const Point3& p, const Vec3d& d) {
   V3 v;
-  v.d = to_double(p);
+  v.d = d;
   v.filtered = half_space_filter_usable(v.d.x, p.x) && half_space_filter_usable(v.d.y, p.y) &&
                half_space_filter_usable(v.d.z, p.z);
   v.p = &p;
   return v;
 }
+
+V3 make_v3(const Point3& p) { return make_v3(p, to_double(p)); }
 
 // Usable in the filter: zero with the exact value, or of magnitude in
 // [2^-480, 2^480).
@@ -712,7 +715,18 @@ struct Event {
 // on its left seen from outside.
 struct Segment {
   Point3 a, b;
+  Vec3d da, db;  // their nearest doubles (round_ends)
 };
+
+// Fills the nearest doubles of the segments' ends, converting each point
+// once where a segment starts at the previous one's end.
+void round_ends(std::vector<Segment>& segments) {
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    Segment& sg = segments[i];
+    sg.da = i > 0 && segments[i - 1].b == sg.a ? segments[i - 1].db : to_double(sg.a);
+    sg.db = i + 1 == segments.size() && i > 0 && segments[0].a == sg.b ? segments[0].da : to_double(sg.b);
+  }
+}
 
 std::vector<Segment> merge_fragments(const Plane& plane, const Frame& frame, const std::vector<Poly>& fragments,
                                      const std::vector<Segment>& slits) {
@@ -771,12 +785,12 @@ std::vector<Segment> merge_fragments(const Plane& plane, const Frame& frame, con
       const bool now_along = slit ? count[0] > 0 : count[0] > count[1];
       const bool now_against = slit ? count[1] > 0 : count[1] > count[0];
       if (now_along != along) {
-        if (along) out.push_back({start_along->exact(), here->exact()});
+        if (along) out.push_back({start_along->exact(), here->exact(), {}, {}});
         start_along = here;
         along = now_along;
       }
       if (now_against != against) {
-        if (against) out.push_back({here->exact(), start_against->exact()});
+        if (against) out.push_back({here->exact(), start_against->exact(), {}, {}});
         start_against = here;
         against = now_against;
       }
@@ -917,10 +931,12 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
     // the boundary (its vertices are distinct and no three consecutive are
     // collinear, as merging would make them).
     const Poly& g = fragments.front();
-    for (std::size_t i = 0; i < g.size(); ++i) r.segments.push_back({g[i].exact(), g[(i + 1) % g.size()].exact()});
+    for (std::size_t i = 0; i < g.size(); ++i) r.segments.push_back({g[i].exact(), g[(i + 1) % g.size()].exact(), {}, {}});
+    round_ends(r.segments);
     return r;
   }
   r.segments = merge_fragments(plane, Frame(plane), fragments, slits);
+  round_ends(r.segments);
   return r;
 }
 
@@ -1375,7 +1391,7 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     std::vector<Item> items;
     for (std::size_t g = 0; g < n; ++g)
       for (const Segment& sg : results[g].segments) {
-        Item it{g, &sg, {}, make_v3(sg.a), make_v3(sg.b)};
+        Item it{g, &sg, {}, make_v3(sg.a, sg.da), make_v3(sg.b, sg.db)};
         it.box.add(it.a.d);
         it.box.add(it.b.d);
         items.push_back(std::move(it));
@@ -1393,8 +1409,8 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
       if (own.empty()) return;
       Box region;
       for (const Segment& sg : own) {
-        region.add(to_double(sg.a));
-        region.add(to_double(sg.b));
+        region.add(sg.da);
+        region.add(sg.db);
       }
       const Half h = half_of(*planes[g]->plane);
       const Frame frame(*planes[g]->plane);
@@ -1411,7 +1427,7 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
       };
       std::unordered_multimap<std::size_t, const Segment*> own_ends;
       own_ends.reserve(own.size());
-      for (const Segment& sg : own) own_ends.emplace(end_hash(to_double(sg.a), to_double(sg.b)), &sg);
+      for (const Segment& sg : own) own_ends.emplace(end_hash(sg.da, sg.db), &sg);
       auto is_own = [&](const Item& it) {
         auto [lo, hi] = own_ends.equal_range(end_hash(it.a.d, it.b.d));
         for (auto e = lo; e != hi; ++e) {
@@ -1493,7 +1509,8 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     for (std::size_t i = 0; i < results[g].segments.size(); ++i) {
       Segment& sg = results[g].segments[i];
       const std::size_t at = 2 * (base[g] + i);
-      const Vec3d a = to_double(sg.a), b = to_double(sg.b);
+      const Vec3d& a = sg.da;
+      const Vec3d& b = sg.db;
       end[at] = End{{a.x, a.y, a.z}, at, &sg.a};
       end[at + 1] = End{{b.x, b.y, b.z}, at + 1, &sg.b};
     }

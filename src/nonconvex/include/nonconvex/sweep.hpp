@@ -18,9 +18,12 @@ namespace minksum::nonconvex_detail {
 // lie on it): the parity of the crossings of an exact ray that meets no edge
 // or vertex of the surface.  `normals`, when given, holds each triangle's
 // (p1 - p0) x (p2 - p0); `approx`, when given, the nearest doubles of the
-// points (the orientation tests then filter on them).
+// points (the orientation tests then filter on them); `boxes`, when given,
+// boxes (lo, hi) containing each triangle's exact points: the triangles
+// whose boxes the ray's line provably misses are skipped.
 bool strictly_inside(const Point3& q, const std::vector<Point3>& points, const std::vector<std::array<Index, 3>>& tris,
-                     const std::vector<Point3>* normals = nullptr, const std::vector<Vec3d>* approx = nullptr);
+                     const std::vector<Point3>* normals = nullptr, const std::vector<Vec3d>* approx = nullptr,
+                     const std::vector<std::array<double, 6>>* boxes = nullptr);
 
 // The triangulated closed surface of a solid A (Solid::triangles), with what
 // decides which facets of a piece t ⊕ C (t a triangle of A, C convex) can
@@ -89,6 +92,7 @@ class SurfaceCones {
   std::vector<Point3> points_;
   std::vector<Vec3d> approx_;                      // nearest doubles of points_
   std::vector<Vec3d> normal_approx_;               // of normal_
+  std::vector<std::array<double, 6>> box_;         // per triangle, (lo, hi) containing its exact points (widen_box)
   std::vector<std::array<Index, 3>> tri_;
   std::vector<Point3> normal_;                     // (p1 - p0) x (p2 - p0), outward
   std::vector<std::array<Index, 3>> opposite_;     // edge k = (c[k], c[k+1]): the far vertex of the face across it

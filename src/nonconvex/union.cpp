@@ -237,6 +237,32 @@ Half half_of(const Plane& q) {
   return h;
 }
 
+// The facet half-spaces of one piece, in the order of its planes: the lazy
+// ones made from the piece's LazyPlane when asked (their doubles are the
+// piece's own, not copied for every piece of the union), the others kept.
+struct HalfSet {
+  const Piece* piece = nullptr;
+  std::vector<Half> held;  // planes lazy.size() .. num_planes() − 1
+  std::uint64_t generation = 0;
+  std::size_t size() const { return piece->lazy.size() + held.size(); }
+  Half operator[](std::size_t k) const {
+    const std::size_t lazy = piece->lazy.size();
+    if (k >= lazy) return held[k - lazy];
+    const LazyPlane& l = piece->lazy[k];
+    Half h;
+    h.plane = piece->held(Index(k));
+    h.da = l.a;
+    h.db = l.b;
+    h.dc = l.c;
+    h.dd = l.d;
+    h.filtered = l.filtered;
+    h.piece = piece;
+    h.index = Index(k);
+    h.generation = generation;
+    return h;
+  }
+};
+
 // > 0 outside, 0 on the plane, < 0 inside.
 int side(const Half& h, const V3& v) {
   if (h.filtered && v.filtered)
@@ -378,7 +404,7 @@ struct PolyBox {
 // piece and any polygon of positive area inside g (its points are on or
 // outside that plane too, and not all on its line in g's plane).  The
 // planes in `order`'s order.
-bool rejected(const Poly& g, const PolyBox& box, const std::vector<Half>& halves, const RejectOrder& order) {
+bool rejected(const Poly& g, const PolyBox& box, const HalfSet& halves, const RejectOrder& order) {
   // First the signs only: a plane with all of g on or outside it rejects the
   // piece before any cut is made.  Per plane the filter's signs first (the
   // box's, then the vertices'), then the exact ones it left open (vertices
@@ -422,7 +448,7 @@ bool rejected(const Poly& g, const PolyBox& box, const std::vector<Half>& halves
   return false;
 }
 
-bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out, Arena& arena,
+bool subtract(const Poly& g, const HalfSet& halves, std::vector<Poly>& out, Arena& arena,
               const Plane& face, const RejectOrder& order = {}) {
   std::vector<int> sg;
   bool pos = false, neg = false;
@@ -431,7 +457,8 @@ bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>&
   const std::size_t mark = out.size();
   Poly rem = g;
   PolyBox rem_box = box;
-  for (const Half& h : halves) {
+  for (std::size_t k = 0; k < halves.size(); ++k) {
+    const Half h = halves[k];
     // rem wholly inside h, proved from its box: nothing to cut.
     if (rem_box.side(h) == std::optional<int>(-1)) continue;
     signs(rem, h, sg, pos, neg);
@@ -841,7 +868,7 @@ struct PlaneResult {
 // `facets` are the candidate facets on the plane, `below` the other pieces
 // with a facet on it facing the same way (not candidates), ascending.
 PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& facets, const std::vector<Index>& below,
-                           const std::vector<Piece>& parts, const std::vector<std::vector<Half>>& halves,
+                           const std::vector<Piece>& parts, const std::vector<HalfSet>& halves,
                            const PieceGrid& grid, const std::vector<Segment>& slits = {}) {
   PlaneResult r;
   Arena arena;
@@ -1258,29 +1285,17 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
   const unsigned all_workers = parallel_threads(threads, parts.size());
   // Boxes and half-spaces of the pieces (in parallel).
   std::vector<Box> boxes(parts.size());
-  std::vector<std::vector<Half>> halves(parts.size());
+  std::vector<HalfSet> halves(parts.size());
   parallel_for(parts.size(), all_workers, [&](std::size_t i) {
     for (int k = 0; k < 3; ++k) {
       boxes[i].lo[k] = parts[i].lo[k];
       boxes[i].hi[k] = parts[i].hi[k];
     }
     const Piece& p = parts[i];
-    halves[i].reserve(p.num_planes());
-    for (Index k = 0; k < p.lazy.size(); ++k) {
-      const LazyPlane& l = p.lazy[k];
-      Half h;
-      h.plane = p.held(k);
-      h.da = l.a;
-      h.db = l.b;
-      h.dc = l.c;
-      h.dd = l.d;
-      h.filtered = l.filtered;
-      h.piece = &p;
-      h.index = k;
-      h.generation = generation;
-      halves[i].push_back(h);
-    }
-    for (const Plane& h : p.planes) halves[i].push_back(half_of(h));
+    halves[i].piece = &p;
+    halves[i].generation = generation;
+    halves[i].held.reserve(p.planes.size());
+    for (const Plane& h : p.planes) halves[i].held.push_back(half_of(h));
   });
   const PieceGrid grid(boxes);
   // Candidate facets by oriented plane; then the other facets on those

@@ -20,6 +20,7 @@
 // points (support_compare and dot_difference_sign, filtered on cached roundings); the
 // planes are exact canonical integer planes.
 #include <minksum/error.hpp>
+#include <minksum/parallel.hpp>
 #include <minksum/dot_difference.hpp>
 #include <minksum/predicates.hpp>
 
@@ -251,6 +252,31 @@ Plane SweptPolytope::canonical_from_offset(const Facet& f, Integer work[3]) {
   return out;
 }
 
+// The doubles of the lazy plane primitive · x = work[0] / work[1]: the
+// offset rounded towards zero, and whether the union's filter may use them.
+void SweptPolytope::lazy_doubles(const Facet& f, const Integer work[3], double& d, bool& filtered) {
+  d = truncated_ratio(work[0], work[1]);
+  filtered = f.primitive_usable && std::isfinite(d) && std::fabs(d) < kLazyFilterMax &&
+             (d == 0 ? sgn(work[0]) == 0 : std::fabs(d) >= kLazyFilterMin);
+}
+
+void SweptPolytope::prepare(const SurfaceCones& cones, unsigned threads) {
+  const std::size_t nv = cones.points(), nf = facets_.size();
+  offset_d_.assign(nv * nf, 0.0);
+  offset_ok_.assign(nv * nf, 0);
+  parallel_for(nv, parallel_threads(threads, nv / 64 + 1), [&](std::size_t v) {
+    const ScaledPoint q = scaled_point(cones.point(Index(v)));
+    Integer work[3];
+    for (std::size_t fi = 0; fi < nf; ++fi) {
+      offset_along(facets_[fi], q, work);
+      bool ok = false;
+      lazy_doubles(facets_[fi], work, offset_d_[v * nf + fi], ok);
+      offset_ok_[v * nf + fi] = ok ? 1 : 0;
+    }
+  });
+  prepared_ = &cones;
+}
+
 Plane SweptPolytope::build(const Piece& piece, Index k) const {
   const Facet& f = facets_[k];
   const ScaledPoint q = scaled_point(*piece.corner[piece.lazy[k].tag]);
@@ -333,16 +359,21 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
     // den rounded towards zero), the canonical plane only for a candidate
     // or when the union asks (build).
     LazyPlane& lp = lazy[fi];
-    offset_along(f, scaled[top], work);
     lp.tag = static_cast<std::uint8_t>(top);
     lp.a = f.primitive_approx[0];
     lp.b = f.primitive_approx[1];
     lp.c = f.primitive_approx[2];
-    lp.d = truncated_ratio(work[0], work[1]);
-    lp.filtered = f.primitive_usable && std::isfinite(lp.d) && std::fabs(lp.d) < kLazyFilterMax &&
-                  (lp.d == 0 ? sgn(work[0]) == 0 : std::fabs(lp.d) >= kLazyFilterMin);
+    if (prepared_ == &cones) {  // the table (prepare)
+      const std::size_t at = std::size_t(c[top]) * facets_.size() + fi;
+      lp.d = offset_d_[at];
+      lp.filtered = offset_ok_[at] != 0;
+    } else {
+      offset_along(f, scaled[top], work);
+      lazy_doubles(f, work, lp.d, lp.filtered);
+    }
     if ((!surface_ || facet_on_surface_[fi]) && cones.candidate(t, u, at_top) && cones.keeps(t, u, at_top)) {
       lp.exact = std::int32_t(lazy_exact.size());
+      if (prepared_ == &cones) offset_along(f, scaled[top], work);
       lazy_exact.push_back(canonical_from_offset(f, work));
       candidates.push_back(Index(fi));
       std::vector<Point3> loop;

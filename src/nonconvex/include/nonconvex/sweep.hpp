@@ -77,6 +77,7 @@ class SurfaceCones {
   bool strictly_inside(const Point3& q) const;
 
   std::size_t triangles() const { return tri_.size(); }
+  std::size_t points() const { return points_.size(); }
   const std::array<Index, 3>& triangle(Index t) const { return tri_[t]; }
   const Point3& point(Index v) const { return points_[v]; }
   // The point with its nearest doubles, for the kernel's filtered predicates.
@@ -123,6 +124,12 @@ class SweptPolytope final : public PlaneBuilder {
   // plane, the vertex loops of the facets that SurfaceCones::candidate
   // keeps (the candidates first), and its box.
   Piece sum(const SurfaceCones& cones, Index t) const;
+  // Makes, for every point v of `cones`' surface and facet f of B, the
+  // doubles of the lazy plane f + v (what sum computes for each triangle
+  // at v, each vertex being shared by several triangles), in parallel;
+  // sum then reads them.  Memory: 9 bytes per pair.
+  void prepare(const SurfaceCones& cones, unsigned threads);
+  std::size_t facets() const { return facets_.size(); }
   // on_surface for facet f of B and its normal (true without a surface).
   bool facet_on_surface(Index f) const { return !surface_ || facet_on_surface_[f]; }
 
@@ -153,6 +160,7 @@ class SweptPolytope final : public PlaneBuilder {
   // nearest doubles), ascending.
   void extreme_face(const RoundedPoint3 p[3], const Vec3d& na, int sign, std::vector<Index>& face) const;
   static void offset_along(const Facet& f, const ScaledPoint& q, Integer work[3]);
+  static void lazy_doubles(const Facet& f, const Integer work[3], double& d, bool& filtered);
   static Plane canonical_from_offset(const Facet& f, Integer work[3]);
   RoundedPoint3 at(Index v) const { return RoundedPoint3{points_[v], approx_[v]}; }
 
@@ -167,6 +175,9 @@ class SweptPolytope final : public PlaneBuilder {
   const SurfaceCones* surface_ = nullptr;  // O's, when B is a piece of a non-convex O
   std::vector<Index> touching_;            // O's triangles whose exact box meets B's
   std::vector<char> facet_on_surface_;     // on_surface for each facet of B
+  const SurfaceCones* prepared_ = nullptr;  // the surface the table is for (prepare)
+  std::vector<double> offset_d_;           // [v * facets + f]: the offset's double of f + v
+  std::vector<char> offset_ok_;            // and whether the filter may use it
 };
 
 }  // namespace minksum::nonconvex_detail

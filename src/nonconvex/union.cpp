@@ -1034,13 +1034,22 @@ std::vector<Point3> crossings(const std::vector<std::vector<std::pair<Index, Ind
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return box[x].lo[0] < box[y].lo[0]; });
   auto rounded = [&](Index v) { return RoundedPoint3{pts[v], approx[v]}; };
+  // The boxes in that order, in a grid: each segment is compared with the
+  // later ones whose boxes meet its own, in their order (a sweep along x
+  // alone would look at every segment of the slab its x-range spans).
+  std::vector<Box> sorted(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = box[order[i]];
+  const PieceGrid grid(sorted);
   std::vector<std::vector<Point3>> found(order.size());
   parallel_for(order.size(), parallel_threads(threads, order.size() / 1024 + 1), [&](std::size_t i) {
     const auto [a, b] = all[order[i]];
     const RoundedPoint3 ra = rounded(a), rb = rounded(b);
-    for (std::size_t j = i + 1; j < order.size() && box[order[j]].lo[0] <= box[order[i]].hi[0]; ++j) {
+    thread_local std::vector<Index> near;
+    grid.query(sorted[i], near);  // ascending, boxes meeting sorted[i]
+    for (Index j : near) {
+      if (j <= i) continue;
       const auto [c, d] = all[order[j]];
-      if (a == c || a == d || b == c || b == d || !box[order[i]].meets(box[order[j]])) continue;
+      if (a == c || a == d || b == c || b == d) continue;
       const RoundedPoint3 rc = rounded(c), rd = rounded(d);
       if (orient3d(ra, rb, rc, rd) != 0) continue;
       if (arc_side(ra, rb, ra, rc, ra, rb, rd) >= 0 || arc_side(rc, rd, rc, ra, rc, rd, rb) >= 0) continue;

@@ -161,6 +161,40 @@ TEST(NonconvexSweep, ReflexEdgeHasNoConeOfItsOwn) {
   EXPECT_EQ(at_edge, 2u);
 }
 
+// The ray test skips the triangles whose boxes the ray's line provably
+// misses (kernel/line_box.hpp): the same answers as testing every triangle,
+// at points inside, outside and near the surface of a torus (grid points,
+// many on the planes and lines of the rays through the surface's points).
+TEST(NonconvexSweep, PointInSolidBoxesChangeNoAnswer) {
+  const Solid t = solid("torus:16:8");
+  const nonconvex_detail::SurfaceCones cones(t.triangles);
+  std::vector<Point3> pts;
+  std::vector<std::array<Index, 3>> tris;
+  for (Index v = 0; v < Index(t.triangles.points.size()); ++v) pts.push_back(t.triangles.points[v]);
+  for (const auto& f : t.triangles.faces) tris.push_back({f[0], f[1], f[2]});
+  std::size_t inside = 0, cases = 0;
+  for (int i = -12; i <= 12; ++i)
+    for (int j = -12; j <= 12; j += 3)
+      for (int k = -4; k <= 4; ++k) {
+        const Point3 q(Rational(i, 8), Rational(j, 8), Rational(k, 9));
+        bool plain = false, on = false;
+        try {
+          plain = nonconvex_detail::strictly_inside(q, pts, tris);
+        } catch (const std::logic_error&) {
+          on = true;
+        }
+        if (on) {
+          EXPECT_THROW(cones.strictly_inside(q), std::logic_error);
+          continue;
+        }
+        ++cases;
+        inside += plain;
+        EXPECT_EQ(cones.strictly_inside(q), plain) << i << " " << j << " " << k;
+      }
+  EXPECT_GT(inside, 20u);
+  EXPECT_GT(cases - inside, 20u);
+}
+
 TEST(NonconvexSweep, PointInSolidIsExact) {
   const Solid h = hollow_solid();
   const nonconvex_detail::SurfaceCones cones(h.triangles);

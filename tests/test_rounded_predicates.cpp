@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "kernel/det3_filter.hpp"
+#include "kernel/line_box.hpp"
 #include "kernel/plane.hpp"
 #include "kernel/predicates_internal.hpp"
 
@@ -795,4 +796,84 @@ TEST(HalfSpaceSide, CompareFilterDecidesOnlyWhatHolds) {
   }
   EXPECT_GT(apart, 1000u);
   EXPECT_GE(decided, apart);
+}
+
+// line_misses_box (kernel/line_box.hpp) claims a miss only when the line
+// q + s d misses the exact box of the points whose nearest doubles made the
+// widened box, checked exactly (the intersection of the axes' s-intervals
+// in rationals), in every rounding mode; lines through a corner, along a
+// face and through the box are never called missing, and most far ones are.
+namespace {
+bool exact_line_misses_box(const Point3& q, const long d[3], const Point3& lo, const Point3& hi) {
+  std::optional<Rational> from, to;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0) {
+      if (cmp(q[k], lo[k]) < 0 || cmp(q[k], hi[k]) > 0) return true;
+      continue;
+    }
+    Rational a = (lo[k] - q[k]) / Rational(d[k]), b = (hi[k] - q[k]) / Rational(d[k]);
+    if (cmp(a, b) > 0) std::swap(a, b);
+    if (!from || cmp(a, *from) > 0) from = a;
+    if (!to || cmp(b, *to) < 0) to = b;
+  }
+  return from && to && cmp(*from, *to) > 0;
+}
+}  // namespace
+
+TEST(LineBox, MissesOnlyWhatHolds) {
+  const int modes[] = {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO};
+  std::size_t far = 0, far_decided = 0;
+  for (std::uint64_t seed = 1; seed <= 3000; ++seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_int_distribution<int> small(-60, 60);
+    auto coord = [&](int den) { return Rational(small(rng), den); };
+    // Three points (a triangle) and their exact box.
+    Point3 p[3];
+    for (Point3& x : p) x = Point3(coord(7), coord(9), coord(13));
+    Point3 lo = p[0], hi = p[0];
+    for (const Point3& x : p)
+      for (int k = 0; k < 3; ++k) {
+        if (cmp(x[k], lo[k]) < 0) lo[k] = x[k];
+        if (cmp(x[k], hi[k]) > 0) hi[k] = x[k];
+      }
+    double blo[3], bhi[3];
+    for (int k = 0; k < 3; ++k) {
+      blo[k] = std::min({to_double(p[0][k]), to_double(p[1][k]), to_double(p[2][k])});
+      bhi[k] = std::max({to_double(p[0][k]), to_double(p[1][k]), to_double(p[2][k])});
+    }
+    widen_box(blo, bhi);
+    // The line: through a random point, a corner of the exact box, or a
+    // point on one of its faces; directions large, small or axis-parallel.
+    long d[3];
+    const int dkind = int(rng() % 3);
+    for (long& x : d) x = dkind == 0 ? long(rng() % 2000001) - 1000000 : dkind == 1 ? small(rng) : 0;
+    if (dkind == 2) d[rng() % 3] = 1 + long(rng() % 1000);
+    if (d[0] == 0 && d[1] == 0 && d[2] == 0) d[0] = 1;
+    const int qkind = int(rng() % 3);
+    Point3 q(coord(11), coord(17), coord(3));
+    if (qkind == 1) q = Point3(lo.x, hi.y, lo.z);
+    if (qkind == 2) q = Point3(lo.x, Rational((lo.y + hi.y) / 2), hi.z);  // on an edge of the box's face
+    const bool exact = exact_line_misses_box(q, d, lo, hi);
+    const double dd[3] = {double(d[0]), double(d[1]), double(d[2])};
+    const IPoint qi = to_interval(q);
+    for (int mode : modes) {
+      std::fesetround(mode);
+      bool claimed;
+      {
+        CGAL::Protect_FPU_rounding<true> upward;
+        claimed = line_misses_box(to_fast(qi), dd, blo, bhi);
+      }
+      std::fesetround(FE_TONEAREST);
+      if (claimed) {
+        ASSERT_TRUE(exact) << "seed " << seed << " mode " << mode;
+      }
+      if (qkind != 0) ASSERT_FALSE(claimed) << "seed " << seed;  // the line meets the box
+      if (mode == FE_TONEAREST && exact) {
+        ++far;
+        far_decided += claimed;
+      }
+    }
+  }
+  EXPECT_GT(far, 500u);
+  EXPECT_GT(far_decided, far * 9 / 10);
 }

@@ -129,6 +129,15 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
     swept.reserve(po.size());  // (the pieces point into them: no reallocation)
     for (const ConvexPolytope& p : po) swept.emplace_back(p, o_cones ? &*o_cones : nullptr);
   }
+  // The lazy planes' doubles per point of S and facet of O_j, made once
+  // for the triangles sharing the point, when the table is small enough
+  // (up to 2^24 entries over all pieces, 9 bytes each).
+  if (!by_hull) {
+    std::size_t facets = 0;
+    for (const auto& sp : swept) facets += sp.facets();
+    if (facets * cones.points() <= (std::size_t(1) << 24))
+      for (auto& sp : swept) sp.prepare(cones, threads);
+  }
   const unsigned workers = parallel_threads(threads, n);
   const std::size_t batch = std::max<std::size_t>(64, std::size_t(workers) * 64);
   options.report("pairs", 0.0);

@@ -7,8 +7,10 @@
 #include <minksum/parallel.hpp>
 #include <minksum/predicates.hpp>
 
+#include "kernel/line_box.hpp"
 #include "nonconvex/sweep.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <stdexcept>
@@ -41,6 +43,7 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
     for (int k = 0; k < 3; ++k) directed[{tri_[t][k], tri_[t][(k + 1) % 3]}] = {t, k};
   normal_.resize(tri_.size());
   normal_approx_.resize(tri_.size());
+  box_.resize(tri_.size());
   opposite_.resize(tri_.size());
   kind_.resize(tri_.size());
   neighbours_.resize(nv);
@@ -59,6 +62,13 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
     const auto& c = tri_[t];
     normal_[t] = cross(points_[c[1]] - points_[c[0]], points_[c[2]] - points_[c[0]]);
     normal_approx_[t] = to_double(normal_[t]);
+    double* lo = &box_[t][0];
+    double* hi = &box_[t][3];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min({approx_[c[0]][k], approx_[c[1]][k], approx_[c[2]][k]});
+      hi[k] = std::max({approx_[c[0]][k], approx_[c[1]][k], approx_[c[2]][k]});
+    }
+    widen_box(lo, hi);
     for (int k = 0; k < 3; ++k) {
       const Index a = c[k], b = c[(k + 1) % 3];
       const auto it = directed.find({b, a});
@@ -191,8 +201,11 @@ int line_meets(const P& q, const P& r, const P& a, const P& b, const P& c) {
 }  // namespace
 
 bool strictly_inside(const Point3& q, const std::vector<Point3>& points, const std::vector<std::array<Index, 3>>& tris,
-                     const std::vector<Point3>* normals, const std::vector<Vec3d>* approx) {
+                     const std::vector<Point3>* normals, const std::vector<Vec3d>* approx,
+                     const std::vector<std::array<double, 6>>* boxes) {
   const Vec3d q_approx = to_double(q);
+  const IPoint q_interval = to_interval(q);
+  std::vector<Index> near;
   // Rays in directions with large co-prime integer components, tried in turn
   // until one meets no edge or vertex of the surface and lies in no
   // triangle's plane: each triangle excludes the directions of a few planes
@@ -219,7 +232,19 @@ bool strictly_inside(const Point3& q, const std::vector<Point3>& points, const s
     const Vec3d r_approx = to_double(r);
     const RoundedPoint3 rq{q, q_approx}, rr{r, r_approx};
     bool inside = false, generic = true;
-    for (std::size_t t = 0; t < tris.size() && generic; ++t) {
+    // The triangles whose boxes the line may meet: the others it misses
+    // (line_meets would answer 0), proved on intervals (kernel/line_box.hpp).
+    near.clear();
+    if (boxes) {
+      const double dd[3] = {double(dir[0]), double(dir[1]), double(dir[2])};  // exact (|dir| < 2^31)
+      CGAL::Protect_FPU_rounding<true> upward;
+      const FastIPoint qi = to_fast(q_interval);
+      for (Index t = 0; t < tris.size(); ++t)
+        if (!line_misses_box(qi, dd, &(*boxes)[t][0], &(*boxes)[t][3])) near.push_back(t);
+    }
+    const std::size_t count = boxes ? near.size() : tris.size();
+    for (std::size_t i = 0; i < count && generic; ++i) {
+      const std::size_t t = boxes ? near[i] : i;
       const auto& c = tris[t];
       // The orientation tests on the cached roundings when given.
       const int m = approx ? line_meets(rq, rr, RoundedPoint3{points[c[0]], (*approx)[c[0]]},
@@ -243,7 +268,7 @@ bool strictly_inside(const Point3& q, const std::vector<Point3>& points, const s
 }
 
 bool SurfaceCones::strictly_inside(const Point3& q) const {
-  return nonconvex_detail::strictly_inside(q, points_, tri_, &normal_, &approx_);
+  return nonconvex_detail::strictly_inside(q, points_, tri_, &normal_, &approx_, &box_);
 }
 
 }  // namespace minksum::nonconvex_detail

@@ -20,6 +20,7 @@
 // points (support_compare and dot_difference_sign, filtered on cached roundings); the
 // planes are exact canonical integer planes.
 #include <minksum/error.hpp>
+#include <minksum/parallel.hpp>
 #include <minksum/dot_difference.hpp>
 #include <minksum/predicates.hpp>
 
@@ -75,6 +76,8 @@ SweptPolytope::SweptPolytope(const ConvexPolytope& b, const SurfaceCones* surfac
     unit.push_back(Vec3d{x.normal_approx.x / len, x.normal_approx.y / len, x.normal_approx.z / len});
   }
   directions_ = DirectionIndex(std::move(unit));
+  neighbours_.reserve(b.num_vertices());
+  for (Index v = 0; v < b.num_vertices(); ++v) neighbours_.push_back(b.vertex_neighbours(v));
   edges_.reserve(b.num_edges());
   for (Index e = 0; e < b.num_edges(); ++e) {
     const Index h = 2 * e;
@@ -168,6 +171,40 @@ void cross_integers(const Integer x[3], const Integer y[3], Integer out[3]) {
   }
 }
 
+// The canonical plane with normal a positive multiple of n (not zero)
+// through p + q, as canonical_plane_through_sum gives it, with smaller
+// gcds: n made primitive first (n' = n / gcd(n), numbers the size of n),
+// then the plane n' M . x = D with M = p.den q.den and D = n' . (p.num q.den
+// + q.num p.den), whose coefficients have the gcd gcd(M gcd(n'), D) =
+// gcd(M, D): one gcd with D instead of three with numbers the size of n M.
+Plane plane_through_sum(const Integer n[3], const ScaledPoint& p, const ScaledPoint& q) {
+  Integer g, m[3], dd, d, t;
+  mpz_gcd(g.get_mpz_t(), n[0].get_mpz_t(), n[1].get_mpz_t());
+  mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), n[2].get_mpz_t());
+  for (int j = 0; j < 3; ++j) {
+    if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) mpz_divexact(m[j].get_mpz_t(), n[j].get_mpz_t(), g.get_mpz_t());
+    else m[j] = n[j];
+  }
+  mpz_mul(dd.get_mpz_t(), p.den.get_mpz_t(), q.den.get_mpz_t());
+  for (const auto& [x, other] : {std::pair<const ScaledPoint*, const ScaledPoint*>{&p, &q}, {&q, &p}}) {
+    mpz_mul(t.get_mpz_t(), m[0].get_mpz_t(), x->num[0].get_mpz_t());
+    mpz_addmul(t.get_mpz_t(), m[1].get_mpz_t(), x->num[1].get_mpz_t());
+    mpz_addmul(t.get_mpz_t(), m[2].get_mpz_t(), x->num[2].get_mpz_t());
+    mpz_addmul(d.get_mpz_t(), t.get_mpz_t(), other->den.get_mpz_t());
+  }
+  mpz_gcd(g.get_mpz_t(), dd.get_mpz_t(), d.get_mpz_t());
+  if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) {
+    mpz_divexact(dd.get_mpz_t(), dd.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(d.get_mpz_t(), d.get_mpz_t(), g.get_mpz_t());
+  }
+  Plane out;
+  mpz_mul(out.a.get_mpz_t(), m[0].get_mpz_t(), dd.get_mpz_t());
+  mpz_mul(out.b.get_mpz_t(), m[1].get_mpz_t(), dd.get_mpz_t());
+  mpz_mul(out.c.get_mpz_t(), m[2].get_mpz_t(), dd.get_mpz_t());
+  mpz_swap(out.d.get_mpz_t(), d.get_mpz_t());
+  return out;
+}
+
 struct Built {
   Plane plane;
   std::vector<Point3> loop;  // empty: not a candidate
@@ -215,12 +252,73 @@ Plane SweptPolytope::canonical_from_offset(const Facet& f, Integer work[3]) {
   return out;
 }
 
+// The doubles of the lazy plane primitive · x = work[0] / work[1]: the
+// offset rounded towards zero, and whether the union's filter may use them.
+void SweptPolytope::lazy_doubles(const Facet& f, const Integer work[3], double& d, bool& filtered) {
+  d = truncated_ratio(work[0], work[1]);
+  filtered = f.primitive_usable && std::isfinite(d) && std::fabs(d) < kLazyFilterMax &&
+             (d == 0 ? sgn(work[0]) == 0 : std::fabs(d) >= kLazyFilterMin);
+}
+
+void SweptPolytope::prepare(const SurfaceCones& cones, unsigned threads) {
+  const std::size_t nv = cones.points(), nf = facets_.size();
+  offset_d_.assign(nv * nf, 0.0);
+  offset_ok_.assign(nv * nf, 0);
+  parallel_for(nv, parallel_threads(threads, nv / 64 + 1), [&](std::size_t v) {
+    const ScaledPoint q = scaled_point(cones.point(Index(v)));
+    Integer work[3];
+    for (std::size_t fi = 0; fi < nf; ++fi) {
+      offset_along(facets_[fi], q, work);
+      bool ok = false;
+      lazy_doubles(facets_[fi], work, offset_d_[v * nf + fi], ok);
+      offset_ok_[v * nf + fi] = ok ? 1 : 0;
+    }
+  });
+  prepared_ = &cones;
+}
+
 Plane SweptPolytope::build(const Piece& piece, Index k) const {
   const Facet& f = facets_[k];
   const ScaledPoint q = scaled_point(*piece.corner[piece.lazy[k].tag]);
   Integer work[3];
   offset_along(f, q, work);
   return canonical_from_offset(f, work);
+}
+
+// The vertices of B highest along sign · n_t (n_t the normal of t =
+// p0 p1 p2), ascending.  B is convex, so a vertex with no strictly higher
+// neighbour is highest of all, and the highest vertices (a vertex, an edge
+// or a facet of B) are connected by edges of B whose ends are equally high:
+// climb from the vertex highest by the doubles (`na`, the nearest doubles of
+// n_t; only a guess: the climb decides, by the exact support_compare), then
+// gather the equally high neighbours.  The same set as comparing every
+// vertex with the highest so far, in far fewer exact comparisons.
+void SweptPolytope::extreme_face(const RoundedPoint3 p[3], const Vec3d& na, int sign, std::vector<Index>& face) const {
+  Index v = 0;
+  double best = -HUGE_VAL;
+  for (Index w = 0; w < approx_.size(); ++w) {
+    const double h = sign * (na.x * approx_[w].x + na.y * approx_[w].y + na.z * approx_[w].z);
+    if (h > best) {
+      best = h;
+      v = w;
+    }
+  }
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (Index w : neighbours_[v])
+      if (support_compare(p[0], p[1], p[2], at(w), at(v)) * sign > 0) {
+        v = w;
+        moved = true;
+        break;
+      }
+  }
+  face.assign(1, v);
+  for (std::size_t i = 0; i < face.size(); ++i)
+    for (Index w : neighbours_[face[i]])
+      if (std::find(face.begin(), face.end(), w) == face.end() &&
+          support_compare(p[0], p[1], p[2], at(w), at(face[i])) == 0)
+        face.push_back(w);
+  std::sort(face.begin(), face.end());
 }
 
 Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
@@ -261,16 +359,21 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
     // den rounded towards zero), the canonical plane only for a candidate
     // or when the union asks (build).
     LazyPlane& lp = lazy[fi];
-    offset_along(f, scaled[top], work);
     lp.tag = static_cast<std::uint8_t>(top);
     lp.a = f.primitive_approx[0];
     lp.b = f.primitive_approx[1];
     lp.c = f.primitive_approx[2];
-    lp.d = truncated_ratio(work[0], work[1]);
-    lp.filtered = f.primitive_usable && std::isfinite(lp.d) && std::fabs(lp.d) < kLazyFilterMax &&
-                  (lp.d == 0 ? sgn(work[0]) == 0 : std::fabs(lp.d) >= kLazyFilterMin);
+    if (prepared_ == &cones) {  // the table (prepare)
+      const std::size_t at = std::size_t(c[top]) * facets_.size() + fi;
+      lp.d = offset_d_[at];
+      lp.filtered = offset_ok_[at] != 0;
+    } else {
+      offset_along(f, scaled[top], work);
+      lazy_doubles(f, work, lp.d, lp.filtered);
+    }
     if ((!surface_ || facet_on_surface_[fi]) && cones.candidate(t, u, at_top) && cones.keeps(t, u, at_top)) {
       lp.exact = std::int32_t(lazy_exact.size());
+      if (prepared_ == &cones) offset_along(f, scaled[top], work);
       lazy_exact.push_back(canonical_from_offset(f, work));
       candidates.push_back(Index(fi));
       std::vector<Point3> loop;
@@ -290,13 +393,8 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   // B. t plus the face of B extreme along n_t and along −n_t, when that face
   // is a vertex or an edge (a facet's sum is in A).
   {
-    std::vector<Index> faces[2] = {{0}, {0}};  // the vertices of B highest along n_t, and lowest
-    for (std::size_t v = 1; v < points_.size(); ++v)
-      for (int side = 0; side < 2; ++side) {
-        const int c = support_compare(p[0], p[1], p[2], at(Index(v)), at(faces[side].front())) * (side == 0 ? 1 : -1);
-        if (c > 0) faces[side].assign(1, Index(v));
-        else if (c == 0) faces[side].push_back(Index(v));
-      }
+    std::vector<Index> faces[2];  // the vertices of B highest along n_t, and lowest (ascending)
+    for (int side = 0; side < 2; ++side) extreme_face(p, cones.normal_approx(t), side == 0 ? 1 : -1, faces[side]);
     // n_t in integers: a positive multiple of (p1 - p0) x (p2 - p0).
     Integer n[2][3];
     if (faces[0].size() < 3 || faces[1].size() < 3) {
@@ -313,7 +411,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       const Vec3d ua = side == 0 ? cones.normal_approx(t) : Vec3d{-cones.normal_approx(t).x, -cones.normal_approx(t).y,
                                                                    -cones.normal_approx(t).z};
       Built x;
-      x.plane = canonical_plane_through_sum(n[side], scaled[0], scaled_[face[0]]);
+      x.plane = plane_through_sum(n[side], scaled[0], scaled_[face[0]]);
       const bool whole[3] = {true, true, true};  // t is face_u(t)
       if (cones.candidate(t, RoundedPoint3{u, ua}, whole) && on_surface(face[0], RoundedPoint3{u, ua})) {
         if (face.size() == 1) {
@@ -361,9 +459,10 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       if (sigma < 0)
         for (Integer& x : n) mpz_neg(x.get_mpz_t(), x.get_mpz_t());
       Built x;
-      x.plane = canonical_plane_through_sum(n, scaled[k], scaled_[g.v0]);
+      x.plane = plane_through_sum(n, scaled[k], scaled_[g.v0]);
       const Point3 u{Rational(n[0]), Rational(n[1]), Rational(n[2])};
-      const Vec3d ua = to_double(u);
+      // Faithful roundings (mpz_get_d truncates), as the cone tests allow.
+      const Vec3d ua{mpz_get_d(n[0].get_mpz_t()), mpz_get_d(n[1].get_mpz_t()), mpz_get_d(n[2].get_mpz_t())};
       bool on_edge[3] = {false, false, false};  // the edge a → b is face_u(t)
       on_edge[k] = on_edge[(k + 1) % 3] = true;
       if (cones.candidate(t, RoundedPoint3{u, ua}, on_edge) && cones.keeps(t, RoundedPoint3{u, ua}, on_edge) &&

@@ -95,14 +95,17 @@ struct V3 {
   const Point3& exact() const { return p ? *p : c->point(); }
 };
 
-V3 make_v3(const Point3& p) {
+// p with its nearest doubles d.
+V3 make_v3(const Point3& p, const Vec3d& d) {
   V3 v;
-  v.d = to_double(p);
+  v.d = d;
   v.filtered = half_space_filter_usable(v.d.x, p.x) && half_space_filter_usable(v.d.y, p.y) &&
                half_space_filter_usable(v.d.z, p.z);
   v.p = &p;
   return v;
 }
+
+V3 make_v3(const Point3& p) { return make_v3(p, to_double(p)); }
 
 // Usable in the filter: zero with the exact value, or of magnitude in
 // [2^-480, 2^480).
@@ -233,6 +236,32 @@ Half half_of(const Plane& q) {
                integer_to_filter_double(q.c, h.dc) && integer_to_filter_double(q.d, h.dd);
   return h;
 }
+
+// The facet half-spaces of one piece, in the order of its planes: the lazy
+// ones made from the piece's LazyPlane when asked (their doubles are the
+// piece's own, not copied for every piece of the union), the others kept.
+struct HalfSet {
+  const Piece* piece = nullptr;
+  std::vector<Half> held;  // planes lazy.size() .. num_planes() − 1
+  std::uint64_t generation = 0;
+  std::size_t size() const { return piece->lazy.size() + held.size(); }
+  Half operator[](std::size_t k) const {
+    const std::size_t lazy = piece->lazy.size();
+    if (k >= lazy) return held[k - lazy];
+    const LazyPlane& l = piece->lazy[k];
+    Half h;
+    h.plane = piece->held(Index(k));
+    h.da = l.a;
+    h.db = l.b;
+    h.dc = l.c;
+    h.dd = l.d;
+    h.filtered = l.filtered;
+    h.piece = piece;
+    h.index = Index(k);
+    h.generation = generation;
+    return h;
+  }
+};
 
 // > 0 outside, 0 on the plane, < 0 inside.
 int side(const Half& h, const V3& v) {
@@ -375,7 +404,7 @@ struct PolyBox {
 // piece and any polygon of positive area inside g (its points are on or
 // outside that plane too, and not all on its line in g's plane).  The
 // planes in `order`'s order.
-bool rejected(const Poly& g, const PolyBox& box, const std::vector<Half>& halves, const RejectOrder& order) {
+bool rejected(const Poly& g, const PolyBox& box, const HalfSet& halves, const RejectOrder& order) {
   // First the signs only: a plane with all of g on or outside it rejects the
   // piece before any cut is made.  Per plane the filter's signs first (the
   // box's, then the vertices'), then the exact ones it left open (vertices
@@ -419,7 +448,7 @@ bool rejected(const Poly& g, const PolyBox& box, const std::vector<Half>& halves
   return false;
 }
 
-bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>& out, Arena& arena,
+bool subtract(const Poly& g, const HalfSet& halves, std::vector<Poly>& out, Arena& arena,
               const Plane& face, const RejectOrder& order = {}) {
   std::vector<int> sg;
   bool pos = false, neg = false;
@@ -428,7 +457,8 @@ bool subtract(const Poly& g, const std::vector<Half>& halves, std::vector<Poly>&
   const std::size_t mark = out.size();
   Poly rem = g;
   PolyBox rem_box = box;
-  for (const Half& h : halves) {
+  for (std::size_t k = 0; k < halves.size(); ++k) {
+    const Half h = halves[k];
     // rem wholly inside h, proved from its box: nothing to cut.
     if (rem_box.side(h) == std::optional<int>(-1)) continue;
     signs(rem, h, sg, pos, neg);
@@ -712,7 +742,18 @@ struct Event {
 // on its left seen from outside.
 struct Segment {
   Point3 a, b;
+  Vec3d da, db;  // their nearest doubles (round_ends)
 };
+
+// Fills the nearest doubles of the segments' ends, converting each point
+// once where a segment starts at the previous one's end.
+void round_ends(std::vector<Segment>& segments) {
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    Segment& sg = segments[i];
+    sg.da = i > 0 && segments[i - 1].b == sg.a ? segments[i - 1].db : to_double(sg.a);
+    sg.db = i + 1 == segments.size() && i > 0 && segments[0].a == sg.b ? segments[0].da : to_double(sg.b);
+  }
+}
 
 std::vector<Segment> merge_fragments(const Plane& plane, const Frame& frame, const std::vector<Poly>& fragments,
                                      const std::vector<Segment>& slits) {
@@ -771,12 +812,12 @@ std::vector<Segment> merge_fragments(const Plane& plane, const Frame& frame, con
       const bool now_along = slit ? count[0] > 0 : count[0] > count[1];
       const bool now_against = slit ? count[1] > 0 : count[1] > count[0];
       if (now_along != along) {
-        if (along) out.push_back({start_along->exact(), here->exact()});
+        if (along) out.push_back({start_along->exact(), here->exact(), {}, {}});
         start_along = here;
         along = now_along;
       }
       if (now_against != against) {
-        if (against) out.push_back({here->exact(), start_against->exact()});
+        if (against) out.push_back({here->exact(), start_against->exact(), {}, {}});
         start_against = here;
         against = now_against;
       }
@@ -827,7 +868,7 @@ struct PlaneResult {
 // `facets` are the candidate facets on the plane, `below` the other pieces
 // with a facet on it facing the same way (not candidates), ascending.
 PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& facets, const std::vector<Index>& below,
-                           const std::vector<Piece>& parts, const std::vector<std::vector<Half>>& halves,
+                           const std::vector<Piece>& parts, const std::vector<HalfSet>& halves,
                            const PieceGrid& grid, const std::vector<Segment>& slits = {}) {
   PlaneResult r;
   Arena arena;
@@ -917,10 +958,12 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
     // the boundary (its vertices are distinct and no three consecutive are
     // collinear, as merging would make them).
     const Poly& g = fragments.front();
-    for (std::size_t i = 0; i < g.size(); ++i) r.segments.push_back({g[i].exact(), g[(i + 1) % g.size()].exact()});
+    for (std::size_t i = 0; i < g.size(); ++i) r.segments.push_back({g[i].exact(), g[(i + 1) % g.size()].exact(), {}, {}});
+    round_ends(r.segments);
     return r;
   }
   r.segments = merge_fragments(plane, Frame(plane), fragments, slits);
+  round_ends(r.segments);
   return r;
 }
 
@@ -991,13 +1034,22 @@ std::vector<Point3> crossings(const std::vector<std::vector<std::pair<Index, Ind
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return box[x].lo[0] < box[y].lo[0]; });
   auto rounded = [&](Index v) { return RoundedPoint3{pts[v], approx[v]}; };
+  // The boxes in that order, in a grid: each segment is compared with the
+  // later ones whose boxes meet its own, in their order (a sweep along x
+  // alone would look at every segment of the slab its x-range spans).
+  std::vector<Box> sorted(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = box[order[i]];
+  const PieceGrid grid(sorted);
   std::vector<std::vector<Point3>> found(order.size());
   parallel_for(order.size(), parallel_threads(threads, order.size() / 1024 + 1), [&](std::size_t i) {
     const auto [a, b] = all[order[i]];
     const RoundedPoint3 ra = rounded(a), rb = rounded(b);
-    for (std::size_t j = i + 1; j < order.size() && box[order[j]].lo[0] <= box[order[i]].hi[0]; ++j) {
+    thread_local std::vector<Index> near;
+    grid.query(sorted[i], near);  // ascending, boxes meeting sorted[i]
+    for (Index j : near) {
+      if (j <= i) continue;
       const auto [c, d] = all[order[j]];
-      if (a == c || a == d || b == c || b == d || !box[order[i]].meets(box[order[j]])) continue;
+      if (a == c || a == d || b == c || b == d) continue;
       const RoundedPoint3 rc = rounded(c), rd = rounded(d);
       if (orient3d(ra, rb, rc, rd) != 0) continue;
       if (arc_side(ra, rb, ra, rc, ra, rb, rd) >= 0 || arc_side(rc, rd, rc, ra, rc, rd, rb) >= 0) continue;
@@ -1242,29 +1294,17 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
   const unsigned all_workers = parallel_threads(threads, parts.size());
   // Boxes and half-spaces of the pieces (in parallel).
   std::vector<Box> boxes(parts.size());
-  std::vector<std::vector<Half>> halves(parts.size());
+  std::vector<HalfSet> halves(parts.size());
   parallel_for(parts.size(), all_workers, [&](std::size_t i) {
     for (int k = 0; k < 3; ++k) {
       boxes[i].lo[k] = parts[i].lo[k];
       boxes[i].hi[k] = parts[i].hi[k];
     }
     const Piece& p = parts[i];
-    halves[i].reserve(p.num_planes());
-    for (Index k = 0; k < p.lazy.size(); ++k) {
-      const LazyPlane& l = p.lazy[k];
-      Half h;
-      h.plane = p.held(k);
-      h.da = l.a;
-      h.db = l.b;
-      h.dc = l.c;
-      h.dd = l.d;
-      h.filtered = l.filtered;
-      h.piece = &p;
-      h.index = k;
-      h.generation = generation;
-      halves[i].push_back(h);
-    }
-    for (const Plane& h : p.planes) halves[i].push_back(half_of(h));
+    halves[i].piece = &p;
+    halves[i].generation = generation;
+    halves[i].held.reserve(p.planes.size());
+    for (const Plane& h : p.planes) halves[i].held.push_back(half_of(h));
   });
   const PieceGrid grid(boxes);
   // Candidate facets by oriented plane; then the other facets on those
@@ -1375,7 +1415,7 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     std::vector<Item> items;
     for (std::size_t g = 0; g < n; ++g)
       for (const Segment& sg : results[g].segments) {
-        Item it{g, &sg, {}, make_v3(sg.a), make_v3(sg.b)};
+        Item it{g, &sg, {}, make_v3(sg.a, sg.da), make_v3(sg.b, sg.db)};
         it.box.add(it.a.d);
         it.box.add(it.b.d);
         items.push_back(std::move(it));
@@ -1393,8 +1433,8 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
       if (own.empty()) return;
       Box region;
       for (const Segment& sg : own) {
-        region.add(to_double(sg.a));
-        region.add(to_double(sg.b));
+        region.add(sg.da);
+        region.add(sg.db);
       }
       const Half h = half_of(*planes[g]->plane);
       const Frame frame(*planes[g]->plane);
@@ -1411,7 +1451,7 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
       };
       std::unordered_multimap<std::size_t, const Segment*> own_ends;
       own_ends.reserve(own.size());
-      for (const Segment& sg : own) own_ends.emplace(end_hash(to_double(sg.a), to_double(sg.b)), &sg);
+      for (const Segment& sg : own) own_ends.emplace(end_hash(sg.da, sg.db), &sg);
       auto is_own = [&](const Item& it) {
         auto [lo, hi] = own_ends.equal_range(end_hash(it.a.d, it.b.d));
         for (auto e = lo; e != hi; ++e) {
@@ -1493,7 +1533,8 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     for (std::size_t i = 0; i < results[g].segments.size(); ++i) {
       Segment& sg = results[g].segments[i];
       const std::size_t at = 2 * (base[g] + i);
-      const Vec3d a = to_double(sg.a), b = to_double(sg.b);
+      const Vec3d& a = sg.da;
+      const Vec3d& b = sg.db;
       end[at] = End{{a.x, a.y, a.z}, at, &sg.a};
       end[at + 1] = End{{b.x, b.y, b.z}, at + 1, &sg.b};
     }

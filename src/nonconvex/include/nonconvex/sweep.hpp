@@ -18,9 +18,12 @@ namespace minksum::nonconvex_detail {
 // lie on it): the parity of the crossings of an exact ray that meets no edge
 // or vertex of the surface.  `normals`, when given, holds each triangle's
 // (p1 - p0) x (p2 - p0); `approx`, when given, the nearest doubles of the
-// points (the orientation tests then filter on them).
+// points (the orientation tests then filter on them); `boxes`, when given,
+// boxes (lo, hi) containing each triangle's exact points: the triangles
+// whose boxes the ray's line provably misses are skipped.
 bool strictly_inside(const Point3& q, const std::vector<Point3>& points, const std::vector<std::array<Index, 3>>& tris,
-                     const std::vector<Point3>* normals = nullptr, const std::vector<Vec3d>* approx = nullptr);
+                     const std::vector<Point3>* normals = nullptr, const std::vector<Vec3d>* approx = nullptr,
+                     const std::vector<std::array<double, 6>>* boxes = nullptr);
 
 // The triangulated closed surface of a solid A (Solid::triangles), with what
 // decides which facets of a piece t ⊕ C (t a triangle of A, C convex) can
@@ -74,6 +77,7 @@ class SurfaceCones {
   bool strictly_inside(const Point3& q) const;
 
   std::size_t triangles() const { return tri_.size(); }
+  std::size_t points() const { return points_.size(); }
   const std::array<Index, 3>& triangle(Index t) const { return tri_[t]; }
   const Point3& point(Index v) const { return points_[v]; }
   // The point with its nearest doubles, for the kernel's filtered predicates.
@@ -89,6 +93,7 @@ class SurfaceCones {
   std::vector<Point3> points_;
   std::vector<Vec3d> approx_;                      // nearest doubles of points_
   std::vector<Vec3d> normal_approx_;               // of normal_
+  std::vector<std::array<double, 6>> box_;         // per triangle, (lo, hi) containing its exact points (widen_box)
   std::vector<std::array<Index, 3>> tri_;
   std::vector<Point3> normal_;                     // (p1 - p0) x (p2 - p0), outward
   std::vector<std::array<Index, 3>> opposite_;     // edge k = (c[k], c[k+1]): the far vertex of the face across it
@@ -119,6 +124,12 @@ class SweptPolytope final : public PlaneBuilder {
   // plane, the vertex loops of the facets that SurfaceCones::candidate
   // keeps (the candidates first), and its box.
   Piece sum(const SurfaceCones& cones, Index t) const;
+  // Makes, for every point v of `cones`' surface and facet f of B, the
+  // doubles of the lazy plane f + v (what sum computes for each triangle
+  // at v, each vertex being shared by several triangles), in parallel;
+  // sum then reads them.  Memory: 9 bytes per pair.
+  void prepare(const SurfaceCones& cones, unsigned threads);
+  std::size_t facets() const { return facets_.size(); }
   // on_surface for facet f of B and its normal (true without a surface).
   bool facet_on_surface(Index f) const { return !surface_ || facet_on_surface_[f]; }
 
@@ -145,7 +156,11 @@ class SweptPolytope final : public PlaneBuilder {
   // and SurfaceCones::candidate(t', u) holds: the test keeps every such
   // face (a superset; t' ranges over the triangles whose box meets B's).
   bool on_surface(Index x, const RoundedPoint3& u) const;
+  // The vertices of B highest along sign · n_t, t = p0 p1 p2 (na: n_t's
+  // nearest doubles), ascending.
+  void extreme_face(const RoundedPoint3 p[3], const Vec3d& na, int sign, std::vector<Index>& face) const;
   static void offset_along(const Facet& f, const ScaledPoint& q, Integer work[3]);
+  static void lazy_doubles(const Facet& f, const Integer work[3], double& d, bool& filtered);
   static Plane canonical_from_offset(const Facet& f, Integer work[3]);
   RoundedPoint3 at(Index v) const { return RoundedPoint3{points_[v], approx_[v]}; }
 
@@ -154,11 +169,15 @@ class SweptPolytope final : public PlaneBuilder {
   std::vector<Vec3d> approx_;
   std::vector<Facet> facets_;
   std::vector<Edge> edges_;
+  std::vector<std::vector<Index>> neighbours_;  // per vertex of B
   Point3 lo_, hi_;  // exact bounding box
   DirectionIndex directions_;  // approximate unit facet normals (Piece::directions)
   const SurfaceCones* surface_ = nullptr;  // O's, when B is a piece of a non-convex O
   std::vector<Index> touching_;            // O's triangles whose exact box meets B's
   std::vector<char> facet_on_surface_;     // on_surface for each facet of B
+  const SurfaceCones* prepared_ = nullptr;  // the surface the table is for (prepare)
+  std::vector<double> offset_d_;           // [v * facets + f]: the offset's double of f + v
+  std::vector<char> offset_ok_;            // and whether the filter may use it
 };
 
 }  // namespace minksum::nonconvex_detail

@@ -1279,7 +1279,7 @@ TEST_F(Cli, NonConvexSumWrittenWithoutExact) {
 // A solid beyond the range of 32-bit floats, written as binary STL: exit 1,
 // one line naming --exact, no file (it was SIGFPE in the solid writer).
 TEST_F(Cli, NonConvexWriteBeyondFloatRangeExitsOne) {
-  for (const std::string cmd : {"gen tube@scale:1e300 -o " + path("x.stl") + " --binary",
+  for (const std::string& cmd : {"gen tube@scale:1e300 -o " + path("x.stl") + " --binary",
                                 "sum tube@scale:1e39 cube -o " + path("x.stl") + " --binary"}) {
     CmdResult r = run(cmd);
     EXPECT_EQ(r.status, 1) << cmd << ": " << r.err;

@@ -268,7 +268,9 @@ void expect_piece_is_the_hull(const std::array<Point3, 3>& t, const ConvexPolyto
     EXPECT_EQ(l.c, mpz_get_d(Integer(h.c / g).get_mpz_t())) << "lazy plane " << k;
     EXPECT_EQ(l.d, truncated_ratio(h.d, g)) << "lazy plane " << k;
     EXPECT_TRUE(l.filtered);
-    if (l.exact >= 0) EXPECT_EQ(piece.lazy_exact[std::size_t(l.exact)], h);
+    if (l.exact >= 0) {
+      EXPECT_EQ(piece.lazy_exact[std::size_t(l.exact)], h);
+    }
   }
   EXPECT_EQ(piece.lazy.size(), b.num_facets());
   std::sort(built.begin(), built.end());

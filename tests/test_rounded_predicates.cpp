@@ -673,8 +673,12 @@ TEST(HalfSpaceSide, BoxOfASetOfPointsDecidesOnlyWhatHolds) {
     far += is_far;
     in_all_modes([&](int mode) {
       const auto s = half_space_box_side(da, db, dc, dd, lo, hi);
-      if (s == std::optional<int>(-1)) ASSERT_EQ(hi_sign, -1) << "seed " << seed << " mode " << mode;
-      if (s == std::optional<int>(1)) ASSERT_EQ(lo_sign, 1) << "seed " << seed << " mode " << mode;
+      if (s == std::optional<int>(-1)) {
+        ASSERT_EQ(hi_sign, -1) << "seed " << seed << " mode " << mode;
+      }
+      if (s == std::optional<int>(1)) {
+        ASSERT_EQ(lo_sign, 1) << "seed " << seed << " mode " << mode;
+      }
       if (mode == FE_TONEAREST) {
         decided += s.has_value();
         far_decided += is_far && s.has_value();
@@ -750,10 +754,18 @@ TEST(Det3Filter, DecidesOnlyWhatHolds) {
       detail::make_det3_facet(a[0], a[1], a[2], cmax(a[0]), cmax(a[1]), cmax(a[2]), all_double || ok, g);
       const detail::Det3Diff d = detail::make_det3_diff(a[3], a[4], cmax(a[3]), cmax(a[4]));
       const int s = detail::det3_filter(g, all_double, all_double || ok, d);
-      if (s != 2) ASSERT_EQ(s, exact) << "seed " << seed << " mode " << mode;
-      if (s == 0) ASSERT_TRUE(same_point) << "seed " << seed << " mode " << mode;
-      if (exact == 0 && !same_point) ASSERT_EQ(s, 2) << "seed " << seed << " mode " << mode;
-      if (far) ASSERT_NE(s, 2) << "seed " << seed << " mode " << mode;
+      if (s != 2) {
+        ASSERT_EQ(s, exact) << "seed " << seed << " mode " << mode;
+      }
+      if (s == 0) {
+        ASSERT_TRUE(same_point) << "seed " << seed << " mode " << mode;
+      }
+      if (exact == 0 && !same_point) {
+        ASSERT_EQ(s, 2) << "seed " << seed << " mode " << mode;
+      }
+      if (far) {
+        ASSERT_NE(s, 2) << "seed " << seed << " mode " << mode;
+      }
       if (mode == FE_TONEAREST) decided += s != 2;
     });
     if (::testing::Test::HasFatalFailure()) return;
@@ -787,9 +799,15 @@ TEST(HalfSpaceSide, CompareFilterDecidesOnlyWhatHolds) {
     in_all_modes([&](int mode) {
       volatile double vx = dx, vy = dy;
       const auto s = compare_filter(vx, vy);
-      if (s) ASSERT_EQ(*s, exact) << "seed " << seed << " mode " << mode;
-      if (exact == 0) ASSERT_FALSE(s.has_value()) << "seed " << seed;
-      if (far) ASSERT_TRUE(s.has_value()) << "seed " << seed << " mode " << mode;
+      if (s) {
+        ASSERT_EQ(*s, exact) << "seed " << seed << " mode " << mode;
+      }
+      if (exact == 0) {
+        ASSERT_FALSE(s.has_value()) << "seed " << seed;
+      }
+      if (far) {
+        ASSERT_TRUE(s.has_value()) << "seed " << seed << " mode " << mode;
+      }
       if (mode == FE_TONEAREST) decided += s.has_value();
     });
     if (::testing::Test::HasFatalFailure()) return;
@@ -867,7 +885,9 @@ TEST(LineBox, MissesOnlyWhatHolds) {
       if (claimed) {
         ASSERT_TRUE(exact) << "seed " << seed << " mode " << mode;
       }
-      if (qkind != 0) ASSERT_FALSE(claimed) << "seed " << seed;  // the line meets the box
+      if (qkind != 0) {
+        ASSERT_FALSE(claimed) << "seed " << seed;  // the line meets the box
+      }
       if (mode == FE_TONEAREST && exact) {
         ++far;
         far_decided += claimed;

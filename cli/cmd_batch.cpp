@@ -137,8 +137,8 @@ Outcome compute(const Pair& p) {
     // Any kind of operand (<minksum/sum.hpp>): convex polytopes, points,
     // segments, polygons, closed solids; the pairs already run in parallel.
     std::vector<Operand> operands;
-    operands.push_back(Operand::load(p.a, {p.hull, std::nullopt}));
-    operands.push_back(Operand::load(p.b, {p.hull, std::nullopt}));
+    operands.push_back(Operand::load(p.a, {p.hull, std::nullopt, {}}));
+    operands.push_back(Operand::load(p.b, {p.hull, std::nullopt, {}}));
     SumRequest request;
     request.method = p.method;
     request.threads = 1;

@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "common.hpp"
+#include "memory.hpp"
 #include "text.hpp"
 
 namespace minksum::cli {
@@ -32,9 +33,10 @@ SolidOperand load_solid_operand(const std::string& spec, bool hull, LoadPhases* 
   const std::string name = spec == "-" ? "<stdin>" : spec;
   LoadPhases load;
   auto loaded = [&] {
-    if (spec != "-") return Operand::load(spec, {false, format}, &load);
+    const OperandOptions options{false, format, [] { allow_thread_arenas(); }};
+    if (spec != "-") return Operand::load(spec, options, &load);
     std::istringstream in(input);
-    return Operand::load(in, *format, name, false, &load);
+    return Operand::load(in, *format, name, options, &load);
   }();
   if (loaded.set()) {  // not a solid: load_operand's refusal
     if (spec != "-") {

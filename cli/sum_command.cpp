@@ -140,10 +140,14 @@ void print_text(std::ostream& report, const SumReport& r, const std::vector<std:
 }  // namespace
 
 Operand load_command_operand(const std::string& spec, bool hull, std::optional<Format> format, LoadPhases* phases) {
-  if (spec != "-") return Operand::load(spec, {hull, format}, phases);
+  // A solid's validation and sum run on worker threads that allocate
+  // constantly: each gets a malloc arena of its own, set up before the
+  // first of them runs (memory.hpp).
+  const OperandOptions options{hull, format, [] { allow_thread_arenas(); }};
+  if (spec != "-") return Operand::load(spec, options, phases);
   if (!format) throw UsageError("reading a mesh from standard input ('-') needs --format " + format_choices());
   claim_stdin("an operand");
-  return Operand::load(std::cin, *format, "<stdin>", hull, phases);
+  return Operand::load(std::cin, *format, "<stdin>", options, phases);
 }
 
 std::string sum_report_json(const SumReport& r, const std::vector<std::string>& names, const LoadPhases& load,

@@ -39,9 +39,10 @@ Solid validate_operand_solid(const Mesh& mesh, const std::string& name) {
 }
 
 // What load_any_operand read, as an Operand (a mesh validated as a solid).
-Operand from_any(AnyOperand any, const std::string& name, LoadPhases& phases) {
+Operand from_any(AnyOperand any, const std::string& name, LoadPhases& phases, const OperandOptions& options) {
   if (any.polytope) return Operand(std::move(*any.polytope), name);
   if (any.flat) return Operand(std::move(*any.flat), name);
+  if (options.before_solid) options.before_solid();
   const auto t0 = Clock::now();
   Solid s = validate_operand_solid(any.mesh, name);
   phases.validate += since(t0);
@@ -73,16 +74,17 @@ Operand Operand::load(const std::string& spec, const OperandOptions& options, Lo
   LoadPhases load;
   std::optional<Operand> o;
   if (options.hull) o.emplace(hinted([&] { return load_convex_set(spec, true, &load, options.format); }), spec);
-  else o.emplace(from_any(load_any_operand(spec, &load, options.format), spec, load));
+  else o.emplace(from_any(load_any_operand(spec, &load, options.format), spec, load, options));
   if (phases) *phases = load;
   return std::move(*o);
 }
 
-Operand Operand::load(std::istream& in, Format format, const std::string& name, bool hull, LoadPhases* phases) {
+Operand Operand::load(std::istream& in, Format format, const std::string& name, const OperandOptions& options,
+                      LoadPhases* phases) {
   LoadPhases load;
   std::optional<Operand> o;
-  if (hull) o.emplace(hinted([&] { return load_convex_set(in, format, name, true, &load); }), name);
-  else o.emplace(from_any(load_any_operand(in, format, name, &load), name, load));
+  if (options.hull) o.emplace(hinted([&] { return load_convex_set(in, format, name, true, &load); }), name);
+  else o.emplace(from_any(load_any_operand(in, format, name, &load), name, load, options));
   if (phases) *phases = load;
   return std::move(*o);
 }

@@ -29,6 +29,7 @@
 #include <minksum/sweep.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -44,8 +45,13 @@ struct OperandOptions {
   // span) instead of requiring a valid mesh: point clouds, and closed
   // surfaces that are not exactly convex.
   bool hull = false;
-  // The format of a file whose name has no known extension (and of a stream).
+  // The format of a file whose name has no known extension.
   std::optional<Format> format;
+  // Called once the mesh is known not to be convex, just before it is
+  // validated as a solid (validation runs on worker threads): the command
+  // line gives each worker thread its own malloc arena there, which must
+  // happen before any worker thread allocates.
+  std::function<void()> before_solid;
 };
 
 // One operand of a sum, with the name that identifies it in messages and
@@ -72,8 +78,9 @@ class Operand {
   // receives the seconds spent reading and validating (a solid's validation
   // included).  Errors as load_polytope's.
   static Operand load(const std::string& spec, const OperandOptions& options = {}, LoadPhases* phases = nullptr);
-  // The same for a mesh read whole from a stream in `format`; `name` names it.
-  static Operand load(std::istream& in, Format format, const std::string& name, bool hull = false,
+  // The same for a mesh read whole from a stream in `format`; `name` names it
+  // (options.format is not used).
+  static Operand load(std::istream& in, Format format, const std::string& name, const OperandOptions& options = {},
                       LoadPhases* phases = nullptr);
 
   const std::string& name() const { return name_; }

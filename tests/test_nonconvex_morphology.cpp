@@ -164,6 +164,31 @@ TEST(Erosion, ConvexAIsTheIntersectionOfTheMovedHalfSpaces) {
   EXPECT_FALSE(nonconvex_detail::convex_erosion(catalog_polytope("cube"), catalog_polytope("cube")));
 }
 
+// The opening of a convex A: its erosion is convex (the moved half-spaces),
+// and the opening is that polytope ⊕ B, whose facets are the boundary: the
+// same solid as the convex sum of the direct erosion, and as the union of
+// that one polytope (the non-convex engine's sum of two convex solids).
+TEST(Erosion, OpeningOfAConvexAIsTheConvexSumOfItsErosion) {
+  for (const auto& [a, b] : std::vector<std::pair<std::string, std::string>>{
+           {"sphere:2", "cube@scale:1/9@rot:4"},
+           {"box:4:6:8", "cube@rot:3@scale:1/2"},
+           {"cube", "sphere:1@scale:1/3"},
+           {"dodecahedron", "tetra@scale:1/5@translate:1/3,1/7,0"}}) {
+    SCOPED_TRACE(a + " opened by " + b);
+    const Solid sa = solid(a), sb = solid(b);
+    const NonconvexSum o = opening(sa, sb);
+    const std::optional<ConvexPolytope> e = nonconvex_detail::convex_erosion(*sa.convex, *sb.convex);
+    ASSERT_TRUE(e);
+    const ConvexPolytope want = minkowski_sum(*e, *sb.convex).polytope;
+    expect_closed_oriented(o);
+    expect_same(o.mesh, want.to_mesh());
+    EXPECT_EQ(o.volume, want.volume());
+    EXPECT_EQ(o.shells, 1u);
+    EXPECT_EQ(o.non_manifold_edges, 0u);
+    expect_same(o.mesh, minkowski_sum_nonconvex(solid_of(*e), sb).mesh);
+  }
+}
+
 TEST(Erosion, SumThenErosionGivesBackTheSummand) {
   const ConvexPolytope p = catalog_polytope("octahedron@rot:2"), b = catalog_polytope("dodecahedron@scale:1/3");
   const ConvexPolytope s = minkowski_sum(p, b).polytope;

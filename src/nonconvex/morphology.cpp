@@ -13,11 +13,13 @@
 // For a convex A the erosion is also the intersection of A's facet
 // half-spaces moved by B's support (convex_erosion.cpp), which the tests
 // compare with the sweep; the sweep is faster, so erode sweeps every A.
+#include <minksum/minkowski.hpp>
 #include <minksum/nonconvex.hpp>
 
 #include "nonconvex/morphology.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <string>
 
@@ -39,15 +41,10 @@ const ConvexPolytope& convex_operand(const Solid& b, const char* operation) {
 // A boundary that a step computed (a NonconvexSum's mesh, exact, possibly
 // touching itself along edges or at points) as a Solid to sweep: its
 // triangles (reversed for the complement), cut apart where it touches
-// itself, so that each part's cones are read off its own faces.  `convex`:
-// the boundary is known to bound a convex polytope (a step on convex
-// operands), which then takes the convex path.
-Solid solid_of_boundary(const NonconvexSum& r, bool complement, bool convex) {
+// itself, so that each part's cones are read off its own faces.  (A step
+// on a convex A gives a convex polytope instead: convex_step.)
+Solid solid_of_boundary(const NonconvexSum& r, bool complement) {
   Solid s;
-  if (convex && !complement) {
-    s = solid_of(ConvexPolytope::from_mesh(r.mesh, r.operation));
-    return s;
-  }
   Mesh tri = triangulate(r.mesh, r.operation);
   if (complement) reverse_faces(tri);
   s.triangles = nonconvex_detail::separate_contacts(tri);
@@ -106,6 +103,33 @@ SumOptions first_step(const SumOptions& options) {
   return o;
 }
 
+// The sum of two convex polytopes as the non-convex engine reports a sum of
+// two convex solids (the decomposition's one pair), its boundary the
+// polytope's facets: the union of one convex polytope is that polytope, its
+// maximal planar faces its facets, one shell.
+NonconvexSum convex_step(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options,
+                         Method method) {
+  using Clock = std::chrono::steady_clock;
+  NonconvexSum out;
+  out.method = "decomposition";
+  out.pair_method = method;
+  out.pieces_a = out.pieces_b = out.pairs = 1;
+  auto t0 = Clock::now();
+  options.report("pairs", 0.0);
+  const ConvexPolytope p = minkowski_sum(a, b, method).polytope;
+  options.report("pairs", 1.0);
+  out.pair_vertices = p.num_vertices();
+  out.pair_facets = out.candidate_facets = p.num_facets();
+  out.seconds_pairs = std::chrono::duration<double>(Clock::now() - t0).count();
+  t0 = Clock::now();
+  options.report("boundary", 0.0);
+  out.mesh = p.to_mesh();
+  out.shells = 1;
+  out.seconds_boundary = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (options.volume) out.volume = p.volume();
+  return out;
+}
+
 NonconvexSum then(NonconvexSum first, NonconvexSum second, const char* operation) {
   add_work(second, first);
   second.operation = operation;
@@ -128,15 +152,21 @@ NonconvexSum opening(const Solid& a, const Solid& b, const SumOptions& options, 
     return e;
   }
   // For convex A the erosion is convex, and its sum with B is the convex path's.
-  const Solid inner = solid_of_boundary(e, false, bool(a.convex));
+  if (a.convex) {
+    NonconvexSum s = convex_step(ConvexPolytope::from_mesh(e.mesh, e.operation), pb, options, method);
+    return then(std::move(e), std::move(s), "opening");
+  }
+  const Solid inner = solid_of_boundary(e, false);
   NonconvexSum s = minkowski_sum_nonconvex(inner, solid_of(pb), options, threads, method);
   return then(std::move(e), std::move(s), "opening");
 }
 
 NonconvexSum closing(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads, Method method) {
   const ConvexPolytope& pb = convex_operand(b, "closing");
-  NonconvexSum s = minkowski_sum_nonconvex(a, b, first_step(options), threads, method);
-  const Solid outer = solid_of_boundary(s, true, false);
+  // For convex A the sum is convex: the convex path's, as in the opening.
+  NonconvexSum s = a.convex ? convex_step(*a.convex, pb, first_step(options), method)
+                            : minkowski_sum_nonconvex(a, b, first_step(options), threads, method);
+  const Solid outer = solid_of_boundary(s, true);
   NonconvexSum e = erode_complement(outer, pb, options, threads, method);
   return then(std::move(s), std::move(e), "closing");
 }

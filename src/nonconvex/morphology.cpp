@@ -42,7 +42,9 @@ const ConvexPolytope& convex_operand(const Solid& b, const char* operation) {
 // touching itself along edges or at points) as a Solid to sweep: its
 // triangles (reversed for the complement), cut apart where it touches
 // itself, so that each part's cones are read off its own faces.  (A step
-// on a convex A gives a convex polytope instead: convex_step.)
+// on a convex A gives a convex polytope instead: convex_step.)  Its volume
+// is the step's, 0 when not computed (first_step): the sweep does not
+// read a Solid's volume.
 Solid solid_of_boundary(const NonconvexSum& r, bool complement) {
   Solid s;
   Mesh tri = triangulate(r.mesh, r.operation);
@@ -95,11 +97,13 @@ void add_work(NonconvexSum& total, const NonconvexSum& step) {
   total.seconds_boundary += step.seconds_boundary;
 }
 
-// The options of a first step: its volume is the next operand's (a Solid's
-// volume is always set), whatever the caller asked of the last step.
+// The options of a first step: no exact volume, whatever the caller asked
+// of the last step.  The second step sweeps the first one's boundary and
+// never reads its volume (solid_of_boundary); the result's volume is the
+// second step's.
 SumOptions first_step(const SumOptions& options) {
   SumOptions o = options;
-  o.volume = true;
+  o.volume = false;
   return o;
 }
 

@@ -45,7 +45,9 @@ struct Solid {
   Mesh triangles;
   // For each triangle, the face of the input mesh it comes from.
   std::vector<Index> source_face;
-  // Exact enclosed volume (> 0).
+  // Exact enclosed volume (> 0; its opposite for a complement).  The sums
+  // do not read it: the first step of an opening or a closing, swept by the
+  // second, is a Solid of volume 0 (not computed).
   Rational volume;
   // The input faces (after welding) and the number of vertices used.
   std::size_t faces = 0, vertices = 0;

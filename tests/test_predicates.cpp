@@ -1180,3 +1180,47 @@ TEST(PredicateTiming, Report) {
 }
 
 }  // namespace
+
+// Plane::side against the rational value of a·x + b·y + c·z − d: random
+// integer planes and points whose three coordinates have different, large
+// denominators, points exactly on the plane (made from it), and signs of
+// every kind.
+TEST(PlaneSide, IsTheSignOfTheRationalValue) {
+  std::mt19937_64 rng(40);
+  auto big = [&](int limbs) {
+    Integer x = 0;
+    for (int i = 0; i < limbs; ++i) x = x * Integer("18446744073709551616") + Integer(std::to_string(rng()));
+    return (rng() & 1) ? Integer(-x) : x;
+  };
+  auto positive = [&](int limbs) {
+    Integer x = big(limbs);
+    x = abs(x) + 1;
+    return x;
+  };
+  int signs[3] = {0, 0, 0};
+  for (int round = 0; round < 400; ++round) {
+    const int limbs = 1 + round % 5;
+    Plane h;
+    h.a = big(limbs);
+    h.b = big(limbs);
+    h.c = big(1 + (round + 2) % 5);
+    h.d = big(limbs + 1);
+    if (sgn(h.c) == 0) h.c = 1;
+    Rational x(big(limbs), positive(limbs)), y(big(limbs + 1), positive(limbs + 2)), z;
+    x.canonicalize();
+    y.canonicalize();
+    if (round % 3 == 0) {
+      z = (Rational(h.d) - Rational(h.a) * x - Rational(h.b) * y) / Rational(h.c);  // on the plane
+    } else {
+      z = Rational(big(limbs), positive(1 + round % 4));
+      z.canonicalize();
+    }
+    const Point3 p(x, y, z);
+    const int want = sgn(Rational(h.a) * x + Rational(h.b) * y + Rational(h.c) * z - Rational(h.d));
+    ASSERT_EQ(h.side(p), want) << "round " << round;
+    ++signs[want + 1];
+  }
+  EXPECT_GT(signs[0], 0);
+  EXPECT_GT(signs[1], 0);
+  EXPECT_GT(signs[2], 0);
+}

@@ -9,23 +9,24 @@
 namespace minksum {
 
 // The sign of a·x + b·y + c·z − d times the positive dx·dy·dz (x = nx/dx,
-// …): a·nx·dy·dz + b·ny·dx·dz + c·nz·dx·dy − d·dx·dy·dz, integer products
-// accumulated in place, no rational normalisation.
+// …), no rational normalisation, grouped so that the products stay small:
+//   (a·x + b·y + c·z − d)·dx·dy·dz
+//     = (a·nx·dy + b·ny·dx)·dz + (c·nz − d·dz)·(dx·dy),
+// nine integer products (expanding every term takes eleven, three of them
+// by dx·dy·dz-sized factors).
 int Plane::side(const Point3& p) const {
   mpz_srcptr nx = p.x.get_num_mpz_t(), ny = p.y.get_num_mpz_t(), nz = p.z.get_num_mpz_t();
   mpz_srcptr dx = p.x.get_den_mpz_t(), dy = p.y.get_den_mpz_t(), dz = p.z.get_den_mpz_t();
   Integer acc, t, u;
-  mpz_mul(t.get_mpz_t(), dy, dz);
-  mpz_mul(acc.get_mpz_t(), a.get_mpz_t(), nx);
-  acc *= t;  // a·nx·dy·dz
-  mpz_mul(t.get_mpz_t(), dx, dz);
-  mpz_mul(u.get_mpz_t(), b.get_mpz_t(), ny);
-  mpz_addmul(acc.get_mpz_t(), u.get_mpz_t(), t.get_mpz_t());
-  mpz_mul(t.get_mpz_t(), dx, dy);
-  mpz_mul(u.get_mpz_t(), c.get_mpz_t(), nz);
-  mpz_addmul(acc.get_mpz_t(), u.get_mpz_t(), t.get_mpz_t());
-  mpz_mul(u.get_mpz_t(), d.get_mpz_t(), t.get_mpz_t());
-  mpz_submul(acc.get_mpz_t(), u.get_mpz_t(), dz);
+  mpz_mul(t.get_mpz_t(), a.get_mpz_t(), nx);
+  mpz_mul(acc.get_mpz_t(), t.get_mpz_t(), dy);  // a·nx·dy
+  mpz_mul(t.get_mpz_t(), b.get_mpz_t(), ny);
+  mpz_addmul(acc.get_mpz_t(), t.get_mpz_t(), dx);  // + b·ny·dx
+  mpz_mul(acc.get_mpz_t(), acc.get_mpz_t(), dz);  // (a·nx·dy + b·ny·dx)·dz
+  mpz_mul(t.get_mpz_t(), c.get_mpz_t(), nz);
+  mpz_submul(t.get_mpz_t(), d.get_mpz_t(), dz);  // c·nz − d·dz
+  mpz_mul(u.get_mpz_t(), dx, dy);
+  mpz_addmul(acc.get_mpz_t(), t.get_mpz_t(), u.get_mpz_t());
   return sgn(acc);
 }
 

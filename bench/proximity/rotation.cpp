@@ -156,8 +156,9 @@ int rotation_section(int argc, char** argv) {
                  {"near-touching in", 1 - 1e-9, false, true},
                  {"penetrating", 0.5, false, true}};
   const std::size_t orientations = 16;
-  // Touching poses take the exact path (M built per pose): far fewer of them.
-  const std::size_t touching_poses = std::min<std::size_t>(poses, 64);
+  // Touching poses (exact rational translations) are decided in rational
+  // arithmetic by the feature plane: fewer of them.
+  const std::size_t touching_poses = std::min<std::size_t>(poses, 1000);
 
   std::printf("## Collision, distance and depth under rigid motion: exact minksum (no M per pose) vs FCL\n\n");
   std::printf("bench_proximity --rotation --poses %zu%s%s: per pair, %zu orientation pairs (random rotations of\n"

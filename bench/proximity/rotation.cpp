@@ -167,7 +167,7 @@ int rotation_section(int argc, char** argv) {
               "configuration (%zu touching).  Times in µs per query over different poses; 'ours' warm-starts\n"
               "each query from the previous pose's witnesses.  Wrong: status differs from the exact one\n"
               "(FCL: intersecting or not, touching counted as intersecting).\n\n",
-              poses, meshes.empty() ? "" : " --meshes ", meshes.c_str(), orientations, poses, touching_poses);
+              poses, meshes.empty() ? "" : " --meshes ", meshes.empty() ? "" : "DIR", orientations, poses, touching_poses);
 #ifdef MINKSUM_HAVE_FCL
   std::printf("| pair | vertices | configuration | ours µs | FCL µs | FCL/ours | ours exact-path poses | ours wrong | FCL wrong |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|---:|\n");

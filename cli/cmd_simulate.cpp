@@ -33,9 +33,9 @@ whose height is computed exactly so that the robot grazes the obstacle
 through the obstacle.  The robot turns about the z axis (exact rational
 rotation) every other frame.  Each frame is answered on the placed bodies
 (the rigid-motion queries of docs/proximity.md): no M = P ⊕ (−Q) is built
-for a turn, and M is built, for one pose, only where the search certifies
-no answer without it (touching poses, and poses it leaves undecided:
-certificate "exact").  Each frame
+for a turn (touching frames are proved by the plane of the touching
+features, certificate "feature_plane"), and M is built, for one pose, only
+where no certificate settles the answer without it (certificate "exact").  Each frame
 prints its status (separate / touching / penetrating), the exact distance or
 penetration depth, the time of its query and the certificate that proved
 it; a last line sums up (time per query, answers certified without M).
@@ -296,8 +296,7 @@ int run_simulate(const std::vector<std::string>& argv) {
   // Every frame is answered on the placed bodies (rigid_proximity.hpp): the
   // robot under its frame's rotation and translation, the obstacle fixed.
   // No M is built for a turn; the library builds M for one pose only when
-  // it cannot certify the answer otherwise (certificate "exact": a touching
-  // pose).  The frames form one coherent trajectory: each query starts from
+  // it cannot certify the answer otherwise (certificate "exact").  The frames form one coherent trajectory: each query starts from
   // the previous one's witnesses (RigidWarmStart).
   RigidWarmStart warm;
   long frames_on_m = 0;

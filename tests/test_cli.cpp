@@ -568,10 +568,14 @@ TEST_F(Cli, QueryUnderRotationWithoutM) {
   EXPECT_NE(dir.out.find(R"("certificate": "exit_facet")"), std::string::npos) << dir.out;
   for (const char* key : {"t", "direction"})
     EXPECT_EQ(field(dir.out, key), field(dir_m.out, key)) << key << "\n" << dir.out << "\n" << dir_m.out;
-  // Touching corner to corner: decided on M built exactly for that pose.
+  // Touching corner to corner: proved by the plane of the touching features,
+  // without M; the common point is the corner (1, 1, 1).
   const CmdResult touch = run("query collide cube cube --rotate-q 1,0,0,0 --translate-q 2,2,2");
-  EXPECT_NE(touch.out.find("touching  [certificate: exact, M built exactly for this pose]"), std::string::npos)
-      << touch.out;
+  EXPECT_NE(touch.out.find("touching  [certificate: feature_plane, without M]"), std::string::npos) << touch.out;
+  const CmdResult corner = run("query distance cube cube --rotate-q 1,0,0,0 --translate-q 2,2,2 --json");
+  EXPECT_NE(corner.out.find(R"("point_p_exact": ["1", "1", "1"], "point_q": [1, 1, 1], "point_q_exact": ["1", "1", "1"], "certificate": "feature_plane")"),
+            std::string::npos)
+      << corner.out;
   std::ofstream(path("poses.txt")) << "3,0,0 rq=1,2,3,4\n3,1/10,0\n1/2,0,0 rq=2,0,0,1\n";
   const CmdResult traj = run("query distance cube cube --trajectory " + path("poses.txt"));
   ASSERT_EQ(traj.status, 0) << traj.err;

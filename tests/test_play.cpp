@@ -28,6 +28,7 @@
 #include <cstdio>
 #include <memory>
 #include <random>
+#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -271,11 +272,10 @@ TEST(Play, AnswersEqualMinksumQueryForTheSamePoses) {
 }
 
 // A turned P touching Q exactly (cube on cube, turned by a quarter turn
-// about z, face to face): no certificate settles it without M, so M is
-// built for that pose alone (recomputed, certificate "exact"), and the
-// answer is the query's on M of the turned cube; the next pose, separate,
-// is certified without M again.
-TEST(Play, TurnedTouchingPoseBuildsMForThatPoseAlone) {
+// about z, face to face): the plane of the touching faces proves it without
+// M (certificate "feature_plane", not recomputed), its common point on both
+// faces; the next pose, separate, is certified by closest points.
+TEST(Play, TurnedTouchingPoseProvedByTheFeaturePlane) {
   Server s({"cube", "cube"});
   ASSERT_GT(s.port(), 0) << "first line: " << s.url();
   httplib::Client c("127.0.0.1", s.port());
@@ -284,11 +284,25 @@ TEST(Play, TurnedTouchingPoseBuildsMForThatPoseAlone) {
   ASSERT_EQ(r->status, 200) << r->body;
   EXPECT_EQ(json_field(r->body, "status"), "\"touching\"");
   EXPECT_EQ(json_field(r->body, "squared_distance"), "\"0\"");
-  EXPECT_EQ(json_field(r->body, "certificate"), "\"exact\"");
-  EXPECT_EQ(json_field(r->body, "recomputed"), "true");
+  EXPECT_EQ(json_field(r->body, "certificate"), "\"feature_plane\"");
+  EXPECT_EQ(json_field(r->body, "recomputed"), "false");
   EXPECT_EQ(json_field(json_field(r->body, "features"), "index"), "null");
-  const CmdRun d = run("query distance cube@rot:1,0,0,1 cube --translate-p 2,1/2,0 --json");
-  EXPECT_EQ(json_field(r->body, "point_p_exact"), json_field(d.out, "point_p_exact"));
+  // The common point lies on both faces: x = 1, y in [-1/2, 1], z in [-1, 1].
+  std::smatch m;
+  const std::string common = json_field(r->body, "point_p_exact");
+  ASSERT_TRUE(std::regex_search(common, m, std::regex(R"re(\["([^"]*)", "([^"]*)", "([^"]*)"\])re"))) << common;
+  // n/d as a numerator and a positive denominator (small integers here).
+  const auto frac = [](const std::string& t) {
+    const std::size_t slash = t.find('/');
+    return std::make_pair(std::stol(t.substr(0, slash)), slash == std::string::npos ? 1L : std::stol(t.substr(slash + 1)));
+  };
+  const auto [x, xd] = frac(m[1].str());
+  const auto [y, yd] = frac(m[2].str());
+  const auto [z, zd] = frac(m[3].str());
+  EXPECT_EQ(x, xd) << common;
+  EXPECT_TRUE(-yd <= 2 * y && y <= yd) << common;
+  EXPECT_TRUE(-zd <= z && z <= zd) << common;
+  EXPECT_EQ(json_field(r->body, "point_q_exact"), common);
   auto sep = post(c, R"({"translate_p": "5/2,1/2,0", "rotate_p": "1,0,0,1"})");
   ASSERT_TRUE(sep);
   EXPECT_EQ(json_field(sep->body, "status"), "\"separate\"");

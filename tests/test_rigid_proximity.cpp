@@ -338,6 +338,17 @@ TEST(RigidCollide, AgreesWithTheExactObstacleOnLargerPairs) {
 
 namespace {
 
+// Whether x lies in the polytope c placed by m: on the inner side of every
+// facet's placed plane (through three placed vertices of the facet).
+bool in_placed(const ConvexPolytope& c, const PlacedMap& m, const Point3& x) {
+  for (Index f = 0; f < c.num_facets(); ++f) {
+    const std::vector<Index> v = c.facet_vertices(f);
+    const Point3 a = m.apply(c.point(v[0])), b = m.apply(c.point(v[1])), e = m.apply(c.point(v[2]));
+    if (sgn(dot(cross(b - a, e - a), x - a)) > 0) return false;
+  }
+  return true;
+}
+
 // Q placed on top of P = cube ([-1, 1]^3, identity) by the rotation `rot`,
 // translated so that its lowest point along z, the vertex `low` of Q, goes
 // to (x, y, 1 + dz).
@@ -374,11 +385,12 @@ void expect_contact(const RigidBody& p, const RigidBody& q, const PlacedMap& rot
     const RigidCollision c = collide(p, RigidPose(), q, pq);
     EXPECT_EQ(c.status, want) << what << ", dz " << dz.get_str();
     // 2^-40 from contact is far above the rounding of the search: the
-    // answer is certified without the exact path (the separating plane of
-    // the nearest triangle of D, or a tetrahedron).
+    // answer is certified by the separating plane of the nearest triangle
+    // of D, or a tetrahedron; at contact, by the plane of the touching
+    // features (without M).
     const RigidCertificate proof = want == ContactStatus::separate      ? RigidCertificate::separating_plane
                                    : want == ContactStatus::penetrating ? RigidCertificate::simplex
-                                                                        : RigidCertificate::exact;
+                                                                        : RigidCertificate::feature_plane;
     EXPECT_EQ(c.certificate, proof) << what << ", dz " << dz.get_str();
     EXPECT_EQ(sat_status(p.polytope(), PlacedMap(), q.polytope(), pq.map()), want) << what;
   }
@@ -409,6 +421,53 @@ TEST(RigidCollide, ExactlyTouchingPoses) {
   // A dodecahedron on the cube: vertex or edge down.
   const RigidBody dodeca(catalog_polytope("dodecahedron"));
   expect_contact(cube, dodeca, generic, Rational(1, 7), Rational(0), false, none, "dodecahedron vertex-face");
+}
+
+// Exactly touching poses of randomly turned pairs, as the rotation
+// benchmark makes them: Q translated to the exit point s of a random ray
+// from M's interior point (M = R_P P ⊕ (−R_Q Q) of the turned bodies,
+// exact rationals).  Every one is touching, and the feature plane proves
+// it without M: collide (status), distance (0 and a common point of both
+// placed bodies), penetration_depth (0).
+TEST(RigidCollide, TouchingPosesOfRandomRotationsProvedByTheFeaturePlane) {
+  const std::uint64_t seed = 20261206;
+  Rng r(seed);
+  std::normal_distribution<double> nd(0, 1);
+  for (const auto& [a, b] : std::vector<std::pair<const char*, const char*>>{
+           {"cube", "dodecahedron"}, {"sphere:2", "random:50:1"}, {"octahedron", "cube"}}) {
+    const RigidBody pa(catalog_polytope(a)), pb(catalog_polytope(b));
+    for (int k = 0; k < 4; ++k) {
+      const std::array<double, 9> rp = random_matrix(r), rq = random_matrix(r);
+      const PlacedMap mp(rp, Vec3d{0, 0, 0}), mq(rq, Vec3d{0, 0, 0});
+      TranslationalObstacle ob(placed_linear(pa.polytope(), mp), placed_linear(pb.polytope(), mq));
+      const Point3 c = ob.interior_point();
+      for (int i = 0; i < 6; ++i) {
+        const Point3 u(nd(r.g), nd(r.g), nd(r.g));
+        const Point3 s = c + ob.directional_depth_point(c, -u).t * u;
+        const std::string what = std::string(a) + " / " + b + ", orientation " + std::to_string(k) + ", ray " +
+                                 std::to_string(i) + ", seed " + std::to_string(seed);
+        ASSERT_EQ(ob.collide_point(s).status, ContactStatus::touching) << what;
+        const RigidPose pp = RigidPose::matrix(rp, Vec3d{0, 0, 0}), pq = RigidPose::matrix(rq, s);
+        const RigidStats before = rigid_stats();
+        const RigidCollision col = collide(pa, pp, pb, pq);
+        EXPECT_EQ(col.status, ContactStatus::touching) << what;
+        EXPECT_EQ(col.certificate, RigidCertificate::feature_plane) << what;
+        const RigidDistance d = distance(pa, pp, pb, pq);
+        EXPECT_EQ(d.status, ContactStatus::touching) << what;
+        EXPECT_EQ(d.certificate, RigidCertificate::feature_plane) << what;
+        EXPECT_EQ(d.distance, 0) << what;
+        const RigidDistanceExact e = exact_values(pa, pp, pb, pq, d);
+        EXPECT_EQ(e.squared_distance, 0) << what;
+        EXPECT_EQ(e.point_p, e.point_q) << what;
+        EXPECT_TRUE(in_placed(pa.polytope(), pp.map(), e.point_p)) << what;
+        EXPECT_TRUE(in_placed(pb.polytope(), pq.map(), e.point_q)) << what;
+        const RigidDepth dep = penetration_depth(pa, pp, pb, pq);
+        EXPECT_EQ(dep.status, ContactStatus::touching) << what;
+        EXPECT_EQ(dep.depth, 0) << what;
+        EXPECT_EQ(rigid_stats().exact, before.exact) << what << ": M was built";
+      }
+    }
+  }
 }
 
 TEST(RigidCollide, EdgeCrossingEdge) {
@@ -516,6 +575,8 @@ void expect_distance_agrees(const RigidBody& a, const RigidPose& pa, const Rigid
   if (d.status != ContactStatus::separate) {
     // A common point: in both placed bodies (P' and Q' as half-spaces).
     EXPECT_EQ(got.point_p, got.point_q) << what;
+    EXPECT_TRUE(in_placed(a.polytope(), pa.map(), got.point_p)) << what;
+    EXPECT_TRUE(in_placed(b.polytope(), pb.map(), got.point_q)) << what;
   }
 }
 
@@ -595,6 +656,14 @@ TEST(RigidDistance, FaceOnFaceEdgeOnFaceAndVertexOnFaceAtAHair) {
       } else {
         EXPECT_EQ(e.squared_distance, 0) << what;
         EXPECT_EQ(d.status, sgn(dz) == 0 ? ContactStatus::touching : ContactStatus::penetrating) << what;
+      }
+      if (sgn(dz) == 0) {
+        // Touching, proved by the feature plane: its common point lies in
+        // both placed bodies (on P's top face, inside Q's placed hull).
+        EXPECT_EQ(d.certificate, RigidCertificate::feature_plane) << what;
+        EXPECT_EQ(e.point_p, e.point_q) << what;
+        EXPECT_EQ(e.point_p.z, 1) << what;
+        EXPECT_TRUE(abs(e.point_p.x) <= 1 && abs(e.point_p.y) <= 1) << what;
       }
     }
   }

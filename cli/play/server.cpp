@@ -524,7 +524,7 @@ class Session {
     const bool on_m =
         d.certificate == RigidCertificate::exact || (depth && depth->certificate == RigidCertificate::exact);
     // The features drawn: the faces of P and Q the certified plane touches
-    // (the depth's when the bodies overlap); none for an answer on M.
+    // (the depth's when the bodies overlap); none for an answer on M or by the feature plane.
     std::vector<Index> fp, fq;
     if (depth) {
       for (int j = 0; j < 3; ++j)

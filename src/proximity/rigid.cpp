@@ -9,7 +9,10 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <tuple>
+#include <unordered_map>
+#include <vector>
 
 namespace minksum {
 
@@ -261,6 +264,9 @@ void count(RigidCertificate c) {
     case RigidCertificate::exit_facet:
       ++g_stats.exit_facet;
       break;
+    case RigidCertificate::feature_plane:
+      ++g_stats.feature_plane;
+      break;
   }
 }
 
@@ -285,6 +291,240 @@ bool blow_up_triangle(const Query& qu, std::array<SimplexVertex, 4>& s) {
   }
   return false;
 }
+
+// ---------------------------------------------------------------------------
+// The feature plane (docs/proximity.md, "Rigid motion"): near contact the
+// double search ends on a simplex spanning (nearly) a facet of D = P' − Q',
+// and a facet of D is a facet of P' with a vertex of Q', a vertex of P'
+// with a facet of Q', or an edge of each.  Those features' plane, built
+// exactly from the placed points (rationals), decides the pose without M:
+// with N oriented from P' towards Q', h_P = max of N·x over P' and l_Q =
+// min of N·y over Q' (exact climbs on the vertex graphs):
+//   * h_P < l_Q: the plane N·x = h_P separates strictly: separate;
+//   * h_P = l_Q: P' lies in N·x ≤ h, Q' in N·x ≥ h, so P' ∩ Q' = F_P ∩ F_Q
+//     for their faces F_P = P' ∩ plane and F_Q = Q' ∩ plane (each a vertex,
+//     an edge or a facet, the connected level set of the climb's vertex):
+//     touching when F_P and F_Q meet, separate otherwise;
+//   * h_P > l_Q: the plane proves nothing (M decides, as before).
+// Two convex polygons in a plane (points and segments included) meet iff a
+// vertex of one lies in the other or an edge of one crosses an edge of the
+// other properly; the edges of a face are the edges of the vertex graph
+// between its vertices (a segment between two vertices of a face of a
+// convex polytope that is an edge of the polytope is an edge of the face).
+struct FeatureContact {
+  ContactStatus status = ContactStatus::separate;
+  Point3 normal;  // N
+  Index p = kNoIndex, q = kNoIndex;  // the climbs' vertices
+  Point3 common;  // touching: a point of P' ∩ Q'
+};
+
+class FeaturePlane {
+ public:
+  explicit FeaturePlane(const Query& qu) : qu_(qu) {}
+
+  std::optional<FeatureContact> decide(const std::array<SimplexVertex, 4>& s, int n, Index ip, Index iq) {
+    std::vector<Index> sp, sq;
+    const auto add = [](std::vector<Index>& v, Index i) {
+      if (std::find(v.begin(), v.end(), i) == v.end()) v.push_back(i);
+    };
+    for (int k = 0; k < n; ++k) add(sp, s[k].p), add(sq, s[k].q);
+    add(sp, ip), add(sq, iq);
+    const V3 cp = centre(qu_.P), cq = centre(qu_.Q);
+    // Orient N so that `inside` (a centre, doubles: only a choice, the
+    // climbs decide) lies on the side of sign `side` of the plane through a.
+    const auto oriented = [](Point3 nrm, const V3& a, const V3& inside, double side) {
+      const Vec3d d = to_double(nrm);
+      if (side * (d.x * (inside.x - a.x) + d.y * (inside.y - a.y) + d.z * (inside.z - a.z)) < 0) nrm = -nrm;
+      return nrm;
+    };
+    std::vector<Point3> candidates;
+    // A facet of P' through three of its points in the simplex (P' below),
+    // a facet of Q' (Q' above), the edges of each.
+    if (sp.size() >= 3) {
+      const Point3 nrm = cross(pp(sp[1]) - pp(sp[0]), pp(sp[2]) - pp(sp[0]));
+      if (!is_zero(nrm)) candidates.push_back(oriented(nrm, qu_.P.point(sp[0]), cp, -1));
+    }
+    if (sq.size() >= 3) {
+      const Point3 nrm = cross(pq(sq[1]) - pq(sq[0]), pq(sq[2]) - pq(sq[0]));
+      if (!is_zero(nrm)) candidates.push_back(oriented(nrm, qu_.Q.point(sq[0]), cq, 1));
+    }
+    for (std::size_t i = 0; i < sp.size(); ++i)
+      for (std::size_t j = i + 1; j < sp.size(); ++j)
+        for (std::size_t k = 0; k < sq.size(); ++k)
+          for (std::size_t l = k + 1; l < sq.size(); ++l) {
+            const Point3 nrm = cross(pp(sp[j]) - pp(sp[i]), pq(sq[l]) - pq(sq[k]));
+            if (!is_zero(nrm)) candidates.push_back(oriented(nrm, cp, cq, 1));
+          }
+    for (const Point3& nrm : candidates)
+      if (auto c = try_plane(nrm, sp[0], sq[0])) return c;
+    // A smaller simplex (the search stopped on an edge or a vertex of D):
+    // the facets around its vertices, then the edges at its first pair.
+    // Neighbours run counter-clockwise seen from outside, so two
+    // consecutive ones and the vertex span a facet, the cross product of
+    // their edges outward (a placement keeps orientation).
+    candidates.clear();
+    for (Index v : sp)
+      for (Index k = qu_.dp.first[v], e = qu_.dp.first[v + 1]; k < e; ++k) {
+        const Index w = qu_.dp.nbr[k], x = qu_.dp.nbr[k + 1 < e ? k + 1 : qu_.dp.first[v]];
+        const Point3 nrm = cross(pp(w) - pp(v), pp(x) - pp(v));
+        if (!is_zero(nrm)) candidates.push_back(nrm);
+      }
+    for (Index v : sq)
+      for (Index k = qu_.dq.first[v], e = qu_.dq.first[v + 1]; k < e; ++k) {
+        const Index w = qu_.dq.nbr[k], x = qu_.dq.nbr[k + 1 < e ? k + 1 : qu_.dq.first[v]];
+        const Point3 nrm = cross(pq(x) - pq(v), pq(w) - pq(v));  // Q's inward normal
+        if (!is_zero(nrm)) candidates.push_back(nrm);
+      }
+    for (Index k = qu_.dp.first[sp[0]]; k < qu_.dp.first[sp[0] + 1]; ++k)
+      for (Index l = qu_.dq.first[sq[0]]; l < qu_.dq.first[sq[0] + 1]; ++l) {
+        const Point3 nrm = cross(pp(qu_.dp.nbr[k]) - pp(sp[0]), pq(qu_.dq.nbr[l]) - pq(sq[0]));
+        if (!is_zero(nrm)) candidates.push_back(oriented(nrm, cp, cq, 1));
+      }
+    for (const Point3& nrm : candidates)
+      if (auto c = try_plane(nrm, sp[0], sq[0])) return c;
+    return std::nullopt;
+  }
+
+ private:
+  const Query& qu_;
+  std::unordered_map<Index, Point3> placed_p_, placed_q_;
+
+  const Point3& pp(Index v) {
+    auto it = placed_p_.find(v);
+    if (it == placed_p_.end()) it = placed_p_.emplace(v, qu_.P.map.apply(qu_.dp.exact[v])).first;
+    return it->second;
+  }
+  const Point3& pq(Index v) {
+    auto it = placed_q_.find(v);
+    if (it == placed_q_.end()) it = placed_q_.emplace(v, qu_.Q.map.apply(qu_.dq.exact[v])).first;
+    return it->second;
+  }
+  static V3 centre(const Placed& b) {
+    const Vec3d& c = b.d.centroid;
+    const auto& a = b.a;
+    return V3{a[0] * c.x + a[1] * c.y + a[2] * c.z + b.t.x, a[3] * c.x + a[4] * c.y + a[5] * c.z + b.t.y,
+              a[6] * c.x + a[7] * c.y + a[8] * c.z + b.t.z};
+  }
+
+  // A vertex maximising sign·N·x over a placed body (exact: a vertex no
+  // neighbour of which is further is a maximum), from v; its value.
+  template <class Pt>
+  Index climb(const RigidBody::Data& d, Pt pt, const Point3& nrm, int sign, Index v, Rational& best) {
+    best = dot(nrm, pt(v));
+    if (sign < 0) best = -best;
+    for (;;) {
+      Index next = v;
+      for (Index k = d.first[v]; k < d.first[v + 1]; ++k) {
+        Rational x = dot(nrm, pt(d.nbr[k]));
+        if (sign < 0) x = -x;
+        if (x > best) {
+          best = std::move(x), next = d.nbr[k];
+          break;
+        }
+      }
+      if (next == v) return v;
+      v = next;
+      ++g_stats.climb_steps;
+    }
+  }
+  // The face of a placed body in the plane N·x = h through v: its vertices
+  // (the level set of v, connected in the vertex graph) and its edges.
+  template <class Pt>
+  void face(const RigidBody::Data& d, Pt pt, const Point3& nrm, const Rational& h, Index v,
+            std::vector<Index>& verts, std::vector<std::pair<Index, Index>>& edges) {
+    verts.assign(1, v);
+    for (std::size_t i = 0; i < verts.size(); ++i) {
+      const Index u = verts[i];
+      for (Index k = d.first[u]; k < d.first[u + 1]; ++k) {
+        const Index w = d.nbr[k];
+        if (dot(nrm, pt(w)) != h) continue;
+        if (u < w) edges.emplace_back(u, w);
+        if (std::find(verts.begin(), verts.end(), w) == verts.end()) verts.push_back(w);
+      }
+    }
+  }
+  static int orient(const Point3& nrm, const Point3& a, const Point3& b, const Point3& c) {
+    return sgn(dot(nrm, cross(b - a, c - a)));
+  }
+  // Whether y (in the plane) lies in the convex face of points `f` with
+  // edges `e`: equal to its point, on its segment, or on the inner side of
+  // every edge that has the face's points on one side (a boundary edge).
+  static bool in_face(const Point3& nrm, const Point3& y, const std::vector<Point3>& f,
+                      const std::vector<std::pair<std::size_t, std::size_t>>& e) {
+    if (f.size() == 1) return y == f[0];
+    if (f.size() == 2) {
+      const Point3 ab = f[1] - f[0], ay = y - f[0];
+      if (!is_zero(cross(ab, ay))) return false;
+      const Rational t = dot(ay, ab);
+      return t >= 0 && t <= dot(ab, ab);
+    }
+    for (const auto& [i, j] : e) {
+      int side = 0;
+      bool boundary = true;
+      for (std::size_t k = 0; k < f.size() && boundary; ++k) {
+        const int o = orient(nrm, f[i], f[j], f[k]);
+        if (o == 0) continue;
+        if (side == 0) side = o;
+        else if (o != side) boundary = false;
+      }
+      if (!boundary || side == 0) continue;
+      if (orient(nrm, f[i], f[j], y) == -side) return false;
+    }
+    return true;
+  }
+
+  std::optional<FeatureContact> try_plane(const Point3& nrm, Index from_p, Index from_q) {
+    FeatureContact c;
+    Rational hp, lq;
+    c.p = climb(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, nrm, 1, from_p, hp);
+    c.q = climb(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, nrm, -1, from_q, lq);
+    lq = -lq;
+    c.normal = nrm;
+    if (hp < lq) {
+      c.status = ContactStatus::separate;
+      return c;
+    }
+    if (hp > lq) return std::nullopt;
+    // h_P = l_Q: the faces in the plane.
+    std::vector<Index> vp, vq;
+    std::vector<std::pair<Index, Index>> ep, eq;
+    face(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, nrm, hp, c.p, vp, ep);
+    face(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, nrm, hp, c.q, vq, eq);
+    std::vector<Point3> fp, fq;
+    for (Index v : vp) fp.push_back(pp(v));
+    for (Index v : vq) fq.push_back(pq(v));
+    const auto local = [](const std::vector<Index>& verts, const std::vector<std::pair<Index, Index>>& edges) {
+      std::vector<std::pair<std::size_t, std::size_t>> out;
+      for (const auto& [u, w] : edges)
+        out.emplace_back(std::find(verts.begin(), verts.end(), u) - verts.begin(),
+                         std::find(verts.begin(), verts.end(), w) - verts.begin());
+      return out;
+    };
+    const auto lp = local(vp, ep), lq2 = local(vq, eq);
+    c.status = ContactStatus::touching;
+    for (const Point3& y : fq)
+      if (in_face(nrm, y, fp, lp)) {
+        c.common = y;
+        return c;
+      }
+    for (const Point3& x : fp)
+      if (in_face(nrm, x, fq, lq2)) {
+        c.common = x;
+        return c;
+      }
+    for (const auto& [i, j] : lp)
+      for (const auto& [k, l] : lq2) {
+        const Point3 &a = fp[i], &b = fp[j], &e = fq[k], &f = fq[l];
+        const Rational sa = dot(nrm, cross(f - e, a - e)), sb = dot(nrm, cross(f - e, b - e));
+        if (orient(nrm, a, b, e) * orient(nrm, a, b, f) < 0 && sgn(sa) * sgn(sb) < 0) {
+          c.common = a + Rational(sa / (sa - sb)) * (b - a);
+          return c;
+        }
+      }
+    c.status = ContactStatus::separate;
+    return c;
+  }
+};
 
 // The warm start's direction, or from the centre of placed Q towards the
 // centre of placed P: the support of D along −dir is near the closest point
@@ -349,6 +589,8 @@ const char* rigid_certificate_name(RigidCertificate c) {
       return "nearest_facet";
     case RigidCertificate::exit_facet:
       return "exit_facet";
+    case RigidCertificate::feature_plane:
+      return "feature_plane";
   }
   return "exact";
 }
@@ -480,6 +722,16 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
     r.certificate = RigidCertificate::simplex;
     r.p = s[0].p, r.q = s[0].q;
     decided = true;
+  }
+  if (!decided) {
+    FeaturePlane plane(qu);
+    if (const auto c = plane.decide(s, n, ip, iq)) {
+      r.status = c->status;
+      r.certificate = RigidCertificate::feature_plane;
+      r.normal = to_double(c->normal);
+      r.p = c->p, r.q = c->q;
+      decided = true;
+    }
   }
   if (!decided) {
     r.status = collide_exact(p, pose_p, q, pose_q);
@@ -684,6 +936,20 @@ RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidB
     if (!decided && n == 3 && blow_up_triangle(qu, s)) decided = simplex_answer();
   }
   if (!decided) {
+    // Touching (the closest-points certificate needs v ≠ 0): the feature
+    // plane proves it and gives a common point.
+    FeaturePlane plane(qu);
+    const auto c = plane.decide(s, n, ip, iq);
+    if (c && c->status == ContactStatus::touching) {
+      r = RigidDistance{};
+      r.status = ContactStatus::touching;
+      r.certificate = RigidCertificate::feature_plane;
+      r.point_p = r.point_q = to_double(c->common);
+      r.exact = std::make_shared<const RigidDistanceExact>(RigidDistanceExact{Rational(0), c->common, c->common});
+      decided = true;
+    }
+  }
+  if (!decided) {
     ExactDistance e = distance_on_m(p, pose_p, q, pose_q);
     r = RigidDistance{};
     r.status = e.status;
@@ -709,7 +975,7 @@ void distance(const RigidBody& p, std::span<const RigidPose> poses_p, const Rigi
 
 RigidDistanceExact exact_values(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q,
                                 const RigidPose& pose_q, const RigidDistance& d) {
-  if (d.certificate == RigidCertificate::exact) {
+  if (d.certificate == RigidCertificate::exact || d.certificate == RigidCertificate::feature_plane) {
     if (d.exact) return *d.exact;
     return distance_exact(p, pose_p, q, pose_q);
   }

@@ -99,7 +99,8 @@ QUERY_DISTANCE = QUERY.extend("query distance", {
     "squared_distance": "exact", "distance": ("nullable", "number"), "direction": ("triple", "exact"),
     "point_p": ("triple", "number"), "point_p_exact": ("triple", "exact"), "point_q": ("triple", "number"),
     "point_q_exact": ("triple", "exact"), "witness": WITNESS})
-CERTIFICATE = ("enum", "separating_plane", "simplex", "exact", "closest_points", "nearest_facet", "exit_facet")
+CERTIFICATE = ("enum", "separating_plane", "simplex", "exact", "closest_points", "nearest_facet", "exit_facet",
+               "feature_plane")
 QUERY_RIGID_COLLIDE = QUERY.extend("query collide (rotation)", {"certificate": CERTIFICATE})
 QUERY_RIGID_DISTANCE = QUERY.extend("query distance (rotation)", {
     "squared_distance": "exact", "distance": ("nullable", "number"), "direction": ("triple", "exact"),

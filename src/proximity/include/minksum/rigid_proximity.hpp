@@ -23,11 +23,17 @@
 //   * penetrating: four pairs (p_k, q_k) whose differences, points of D,
 //     span a tetrahedron that holds the origin strictly inside (exact
 //     signs);
-//   * anything else — touching poses, and poses the double search leaves
+//   * touching, and separate where the doubles cannot certify a plane (the
+//     gap within rounding): the features the search ends on (a facet of
+//     one placed body, or an edge of each) give a plane with an exact
+//     rational normal N; exact climbs find max N·x over placed P and min
+//     over placed Q.  Below: separate.  Equal: the bodies meet only in
+//     their faces in that plane, so touching when those faces meet (a
+//     vertex of one in the other, or two edges crossing; exact signs) and
+//     separate otherwise (certificate feature_plane);
+//   * anything else — poses the double search and the feature plane leave
 //     undecided — is decided in exact arithmetic: M = R_P P ⊕ (−R_Q Q) is
-//     built exactly and asked for t_Q − t_P.  This is the slow path (the
-//     cost of building M), taken where the exact answer is touching or
-//     within rounding of it.
+//     built exactly and asked for t_Q − t_P (the cost of building M).
 // Every sign is an exact sign (placed_predicates.hpp: interval filter, then
 // rationals).
 #pragma once
@@ -85,9 +91,11 @@ enum class RigidCertificate : std::uint8_t {
   closest_points,    // separate, with its distance: closest points whose difference's plane supports both bodies
   nearest_facet,     // penetrating, with its depth: a star of triangles of D around the origin, the nearest plane supporting D
   exit_facet,        // penetrating, with a directional depth: the triangle of D the ray leaves by, its plane supporting D
+  feature_plane,     // separate or touching: the exact plane of a facet of one body or an edge of each supports both;
+                     // touching when their faces in it meet
 };
 // "separating_plane", "simplex", "exact", "closest_points", "nearest_facet",
-// "exit_facet".
+// "exit_facet", "feature_plane".
 const char* rigid_certificate_name(RigidCertificate c);
 
 struct RigidCollision {
@@ -95,8 +103,10 @@ struct RigidCollision {
   RigidCertificate certificate = RigidCertificate::exact;
   // separating_plane: the direction n (taken exactly) and the vertices p of
   // P and q of Q with n·p' = max over placed P, n·q' = min over placed Q,
-  // n·p' < n·q'.  Otherwise n is zero and p, q the last support pair of the
-  // search.
+  // n·p' < n·q'.  feature_plane: n the nearest doubles of the plane's exact
+  // normal N, p and q with N·p' = max over placed P = min over placed Q
+  // (touching) or < it (separate).  Otherwise n is zero and p, q the last
+  // support pair of the search.
   Vec3d normal;
   Index p = kNoIndex, q = kNoIndex;
 };
@@ -114,7 +124,7 @@ struct RigidWarmStart {
 // distance) and how they were proved, GJK iterations, support-climb steps.
 struct RigidStats {
   std::uint64_t queries = 0, separating_plane = 0, simplex = 0, exact = 0, closest_points = 0, nearest_facet = 0,
-                exit_facet = 0;
+                exit_facet = 0, feature_plane = 0;
   std::uint64_t iterations = 0, climb_steps = 0;
 };
 RigidStats rigid_stats();
@@ -152,9 +162,11 @@ struct RigidDistanceExact {
 //     placed Q (no neighbour in the vertex graph further, exact signs).
 // Then |v| = dist(P', Q') (the plane normal to v through x supports P', the
 // one through y supports Q', and they are |v| apart) and x, y are closest
-// points.  Penetrating answers are certified as by collide (simplex);
-// everything else — touching poses and what the search leaves undecided —
-// is answered on M = R_P P ⊕ (−R_Q Q) built exactly (certificate exact).
+// points.  Penetrating answers are certified as by collide (simplex),
+// touching ones by collide's feature plane (certificate feature_plane: the
+// distance is 0 and the common point of the faces in the plane is both
+// closest points); what the search leaves undecided is answered on
+// M = R_P P ⊕ (−R_Q Q) built exactly (certificate exact).
 struct RigidDistance {
   ContactStatus status = ContactStatus::separate;
   RigidCertificate certificate = RigidCertificate::exact;
@@ -164,13 +176,13 @@ struct RigidDistance {
   // The k pairs of vertices (indices of P and of Q as given) behind the
   // answer: closest_points, the 1 to 3 pairs of the closest points (x = Σ
   // λ_j p_j', y = Σ λ_j q_j'); simplex, the 4 pairs of the tetrahedron
-  // holding the origin; exact, none (k = 0).
+  // holding the origin; exact and feature_plane, none (k = 0).
   int k = 0;
   std::array<Index, 4> p{kNoIndex, kNoIndex, kNoIndex, kNoIndex}, q{kNoIndex, kNoIndex, kNoIndex, kNoIndex};
   // The closest points of placed P and placed Q (a common point when they
   // meet), doubles near the exact ones.
   Vec3d point_p, point_q;
-  // exact: the exact values, found while answering (on M).
+  // exact and feature_plane: the exact values, found while answering.
   std::shared_ptr<const RigidDistanceExact> exact;
 };
 

@@ -15,7 +15,11 @@ namespace minksum {
 // itself with options.exact (exact rationals); else round_solid's valid
 // solid (docs/nonconvex.md, "Output": coordinates rounded to doubles, floats
 // for binary STL, the surface cut apart where it touches itself, checked
-// exactly), or the boundary as it is when nothing had to move.  STL holds
+// exactly), or the boundary as it is when nothing had to move.  A convex
+// solid whose rounding round_solid cannot repair (thin faces of an erosion
+// of a convex part folding over at float spacing) is written as a convex
+// polytope is: the exact convex hull of its rounded vertices (within the
+// largest displacement of the exact solid).  STL holds
 // triangles only: the faces are then cut exactly (triangulate).  `rounded`,
 // when given, receives what rounding did (its mesh left empty).  `name`
 // names the output in errors.  Throws RoundingError when the solid cannot be

@@ -165,6 +165,7 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
     options.report("pairs", double(start + count) / double(n));
   }
   out.pairs = n;
+  for (auto& sp : swept) sp.release();  // (the tables serve the pieces' construction only)
   for (const auto& s : sums) {
     out.pair_facets += s.num_planes();
     out.candidate_facets += s.candidates.size();

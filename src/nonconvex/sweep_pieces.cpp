@@ -83,6 +83,22 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
       kind_[t][k] = static_cast<signed char>(sgn(dot(normal_[t], points_[w] - points_[a])));
     }
   });
+  // Each edge numbered by the first triangle holding it; the triangle
+  // across, later, runs it the other way.
+  edge_.resize(tri_.size());
+  for (Index t = 0; t < tri_.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = tri_[t][k], b = tri_[t][(k + 1) % 3], o = across_[t][k];
+      if (o != kNoTriangle && o < t) {
+        const auto& d = tri_[o];
+        int j = 0;
+        while (!(d[j] == b && d[(j + 1) % 3] == a)) ++j;
+        edge_[t][k] = edge_[o][j] | 1;
+      } else {
+        edge_[t][k] = Index(edge_ends_.size()) << 1;
+        edge_ends_.push_back({a, b});
+      }
+    }
 }
 
 namespace {

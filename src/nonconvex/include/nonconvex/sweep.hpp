@@ -83,6 +83,14 @@ class SurfaceCones {
   // The point with its nearest doubles, for the kernel's filtered predicates.
   RoundedPoint3 rounded(Index v) const { return at(v); }
   // Triangle t's (p1 - p0) x (p2 - p0), outward, and its nearest doubles.
+  // The edges of the surface, each once, numbered in the order of the
+  // triangles that first hold them: their ends, in the direction that
+  // triangle runs the edge.
+  std::size_t edges() const { return edge_ends_.size(); }
+  const std::array<Index, 2>& edge_ends(std::size_t e) const { return edge_ends_[e]; }
+  // Edge k = (c[k], c[k+1]) of triangle t: 2 e for edge e run from its first
+  // end to its second, 2 e + 1 the other way.
+  Index edge_of(Index t, int k) const { return edge_[t][k]; }
   const Point3& normal(Index t) const { return normal_[t]; }
   const Vec3d& normal_approx(Index t) const { return normal_approx_[t]; }
 
@@ -101,6 +109,8 @@ class SurfaceCones {
   std::vector<std::vector<Index>> neighbours_;     // per vertex
   std::vector<std::vector<Index>> incident_;       // per vertex, its triangles, ascending
   std::vector<std::array<Index, 3>> across_;       // edge k: the triangle across it, when the two pair up; else kNoTriangle
+  std::vector<std::array<Index, 3>> edge_;         // edge k: edge_of
+  std::vector<std::array<Index, 2>> edge_ends_;    // per edge
   static constexpr Index kNoTriangle = ~Index(0);
 };
 
@@ -127,8 +137,13 @@ class SweptPolytope final : public PlaneBuilder {
   // Makes, for every point v of `cones`' surface and facet f of B, the
   // doubles of the lazy plane f + v (what sum computes for each triangle
   // at v, each vertex being shared by several triangles), in parallel;
-  // sum then reads them.  Memory: 9 bytes per pair.
+  // sum then reads them.  Memory: 9 bytes per pair.  Also, when there are
+  // at most 2^24 of them, the sign along each facet normal of B of every
+  // edge of the surface, which sum needs for both triangles at the edge
+  // (1 byte each).
   void prepare(const SurfaceCones& cones, unsigned threads);
+  // Frees what prepare made (sum then computes it again).
+  void release();
   std::size_t facets() const { return facets_.size(); }
   // on_surface for facet f of B and its normal (true without a surface).
   bool facet_on_surface(Index f) const { return !surface_ || facet_on_surface_[f]; }
@@ -178,6 +193,7 @@ class SweptPolytope final : public PlaneBuilder {
   const SurfaceCones* prepared_ = nullptr;  // the surface the table is for (prepare)
   std::vector<double> offset_d_;           // [v * facets + f]: the offset's double of f + v
   std::vector<char> offset_ok_;            // and whether the filter may use it
+  std::vector<signed char> rise_;          // [e * facets + f]: sign n_f . (q - p) for edge e from p to q (or empty)
 };
 
 }  // namespace minksum::nonconvex_detail

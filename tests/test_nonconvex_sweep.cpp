@@ -374,8 +374,8 @@ TEST(NonconvexSweep, EachCandidateFacetIsBuiltOnce) {
 // The surface's edges are numbered once each (SurfaceCones::edge_of: the two
 // triangles at an edge run it opposite ways), and the pieces built with the
 // tables of SweptPolytope::prepare (the lazy planes' doubles per point, the
-// signs of the edges along B's facet normals) are the pieces built without
-// them: the same planes, lazy doubles, candidates and loops.
+// signs of the edges along B's facet normals, the memo of the vertex cones'
+// test) are the pieces built without them: the same planes, lazy doubles, candidates and loops.
 TEST(NonconvexSweep, PreparedPiecesAreThePiecesWithoutTables) {
   const std::pair<const char*, const char*> cases[] = {{"torus:8:6", "sphere:1@scale:1/5"},
                                                        {"lshape", "box:1:1:1"},

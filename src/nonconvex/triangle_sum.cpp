@@ -286,6 +286,7 @@ void SweptPolytope::prepare(const SurfaceCones& cones, unsigned threads) {
             dot_difference_sign(RoundedPoint3{facets_[fi].normal, facets_[fi].normal_approx}, p, q));
     });
   }
+  below_.assign(nv * nf, -1);
   prepared_ = &cones;
 }
 
@@ -294,6 +295,7 @@ void SweptPolytope::release() {
   std::vector<double>().swap(offset_d_);
   std::vector<char>().swap(offset_ok_);
   std::vector<signed char>().swap(rise_);
+  std::vector<signed char>().swap(below_);
 }
 
 Plane SweptPolytope::build(const Piece& piece, Index k) const {
@@ -400,7 +402,9 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       offset_along(f, scaled[top], work);
       lazy_doubles(f, work, lp.d, lp.filtered);
     }
-    if ((!surface_ || facet_on_surface_[fi]) && cones.candidate(t, u, at_top) && cones.keeps(t, u, at_top)) {
+    if ((!surface_ || facet_on_surface_[fi]) &&
+        cones.candidate(t, u, at_top, below_.empty() || prepared_ != &cones ? nullptr : &below_[fi], facets_.size()) &&
+        cones.keeps(t, u, at_top)) {
       lp.exact = std::int32_t(lazy_exact.size());
       if (prepared_ == &cones) offset_along(f, scaled[top], work);
       lazy_exact.push_back(canonical_from_offset(f, work));

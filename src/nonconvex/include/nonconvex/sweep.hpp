@@ -50,7 +50,12 @@ class SurfaceCones {
   bool candidate(Index t, const RoundedPoint3& u) const;
   // The same, given which of t's vertices are highest along u (at_top[k]
   // for the k-th vertex of the triangle).
-  bool candidate(Index t, const RoundedPoint3& u, const bool at_top[3]) const;
+  // `memo`, when given, remembers for each point v of the surface
+  // (memo[v * stride], -1 before it is known) whether every neighbour of v
+  // is at most as high as v along u, the vertex cone's test, which depends
+  // on v and u only; concurrent callers may share it.
+  bool candidate(Index t, const RoundedPoint3& u, const bool at_top[3], signed char* memo = nullptr,
+                 std::size_t stride = 0) const;
   bool candidate(Index t, const Point3& u) const { const Vec3d a = to_double(u); return candidate(t, RoundedPoint3{u, a}); }
 
   // Whether t keeps a candidate facet with normal u of t ⊕ C (at_top as for
@@ -96,6 +101,7 @@ class SurfaceCones {
 
  private:
   bool below_all_neighbours(Index v, const RoundedPoint3& u, Index level = ~Index(0)) const;
+  bool below_all_neighbours(Index v, const RoundedPoint3& u, Index level, signed char* memo, std::size_t stride) const;
   RoundedPoint3 at(Index v) const { return RoundedPoint3{points_[v], approx_[v]}; }
 
   std::vector<Point3> points_;
@@ -194,6 +200,7 @@ class SweptPolytope final : public PlaneBuilder {
   std::vector<double> offset_d_;           // [v * facets + f]: the offset's double of f + v
   std::vector<char> offset_ok_;            // and whether the filter may use it
   std::vector<signed char> rise_;          // [e * facets + f]: sign n_f . (q - p) for edge e from p to q (or empty)
+  mutable std::vector<signed char> below_;  // [v * facets + f]: SurfaceCones::candidate's memo for n_f (or empty)
 };
 
 }  // namespace minksum::nonconvex_detail

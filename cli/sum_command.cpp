@@ -8,6 +8,7 @@
 #include <chrono>
 #include <future>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "common.hpp"
@@ -219,12 +220,16 @@ int run_sum_command(const SumCommand& c) {
   // memory is the sum's.
   request.provenance = false;
   OperandSum s;
+  // A solid sum's pieces (SumOptions::release), freed on the volume's thread
+  // below while the file is written.
+  std::shared_ptr<void> pieces;
   {
     ProgressTicker ticker(std::string("minksum ") + kCommand[int(c.request.operation)]);
     request.options = ticker.sum_options();
     // A convex sum's volume is for --json only; a solid's is computed below,
     // on its own thread while the file is written (the two take about as long).
     request.options.volume = c.json && !solid;
+    if (solid) request.options.release = [&pieces](std::shared_ptr<void> data) { pieces = std::move(data); };
     s = minkowski_sum(operands, request);
   }
   // The operands are freed before the sum is rounded and written (only
@@ -238,8 +243,12 @@ int run_sum_command(const SumCommand& c) {
   const bool empty = boundary && boundary->faces.empty();
   // Both only read the boundary; the volume's thread is joined before s
   // changes (get() below, or the future's destructor when the write throws).
+  // That thread frees the pieces first (the writing leaves it a core).
   std::future<Rational> volume;
-  if (boundary) volume = std::async(std::launch::async, [&s] { return result_volume(s); });
+  if (boundary) volume = std::async(std::launch::async, [&s, &pieces] {
+    pieces.reset();
+    return result_volume(s);
+  });
   const auto w0 = std::chrono::steady_clock::now();
   std::string rounding = "null";
   if (c.output) {

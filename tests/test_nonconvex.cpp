@@ -5,14 +5,26 @@
 #include <minksum/catalog.hpp>
 #include <minksum/error.hpp>
 #include <minksum/nonconvex.hpp>
+#include <minksum/parallel.hpp>
 #include <minksum/transform.hpp>
 
+#include "nonconvex/nef.hpp"
 #include "nonconvex_support.hpp"
 #include "test_support.hpp"
 
+#include <CGAL/Exact_rational.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
 #include <gtest/gtest.h>
 
+#include <iterator>
 #include <map>
+#include <memory>
+#include <optional>
+#include <type_traits>
 #include <set>
 
 using namespace minksum;
@@ -105,6 +117,57 @@ TEST(NonconvexValidation, SelfIntersectionDecidedExactlyOnDoublesAndRationals) {
   const Mesh rational_overlap = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1 - third, 2, 0, 1, 0, 1));
   EXPECT_NE(problem(rational_overlap).find("the surface intersects itself"), std::string::npos)
       << problem(rational_overlap);
+}
+
+namespace {
+// The pair of triangles that CGAL's Polygon_mesh_processing::self_intersections
+// reports first on `m` (triangles), on a Surface_mesh of points of kernel GK.
+template <class GK>
+std::optional<std::pair<Index, Index>> cgal_first_pair(const Mesh& m) {
+  using SM = CGAL::Surface_mesh<typename GK::Point_3>;
+  std::vector<typename GK::Point_3> points;
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    const Point3 p = m.points.exact(i);
+    auto ft = [](const Rational& q) {
+      if constexpr (std::is_same_v<typename GK::FT, double>)
+        return q.get_d();  // exact: such a mesh's coordinates are doubles
+      else
+        return typename GK::FT(q.get_mpq_t());
+    };
+    points.emplace_back(ft(p.x), ft(p.y), ft(p.z));
+  }
+  std::vector<std::vector<std::size_t>> faces;
+  for (const auto& f : m.faces) faces.emplace_back(f.begin(), f.end());
+  SM sm;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, faces, sm);
+  std::vector<std::pair<typename SM::Face_index, typename SM::Face_index>> pairs;
+  CGAL::Polygon_mesh_processing::self_intersections(sm, std::back_inserter(pairs));
+  if (pairs.empty()) return std::nullopt;
+  const Index a = Index(pairs[0].first), b = Index(pairs[0].second);
+  return std::make_pair(std::min(a, b), std::max(a, b));
+}
+}  // namespace
+
+// The self-intersection test of validation reports the pair that CGAL's
+// self_intersections reports first, on one thread and with its pairs tested
+// on threads (every loop threaded), on doubles (the tori moved by 1/2) and
+// on rationals (moved by 1/3), for tori that cross, tori apart and one
+// torus.
+TEST(NonconvexValidation, SelfIntersectionReportsCgalsFirstPairOnThreads) {
+  const std::size_t items = parallel_items();
+  for (const char* move : {"@translate:1/2,0,0", "@translate:1/3,1/3,0", "@translate:3,0,0", ""}) {
+    const Mesh one = catalog_mesh("torus:24:12");
+    const Mesh m = *move ? join(one, catalog_mesh(std::string("torus:16:8") + move)) : one;
+    using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
+    using EK = CGAL::Simple_cartesian<CGAL::Exact_rational>;
+    const auto expected = m.points.all_doubles() ? cgal_first_pair<IK>(m) : cgal_first_pair<EK>(m);
+    EXPECT_EQ(expected.has_value(), std::string(move).find("1/") != std::string::npos) << move;
+    for (std::size_t threaded : {items, std::size_t(1)}) {
+      set_parallel_items(threaded);
+      EXPECT_EQ(nonconvex_detail::first_self_intersection(m), expected) << move << " " << threaded;
+    }
+  }
+  set_parallel_items(items);
 }
 
 TEST(NonconvexValidation, CubesTouchingAtAVertexAreNotAManifold) {
@@ -380,6 +443,22 @@ TEST(NonconvexSum, ReportsProgressAndHonoursCancel) {
   SumOptions c;
   c.cancel = &cancel;
   EXPECT_THROW(minkowski_sum_nonconvex(solid("tube"), solid("cube"), c), Cancelled);
+}
+
+// SumOptions::release: the boundary sweep hands its pieces over once,
+// alive (the last pointer frees them), and the sum is the same.
+TEST(NonconvexSum, ReleaseHandsThePiecesOver) {
+  const NonconvexSum plain = minkowski_sum_nonconvex(solid("tube"), solid("cube@scale:1/8"));
+  std::vector<std::shared_ptr<void>> handed;
+  SumOptions o;
+  o.release = [&](std::shared_ptr<void> data) { handed.push_back(std::move(data)); };
+  const NonconvexSum kept = minkowski_sum_nonconvex(solid("tube"), solid("cube@scale:1/8"), o);
+  ASSERT_EQ(handed.size(), 1u);
+  EXPECT_NE(handed[0], nullptr);
+  EXPECT_EQ(handed[0].use_count(), 1);
+  EXPECT_EQ(kept.volume, plain.volume);
+  EXPECT_EQ(kept.mesh.faces, plain.mesh.faces);
+  EXPECT_EQ(kept.mesh.points.to_points(), plain.mesh.points.to_points());
 }
 
 // ---------------------------------------------------------------------------

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <random>
 #include <set>
 
@@ -367,6 +368,54 @@ TEST(NonconvexSweep, EachCandidateFacetIsBuiltOnce) {
     const std::set<std::pair<Plane, std::vector<Point3>>> distinct(got.begin(), got.end());
     EXPECT_EQ(distinct.size(), got.size()) << "a candidate facet held by two pieces";
     EXPECT_EQ(distinct, want);
+  }
+}
+
+// The surface's edges are numbered once each (SurfaceCones::edge_of: the two
+// triangles at an edge run it opposite ways), and the pieces built with the
+// tables of SweptPolytope::prepare (the lazy planes' doubles per point, the
+// signs of the edges along B's facet normals, the memo of the vertex cones'
+// test) are the pieces built without them: the same planes, lazy doubles, candidates and loops.
+TEST(NonconvexSweep, PreparedPiecesAreThePiecesWithoutTables) {
+  const std::pair<const char*, const char*> cases[] = {{"torus:8:6", "sphere:1@scale:1/5"},
+                                                       {"lshape", "box:1:1:1"},
+                                                       {"tube", "cube@scale:1/4@rot:3"},
+                                                       {"gear:6", "prism:8@scale:1/8"}};
+  for (const auto& [a, b] : cases) {
+    SCOPED_TRACE(std::string(a) + " + " + b);
+    const Solid s = solid(a);
+    const nonconvex_detail::SurfaceCones cones(s.triangles);
+    std::map<std::pair<Index, Index>, int> runs;  // directed edge -> uses
+    for (Index t = 0; t < cones.triangles(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const Index e = cones.edge_of(t, k);
+        ASSERT_LT(e >> 1, cones.edges());
+        const auto& ends = cones.edge_ends(e >> 1);
+        const auto& c = cones.triangle(t);
+        EXPECT_EQ(c[k], ends[e & 1]);
+        EXPECT_EQ(c[(k + 1) % 3], ends[1 - (e & 1)]);
+        ++runs[{e >> 1, e & 1}];
+      }
+    EXPECT_EQ(runs.size(), 2 * cones.edges());
+    for (const auto& [edge, uses] : runs) EXPECT_EQ(uses, 1);
+    const ConvexPolytope p = catalog_polytope(b);
+    const nonconvex_detail::SweptPolytope plain(p);
+    nonconvex_detail::SweptPolytope prepared(p);
+    prepared.prepare(cones, 0);
+    for (Index t = 0; t < cones.triangles(); ++t) {
+      const nonconvex_detail::Piece x = plain.sum(cones, t), y = prepared.sum(cones, t);
+      ASSERT_EQ(x.num_planes(), y.num_planes());
+      for (Index k = 0; k < x.num_planes(); ++k) EXPECT_EQ(x.plane(k), y.plane(k)) << t << " " << k;
+      ASSERT_EQ(x.lazy.size(), y.lazy.size());
+      for (std::size_t k = 0; k < x.lazy.size(); ++k) {
+        EXPECT_EQ(x.lazy[k].d, y.lazy[k].d);
+        EXPECT_EQ(x.lazy[k].filtered, y.lazy[k].filtered);
+        EXPECT_EQ(x.lazy[k].tag, y.lazy[k].tag);
+        EXPECT_EQ(x.lazy[k].exact, y.lazy[k].exact);
+      }
+      EXPECT_EQ(x.candidates, y.candidates);
+      EXPECT_EQ(x.loops, y.loops);
+    }
   }
 }
 

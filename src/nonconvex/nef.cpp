@@ -4,21 +4,24 @@
 // CGAL translation unit of the layer.
 #include <minksum/error.hpp>
 #include <minksum/nonconvex.hpp>
+#include <minksum/parallel.hpp>
 
 #include "nonconvex/nef.hpp"
+#include "nonconvex/triangles_meet.hpp"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Nef_polyhedron_3.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polyhedron_3.h>
-#include <CGAL/Surface_mesh.h>
+#include <CGAL/box_intersection_d.h>
 #include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 #include <CGAL/convex_decomposition_3.h>
 #include <CGAL/minkowski_sum_3.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <chrono>
 #include <iterator>
 #include <map>
@@ -117,25 +120,72 @@ Nef solid_nef(const Mesh& triangles) {
 }  // namespace
 
 namespace {
-// The first pair of intersecting triangles that CGAL's self_intersections
-// reports, on a Surface_mesh of points of kernel IK.
+// The first pair of triangles that meet (triangles_meet), in the order in
+// which CGAL's self_intersections reports them: the same boxes in the same
+// order (one per triangle, the sum of its points' bboxes, identified by
+// their addresses), the same box_self_intersection_d call (cutoff 2000),
+// whose callback sees the pairs of meeting boxes in a fixed order; a
+// collinear triangle, which has no box, is reported as (f, f) before any
+// pair.  CGAL builds a Surface_mesh to find the triangles sharing an edge
+// through its halfedges; in a closed 2-manifold triangle mesh (validation
+// checks that first) two triangles with two points in common are exactly
+// the two across that edge, so the triangles' point indices tell the same
+// without the mesh.  The pairs of boxes are collected in batches and, with
+// `threads` other than 1, tested on threads (the kernel's predicates are
+// then those of doubles, which hold no shared state); the first meeting
+// pair of the first batch holding one is the answer.
 template <class IK>
-std::optional<std::pair<Index, Index>> first_hit(std::vector<typename IK::Point_3> points, const Mesh& triangles) {
-  using SM = CGAL::Surface_mesh<typename IK::Point_3>;
-  using Face = typename SM::Face_index;
-  std::vector<std::vector<std::size_t>> faces;
-  for (const auto& f : triangles.faces) faces.emplace_back(f.begin(), f.end());
-  SM sm;
-  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, faces, sm);
+std::optional<std::pair<Index, Index>> first_hit(const std::vector<typename IK::Point_3>& p, const Mesh& triangles,
+                                                 unsigned threads) {
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, Index, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
+  using Tri = std::array<Index, 3>;
+  std::vector<Tri> tris;
+  tris.reserve(triangles.faces.size());
+  for (const auto& f : triangles.faces) tris.push_back(Tri{f[0], f[1], f[2]});
+  std::vector<Box> boxes;
+  boxes.reserve(tris.size());
+  for (Index f = 0; f < tris.size(); ++f) {
+    const auto &a = p[tris[f][0]], &b = p[tris[f][1]], &c = p[tris[f][2]];
+    if (CGAL::collinear(a, b, c)) return std::make_pair(f, f);
+    boxes.push_back(Box(a.bbox() + b.bbox() + c.bbox(), f));
+  }
+  std::vector<const Box*> box_ptr;
+  box_ptr.reserve(boxes.size());
+  for (const Box& b : boxes) box_ptr.push_back(&b);
+
+  constexpr std::size_t kBatch = std::size_t(1) << 20, kChunk = 512;
+  std::vector<std::pair<Index, Index>> batch;
+  batch.reserve(std::min(kBatch, 16 * boxes.size() + 16));
   std::optional<std::pair<Index, Index>> hit;
-  // polygon_soup_to_polygon_mesh keeps the order of the faces.
-  auto out = boost::make_function_output_iterator([&](const std::pair<Face, Face>& p) {
-    Index a = Index(p.first), b = Index(p.second);
-    hit = std::make_pair(std::min(a, b), std::max(a, b));
-    throw FirstHit{};
-  });
+  // The first meeting pair of the batch, if any.
+  auto test = [&] {
+    const std::size_t chunks = (batch.size() + kChunk - 1) / kChunk;
+    const unsigned workers = batch.size() >= parallel_items() ? parallel_threads(threads, chunks) : 1;
+    std::atomic<std::size_t> first{batch.size()};
+    parallel_for(chunks, workers, [&](std::size_t c) {
+      const std::size_t end = std::min(batch.size(), (c + 1) * kChunk);
+      for (std::size_t k = c * kChunk; k < end && k < first.load(std::memory_order_relaxed); ++k)
+        if (triangles_meet<IK>(tris[batch[k].first], tris[batch[k].second], p)) {
+          std::size_t seen = first.load();
+          while (k < seen && !first.compare_exchange_weak(seen, k)) {
+          }
+          return;
+        }
+    });
+    if (first.load() < batch.size()) {
+      const auto [a, b] = batch[first.load()];
+      hit = std::make_pair(std::min(a, b), std::max(a, b));
+    }
+    batch.clear();
+    return bool(hit);
+  };
+  auto callback = [&](const Box* a, const Box* b) {
+    batch.emplace_back(a->info(), b->info());
+    if (batch.size() == kBatch && test()) throw FirstHit{};
+  };
   try {
-    CGAL::Polygon_mesh_processing::self_intersections(sm, out);
+    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(box_ptr.begin(), box_ptr.end(), callback, std::ptrdiff_t(2000));
+    test();
   } catch (const FirstHit&) {
   }
   return hit;
@@ -145,7 +195,9 @@ std::optional<std::pair<Index, Index>> first_hit(std::vector<typename IK::Point_
 // The test needs exact predicates only (do two triangles meet?): when every
 // coordinate is a double (a rounded output, most files read), CGAL's kernel
 // of exact predicates on doubles decides it exactly without building exact
-// rational points; otherwise the exact kernel.
+// rational points, on every hardware thread; otherwise the exact kernel, on
+// one thread (its lazily computed exact values are not shared across
+// threads).
 std::optional<std::pair<Index, Index>> first_self_intersection(const Mesh& triangles) {
   if (triangles.points.all_doubles()) {
     using IK = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -155,9 +207,9 @@ std::optional<std::pair<Index, Index>> first_self_intersection(const Mesh& trian
       const Vec3d& d = triangles.points.approx(i);
       points.emplace_back(d.x, d.y, d.z);
     }
-    return first_hit<IK>(std::move(points), triangles);
+    return first_hit<IK>(points, triangles, 0);
   }
-  return first_hit<K>(cgal_points(triangles.points), triangles);
+  return first_hit<K>(cgal_points(triangles.points), triangles, 1);
 }
 
 namespace {

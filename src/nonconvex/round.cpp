@@ -41,6 +41,7 @@
 #include <minksum/nonconvex.hpp>
 
 #include "nonconvex/morphology.hpp"
+#include "nonconvex/triangles_meet.hpp"
 #include "nonconvex/validate.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -353,34 +354,9 @@ void clean(std::vector<Tri>& tris, const std::vector<EP>& pts, std::vector<Index
 // Whether two distinct triangles (indices into `p`, distinct points) meet
 // other than in their shared edge or vertex: as CGAL's
 // Polygon_mesh_processing::self_intersections decides it, which
-// validate_solid uses.
+// validate_solid's test follows (nonconvex/triangles_meet.hpp).
 bool triangles_meet(const Tri& h, const Tri& g, const std::vector<EP>& p) {
-  int shared = 0, hi = -1, gi = -1;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (h[i] == g[j]) {
-        if (shared == 0) hi = i, gi = j;
-        ++shared;
-      }
-  if (shared == 3) return true;
-  if (shared == 2) {
-    Index e0 = 0, e1 = 0, r = 0, s = 0;
-    for (int i = 0; i < 3; ++i) {
-      const bool in_g = h[i] == g[0] || h[i] == g[1] || h[i] == g[2];
-      if (!in_g) r = h[i];
-      const bool in_h = g[i] == h[0] || g[i] == h[1] || g[i] == h[2];
-      if (!in_h) s = g[i];
-    }
-    for (int i = 0; i < 3; ++i)
-      if (h[i] != r && h[(i + 1) % 3] != r) e0 = h[i], e1 = h[(i + 1) % 3];
-    return CGAL::coplanar(p[e0], p[e1], p[r], p[s]) &&
-           CGAL::coplanar_orientation(p[e0], p[e1], p[r], p[s]) == CGAL::POSITIVE;
-  }
-  const K::Triangle_3 th(p[h[0]], p[h[1]], p[h[2]]), tg(p[g[0]], p[g[1]], p[g[2]]);
-  if (shared == 1)
-    return CGAL::do_intersect(th, K::Segment_3(p[g[(gi + 1) % 3]], p[g[(gi + 2) % 3]])) ||
-           CGAL::do_intersect(tg, K::Segment_3(p[h[(hi + 1) % 3]], p[h[(hi + 2) % 3]]));
-  return CGAL::do_intersect(th, tg);
+  return nonconvex_detail::triangles_meet<K>(h, g, p);
 }
 
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;

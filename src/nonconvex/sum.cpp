@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <optional>
 
 namespace minksum {
@@ -165,6 +166,7 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
     options.report("pairs", double(start + count) / double(n));
   }
   out.pairs = n;
+  for (auto& sp : swept) sp.release();  // (the tables serve the pieces' construction only)
   for (const auto& s : sums) {
     out.pair_facets += s.num_planes();
     out.candidate_facets += s.candidates.size();
@@ -177,9 +179,13 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
                                      // (For the complement of a solid, its inside is the solid's outside.)
                                      return cones.strictly_inside(p - inner) != s.complement;
                                    });
-  // The pieces' millions of exact integers freed on every thread rather
-  // than one by one on return.
-  parallel_for(n, workers, [&](std::size_t i) { sums[i] = nonconvex_detail::Piece(); });
+  // The pieces' millions of exact integers freed by the caller's release
+  // (while it does other work), or on every thread rather than one by one
+  // on return.
+  if (options.release)
+    options.release(std::make_shared<std::vector<nonconvex_detail::Piece>>(std::move(sums)));
+  else
+    parallel_for(n, workers, [&](std::size_t i) { sums[i] = nonconvex_detail::Piece(); });
   if (options.volume) out.volume = mesh_volume(out.mesh);
   return out;
 }

@@ -11,6 +11,7 @@
 #include "nonconvex/sweep.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <map>
 #include <stdexcept>
@@ -83,6 +84,22 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
       kind_[t][k] = static_cast<signed char>(sgn(dot(normal_[t], points_[w] - points_[a])));
     }
   });
+  // Each edge numbered by the first triangle holding it; the triangle
+  // across, later, runs it the other way.
+  edge_.resize(tri_.size());
+  for (Index t = 0; t < tri_.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = tri_[t][k], b = tri_[t][(k + 1) % 3], o = across_[t][k];
+      if (o != kNoTriangle && o < t) {
+        const auto& d = tri_[o];
+        int j = 0;
+        while (!(d[j] == b && d[(j + 1) % 3] == a)) ++j;
+        edge_[t][k] = edge_[o][j] | 1;
+      } else {
+        edge_[t][k] = Index(edge_ends_.size()) << 1;
+        edge_ends_.push_back({a, b});
+      }
+    }
 }
 
 namespace {
@@ -139,7 +156,22 @@ Top top_of(const bool at_top[3]) {
 
 }  // namespace
 
-bool SurfaceCones::candidate(Index t, const RoundedPoint3& u, const bool at_top[3]) const {
+// The same answer as without the memo (a neighbour at `level` is at v's
+// height either way); -1 in the memo: not known yet.  Two threads may both
+// compute an entry, and store the same value.
+bool SurfaceCones::below_all_neighbours(Index v, const RoundedPoint3& u, Index level, signed char* memo,
+                                        std::size_t stride) const {
+  if (!memo) return below_all_neighbours(v, u, level);
+  std::atomic_ref<signed char> known(memo[std::size_t(v) * stride]);
+  const signed char k = known.load(std::memory_order_relaxed);
+  if (k >= 0) return k != 0;
+  const bool below = below_all_neighbours(v, u, level);
+  known.store(below ? 1 : 0, std::memory_order_relaxed);
+  return below;
+}
+
+bool SurfaceCones::candidate(Index t, const RoundedPoint3& u, const bool at_top[3], signed char* memo,
+                             std::size_t stride) const {
   const RoundedPoint3 o{origin(), kOriginApprox};
   const auto& c = tri_[t];
   const Top tp = top_of(at_top);
@@ -155,9 +187,9 @@ bool SurfaceCones::candidate(Index t, const RoundedPoint3& u, const bool at_top[
     // holds, as its far vertex is below the top); a flat or reflex edge has
     // no outward normal at its inner points.
     if (kind_[t][k] < 0 && dot_difference_sign(u, at(a), at(opposite_[t][k])) <= 0) return true;
-    return below_all_neighbours(a, u, b) || below_all_neighbours(b, u, a);
+    return below_all_neighbours(a, u, b, memo, stride) || below_all_neighbours(b, u, a, memo, stride);
   }
-  return below_all_neighbours(c[top], u);
+  return below_all_neighbours(c[top], u, ~Index(0), memo, stride);
 }
 
 bool SurfaceCones::keeps(Index t, const RoundedPoint3& u, const bool at_top[3]) const {

@@ -274,7 +274,28 @@ void SweptPolytope::prepare(const SurfaceCones& cones, unsigned threads) {
       offset_ok_[v * nf + fi] = ok ? 1 : 0;
     }
   });
+  rise_.clear();
+  const std::size_t ne = cones.edges();
+  if (ne * nf <= (std::size_t(1) << 24)) {
+    rise_.assign(ne * nf, 0);
+    parallel_for(ne, parallel_threads(threads, ne / 64 + 1), [&](std::size_t e) {
+      const auto& ends = cones.edge_ends(e);
+      const RoundedPoint3 p = cones.rounded(ends[0]), q = cones.rounded(ends[1]);
+      for (std::size_t fi = 0; fi < nf; ++fi)
+        rise_[e * nf + fi] = static_cast<signed char>(
+            dot_difference_sign(RoundedPoint3{facets_[fi].normal, facets_[fi].normal_approx}, p, q));
+    });
+  }
+  below_.assign(nv * nf, -1);
   prepared_ = &cones;
+}
+
+void SweptPolytope::release() {
+  prepared_ = nullptr;
+  std::vector<double>().swap(offset_d_);
+  std::vector<char>().swap(offset_ok_);
+  std::vector<signed char>().swap(rise_);
+  std::vector<signed char>().swap(below_);
 }
 
 Plane SweptPolytope::build(const Piece& piece, Index k) const {
@@ -338,10 +359,20 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   // rise[f][k] = sign n_f · (p_{k+1} − p_k), the sign along f's normal of
   // t's edge k, which also tells the arcs of kind C below.
   std::vector<std::array<signed char, 3>> rise(facets_.size());
+  const bool tabled = prepared_ == &cones && !rise_.empty();  // the edges' signs (prepare)
   for (std::size_t fi = 0; fi < facets_.size(); ++fi) {
     const Facet& f = facets_[fi];
     const RoundedPoint3 u{f.normal, f.normal_approx};
-    for (int k = 0; k < 3; ++k) rise[fi][k] = static_cast<signed char>(dot_difference_sign(u, p[k], p[(k + 1) % 3]));
+    if (tabled) {
+      // Edge e run backwards: n_f . (p - q) = -(n_f . (q - p)).
+      for (int k = 0; k < 3; ++k) {
+        const Index e = cones.edge_of(t, k);
+        const signed char r = rise_[std::size_t(e >> 1) * facets_.size() + fi];
+        rise[fi][k] = static_cast<signed char>(e & 1 ? -r : r);
+      }
+    } else {
+      for (int k = 0; k < 3; ++k) rise[fi][k] = static_cast<signed char>(dot_difference_sign(u, p[k], p[(k + 1) % 3]));
+    }
     // p_k is at the top when neither edge at it rises away from it.
     bool at_top[3];
     int count = 0, top = -1;
@@ -371,7 +402,9 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       offset_along(f, scaled[top], work);
       lazy_doubles(f, work, lp.d, lp.filtered);
     }
-    if ((!surface_ || facet_on_surface_[fi]) && cones.candidate(t, u, at_top) && cones.keeps(t, u, at_top)) {
+    if ((!surface_ || facet_on_surface_[fi]) &&
+        cones.candidate(t, u, at_top, below_.empty() || prepared_ != &cones ? nullptr : &below_[fi], facets_.size()) &&
+        cones.keeps(t, u, at_top)) {
       lp.exact = std::int32_t(lazy_exact.size());
       if (prepared_ == &cones) offset_along(f, scaled[top], work);
       lazy_exact.push_back(canonical_from_offset(f, work));

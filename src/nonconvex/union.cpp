@@ -37,12 +37,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <deque>
 #include <map>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 
 namespace minksum::nonconvex_detail {
 
@@ -536,19 +538,41 @@ class PieceGrid {
       }
       size_ = cell;
     }
-    std::vector<std::size_t> count(n_[0] * n_[1] * n_[2] + 1, 0);
-    for_each_piece_cell([&](std::size_t c, Index) { ++count[c + 1]; });
-    for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
-    start_ = count;
-    items_.resize(count.back());
-    item_box_.resize(count.back());
-    for_each_piece_cell([&](std::size_t c, Index j) {
-      item_box_[count[c]] = boxes_[j];
-      items_[count[c]++] = j;
+    // Each cell's items grouped by their class: bit i set when the cell is
+    // the first of the item's cells along axis i (see query).
+    const std::size_t cells = n_[0] * n_[1] * n_[2];
+    start_.assign(cells + 1, 0);
+    class_end_.assign(8 * cells, 0);
+    for_each_piece_cell([&](std::size_t c, unsigned m, Index) {
+      ++start_[c + 1];
+      ++class_end_[8 * c + m];
+    });
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    // Each class's start within its cell; filling moves it to the class's end.
+    for (std::size_t c = 0; c < cells; ++c) {
+      std::uint32_t at = 0;
+      for (unsigned m = 0; m < 8; ++m) at += std::exchange(class_end_[8 * c + m], at);
+    }
+    items_.resize(start_.back());
+    item_box_.resize(start_.back());
+    for_each_piece_cell([&](std::size_t c, unsigned m, Index j) {
+      const std::size_t k = start_[c] + class_end_[8 * c + m]++;
+      item_box_[k] = boxes_[j];
+      items_[k] = j;
     });
   }
 
-  // The pieces whose boxes meet `box`, ascending.
+  // The pieces whose boxes meet `box`, ascending, each once.  A box b that
+  // meets `box` is looked at in one cell only: the cell c* of the lower
+  // corner of the two boxes' intersection, c*_i = cell(max(lo_i, b.lo_i)) =
+  // max(cell(lo_i), cell(b.lo_i)) (cell is non-decreasing), which lies in
+  // both boxes' ranges of cells (max(lo_i, b.lo_i) <= min(hi_i, b.hi_i) when
+  // they meet).  In a cell c of the query's range, along each axis i with
+  // c_i > cell(lo_i), only the boxes whose first cell along i is c_i can
+  // have c*_i = c_i: those are the classes scanned.  In c* every class
+  // that holds b is scanned; in any other cell c of both ranges some axis
+  // has c_i > c*_i, so c_i > cell(lo_i) while c_i > cell(b.lo_i), and b's
+  // class there is not scanned.
   void query(const Box& box, std::vector<Index>& out) const {
     out.clear();
     std::size_t lo[3], hi[3];
@@ -557,11 +581,14 @@ class PieceGrid {
       for (std::size_t y = lo[1]; y <= hi[1]; ++y)
         for (std::size_t z = lo[2]; z <= hi[2]; ++z) {
           const std::size_t c = (x * n_[1] + y) * n_[2] + z;
-          for (std::size_t k = start_[c]; k < start_[c + 1]; ++k)
-            if (box.meets(item_box_[k])) out.push_back(items_[k]);
+          const unsigned need = unsigned(x > lo[0]) | unsigned(y > lo[1]) << 1 | unsigned(z > lo[2]) << 2;
+          for (unsigned m = need; m < 8; m = (m + 1) | need) {
+            const std::size_t b = start_[c] + (m ? class_end_[8 * c + m - 1] : 0), e = start_[c] + class_end_[8 * c + m];
+            for (std::size_t k = b; k < e; ++k)
+              if (box.meets(item_box_[k])) out.push_back(items_[k]);
+          }
         }
     std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
   }
 
  private:
@@ -577,6 +604,8 @@ class PieceGrid {
       hi[i] = cell_of(b.hi[i], i);
     }
   }
+  // f(cell, class, piece) for each cell of each piece's box; the class has
+  // bit i set when the cell is the first of the box's cells along axis i.
   template <class F>
   void for_each_piece_cell(F&& f) const {
     for (Index j = 0; j < boxes_.size(); ++j) {
@@ -586,7 +615,9 @@ class PieceGrid {
       range(b, lo, hi);
       for (std::size_t x = lo[0]; x <= hi[0]; ++x)
         for (std::size_t y = lo[1]; y <= hi[1]; ++y)
-          for (std::size_t z = lo[2]; z <= hi[2]; ++z) f((x * n_[1] + y) * n_[2] + z, j);
+          for (std::size_t z = lo[2]; z <= hi[2]; ++z)
+            f((x * n_[1] + y) * n_[2] + z, unsigned(x == lo[0]) | unsigned(y == lo[1]) << 1 | unsigned(z == lo[2]) << 2,
+              j);
     }
   }
 
@@ -594,6 +625,9 @@ class PieceGrid {
   double lo_[3] = {0, 0, 0}, size_ = 0;
   std::size_t n_[3] = {1, 1, 1};
   std::vector<std::size_t> start_;
+  // Per cell and class m: the end of the class's items, counted from the
+  // cell's start (a cell holds each box at most once: fewer than 2^32).
+  std::vector<std::uint32_t> class_end_;
   std::vector<Index> items_;
   std::vector<Box> item_box_;  // the box of items_[k], beside it in the cell's list (no indirection)
 };

@@ -394,11 +394,22 @@ Solid nonconvex_detail::validate_surface(const Mesh& mesh, const std::string& so
   std::vector<Point3> exact = mesh.points.to_points();
   std::vector<Index> order(n);
   std::iota(order.begin(), order.end(), Index(0));
-  std::sort(order.begin(), order.end(), [&](Index a, Index b) {
-    if (exact[a] < exact[b]) return true;
-    if (exact[b] < exact[a]) return false;
-    return a < b;
-  });
+  if (mesh.points.all_doubles()) {
+    // The doubles are the exact coordinates: the same order, without GMP.
+    const std::vector<Vec3d>& d = mesh.points.approx();
+    std::sort(order.begin(), order.end(), [&](Index a, Index b) {
+      if (d[a].x != d[b].x) return d[a].x < d[b].x;
+      if (d[a].y != d[b].y) return d[a].y < d[b].y;
+      if (d[a].z != d[b].z) return d[a].z < d[b].z;
+      return a < b;
+    });
+  } else {
+    std::sort(order.begin(), order.end(), [&](Index a, Index b) {
+      if (exact[a] < exact[b]) return true;
+      if (exact[b] < exact[a]) return false;
+      return a < b;
+    });
+  }
   std::vector<Index> weld(n);
   for (std::size_t i = 0; i < n; ++i)
     weld[order[i]] = (i > 0 && exact[order[i]] == exact[order[i - 1]]) ? weld[order[i - 1]] : order[i];

@@ -11,8 +11,11 @@
 namespace minksum::nonconvex_detail {
 
 // The first pair of triangles of `triangles` (a closed 2-manifold triangle
-// mesh) that intersect other than in a shared edge or vertex, if any
-// (CGAL Polygon_mesh_processing::self_intersections, exact kernel).
+// mesh) that intersect other than in a shared edge or vertex, if any: the
+// pair CGAL's Polygon_mesh_processing::self_intersections reports first,
+// found by the same box intersection and the same exact predicates
+// (triangles_meet.hpp), the pairs tested on every hardware thread when all
+// coordinates are doubles.
 std::optional<std::pair<Index, Index>> first_self_intersection(const Mesh& triangles);
 
 // The convex pieces of a validated solid (CGAL convex_decomposition_3).

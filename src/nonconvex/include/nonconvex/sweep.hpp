@@ -50,7 +50,12 @@ class SurfaceCones {
   bool candidate(Index t, const RoundedPoint3& u) const;
   // The same, given which of t's vertices are highest along u (at_top[k]
   // for the k-th vertex of the triangle).
-  bool candidate(Index t, const RoundedPoint3& u, const bool at_top[3]) const;
+  // `memo`, when given, remembers for each point v of the surface
+  // (memo[v * stride], -1 before it is known) whether every neighbour of v
+  // is at most as high as v along u, the vertex cone's test, which depends
+  // on v and u only; concurrent callers may share it.
+  bool candidate(Index t, const RoundedPoint3& u, const bool at_top[3], signed char* memo = nullptr,
+                 std::size_t stride = 0) const;
   bool candidate(Index t, const Point3& u) const { const Vec3d a = to_double(u); return candidate(t, RoundedPoint3{u, a}); }
 
   // Whether t keeps a candidate facet with normal u of t ⊕ C (at_top as for
@@ -83,11 +88,20 @@ class SurfaceCones {
   // The point with its nearest doubles, for the kernel's filtered predicates.
   RoundedPoint3 rounded(Index v) const { return at(v); }
   // Triangle t's (p1 - p0) x (p2 - p0), outward, and its nearest doubles.
+  // The edges of the surface, each once, numbered in the order of the
+  // triangles that first hold them: their ends, in the direction that
+  // triangle runs the edge.
+  std::size_t edges() const { return edge_ends_.size(); }
+  const std::array<Index, 2>& edge_ends(std::size_t e) const { return edge_ends_[e]; }
+  // Edge k = (c[k], c[k+1]) of triangle t: 2 e for edge e run from its first
+  // end to its second, 2 e + 1 the other way.
+  Index edge_of(Index t, int k) const { return edge_[t][k]; }
   const Point3& normal(Index t) const { return normal_[t]; }
   const Vec3d& normal_approx(Index t) const { return normal_approx_[t]; }
 
  private:
   bool below_all_neighbours(Index v, const RoundedPoint3& u, Index level = ~Index(0)) const;
+  bool below_all_neighbours(Index v, const RoundedPoint3& u, Index level, signed char* memo, std::size_t stride) const;
   RoundedPoint3 at(Index v) const { return RoundedPoint3{points_[v], approx_[v]}; }
 
   std::vector<Point3> points_;
@@ -101,6 +115,8 @@ class SurfaceCones {
   std::vector<std::vector<Index>> neighbours_;     // per vertex
   std::vector<std::vector<Index>> incident_;       // per vertex, its triangles, ascending
   std::vector<std::array<Index, 3>> across_;       // edge k: the triangle across it, when the two pair up; else kNoTriangle
+  std::vector<std::array<Index, 3>> edge_;         // edge k: edge_of
+  std::vector<std::array<Index, 2>> edge_ends_;    // per edge
   static constexpr Index kNoTriangle = ~Index(0);
 };
 
@@ -127,8 +143,13 @@ class SweptPolytope final : public PlaneBuilder {
   // Makes, for every point v of `cones`' surface and facet f of B, the
   // doubles of the lazy plane f + v (what sum computes for each triangle
   // at v, each vertex being shared by several triangles), in parallel;
-  // sum then reads them.  Memory: 9 bytes per pair.
+  // sum then reads them.  Memory: 9 bytes per pair.  Also, when there are
+  // at most 2^24 of them, the sign along each facet normal of B of every
+  // edge of the surface, which sum needs for both triangles at the edge
+  // (1 byte each).
   void prepare(const SurfaceCones& cones, unsigned threads);
+  // Frees what prepare made (sum then computes it again).
+  void release();
   std::size_t facets() const { return facets_.size(); }
   // on_surface for facet f of B and its normal (true without a surface).
   bool facet_on_surface(Index f) const { return !surface_ || facet_on_surface_[f]; }
@@ -178,6 +199,8 @@ class SweptPolytope final : public PlaneBuilder {
   const SurfaceCones* prepared_ = nullptr;  // the surface the table is for (prepare)
   std::vector<double> offset_d_;           // [v * facets + f]: the offset's double of f + v
   std::vector<char> offset_ok_;            // and whether the filter may use it
+  std::vector<signed char> rise_;          // [e * facets + f]: sign n_f . (q - p) for edge e from p to q (or empty)
+  mutable std::vector<signed char> below_;  // [v * facets + f]: SurfaceCones::candidate's memo for n_f (or empty)
 };
 
 }  // namespace minksum::nonconvex_detail

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -129,6 +130,14 @@ struct SumOptions {
   // computes it with mesh_volume(result.mesh) (the command line does, while
   // it writes the file: the two take about as long on real meshes).
   bool volume = true;
+  // Non-convex sums: when set, the sum's working data that outlives its
+  // last step (the boundary sweep's pieces, about 15 KB each, a gigabyte
+  // for the largest sums) is handed to this callback, on the sum's thread,
+  // instead of being freed before the sum returns; the data is then freed
+  // when the last copy of the pointer goes.  The command line frees it on
+  // another thread while it writes the file.  Unset: freed by the sum, on
+  // its threads.
+  std::function<void(std::shared_ptr<void> data)> release;
 
   // A report point, as the methods call it: throw Cancelled if the flag is
   // set, then call progress if there is one.

@@ -3,7 +3,8 @@
 
     /usr/bin/python3 bench/nonconvex/run.py [--build build-bench] [--reps 3] [--timeout 120]
         [--meshes DIR] [--work DIR] [--resume] [--minksum-timeout S] [--manifold-timeout S]
-        [--operations sum,erode,open] [--page docs/generated/benchmarks-nonconvex.md]
+        [--operations sum,erode,open] [--catalog-operations sum,...]
+        [--page docs/generated/benchmarks-nonconvex.md]
         [--command "make bench-nonconvex"] [A:B ...]
 
 Rows: A:B catalog specs (default: a triangulated torus family ⊕ a level-2
@@ -11,7 +12,8 @@ geodesic ball, a torus ⊕ a torus, and the catalog rows of docs/nonconvex.md),
 then, with --meshes DIR, every mesh file of DIR ⊕ a level-2 geodesic ball
 (`sphere:2`, radius 1) scaled to 2 % of the mesh's bounding-box diagonal.
 
-Each row is run for each of --operations (default all three): sum A ⊕ B,
+Each row is run for each of --operations (default all three; the catalog
+rows, A:B specs, for each of --catalog-operations when it is given): sum A ⊕ B,
 erode A ⊖ B and open (A ⊖ B) ⊕ B (`minksum erode|open`, Manifold's
 minkowskiDifference, then minkowskiSum for the opening; CGAL's
 reference_erosion for erode and nothing for open).  For each row:
@@ -393,6 +395,9 @@ def main():
     ap.add_argument("--work", help="directory for the operands' STL files (default BUILD/nonconvex)")
     ap.add_argument("--operations", default="sum,erode,open",
                     help="comma-separated operations of every row: sum, erode, open (default all three)")
+    ap.add_argument("--catalog-operations",
+                    help="the operations of the catalog rows (A:B specs) when they differ from --operations, "
+                         "e.g. sum: the erosions and openings of the mesh files only")
     ap.add_argument("--page", help="write the page here (e.g. docs/generated/benchmarks-nonconvex.md)")
     ap.add_argument("--command", default="/usr/bin/python3 bench/nonconvex/run.py",
                     help="the command named in the page's header")
@@ -404,6 +409,12 @@ def main():
     args.operations = [o for o in args.operations.split(",") if o]
     if not args.operations or any(o not in OPERATIONS for o in args.operations):
         fail("--operations takes a comma-separated list of sum, erode, open", 2)
+    if args.catalog_operations is None:
+        args.catalog_operations = args.operations
+    else:
+        args.catalog_operations = [o for o in args.catalog_operations.split(",") if o]
+        if not args.catalog_operations or any(o not in OPERATIONS for o in args.catalog_operations):
+            fail("--catalog-operations takes a comma-separated list of sum, erode, open", 2)
     args.work = args.work or os.path.join(args.build, "nonconvex")
     os.makedirs(args.work, exist_ok=True)
     args.reused = 0
@@ -413,6 +424,7 @@ def main():
         m = re.match(r"^torus:(\d+):(\d+)", a)
         tri = 2 * int(m.group(1)) * int(m.group(2)) if m else 0
         jobs.append((a, b, "%s ⊕ %s" % (a, b), tri))
+    catalog_jobs = len(jobs)
     if args.meshes:
         for name in sorted(os.listdir(args.meshes)):
             path = os.path.join(args.meshes, name)
@@ -436,7 +448,7 @@ def main():
             continue
         a, b, sum_label, tri = job
         shown_a, shown_b = sum_label.split(" ⊕ ", 1)
-        for op in args.operations:
+        for op in args.catalog_operations if i < catalog_jobs else args.operations:
             label = OPERATIONS[op] % (shown_a, shown_b)
             cache = os.path.join(args.work, "result-%s.json" % re.sub(r"[^A-Za-z0-9.@:_-]+", "_", op + "-" + label))
             if args.resume and os.path.isfile(cache):

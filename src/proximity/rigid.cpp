@@ -292,6 +292,14 @@ bool blow_up_triangle(const Query& qu, std::array<SimplexVertex, 4>& s) {
   return false;
 }
 
+// The centroid of a placed body's vertices (doubles: a guess for the search).
+V3 centre(const Placed& b) {
+  const Vec3d& c = b.d.centroid;
+  const auto& a = b.a;
+  return V3{a[0] * c.x + a[1] * c.y + a[2] * c.z + b.t.x, a[3] * c.x + a[4] * c.y + a[5] * c.z + b.t.y,
+            a[6] * c.x + a[7] * c.y + a[8] * c.z + b.t.z};
+}
+
 // ---------------------------------------------------------------------------
 // The feature plane (docs/proximity.md, "Rigid motion"): near contact the
 // double search ends on a simplex spanning (nearly) a facet of D = P' − Q',
@@ -398,12 +406,6 @@ class FeaturePlane {
     auto it = placed_q_.find(v);
     if (it == placed_q_.end()) it = placed_q_.emplace(v, qu_.Q.map.apply(qu_.dq.exact[v])).first;
     return it->second;
-  }
-  static V3 centre(const Placed& b) {
-    const Vec3d& c = b.d.centroid;
-    const auto& a = b.a;
-    return V3{a[0] * c.x + a[1] * c.y + a[2] * c.z + b.t.x, a[3] * c.x + a[4] * c.y + a[5] * c.z + b.t.y,
-              a[6] * c.x + a[7] * c.y + a[8] * c.z + b.t.z};
   }
 
   // A vertex maximising sign·N·x over a placed body (exact: a vertex no
@@ -532,12 +534,6 @@ class FeaturePlane {
 V3 initial_direction(const Query& qu, const RigidWarmStart& start) {
   V3 dir = v3(start.direction);
   if (dot(dir, dir) > 0 && std::isfinite(dot(dir, dir))) return dir;
-  const auto centre = [](const Placed& b) {
-    const Vec3d& c = b.d.centroid;
-    const auto& a = b.a;
-    return V3{a[0] * c.x + a[1] * c.y + a[2] * c.z + b.t.x, a[3] * c.x + a[4] * c.y + a[5] * c.z + b.t.y,
-              a[6] * c.x + a[7] * c.y + a[8] * c.z + b.t.z};
-  };
   dir = centre(qu.P) - centre(qu.Q);
   if (!(dot(dir, dir) > 0) || !std::isfinite(dot(dir, dir))) dir = {1, 0, 0};
   return dir;

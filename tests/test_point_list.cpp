@@ -686,6 +686,27 @@ TEST(ToFloat, NearestAgainstMpfr) {
   }
 }
 
+// to_float goes through the nearest double unless that double is the
+// boundary between two floats' roundings: rationals on either side of each
+// kind of boundary, close enough that their nearest double is the boundary
+// itself (a float midpoint, a subnormal midpoint, FLT_MAX + half its ulp).
+TEST(ToFloat, RationalsWhoseNearestDoubleIsARoundingBoundary) {
+  const Rational tiny(Integer(1), Integer(1) << 700);
+  const Rational boundaries[] = {
+      Rational(Integer((1 << 24) + 1), Integer(1) << 24),       // 1 + 2^-24: midpoint of 1 and 1 + 2^-23
+      Rational(Integer(3), Integer(1) << 150),                  // midpoint of two subnormal floats
+      Rational(Integer(1), Integer(1) << 150),                  // midpoint of 0 and the least subnormal
+      Rational((Integer(1) << 128) - (Integer(1) << 103)),      // FLT_MAX + half its ulp
+      Rational((Integer(1) << 128) - (Integer(1) << 103) * 3),  // midpoint below FLT_MAX
+  };
+  for (const Rational& m : boundaries)
+    for (const Rational& x : {m, Rational(m + m * tiny), Rational(m - m * tiny)})
+      for (const Rational& y : {x, Rational(-x)}) {
+        ASSERT_EQ(to_double(y), to_double(m) * sgn(y)) << format_exact(y);  // the nearest double is the boundary
+        EXPECT_EQ(double(to_float(y)), mpfr_nearest(y, 24, -148, 128)) << format_exact(y);
+      }
+}
+
 // to_double_rest: the nearest double (as MPFR's), and a rest with a bound
 // that holds exactly, zero exactly for doubles; random rationals of every
 // size, exact ties and near-ties, in every rounding mode.

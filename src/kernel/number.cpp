@@ -228,6 +228,25 @@ float to_float(const Rational& q) {
         std::fegetround() == FE_TONEAREST)
       return static_cast<float>(q.get_d());  // get_d exact here; +-inf beyond FLT_MAX
   }
+  if (std::fegetround() == FE_TONEAREST) {
+    // Through the nearest double d: float(d) is q's nearest float unless d
+    // is the boundary between two floats' roundings (the midpoint of two
+    // consecutive floats, or FLT_MAX + half its ulp).  Every such boundary
+    // m is a double (at most 25 significant bits, at least 2^-150), and
+    // rounding to the nearest double is monotone and keeps m, so q < m
+    // gives d <= m and q > m gives d >= m: when d is not a boundary, q and
+    // d lie strictly on the same side of every boundary and round to the
+    // same float.  (A q below the doubles' range gives d = 0, whose float
+    // is q's too; one beyond it gives d = +-inf, as q's float is.)
+    const double d = to_double(q);
+    const float f = static_cast<float>(d);
+    if (static_cast<double>(f) == d || !std::isfinite(d)) return f;
+    const float g = std::nextafter(f, d > static_cast<double>(f) ? HUGE_VALF : -HUGE_VALF);
+    const double boundary = std::isinf(f) || std::isinf(g)
+                                ? std::copysign(0x1.ffffffp127, d)                            // FLT_MAX + half an ulp
+                                : (static_cast<double>(f) + static_cast<double>(g)) / 2;  // exact
+    if (d != boundary) return f;
+  }
   const float v = static_cast<float>(round_to_binary(abs(q.get_num()), q.get_den(), 24, -149, 127));
   return s < 0 ? -v : v;
 }

@@ -55,8 +55,10 @@
 #include <cstdint>
 #include <cstring>
 #include <numeric>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 namespace minksum {
 
@@ -278,18 +280,31 @@ void clean(std::vector<Tri>& tris, const std::vector<EP>& pts, std::vector<Index
           if (t[i] < t[k]) k = i;
         return Tri{t[k], t[(k + 1) % 3], t[(k + 2) % 3]};
       };
-      // Sorted set -> triangles on it of one and of the other orientation.
-      std::unordered_map<Tri, std::array<std::vector<std::size_t>, 2>, TriSetHash> by_set;
+      // (sorted set, orientation, triangle), sorted: per set, the triangles
+      // of one orientation, then those of the other, each ascending; the
+      // first of each cancel in pairs.
+      struct Entry {
+        Tri set;
+        bool up;
+        std::size_t i;
+      };
+      std::vector<Entry> entries(tris.size());
       for (std::size_t i = 0; i < tris.size(); ++i) {
         const Tri r = rotation_of(tris[i]);
-        const bool up = r[1] < r[2];
-        by_set[Tri{r[0], std::min(r[1], r[2]), std::max(r[1], r[2])}][up].push_back(i);
+        entries[i] = {Tri{r[0], std::min(r[1], r[2]), std::max(r[1], r[2])}, r[1] < r[2], i};
       }
+      std::sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
+        return std::tie(x.set, x.up, x.i) < std::tie(y.set, y.up, y.i);
+      });
       std::vector<char> gone(tris.size(), 0);
       bool any = false;
-      for (auto& [s, lists] : by_set) {
-        const std::size_t pairs = std::min(lists[0].size(), lists[1].size());
-        for (std::size_t k = 0; k < pairs; ++k) gone[lists[0][k]] = gone[lists[1][k]] = 1, any = true;
+      for (std::size_t b = 0, e = 0; b < entries.size(); b = e) {
+        std::size_t mid = b;
+        while (mid < entries.size() && entries[mid].set == entries[b].set && !entries[mid].up) ++mid;
+        e = mid;
+        while (e < entries.size() && entries[e].set == entries[b].set) ++e;
+        const std::size_t pairs = std::min(mid - b, e - mid);
+        for (std::size_t k = 0; k < pairs; ++k) gone[entries[b + k].i] = gone[entries[mid + k].i] = 1, any = true;
       }
       if (any) {
         std::size_t n = 0;
@@ -299,7 +314,14 @@ void clean(std::vector<Tri>& tris, const std::vector<EP>& pts, std::vector<Index
         changed = true;
       }
     }
-    // Collinear triangles: the one across the longest side is split.
+    // Collinear triangles: the one across the longest side is split (the
+    // directed edges are indexed only when there is one).
+    auto collinear = [&](const Tri& t) {
+      return t[0] != t[1] && t[1] != t[2] && t[2] != t[0] && CGAL::collinear(pts[t[0]], pts[t[1]], pts[t[2]]);
+    };
+    std::size_t first_collinear = 0;
+    while (first_collinear < tris.size() && !collinear(tris[first_collinear])) ++first_collinear;
+    if (first_collinear == tris.size()) continue;
     std::unordered_map<std::uint64_t, std::size_t> directed;
     directed.reserve(3 * tris.size());
     auto enter = [&](std::size_t i) {
@@ -312,10 +334,9 @@ void clean(std::vector<Tri>& tris, const std::vector<EP>& pts, std::vector<Index
       }
     };
     for (std::size_t i = 0; i < tris.size(); ++i) enter(i);
-    for (std::size_t i = 0; i < tris.size(); ++i) {
+    for (std::size_t i = first_collinear; i < tris.size(); ++i) {
       const Tri t = tris[i];
-      if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0] || !CGAL::collinear(pts[t[0]], pts[t[1]], pts[t[2]]))
-        continue;  // (a repeated vertex: removed by the next pass)
+      if (!collinear(t)) continue;  // (a repeated vertex: removed by the next pass)
       // The vertex strictly inside the opposite side.
       int m = 0;
       while (m < 2 && !CGAL::collinear_are_strictly_ordered_along_line(pts[t[(m + 1) % 3]], pts[t[m]],
@@ -486,7 +507,10 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
   std::vector<Vec3d> nearest;
   double largest = 0;
   {
-    std::unordered_map<Key, std::vector<Index>, KeyHash> by_nearest;
+    // The welded points of each position, as a chain from the last one.
+    std::unordered_map<Key, Index, KeyHash> last_at;
+    last_at.reserve(exact_pts.size());
+    std::vector<Index> before;  // welded point -> the one before it at its position
     for (std::size_t i = 0; i < exact_pts.size(); ++i) {
       double c[3];
       for (int k = 0; k < 3; ++k) {
@@ -496,16 +520,21 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
                               (floats ? "32-bit floats" : "doubles"));
         largest = std::max(largest, std::fabs(c[k]));
       }
-      auto& same = by_nearest[Key{c[0], c[1], c[2]}];
+      const auto slot = last_at.emplace(Key{c[0], c[1], c[2]}, kNoIndex).first;
       Index w = kNoIndex;
-      for (Index j : same)
+      for (Index j = slot->second; j != kNoIndex && w == kNoIndex; j = before[j])
         if (pts[j] == exact_pts[i]) w = j;
       if (w == kNoIndex) {
         w = Index(pts.size());
         pts.push_back(exact_pts[i]);
         nearest.push_back(Vec3d{c[0], c[1], c[2]});
-        same.push_back(w);
-        for (int k = 0; k < 3; ++k) r.rounded_coordinates += Rational(c[k]) != exact_pts[i][k];
+        before.push_back(slot->second);
+        slot->second = w;
+        // A coordinate equal to its rounding is that double: its nearest
+        // double is c too, so only those are compared exactly.
+        const Vec3d& near = tri.points.approx(i);
+        for (int k = 0; k < 3; ++k)
+          r.rounded_coordinates += near[k] != c[k] || Rational(c[k]) != exact_pts[i][k];
       }
       weld[i] = w;
     }
@@ -615,9 +644,13 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
     return r;
   };
 
-  // The usual case: rounded to the nearest, nothing touching, valid.
+  // The usual case: rounded to the nearest, nothing touching, valid.  (When
+  // it is not valid, the repair on the format's own numbers starts from
+  // this same surface: no point pushed, none snapped.)
+  bool built_nearest = false;
   if (fans.split_vertices == 0) {
     build();
+    built_nearest = true;
     if (stuck.empty() && !tris.empty()) {
       Mesh m = mesh_of();
       try {
@@ -685,7 +718,7 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
     std::size_t first_count = 0;
     std::vector<std::pair<std::size_t, std::size_t>> hits;
     for (int round = 0; round < kMostRounds; ++round) {
-      build();
+      if (!std::exchange(built_nearest, false) || floor != kNearest || round != 0) build();
       if (tris.empty()) {
         last_problem = "every face degenerates";
         return false;

@@ -654,7 +654,7 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
     if (stuck.empty() && !tris.empty()) {
       Mesh m = mesh_of();
       try {
-        nonconvex_detail::validate_surface(m, name);
+        nonconvex_detail::check_surface(m, name);
         return finish(std::move(m));
       } catch (const InputError&) {
         // Repaired below.
@@ -774,7 +774,7 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
       if (count == 0) {
         Mesh m = mesh_of();
         try {
-          nonconvex_detail::validate_surface(m, name);
+          nonconvex_detail::check_surface(m, name);
           finish(std::move(m));
           return true;
         } catch (const InputError& err) {

@@ -4,10 +4,13 @@
 #include <minksum/nonconvex.hpp>
 #include <minksum/predicates.hpp>
 
+#include "kernel/interval.hpp"
 #include "kernel/plane.hpp"
 #include "nonconvex/nef.hpp"
 #include "nonconvex/sweep.hpp"
 #include "nonconvex/validate.hpp"
+
+#include <CGAL/FPU.h>
 
 #include <algorithm>
 #include <cmath>
@@ -156,7 +159,7 @@ bool ear_clip_face(const std::vector<Index>& loop, const std::vector<Point3>& pt
 // faces outwards (positive signed volume), a cavity's boundary (odd depth)
 // inwards.  Anything else describes no solid, or another one than the
 // volumes say: an error naming the shell by its first face.
-void check_shell_orientation(const Solid& s, const std::string& source) {
+void check_shell_orientation(const Solid& s, int volume_sign, const std::string& source) {
   const auto& tris = s.triangles.faces;
   const std::size_t nv = s.triangles.points.size();
   std::vector<Index> parent(nv);
@@ -182,9 +185,9 @@ void check_shell_orientation(const Solid& s, const std::string& source) {
   const std::vector<Point3> pts = s.triangles.points.to_points();
   auto name = [&](std::size_t k) { return "the shell of " + face_name(first_face[k]); };
   if (shell.size() == 1) {
-    if (sgn(s.volume) < 0)
+    if (volume_sign < 0)
       throw InputError(source, "", "the faces are oriented inwards (the enclosed volume is negative)");
-    if (sgn(s.volume) == 0) throw InputError(source, "", "the enclosed volume is zero");
+    if (volume_sign == 0) throw InputError(source, "", "the enclosed volume is zero");
     return;
   }
   // Per shell: signed volume and exact bounding box.
@@ -388,7 +391,47 @@ Solid validate_solid(const Mesh& mesh, const std::string& source) {
   return nonconvex_detail::validate_surface(mesh, source);
 }
 
+namespace {
+
+// The sign of the volume a closed triangle surface encloses: the sum of
+// det(p0 − o, p1 − o, p2 − o) over its triangles (six times the volume, o
+// its first point), on intervals (kernel/interval.hpp: each operation
+// rounded outward, so the sum encloses the exact one) when the points are
+// doubles; exactly (mesh_volume) when the interval does not decide.
+int volume_sign(const Mesh& tris) {
+  if (tris.points.all_doubles() && !tris.points.empty()) {
+    int sign = kUncertain;
+    {
+      CGAL::Protect_FPU_rounding<true> upward;
+      const std::vector<Vec3d>& v = tris.points.approx();
+      auto at = [&](Index i) {
+        return FastIPoint{FastInterval(v[i].x), FastInterval(v[i].y), FastInterval(v[i].z)};
+      };
+      const FastIPoint o = at(0);
+      FastInterval six(0);
+      for (const auto& f : tris.faces) six += dot(at(f[0]) - o, cross(at(f[1]) - o, at(f[2]) - o));
+      sign = sign_of(six);
+    }
+    if (sign != kUncertain) return sign;
+  }
+  return sgn(mesh_volume(tris));
+}
+
+Solid checked_surface(const Mesh& mesh, const std::string& source, bool with_volume);
+
+}  // namespace
+
 Solid nonconvex_detail::validate_surface(const Mesh& mesh, const std::string& source) {
+  return checked_surface(mesh, source, true);
+}
+
+void nonconvex_detail::check_surface(const Mesh& mesh, const std::string& source) {
+  (void)checked_surface(mesh, source, false);
+}
+
+namespace {
+
+Solid checked_surface(const Mesh& mesh, const std::string& source, bool with_volume) {
   // Weld exactly equal points: canonical index = first of its value.
   const std::size_t n = mesh.points.size();
   std::vector<Point3> exact = mesh.points.to_points();
@@ -542,10 +585,18 @@ Solid nonconvex_detail::validate_surface(const Mesh& mesh, const std::string& so
   if (const auto hit = nonconvex_detail::first_self_intersection(s.triangles))
     throw InputError(source, face_name(s.source_face[hit->first]) + " and " + face_name(s.source_face[hit->second]),
                      "intersect (the surface intersects itself)");
-  s.volume = mesh_volume(s.triangles);
-  check_shell_orientation(s, source);
+  int sign = 0;
+  if (with_volume) {
+    s.volume = mesh_volume(s.triangles);
+    sign = sgn(s.volume);
+  } else {
+    sign = volume_sign(s.triangles);
+  }
+  check_shell_orientation(s, sign, source);
   return s;
 }
+
+}  // namespace
 
 Solid solid_of(const ConvexPolytope& p) {
   Solid s;

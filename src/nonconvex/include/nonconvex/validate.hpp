@@ -15,4 +15,10 @@ namespace minksum::nonconvex_detail {
 // `convex` false whatever its shape.
 Solid validate_surface(const Mesh& mesh, const std::string& source);
 
+// The same checks and errors, for a caller that only needs them passed (the
+// rounded surface before it is written): the Solid, and with it the exact
+// volume, is not made; the orientation is decided from the volume's sign,
+// on intervals where they decide it.
+void check_surface(const Mesh& mesh, const std::string& source);
+
 }  // namespace minksum::nonconvex_detail

@@ -5,11 +5,13 @@
 #include <minksum/catalog.hpp>
 #include <minksum/nonconvex.hpp>
 
+#include "nonconvex/validate.hpp"
 #include "nonconvex_support.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -386,5 +388,29 @@ TEST(RoundSolid, SolidThinnerThanTheSpacingEverywhereIsRefused) {
     EXPECT_STREQ(e.what(),
                  "the rounded surface collapses (every face degenerates: the solid is thinner than the spacing of "
                  "doubles)");
+  }
+}
+
+// check_surface, the test of the rounded surface before it is written,
+// decides the orientation from the sign of the volume on intervals: an
+// inward cube is refused as validate_surface refuses it, and so it is at
+// 2^-1000 of the size, where the intervals of the volume's terms hold zero
+// and the sign is decided exactly.
+TEST(RoundSolid, CheckOfTheRoundedSurfaceRefusesInwardFacesFromTheVolumesSign) {
+  for (const int e : {0, -1000}) {
+    Mesh m = cube_with_top_point(Point3(Rational(1, 2), Rational(1, 4), Rational(1)));
+    Mesh scaled;
+    const Rational s = e == 0 ? Rational(1) : Rational(Integer(1), Integer(1) << 1000);
+    for (std::size_t i = 0; i < m.points.size(); ++i) scaled.points.push_back(s * m.points[i]);
+    scaled.faces = m.faces;
+    ASSERT_TRUE(scaled.points.all_doubles()) << e;
+    EXPECT_NO_THROW(nonconvex_detail::check_surface(scaled, "m.off")) << e;
+    for (auto& f : scaled.faces) std::reverse(f.begin(), f.end());
+    try {
+      nonconvex_detail::check_surface(scaled, "m.off");
+      ADD_FAILURE() << "an inward cube passed at 2^" << e;
+    } catch (const InputError& err) {
+      EXPECT_NE(std::string(err.what()).find("oriented inwards"), std::string::npos) << err.what();
+    }
   }
 }

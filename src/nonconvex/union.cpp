@@ -1427,11 +1427,46 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
   std::vector<PlaneResult> results(n);
   const unsigned workers = parallel_threads(threads, n);
   const std::size_t batch = std::max<std::size_t>(64, std::size_t(workers) * 16);
+  // The planes are done in the Morton order of the centres of their first
+  // facets' pieces, so that consecutive planes read the same neighbouring
+  // pieces, still in the cache (in the order of the planes, neighbours on
+  // the surface are far apart in the list); each result keeps its place.
+  std::vector<std::size_t> visit(n);
+  {
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    std::vector<std::array<double, 3>> centre(n);
+    for (std::size_t g = 0; g < n; ++g) {
+      const Piece& p = parts[planes[g]->facets.front().piece];
+      for (int k = 0; k < 3; ++k) {
+        centre[g][k] = p.lo[k] / 2 + p.hi[k] / 2;
+        lo[k] = std::min(lo[k], centre[g][k]);
+        hi[k] = std::max(hi[k], centre[g][k]);
+      }
+    }
+    std::vector<std::pair<std::uint64_t, std::size_t>> code(n);
+    for (std::size_t g = 0; g < n; ++g) {
+      std::uint32_t cell[3];
+      for (int k = 0; k < 3; ++k) {
+        const double span = hi[k] - lo[k];
+        double t = span > 0 && std::isfinite(span) ? (centre[g][k] - lo[k]) / span : 0.0;
+        if (!(t > 0)) t = 0;  // (also NaN)
+        if (t > 1) t = 1;
+        cell[k] = std::uint32_t(t * 2097151.0);  // 21 bits
+      }
+      std::uint64_t c = 0;
+      for (int b = 20; b >= 0; --b)
+        for (int k = 0; k < 3; ++k) c = (c << 1) | ((cell[k] >> b) & 1u);
+      code[g] = {c, g};
+    }
+    std::sort(code.begin(), code.end());
+    for (std::size_t g = 0; g < n; ++g) visit[g] = code[g].second;
+  }
   for (std::size_t start = 0; start < n; start += batch) {
     const std::size_t count = std::min(batch, n - start);
     parallel_for(count, workers, [&](std::size_t k) {
-      const Group& g = *planes[start + k];
-      results[start + k] = plane_boundary(*g.plane, g.facets, g.below, parts, halves, grid);
+      const std::size_t at = visit[start + k];
+      const Group& g = *planes[at];
+      results[at] = plane_boundary(*g.plane, g.facets, g.below, parts, halves, grid);
     });
     options.report("union", double(start + count) / double(n));
   }
@@ -1462,7 +1497,8 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     for (const Item& it : items) item_boxes.push_back(it.box);
     const PieceGrid item_grid(item_boxes);
     std::vector<std::vector<Segment>> slits(n);
-    parallel_for(n, workers, [&](std::size_t g) {
+    parallel_for(n, workers, [&](std::size_t k) {
+      const std::size_t g = visit[k];  // (in the order the planes were done)
       const std::vector<Segment>& own = results[g].segments;
       if (own.empty()) return;
       Box region;

@@ -33,6 +33,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <new>
+#include <vector>
 
 namespace minksum::cli {
 
@@ -157,6 +158,15 @@ void* pool_reallocate(void* p, std::size_t old_size, std::size_t n) {
 void pool_gmp_memory() {
 #ifndef MINKSUM_ASAN
   mp_set_memory_functions(pool_allocate, pool_reallocate, pool_free);
+#endif
+}
+
+void leave_to_exit(std::shared_ptr<void> data) {
+#ifdef MINKSUM_ASAN
+  data.reset();
+#else
+  static std::vector<std::shared_ptr<void>>* const kept = new std::vector<std::shared_ptr<void>>;  // never freed
+  kept->push_back(std::move(data));
 #endif
 }
 

@@ -1,6 +1,8 @@
 // The command's memory set-up (memory.cpp).
 #pragma once
 
+#include <memory>
+
 namespace minksum::cli {
 
 // Keep freed memory for reuse and back the heap with transparent huge pages
@@ -23,5 +25,15 @@ void allow_thread_arenas();
 // class is its malloc_usable_size, so blocks allocated before (by malloc,
 // through GMP's default functions) are reused correctly.
 void pool_gmp_memory();
+
+// Leave `data` to the end of the process instead of freeing it: for the
+// large structures of a run that are dead before the run ends (a non-convex
+// sum's pieces, millions of small blocks), whose freeing would only cost
+// time while the output is written (freed by one thread while another
+// allocates, they flood malloc's free lists and the writing thread pays for
+// their consolidation), as compilers skip freeing at exit.  The memory is
+// not used again, so the peak does not grow.  Under AddressSanitizer the
+// data is freed at once (its leak check would report it).
+void leave_to_exit(std::shared_ptr<void> data);
 
 }  // namespace minksum::cli

@@ -220,8 +220,8 @@ int run_sum_command(const SumCommand& c) {
   // memory is the sum's.
   request.provenance = false;
   OperandSum s;
-  // A solid sum's pieces (SumOptions::release), freed on the volume's thread
-  // below while the file is written.
+  // A solid sum's pieces (SumOptions::release): dead once the sum is made,
+  // left to the end of the process (leave_to_exit).
   std::shared_ptr<void> pieces;
   {
     ProgressTicker ticker(std::string("minksum ") + kCommand[int(c.request.operation)]);
@@ -241,14 +241,11 @@ int run_sum_command(const SumCommand& c) {
   if (!scene) std::vector<Operand>().swap(operands);
   const Mesh* boundary = s.solid();
   const bool empty = boundary && boundary->faces.empty();
+  if (pieces) leave_to_exit(std::move(pieces));
   // Both only read the boundary; the volume's thread is joined before s
   // changes (get() below, or the future's destructor when the write throws).
-  // That thread frees the pieces first (the writing leaves it a core).
   std::future<Rational> volume;
-  if (boundary) volume = std::async(std::launch::async, [&s, &pieces] {
-    pieces.reset();
-    return result_volume(s);
-  });
+  if (boundary) volume = std::async(std::launch::async, [&s] { return result_volume(s); });
   const auto w0 = std::chrono::steady_clock::now();
   std::string rounding = "null";
   if (c.output) {

@@ -201,6 +201,34 @@ TEST(Erosion, RandomConvexPolytopeByASmallBall) {
   }
 }
 
+// Degenerate duals.  The cube [-1,1]^3 with its corner (1,1,1) cut off by
+// x + y + z <= 5/2, eroded by the octahedron of radius 1/4: each face moves
+// in by 1/4, the cut too (B's support along (1,1,1) is 1/4), so the cut's
+// moved plane x + y + z = 9/4 touches the eroded cube [-3/4,3/4]^3 at its
+// corner only (a redundant plane whose dual point lies inside a facet of the
+// dual hull).  And the octahedron eroded by the octahedron of half its size:
+// the support ties along every facet normal, the result is the octahedron
+// of radius 1/2 with its vertices of degree 4 (dual facets of four points).
+TEST(Erosion, DegenerateDualHullsOnTheHalfSpacePath) {
+  std::vector<Point3> p;
+  for (int x : {-1, 1})
+    for (int y : {-1, 1})
+      for (int z : {-1, 1})
+        if (x + y + z < 3) p.emplace_back(Rational(x), Rational(y), Rational(z));
+  p.emplace_back(R("1"), R("1"), R("1/2"));
+  p.emplace_back(R("1"), R("1/2"), R("1"));
+  p.emplace_back(R("1/2"), R("1"), R("1"));
+  const Solid cut = solid_of(ConvexPolytope::hull(p, "cut cube")), b = solid("octahedron@scale:1/4");
+  expect_three_ways(cut, b);
+  const NonconvexSum r = erode(cut, b);
+  expect_same(r.mesh, box_mesh(R("-3/4"), R("3/4"), R("-3/4"), R("3/4"), R("-3/4"), R("3/4")));
+  EXPECT_EQ(r.pair_facets, 7u);
+  EXPECT_EQ(r.candidate_facets, 6u);
+  const Solid o = solid("octahedron"), half = solid("octahedron@scale:1/2");
+  expect_three_ways(o, half);
+  expect_same(erode(o, half).mesh, half.convex->to_mesh());
+}
+
 // A cube eroded by a smaller box: the box of the closed form, on the
 // half-space path (one pair, no union), with its exact volume.
 TEST(Erosion, CubeBySmallBoxIsTheBoxOnTheHalfSpacePath) {

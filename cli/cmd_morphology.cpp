@@ -32,8 +32,10 @@ one line naming the problem otherwise).  The result is the exact boundary:
 polygons of exact coordinates, one shell per part and per cavity; without
 --exact it is written rounded as a valid solid, as 'minksum sum' writes a
 non-convex sum.  Erosion is computed as the complement of Aᶜ ⊕ (−B) by the
-boundary sweep of A's surface (docs/nonconvex.md); opening and closing are an
-erosion and a sum in turn.
+boundary sweep of A's surface (docs/nonconvex.md); for a convex A, as the
+intersection of A's facet half-spaces moved inwards by B's support, a convex
+polytope written as a convex sum is.  Opening and closing are an erosion and
+a sum in turn.
 
 An empty result (B fits nowhere inside A, for erode and open) is not an
 error: the summary says "= empty", --json has "empty": true and "volume":

@@ -256,6 +256,13 @@ int run_sum_command(const SumCommand& c) {
       rounding = rounding_json(write_set_output(out, *set));
     } else if (empty) {
       write_mesh_as_is(out, *boundary);  // (a file of the format with no faces)
+    } else if (const auto& convex = std::get<NonconvexSum>(s.result).convex) {
+      // Written as the convex path writes a polytope, reported as a solid's rounding.
+      const RoundingReport p = write_mesh_output(out, *convex);
+      RoundedSolid r;
+      r.rounded_coordinates = p.coordinates;
+      r.max_displacement = p.max_displacement;
+      rounding = solid_rounding_json(r);
     } else {
       RoundedSolid r;
       write_solid_mesh(out, *boundary, nullptr, &r, std::get<NonconvexSum>(s.result).operation);

@@ -1872,3 +1872,26 @@ TEST_F(Cli, ErodeOpenCloseJsonExactAndEmpty) {
   EXPECT_NE(help.out.find("A ⊖ B = { x : x + B ⊆ A }"), std::string::npos) << help.out;
   EXPECT_NE(help.out.find("empty"), std::string::npos);
 }
+
+// A convex A: the erosion is the intersection of A's moved half-spaces (one
+// pair, no union), the opening its convex sum with B; both written as binary
+// STL that reads back as a closed solid, and the exact volume of the cube ⊖
+// the cube of side 1/2 (side 3/2).
+TEST_F(Cli, ErodeAndOpenAConvexATakeTheHalfSpacePath) {
+  CmdResult e = run("erode cube cube@scale:1/4 --json --exact -o " + path("ce.off"));
+  ASSERT_EQ(e.status, 0) << e.err;
+  EXPECT_NE(e.out.find("\"volume\": \"27/8\""), std::string::npos) << e.out;
+  EXPECT_EQ(json_int(e.out, "facets"), 6);
+  EXPECT_NE(e.out.find("\"pieces\": {\"a\": 1, \"b\": 1}, \"pairs\": 1,"), std::string::npos) << e.out;
+  EXPECT_EQ(json_int(e.out, "pair_facets"), 6);
+  EXPECT_EQ(json_int(e.out, "clips"), 0);
+  EXPECT_NE(e.out.find("\"nonconvex_method\": \"decomposition\""), std::string::npos) << e.out;
+  for (const char* op : {"erode", "open", "close"}) {
+    SCOPED_TRACE(op);
+    CmdResult o = run(std::string(op) + " dodecahedron sphere:2@scale:1/10 --json -o " + path("c.stl") + " --binary");
+    ASSERT_EQ(o.status, 0) << o.err;
+    EXPECT_EQ(json_int(o.out, "clips"), 0);
+    CmdResult back = run("stats " + path("c.stl"));
+    EXPECT_EQ(back.status, 0) << back.err;
+  }
+}

@@ -141,27 +141,169 @@ TEST(Erosion, ConvexAIsItsFacetsMovedBySupport) {
   EXPECT_LT(e.volume(), a.volume);
 }
 
+// The erosion of a convex A swept (A's convex polytope left out of the
+// Solid, so that erode takes the sweep of any A).
+NonconvexSum swept_erosion(Solid a, const Solid& b) {
+  a.convex.reset();
+  return erode(a, b);
+}
+
+// erode's result for a convex A (the half-space intersection, halfspace_erosion)
+// against the sweep and against convex_erosion (CGAL's
+// halfspace_intersection_3 on exact points): the same polytope exactly, the
+// result a valid polytope (every invariant re-checked from scratch).
+void expect_three_ways(const Solid& sa, const Solid& sb) {
+  const std::optional<ConvexPolytope> fast = nonconvex_detail::halfspace_erosion(*sa.convex, *sb.convex);
+  ASSERT_TRUE(fast);
+  EXPECT_EQ(fast->check_invariants(), "");
+  const NonconvexSum r = erode(sa, sb), swept = swept_erosion(sa, sb);
+  ASSERT_TRUE(r.convex);
+  expect_closed_oriented(r);
+  expect_closed_oriented(swept);
+  expect_same(r.mesh, fast->to_mesh());
+  expect_same(r.mesh, swept.mesh);
+  EXPECT_EQ(r.volume, swept.volume);
+  EXPECT_EQ(r.volume, fast->volume());
+  const std::optional<ConvexPolytope> oracle = nonconvex_detail::convex_erosion(*sa.convex, *sb.convex);
+  ASSERT_TRUE(oracle);
+  expect_same(r.mesh, oracle->to_mesh());
+}
+
 // For convex A, the intersection of A's facet half-spaces moved by B's
-// support (convex_erosion, CGAL's halfspace_intersection_3 on exact points)
-// against erode's sweep: the same polytope exactly.
+// support, three ways: the same polytope exactly.
 TEST(Erosion, ConvexAIsTheIntersectionOfTheMovedHalfSpaces) {
   for (const auto& [a, b] : std::vector<std::pair<std::string, std::string>>{
            {"sphere:2", "cube@scale:1/9@rot:4"},
            {"dodecahedron", "tetra@scale:1/5@translate:1/3,1/7,0"},
+           {"dodecahedron", "sphere:2@scale:1/7"},
            {"box:4:6:8", "cube@rot:3@scale:1/2"},
            {"cube", "sphere:1@scale:1/3"},
            {"octahedron@rot:2", "octahedron@scale:1/2"}}) {
     SCOPED_TRACE(a + " eroded by " + b);
-    const Solid sa = solid(a), sb = solid(b);
-    const NonconvexSum swept = erode(sa, sb);
-    const std::optional<ConvexPolytope> direct = nonconvex_detail::convex_erosion(*sa.convex, *sb.convex);
-    ASSERT_TRUE(direct);
-    expect_closed_oriented(swept);
-    expect_same(swept.mesh, direct->to_mesh());
+    expect_three_ways(solid(a), solid(b));
   }
   // Empty, and exactly the size of A (a point): no point strictly inside.
   EXPECT_FALSE(nonconvex_detail::convex_erosion(catalog_polytope("cube"), catalog_polytope("cube@scale:2")));
   EXPECT_FALSE(nonconvex_detail::convex_erosion(catalog_polytope("cube"), catalog_polytope("cube")));
+}
+
+// Random convex polytopes (hulls of points of a grid of 1/8, fixed seeds)
+// eroded by a small ball: three ways, the same polytope.
+TEST(Erosion, RandomConvexPolytopeByASmallBall) {
+  const Solid ball = solid("sphere:2@scale:1/16@translate:1/32,-1/64,0");
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> eighth(-8, 8);
+    std::vector<Point3> p;
+    while (p.size() < 40) p.emplace_back(Rational(eighth(rng), 8), Rational(eighth(rng), 8), Rational(eighth(rng), 8));
+    expect_three_ways(solid_of(ConvexPolytope::hull(p, "random")), ball);
+  }
+}
+
+// Degenerate duals.  The cube [-1,1]^3 with its corner (1,1,1) cut off by
+// x + y + z <= 5/2, eroded by the octahedron of radius 1/4: each face moves
+// in by 1/4, the cut too (B's support along (1,1,1) is 1/4), so the cut's
+// moved plane x + y + z = 9/4 touches the eroded cube [-3/4,3/4]^3 at its
+// corner only (a redundant plane whose dual point lies inside a facet of the
+// dual hull).  And the octahedron eroded by the octahedron of half its size:
+// the support ties along every facet normal, the result is the octahedron
+// of radius 1/2 with its vertices of degree 4 (dual facets of four points).
+TEST(Erosion, DegenerateDualHullsOnTheHalfSpacePath) {
+  std::vector<Point3> p;
+  for (int x : {-1, 1})
+    for (int y : {-1, 1})
+      for (int z : {-1, 1})
+        if (x + y + z < 3) p.emplace_back(Rational(x), Rational(y), Rational(z));
+  p.emplace_back(R("1"), R("1"), R("1/2"));
+  p.emplace_back(R("1"), R("1/2"), R("1"));
+  p.emplace_back(R("1/2"), R("1"), R("1"));
+  const Solid cut = solid_of(ConvexPolytope::hull(p, "cut cube")), b = solid("octahedron@scale:1/4");
+  expect_three_ways(cut, b);
+  const NonconvexSum r = erode(cut, b);
+  expect_same(r.mesh, box_mesh(R("-3/4"), R("3/4"), R("-3/4"), R("3/4"), R("-3/4"), R("3/4")));
+  EXPECT_EQ(r.pair_facets, 7u);
+  EXPECT_EQ(r.candidate_facets, 6u);
+  const Solid o = solid("octahedron"), half = solid("octahedron@scale:1/2");
+  expect_three_ways(o, half);
+  expect_same(erode(o, half).mesh, half.convex->to_mesh());
+}
+
+// A cube eroded by a smaller box: the box of the closed form, on the
+// half-space path (one pair, no union), with its exact volume.
+TEST(Erosion, CubeBySmallBoxIsTheBoxOnTheHalfSpacePath) {
+  // cube = [-1,1]^3, B = [-1/8,1/8] x [-1/4,1/4] x [-1/2,1/2] + (1/4, 0, -1/8).
+  const Solid a = solid("cube"), b = solid("box:1/4:1/2:1@translate:1/4,0,-1/8");
+  const NonconvexSum r = erode(a, b);
+  ASSERT_TRUE(r.convex);
+  expect_same(r.mesh, box_mesh(R("-9/8"), R("5/8"), R("-3/4"), R("3/4"), R("-3/8"), R("5/8")));
+  EXPECT_EQ(r.volume, Rational(21, 8));
+  EXPECT_EQ(r.operation, std::string("erosion"));
+  EXPECT_EQ(std::string(r.method), "decomposition");
+  EXPECT_EQ(r.pairs, 1u);
+  EXPECT_EQ(r.pair_facets, 6u);       // the moved half-spaces
+  EXPECT_EQ(r.candidate_facets, 6u);  // the erosion's facets
+  EXPECT_EQ(r.clips, 0u);
+  EXPECT_EQ(r.shells, 1u);
+}
+
+// B exactly as wide as A in one direction (a flat erosion), in two (a
+// segment), in three (a point), or wider (nothing): no point strictly inside,
+// so the sweep decides, and the regularised erosion is empty.
+TEST(Erosion, ExactlyFittingOrTooWideBOnAConvexAIsEmpty) {
+  const Solid a = solid("box:4:6:8");
+  for (const char* b : {"box:4:1:1", "box:4:6:1", "box:4:6:8", "box:5:1:1", "cube@scale:4"}) {
+    SCOPED_TRACE(b);
+    const Solid sb = solid(b);
+    EXPECT_FALSE(nonconvex_detail::halfspace_erosion(*a.convex, *sb.convex));
+    const NonconvexSum r = erode(a, sb);
+    EXPECT_TRUE(r.mesh.faces.empty());
+    EXPECT_EQ(r.volume, Rational(0));
+    EXPECT_FALSE(r.convex);
+    const NonconvexSum swept = swept_erosion(a, sb);
+    EXPECT_EQ(r.mesh.faces, swept.mesh.faces);
+    EXPECT_EQ(r.dropped_components, swept.dropped_components);
+    EXPECT_TRUE(opening(a, sb).mesh.faces.empty());
+  }
+  // Just narrower than A: a thin box, on the half-space path.
+  const NonconvexSum thin = erode(a, solid("box:4:6:8@scale:999/1000"));
+  ASSERT_TRUE(thin.convex);
+  EXPECT_EQ(thin.volume, Rational(4 * 6 * 8) / Rational(1000 * 1000 * 1000));
+}
+
+// A convex A whose vertex centroid (minus B's) lies outside the erosion: a
+// long thin tetrahedron, its erosion by a ball small near the incentre.
+// halfspace_erosion finds no point strictly inside, and erode's sweep gives
+// the same solid as the CGAL construction.
+TEST(Erosion, ConvexAWhoseCentroidIsOutsideTheErosionIsSwept) {
+  const Solid a = solid_of(ConvexPolytope::hull(
+      std::vector<Point3>{Point3(0.0, 0.0, 0.0), Point3(100.0, 0.0, 0.0), Point3(0.0, 1.0, 0.0),
+                          Point3(0.0, 0.0, 1.0)},
+      "tetra"));
+  const Solid b = solid("sphere:1@scale:1/5");
+  EXPECT_FALSE(nonconvex_detail::halfspace_erosion(*a.convex, *b.convex));
+  const NonconvexSum r = erode(a, b);
+  EXPECT_FALSE(r.convex);
+  expect_closed_oriented(r);
+  const std::optional<ConvexPolytope> oracle = nonconvex_detail::convex_erosion(*a.convex, *b.convex);
+  ASSERT_TRUE(oracle);
+  expect_same(r.mesh, oracle->to_mesh());
+}
+
+// The closing of a convex A is A ((A ⊕ B) ⊖ B = A for convex A and B), both
+// steps convex (the convex path, then the half-space intersection).
+TEST(Erosion, ClosingOfAConvexAIsA) {
+  for (const auto& [a, b] : std::vector<std::pair<std::string, std::string>>{
+           {"dodecahedron", "sphere:2@scale:1/5"}, {"box:4:6:8@rot:3", "tetra@scale:1/3"}}) {
+    SCOPED_TRACE(a + " closed by " + b);
+    const Solid sa = solid(a), sb = solid(b);
+    const NonconvexSum k = closing(sa, sb);
+    ASSERT_TRUE(k.convex);
+    expect_same(k.mesh, sa.convex->to_mesh());
+    EXPECT_EQ(k.volume, sa.volume);
+    EXPECT_EQ(k.operation, std::string("closing"));
+    EXPECT_EQ(k.pairs, 2u);  // one pair each step
+  }
 }
 
 // The opening of a convex A: its erosion is convex (the moved half-spaces),

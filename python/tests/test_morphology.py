@@ -37,6 +37,18 @@ def test_erosion_that_empties_and_that_splits():
     assert not t.empty and t.shells == 1 and t.stats["genus"] == 1
 
 
+def test_erosion_and_opening_of_a_convex_a_take_the_half_space_path(tmp_path):
+    # cube = [-1,1]^3 eroded by [-1/4,1/4]^3: [-3/4,3/4]^3, one pair, no union
+    e = minksum.erode("cube", "cube@scale:1/4")
+    assert (e.operation, e.empty, e.volume(), e.num_facets, e.pairs) == ("erosion", False, Fraction(27, 8), 6, 1)
+    j = cli_json("erode", "cube", "cube@scale:1/4")
+    assert (Fraction(j["volume"]), j["pairs"], j["union"]["clips"]) == (e.volume(), 1, 0)
+    o = minksum.opening("dodecahedron", "sphere:2@scale:1/10")
+    assert o.shells == 1 and o.volume() < minksum.Solid.load("dodecahedron").volume()
+    o.save(tmp_path / "o.stl", binary=True)
+    assert minksum.Solid.load(str(tmp_path / "o.stl")).volume() > 0
+
+
 def test_b_must_be_convex():
     with pytest.raises(ValueError, match="convex"):
         minksum.erode("cube", "lshape")

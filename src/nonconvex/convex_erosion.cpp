@@ -1,6 +1,7 @@
 // The erosion of a convex polytope by a convex polytope as an intersection
 // of half-spaces (docs/nonconvex.md, "Erosion, opening, closing": convex A),
-// the construction the tests compare erode's sweep with.
+// the construction the tests compare erode's half-space path
+// (halfspace_erosion.cpp) and its sweep with.
 //
 // A = ∩ {n_i · x <= d_i} gives A ⊖ B = ∩ {n_i · x <= d_i - h_B(n_i)}, h_B
 // B's support.  The intersection is CGAL's halfspace_intersection_3 (the

@@ -10,9 +10,11 @@
 // ∂A, b inside B, and the union's boundary components whose points p have
 // p + b outside A are dropped.  What is left bounds the cavities of the
 // union that lie in the erosion; reversed, it is the erosion's boundary.
-// For a convex A the erosion is also the intersection of A's facet
-// half-spaces moved by B's support (convex_erosion.cpp), which the tests
-// compare with the sweep; the sweep is faster, so erode sweeps every A.
+// For a convex A the erosion is the intersection of A's facet half-spaces
+// moved by B's support (halfspace_erosion.cpp), a convex polytope, which
+// erode, opening and closing build directly when they find a point strictly
+// inside it; they sweep every other A (and a convex A whose erosion is
+// empty or lower-dimensional).
 #include <minksum/minkowski.hpp>
 #include <minksum/nonconvex.hpp>
 
@@ -20,6 +22,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -107,30 +110,68 @@ SumOptions first_step(const SumOptions& options) {
   return o;
 }
 
-// The sum of two convex polytopes as the non-convex engine reports a sum of
-// two convex solids (the decomposition's one pair), its boundary the
-// polytope's facets: the union of one convex polytope is that polytope, its
-// maximal planar faces its facets, one shell.
-NonconvexSum convex_step(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options,
-                         Method method) {
+// The boundary of the convex polytope `p` that a step built (its facets,
+// one shell; `out.convex` the polytope) and its volume, `seconds_pairs` the
+// time it took to build.
+void convex_boundary(NonconvexSum& out, const ConvexPolytope& p, double seconds_pairs,
+                     const SumOptions& options) {
   using Clock = std::chrono::steady_clock;
-  NonconvexSum out;
   out.method = "decomposition";
-  out.pair_method = method;
   out.pieces_a = out.pieces_b = out.pairs = 1;
-  auto t0 = Clock::now();
-  options.report("pairs", 0.0);
-  const ConvexPolytope p = minkowski_sum(a, b, method).polytope;
-  options.report("pairs", 1.0);
   out.pair_vertices = p.num_vertices();
-  out.pair_facets = out.candidate_facets = p.num_facets();
-  out.seconds_pairs = std::chrono::duration<double>(Clock::now() - t0).count();
-  t0 = Clock::now();
+  out.seconds_pairs = seconds_pairs;
+  const auto t0 = Clock::now();
   options.report("boundary", 0.0);
   out.mesh = p.to_mesh();
   out.shells = 1;
   out.seconds_boundary = std::chrono::duration<double>(Clock::now() - t0).count();
   if (options.volume) out.volume = p.volume();
+  out.convex = p;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The sum of two convex polytopes as the non-convex engine reports a sum of
+// two convex solids (the decomposition's one pair), its boundary the
+// polytope's facets: the union of one convex polytope is that polytope, its
+// maximal planar faces its facets, one shell.  *polytope: the sum.
+NonconvexSum convex_step(const ConvexPolytope& a, const ConvexPolytope& b, const SumOptions& options,
+                         Method method, ConvexPolytope* polytope = nullptr) {
+  NonconvexSum out;
+  out.pair_method = method;
+  const auto t0 = std::chrono::steady_clock::now();
+  options.report("pairs", 0.0);
+  ConvexPolytope p = minkowski_sum(a, b, method).polytope;
+  options.report("pairs", 1.0);
+  out.pair_facets = out.candidate_facets = p.num_facets();
+  convex_boundary(out, p, seconds_since(t0), options);
+  if (polytope) *polytope = std::move(p);
+  return out;
+}
+
+// The erosion of a convex A as the intersection of its moved half-spaces
+// (halfspace_erosion), reported as convex_step reports the convex path: one
+// piece of each operand, one pair, no union; pair_facets the moved
+// half-spaces (A's facets), candidate_facets the erosion's facets (the
+// others are redundant).  nullopt when halfspace_erosion finds no point
+// strictly inside: the caller sweeps.  *polytope: the erosion.
+std::optional<NonconvexSum> convex_erosion_step(const ConvexPolytope& a, const ConvexPolytope& b,
+                                                const SumOptions& options, Method method,
+                                                ConvexPolytope* polytope = nullptr) {
+  const auto t0 = std::chrono::steady_clock::now();
+  options.report("pairs", 0.0);
+  std::optional<ConvexPolytope> e = nonconvex_detail::halfspace_erosion(a, b);
+  if (!e) return std::nullopt;
+  options.report("pairs", 1.0);
+  NonconvexSum out;
+  out.pair_method = method;
+  out.operation = "erosion";
+  out.pair_facets = a.num_facets();
+  out.candidate_facets = e->num_facets();
+  convex_boundary(out, *e, seconds_since(t0), options);
+  if (polytope) *polytope = std::move(*e);
   return out;
 }
 
@@ -145,17 +186,25 @@ NonconvexSum then(NonconvexSum first, NonconvexSum second, const char* operation
 NonconvexSum erode(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads, Method method) {
   const ConvexPolytope& pb = convex_operand(b, "erosion");
   if (a.complement) throw std::invalid_argument("erosion of the complement of a solid");
+  if (a.convex)
+    if (std::optional<NonconvexSum> e = convex_erosion_step(*a.convex, pb, options, method)) return std::move(*e);
   return erode_complement(complement_of(a), pb, options, threads, method);
 }
 
 NonconvexSum opening(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads, Method method) {
   const ConvexPolytope& pb = convex_operand(b, "opening");
-  NonconvexSum e = erode(a, b, first_step(options), threads, method);
+  if (a.complement) throw std::invalid_argument("erosion of the complement of a solid");
+  // For convex A the erosion is convex, and its sum with B is the convex path's.
+  if (a.convex) {
+    ConvexPolytope inner;
+    if (std::optional<NonconvexSum> e = convex_erosion_step(*a.convex, pb, first_step(options), method, &inner))
+      return then(std::move(*e), convex_step(inner, pb, options, method), "opening");
+  }
+  NonconvexSum e = erode_complement(complement_of(a), pb, first_step(options), threads, method);
   if (e.mesh.faces.empty()) {  // B fits nowhere inside A: the opening is empty too
     e.operation = "opening";
     return e;
   }
-  // For convex A the erosion is convex, and its sum with B is the convex path's.
   if (a.convex) {
     NonconvexSum s = convex_step(ConvexPolytope::from_mesh(e.mesh, e.operation), pb, options, method);
     return then(std::move(e), std::move(s), "opening");
@@ -167,9 +216,14 @@ NonconvexSum opening(const Solid& a, const Solid& b, const SumOptions& options, 
 
 NonconvexSum closing(const Solid& a, const Solid& b, const SumOptions& options, unsigned threads, Method method) {
   const ConvexPolytope& pb = convex_operand(b, "closing");
-  // For convex A the sum is convex: the convex path's, as in the opening.
-  NonconvexSum s = a.convex ? convex_step(*a.convex, pb, first_step(options), method)
+  // For convex A the sum is convex: the convex path's, as in the opening,
+  // and so is its erosion (A itself: a convex summand cancels).
+  ConvexPolytope sum;
+  NonconvexSum s = a.convex ? convex_step(*a.convex, pb, first_step(options), method, &sum)
                             : minkowski_sum_nonconvex(a, b, first_step(options), threads, method);
+  if (a.convex)
+    if (std::optional<NonconvexSum> e = convex_erosion_step(sum, pb, options, method))
+      return then(std::move(s), std::move(*e), "closing");
   const Solid outer = solid_of_boundary(s, true);
   NonconvexSum e = erode_complement(outer, pb, options, threads, method);
   return then(std::move(s), std::move(e), "closing");

@@ -262,6 +262,8 @@ def main():
         (["erode", "cube", "cube@scale:3"], SUM_SOLID),
         (["open", "tube", "sphere:1@scale:1/8", "-o", w("opened.off")], SUM_SOLID),
         (["close", "lshape", "cube@scale:1/4"], SUM_SOLID),
+        (["erode", "dodecahedron", "sphere:2@scale:1/10", "-o", w("eroded_convex.stl"), "--binary"], SUM_SOLID),
+        (["open", "dodecahedron", "sphere:2@scale:1/10", "-o", w("opened_convex.stl"), "--binary"], SUM_SOLID),
         (["stats", "cube"], STATS_POLYTOPE),
         (["stats", w("r.off")], STATS_POLYTOPE),
         (["stats", "tube"], STATS_SOLID),

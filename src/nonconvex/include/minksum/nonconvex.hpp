@@ -108,6 +108,11 @@ struct NonconvexSum {
   // vertex where it touches itself to several fans (docs/nonconvex.md).
   Mesh mesh;
   Rational volume;  // exact volume of A ⊕ B (0 when SumOptions::volume is false)
+  // The boundary as a convex polytope when the last step built one (the
+  // erosion, opening or closing of a convex A: the half-space intersection
+  // and the convex path), its facets `mesh`'s faces: written as a convex
+  // polytope is (writable_polytope); empty otherwise.
+  std::optional<ConvexPolytope> convex;
   // The method (NonconvexMethod) and, for the boundary sweep, which operand's
   // surface was swept ('a' or 'b'; 0 for the decomposition).
   const char* method = "sweep";

@@ -23,12 +23,23 @@ namespace minksum::nonconvex_detail {
 Mesh separate_contacts(const Mesh& triangles);
 
 // A ⊖ B for convex polytopes A and B, the tests' independent construction
-// (the sweep, which erode uses for every A, is faster): the intersection of the half-spaces
-// n · x <= d - h_B(n) over A's facet planes n · x <= d (h_B: B's support),
+// with CGAL's halfspace_intersection_3 (erode uses halfspace_erosion): the
+// intersection of the half-spaces n · x <= d - h_B(n) over A's facet
+// planes n · x <= d (h_B: B's support),
 // exact, from a point strictly inside all of them.  Empty (nullopt) when no
 // such point is found (the linear program that looks for one works on
 // doubles): the erosion is then empty, or thinner than doubles tell, and
 // the caller decides by the sweep.
 std::optional<ConvexPolytope> convex_erosion(const ConvexPolytope& a, const ConvexPolytope& b);
+
+// A ⊖ B for convex polytopes A and B, what erode, opening and closing use
+// for a convex A (halfspace_erosion.cpp): the same intersection of moved
+// half-spaces, built exactly as the polar of the exact hull of the dual
+// points about a point strictly inside, checked with exact signs.  nullopt
+// when no point strictly inside is found — the difference of A's and B's
+// vertex centroids, rounded to doubles or exact, is the only candidate —,
+// which includes every empty or lower-dimensional erosion: the caller then
+// takes the sweep, which decides exactly.
+std::optional<ConvexPolytope> halfspace_erosion(const ConvexPolytope& a, const ConvexPolytope& b);
 
 }  // namespace minksum::nonconvex_detail

@@ -225,6 +225,86 @@ TEST(PlacedMap, RejectsSingularReflectedAndNonFiniteMatrices) {
   EXPECT_TRUE(PlacedMap().doubles());
 }
 
+// The rotation of an integer quaternion (machine integers for components up
+// to 2^25 when rounding to nearest, GMP otherwise) is the map of the
+// rational matrix built here, entry by entry: the same exact entries, the
+// same nearest doubles and enclosures, whatever the rounding mode, the
+// translation as a Point3 or as doubles.
+TEST(PlacedMap, QuaternionRotationIsTheRationalMatrix) {
+  const std::uint64_t seed = 3902;
+  Rng r(seed);
+  const long edge = 1L << 25;
+  int small = 0, large = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
+    Quaternion q;
+    // Even trials: machine-size components; odd ones: one at least beyond.
+    const long forced = trial % 2 ? r.integer(0, 3) : -1;
+    for (int k = 0; k < 4; ++k) {
+      switch (k == forced ? r.integer(4, 5) : r.integer(0, trial % 2 ? 5 : 3)) {
+        case 0: q[k] = 0; break;
+        case 1: q[k] = Integer(r.integer(-9, 9)); break;
+        case 2: q[k] = Integer(r.integer(-edge, edge)); break;
+        case 3: q[k] = r.integer(0, 1) ? Integer(edge) : Integer(-edge); break;  // the largest machine case
+        case 4: q[k] = Integer(r.integer(0, 1) ? edge + 1 : -edge - 1); break;   // the smallest GMP case
+        default: q[k] = Integer(r.integer(-(1L << 40), 1L << 40)) * Integer(r.integer(1, 1L << 30)); break;
+      }
+    }
+    if (!sgn(q[0]) && !sgn(q[1]) && !sgn(q[2]) && !sgn(q[3])) q[0] = 1;
+    bool fits = true;
+    for (const Integer& x : q) fits = fits && abs(x) <= edge;
+    (fits ? small : large)++;
+    const Integer &a = q[0], &b = q[1], &c = q[2], &d = q[3];
+    const Integer n = a * a + b * b + c * c + d * d;
+    const Integer e[3][3] = {{a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)},
+                             {2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b)},
+                             {2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d}};
+    std::array<std::array<Rational, 3>, 3> m;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m[i][j] = Rational(e[i][j]) / Rational(n);
+    const Vec3d td{r.uniform(-3, 3), r.uniform(-3, 3), 0.0};
+    const Point3 t(td.x, td.y, td.z);
+    const PlacedMap want(m, t);  // rounding to nearest
+    for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+      SCOPED_TRACE("rounding mode " + std::to_string(mode));
+      std::array<PlacedMap, 2> got;
+      {
+        const RoundingMode rm(mode);
+        got = {PlacedMap::rotation(q, t), PlacedMap::rotation(q, td)};
+      }
+      for (const PlacedMap& g : got) {
+        EXPECT_EQ(g.doubles(), want.doubles());
+        EXPECT_EQ(g.filter_ready(), want.filter_ready());
+        for (int k = 0; k < 9; ++k) {
+          EXPECT_EQ(g.a(k / 3, k % 3), m[k / 3][k % 3]) << k;
+          EXPECT_EQ(g.approx_a()[k], want.approx_a()[k]) << k;
+          EXPECT_EQ(g.bounds_a()[k].lo, want.bounds_a()[k].lo) << k;
+          EXPECT_EQ(g.bounds_a()[k].hi, want.bounds_a()[k].hi) << k;
+        }
+        EXPECT_EQ(g.t(), t);
+        EXPECT_EQ(g.approx_t().x, td.x);
+        EXPECT_EQ(g.approx_t().y, td.y);
+        EXPECT_EQ(g.approx_t().z, td.z);
+        EXPECT_EQ(g.bounds_t().x.lo, td.x);
+        EXPECT_EQ(g.bounds_t().y.hi, td.y);
+      }
+    }
+  }
+  EXPECT_EQ(small, 200);
+  EXPECT_EQ(large, 200);
+  EXPECT_THROW(PlacedMap::rotation({Integer(1), Integer(0), Integer(0), Integer(0)}, Vec3d{NAN, 0, 0}), UsageError);
+  EXPECT_THROW(PlacedMap::rotation({Integer(0), Integer(0), Integer(0), Integer(0)}, Vec3d{0, 0, 0}), UsageError);
+  // The identity, made without a determinant check, is the identity matrix's map.
+  const PlacedMap id, mat({1, 0, 0, 0, 1, 0, 0, 0, 1}, Vec3d{0, 0, 0});
+  EXPECT_TRUE(id.doubles() && id.filter_ready() && mat.filter_ready());
+  for (int k = 0; k < 9; ++k)
+    EXPECT_TRUE(id.approx_a()[k] == mat.approx_a()[k] && id.bounds_a()[k].lo == mat.bounds_a()[k].lo &&
+                id.bounds_a()[k].hi == mat.bounds_a()[k].hi)
+        << k;
+  EXPECT_EQ(id.t(), mat.t());
+  EXPECT_EQ(id.apply(P(1, 2, 3)), P(1, 2, 3));
+}
+
 // ---------------------------------------------------------------------------
 // Collision.
 

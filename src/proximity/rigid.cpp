@@ -595,6 +595,7 @@ RigidPose RigidPose::translation(const Point3& t) {
   return RigidPose(PlacedMap(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}, t));
 }
 RigidPose RigidPose::quaternion(const Quaternion& q, const Point3& t) { return RigidPose(PlacedMap::rotation(q, t)); }
+RigidPose RigidPose::quaternion(const Quaternion& q, const Vec3d& t) { return RigidPose(PlacedMap::rotation(q, t)); }
 RigidPose RigidPose::matrix(const std::array<double, 9>& r, const Point3& t) { return RigidPose(PlacedMap(r, t)); }
 RigidPose RigidPose::matrix(const std::array<double, 9>& r, const Vec3d& t) { return RigidPose(PlacedMap(r, t)); }
 

@@ -58,6 +58,7 @@ class RigidPose {
   static RigidPose translation(const Point3& t);
   // The rotation of the non-zero integer quaternion q, then t.
   static RigidPose quaternion(const Quaternion& q, const Point3& t);
+  static RigidPose quaternion(const Quaternion& q, const Vec3d& t);  // t's doubles taken exactly
   // A row-major matrix of doubles, taken exactly, then t.  Throws
   // UsageError for a non-finite entry or a determinant ≤ 0.
   static RigidPose matrix(const std::array<double, 9>& r, const Point3& t);

@@ -116,6 +116,17 @@ RigidPose random_pose(Rng& r, double spread, bool quaternion) {
   return quaternion ? RigidPose::quaternion(random_quaternion(r), t) : RigidPose::matrix(random_matrix(r), t);
 }
 
+// n poses of P and of Q from the seed: a third of P's and a third of Q's
+// by quaternions, the others by matrices.
+void random_pose_pairs(std::uint64_t seed, int n, double spread, std::vector<RigidPose>& pp,
+                       std::vector<RigidPose>& pq) {
+  Rng r(seed);
+  for (int i = 0; i < n; ++i) {
+    pp.push_back(random_pose(r, spread, i % 3 == 0));
+    pq.push_back(random_pose(r, spread, i % 3 == 1));
+  }
+}
+
 struct RoundingMode {
   explicit RoundingMode(int m) { std::fesetround(m); }
   ~RoundingMode() { std::fesetround(FE_TONEAREST); }
@@ -586,12 +597,8 @@ TEST(RigidCollide, EdgeCrossingEdge) {
 
 TEST(RigidCollide, BatchEqualsSingleQueries) {
   const RigidBody a(catalog_polytope("random:50:1")), b(catalog_polytope("sphere:2"));
-  Rng r(31);
   std::vector<RigidPose> pp, pq;
-  for (int i = 0; i < 700; ++i) {
-    pp.push_back(random_pose(r, 1.5, i % 3 == 0));
-    pq.push_back(random_pose(r, 1.5, i % 3 == 1));
-  }
+  random_pose_pairs(31, 700, 1.5, pp, pq);
   std::vector<RigidCollision> out(pp.size()), one(pp.size());
   collide(a, pp, b, pq, out, 2);
   for (std::size_t i = 0; i < pp.size(); ++i) {
@@ -605,6 +612,63 @@ TEST(RigidCollide, BatchEqualsSingleQueries) {
   for (std::size_t i = 0; i < pp.size(); i += 7) EXPECT_EQ(one[i].status, collide(a, pp[0], b, pq[i]).status);
   std::vector<RigidCollision> wrong(3);
   EXPECT_THROW(collide(a, pp, b, pq, wrong, 1), UsageError);
+}
+
+// The batches over a RigidPoseSource (poses made on demand, as the Python
+// module does) answer exactly as the span batches on the same poses: the
+// same statuses, certificates and doubles, whatever the threads; one pose
+// the source keeps stands for all; an exception of the source comes out of
+// the batch, the first in pose order.
+TEST(RigidCollide, PoseSourceBatchEqualsSpanBatch) {
+  const RigidBody a(catalog_polytope("random:50:1")), b(catalog_polytope("sphere:2"));
+  std::vector<RigidPose> pp, pq;
+  random_pose_pairs(39, 900, 1.5, pp, pq);
+  const std::size_t n = pp.size();
+  const RigidPoseSource made = [&](std::size_t i, int body, RigidPose& scratch) -> const RigidPose& {
+    scratch = body == 0 ? pp[i] : pq[i];  // built in scratch, as a caller from other data does
+    return scratch;
+  };
+  std::vector<RigidCollision> want(n), got(n);
+  std::vector<RigidDistance> dwant(n), dgot(n);
+  std::vector<RigidDepth> pwant(n), pgot(n);
+  collide(a, pp, b, pq, want, 2);
+  distance(a, pp, b, pq, dwant, 2);
+  penetration_depth(a, pp, b, pq, pwant, 2);
+  for (unsigned threads : {1u, 2u, 0u}) {
+    SCOPED_TRACE("threads " + std::to_string(threads));
+    collide(a, b, made, got, threads);
+    distance(a, b, made, dgot, threads);
+    penetration_depth(a, b, made, pgot, threads);
+    for (std::size_t i = 0; i < n; ++i) {
+      EXPECT_EQ(got[i].status, want[i].status) << "pose " << i;
+      EXPECT_EQ(got[i].certificate, want[i].certificate) << "pose " << i;
+      EXPECT_EQ(dgot[i].status, dwant[i].status) << "pose " << i;
+      EXPECT_EQ(dgot[i].distance, dwant[i].distance) << "pose " << i;
+      EXPECT_EQ(dgot[i].lower, dwant[i].lower) << "pose " << i;
+      EXPECT_EQ(dgot[i].upper, dwant[i].upper) << "pose " << i;
+      EXPECT_EQ(pgot[i].status, pwant[i].status) << "pose " << i;
+      EXPECT_EQ(pgot[i].depth, pwant[i].depth) << "pose " << i;
+    }
+  }
+  // One pose of P, kept by the source, for all the poses of Q.
+  std::vector<RigidCollision> one(n), one_span(n);
+  const RigidPoseSource first = [&](std::size_t i, int body, RigidPose&) -> const RigidPose& {
+    return body == 0 ? pp[0] : pq[i];
+  };
+  collide(a, b, first, one, 2);
+  collide(a, std::span<const RigidPose>(pp.data(), 1), b, pq, one_span, 2);
+  for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(one[i].status, one_span[i].status) << "pose " << i;
+  // A source failing at poses 700 and 300: the batch throws pose 300's error.
+  const RigidPoseSource bad = [&](std::size_t i, int body, RigidPose& scratch) -> const RigidPose& {
+    if (body == 1 && (i == 300 || i == 700)) throw UsageError("pose " + std::to_string(i));
+    return made(i, body, scratch);
+  };
+  try {
+    collide(a, b, bad, got, 2);
+    ADD_FAILURE() << "no exception";
+  } catch (const UsageError& e) {
+    EXPECT_STREQ(e.what(), "pose 300");
+  }
 }
 
 TEST(RigidCollide, CoherentTrajectoryStaysCheap) {
@@ -768,12 +832,8 @@ TEST(RigidDistance, ParallelEdgesAndTheClosestPointInsideAFace) {
 
 TEST(RigidDistance, BatchEqualsSingleQueries) {
   const RigidBody a(catalog_polytope("random:50:1")), b(catalog_polytope("sphere:2"));
-  Rng r(71);
   std::vector<RigidPose> pp, pq;
-  for (int i = 0; i < 600; ++i) {
-    pp.push_back(random_pose(r, 2.0, i % 3 == 0));
-    pq.push_back(random_pose(r, 2.0, i % 3 == 1));
-  }
+  random_pose_pairs(71, 600, 2.0, pp, pq);
   std::vector<RigidDistance> out(pp.size());
   distance(a, pp, b, pq, out, 2);
   for (std::size_t i = 0; i < pp.size(); ++i) {

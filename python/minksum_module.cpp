@@ -1005,8 +1005,8 @@ RigidPose make_pose(const PoseInput& in, const char* rn, std::size_t i) {
   try {
     if (!in.quaternions.empty()) {
       const std::array<long long, 4>& d = in.quaternions[in.quaternions.size() == 1 ? 0 : i];
-      const Quaternion q{Integer(static_cast<long>(d[0])), Integer(static_cast<long>(d[1])),
-                         Integer(static_cast<long>(d[2])), Integer(static_cast<long>(d[3]))};
+      thread_local Quaternion q;  // its integers' storage reused from pose to pose (no allocation)
+      for (int k = 0; k < 4; ++k) mpz_set_si(q[k].get_mpz_t(), static_cast<long>(d[k]));
       if (in.t.size() == 0) return RigidPose::quaternion(q, Vec3d{0, 0, 0});
       if (in.t.is_double(it)) return RigidPose::quaternion(q, in.t.approx(it));
       return RigidPose::quaternion(q, in.t.exact(it));

@@ -138,7 +138,7 @@ int python_batch_section(int argc, char** argv) {
       "both sides answer the same numbers): rotations as (N, 4) integer quaternions (components in\n"
       "[-50, 50]) and, separately, as (N, 3, 3) float matrices (the doubles of random rotations, taken\n"
       "exactly); translations (N, 3) floats, b at a random direction from a, its distance (0.3 to 1.3)·(r_a +\n"
-      "r_b) (r: the largest vertex norm), so that about half of the poses are separate.  C++: the batch calls\n"
+      "r_b) (r: the largest vertex norm), so that a third to a half of the poses are separate.  C++: the batch calls\n"
       "collide(a, poses_a, b, poses_b, out, threads) and distance(...) on spans of RigidPose built from\n"
       "those arrays beforehand ('C++ poses': the time to build them, not in the calls' times).  Python\n"
       "(bench/proximity/python_batch.py): minksum.collide_rigid(a, b, t_b, r_b, t_a, r_a, threads=...)\n"

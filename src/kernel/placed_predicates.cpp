@@ -5,6 +5,7 @@
 #include <minksum/error.hpp>
 #include <minksum/placed_predicates.hpp>
 
+#include <bit>
 #include <cfenv>
 #include <cmath>
 #include <cstdint>
@@ -117,29 +118,30 @@ namespace {
 // Entry k (row-major) of the rotation matrix of the quaternion (a, b, c, d),
 // components of at most 2^25 in magnitude, in lowest terms num / den (den >
 // 0): e_k / n in machine integers (|e_k|, n <= 2^52), reduced by their gcd.
-// e_k and n, not reduced.
-void small_rotation_fraction(const std::array<std::int64_t, 4>& q, int k, std::int64_t& e, std::int64_t& n) {
+// e_0..e_8 (row-major) and n, not reduced.
+void small_rotation_fractions(const std::array<std::int64_t, 4>& q, std::int64_t (&e)[9], std::int64_t& n) {
   const std::int64_t a = q[0], b = q[1], c = q[2], d = q[3];
   const std::int64_t aa = a * a, bb = b * b, cc = c * c, dd = d * d;
   n = aa + bb + cc + dd;
-  switch (k) {
-    case 0: e = aa + bb - cc - dd; break;
-    case 1: e = 2 * (b * c - a * d); break;
-    case 2: e = 2 * (b * d + a * c); break;
-    case 3: e = 2 * (b * c + a * d); break;
-    case 4: e = aa - bb + cc - dd; break;
-    case 5: e = 2 * (c * d - a * b); break;
-    case 6: e = 2 * (b * d - a * c); break;
-    case 7: e = 2 * (c * d + a * b); break;
-    default: e = aa - bb - cc + dd; break;
-  }
+  e[0] = aa + bb - cc - dd, e[1] = 2 * (b * c - a * d), e[2] = 2 * (b * d + a * c);
+  e[3] = 2 * (b * c + a * d), e[4] = aa - bb + cc - dd, e[5] = 2 * (c * d - a * b);
+  e[6] = 2 * (b * d - a * c), e[7] = 2 * (c * d + a * b), e[8] = aa - bb - cc + dd;
+}
+
+// The doubles either side of x, finite, normal and not the largest: what
+// std::nextafter gives towards −∞ and +∞ (consecutive doubles of one sign
+// have consecutive bit patterns).
+Bounds neighbours(double x) {
+  const std::uint64_t b = std::bit_cast<std::uint64_t>(x);
+  const double away = std::bit_cast<double>(b + 1), toward = std::bit_cast<double>(b - 1);
+  return x > 0 ? Bounds{toward, away} : Bounds{away, toward};
 }
 
 void small_rotation_entry(const std::array<std::int64_t, 4>& q, int k, std::int64_t& num, std::int64_t& den) {
-  std::int64_t e, n;
-  small_rotation_fraction(q, k, e, n);
-  const std::int64_t g = std::gcd(e, n);
-  num = e / g, den = n / g;
+  std::int64_t e[9], n;
+  small_rotation_fractions(q, e, n);
+  const std::int64_t g = std::gcd(e[k], n);
+  num = e[k] / g, den = n / g;
 }
 }  // namespace
 
@@ -157,16 +159,15 @@ void PlacedMap::set_rotation(const std::array<Integer, 4>& q) {
     if (!quaternion_[0] && !quaternion_[1] && !quaternion_[2] && !quaternion_[3])
       throw UsageError("a rotation needs a non-zero quaternion, got 0,0,0,0");
     bool doubles = true;
+    std::int64_t e[9], n;  // e_k / n, not reduced: the same quotient, so the same division and sign
+    small_rotation_fractions(quaternion_, e, n);
     for (int k = 0; k < 9; ++k) {
-      std::int64_t num, den;  // e_k and n: the same quotient, so the same division and sign
-      small_rotation_fraction(quaternion_, k, num, den);
-      const double x = double(num) / double(den);
+      const double x = double(e[k]) / double(n);  // |x| <= 1, and >= 2^-52 unless 0
       approx_a_[k] = x;
-      if (std::fma(x, double(den), -double(num)) == 0) {
+      if (std::fma(x, double(n), -double(e[k])) == 0) {
         bounds_a_[k] = {x, x};
       } else {
-        constexpr double inf = std::numeric_limits<double>::infinity();
-        bounds_a_[k] = {std::nextafter(x, -inf), std::nextafter(x, inf)};
+        bounds_a_[k] = neighbours(x);
         doubles = false;
       }
     }

@@ -933,7 +933,7 @@ py::array_t<double> double_array(const std::vector<Result>& r, F f) {
 struct PoseInput {
   std::size_t count = 1;  // 1: one pose for all
   PointList t;            // empty: zero
-  std::vector<Quaternion> quaternions;
+  std::vector<std::array<long long, 4>> quaternions;  // non-zero; made GMP integers by make_pose
   std::vector<std::array<double, 9>> matrices;
 };
 
@@ -964,12 +964,11 @@ PoseInput to_pose_input(py::handle t, py::handle r, const std::string& tn, const
       auto q = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(r);
       const std::size_t n = a.ndim() == 1 ? 1 : static_cast<std::size_t>(a.shape(0));
       const long long* d = q.data();
+      in.quaternions.resize(n);
       for (std::size_t i = 0; i < n; ++i) {
-        Quaternion x{Integer(static_cast<long>(d[4 * i])), Integer(static_cast<long>(d[4 * i + 1])),
-                     Integer(static_cast<long>(d[4 * i + 2])), Integer(static_cast<long>(d[4 * i + 3]))};
-        if (!sgn(x[0]) && !sgn(x[1]) && !sgn(x[2]) && !sgn(x[3]))
+        std::copy_n(d + 4 * i, 4, in.quaternions[i].begin());
+        if (!d[4 * i] && !d[4 * i + 1] && !d[4 * i + 2] && !d[4 * i + 3])
           throw py::value_error(item(rn, i) + ": the zero quaternion is not a rotation");
-        in.quaternions.push_back(std::move(x));
       }
       if (a.ndim() == 2) nr = n;
     } else if (matrices) {
@@ -978,13 +977,13 @@ PoseInput to_pose_input(py::handle t, py::handle r, const std::string& tn, const
       auto m = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(r);
       const std::size_t n = a.ndim() == 2 ? 1 : static_cast<std::size_t>(a.shape(0));
       const double* d = m.data();
+      in.matrices.resize(n);
       for (std::size_t i = 0; i < n; ++i) {
-        std::array<double, 9> x;
+        std::array<double, 9>& x = in.matrices[i];
         for (int k = 0; k < 9; ++k) {
           x[k] = d[9 * i + k];
           if (!std::isfinite(x[k])) throw py::value_error(item(rn, i) + ": not finite");
         }
-        in.matrices.push_back(x);
       }
       if (a.ndim() == 3) nr = n;
     } else {
@@ -999,30 +998,27 @@ PoseInput to_pose_input(py::handle t, py::handle r, const std::string& tn, const
   return in;
 }
 
-// The poses of `in` (built without the GIL: no Python object is read).
-std::vector<RigidPose> to_poses(const PoseInput& in, const std::string& rn) {
-  const std::size_t n = in.count;
-  std::vector<RigidPose> out;
-  out.reserve(n);
-  const bool doubles = in.t.all_doubles();
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t it = in.t.size() == 1 ? 0 : i;
-    const Vec3d td = in.t.size() == 0 ? Vec3d{0, 0, 0} : in.t.approx(it);
-    try {
-      if (!in.quaternions.empty()) {
-        const Quaternion& q = in.quaternions[in.quaternions.size() == 1 ? 0 : i];
-        out.push_back(RigidPose::quaternion(q, in.t.size() == 0 ? Point3(0, 0, 0) : in.t.exact(it)));
-      } else {
-        static const std::array<double, 9> id{1, 0, 0, 0, 1, 0, 0, 0, 1};
-        const std::array<double, 9>& m = in.matrices.empty() ? id : in.matrices[in.matrices.size() == 1 ? 0 : i];
-        if (doubles) out.push_back(RigidPose::matrix(m, td));
-        else out.push_back(RigidPose::matrix(m, in.t.exact(it)));
-      }
-    } catch (const UsageError& e) {
-      throw py::value_error(item(rn, in.matrices.size() == 1 || in.quaternions.size() == 1 ? 0 : i) + ": " + e.what());
+// Pose i of `in` (no Python object is read: called without the GIL, on
+// the threads of a batch).  A bad pose raises ValueError naming it.
+RigidPose make_pose(const PoseInput& in, const char* rn, std::size_t i) {
+  const std::size_t it = in.t.size() == 1 ? 0 : i;
+  try {
+    if (!in.quaternions.empty()) {
+      const std::array<long long, 4>& d = in.quaternions[in.quaternions.size() == 1 ? 0 : i];
+      thread_local Quaternion q;  // its integers' storage reused from pose to pose (no allocation)
+      for (int k = 0; k < 4; ++k) mpz_set_si(q[k].get_mpz_t(), static_cast<long>(d[k]));
+      if (in.t.size() == 0) return RigidPose::quaternion(q, Vec3d{0, 0, 0});
+      if (in.t.is_double(it)) return RigidPose::quaternion(q, in.t.approx(it));
+      return RigidPose::quaternion(q, in.t.exact(it));
     }
+    static const std::array<double, 9> id{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const std::array<double, 9>& m = in.matrices.empty() ? id : in.matrices[in.matrices.size() == 1 ? 0 : i];
+    if (in.t.size() == 0) return RigidPose::matrix(m, Vec3d{0, 0, 0});
+    if (in.t.is_double(it)) return RigidPose::matrix(m, in.t.approx(it));
+    return RigidPose::matrix(m, in.t.exact(it));
+  } catch (const UsageError& e) {
+    throw py::value_error(item(rn, in.matrices.size() == 1 || in.quaternions.size() == 1 ? 0 : i) + ": " + e.what());
   }
-  return out;
 }
 
 // The poses of a and b of collide_rigid / distance_rigid: each an input of
@@ -1043,6 +1039,28 @@ struct RigidPoses {
                             " (the counts must agree, or one be a single pose)");
     n = std::max(a.count, b.count);
   }
+};
+
+// The poses of a batch, made on demand on the batch's threads (no vector of
+// N poses): an input of one pose for all is built once, here.
+class PoseSource {
+ public:
+  explicit PoseSource(const RigidPoses& p) : p_(p) {
+    if (p.a.count == 1) single_[0] = make_pose(p.a, "r_a", 0);
+    if (p.b.count == 1) single_[1] = make_pose(p.b, "r_b", 0);
+  }
+  const RigidPose& operator()(std::size_t i, int body, RigidPose& scratch) const {
+    if (single_[body]) return *single_[body];
+    scratch = body == 0 ? make_pose(p_.a, "r_a", i) : make_pose(p_.b, "r_b", i);
+    return scratch;
+  }
+  RigidPoseSource source() const {
+    return [this](std::size_t i, int body, RigidPose& scratch) -> const RigidPose& { return (*this)(i, body, scratch); };
+  }
+
+ private:
+  const RigidPoses& p_;
+  std::optional<RigidPose> single_[2];
 };
 
 struct WitnessPy {
@@ -2056,9 +2074,9 @@ shared by every pose and thread of collide_rigid and distance_rigid.)")
         std::int8_t* w = codes.mutable_data();
         {
           py::gil_scoped_release nogil;
-          const std::vector<RigidPose> pa = to_poses(poses.a, "r_a"), pb = to_poses(poses.b, "r_b");
+          const PoseSource source(poses);
           std::vector<RigidCollision> out(poses.n);
-          collide(a, pa, b, pb, out, poses.threads);
+          collide(a, b, source.source(), out, poses.threads);
           for (std::size_t i = 0; i < poses.n; ++i) w[i] = static_cast<std::int8_t>(out[i].status);
         }
         return codes;
@@ -2091,9 +2109,9 @@ Runs with the GIL released on `threads` threads (None: one per core).)");
         std::vector<RigidDistanceExact> values;
         {
           py::gil_scoped_release nogil;
-          const std::vector<RigidPose> pa = to_poses(poses.a, "r_a"), pb = to_poses(poses.b, "r_b");
+          const PoseSource source(poses);
           std::vector<RigidDistance> out(n);
-          distance(a, pa, b, pb, out, poses.threads);
+          distance(a, b, source.source(), out, poses.threads);
           for (std::size_t i = 0; i < n; ++i) {
             const RigidDistance& d = out[i];
             ws[i] = static_cast<std::int8_t>(d.status);
@@ -2105,8 +2123,9 @@ Runs with the GIL released on `threads` threads (None: one per core).)");
             values.resize(n);
             const std::size_t block = 64, blocks = (n + block - 1) / block;
             parallel_for(blocks, poses.threads, [&](std::size_t k) {
+              RigidPose scratch_a, scratch_b;
               for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i)
-                values[i] = exact_values(a, pa[pa.size() == 1 ? 0 : i], b, pb[pb.size() == 1 ? 0 : i], out[i]);
+                values[i] = exact_values(a, source(i, 0, scratch_a), b, source(i, 1, scratch_b), out[i]);
             });
           }
         }
@@ -2162,9 +2181,9 @@ the bodies meet, the one point_a is near).  Runs with the GIL released on
         std::vector<RigidDepthExact> values;
         {
           py::gil_scoped_release nogil;
-          const std::vector<RigidPose> pa = to_poses(poses.a, "r_a"), pb = to_poses(poses.b, "r_b");
+          const PoseSource source(poses);
           std::vector<RigidDepth> out(n);
-          penetration_depth(a, pa, b, pb, out, poses.threads);
+          penetration_depth(a, b, source.source(), out, poses.threads);
           for (std::size_t i = 0; i < n; ++i) {
             const RigidDepth& d = out[i];
             ws[i] = static_cast<std::int8_t>(d.status);
@@ -2175,8 +2194,9 @@ the bodies meet, the one point_a is near).  Runs with the GIL released on
             values.resize(n);
             const std::size_t block = 64, blocks = (n + block - 1) / block;
             parallel_for(blocks, poses.threads, [&](std::size_t k) {
+              RigidPose scratch_a, scratch_b;
               for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i)
-                values[i] = exact_values(a, pa[pa.size() == 1 ? 0 : i], b, pb[pb.size() == 1 ? 0 : i], out[i]);
+                values[i] = exact_values(a, source(i, 0, scratch_a), b, source(i, 1, scratch_b), out[i]);
             });
           }
         }

@@ -116,6 +116,17 @@ RigidPose random_pose(Rng& r, double spread, bool quaternion) {
   return quaternion ? RigidPose::quaternion(random_quaternion(r), t) : RigidPose::matrix(random_matrix(r), t);
 }
 
+// n poses of P and of Q from the seed: a third of P's and a third of Q's
+// by quaternions, the others by matrices.
+void random_pose_pairs(std::uint64_t seed, int n, double spread, std::vector<RigidPose>& pp,
+                       std::vector<RigidPose>& pq) {
+  Rng r(seed);
+  for (int i = 0; i < n; ++i) {
+    pp.push_back(random_pose(r, spread, i % 3 == 0));
+    pq.push_back(random_pose(r, spread, i % 3 == 1));
+  }
+}
+
 struct RoundingMode {
   explicit RoundingMode(int m) { std::fesetround(m); }
   ~RoundingMode() { std::fesetround(FE_TONEAREST); }
@@ -223,6 +234,86 @@ TEST(PlacedMap, RejectsSingularReflectedAndNonFiniteMatrices) {
   EXPECT_EQ(q.apply(P(0, 0, 0)), P(1, 2, 3));
   EXPECT_FALSE(q.doubles());
   EXPECT_TRUE(PlacedMap().doubles());
+}
+
+// The rotation of an integer quaternion (machine integers for components up
+// to 2^25 when rounding to nearest, GMP otherwise) is the map of the
+// rational matrix built here, entry by entry: the same exact entries, the
+// same nearest doubles and enclosures, whatever the rounding mode, the
+// translation as a Point3 or as doubles.
+TEST(PlacedMap, QuaternionRotationIsTheRationalMatrix) {
+  const std::uint64_t seed = 3902;
+  Rng r(seed);
+  const long edge = 1L << 25;
+  int small = 0, large = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
+    Quaternion q;
+    // Even trials: machine-size components; odd ones: one at least beyond.
+    const long forced = trial % 2 ? r.integer(0, 3) : -1;
+    for (int k = 0; k < 4; ++k) {
+      switch (k == forced ? r.integer(4, 5) : r.integer(0, trial % 2 ? 5 : 3)) {
+        case 0: q[k] = 0; break;
+        case 1: q[k] = Integer(r.integer(-9, 9)); break;
+        case 2: q[k] = Integer(r.integer(-edge, edge)); break;
+        case 3: q[k] = r.integer(0, 1) ? Integer(edge) : Integer(-edge); break;  // the largest machine case
+        case 4: q[k] = Integer(r.integer(0, 1) ? edge + 1 : -edge - 1); break;   // the smallest GMP case
+        default: q[k] = Integer(r.integer(-(1L << 40), 1L << 40)) * Integer(r.integer(1, 1L << 30)); break;
+      }
+    }
+    if (!sgn(q[0]) && !sgn(q[1]) && !sgn(q[2]) && !sgn(q[3])) q[0] = 1;
+    bool fits = true;
+    for (const Integer& x : q) fits = fits && abs(x) <= edge;
+    (fits ? small : large)++;
+    const Integer &a = q[0], &b = q[1], &c = q[2], &d = q[3];
+    const Integer n = a * a + b * b + c * c + d * d;
+    const Integer e[3][3] = {{a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)},
+                             {2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b)},
+                             {2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d}};
+    std::array<std::array<Rational, 3>, 3> m;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m[i][j] = Rational(e[i][j]) / Rational(n);
+    const Vec3d td{r.uniform(-3, 3), r.uniform(-3, 3), 0.0};
+    const Point3 t(td.x, td.y, td.z);
+    const PlacedMap want(m, t);  // rounding to nearest
+    for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+      SCOPED_TRACE("rounding mode " + std::to_string(mode));
+      std::array<PlacedMap, 2> got;
+      {
+        const RoundingMode rm(mode);
+        got = {PlacedMap::rotation(q, t), PlacedMap::rotation(q, td)};
+      }
+      for (const PlacedMap& g : got) {
+        EXPECT_EQ(g.doubles(), want.doubles());
+        EXPECT_EQ(g.filter_ready(), want.filter_ready());
+        for (int k = 0; k < 9; ++k) {
+          EXPECT_EQ(g.a(k / 3, k % 3), m[k / 3][k % 3]) << k;
+          EXPECT_EQ(g.approx_a()[k], want.approx_a()[k]) << k;
+          EXPECT_EQ(g.bounds_a()[k].lo, want.bounds_a()[k].lo) << k;
+          EXPECT_EQ(g.bounds_a()[k].hi, want.bounds_a()[k].hi) << k;
+        }
+        EXPECT_EQ(g.t(), t);
+        EXPECT_EQ(g.approx_t().x, td.x);
+        EXPECT_EQ(g.approx_t().y, td.y);
+        EXPECT_EQ(g.approx_t().z, td.z);
+        EXPECT_EQ(g.bounds_t().x.lo, td.x);
+        EXPECT_EQ(g.bounds_t().y.hi, td.y);
+      }
+    }
+  }
+  EXPECT_EQ(small, 200);
+  EXPECT_EQ(large, 200);
+  EXPECT_THROW(PlacedMap::rotation({Integer(1), Integer(0), Integer(0), Integer(0)}, Vec3d{NAN, 0, 0}), UsageError);
+  EXPECT_THROW(PlacedMap::rotation({Integer(0), Integer(0), Integer(0), Integer(0)}, Vec3d{0, 0, 0}), UsageError);
+  // The identity, made without a determinant check, is the identity matrix's map.
+  const PlacedMap id, mat({1, 0, 0, 0, 1, 0, 0, 0, 1}, Vec3d{0, 0, 0});
+  EXPECT_TRUE(id.doubles() && id.filter_ready() && mat.filter_ready());
+  for (int k = 0; k < 9; ++k)
+    EXPECT_TRUE(id.approx_a()[k] == mat.approx_a()[k] && id.bounds_a()[k].lo == mat.bounds_a()[k].lo &&
+                id.bounds_a()[k].hi == mat.bounds_a()[k].hi)
+        << k;
+  EXPECT_EQ(id.t(), mat.t());
+  EXPECT_EQ(id.apply(P(1, 2, 3)), P(1, 2, 3));
 }
 
 // ---------------------------------------------------------------------------
@@ -506,12 +597,8 @@ TEST(RigidCollide, EdgeCrossingEdge) {
 
 TEST(RigidCollide, BatchEqualsSingleQueries) {
   const RigidBody a(catalog_polytope("random:50:1")), b(catalog_polytope("sphere:2"));
-  Rng r(31);
   std::vector<RigidPose> pp, pq;
-  for (int i = 0; i < 700; ++i) {
-    pp.push_back(random_pose(r, 1.5, i % 3 == 0));
-    pq.push_back(random_pose(r, 1.5, i % 3 == 1));
-  }
+  random_pose_pairs(31, 700, 1.5, pp, pq);
   std::vector<RigidCollision> out(pp.size()), one(pp.size());
   collide(a, pp, b, pq, out, 2);
   for (std::size_t i = 0; i < pp.size(); ++i) {
@@ -525,6 +612,63 @@ TEST(RigidCollide, BatchEqualsSingleQueries) {
   for (std::size_t i = 0; i < pp.size(); i += 7) EXPECT_EQ(one[i].status, collide(a, pp[0], b, pq[i]).status);
   std::vector<RigidCollision> wrong(3);
   EXPECT_THROW(collide(a, pp, b, pq, wrong, 1), UsageError);
+}
+
+// The batches over a RigidPoseSource (poses made on demand, as the Python
+// module does) answer exactly as the span batches on the same poses: the
+// same statuses, certificates and doubles, whatever the threads; one pose
+// the source keeps stands for all; an exception of the source comes out of
+// the batch, the first in pose order.
+TEST(RigidCollide, PoseSourceBatchEqualsSpanBatch) {
+  const RigidBody a(catalog_polytope("random:50:1")), b(catalog_polytope("sphere:2"));
+  std::vector<RigidPose> pp, pq;
+  random_pose_pairs(39, 900, 1.5, pp, pq);
+  const std::size_t n = pp.size();
+  const RigidPoseSource made = [&](std::size_t i, int body, RigidPose& scratch) -> const RigidPose& {
+    scratch = body == 0 ? pp[i] : pq[i];  // built in scratch, as a caller from other data does
+    return scratch;
+  };
+  std::vector<RigidCollision> want(n), got(n);
+  std::vector<RigidDistance> dwant(n), dgot(n);
+  std::vector<RigidDepth> pwant(n), pgot(n);
+  collide(a, pp, b, pq, want, 2);
+  distance(a, pp, b, pq, dwant, 2);
+  penetration_depth(a, pp, b, pq, pwant, 2);
+  for (unsigned threads : {1u, 2u, 0u}) {
+    SCOPED_TRACE("threads " + std::to_string(threads));
+    collide(a, b, made, got, threads);
+    distance(a, b, made, dgot, threads);
+    penetration_depth(a, b, made, pgot, threads);
+    for (std::size_t i = 0; i < n; ++i) {
+      EXPECT_EQ(got[i].status, want[i].status) << "pose " << i;
+      EXPECT_EQ(got[i].certificate, want[i].certificate) << "pose " << i;
+      EXPECT_EQ(dgot[i].status, dwant[i].status) << "pose " << i;
+      EXPECT_EQ(dgot[i].distance, dwant[i].distance) << "pose " << i;
+      EXPECT_EQ(dgot[i].lower, dwant[i].lower) << "pose " << i;
+      EXPECT_EQ(dgot[i].upper, dwant[i].upper) << "pose " << i;
+      EXPECT_EQ(pgot[i].status, pwant[i].status) << "pose " << i;
+      EXPECT_EQ(pgot[i].depth, pwant[i].depth) << "pose " << i;
+    }
+  }
+  // One pose of P, kept by the source, for all the poses of Q.
+  std::vector<RigidCollision> one(n), one_span(n);
+  const RigidPoseSource first = [&](std::size_t i, int body, RigidPose&) -> const RigidPose& {
+    return body == 0 ? pp[0] : pq[i];
+  };
+  collide(a, b, first, one, 2);
+  collide(a, std::span<const RigidPose>(pp.data(), 1), b, pq, one_span, 2);
+  for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(one[i].status, one_span[i].status) << "pose " << i;
+  // A source failing at poses 700 and 300: the batch throws pose 300's error.
+  const RigidPoseSource bad = [&](std::size_t i, int body, RigidPose& scratch) -> const RigidPose& {
+    if (body == 1 && (i == 300 || i == 700)) throw UsageError("pose " + std::to_string(i));
+    return made(i, body, scratch);
+  };
+  try {
+    collide(a, b, bad, got, 2);
+    ADD_FAILURE() << "no exception";
+  } catch (const UsageError& e) {
+    EXPECT_STREQ(e.what(), "pose 300");
+  }
 }
 
 TEST(RigidCollide, CoherentTrajectoryStaysCheap) {
@@ -688,12 +832,8 @@ TEST(RigidDistance, ParallelEdgesAndTheClosestPointInsideAFace) {
 
 TEST(RigidDistance, BatchEqualsSingleQueries) {
   const RigidBody a(catalog_polytope("random:50:1")), b(catalog_polytope("sphere:2"));
-  Rng r(71);
   std::vector<RigidPose> pp, pq;
-  for (int i = 0; i < 600; ++i) {
-    pp.push_back(random_pose(r, 2.0, i % 3 == 0));
-    pq.push_back(random_pose(r, 2.0, i % 3 == 1));
-  }
+  random_pose_pairs(71, 600, 2.0, pp, pq);
   std::vector<RigidDistance> out(pp.size());
   distance(a, pp, b, pq, out, 2);
   for (std::size_t i = 0; i < pp.size(); ++i) {

@@ -22,6 +22,10 @@
 //        bench_proximity --rotation [--poses N] [--meshes DIR]   collision and
 //            distance under rigid motion against FCL (rotation.cpp); DIR holds the robot-link
 //            meshes (ur5e_forearm.stl, ur5e_upperarm.stl, franka_link1.stl).
+//        bench_proximity --python-batch [--poses N] [--meshes DIR] [--threads T] [--reps R]
+//                        [--python EXE] [--pythonpath DIR]   the same N poses through the
+//            C++ batch API and through Python's collide_rigid / distance_rigid
+//            (python_batch.cpp, python_batch.py), and the page's targets summary.
 #include <ccd/ccd.h>
 #include <ccd/quat.h>
 
@@ -307,6 +311,7 @@ void trajectory(TranslationalObstacle& ob, long steps, std::vector<Point3>& traj
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "--rotation") return rotation_section(argc, argv);
+  if (argc > 1 && std::string(argv[1]) == "--python-batch") return python_batch_section(argc, argv);
 #ifdef MINKSUM_HAVE_FCL
   if (argc > 1 && std::string(argv[1]).rfind("--count", 0) == 0) return count_main(argc, argv);
 #endif

@@ -46,16 +46,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::array<double, 9> random_rotation(std::mt19937_64& g) {
-  std::normal_distribution<double> n(0, 1);
-  double a = n(g), b = n(g), c = n(g), d = n(g);
-  const double l = std::sqrt(a * a + b * b + c * c + d * d);
-  a /= l, b /= l, c /= l, d /= l;
-  return {a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c),
-          2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b),
-          2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d};
-}
-
 #ifdef MINKSUM_HAVE_FCL
 fcl::Transform3d transform(const std::array<double, 9>& r, const Vec3d& t) {
   fcl::Transform3d x = fcl::Transform3d::Identity();
@@ -73,11 +63,6 @@ struct Pose {
   Point3 s;  // its translation
   Vec3d t;   // s in doubles (FCL's input)
   ContactStatus exact;
-};
-
-struct Pair {
-  std::string name_p, name_q;
-  ConvexPolytope p, q;
 };
 
 double us(Clock::time_point t0, std::size_t n) {
@@ -117,20 +102,24 @@ std::string format(const char* f, A... a) {
 
 }  // namespace
 
-int rotation_section(int argc, char** argv) {
-  std::size_t poses = 100000;
-  std::string meshes;
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::string(argv[i]) == "--poses") poses = std::strtoul(argv[i + 1], nullptr, 10);
-    if (std::string(argv[i]) == "--meshes") meshes = argv[i + 1];
-  }
-  std::vector<Pair> pairs;
+std::array<double, 9> random_rotation(std::mt19937_64& g) {
+  std::normal_distribution<double> n(0, 1);
+  double a = n(g), b = n(g), c = n(g), d = n(g);
+  const double l = std::sqrt(a * a + b * b + c * c + d * d);
+  a /= l, b /= l, c /= l, d /= l;
+  return {a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c),
+          2 * (b * c + a * d), a * a - b * b + c * c - d * d, 2 * (c * d - a * b),
+          2 * (b * d - a * c), 2 * (c * d + a * b), a * a - b * b - c * c + d * d};
+}
+
+std::vector<RotationPair> rotation_pairs(const std::string& meshes) {
+  std::vector<RotationPair> pairs;
   for (const auto& [a, b] : std::vector<std::pair<const char*, const char*>>{{"cube", "cube"},
                                                                               {"sphere:2", "sphere:2"},
                                                                               {"random:50:1", "random:50:2"},
                                                                               {"random:500:1", "random:350:2"},
                                                                               {"sphere:4", "sphere:4"}})
-    pairs.push_back({a, b, catalog_polytope(a), catalog_polytope(b)});
+    pairs.push_back({a, b, catalog_polytope(a), catalog_polytope(b), a, b, false});
   if (!meshes.empty()) {
     const auto hull = [&](const std::string& f) {
       const std::string path = (std::filesystem::path(meshes) / f).string();
@@ -142,9 +131,21 @@ int rotation_section(int argc, char** argv) {
       if (!std::filesystem::exists(std::filesystem::path(meshes) / a) ||
           !std::filesystem::exists(std::filesystem::path(meshes) / b))
         continue;
-      pairs.push_back({std::string("hull of ") + a, std::string("hull of ") + b, hull(a), hull(b)});
+      pairs.push_back({std::string("hull of ") + a, std::string("hull of ") + b, hull(a), hull(b),
+                       (std::filesystem::path(meshes) / a).string(), (std::filesystem::path(meshes) / b).string(), true});
     }
   }
+  return pairs;
+}
+
+int rotation_section(int argc, char** argv) {
+  std::size_t poses = 100000;
+  std::string meshes;
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::string(argv[i]) == "--poses") poses = std::strtoul(argv[i + 1], nullptr, 10);
+    if (std::string(argv[i]) == "--meshes") meshes = argv[i + 1];
+  }
+  const std::vector<RotationPair> pairs = rotation_pairs(meshes);
   struct Config {
     const char* name;
     double f;
@@ -177,7 +178,7 @@ int rotation_section(int argc, char** argv) {
 #endif
   std::mt19937_64 g(20261202);
   std::vector<std::string> distance_rows, depth_rows;
-  for (const Pair& pr : pairs) {
+  for (const RotationPair& pr : pairs) {
     const RigidBody bp(pr.p), bq(pr.q);
     std::vector<std::array<double, 9>> rp, rq;
     std::vector<std::unique_ptr<TranslationalObstacle>> obs;
@@ -378,7 +379,7 @@ int rotation_section(int argc, char** argv) {
   std::printf("\n| pair | steps | ours µs / step | FCL µs / step | FCL/ours | steps checked exactly | ours wrong | FCL wrong (checked steps) |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
   std::vector<std::string> trajectory_distance_rows;
-  for (const Pair& pr : pairs) {
+  for (const RotationPair& pr : pairs) {
     const RigidBody bp(pr.p), bq(pr.q);
     double radius = 0;
     for (const ConvexPolytope* x : {&pr.p, &pr.q})

@@ -209,3 +209,82 @@ def test_depth_with_quaternions_and_matrices_equals_the_exact_obstacle():
     assert one["status"].shape == (1,) and minksum.STATUS[one["status"][0]] == "penetrating"
     with pytest.raises(ValueError):
         minksum.depth_rigid(a, b, np.zeros((3, 2)))
+
+
+def touching_cube_poses():
+    """Two cubes [-1, 1]³, b turned by an integer quaternion that maps the cube onto itself and moved to an exact
+    contact: face on face, edge on edge, vertex on vertex; then the same moved by 2^-30 away and towards a."""
+    quats = [(1, 0, 0, 0), (1, 1, 0, 0), (0, 0, 1, 1), (1, 1, 1, 1)]  # identity, quarter turns, a third of a turn
+    contacts = [(2.0, 0.5, 0.0), (2.0, 2.0, 0.0), (2.0, 2.0, 2.0), (0.0, -2.0, 1.5), (-2.0, 0.25, -2.0)]
+    q, t, want = [], [], []
+    for i, c in enumerate(contacts):
+        for j, h in enumerate((0.0, 2.0 ** -30, -(2.0 ** -30))):
+            q.append(quats[(i + j) % len(quats)])
+            t.append([x + h * np.sign(x) for x in c])
+            want.append(["touching", "separate", "penetrating"][j])
+    return np.array(q, dtype=np.int64), np.array(t), want
+
+
+@pytest.mark.parametrize("threads", [1, 2, None])
+def test_batch_equals_the_single_pose_answers_with_touching_poses(threads):
+    # The batch's statuses and exact squared distances are those of one call
+    # per pose (one pose of a and of b), on a fixed-seed mix of random poses
+    # of both bodies (more than one run of 256 poses, quaternions and float
+    # matrices) and exactly touching poses.
+    rng = np.random.default_rng(SEED + 9)
+    c = minksum.RigidBody("cube")
+    q_touch, t_touch, want = touching_cube_poses()
+    codes = minksum.collide_rigid(c, c, t_touch, q_touch, threads=threads)
+    assert [minksum.STATUS[x] for x in codes] == want
+    dist = minksum.distance_rigid(c, c, t_touch, q_touch, exact=True, threads=threads)
+    assert (dist["status"] == codes).all()
+    for i, w in enumerate(want):
+        assert (dist["squared_distance"][i] == 0) == (w != "separate"), i
+        if w == "separate":  # 2^-30 along one axis, or along two or three
+            assert dist["squared_distance"][i] in (Fraction(k, 2 ** 60) for k in (1, 2, 3)), i
+
+    a, b = minksum.RigidBody("sphere:2"), minksum.RigidBody("random:50:3")
+    n = 600
+    for r_a, r_b in [(rng.integers(-20, 21, size=(n, 4)), rng.integers(-20, 21, size=(n, 4))),
+                     (random_matrices(rng, n), random_matrices(rng, n))]:
+        if r_a.dtype.kind == "i":
+            r_a[np.all(r_a == 0, axis=1)] = (1, 0, 0, 0)
+            r_b[np.all(r_b == 0, axis=1)] = (1, 0, 0, 0)
+        t_a = rng.uniform(-1, 1, size=(n, 3))
+        t_b = t_a + rng.uniform(-3, 3, size=(n, 3))
+        codes = minksum.collide_rigid(a, b, t_b, r_b, t_a, r_a, threads=threads)
+        dist = minksum.distance_rigid(a, b, t_b, r_b, t_a, r_a, exact=True, threads=threads)
+        assert (dist["status"] == codes).all()
+        assert {0, 2} <= set(codes.tolist())
+        for i in range(0, n, 3):
+            one = minksum.collide_rigid(a, b, t_b[i], r_b[i], t_a[i], r_a[i])
+            assert one.shape == (1,) and one[0] == codes[i], (SEED + 9, i)
+            d = minksum.distance_rigid(a, b, t_b[i], r_b[i], t_a[i], r_a[i], exact=True)
+            assert d["squared_distance"][0] == dist["squared_distance"][i], (SEED + 9, i)
+
+
+def test_batch_answers_do_not_depend_on_threads_and_name_the_bad_pose():
+    # Runs of consecutive poses, each warm-started along itself, whatever the
+    # threads: every array is the same, bit for bit.
+    rng = np.random.default_rng(SEED + 10)
+    a, b = minksum.RigidBody("random:50:3"), minksum.RigidBody("cube")
+    n = 3000
+    r_b = random_matrices(rng, n)
+    q_a = rng.integers(-9, 10, size=(n, 4))
+    q_a[np.all(q_a == 0, axis=1)] = (0, 0, 0, 1)
+    t_b = rng.uniform(-3, 3, size=(n, 3))
+    runs = [minksum.distance_rigid(a, b, t_b, r_b, None, q_a, threads=k) for k in (1, 2, None)]
+    for other in runs[1:]:
+        for key in runs[0]:
+            assert np.array_equal(runs[0][key], other[key]), key
+    assert np.array_equal(minksum.collide_rigid(a, b, t_b, r_b, None, q_a, threads=2), runs[0]["status"])
+    # A bad pose deep in a batch of many runs is named, the first one in pose order.
+    bad = r_b.copy()
+    bad[2500] = np.diag([1.0, 1.0, -1.0])
+    bad[1700] = np.diag([-1.0, 1.0, 1.0])
+    with pytest.raises(ValueError, match=r"r_b\[1700\].*positive determinant"):
+        minksum.collide_rigid(a, b, t_b, bad, threads=2)
+    zero = q_a.copy()
+    zero[2222] = 0
+    with pytest.raises(ValueError, match=r"r_a\[2222\].*zero quaternion"):
+        minksum.distance_rigid(a, b, t_b, r_b, None, zero)

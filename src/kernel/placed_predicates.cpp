@@ -5,9 +5,13 @@
 #include <minksum/error.hpp>
 #include <minksum/placed_predicates.hpp>
 
+#include <bit>
+#include <cfenv>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 namespace minksum {
@@ -58,7 +62,13 @@ PointBounds point_bounds(const Point3& p) {
   return b;
 }
 
-PlacedMap::PlacedMap() : PlacedMap(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}, Vec3d{0, 0, 0}) {}
+// The identity: what PlacedMap({1, 0, 0, 0, 1, 0, 0, 0, 1}, Vec3d{0, 0, 0})
+// makes, without the determinant's check (a vector of N poses starts as N
+// of these).
+PlacedMap::PlacedMap() : approx_a_{1, 0, 0, 0, 1, 0, 0, 0, 1}, approx_t_{0, 0, 0}, fast_(true) {
+  for (int k = 0; k < 9; ++k) bounds_a_[k] = {approx_a_[k], approx_a_[k]};
+  bounds_t_ = {{0, 0}, {0, 0}, {0, 0}};
+}
 
 PlacedMap::PlacedMap(const std::array<double, 9>& a, const Vec3d& t) {
   for (double x : {t.x, t.y, t.z})
@@ -85,6 +95,86 @@ PlacedMap::PlacedMap(const std::array<std::array<Rational, 3>, 3>& a, const Poin
 }
 
 PlacedMap PlacedMap::rotation(const std::array<Integer, 4>& q, const Point3& t) {
+  PlacedMap m;
+  m.set_rotation(q);
+  m.set_t(t);  // det = 1: the matrix of a unit quaternion is a rotation
+  m.set_fast();
+  return m;
+}
+
+PlacedMap PlacedMap::rotation(const std::array<Integer, 4>& q, const Vec3d& t) {
+  for (double x : {t.x, t.y, t.z})
+    if (!std::isfinite(x)) throw UsageError("a placement's translation must be finite");
+  PlacedMap m;
+  m.set_rotation(q);
+  m.approx_t_ = t;
+  m.bounds_t_ = {{t.x, t.x}, {t.y, t.y}, {t.z, t.z}};
+  m.exact_t_.reset();
+  m.set_fast();
+  return m;
+}
+
+namespace {
+// Entry k (row-major) of the rotation matrix of the quaternion (a, b, c, d),
+// components of at most 2^25 in magnitude, in lowest terms num / den (den >
+// 0): e_k / n in machine integers (|e_k|, n <= 2^52), reduced by their gcd.
+// e_0..e_8 (row-major) and n, not reduced.
+void small_rotation_fractions(const std::array<std::int64_t, 4>& q, std::int64_t (&e)[9], std::int64_t& n) {
+  const std::int64_t a = q[0], b = q[1], c = q[2], d = q[3];
+  const std::int64_t aa = a * a, bb = b * b, cc = c * c, dd = d * d;
+  n = aa + bb + cc + dd;
+  e[0] = aa + bb - cc - dd, e[1] = 2 * (b * c - a * d), e[2] = 2 * (b * d + a * c);
+  e[3] = 2 * (b * c + a * d), e[4] = aa - bb + cc - dd, e[5] = 2 * (c * d - a * b);
+  e[6] = 2 * (b * d - a * c), e[7] = 2 * (c * d + a * b), e[8] = aa - bb - cc + dd;
+}
+
+// The doubles either side of x, finite, normal and not the largest: what
+// std::nextafter gives towards −∞ and +∞ (consecutive doubles of one sign
+// have consecutive bit patterns).
+Bounds neighbours(double x) {
+  const std::uint64_t b = std::bit_cast<std::uint64_t>(x);
+  const double away = std::bit_cast<double>(b + 1), toward = std::bit_cast<double>(b - 1);
+  return x > 0 ? Bounds{toward, away} : Bounds{away, toward};
+}
+
+void small_rotation_entry(const std::array<std::int64_t, 4>& q, int k, std::int64_t& num, std::int64_t& den) {
+  std::int64_t e[9], n;
+  small_rotation_fractions(q, e, n);
+  const std::int64_t g = std::gcd(e[k], n);
+  num = e[k] / g, den = n / g;
+}
+}  // namespace
+
+void PlacedMap::set_rotation(const std::array<Integer, 4>& q) {
+  // Components of at most 2^25 in magnitude, rounding to nearest: each
+  // entry's nearest double is one division e_k / n (both exact doubles:
+  // correctly rounded, ties to even, the value of to_double), exact when
+  // d·n − e_k = 0 (one fma, exact in sign); the exact entries are not stored but made from the components
+  // by a() when an exact stage asks (no GMP number is made here).
+  constexpr long kSmall = 1L << 25;
+  bool small = std::fegetround() == FE_TONEAREST;
+  for (const Integer& x : q) small = small && mpz_cmpabs_ui(x.get_mpz_t(), kSmall) <= 0;
+  if (small) {
+    for (int k = 0; k < 4; ++k) quaternion_[k] = q[k].get_si();
+    if (!quaternion_[0] && !quaternion_[1] && !quaternion_[2] && !quaternion_[3])
+      throw UsageError("a rotation needs a non-zero quaternion, got 0,0,0,0");
+    bool doubles = true;
+    std::int64_t e[9], n;  // e_k / n, not reduced: the same quotient, so the same division and sign
+    small_rotation_fractions(quaternion_, e, n);
+    for (int k = 0; k < 9; ++k) {
+      const double x = double(e[k]) / double(n);  // |x| <= 1, and >= 2^-52 unless 0
+      approx_a_[k] = x;
+      if (std::fma(x, double(n), -double(e[k])) == 0) {
+        bounds_a_[k] = {x, x};
+      } else {
+        bounds_a_[k] = neighbours(x);
+        doubles = false;
+      }
+    }
+    exact_a_.reset();
+    small_rotation_ = !doubles;
+    return;
+  }
   const Integer &a = q[0], &b = q[1], &c = q[2], &d = q[3];
   const Integer aa = a * a, bb = b * b, cc = c * c, dd = d * d;
   const Integer n = aa + bb + cc + dd;
@@ -100,11 +190,7 @@ PlacedMap PlacedMap::rotation(const std::array<Integer, 4>& q, const Point3& t) 
       r[i][j] = Rational(e[i][j], n);
       r[i][j].canonicalize();
     }
-  PlacedMap m;
-  m.set_rational_a(r);
-  m.set_t(t);  // det = 1: the matrix of a unit quaternion is a rotation
-  m.set_fast();
-  return m;
+  set_rational_a(r);
 }
 
 void PlacedMap::set_double_a(const std::array<double, 9>& a) {
@@ -114,6 +200,7 @@ void PlacedMap::set_double_a(const std::array<double, 9>& a) {
     bounds_a_[k] = {a[k], a[k]};
   }
   exact_a_.reset();
+  small_rotation_ = false;
 }
 
 void PlacedMap::set_rational_a(const std::array<std::array<Rational, 3>, 3>& a) {
@@ -126,6 +213,7 @@ void PlacedMap::set_rational_a(const std::array<std::array<Rational, 3>, 3>& a) 
     }
   if (doubles) exact_a_.reset();
   else exact_a_ = std::make_shared<const std::array<std::array<Rational, 3>, 3>>(a);
+  small_rotation_ = false;
 }
 
 void PlacedMap::set_t(const Point3& t) {
@@ -158,6 +246,13 @@ void PlacedMap::check_determinant() const {
 
 Rational PlacedMap::a(int row, int col) const {
   if (exact_a_) return (*exact_a_)[row][col];
+  if (small_rotation_) {
+    std::int64_t num, den;
+    small_rotation_entry(quaternion_, 3 * row + col, num, den);
+    Rational r;
+    mpq_set_si(r.get_mpq_t(), long(num), static_cast<unsigned long>(den));
+    return r;
+  }
   return Rational(approx_a_[3 * row + col]);
 }
 

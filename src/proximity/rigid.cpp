@@ -549,6 +549,7 @@ RigidWarmStart checked_start(const RigidBody& p, const RigidBody& q, const Rigid
 
 // The batches: N answers from N poses (or one) of each body, in runs of
 // consecutive poses over threads, each run warm-started along itself.
+constexpr std::size_t kRun = 256;  // consecutive poses per job, warm-started along the run
 template <class Answer, class One>
 void batch(const char* what, std::span<const RigidPose> poses_p, std::span<const RigidPose> poses_q,
            std::span<Answer> out, unsigned threads, const One& one) {
@@ -559,13 +560,32 @@ void batch(const char* what, std::span<const RigidPose> poses_p, std::span<const
                      " poses (or one) of each body, got " + std::to_string(poses_p.size()) + " and " +
                      std::to_string(poses_q.size()));
   if (n == 0) return;
-  constexpr std::size_t kRun = 256;  // consecutive poses per job, warm-started along the run
   const std::size_t runs = (n + kRun - 1) / kRun;
   parallel_for(runs, threads, [&](std::size_t run) {
     RigidWarmStart warm;
     const std::size_t end = std::min(n, (run + 1) * kRun);
     for (std::size_t i = run * kRun; i < end; ++i)
       out[i] = one(poses_p[poses_p.size() == 1 ? 0 : i], poses_q[poses_q.size() == 1 ? 0 : i], &warm);
+  });
+}
+
+// The same runs with the poses made on demand by `poses`, each just before
+// its query on the thread answering it: the same answers as the spans of
+// the same poses.
+template <class Answer, class One>
+void batch(const RigidPoseSource& poses, std::span<Answer> out, unsigned threads, const One& one) {
+  const std::size_t n = out.size();
+  if (n == 0) return;
+  const std::size_t runs = (n + kRun - 1) / kRun;
+  parallel_for(runs, threads, [&](std::size_t run) {
+    RigidWarmStart warm;
+    RigidPose scratch_p, scratch_q;
+    const std::size_t end = std::min(n, (run + 1) * kRun);
+    for (std::size_t i = run * kRun; i < end; ++i) {
+      const RigidPose& a = poses(i, 0, scratch_p);
+      const RigidPose& b = poses(i, 1, scratch_q);
+      out[i] = one(a, b, &warm);
+    }
   });
 }
 
@@ -595,6 +615,7 @@ RigidPose RigidPose::translation(const Point3& t) {
   return RigidPose(PlacedMap(std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}, t));
 }
 RigidPose RigidPose::quaternion(const Quaternion& q, const Point3& t) { return RigidPose(PlacedMap::rotation(q, t)); }
+RigidPose RigidPose::quaternion(const Quaternion& q, const Vec3d& t) { return RigidPose(PlacedMap::rotation(q, t)); }
 RigidPose RigidPose::matrix(const std::array<double, 9>& r, const Point3& t) { return RigidPose(PlacedMap(r, t)); }
 RigidPose RigidPose::matrix(const std::array<double, 9>& r, const Vec3d& t) { return RigidPose(PlacedMap(r, t)); }
 
@@ -745,6 +766,13 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
 void collide(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
              std::span<const RigidPose> poses_q, std::span<RigidCollision> out, unsigned threads) {
   batch("collide", poses_p, poses_q, out, threads, [&](const RigidPose& a, const RigidPose& b, RigidWarmStart* w) {
+    return collide(p, a, q, b, w);
+  });
+}
+
+void collide(const RigidBody& p, const RigidBody& q, const RigidPoseSource& poses, std::span<RigidCollision> out,
+             unsigned threads) {
+  batch(poses, out, threads, [&](const RigidPose& a, const RigidPose& b, RigidWarmStart* w) {
     return collide(p, a, q, b, w);
   });
 }
@@ -965,6 +993,13 @@ RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidB
 void distance(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
               std::span<const RigidPose> poses_q, std::span<RigidDistance> out, unsigned threads) {
   batch("distance", poses_p, poses_q, out, threads, [&](const RigidPose& a, const RigidPose& b, RigidWarmStart* w) {
+    return distance(p, a, q, b, w);
+  });
+}
+
+void distance(const RigidBody& p, const RigidBody& q, const RigidPoseSource& poses, std::span<RigidDistance> out,
+              unsigned threads) {
+  batch(poses, out, threads, [&](const RigidPose& a, const RigidPose& b, RigidWarmStart* w) {
     return distance(p, a, q, b, w);
   });
 }
@@ -1309,6 +1344,12 @@ RigidDepth penetration_depth(const RigidBody& p, const RigidPose& pose_p, const 
 void penetration_depth(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
                        std::span<const RigidPose> poses_q, std::span<RigidDepth> out, unsigned threads) {
   batch("penetration_depth", poses_p, poses_q, out, threads,
+        [&](const RigidPose& a, const RigidPose& b, RigidWarmStart* w) { return penetration_depth(p, a, q, b, w); });
+}
+
+void penetration_depth(const RigidBody& p, const RigidBody& q, const RigidPoseSource& poses,
+                       std::span<RigidDepth> out, unsigned threads) {
+  batch(poses, out, threads,
         [&](const RigidPose& a, const RigidPose& b, RigidWarmStart* w) { return penetration_depth(p, a, q, b, w); });
 }
 

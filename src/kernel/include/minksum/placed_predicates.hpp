@@ -111,6 +111,9 @@ class PlacedMap {
   // The rotation of the non-zero integer quaternion q = (a, b, c, d) (the
   // matrix of transform.hpp) followed by the translation t.
   static PlacedMap rotation(const std::array<Integer, 4>& q, const Point3& t);
+  // The same with a translation of doubles taken exactly (throws UsageError
+  // unless finite).
+  static PlacedMap rotation(const std::array<Integer, 4>& q, const Vec3d& t);
 
   // The nearest doubles of A (row-major) and t: for the searches, never for
   // a decision.
@@ -123,13 +126,14 @@ class PlacedMap {
   Rational a(int row, int col) const;
   Point3 t() const;
   // True when A's entries and t's coordinates are all doubles.
-  bool doubles() const { return !exact_a_ && !exact_t_; }
+  bool doubles() const { return !exact_a_ && !small_rotation_ && !exact_t_; }
   // A p + t and A p, exactly.
   Point3 apply(const Point3& p) const;
   Point3 apply_linear(const Point3& p) const;
 
  private:
   void set_rational_a(const std::array<std::array<Rational, 3>, 3>& a);
+  void set_rotation(const std::array<Integer, 4>& q);  // the matrix of rotation(q, t)
   void set_double_a(const std::array<double, 9>& a);
   void set_t(const Point3& t);
   void check_determinant() const;
@@ -141,6 +145,10 @@ class PlacedMap {
   // The exact values when they are not the doubles above.
   std::shared_ptr<const std::array<std::array<Rational, 3>, 3>> exact_a_;
   std::shared_ptr<const Point3> exact_t_;
+  // Or A is the rotation of this quaternion, components of at most 2^25 in
+  // magnitude (rotation()): a() makes its exact entries.
+  std::array<std::int64_t, 4> quaternion_{};
+  bool small_rotation_ = false;
   // Stage 1 may read approx_a_ and approx_t_: they are the exact entries,
   // each zero or of magnitude in [2^-240, 2^240).
   bool fast_ = false;

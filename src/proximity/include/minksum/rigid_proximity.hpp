@@ -44,7 +44,9 @@
 #include <minksum/transform.hpp>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 
@@ -58,6 +60,7 @@ class RigidPose {
   static RigidPose translation(const Point3& t);
   // The rotation of the non-zero integer quaternion q, then t.
   static RigidPose quaternion(const Quaternion& q, const Point3& t);
+  static RigidPose quaternion(const Quaternion& q, const Vec3d& t);  // t's doubles taken exactly
   // A row-major matrix of doubles, taken exactly, then t.  Throws
   // UsageError for a non-finite entry or a determinant ≤ 0.
   static RigidPose matrix(const std::array<double, 9>& r, const Point3& t);
@@ -142,6 +145,17 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
 void collide(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
              std::span<const RigidPose> poses_q, std::span<RigidCollision> out, unsigned threads = 0);
 
+// Poses made on demand, for a batch over poses held in another form (arrays
+// of numbers): source(i, body, scratch) gives pose i of P (body 0) or of Q
+// (body 1), either a pose the source keeps or `scratch` once built there.
+// The batches below call it just before answering pose i, on the thread
+// that answers it (so from several threads at once), and answer exactly as
+// the span batches do on the same poses, without a vector of N poses.  An
+// exception it throws is rethrown by the batch (the first in pose order).
+using RigidPoseSource = std::function<const RigidPose&(std::size_t i, int body, RigidPose& scratch)>;
+void collide(const RigidBody& p, const RigidBody& q, const RigidPoseSource& poses, std::span<RigidCollision> out,
+             unsigned threads = 0);
+
 // The exact values of a distance answer.
 struct RigidDistanceExact {
   Rational squared_distance;  // dist(P', Q')², 0 unless separate
@@ -192,6 +206,8 @@ RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidB
 // The same for N poses, as the batch collide above.
 void distance(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
               std::span<const RigidPose> poses_q, std::span<RigidDistance> out, unsigned threads = 0);
+void distance(const RigidBody& p, const RigidBody& q, const RigidPoseSource& poses, std::span<RigidDistance> out,
+              unsigned threads = 0);
 
 // The exact squared distance and closest points of an answer of distance()
 // for the same bodies and poses: rational arithmetic on its certified pairs
@@ -250,6 +266,8 @@ RigidDepth penetration_depth(const RigidBody& p, const RigidPose& pose_p, const 
                              RigidWarmStart* warm = nullptr);
 void penetration_depth(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
                        std::span<const RigidPose> poses_q, std::span<RigidDepth> out, unsigned threads = 0);
+void penetration_depth(const RigidBody& p, const RigidBody& q, const RigidPoseSource& poses,
+                       std::span<RigidDepth> out, unsigned threads = 0);
 // The exact squared depth and translation of an answer of
 // penetration_depth() for the same bodies and poses.
 RigidDepthExact exact_values(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,

@@ -225,6 +225,15 @@ def split_row(row):
 OPERATIONS = {"sum": "%s ⊕ %s", "erode": "%s ⊖ %s", "open": "(%s ⊖ %s) ⊕ B"}
 
 
+def displacement(report):
+    """The largest displacement of the written file's points, from the
+    command's --json report ("rounding": every writer reports it there; a
+    convex result's note on stderr words it differently); 0 when nothing was
+    rounded."""
+    rounding = report.get("rounding") if report else None
+    return float(rounding.get("max_displacement", 0.0)) if isinstance(rounding, dict) else 0.0
+
+
 def bench_row(args, a, b, index, label, triangles, op="sum"):
     minksum = os.path.join(args.build, "bin", "minksum")
     bench = os.path.join(args.build, "bin", "bench_nonconvex")
@@ -247,8 +256,7 @@ def bench_row(args, a, b, index, label, triangles, op="sum"):
         runs.append((wall, cpu, peak))
         with open(os.path.join(work, "row%d-minksum.json" % index)) as f:
             report = report or one_json(f.read(), argv)
-        m = re.search(r"largest displacement ([0-9.eE+-]+)", err)
-        moved = float(m.group(1)) if m else 0.0
+        moved = displacement(report)
         if wall > 2:
             break
     runs.sort()
@@ -457,6 +465,8 @@ def main():
                     r = json.load(f)
                 if "exact" in r:
                     r["exact"] = Fraction(r["exact"])
+                if "report" in r:
+                    r["moved"] = displacement(r["report"])
                 results.append(r)
                 continue
             if not tri:

@@ -32,6 +32,7 @@
 #include <minksum/predicates.hpp>
 
 #include "kernel/plane.hpp"
+#include "nonconvex/morton.hpp"
 #include "nonconvex/union.hpp"
 
 #include <algorithm>
@@ -1431,36 +1432,12 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
   // facets' pieces, so that consecutive planes read the same neighbouring
   // pieces, still in the cache (in the order of the planes, neighbours on
   // the surface are far apart in the list); each result keeps its place.
-  std::vector<std::size_t> visit(n);
-  {
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    std::vector<std::array<double, 3>> centre(n);
-    for (std::size_t g = 0; g < n; ++g) {
-      const Piece& p = parts[planes[g]->facets.front().piece];
-      for (int k = 0; k < 3; ++k) {
-        centre[g][k] = p.lo[k] / 2 + p.hi[k] / 2;
-        lo[k] = std::min(lo[k], centre[g][k]);
-        hi[k] = std::max(hi[k], centre[g][k]);
-      }
-    }
-    std::vector<std::pair<std::uint64_t, std::size_t>> code(n);
-    for (std::size_t g = 0; g < n; ++g) {
-      std::uint32_t cell[3];
-      for (int k = 0; k < 3; ++k) {
-        const double span = hi[k] - lo[k];
-        double t = span > 0 && std::isfinite(span) ? (centre[g][k] - lo[k]) / span : 0.0;
-        if (!(t > 0)) t = 0;  // (also NaN)
-        if (t > 1) t = 1;
-        cell[k] = std::uint32_t(t * 2097151.0);  // 21 bits
-      }
-      std::uint64_t c = 0;
-      for (int b = 20; b >= 0; --b)
-        for (int k = 0; k < 3; ++k) c = (c << 1) | ((cell[k] >> b) & 1u);
-      code[g] = {c, g};
-    }
-    std::sort(code.begin(), code.end());
-    for (std::size_t g = 0; g < n; ++g) visit[g] = code[g].second;
+  std::vector<Vec3d> centre(n);
+  for (std::size_t g = 0; g < n; ++g) {
+    const Piece& p = parts[planes[g]->facets.front().piece];
+    centre[g] = Vec3d{p.lo[0] / 2 + p.hi[0] / 2, p.lo[1] / 2 + p.hi[1] / 2, p.lo[2] / 2 + p.hi[2] / 2};
   }
+  const std::vector<std::size_t> visit = morton_order(centre);
   for (std::size_t start = 0; start < n; start += batch) {
     const std::size_t count = std::min(batch, n - start);
     parallel_for(count, workers, [&](std::size_t k) {

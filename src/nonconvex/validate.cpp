@@ -6,6 +6,7 @@
 
 #include "kernel/interval.hpp"
 #include "kernel/plane.hpp"
+#include "nonconvex/morton.hpp"
 #include "nonconvex/nef.hpp"
 #include "nonconvex/sweep.hpp"
 #include "nonconvex/validate.hpp"
@@ -285,36 +286,13 @@ Rational mesh_volume(const Mesh& mesh) {
                [&](std::size_t v) { scaled[v] = scaled_point(mesh.points[v]); });
   // The faces in Morton order of their first vertex (the order decides the
   // cost only).
-  std::vector<std::pair<std::uint64_t, Index>> order(nf);
-  {
-    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    std::vector<Vec3d> at(nf);
-    for (std::size_t k = 0; k < nf; ++k) {
-      at[k] = mesh.faces[k].empty() ? Vec3d{0, 0, 0} : to_double(mesh.points[mesh.faces[k][0]]);
-      for (int i = 0; i < 3; ++i) {
-        lo[i] = std::min(lo[i], at[k][i]);
-        hi[i] = std::max(hi[i], at[k][i]);
-      }
-    }
-    for (std::size_t k = 0; k < nf; ++k) {
-      std::uint64_t code = 0;
-      std::uint32_t cell[3];
-      for (int i = 0; i < 3; ++i) {
-        const double span = hi[i] - lo[i];
-        double t = span > 0 && std::isfinite(span) ? (at[k][i] - lo[i]) / span : 0.0;
-        if (!(t > 0)) t = 0;  // (also NaN)
-        if (t > 1) t = 1;
-        cell[i] = std::uint32_t(t * 2097151.0);  // 21 bits
-      }
-      for (int b = 20; b >= 0; --b)
-        for (int i = 0; i < 3; ++i) code = (code << 1) | ((cell[i] >> b) & 1u);
-      order[k] = {code, Index(k)};
-    }
-    std::sort(order.begin(), order.end());
-  }
+  std::vector<Vec3d> first_vertex(nf);
+  for (std::size_t k = 0; k < nf; ++k)
+    first_vertex[k] = mesh.faces[k].empty() ? Vec3d{0, 0, 0} : to_double(mesh.points[mesh.faces[k][0]]);
+  const std::vector<std::size_t> order = nonconvex_detail::morton_order(first_vertex);
   std::vector<Rational> term(nf);
   parallel_for(nf, workers, [&](std::size_t k) {
-    const auto& f = mesh.faces[order[k].second];
+    const auto& f = mesh.faces[order[k]];
     const ScaledPoint& p0 = scaled[f[0]];
     Integer c[3], det, den;
     Rational t;

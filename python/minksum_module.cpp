@@ -42,6 +42,7 @@
 #include <string>
 #include <thread>
 #include <unordered_map>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -1062,6 +1063,22 @@ class PoseSource {
   const RigidPoses& p_;
   std::optional<RigidPose> single_[2];
 };
+
+// The exact values of each answer of a batch (exact_values), in blocks of
+// consecutive poses on `threads` threads, each pose made again by `source`.
+template <class Answer>
+auto batch_exact_values(const RigidBody& a, const RigidBody& b, const PoseSource& source,
+                        const std::vector<Answer>& out, unsigned threads) {
+  using Exact = decltype(exact_values(a, std::declval<const RigidPose&>(), b, std::declval<const RigidPose&>(), out[0]));
+  const std::size_t n = out.size(), block = 64, blocks = (n + block - 1) / block;
+  std::vector<Exact> values(n);
+  parallel_for(blocks, threads, [&](std::size_t k) {
+    RigidPose scratch_a, scratch_b;
+    for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i)
+      values[i] = exact_values(a, source(i, 0, scratch_a), b, source(i, 1, scratch_b), out[i]);
+  });
+  return values;
+}
 
 struct WitnessPy {
   Witness w;
@@ -2118,16 +2135,7 @@ Runs with the GIL released on `threads` threads (None: one per core).)");
             wd[i] = d.distance, wl[i] = d.lower, wu[i] = d.upper;
             for (int k = 0; k < 3; ++k) wa[3 * i + k] = d.point_p[k], wb[3 * i + k] = d.point_q[k];
           }
-          if (exact) {
-            // The exact values of each answer, in blocks of consecutive poses.
-            values.resize(n);
-            const std::size_t block = 64, blocks = (n + block - 1) / block;
-            parallel_for(blocks, poses.threads, [&](std::size_t k) {
-              RigidPose scratch_a, scratch_b;
-              for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i)
-                values[i] = exact_values(a, source(i, 0, scratch_a), b, source(i, 1, scratch_b), out[i]);
-            });
-          }
+          if (exact) values = batch_exact_values(a, b, source, out, poses.threads);
         }
         py::dict r;
         r["status"] = status;
@@ -2190,15 +2198,7 @@ the bodies meet, the one point_a is near).  Runs with the GIL released on
             wd[i] = d.depth, wl[i] = d.lower, wu[i] = d.upper;
             for (int k = 0; k < 3; ++k) wt[3 * i + k] = d.direction[k];
           }
-          if (exact) {
-            values.resize(n);
-            const std::size_t block = 64, blocks = (n + block - 1) / block;
-            parallel_for(blocks, poses.threads, [&](std::size_t k) {
-              RigidPose scratch_a, scratch_b;
-              for (std::size_t i = k * block; i < std::min(n, (k + 1) * block); ++i)
-                values[i] = exact_values(a, source(i, 0, scratch_a), b, source(i, 1, scratch_b), out[i]);
-            });
-          }
+          if (exact) values = batch_exact_values(a, b, source, out, poses.threads);
         }
         py::dict r;
         r["status"] = status;

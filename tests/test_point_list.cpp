@@ -9,6 +9,7 @@
 #include <minksum/walk.hpp>
 
 #include <gtest/gtest.h>
+#include <minksum/half_space_side.hpp>
 #include <mpfr.h>
 
 #include <atomic>
@@ -339,6 +340,98 @@ TEST(TruncatedRatio, FaithfulTowardsZero) {
       const Rational err = abs(Rational(q - rr));
       ASSERT_LT(cmp(err, abs(q) * Rational(1, Integer(1) << 52)), 0) << "seed " << seed << ", case " << i;
     }
+  }
+}
+
+// plane_filter_doubles: the doubles are faithful roundings towards zero of
+// one positive multiple 2^-k of the plane's integers (the same k for all
+// four), below 2^480 whatever the integers' length (up to 3 000 bits here),
+// and the half-space filter on them never contradicts the exact side of the
+// plane itself; on points well off the plane it decides.  Planes through
+// points of a thousand bits and more are what an erosion's vertices give.
+TEST(PlaneFilterDoubles, AScaledPlaneKeepsTheSideAndTheFilterDecides) {
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    std::mt19937_64 rng(seed);
+    gmp_randclass gen(gmp_randinit_default);
+    gen.seed(seed);
+    int decided = 0, off = 0;
+    for (int i = 0; i < 1500; ++i) {
+      const unsigned bits = 1 + unsigned(rng() % 3000);
+      Integer c[4];
+      for (Integer& x : c) {
+        x = gen.get_z_bits(bits - unsigned(rng() % std::min<unsigned>(bits, 40)));
+        if (rng() % 2) x = -x;
+        if (rng() % 11 == 0) x = 0;
+      }
+      if (sgn(c[0]) == 0 && sgn(c[1]) == 0 && sgn(c[2]) == 0) c[2] = 1;
+      double out[4];
+      const bool usable = plane_filter_doubles(c[0], c[1], c[2], c[3], out);
+      // One common scale 2^-k, k >= 0, each double a truncation of c_i 2^-k.
+      std::size_t top = 0;
+      for (const Integer& x : c)
+        if (sgn(x) != 0) top = std::max(top, mpz_sizeinbase(x.get_mpz_t(), 2));
+      const long k = top >= 480 ? long(top) - 470 : 0;
+      for (int j = 0; j < 4; ++j) {
+        ASSERT_TRUE(std::isfinite(out[j])) << "seed " << seed << ", case " << i;
+        ASSERT_LT(std::fabs(out[j]), 0x1p480) << "seed " << seed << ", case " << i;
+        if (sgn(c[j]) == 0) {
+          ASSERT_EQ(out[j], 0.0) << "seed " << seed << ", case " << i;
+          continue;
+        }
+        if (out[j] == 0.0) {
+          ASSERT_FALSE(usable) << "seed " << seed << ", case " << i;
+          continue;
+        }
+        Rational scaled(c[j]);
+        mpq_div_2exp(scaled.get_mpq_t(), scaled.get_mpq_t(), mp_bitcnt_t(k));
+        const Rational r(out[j]);
+        ASSERT_EQ(sgn(r), sgn(c[j])) << "seed " << seed << ", case " << i;
+        ASSERT_LE(cmp(abs(r), abs(scaled)), 0) << "seed " << seed << ", case " << i;
+        ASSERT_LT(cmp(abs(Rational(scaled - r)), abs(scaled) * Rational(1, Integer(1) << 52)), 0)
+            << "seed " << seed << ", case " << i;
+        if (usable) {
+          ASSERT_GE(std::fabs(out[j]), 0x1p-480) << "seed " << seed << ", case " << i;
+        }
+      }
+      if (!usable) continue;
+      // Points: on the plane (a rational solution), and moved off it along the
+      // normal by a relative 2^-30 (or -2^-30), or at random.
+      Point3 p;
+      int axis = sgn(c[0]) != 0 ? 0 : sgn(c[1]) != 0 ? 1 : 2;
+      Rational coord[3] = {Rational(gen.get_z_bits(64)) / Rational(gen.get_z_bits(40) + 1),
+                           Rational(gen.get_z_bits(64)) / Rational(gen.get_z_bits(40) + 1),
+                           Rational(gen.get_z_bits(64)) / Rational(gen.get_z_bits(40) + 1)};
+      Rational rest = c[3];
+      for (int j = 0; j < 3; ++j)
+        if (j != axis) rest -= c[j] * coord[j];
+      coord[axis] = rest / c[axis];
+      const int kind = int(rng() % 3);
+      if (kind == 1 || kind == 2) {
+        // 2^-30 of the terms' magnitudes, so the value is well above the
+        // filter's bound (2^-48 of them).
+        Rational terms = abs(Rational(c[3]));
+        for (int j = 0; j < 3; ++j) terms += abs(Rational(c[j] * coord[j]));
+        const Rational shift = terms / (abs(Rational(c[axis])) * Rational(Integer(1) << 30));
+        coord[axis] += (kind == 1 ? shift : -shift) * sgn(c[axis]);
+        ++off;
+      }
+      p = Point3{coord[0], coord[1], coord[2]};
+      const int exact = sgn(Rational(c[0] * p.x + c[1] * p.y + c[2] * p.z - c[3]));
+      const Vec3d pd = to_double(p);
+      if (!half_space_filter_usable(pd.x, p.x) || !half_space_filter_usable(pd.y, p.y) ||
+          !half_space_filter_usable(pd.z, p.z))
+        continue;
+      const auto s = half_space_side_filter(out[0], out[1], out[2], out[3], pd.x, pd.y, pd.z);
+      if (s) {
+        ASSERT_EQ(*s, exact) << "seed " << seed << ", case " << i;
+        if (kind != 0) ++decided;
+      }
+      if (kind == 0) {
+        ASSERT_EQ(exact, 0) << "seed " << seed << ", case " << i;
+      }
+    }
+    // The points off the plane by a relative 2^-30 are decided by the doubles.
+    EXPECT_GE(decided * 10, off * 9) << "seed " << seed;
   }
 }
 

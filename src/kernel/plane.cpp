@@ -123,6 +123,32 @@ double truncated_ratio(const Integer& X, const Integer& W) {
   return sgn(X) < 0 ? -r : r;
 }
 
+bool plane_filter_doubles(const Integer& a, const Integer& b, const Integer& c, const Integer& d, double out[4]) {
+  const Integer* v[4] = {&a, &b, &c, &d};
+  std::size_t bits = 0;
+  for (const Integer* x : v)
+    if (sgn(*x) != 0) bits = std::max(bits, mpz_sizeinbase(x->get_mpz_t(), 2));
+  const long k = bits >= 480 ? long(bits) - 470 : 0;
+  bool usable = true;
+  for (int i = 0; i < 4; ++i) {
+    if (sgn(*v[i]) == 0) {
+      out[i] = 0.0;
+      continue;
+    }
+    long e = 0;
+    const double m = mpz_get_d_2exp(&e, v[i]->get_mpz_t());
+    // |m 2^(e - k)| in [2^(e - k - 1), 2^(e - k)): usable when e - k - 1 >= -480
+    // (and e - k <= 470 by the choice of k).
+    if (e - k - 1 < -480) {
+      out[i] = 0.0;
+      usable = false;
+      continue;
+    }
+    out[i] = std::ldexp(m, int(e - k));
+  }
+  return usable;
+}
+
 ScaledIntegers::ScaledIntegers(const double* values, std::size_t n) {
   // Every nonzero double is M * 2^E with an odd or even integer |M| < 2^53;
   // the smallest E over all values is the common exponent.

@@ -223,20 +223,17 @@ const Plane& built_plane(const Half& h) {
   return e.plane;
 }
 
-// mpz_get_d truncates towards zero: a faithful rounding (within relative
-// 2^-52), which the filter's bound allows (<minksum/half_space_side.hpp>);
-// usable below 2^480, as every non-zero integer is at least 1.
-bool integer_to_filter_double(const Integer& x, double& out) {
-  if (mpz_sizeinbase(x.get_mpz_t(), 2) >= 480) return false;
-  out = mpz_get_d(x.get_mpz_t());
-  return true;
-}
-
+// The doubles of a positive multiple of q, scaled by a power of two when
+// its integers are too long for the filter (kernel/plane.hpp).
 Half half_of(const Plane& q) {
   Half h;
   h.plane = &q;
-  h.filtered = integer_to_filter_double(q.a, h.da) && integer_to_filter_double(q.b, h.db) &&
-               integer_to_filter_double(q.c, h.dc) && integer_to_filter_double(q.d, h.dd);
+  double out[4];
+  h.filtered = plane_filter_doubles(q.a, q.b, q.c, q.d, out);
+  h.da = out[0];
+  h.db = out[1];
+  h.dc = out[2];
+  h.dd = out[3];
   return h;
 }
 

@@ -42,6 +42,25 @@ Plane canonical_plane_through_sum(const Integer n[3], const ScaledPoint& p, cons
 // is 0, subnormal or infinite, which the filter's range check refuses).
 double truncated_ratio(const Integer& X, const Integer& W);
 
+// The doubles of a positive multiple of the integer plane
+// a x + b y + c z = d for the half-space filter
+// (<minksum/half_space_side.hpp>): out = 2^-k (a, b, c, d), each truncated
+// towards zero, with k = 0 when every coefficient is below 2^480 in
+// magnitude, else k = L - 470 for L the largest coefficient's bit length
+// (planes through points of several hundred bits, such as the vertices of
+// an erosion, have coefficients of thousands of bits).  Returns whether all
+// four may enter the filter: each zero exactly when its integer is, or of
+// magnitude in [2^-480, 2^480).
+// Why the filter's sign is then the plane's own: for every point, 2^-k
+// (a x + b y + c z - d) has the sign of a x + b y + c z - d, as 2^-k > 0;
+// and each double is a faithful rounding of its scaled coefficient, which
+// the filter's bound admits: mpz_get_d_2exp gives the integer's leading 53
+// bits, truncated (within relative 2^-52, never beyond the value), as
+// m 2^e with 0.5 <= |m| < 1, and ldexp(m, e - k) scales that exactly
+// while the result is normal, which the range check above guarantees
+// (2^-480 is far above the smallest normal double, 2^-1022).
+bool plane_filter_doubles(const Integer& a, const Integer& b, const Integer& c, const Integer& d, double out[4]);
+
 // Finite doubles as integers with one common power of two: values[i] =
 // value[i] * 2^exponent exactly (exponent = the smallest exponent of the
 // nonzero values' last mantissa bits).

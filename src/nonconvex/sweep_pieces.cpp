@@ -8,6 +8,7 @@
 #include <minksum/predicates.hpp>
 
 #include "kernel/line_box.hpp"
+#include "kernel/plane.hpp"
 #include "nonconvex/sweep.hpp"
 
 #include <algorithm>
@@ -59,9 +60,33 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
         throw std::logic_error("SurfaceCones: an edge with one triangle");
     }
   }
+  // The points as integers over a common denominator each: the normals and
+  // the edges' kinds in integers, with no rational normalisation (the
+  // vertices of an erosion, swept in an opening, have several hundred bits).
+  std::vector<ScaledPoint> scaled(nv);
+  parallel_for(nv, parallel_threads(0, nv / 256 + 1), [&](std::size_t v) { scaled[v] = scaled_point(points_[v]); });
   parallel_for(tri_.size(), parallel_threads(0, tri_.size() / 256 + 1), [&](std::size_t t) {
     const auto& c = tri_[t];
-    normal_[t] = cross(points_[c[1]] - points_[c[0]], points_[c[2]] - points_[c[0]]);
+    // The primitive integer multiple of (p1 - p0) x (p2 - p0): a positive
+    // multiple of positive multiples' cross product, divided by its gcd.
+    Integer e1[3], e2[3], n[3], g;
+    scaled_difference(scaled[c[0]], scaled[c[1]], e1);
+    scaled_difference(scaled[c[0]], scaled[c[2]], e2);
+    for (int j = 0; j < 3; ++j) {
+      const int k = (j + 1) % 3, l = (j + 2) % 3;
+      mpz_mul(n[j].get_mpz_t(), e1[k].get_mpz_t(), e2[l].get_mpz_t());
+      mpz_submul(n[j].get_mpz_t(), e1[l].get_mpz_t(), e2[k].get_mpz_t());
+      mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), n[j].get_mpz_t());
+    }
+    if (sgn(g) != 0 && g != 1)
+      for (Integer& x : n) mpz_divexact(x.get_mpz_t(), x.get_mpz_t(), g.get_mpz_t());
+    // n . p0 = off / p0.den, the same for the triangle's three points.
+    Integer off, val, t1;
+    const ScaledPoint& s0 = scaled[c[0]];
+    mpz_mul(off.get_mpz_t(), n[0].get_mpz_t(), s0.num[0].get_mpz_t());
+    mpz_addmul(off.get_mpz_t(), n[1].get_mpz_t(), s0.num[1].get_mpz_t());
+    mpz_addmul(off.get_mpz_t(), n[2].get_mpz_t(), s0.num[2].get_mpz_t());
+    normal_[t] = Point3(Rational(n[0]), Rational(n[1]), Rational(n[2]));
     normal_approx_[t] = to_double(normal_[t]);
     double* lo = &box_[t][0];
     double* hi = &box_[t][3];
@@ -81,7 +106,15 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
       across_[t][k] = back->second.first == Index(t) ? it->second.first : kNoTriangle;
       // The neighbour's far vertex below this triangle's plane: a convex
       // edge; on it: flat; above: reflex.
-      kind_[t][k] = static_cast<signed char>(sgn(dot(normal_[t], points_[w] - points_[a])));
+      // sign n . (w - p0) = sign(n . w.num p0.den - off w.den), the
+      // denominators positive.
+      const ScaledPoint& sw = scaled[w];
+      mpz_mul(t1.get_mpz_t(), n[0].get_mpz_t(), sw.num[0].get_mpz_t());
+      mpz_addmul(t1.get_mpz_t(), n[1].get_mpz_t(), sw.num[1].get_mpz_t());
+      mpz_addmul(t1.get_mpz_t(), n[2].get_mpz_t(), sw.num[2].get_mpz_t());
+      mpz_mul(val.get_mpz_t(), t1.get_mpz_t(), s0.den.get_mpz_t());
+      mpz_submul(val.get_mpz_t(), off.get_mpz_t(), sw.den.get_mpz_t());
+      kind_[t][k] = static_cast<signed char>(sgn(val));
     }
   });
   // Each edge numbered by the first triangle holding it; the triangle

@@ -17,7 +17,7 @@ namespace minksum::nonconvex_detail {
 // (indices into `points`, counter-clockwise seen from outside; q must not
 // lie on it): the parity of the crossings of an exact ray that meets no edge
 // or vertex of the surface.  `normals`, when given, holds each triangle's
-// (p1 - p0) x (p2 - p0); `approx`, when given, the nearest doubles of the
+// (p1 - p0) x (p2 - p0) or a positive multiple of it; `approx`, when given, the nearest doubles of the
 // points (the orientation tests then filter on them); `boxes`, when given,
 // boxes (lo, hi) containing each triangle's exact points: the triangles
 // whose boxes the ray's line provably misses are skipped.
@@ -87,7 +87,6 @@ class SurfaceCones {
   const Point3& point(Index v) const { return points_[v]; }
   // The point with its nearest doubles, for the kernel's filtered predicates.
   RoundedPoint3 rounded(Index v) const { return at(v); }
-  // Triangle t's (p1 - p0) x (p2 - p0), outward, and its nearest doubles.
   // The edges of the surface, each once, numbered in the order of the
   // triangles that first hold them: their ends, in the direction that
   // triangle runs the edge.
@@ -96,6 +95,9 @@ class SurfaceCones {
   // Edge k = (c[k], c[k+1]) of triangle t: 2 e for edge e run from its first
   // end to its second, 2 e + 1 the other way.
   Index edge_of(Index t, int k) const { return edge_[t][k]; }
+  // Triangle t's outward normal, the primitive integer multiple of
+  // (p1 - p0) x (p2 - p0) (made in integers, smaller than the rational
+  // product), and its nearest doubles.
   const Point3& normal(Index t) const { return normal_[t]; }
   const Vec3d& normal_approx(Index t) const { return normal_approx_[t]; }
 
@@ -109,7 +111,7 @@ class SurfaceCones {
   std::vector<Vec3d> normal_approx_;               // of normal_
   std::vector<std::array<double, 6>> box_;         // per triangle, (lo, hi) containing its exact points (widen_box)
   std::vector<std::array<Index, 3>> tri_;
-  std::vector<Point3> normal_;                     // (p1 - p0) x (p2 - p0), outward
+  std::vector<Point3> normal_;                     // primitive integer multiple of (p1 - p0) x (p2 - p0)
   std::vector<std::array<Index, 3>> opposite_;     // edge k = (c[k], c[k+1]): the far vertex of the face across it
   std::vector<std::array<signed char, 3>> kind_;   // edge k: -1 convex, 0 flat, +1 reflex
   std::vector<std::vector<Index>> neighbours_;     // per vertex

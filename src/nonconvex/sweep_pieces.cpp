@@ -63,8 +63,9 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
   // The points as integers over a common denominator each: the normals and
   // the edges' kinds in integers, with no rational normalisation (the
   // vertices of an erosion, swept in an opening, have several hundred bits).
-  std::vector<ScaledPoint> scaled(nv);
-  parallel_for(nv, parallel_threads(0, nv / 256 + 1), [&](std::size_t v) { scaled[v] = scaled_point(points_[v]); });
+  scaled_.resize(nv);
+  parallel_for(nv, parallel_threads(0, nv / 256 + 1), [&](std::size_t v) { scaled_[v] = scaled_point(points_[v]); });
+  const std::vector<ScaledPoint>& scaled = scaled_;
   parallel_for(tri_.size(), parallel_threads(0, tri_.size() / 256 + 1), [&](std::size_t t) {
     const auto& c = tri_[t];
     // The primitive integer multiple of (p1 - p0) x (p2 - p0): a positive

@@ -265,7 +265,7 @@ void SweptPolytope::prepare(const SurfaceCones& cones, unsigned threads) {
   offset_d_.assign(nv * nf, 0.0);
   offset_ok_.assign(nv * nf, 0);
   parallel_for(nv, parallel_threads(threads, nv / 64 + 1), [&](std::size_t v) {
-    const ScaledPoint q = scaled_point(cones.point(Index(v)));
+    const ScaledPoint& q = cones.scaled(Index(v));
     Integer work[3];
     for (std::size_t fi = 0; fi < nf; ++fi) {
       offset_along(facets_[fi], q, work);
@@ -352,7 +352,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   std::vector<Index> candidates;
   std::vector<std::vector<Point3>> loops;
   // t's points as integers over a common denominator.
-  const ScaledPoint scaled[3] = {scaled_point(p[0].exact), scaled_point(p[1].exact), scaled_point(p[2].exact)};
+  const ScaledPoint* const sp[3] = {&cones.scaled(c[0]), &cones.scaled(c[1]), &cones.scaled(c[2])};
   Integer work[3];
 
   // A. The facets of B, each moved by the face of t extreme along its normal.
@@ -399,14 +399,14 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       lp.d = offset_d_[at];
       lp.filtered = offset_ok_[at] != 0;
     } else {
-      offset_along(f, scaled[top], work);
+      offset_along(f, *sp[top], work);
       lazy_doubles(f, work, lp.d, lp.filtered);
     }
     if ((!surface_ || facet_on_surface_[fi]) &&
         cones.candidate(t, u, at_top, below_.empty() || prepared_ != &cones ? nullptr : &below_[fi], facets_.size()) &&
         cones.keeps(t, u, at_top)) {
       lp.exact = std::int32_t(lazy_exact.size());
-      if (prepared_ == &cones) offset_along(f, scaled[top], work);
+      if (prepared_ == &cones) offset_along(f, *sp[top], work);
       lazy_exact.push_back(canonical_from_offset(f, work));
       candidates.push_back(Index(fi));
       std::vector<Point3> loop;
@@ -428,15 +428,14 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   {
     std::vector<Index> faces[2];  // the vertices of B highest along n_t, and lowest (ascending)
     for (int side = 0; side < 2; ++side) extreme_face(p, cones.normal_approx(t), side == 0 ? 1 : -1, faces[side]);
-    // n_t in integers: a positive multiple of (p1 - p0) x (p2 - p0).
+    // n_t in integers: the primitive multiple of (p1 - p0) x (p2 - p0)
+    // that SurfaceCones keeps.
     Integer n[2][3];
-    if (faces[0].size() < 3 || faces[1].size() < 3) {
-      Integer e1[3], e2[3];
-      scaled_difference(scaled[0], scaled[1], e1);
-      scaled_difference(scaled[0], scaled[2], e2);
-      cross_integers(e1, e2, n[0]);
-      for (int j = 0; j < 3; ++j) n[1][j] = -n[0][j];
-    }
+    if (faces[0].size() < 3 || faces[1].size() < 3)
+      for (int j = 0; j < 3; ++j) {
+        n[0][j] = cones.normal(t)[j].get_num();
+        n[1][j] = -n[0][j];
+      }
     for (int side = 0; side < 2; ++side) {
       const std::vector<Index>& face = faces[side];
       if (face.size() >= 3) continue;  // a facet of B: in A
@@ -444,7 +443,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       const Vec3d ua = side == 0 ? cones.normal_approx(t) : Vec3d{-cones.normal_approx(t).x, -cones.normal_approx(t).y,
                                                                    -cones.normal_approx(t).z};
       Built x;
-      x.plane = plane_through_sum(n[side], scaled[0], scaled_[face[0]]);
+      x.plane = plane_through_sum(n[side], *sp[0], scaled_[face[0]]);
       const bool whole[3] = {true, true, true};  // t is face_u(t)
       if (cones.candidate(t, RoundedPoint3{u, ua}, whole) && on_surface(face[0], RoundedPoint3{u, ua})) {
         if (face.size() == 1) {
@@ -483,7 +482,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       const int s = -support_compare(a, b, third, g1, g0);
       if (sigma * s >= 0) continue;
       if (!have_e) {
-        scaled_difference(scaled[k], scaled[(k + 1) % 3], e);
+        scaled_difference(*sp[k], *sp[(k + 1) % 3], e);
         have_e = true;
       }
       // u: a positive multiple of σ (b - a) × (g1 - g0), in integers.
@@ -492,7 +491,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       if (sigma < 0)
         for (Integer& x : n) mpz_neg(x.get_mpz_t(), x.get_mpz_t());
       Built x;
-      x.plane = plane_through_sum(n, scaled[k], scaled_[g.v0]);
+      x.plane = plane_through_sum(n, *sp[k], scaled_[g.v0]);
       const Point3 u{Rational(n[0]), Rational(n[1]), Rational(n[2])};
       // Faithful roundings (mpz_get_d truncates), as the cone tests allow.
       const Vec3d ua{mpz_get_d(n[0].get_mpz_t()), mpz_get_d(n[1].get_mpz_t()), mpz_get_d(n[2].get_mpz_t())};

@@ -85,6 +85,8 @@ class SurfaceCones {
   std::size_t points() const { return points_.size(); }
   const std::array<Index, 3>& triangle(Index t) const { return tri_[t]; }
   const Point3& point(Index v) const { return points_[v]; }
+  // The point as integers over a common denominator (kernel/plane.hpp).
+  const ScaledPoint& scaled(Index v) const { return scaled_[v]; }
   // The point with its nearest doubles, for the kernel's filtered predicates.
   RoundedPoint3 rounded(Index v) const { return at(v); }
   // The edges of the surface, each once, numbered in the order of the
@@ -108,6 +110,7 @@ class SurfaceCones {
 
   std::vector<Point3> points_;
   std::vector<Vec3d> approx_;                      // nearest doubles of points_
+  std::vector<ScaledPoint> scaled_;                // points_ over common denominators
   std::vector<Vec3d> normal_approx_;               // of normal_
   std::vector<std::array<double, 6>> box_;         // per triangle, (lo, hi) containing its exact points (widen_box)
   std::vector<std::array<Index, 3>> tri_;

@@ -524,6 +524,10 @@ struct SolidPy {
   Rational volume;
   std::optional<Solid> solid;
   std::string name;  // the source named in errors ("" for arrays)
+  // The boundary as a convex polytope when the operation built one (the
+  // erosion, opening or closing of a convex a): save writes it as a
+  // polytope is written, as 'minksum erode|open|close -o' does.
+  std::shared_ptr<const ConvexPolytope> convex_written;
   mutable std::mutex solid_mutex;  // guards `solid` (set by validated() on another thread)
 
   const Solid& validated() {
@@ -671,6 +675,10 @@ SumPy sum_operands(const AnyOperandPy& a, const AnyOperandPy& b, const std::vect
   out->report = std::move(std::get<NonconvexSum>(r.result));
   out->faces = std::move(out->report.mesh);
   out->report.mesh = Mesh{};
+  if (out->report.convex) {
+    out->convex_written = std::make_shared<const ConvexPolytope>(std::move(*out->report.convex));
+    out->report.convex.reset();
+  }
   out->volume = out->report.volume;
   return out;
 }
@@ -1518,7 +1526,14 @@ arguments, TypeError for arguments of the wrong type.)")
             RoundedSolid r;
             try {
               py::gil_scoped_release nogil;
-              r = write_solid(file, s.faces, w);
+              if (s.convex_written) {
+                RoundingReport p;
+                write_polytope(file, *s.convex_written, w, &p);
+                r.rounded_coordinates = p.coordinates;
+                r.max_displacement = p.max_displacement;
+              } else {
+                r = write_solid(file, s.faces, w);
+              }
             } catch (const RoundingError& e) {
               throw py::value_error(std::string("cannot write ") + file + ": " + e.what() +
                                     "; exact=True writes exact rationals (.off, .obj, .wrl)");
@@ -1537,7 +1552,8 @@ arguments, TypeError for arguments of the wrong type.)")
           },
           py::arg("path"), py::arg("exact") = false, py::arg("binary") = false,
           "Write the solid's faces to path (.off, .obj, .ply, .stl or .wrl, by extension), atomically, as\n"
-          "'minksum sum -o' writes a non-convex sum.  exact=True writes exact rationals (.off, .obj and\n"
+          "'minksum sum -o' writes a non-convex sum (the erosion, opening or closing of a convex a as a convex\n"
+          "polytope, as 'minksum erode|open|close -o' writes it).  exact=True writes exact rationals (.off, .obj and\n"
           ".wrl only); otherwise coordinates that are not doubles (binary=True .stl: 32-bit floats) are\n"
           "rounded and the surface written as a valid closed solid without self-intersection (checked\n"
           "exactly; docs/nonconvex.md, \"Output\"), STL as triangles.  Returns None when nothing moved, else\n"

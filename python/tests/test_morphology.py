@@ -49,6 +49,22 @@ def test_erosion_and_opening_of_a_convex_a_take_the_half_space_path(tmp_path):
     assert minksum.Solid.load(str(tmp_path / "o.stl")).volume() > 0
 
 
+def test_save_of_a_convex_erosion_writes_the_commands_file(tmp_path):
+    # The erosion and the opening of a convex a are convex polytopes, written as
+    # the convex path writes one: the same bytes and rounding as the command's.
+    for fn, command in ((minksum.erode, "erode"), (minksum.opening, "open")):
+        r = fn("dodecahedron", "sphere:2@scale:1/10")
+        for name, binary in (("x.stl", True), ("x.off", False)):
+            mine, theirs = tmp_path / ("py-" + name), tmp_path / ("cli-" + name)
+            rounding = r.save(mine, binary=binary)
+            args = [command, "dodecahedron", "sphere:2@scale:1/10", "-o", str(theirs)]
+            j = cli_json(*(args + (["--binary"] if binary else [])))
+            assert mine.read_bytes() == theirs.read_bytes(), (command, name)
+            assert rounding is not None and rounding["coordinates"] == j["rounding"]["coordinates"] > 0
+            assert rounding["max_displacement"] == j["rounding"]["max_displacement"]
+            assert minksum.load(str(mine)).num_facets > 0  # reads back as a convex polytope
+
+
 def test_b_must_be_convex():
     with pytest.raises(ValueError, match="convex"):
         minksum.erode("cube", "lshape")

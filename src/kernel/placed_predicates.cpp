@@ -363,7 +363,9 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
                                      const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
                                      const std::array<const PointBounds*, 4>& qb) {
   // The five signed volumes, orient3d(d0, d1, d2, d3) = det(d1 − d0, d2 − d0,
-  // d3 − d0) and the same with d_k the origin, evaluated on intervals first.
+  // d3 − d0) and the same with d_k the origin, evaluated on intervals first;
+  // the exact stage evaluates only those the intervals left open.
+  std::array<int, 5> sig;
   {
     CGAL::Protect_FPU_rounding<true> upward;
     std::array<FastIPoint, 4> d;
@@ -372,35 +374,44 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
       return sign_of(dot(b - a, cross(c - a, e - a)));
     };
     const FastIPoint o{FastInterval(0), FastInterval(0), FastInterval(0)};
-    const int total = volume(d[0], d[1], d[2], d[3]);
-    bool decided = total != kUncertain;
-    bool inside = decided && total != 0;
-    for (int k = 0; k < 4 && decided && inside; ++k) {
+    sig[0] = volume(d[0], d[1], d[2], d[3]);
+    bool open = sig[0] == kUncertain, outside = sig[0] == 0;
+    for (int k = 0; k < 4 && !outside; ++k) {
       std::array<FastIPoint, 4> e = d;
       e[k] = o;
-      const int s = volume(e[0], e[1], e[2], e[3]);
-      if (s == kUncertain) decided = false;
-      else if (s != total) inside = false;
+      sig[k + 1] = volume(e[0], e[1], e[2], e[3]);
+      open = open || sig[k + 1] == kUncertain;
+      outside = sig[0] != kUncertain && sig[k + 1] != kUncertain && sig[k + 1] != sig[0];
     }
-    if (decided) {
+    if (outside || !open) {
       ++g_counts.filtered;
-      return inside;
+      return !outside;
     }
   }
   ++g_counts.exact;
-  std::array<Point3, 4> d;
-  for (int k = 0; k < 4; ++k) d[k] = mp.apply(*p[k]) - mq.apply(*q[k]);
-  const Point3 o(0, 0, 0);
-  const auto volume = [](const Point3& a, const Point3& b, const Point3& c, const Point3& e) {
-    return sgn(det3(b - a, c - a, e - a));
+  // The points K d_k = Z_p(p_k) − Z_q(q_k) of one PlacedFrame (integers when
+  // the matrices and the points are doubles): the volumes are homogeneous of
+  // degree 3, so K > 0 keeps their signs.
+  bool pd = true, qd = true;
+  int pe = std::numeric_limits<int>::max(), qe = pe;
+  const auto scan = [](const PointBounds& b, bool& doubles, int& e) {
+    for (const Bounds* c : {&b.x, &b.y, &b.z}) doubles = doubles && c->lo == c->hi, e = std::min(e, dyadic_exponent(c->lo));
   };
-  const int total = volume(d[0], d[1], d[2], d[3]);
-  if (total == 0) return false;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 4; ++k) scan(*pb[k], pd, pe), scan(*qb[k], qd, qe);
+  const PlacedFrame frame(mp, pd, pe, mq, qd, qe);
+  std::array<Point3, 4> d;
+  for (int k = 0; k < 4; ++k) d[k] = frame.p(*p[k], *pb[k]) - frame.q(*q[k], *qb[k]);
+  const Point3 o(0, 0, 0);
+  const auto volume = [&](int k) {  // k = 0: the tetrahedron; k > 0: d_{k−1} replaced by the origin
+    if (sig[k] != kUncertain) return sig[k];
     std::array<Point3, 4> e = d;
-    e[k] = o;
-    if (volume(e[0], e[1], e[2], e[3]) != total) return false;
-  }
+    if (k > 0) e[k - 1] = o;
+    return sgn(det3(e[1] - e[0], e[2] - e[0], e[3] - e[0]));
+  };
+  const int total = volume(0);
+  if (total == 0) return false;
+  for (int k = 1; k < 5; ++k)
+    if (volume(k) != total) return false;
   return true;
 }
 
@@ -849,6 +860,78 @@ Vec3d PlacedTriangle::unit_normal() const {
   const double l = std::sqrt(x * x + y * y + z * z);
   if (l > 0 && std::isfinite(l)) return {x / l, y / l, z / l};
   return to_double(exact().n);
+}
+
+int dyadic_exponent(double x) { return x == 0 ? std::numeric_limits<int>::max() : dyadic(x).e; }
+
+PlacedFrame::PlacedFrame(const PlacedMap& mp, bool p_doubles, int p_exponent, const PlacedMap& mq, bool q_doubles,
+                         int q_exponent)
+    : mp_(&mp), mq_(&mq) {
+  const Point3 dt = mq.t() - mp.t();
+  integers_ = p_doubles && q_doubles && mp.linear_doubles() && mq.linear_doubles();
+  if (!integers_) {
+    tq_ = dt;
+    return;
+  }
+  // E = min(e_A,p + e_x,p, e_A,q + e_x,q, 0); a body with no non-zero
+  // coordinate (or a zero matrix, which det A > 0 excludes) bounds nothing.
+  e_ = 0;
+  const PlacedMap* maps[2] = {&mp, &mq};
+  const int pe[2] = {p_exponent, q_exponent};
+  for (int w = 0; w < 2; ++w) {
+    int ea = std::numeric_limits<int>::max();
+    for (int i = 0; i < 9; ++i) {
+      const Dyadic d = dyadic(maps[w]->approx_a()[i]);
+      am_[w][i] = d.m, ae_[w][i] = d.e;
+      if (d.m != 0) ea = std::min(ea, d.e);
+    }
+    if (ea != std::numeric_limits<int>::max() && pe[w] != std::numeric_limits<int>::max())
+      e_ = std::min(e_, ea + pe[w]);
+  }
+  for (int r = 0; r < 3; ++r) mpz_lcm(d_.get_mpz_t(), d_.get_mpz_t(), dt[r].get_den_mpz_t());
+  const Integer k = d_ << static_cast<unsigned long>(-e_);
+  k_ = Rational(k);
+  for (int r = 0; r < 3; ++r) {
+    Integer t = dt[r].get_num() * (d_ / dt[r].get_den());
+    tq_[r] = Rational(Integer(t << static_cast<unsigned long>(-e_)));
+  }
+}
+
+// D 2^−E A x for the map `which` (integers mode): each product m_a m_x
+// 2^(e_a + e_x) shifted by e_a + e_x − E ≥ 0 (the caller's bound).
+Point3 PlacedFrame::linear(int which, const PointBounds& xb) const {
+  const double c[3] = {xb.x.lo, xb.y.lo, xb.z.lo};
+  Dyadic v[3];
+  for (int k = 0; k < 3; ++k) v[k] = dyadic(c[k]);
+  Point3 r;
+  Integer sum, term;
+  for (int i = 0; i < 3; ++i) {
+    sum = 0;
+    for (int k = 0; k < 3; ++k) {
+      const std::int64_t m = am_[which][3 * i + k];
+      if (m == 0 || v[k].m == 0) continue;
+      term = Integer(static_cast<long>(m)) * Integer(static_cast<long>(v[k].m));
+      sum += term << static_cast<unsigned long>(ae_[which][3 * i + k] + v[k].e - e_);
+    }
+    if (d_ != 1) sum *= d_;
+    r[i] = Rational(sum);
+  }
+  return r;
+}
+
+Point3 PlacedFrame::p(const Point3& x, const PointBounds& xb) const {
+  if (!integers_) return mp_->apply_linear(x);
+  return linear(0, xb);
+}
+
+Point3 PlacedFrame::q(const Point3& y, const PointBounds& yb) const {
+  if (!integers_) return mq_->apply_linear(y) + tq_;
+  return linear(1, yb) + tq_;
+}
+
+Point3 PlacedFrame::placed(const Point3& z) const {
+  if (!integers_) return z + mp_->t();
+  return Rational(1) / k_ * z + mp_->t();
 }
 
 PlacedPredicateCounts placed_predicate_counts() {

@@ -345,6 +345,46 @@ TEST(PlacedPredicates, TetrahedronOnItsBoundaryWithRationalTranslations) {
   }
 }
 
+// The climb sign's exact stage on integers (A, n and the points doubles):
+// near-zero and zero signs that the doubles and the intervals leave open,
+// against the rational evaluation; also with entries and coordinates of
+// extreme exponents (subnormal to 2^900).
+TEST(PlacedPredicates, ClimbSignOnIntegersAgreesWithRationals) {
+  const std::uint64_t seed = 3904;
+  Rng r(seed);
+  const auto before = placed_predicate_counts();
+  int zeros = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
+    std::array<double, 9> a = random_matrix(r);
+    if (trial % 6 == 5) a = {std::ldexp(1.0, -400), 0, std::ldexp(3.0, -600), 0, 1.5, 0, 0, 0, std::ldexp(1.0, 500)};
+    if (trial % 6 == 4) a = {1, 1, 0, 0, 1, 0, 0, 0, 1};  // a shear: exact zeros below
+    const PlacedMap m(a, Vec3d{r.uniform(-1, 1), 0, 0});
+    Point3 pa(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
+    const double s = trial % 3 == 0 ? std::ldexp(1.0, -1000) : trial % 3 == 1 ? 1.0 : std::ldexp(1.0, 900);
+    Vec3d n{r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1)};
+    // b − a nearly orthogonal to u = Aᵀ n (doubles): d = u × w, rounded, scaled.
+    const Vec3d u{a[0] * n.x + a[3] * n.y + a[6] * n.z, a[1] * n.x + a[4] * n.y + a[7] * n.z,
+                  a[2] * n.x + a[5] * n.y + a[8] * n.z};
+    const Vec3d w{r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1)};
+    Vec3d d{u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
+    int top = 0;  // scaled by a power of two to at most 1 (a direction only: no rounding)
+    std::frexp(std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)}), &top);
+    d = {std::ldexp(d.x, -top), std::ldexp(d.y, -top), std::ldexp(d.z, -top)};
+    if (trial % 6 == 4) n = {1, -1, 0}, d = {1, 1, std::ldexp(r.uniform(-1, 1), -70)};  // u = (1, 0, 0): u·d = 1 ≠ 0
+    if (trial % 12 == 4) n = {0, 1, -1}, d = {0, 1, 1}, pa = P(1, 2, 3);  // u = (0, 1, -1): u·(0, 1, 1) = 0, exactly
+    const Point3 pb(d.x * s + to_double(pa.x) * s, d.y * s + to_double(pa.y) * s, d.z * s + to_double(pa.z) * s);
+    const Point3 pa_s(to_double(pa.x) * s, to_double(pa.y) * s, to_double(pa.z) * s);
+    const int want = sgn(dot(pull_exact(m, n), pb - pa_s));
+    zeros += want == 0;
+    const PulledDirection pd(m, n);
+    EXPECT_EQ(pd.difference_sign(pa_s, point_bounds(pa_s), pb, point_bounds(pb)), want);
+    EXPECT_EQ(pd.difference_sign(pb, point_bounds(pb), pa_s, point_bounds(pa_s)), -want);
+  }
+  EXPECT_GT(zeros, 10);
+  EXPECT_GT(placed_predicate_counts().exact, before.exact);
+}
+
 TEST(PlacedMap, RejectsSingularReflectedAndNonFiniteMatrices) {
   EXPECT_THROW(PlacedMap({1, 0, 0, 0, 1, 0, 0, 0, 0}, Vec3d{0, 0, 0}), UsageError);    // singular
   EXPECT_THROW(PlacedMap({1, 0, 0, 0, 1, 0, 0, 0, -1}, Vec3d{0, 0, 0}), UsageError);   // a reflection

@@ -34,6 +34,26 @@ FastIPoint apply(const PlacedMap& m, const FastIPoint& x, bool translate) {
   return r;
 }
 
+// A double as m 2^e, m an integer of at most 53 bits (0 for zero).
+struct Dyadic {
+  std::int64_t m = 0;
+  int e = 0;
+};
+Dyadic dyadic(double x) {
+  if (x == 0) return {};
+  const std::uint64_t bits = std::bit_cast<std::uint64_t>(x);
+  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+  if (biased != 0 && biased != 0x7ff) {  // normal: (2^52 + fraction) 2^(biased − 1075), as frexp gives it
+    const auto m = static_cast<std::int64_t>((bits & ((std::uint64_t(1) << 52) - 1)) | (std::uint64_t(1) << 52));
+    return {bits >> 63 ? -m : m, biased - 1075};
+  }
+  int e = 0;
+  const double f = std::frexp(x, &e);  // x = f 2^e, 1/2 ≤ |f| < 1
+  return {static_cast<std::int64_t>(std::ldexp(f, 53)), e - 53};
+}
+
+bool exact_double(const PointBounds& b) { return b.x.lo == b.x.hi && b.y.lo == b.y.hi && b.z.lo == b.z.hi; }
+
 int exact_sign(const Rational& q) {
   ++g_counts.exact;
   return sgn(q);
@@ -310,6 +330,7 @@ int PulledDirection::difference_sign_later(const Point3& a, const PointBounds& a
       return s;
     }
   }
+  if (m_->linear_doubles() && exact_double(ab) && exact_double(bb)) return difference_sign_integers(ab, bb);
   if (!exact_) {
     Point3 u;
     const Point3 n(n_.x, n_.y, n_.z);
@@ -317,6 +338,63 @@ int PulledDirection::difference_sign_later(const Point3& a, const PointBounds& a
     exact_ = std::move(u);
   }
   return exact_sign(dot(*exact_, b - a));
+}
+
+// Stage 3 in integers (the top of placed_predicates.hpp): A's entries, n and
+// the points doubles.  U_c 2^eu = Σ_r A_rc n_r and B_c 2^eb = b_c − a_c
+// exactly, so S = 2^(eu + eb) Σ_c U_c B_c.
+int PulledDirection::difference_sign_integers(const PointBounds& ab, const PointBounds& bb) const {
+  const auto& a = m_->approx_a();
+  const double n[3] = {n_.x, n_.y, n_.z};
+  Dyadic da[9], dn[3];
+  int eu = std::numeric_limits<int>::max();
+  for (int r = 0; r < 3; ++r) dn[r] = dyadic(n[r]);
+  for (int i = 0; i < 9; ++i) {
+    da[i] = dyadic(a[i]);
+    if (da[i].m != 0 && dn[i / 3].m != 0) eu = std::min(eu, da[i].e + dn[i / 3].e);
+  }
+  const double pa[3] = {ab.x.lo, ab.y.lo, ab.z.lo}, pb[3] = {bb.x.lo, bb.y.lo, bb.z.lo};
+  Dyadic xa[3], xb[3];
+  int eb = std::numeric_limits<int>::max();
+  for (int c = 0; c < 3; ++c) {
+    xa[c] = dyadic(pa[c]), xb[c] = dyadic(pb[c]);
+    if (xa[c].m != 0) eb = std::min(eb, xa[c].e);
+    if (xb[c].m != 0) eb = std::min(eb, xb[c].e);
+  }
+  ++g_counts.exact;
+  if (eu == std::numeric_limits<int>::max() || eb == std::numeric_limits<int>::max()) return 0;  // u = 0 or b = a = 0
+  // One thread's scratch integers: no allocation once they have grown.
+  struct Scratch {
+    mpz_t sum, u, d, t;
+    Scratch() { mpz_init(sum), mpz_init(u), mpz_init(d), mpz_init(t); }
+    ~Scratch() { mpz_clear(sum), mpz_clear(u), mpz_clear(d), mpz_clear(t); }
+  };
+  thread_local Scratch z;
+  mpz_set_ui(z.sum, 0);
+  for (int c = 0; c < 3; ++c) {
+    mpz_set_ui(z.d, 0);  // B_c
+    if (xb[c].m != 0) {
+      mpz_set_si(z.t, static_cast<long>(xb[c].m));
+      mpz_mul_2exp(z.d, z.t, static_cast<unsigned long>(xb[c].e - eb));
+    }
+    if (xa[c].m != 0) {
+      mpz_set_si(z.t, static_cast<long>(xa[c].m));
+      mpz_mul_2exp(z.t, z.t, static_cast<unsigned long>(xa[c].e - eb));
+      mpz_sub(z.d, z.d, z.t);
+    }
+    if (mpz_sgn(z.d) == 0) continue;
+    mpz_set_ui(z.u, 0);  // U_c
+    for (int r = 0; r < 3; ++r) {
+      const Dyadic &x = da[3 * r + c], &y = dn[r];
+      if (x.m == 0 || y.m == 0) continue;
+      mpz_set_si(z.t, static_cast<long>(x.m));
+      mpz_mul_si(z.t, z.t, static_cast<long>(y.m));
+      mpz_mul_2exp(z.t, z.t, static_cast<unsigned long>(x.e + y.e - eu));
+      mpz_add(z.u, z.u, z.t);
+    }
+    mpz_addmul(z.sum, z.u, z.d);
+  }
+  return mpz_sgn(z.sum);
 }
 
 int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const PointBounds& pb, const PlacedMap& mq,
@@ -448,17 +526,6 @@ Point3 pull(const PlacedMap& m, const Point3& x) {
 
 namespace {
 
-// A double as m 2^e, m an integer of at most 53 bits (0 for zero).
-struct Dyadic {
-  std::int64_t m = 0;
-  int e = 0;
-};
-Dyadic dyadic(double x) {
-  if (x == 0) return {};
-  int e = 0;
-  const double f = std::frexp(x, &e);  // x = f 2^e, 1/2 ≤ |f| < 1
-  return {static_cast<std::int64_t>(std::ldexp(f, 53)), e - 53};
-}
 
 // The smallest exponent e of the non-zero terms m 2^e of coordinate r of
 // A x + t (three products and t_r; A, t and x doubles), lowered into e0.
@@ -509,7 +576,6 @@ int pulled_sign(const std::array<Bounds, 3>& u, const Point3& a, const PointBoun
   return exact_sign(dot(exact_u(), b - a));
 }
 
-bool exact_double(const PointBounds& b) { return b.x.lo == b.x.hi && b.y.lo == b.y.hi && b.z.lo == b.z.hi; }
 
 // Whether the exact stage may take the integers below: both maps doubles
 // and every point a double.

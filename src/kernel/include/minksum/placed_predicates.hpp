@@ -56,7 +56,12 @@
 // rounding mode, through overflow (bounds go to ±∞) and underflow (directed
 // rounding); so an interval that excludes 0 gives the exact sign, [0, 0]
 // proves the value 0, and anything else falls back to the same polynomial in
-// GMP rationals.  No bound to derive, and none to get wrong: the enclosure is
+// GMP rationals — or, for the climb sign with A and the points doubles, in
+// GMP integers: u_c = Σ_r A_rc n_r is a sum of products of two doubles
+// m 2^e, hence an integer U_c over 2^eu (eu the least e_A + e_n of its
+// non-zero products), b_c − a_c an integer B_c over 2^eb (eb the least
+// exponent of the six coordinates), and S = 2^(eu + eb) Σ_c U_c B_c
+// exactly.  No bound to derive, and none to get wrong: the enclosure is
 // the proof (R. E. Moore, "Interval Analysis", Prentice-Hall 1966; the
 // technique of CGAL's filtered predicates, S. Pion, "Interval arithmetic: an
 // efficient implementation and an application to computational geometry",
@@ -194,6 +199,7 @@ class PulledDirection {
   void make_enclosure() const;
   // Stages 2 and 3.
   int difference_sign_later(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
+  int difference_sign_integers(const PointBounds& ab, const PointBounds& bb) const;
   // Stage 1: û and U (see the top), when A and n are doubles in range.
   bool fast_ = false;
   std::array<double, 3> uf_{}, um_{};

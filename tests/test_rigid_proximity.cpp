@@ -385,6 +385,47 @@ TEST(PlacedPredicates, ClimbSignOnIntegersAgreesWithRationals) {
   EXPECT_GT(placed_predicate_counts().exact, before.exact);
 }
 
+// PulledNormalFilter: the interval stage of sign N · A (b − a) for exact
+// rational N of any size (up to 2^±3000), against the rational sign: every
+// decided sign right, exact zeros never decided wrongly, and the common
+// case decided.
+TEST(PlacedPredicates, PulledNormalFilterAgreesWithRationals) {
+  const std::uint64_t seed = 3905;
+  Rng r(seed);
+  int decided = 0, zeros = 0;
+  for (int trial = 0; trial < 800; ++trial) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
+    const PlacedMap m = random_pose(r, 3, trial % 3 == 0).map();
+    const Point3 a(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
+    Point3 b(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
+    if (trial % 5 == 0) b = Point3(Rational(r.integer(-30, 30), 3), Rational(1, 7), a.z);
+    // N = Aᵀ-pulled (b − a) × w: orthogonal to A (b − a) on some trials
+    // (exact zeros), scaled by 2^s with s up to ±3000.
+    const Point3 ab = m.apply_linear(b - a);
+    const Point3 w(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
+    Point3 n = trial % 4 == 0 ? cross(ab, w) : Point3(r.uniform(-1, 1), r.uniform(-1, 1), Rational(r.integer(-5, 5), 3));
+    const long s = r.integer(-3000, 3000);
+    const Rational scale = s >= 0 ? Rational(Integer(1) << static_cast<unsigned long>(s))
+                                  : Rational(Integer(1), Integer(1) << static_cast<unsigned long>(-s));
+    n = scale * n;
+    const int want = sgn(dot(n, ab));
+    zeros += want == 0;
+    const PulledNormalFilter f(m, n);
+    const int got = f.difference_sign(point_bounds(a), point_bounds(b));
+    if (got != PulledNormalFilter::kOpen) {
+      ++decided;
+      EXPECT_EQ(got, want);
+    }
+    const int back = f.difference_sign(point_bounds(b), point_bounds(a));
+    if (back != PulledNormalFilter::kOpen) EXPECT_EQ(back, -want);
+  }
+  EXPECT_GT(zeros, 100);
+  EXPECT_GT(decided, 400);
+  // N = 0 decides nothing.
+  EXPECT_EQ(PulledNormalFilter(PlacedMap(), P(0, 0, 0)).difference_sign(point_bounds(P(0, 0, 0)), point_bounds(P(1, 0, 0))),
+            PulledNormalFilter::kOpen);
+}
+
 TEST(PlacedMap, RejectsSingularReflectedAndNonFiniteMatrices) {
   EXPECT_THROW(PlacedMap({1, 0, 0, 0, 1, 0, 0, 0, 0}, Vec3d{0, 0, 0}), UsageError);    // singular
   EXPECT_THROW(PlacedMap({1, 0, 0, 0, 1, 0, 0, 0, -1}, Vec3d{0, 0, 0}), UsageError);   // a reflection

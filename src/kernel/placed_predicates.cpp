@@ -397,6 +397,44 @@ int PulledDirection::difference_sign_integers(const PointBounds& ab, const Point
   return mpz_sgn(z.sum);
 }
 
+PulledNormalFilter::PulledNormalFilter(const PlacedMap& m, const Point3& n) {
+  long top = std::numeric_limits<long>::min();
+  for (int r = 0; r < 3; ++r) {
+    if (sgn(n[r]) == 0) continue;
+    // ⌊log2 |n_r|⌋ within one: from the bit lengths of numerator and denominator.
+    const long e = long(mpz_sizeinbase(n[r].get_num_mpz_t(), 2)) - long(mpz_sizeinbase(n[r].get_den_mpz_t(), 2));
+    top = std::max(top, e);
+  }
+  if (top == std::numeric_limits<long>::min()) return;  // N = 0
+  std::array<Bounds, 3> nb;
+  Rational x;
+  for (int r = 0; r < 3; ++r) {
+    // N_r 2^−top exactly, then its enclosure (|N_r 2^−top| < 2).
+    if (top >= 0) mpq_div_2exp(x.get_mpq_t(), n[r].get_mpq_t(), static_cast<unsigned long>(top));
+    else mpq_mul_2exp(x.get_mpq_t(), n[r].get_mpq_t(), static_cast<unsigned long>(-top));
+    nb[r] = rational_bounds(x);
+  }
+  CGAL::Protect_FPU_rounding<true> upward;
+  const auto& a = m.bounds_a();
+  bool finite = true;
+  for (int c = 0; c < 3; ++c) {
+    const FastInterval u = iv(a[c]) * iv(nb[0]) + iv(a[3 + c]) * iv(nb[1]) + iv(a[6 + c]) * iv(nb[2]);
+    u_[c] = {u.inf(), u.sup()};
+    finite = finite && std::isfinite(u.inf()) && std::isfinite(u.sup());
+  }
+  usable_ = finite;
+}
+
+int PulledNormalFilter::difference_sign(const PointBounds& a, const PointBounds& b) const {
+  if (!usable_) return kOpen;
+  CGAL::Protect_FPU_rounding<true> upward;
+  const FastIPoint d = iv(b) - iv(a);
+  const int s = sign_of(iv(u_[0]) * d.x + iv(u_[1]) * d.y + iv(u_[2]) * d.z);
+  if (s == kUncertain) return kOpen;
+  ++g_counts.filtered;
+  return s;
+}
+
 int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const PointBounds& pb, const PlacedMap& mq,
                     const Point3& q, const PointBounds& qb) {
   if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))

@@ -439,38 +439,48 @@ class FeaturePlane {
     return it->second;
   }
 
+  // sign N · (x_w − x_u) on a placed body: the interval filter on the
+  // vertices' enclosures, else exactly on the frame's points.
+  template <class Pt>
+  static int step_sign(const RigidBody::Data& d, Pt pt, const PulledNormalFilter& f, const Point3& nrm, Index u,
+                       Index w) {
+    const int s = f.difference_sign(d.bounds[u], d.bounds[w]);
+    if (s != PulledNormalFilter::kOpen) return s;
+    return sgn(dot(nrm, pt(w) - pt(u)));
+  }
   // A vertex maximising sign·N·x over a placed body (exact: a vertex no
   // neighbour of which is further is a maximum), from v; its value.
   template <class Pt>
-  Index climb(const RigidBody::Data& d, Pt pt, const Point3& nrm, int sign, Index v, Rational& best) {
-    best = dot(nrm, pt(v));
-    if (sign < 0) best = -best;
+  Index climb(const RigidBody::Data& d, Pt pt, const PulledNormalFilter& f, const Point3& nrm, int sign, Index v,
+              Rational& best) {
     for (;;) {
       Index next = v;
-      for (Index k = d.first[v]; k < d.first[v + 1]; ++k) {
-        Rational x = dot(nrm, pt(d.nbr[k]));
-        if (sign < 0) x = -x;
-        if (x > best) {
-          best = std::move(x), next = d.nbr[k];
+      for (Index k = d.first[v]; k < d.first[v + 1]; ++k)
+        if (sign * step_sign(d, pt, f, nrm, v, d.nbr[k]) > 0) {
+          next = d.nbr[k];
           break;
         }
-      }
-      if (next == v) return v;
+      if (next == v) break;
       v = next;
       ++g_stats.climb_steps;
     }
+    best = dot(nrm, pt(v));
+    if (sign < 0) best = -best;
+    return v;
   }
   // The face of a placed body in the plane N·x = h through v: its vertices
   // (the level set of v, connected in the vertex graph) and its edges.
+  // (N · x_w = h for a neighbour w of a face vertex u exactly when
+  // N · (x_w − x_u) = 0.)
   template <class Pt>
-  void face(const RigidBody::Data& d, Pt pt, const Point3& nrm, const Rational& h, Index v,
+  void face(const RigidBody::Data& d, Pt pt, const PulledNormalFilter& f, const Point3& nrm, Index v,
             std::vector<Index>& verts, std::vector<std::pair<Index, Index>>& edges) {
     verts.assign(1, v);
     for (std::size_t i = 0; i < verts.size(); ++i) {
       const Index u = verts[i];
       for (Index k = d.first[u]; k < d.first[u + 1]; ++k) {
         const Index w = d.nbr[k];
-        if (dot(nrm, pt(w)) != h) continue;
+        if (step_sign(d, pt, f, nrm, u, w) != 0) continue;
         if (u < w) edges.emplace_back(u, w);
         if (std::find(verts.begin(), verts.end(), w) == verts.end()) verts.push_back(w);
       }
@@ -540,8 +550,9 @@ class FeaturePlane {
   std::optional<FeatureContact> try_plane(const Point3& nrm, Index from_p, Index from_q) {
     FeatureContact c;
     Rational hp, lq;
-    c.p = climb(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, nrm, 1, from_p, hp);
-    c.q = climb(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, nrm, -1, from_q, lq);
+    const PulledNormalFilter filter_p(qu_.P.map, nrm), filter_q(qu_.Q.map, nrm);
+    c.p = climb(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, filter_p, nrm, 1, from_p, hp);
+    c.q = climb(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, filter_q, nrm, -1, from_q, lq);
     lq = -lq;
     c.normal = nrm;
     if (hp < lq) {
@@ -552,8 +563,8 @@ class FeaturePlane {
     // h_P = l_Q: the faces in the plane.
     std::vector<Index> vp, vq;
     std::vector<std::pair<Index, Index>> ep, eq;
-    face(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, nrm, hp, c.p, vp, ep);
-    face(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, nrm, hp, c.q, vq, eq);
+    face(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, filter_p, nrm, c.p, vp, ep);
+    face(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, filter_q, nrm, c.q, vq, eq);
     std::vector<Point3> fp, fq;
     for (Index v : vp) fp.push_back(pp(v));
     for (Index v : vq) fq.push_back(pq(v));

@@ -206,6 +206,27 @@ class PulledDirection {
   mutable std::optional<Point3> exact_;
 };
 
+// The interval stage of sign N · A (b − a) for an exact rational direction
+// N (a plane's normal, of any size: the feature plane's normals on
+// PlacedFrame integers exceed the range of doubles).  N 2^−k, with 2^k
+// within a factor two of its largest coordinate's magnitude (a positive
+// factor: the same sign), is enclosed coordinate by coordinate
+// (rational_bounds), pulled back through A's enclosure and dotted with the
+// enclosure of b − a, all in interval arithmetic (outward rounding, as in
+// stage 2 above): an interval that excludes 0 gives the sign, [0, 0] proves
+// 0.  Otherwise kOpen, and the caller evaluates the sign exactly.
+class PulledNormalFilter {
+ public:
+  static constexpr int kOpen = 2;
+  PulledNormalFilter(const PlacedMap& m, const Point3& n);
+  // −1, 0 or +1, or kOpen (a, b: enclosures of the points).
+  int difference_sign(const PointBounds& a, const PointBounds& b) const;
+
+ private:
+  std::array<Bounds, 3> u_{};  // an enclosure of Aᵀ N 2^−k
+  bool usable_ = false;        // N ≠ 0 and the enclosure finite
+};
+
 // sign n · ((A_q q + t_q) − (A_p p + t_p)): the gap along n between the
 // placed points p of P and q of Q.  With p the support of placed P along n
 // and q the support of placed Q along −n, a positive sign proves that the

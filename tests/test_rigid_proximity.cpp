@@ -220,6 +220,212 @@ TEST(PlacedPredicates, NearZeroFallsBackToRationals) {
   EXPECT_EQ(PulledDirection(shear, Vec3d{1, -(big + 2), 0}).difference_sign(e, point_bounds(e), c, point_bounds(c)), -1);
 }
 
+// PlacedFrame: Z_p(x) = K A_p x and Z_q(y) = K (A_q y + t_q − t_p), integers
+// when the matrices and the points are doubles, whatever the translations
+// (rationals of large denominators: the touching poses of the rotation
+// benchmark); each against the rational placed point.
+TEST(PlacedFrame, PointsAreTheScaledPlacedPointsExactly) {
+  const std::uint64_t seed = 3902;
+  Rng r(seed);
+  int integers = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
+    // Translations: doubles, or rationals with denominators of ~100 bits.
+    const auto translation = [&](int k) {
+      if (k % 2 == 0) return Point3(r.uniform(-3, 3), r.uniform(-3, 3), r.uniform(-3, 3));
+      const Integer den = (Integer(r.integer(1, 1L << 40)) << 60) + 1;
+      Point3 t(Rational(Integer(r.integer(-(1L << 50), 1L << 50)), den), Rational(r.integer(-9, 9), 7),
+               Rational(Integer(r.integer(-(1L << 50), 1L << 50)), den + 2));
+      for (int c = 0; c < 3; ++c) t[c].canonicalize();
+      return t;
+    };
+    // Matrices: doubles (some with tiny and huge entries), or a quaternion.
+    const auto map = [&](int k) {
+      if (k % 5 == 4) return PlacedMap::rotation(random_quaternion(r), translation(k));
+      std::array<double, 9> a = random_matrix(r);
+      if (k % 5 == 3) a = {std::ldexp(1.0, -400), 0, std::ldexp(3.0, -600), 0, 1.5, 0, 0, 0, std::ldexp(1.0, 500)};
+      return PlacedMap(a, translation(k));
+    };
+    const PlacedMap mp = map(trial), mq = map(trial / 5 + 1);
+    // Points: doubles of mixed exponents (zero, subnormal, 2^-300, 2^200),
+    // or rationals (thirds) on some trials.
+    const bool rational_points = trial % 7 == 0;
+    const auto coordinate = [&]() -> double {
+      switch (r.integer(0, 5)) {
+        case 0: return 0.0;
+        case 1: return std::ldexp(r.uniform(-1, 1), -1060);  // subnormal
+        case 2: return std::ldexp(r.uniform(-1, 1), -300);
+        case 3: return std::ldexp(r.uniform(-1, 1), 200);
+        default: return r.uniform(-4, 4);
+      }
+    };
+    std::vector<Point3> ps, qs;
+    for (int k = 0; k < 4; ++k) {
+      ps.emplace_back(coordinate(), coordinate(), coordinate());
+      qs.emplace_back(coordinate(), coordinate(), coordinate());
+    }
+    if (rational_points) ps[1] = Point3(Rational(1, 3), Rational(-2, 3), Rational(5));
+    const auto scan = [](const std::vector<Point3>& pts, bool& doubles, int& e) {
+      for (const Point3& x : pts) {
+        const PointBounds b = point_bounds(x);
+        for (const Bounds& c : {b.x, b.y, b.z}) doubles = doubles && c.lo == c.hi, e = std::min(e, dyadic_exponent(c.lo));
+      }
+    };
+    bool pd = true, qd = true;
+    int pe = std::numeric_limits<int>::max(), qe = pe;
+    scan(ps, pd, pe), scan(qs, qd, qe);
+    const PlacedFrame frame(mp, pd, pe, mq, qd, qe);
+    const bool want_integers = pd && qd && mp.linear_doubles() && mq.linear_doubles();
+    EXPECT_EQ(frame.integers(), want_integers);
+    integers += frame.integers();
+    EXPECT_GT(frame.factor(), 0);
+    for (int k = 0; k < 4; ++k) {
+      const Point3 zp = frame.p(ps[k], point_bounds(ps[k])), zq = frame.q(qs[k], point_bounds(qs[k]));
+      EXPECT_EQ(frame.placed(zp), mp.apply(ps[k])) << "point " << k;
+      EXPECT_EQ(frame.placed(zq), mq.apply(qs[k])) << "point " << k;
+      EXPECT_EQ(zp, frame.factor() * (mp.apply(ps[k]) - mp.t())) << "point " << k;
+      if (frame.integers())
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_EQ(zp[c].get_den(), 1) << "point " << k;
+          EXPECT_EQ(zq[c].get_den(), 1) << "point " << k;
+        }
+    }
+  }
+  EXPECT_GT(integers, 100);
+  EXPECT_LT(integers, 300);
+  EXPECT_EQ(dyadic_exponent(0.0), std::numeric_limits<int>::max());
+  EXPECT_EQ(dyadic_exponent(1.0), -52);
+  EXPECT_EQ(dyadic_exponent(0.75), -53);
+  EXPECT_EQ(dyadic_exponent(std::ldexp(1.0, -1074)), -1126);  // the least subnormal: 2^52 · 2^-1126
+}
+
+// The tetrahedron's exact stage on PlacedFrame integers, with the origin
+// exactly on the tetrahedron's boundary (a vertex, an edge, a face: never
+// strictly inside), just inside, and outside, by translations t_q that are
+// rationals of large denominators (the intervals cannot decide a zero).
+TEST(PlacedPredicates, TetrahedronOnItsBoundaryWithRationalTranslations) {
+  const std::uint64_t seed = 3903;
+  Rng r(seed);
+  for (int trial = 0; trial < 200; ++trial) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
+    const PlacedMap mp0(random_matrix(r), Vec3d{r.uniform(-1, 1), 0, 0});
+    const std::array<double, 9> aq = random_matrix(r);
+    std::array<Point3, 4> ps, qs;
+    std::array<PointBounds, 4> pb, qb;
+    for (int k = 0; k < 4; ++k) {
+      ps[k] = Point3(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
+      qs[k] = Point3(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
+      pb[k] = point_bounds(ps[k]), qb[k] = point_bounds(qs[k]);
+    }
+    // d_k = A_p p_k + t_p − A_q q_k − t_q; with t_q = 0 they are e_k, and
+    // t_q = Σ w_k e_k (Σ w = 1) puts the origin at barycentric weights w.
+    const PlacedMap mq0(aq, Vec3d{0, 0, 0});
+    std::array<Point3, 4> e;
+    for (int k = 0; k < 4; ++k) e[k] = mp0.apply(ps[k]) - mq0.apply(qs[k]);
+    const Rational small(1, (Integer(1) << 100) + 7);
+    std::array<Rational, 4> w;
+    switch (trial % 5) {
+      case 0: w = {Rational(1), Rational(0), Rational(0), Rational(0)}; break;               // a vertex
+      case 1: w = {Rational(1, 3), Rational(2, 3), Rational(0), Rational(0)}; break;         // an edge
+      case 2: w = {Rational(1, 3) + small, Rational(1, 3), Rational(1, 3) - small, Rational(0)}; break;  // a face
+      case 3: w = {Rational(1, 4) - small, Rational(1, 4), Rational(1, 4), Rational(1, 4) + small}; break;  // inside
+      default: w = {-small, Rational(1, 3), Rational(1, 3), Rational(1, 3) + small}; break;                 // outside
+    }
+    Point3 t(0, 0, 0);
+    for (int k = 0; k < 4; ++k) t = t + w[k] * e[k];
+    const PlacedMap mq(aq, t);
+    std::array<Point3, 4> d;
+    for (int k = 0; k < 4; ++k) d[k] = mp0.apply(ps[k]) - mq.apply(qs[k]);
+    const bool want = tetra_reference(d) == 1;
+    EXPECT_EQ(want, trial % 5 == 3 && sgn(dot(e[1] - e[0], cross(e[2] - e[0], e[3] - e[0]))) != 0);
+    std::array<const Point3*, 4> pp, qp;
+    std::array<const PointBounds*, 4> pbp, qbp;
+    for (int k = 0; k < 4; ++k) pp[k] = &ps[k], qp[k] = &qs[k], pbp[k] = &pb[k], qbp[k] = &qb[k];
+    EXPECT_EQ(placed_tetrahedron_holds_origin(mp0, mq, pp, pbp, qp, qbp), want);
+  }
+}
+
+// The climb sign's exact stage on integers (A, n and the points doubles):
+// near-zero and zero signs that the doubles and the intervals leave open,
+// against the rational evaluation; also with entries and coordinates of
+// extreme exponents (subnormal to 2^900).
+TEST(PlacedPredicates, ClimbSignOnIntegersAgreesWithRationals) {
+  const std::uint64_t seed = 3904;
+  Rng r(seed);
+  const auto before = placed_predicate_counts();
+  int zeros = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
+    std::array<double, 9> a = random_matrix(r);
+    if (trial % 6 == 5) a = {std::ldexp(1.0, -400), 0, std::ldexp(3.0, -600), 0, 1.5, 0, 0, 0, std::ldexp(1.0, 500)};
+    if (trial % 6 == 4) a = {1, 1, 0, 0, 1, 0, 0, 0, 1};  // a shear: exact zeros below
+    const PlacedMap m(a, Vec3d{r.uniform(-1, 1), 0, 0});
+    Point3 pa(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
+    const double s = trial % 3 == 0 ? std::ldexp(1.0, -1000) : trial % 3 == 1 ? 1.0 : std::ldexp(1.0, 900);
+    Vec3d n{r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1)};
+    // b − a nearly orthogonal to u = Aᵀ n (doubles): d = u × w, rounded, scaled.
+    const Vec3d u{a[0] * n.x + a[3] * n.y + a[6] * n.z, a[1] * n.x + a[4] * n.y + a[7] * n.z,
+                  a[2] * n.x + a[5] * n.y + a[8] * n.z};
+    const Vec3d w{r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1)};
+    Vec3d d{u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
+    int top = 0;  // scaled by a power of two to at most 1 (a direction only: no rounding)
+    std::frexp(std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)}), &top);
+    d = {std::ldexp(d.x, -top), std::ldexp(d.y, -top), std::ldexp(d.z, -top)};
+    if (trial % 6 == 4) n = {1, -1, 0}, d = {1, 1, std::ldexp(r.uniform(-1, 1), -70)};  // u = (1, 0, 0): u·d = 1 ≠ 0
+    if (trial % 12 == 4) n = {0, 1, -1}, d = {0, 1, 1}, pa = P(1, 2, 3);  // u = (0, 1, -1): u·(0, 1, 1) = 0, exactly
+    const Point3 pb(d.x * s + to_double(pa.x) * s, d.y * s + to_double(pa.y) * s, d.z * s + to_double(pa.z) * s);
+    const Point3 pa_s(to_double(pa.x) * s, to_double(pa.y) * s, to_double(pa.z) * s);
+    const int want = sgn(dot(pull_exact(m, n), pb - pa_s));
+    zeros += want == 0;
+    const PulledDirection pd(m, n);
+    EXPECT_EQ(pd.difference_sign(pa_s, point_bounds(pa_s), pb, point_bounds(pb)), want);
+    EXPECT_EQ(pd.difference_sign(pb, point_bounds(pb), pa_s, point_bounds(pa_s)), -want);
+  }
+  EXPECT_GT(zeros, 10);
+  EXPECT_GT(placed_predicate_counts().exact, before.exact);
+}
+
+// PulledNormalFilter: the interval stage of sign N · A (b − a) for exact
+// rational N of any size (up to 2^±3000), against the rational sign: every
+// decided sign right, exact zeros never decided wrongly, and the common
+// case decided.
+TEST(PlacedPredicates, PulledNormalFilterAgreesWithRationals) {
+  const std::uint64_t seed = 3905;
+  Rng r(seed);
+  int decided = 0, zeros = 0;
+  for (int trial = 0; trial < 800; ++trial) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
+    const PlacedMap m = random_pose(r, 3, trial % 3 == 0).map();
+    const Point3 a(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
+    Point3 b(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
+    if (trial % 5 == 0) b = Point3(Rational(r.integer(-30, 30), 3), Rational(1, 7), a.z);
+    // N = Aᵀ-pulled (b − a) × w: orthogonal to A (b − a) on some trials
+    // (exact zeros), scaled by 2^s with s up to ±3000.
+    const Point3 ab = m.apply_linear(b - a);
+    const Point3 w(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
+    Point3 n = trial % 4 == 0 ? cross(ab, w) : Point3(r.uniform(-1, 1), r.uniform(-1, 1), Rational(r.integer(-5, 5), 3));
+    const long s = r.integer(-3000, 3000);
+    const Rational scale = s >= 0 ? Rational(Integer(1) << static_cast<unsigned long>(s))
+                                  : Rational(Integer(1), Integer(1) << static_cast<unsigned long>(-s));
+    n = scale * n;
+    const int want = sgn(dot(n, ab));
+    zeros += want == 0;
+    const PulledNormalFilter f(m, n);
+    const int got = f.difference_sign(point_bounds(a), point_bounds(b));
+    if (got != PulledNormalFilter::kOpen) {
+      ++decided;
+      EXPECT_EQ(got, want);
+    }
+    const int back = f.difference_sign(point_bounds(b), point_bounds(a));
+    if (back != PulledNormalFilter::kOpen) EXPECT_EQ(back, -want);
+  }
+  EXPECT_GT(zeros, 100);
+  EXPECT_GT(decided, 400);
+  // N = 0 decides nothing.
+  EXPECT_EQ(PulledNormalFilter(PlacedMap(), P(0, 0, 0)).difference_sign(point_bounds(P(0, 0, 0)), point_bounds(P(1, 0, 0))),
+            PulledNormalFilter::kOpen);
+}
+
 TEST(PlacedMap, RejectsSingularReflectedAndNonFiniteMatrices) {
   EXPECT_THROW(PlacedMap({1, 0, 0, 0, 1, 0, 0, 0, 0}, Vec3d{0, 0, 0}), UsageError);    // singular
   EXPECT_THROW(PlacedMap({1, 0, 0, 0, 1, 0, 0, 0, -1}, Vec3d{0, 0, 0}), UsageError);   // a reflection

@@ -34,6 +34,26 @@ FastIPoint apply(const PlacedMap& m, const FastIPoint& x, bool translate) {
   return r;
 }
 
+// A double as m 2^e, m an integer of at most 53 bits (0 for zero).
+struct Dyadic {
+  std::int64_t m = 0;
+  int e = 0;
+};
+Dyadic dyadic(double x) {
+  if (x == 0) return {};
+  const std::uint64_t bits = std::bit_cast<std::uint64_t>(x);
+  const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+  if (biased != 0 && biased != 0x7ff) {  // normal: (2^52 + fraction) 2^(biased − 1075), as frexp gives it
+    const auto m = static_cast<std::int64_t>((bits & ((std::uint64_t(1) << 52) - 1)) | (std::uint64_t(1) << 52));
+    return {bits >> 63 ? -m : m, biased - 1075};
+  }
+  int e = 0;
+  const double f = std::frexp(x, &e);  // x = f 2^e, 1/2 ≤ |f| < 1
+  return {static_cast<std::int64_t>(std::ldexp(f, 53)), e - 53};
+}
+
+bool exact_double(const PointBounds& b) { return b.x.lo == b.x.hi && b.y.lo == b.y.hi && b.z.lo == b.z.hi; }
+
 int exact_sign(const Rational& q) {
   ++g_counts.exact;
   return sgn(q);
@@ -310,6 +330,7 @@ int PulledDirection::difference_sign_later(const Point3& a, const PointBounds& a
       return s;
     }
   }
+  if (m_->linear_doubles() && exact_double(ab) && exact_double(bb)) return difference_sign_integers(ab, bb);
   if (!exact_) {
     Point3 u;
     const Point3 n(n_.x, n_.y, n_.z);
@@ -317,6 +338,101 @@ int PulledDirection::difference_sign_later(const Point3& a, const PointBounds& a
     exact_ = std::move(u);
   }
   return exact_sign(dot(*exact_, b - a));
+}
+
+// Stage 3 in integers (the top of placed_predicates.hpp): A's entries, n and
+// the points doubles.  U_c 2^eu = Σ_r A_rc n_r and B_c 2^eb = b_c − a_c
+// exactly, so S = 2^(eu + eb) Σ_c U_c B_c.
+int PulledDirection::difference_sign_integers(const PointBounds& ab, const PointBounds& bb) const {
+  const auto& a = m_->approx_a();
+  const double n[3] = {n_.x, n_.y, n_.z};
+  Dyadic da[9], dn[3];
+  int eu = std::numeric_limits<int>::max();
+  for (int r = 0; r < 3; ++r) dn[r] = dyadic(n[r]);
+  for (int i = 0; i < 9; ++i) {
+    da[i] = dyadic(a[i]);
+    if (da[i].m != 0 && dn[i / 3].m != 0) eu = std::min(eu, da[i].e + dn[i / 3].e);
+  }
+  const double pa[3] = {ab.x.lo, ab.y.lo, ab.z.lo}, pb[3] = {bb.x.lo, bb.y.lo, bb.z.lo};
+  Dyadic xa[3], xb[3];
+  int eb = std::numeric_limits<int>::max();
+  for (int c = 0; c < 3; ++c) {
+    xa[c] = dyadic(pa[c]), xb[c] = dyadic(pb[c]);
+    if (xa[c].m != 0) eb = std::min(eb, xa[c].e);
+    if (xb[c].m != 0) eb = std::min(eb, xb[c].e);
+  }
+  ++g_counts.exact;
+  if (eu == std::numeric_limits<int>::max() || eb == std::numeric_limits<int>::max()) return 0;  // u = 0 or b = a = 0
+  // One thread's scratch integers: no allocation once they have grown.
+  struct Scratch {
+    mpz_t sum, u, d, t;
+    Scratch() { mpz_init(sum), mpz_init(u), mpz_init(d), mpz_init(t); }
+    ~Scratch() { mpz_clear(sum), mpz_clear(u), mpz_clear(d), mpz_clear(t); }
+  };
+  thread_local Scratch z;
+  mpz_set_ui(z.sum, 0);
+  for (int c = 0; c < 3; ++c) {
+    mpz_set_ui(z.d, 0);  // B_c
+    if (xb[c].m != 0) {
+      mpz_set_si(z.t, static_cast<long>(xb[c].m));
+      mpz_mul_2exp(z.d, z.t, static_cast<unsigned long>(xb[c].e - eb));
+    }
+    if (xa[c].m != 0) {
+      mpz_set_si(z.t, static_cast<long>(xa[c].m));
+      mpz_mul_2exp(z.t, z.t, static_cast<unsigned long>(xa[c].e - eb));
+      mpz_sub(z.d, z.d, z.t);
+    }
+    if (mpz_sgn(z.d) == 0) continue;
+    mpz_set_ui(z.u, 0);  // U_c
+    for (int r = 0; r < 3; ++r) {
+      const Dyadic &x = da[3 * r + c], &y = dn[r];
+      if (x.m == 0 || y.m == 0) continue;
+      mpz_set_si(z.t, static_cast<long>(x.m));
+      mpz_mul_si(z.t, z.t, static_cast<long>(y.m));
+      mpz_mul_2exp(z.t, z.t, static_cast<unsigned long>(x.e + y.e - eu));
+      mpz_add(z.u, z.u, z.t);
+    }
+    mpz_addmul(z.sum, z.u, z.d);
+  }
+  return mpz_sgn(z.sum);
+}
+
+PulledNormalFilter::PulledNormalFilter(const PlacedMap& m, const Point3& n) {
+  long top = std::numeric_limits<long>::min();
+  for (int r = 0; r < 3; ++r) {
+    if (sgn(n[r]) == 0) continue;
+    // ⌊log2 |n_r|⌋ within one: from the bit lengths of numerator and denominator.
+    const long e = long(mpz_sizeinbase(n[r].get_num_mpz_t(), 2)) - long(mpz_sizeinbase(n[r].get_den_mpz_t(), 2));
+    top = std::max(top, e);
+  }
+  if (top == std::numeric_limits<long>::min()) return;  // N = 0
+  std::array<Bounds, 3> nb;
+  Rational x;
+  for (int r = 0; r < 3; ++r) {
+    // N_r 2^−top exactly, then its enclosure (|N_r 2^−top| < 2).
+    if (top >= 0) mpq_div_2exp(x.get_mpq_t(), n[r].get_mpq_t(), static_cast<unsigned long>(top));
+    else mpq_mul_2exp(x.get_mpq_t(), n[r].get_mpq_t(), static_cast<unsigned long>(-top));
+    nb[r] = rational_bounds(x);
+  }
+  CGAL::Protect_FPU_rounding<true> upward;
+  const auto& a = m.bounds_a();
+  bool finite = true;
+  for (int c = 0; c < 3; ++c) {
+    const FastInterval u = iv(a[c]) * iv(nb[0]) + iv(a[3 + c]) * iv(nb[1]) + iv(a[6 + c]) * iv(nb[2]);
+    u_[c] = {u.inf(), u.sup()};
+    finite = finite && std::isfinite(u.inf()) && std::isfinite(u.sup());
+  }
+  usable_ = finite;
+}
+
+int PulledNormalFilter::difference_sign(const PointBounds& a, const PointBounds& b) const {
+  if (!usable_) return kOpen;
+  CGAL::Protect_FPU_rounding<true> upward;
+  const FastIPoint d = iv(b) - iv(a);
+  const int s = sign_of(iv(u_[0]) * d.x + iv(u_[1]) * d.y + iv(u_[2]) * d.z);
+  if (s == kUncertain) return kOpen;
+  ++g_counts.filtered;
+  return s;
 }
 
 int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const PointBounds& pb, const PlacedMap& mq,
@@ -363,7 +479,9 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
                                      const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
                                      const std::array<const PointBounds*, 4>& qb) {
   // The five signed volumes, orient3d(d0, d1, d2, d3) = det(d1 − d0, d2 − d0,
-  // d3 − d0) and the same with d_k the origin, evaluated on intervals first.
+  // d3 − d0) and the same with d_k the origin, evaluated on intervals first;
+  // the exact stage evaluates only those the intervals left open.
+  std::array<int, 5> sig;
   {
     CGAL::Protect_FPU_rounding<true> upward;
     std::array<FastIPoint, 4> d;
@@ -372,35 +490,44 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
       return sign_of(dot(b - a, cross(c - a, e - a)));
     };
     const FastIPoint o{FastInterval(0), FastInterval(0), FastInterval(0)};
-    const int total = volume(d[0], d[1], d[2], d[3]);
-    bool decided = total != kUncertain;
-    bool inside = decided && total != 0;
-    for (int k = 0; k < 4 && decided && inside; ++k) {
+    sig[0] = volume(d[0], d[1], d[2], d[3]);
+    bool open = sig[0] == kUncertain, outside = sig[0] == 0;
+    for (int k = 0; k < 4 && !outside; ++k) {
       std::array<FastIPoint, 4> e = d;
       e[k] = o;
-      const int s = volume(e[0], e[1], e[2], e[3]);
-      if (s == kUncertain) decided = false;
-      else if (s != total) inside = false;
+      sig[k + 1] = volume(e[0], e[1], e[2], e[3]);
+      open = open || sig[k + 1] == kUncertain;
+      outside = sig[0] != kUncertain && sig[k + 1] != kUncertain && sig[k + 1] != sig[0];
     }
-    if (decided) {
+    if (outside || !open) {
       ++g_counts.filtered;
-      return inside;
+      return !outside;
     }
   }
   ++g_counts.exact;
-  std::array<Point3, 4> d;
-  for (int k = 0; k < 4; ++k) d[k] = mp.apply(*p[k]) - mq.apply(*q[k]);
-  const Point3 o(0, 0, 0);
-  const auto volume = [](const Point3& a, const Point3& b, const Point3& c, const Point3& e) {
-    return sgn(det3(b - a, c - a, e - a));
+  // The points K d_k = Z_p(p_k) − Z_q(q_k) of one PlacedFrame (integers when
+  // the matrices and the points are doubles): the volumes are homogeneous of
+  // degree 3, so K > 0 keeps their signs.
+  bool pd = true, qd = true;
+  int pe = std::numeric_limits<int>::max(), qe = pe;
+  const auto scan = [](const PointBounds& b, bool& doubles, int& e) {
+    for (const Bounds* c : {&b.x, &b.y, &b.z}) doubles = doubles && c->lo == c->hi, e = std::min(e, dyadic_exponent(c->lo));
   };
-  const int total = volume(d[0], d[1], d[2], d[3]);
-  if (total == 0) return false;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 4; ++k) scan(*pb[k], pd, pe), scan(*qb[k], qd, qe);
+  const PlacedFrame frame(mp, pd, pe, mq, qd, qe);
+  std::array<Point3, 4> d;
+  for (int k = 0; k < 4; ++k) d[k] = frame.p(*p[k], *pb[k]) - frame.q(*q[k], *qb[k]);
+  const Point3 o(0, 0, 0);
+  const auto volume = [&](int k) {  // k = 0: the tetrahedron; k > 0: d_{k−1} replaced by the origin
+    if (sig[k] != kUncertain) return sig[k];
     std::array<Point3, 4> e = d;
-    e[k] = o;
-    if (volume(e[0], e[1], e[2], e[3]) != total) return false;
-  }
+    if (k > 0) e[k - 1] = o;
+    return sgn(det3(e[1] - e[0], e[2] - e[0], e[3] - e[0]));
+  };
+  const int total = volume(0);
+  if (total == 0) return false;
+  for (int k = 1; k < 5; ++k)
+    if (volume(k) != total) return false;
   return true;
 }
 
@@ -437,17 +564,6 @@ Point3 pull(const PlacedMap& m, const Point3& x) {
 
 namespace {
 
-// A double as m 2^e, m an integer of at most 53 bits (0 for zero).
-struct Dyadic {
-  std::int64_t m = 0;
-  int e = 0;
-};
-Dyadic dyadic(double x) {
-  if (x == 0) return {};
-  int e = 0;
-  const double f = std::frexp(x, &e);  // x = f 2^e, 1/2 ≤ |f| < 1
-  return {static_cast<std::int64_t>(std::ldexp(f, 53)), e - 53};
-}
 
 // The smallest exponent e of the non-zero terms m 2^e of coordinate r of
 // A x + t (three products and t_r; A, t and x doubles), lowered into e0.
@@ -498,7 +614,6 @@ int pulled_sign(const std::array<Bounds, 3>& u, const Point3& a, const PointBoun
   return exact_sign(dot(exact_u(), b - a));
 }
 
-bool exact_double(const PointBounds& b) { return b.x.lo == b.x.hi && b.y.lo == b.y.hi && b.z.lo == b.z.hi; }
 
 // Whether the exact stage may take the integers below: both maps doubles
 // and every point a double.
@@ -849,6 +964,78 @@ Vec3d PlacedTriangle::unit_normal() const {
   const double l = std::sqrt(x * x + y * y + z * z);
   if (l > 0 && std::isfinite(l)) return {x / l, y / l, z / l};
   return to_double(exact().n);
+}
+
+int dyadic_exponent(double x) { return x == 0 ? std::numeric_limits<int>::max() : dyadic(x).e; }
+
+PlacedFrame::PlacedFrame(const PlacedMap& mp, bool p_doubles, int p_exponent, const PlacedMap& mq, bool q_doubles,
+                         int q_exponent)
+    : mp_(&mp), mq_(&mq) {
+  const Point3 dt = mq.t() - mp.t();
+  integers_ = p_doubles && q_doubles && mp.linear_doubles() && mq.linear_doubles();
+  if (!integers_) {
+    tq_ = dt;
+    return;
+  }
+  // E = min(e_A,p + e_x,p, e_A,q + e_x,q, 0); a body with no non-zero
+  // coordinate (or a zero matrix, which det A > 0 excludes) bounds nothing.
+  e_ = 0;
+  const PlacedMap* maps[2] = {&mp, &mq};
+  const int pe[2] = {p_exponent, q_exponent};
+  for (int w = 0; w < 2; ++w) {
+    int ea = std::numeric_limits<int>::max();
+    for (int i = 0; i < 9; ++i) {
+      const Dyadic d = dyadic(maps[w]->approx_a()[i]);
+      am_[w][i] = d.m, ae_[w][i] = d.e;
+      if (d.m != 0) ea = std::min(ea, d.e);
+    }
+    if (ea != std::numeric_limits<int>::max() && pe[w] != std::numeric_limits<int>::max())
+      e_ = std::min(e_, ea + pe[w]);
+  }
+  for (int r = 0; r < 3; ++r) mpz_lcm(d_.get_mpz_t(), d_.get_mpz_t(), dt[r].get_den_mpz_t());
+  const Integer k = d_ << static_cast<unsigned long>(-e_);
+  k_ = Rational(k);
+  for (int r = 0; r < 3; ++r) {
+    Integer t = dt[r].get_num() * (d_ / dt[r].get_den());
+    tq_[r] = Rational(Integer(t << static_cast<unsigned long>(-e_)));
+  }
+}
+
+// D 2^−E A x for the map `which` (integers mode): each product m_a m_x
+// 2^(e_a + e_x) shifted by e_a + e_x − E ≥ 0 (the caller's bound).
+Point3 PlacedFrame::linear(int which, const PointBounds& xb) const {
+  const double c[3] = {xb.x.lo, xb.y.lo, xb.z.lo};
+  Dyadic v[3];
+  for (int k = 0; k < 3; ++k) v[k] = dyadic(c[k]);
+  Point3 r;
+  Integer sum, term;
+  for (int i = 0; i < 3; ++i) {
+    sum = 0;
+    for (int k = 0; k < 3; ++k) {
+      const std::int64_t m = am_[which][3 * i + k];
+      if (m == 0 || v[k].m == 0) continue;
+      term = Integer(static_cast<long>(m)) * Integer(static_cast<long>(v[k].m));
+      sum += term << static_cast<unsigned long>(ae_[which][3 * i + k] + v[k].e - e_);
+    }
+    if (d_ != 1) sum *= d_;
+    r[i] = Rational(sum);
+  }
+  return r;
+}
+
+Point3 PlacedFrame::p(const Point3& x, const PointBounds& xb) const {
+  if (!integers_) return mp_->apply_linear(x);
+  return linear(0, xb);
+}
+
+Point3 PlacedFrame::q(const Point3& y, const PointBounds& yb) const {
+  if (!integers_) return mq_->apply_linear(y) + tq_;
+  return linear(1, yb) + tq_;
+}
+
+Point3 PlacedFrame::placed(const Point3& z) const {
+  if (!integers_) return z + mp_->t();
+  return Rational(1) / k_ * z + mp_->t();
 }
 
 PlacedPredicateCounts placed_predicate_counts() {

@@ -24,6 +24,10 @@ struct RigidBody::Data {
   std::vector<Index> nbr;
   Vec3d centroid;                     // of the vertices (doubles): the first search direction
   const Point3* exact = nullptr;      // poly.points(), exact (built once)
+  // Every vertex coordinate is a double, and the least dyadic_exponent of
+  // the non-zero ones (the feature plane's PlacedFrame).
+  bool doubles = true;
+  int exponent = std::numeric_limits<int>::max();
 };
 
 namespace {
@@ -326,9 +330,28 @@ struct FeatureContact {
   Point3 common;  // touching: a point of P' ∩ Q'
 };
 
+// Doubles along the direction of a rational vector, whatever its size (the
+// frame's normals exceed the range of doubles): each coordinate as f 2^e
+// from its numerator and denominator, all scaled by one power of two.  For
+// choices only (an orientation), never a decision.
+Vec3d scaled_direction(const Point3& n) {
+  double f[3];
+  long e[3], top = std::numeric_limits<long>::min();
+  for (int r = 0; r < 3; ++r) {
+    long en = 0, ed = 0;
+    const double fn = mpz_get_d_2exp(&en, n[r].get_num_mpz_t()), fd = mpz_get_d_2exp(&ed, n[r].get_den_mpz_t());
+    f[r] = fn / fd, e[r] = en - ed;
+    if (fn != 0) top = std::max(top, e[r]);
+  }
+  if (top == std::numeric_limits<long>::min()) return {0, 0, 0};
+  const auto at = [&](int r) { return f[r] == 0 ? 0.0 : std::ldexp(f[r], int(std::max(e[r] - top, -2000L))); };
+  return {at(0), at(1), at(2)};
+}
+
 class FeaturePlane {
  public:
-  explicit FeaturePlane(const Query& qu) : qu_(qu) {}
+  explicit FeaturePlane(const Query& qu)
+      : qu_(qu), frame_(qu.P.map, qu.dp.doubles, qu.dp.exponent, qu.Q.map, qu.dq.doubles, qu.dq.exponent) {}
 
   std::optional<FeatureContact> decide(const std::array<SimplexVertex, 4>& s, int n, Index ip, Index iq) {
     std::vector<Index> sp, sq;
@@ -341,122 +364,162 @@ class FeaturePlane {
     // Orient N so that `inside` (a centre, doubles: only a choice, the
     // climbs decide) lies on the side of sign `side` of the plane through a.
     const auto oriented = [](Point3 nrm, const V3& a, const V3& inside, double side) {
-      const Vec3d d = to_double(nrm);
+      const Vec3d d = scaled_direction(nrm);
       if (side * (d.x * (inside.x - a.x) + d.y * (inside.y - a.y) + d.z * (inside.z - a.z)) < 0) nrm = -nrm;
       return nrm;
     };
-    std::vector<Point3> candidates;
+    // Each candidate is tried as soon as it is made (in this order); the
+    // first plane that decides answers.
+    std::optional<FeatureContact> c;
+    const auto attempt = [&](const Point3& nrm) {
+      c = try_plane(nrm, sp[0], sq[0]);
+      if (c) c = placed(*c);
+      return c.has_value();
+    };
     // A facet of P' through three of its points in the simplex (P' below),
     // a facet of Q' (Q' above), the edges of each.
     if (sp.size() >= 3) {
       const Point3 nrm = cross(pp(sp[1]) - pp(sp[0]), pp(sp[2]) - pp(sp[0]));
-      if (!is_zero(nrm)) candidates.push_back(oriented(nrm, qu_.P.point(sp[0]), cp, -1));
+      if (!is_zero(nrm) && attempt(oriented(nrm, qu_.P.point(sp[0]), cp, -1))) return c;
     }
     if (sq.size() >= 3) {
       const Point3 nrm = cross(pq(sq[1]) - pq(sq[0]), pq(sq[2]) - pq(sq[0]));
-      if (!is_zero(nrm)) candidates.push_back(oriented(nrm, qu_.Q.point(sq[0]), cq, 1));
+      if (!is_zero(nrm) && attempt(oriented(nrm, qu_.Q.point(sq[0]), cq, 1))) return c;
     }
     for (std::size_t i = 0; i < sp.size(); ++i)
       for (std::size_t j = i + 1; j < sp.size(); ++j)
         for (std::size_t k = 0; k < sq.size(); ++k)
           for (std::size_t l = k + 1; l < sq.size(); ++l) {
             const Point3 nrm = cross(pp(sp[j]) - pp(sp[i]), pq(sq[l]) - pq(sq[k]));
-            if (!is_zero(nrm)) candidates.push_back(oriented(nrm, cp, cq, 1));
+            if (!is_zero(nrm) && attempt(oriented(nrm, cp, cq, 1))) return c;
           }
-    for (const Point3& nrm : candidates)
-      if (auto c = try_plane(nrm, sp[0], sq[0])) return c;
     // A smaller simplex (the search stopped on an edge or a vertex of D):
     // the facets around its vertices, then the edges at its first pair.
     // Neighbours run counter-clockwise seen from outside, so two
     // consecutive ones and the vertex span a facet, the cross product of
     // their edges outward (a placement keeps orientation).
-    candidates.clear();
     for (Index v : sp)
       for (Index k = qu_.dp.first[v], e = qu_.dp.first[v + 1]; k < e; ++k) {
         const Index w = qu_.dp.nbr[k], x = qu_.dp.nbr[k + 1 < e ? k + 1 : qu_.dp.first[v]];
         const Point3 nrm = cross(pp(w) - pp(v), pp(x) - pp(v));
-        if (!is_zero(nrm)) candidates.push_back(nrm);
+        if (!is_zero(nrm) && attempt(nrm)) return c;
       }
     for (Index v : sq)
       for (Index k = qu_.dq.first[v], e = qu_.dq.first[v + 1]; k < e; ++k) {
         const Index w = qu_.dq.nbr[k], x = qu_.dq.nbr[k + 1 < e ? k + 1 : qu_.dq.first[v]];
         const Point3 nrm = cross(pq(x) - pq(v), pq(w) - pq(v));  // Q's inward normal
-        if (!is_zero(nrm)) candidates.push_back(nrm);
+        if (!is_zero(nrm) && attempt(nrm)) return c;
       }
     for (Index k = qu_.dp.first[sp[0]]; k < qu_.dp.first[sp[0] + 1]; ++k)
       for (Index l = qu_.dq.first[sq[0]]; l < qu_.dq.first[sq[0] + 1]; ++l) {
         const Point3 nrm = cross(pp(qu_.dp.nbr[k]) - pp(sp[0]), pq(qu_.dq.nbr[l]) - pq(sq[0]));
-        if (!is_zero(nrm)) candidates.push_back(oriented(nrm, cp, cq, 1));
+        if (!is_zero(nrm) && attempt(oriented(nrm, cp, cq, 1))) return c;
       }
-    for (const Point3& nrm : candidates)
-      if (auto c = try_plane(nrm, sp[0], sq[0])) return c;
     return std::nullopt;
   }
 
  private:
   const Query& qu_;
+  // The placed points in one frame: K (x' − t_P) for a positive K, integers
+  // when the maps and the vertices are doubles (PlacedFrame).  Every test
+  // below is invariant under that translation and homogeneous, so it has
+  // the same sign on these points as on the placed ones; a common point
+  // found is mapped back.
+  PlacedFrame frame_;
   std::unordered_map<Index, Point3> placed_p_, placed_q_;
 
   const Point3& pp(Index v) {
     auto it = placed_p_.find(v);
-    if (it == placed_p_.end()) it = placed_p_.emplace(v, qu_.P.map.apply(qu_.dp.exact[v])).first;
+    if (it == placed_p_.end()) it = placed_p_.emplace(v, frame_.p(qu_.dp.exact[v], qu_.dp.bounds[v])).first;
     return it->second;
   }
   const Point3& pq(Index v) {
     auto it = placed_q_.find(v);
-    if (it == placed_q_.end()) it = placed_q_.emplace(v, qu_.Q.map.apply(qu_.dq.exact[v])).first;
+    if (it == placed_q_.end()) it = placed_q_.emplace(v, frame_.q(qu_.dq.exact[v], qu_.dq.bounds[v])).first;
     return it->second;
   }
 
+  // sign N · (x_w − x_u) on a placed body: the interval filter on the
+  // vertices' enclosures, else exactly on the frame's points.
+  template <class Pt>
+  static int step_sign(const RigidBody::Data& d, Pt pt, const PulledNormalFilter& f, const Point3& nrm, Index u,
+                       Index w) {
+    const int s = f.difference_sign(d.bounds[u], d.bounds[w]);
+    if (s != PulledNormalFilter::kOpen) return s;
+    return sgn(dot(nrm, pt(w) - pt(u)));
+  }
   // A vertex maximising sign·N·x over a placed body (exact: a vertex no
   // neighbour of which is further is a maximum), from v; its value.
   template <class Pt>
-  Index climb(const RigidBody::Data& d, Pt pt, const Point3& nrm, int sign, Index v, Rational& best) {
-    best = dot(nrm, pt(v));
-    if (sign < 0) best = -best;
+  Index climb(const RigidBody::Data& d, Pt pt, const PulledNormalFilter& f, const Point3& nrm, int sign, Index v,
+              Rational& best) {
     for (;;) {
       Index next = v;
-      for (Index k = d.first[v]; k < d.first[v + 1]; ++k) {
-        Rational x = dot(nrm, pt(d.nbr[k]));
-        if (sign < 0) x = -x;
-        if (x > best) {
-          best = std::move(x), next = d.nbr[k];
+      for (Index k = d.first[v]; k < d.first[v + 1]; ++k)
+        if (sign * step_sign(d, pt, f, nrm, v, d.nbr[k]) > 0) {
+          next = d.nbr[k];
           break;
         }
-      }
-      if (next == v) return v;
+      if (next == v) break;
       v = next;
       ++g_stats.climb_steps;
     }
+    best = dot(nrm, pt(v));
+    if (sign < 0) best = -best;
+    return v;
   }
   // The face of a placed body in the plane N·x = h through v: its vertices
   // (the level set of v, connected in the vertex graph) and its edges.
+  // (N · x_w = h for a neighbour w of a face vertex u exactly when
+  // N · (x_w − x_u) = 0.)
   template <class Pt>
-  void face(const RigidBody::Data& d, Pt pt, const Point3& nrm, const Rational& h, Index v,
+  void face(const RigidBody::Data& d, Pt pt, const PulledNormalFilter& f, const Point3& nrm, Index v,
             std::vector<Index>& verts, std::vector<std::pair<Index, Index>>& edges) {
     verts.assign(1, v);
     for (std::size_t i = 0; i < verts.size(); ++i) {
       const Index u = verts[i];
       for (Index k = d.first[u]; k < d.first[u + 1]; ++k) {
         const Index w = d.nbr[k];
-        if (dot(nrm, pt(w)) != h) continue;
+        if (step_sign(d, pt, f, nrm, u, w) != 0) continue;
         if (u < w) edges.emplace_back(u, w);
         if (std::find(verts.begin(), verts.end(), w) == verts.end()) verts.push_back(w);
       }
     }
   }
-  static int orient(const Point3& nrm, const Point3& a, const Point3& b, const Point3& c) {
-    return sgn(dot(nrm, cross(b - a, c - a)));
-  }
+  // Orientations of points of the plane N·x = h: N · ((b − a) × (c − a)).
+  // For u, v orthogonal to N, u × v = λ N, so N · (u × v) = λ |N|² and
+  // (u × v)_r = λ N_r: with N_r ≠ 0, s = sign N_r, the value
+  // s (u × v)_r is N · (u × v) times |N_r| / |N|² > 0 — the same sign, and
+  // the same ratios — from two products instead of nine.
+  struct InPlane {
+    int r = 0, s = 1;
+    explicit InPlane(const Point3& nrm) {
+      const Vec3d d = scaled_direction(nrm);
+      for (int k = 1; k < 3; ++k)
+        if (std::fabs(d[k]) > std::fabs(d[r])) r = k;
+      if (sgn(nrm[r]) == 0)  // a rounding of the choice only; N ≠ 0
+        for (int k = 0; k < 3; ++k)
+          if (sgn(nrm[k]) != 0) r = k;
+      s = sgn(nrm[r]);
+    }
+    Rational value(const Point3& a, const Point3& b, const Point3& c) const {
+      const int i = (r + 1) % 3, j = (r + 2) % 3;
+      Rational v = (b[i] - a[i]) * (c[j] - a[j]) - (b[j] - a[j]) * (c[i] - a[i]);
+      if (s < 0) v = -v;
+      return v;
+    }
+    int orient(const Point3& a, const Point3& b, const Point3& c) const { return sgn(value(a, b, c)); }
+  };
   // Whether y (in the plane) lies in the convex face of points `f` with
   // edges `e`: equal to its point, on its segment, or on the inner side of
   // every edge that has the face's points on one side (a boundary edge).
-  static bool in_face(const Point3& nrm, const Point3& y, const std::vector<Point3>& f,
+  static bool in_face(const InPlane& pl, const Point3& y, const std::vector<Point3>& f,
                       const std::vector<std::pair<std::size_t, std::size_t>>& e) {
     if (f.size() == 1) return y == f[0];
     if (f.size() == 2) {
+      // Collinear: (b − a) × (y − a) = λ N with λ = 0 (every point in the plane).
+      if (pl.orient(f[0], f[1], y) != 0) return false;
       const Point3 ab = f[1] - f[0], ay = y - f[0];
-      if (!is_zero(cross(ab, ay))) return false;
       const Rational t = dot(ay, ab);
       return t >= 0 && t <= dot(ab, ab);
     }
@@ -464,22 +527,32 @@ class FeaturePlane {
       int side = 0;
       bool boundary = true;
       for (std::size_t k = 0; k < f.size() && boundary; ++k) {
-        const int o = orient(nrm, f[i], f[j], f[k]);
+        const int o = pl.orient(f[i], f[j], f[k]);
         if (o == 0) continue;
         if (side == 0) side = o;
         else if (o != side) boundary = false;
       }
       if (!boundary || side == 0) continue;
-      if (orient(nrm, f[i], f[j], y) == -side) return false;
+      if (pl.orient(f[i], f[j], y) == -side) return false;
     }
     return true;
+  }
+
+  // A contact from the frame's points back to the placed ones: the common
+  // point z / K + t_P, the normal (a cross product of two differences of
+  // frame points, K² times that of the placed points) over K².
+  FeatureContact placed(FeatureContact c) const {
+    if (frame_.factor() != 1) c.normal = Rational(1) / (frame_.factor() * frame_.factor()) * c.normal;
+    if (c.status == ContactStatus::touching) c.common = frame_.placed(c.common);
+    return c;
   }
 
   std::optional<FeatureContact> try_plane(const Point3& nrm, Index from_p, Index from_q) {
     FeatureContact c;
     Rational hp, lq;
-    c.p = climb(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, nrm, 1, from_p, hp);
-    c.q = climb(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, nrm, -1, from_q, lq);
+    const PulledNormalFilter filter_p(qu_.P.map, nrm), filter_q(qu_.Q.map, nrm);
+    c.p = climb(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, filter_p, nrm, 1, from_p, hp);
+    c.q = climb(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, filter_q, nrm, -1, from_q, lq);
     lq = -lq;
     c.normal = nrm;
     if (hp < lq) {
@@ -490,8 +563,8 @@ class FeaturePlane {
     // h_P = l_Q: the faces in the plane.
     std::vector<Index> vp, vq;
     std::vector<std::pair<Index, Index>> ep, eq;
-    face(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, nrm, hp, c.p, vp, ep);
-    face(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, nrm, hp, c.q, vq, eq);
+    face(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, filter_p, nrm, c.p, vp, ep);
+    face(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, filter_q, nrm, c.q, vq, eq);
     std::vector<Point3> fp, fq;
     for (Index v : vp) fp.push_back(pp(v));
     for (Index v : vq) fq.push_back(pq(v));
@@ -504,21 +577,22 @@ class FeaturePlane {
     };
     const auto lp = local(vp, ep), lq2 = local(vq, eq);
     c.status = ContactStatus::touching;
+    const InPlane pl(nrm);
     for (const Point3& y : fq)
-      if (in_face(nrm, y, fp, lp)) {
+      if (in_face(pl, y, fp, lp)) {
         c.common = y;
         return c;
       }
     for (const Point3& x : fp)
-      if (in_face(nrm, x, fq, lq2)) {
+      if (in_face(pl, x, fq, lq2)) {
         c.common = x;
         return c;
       }
     for (const auto& [i, j] : lp)
       for (const auto& [k, l] : lq2) {
         const Point3 &a = fp[i], &b = fp[j], &e = fq[k], &f = fq[l];
-        const Rational sa = dot(nrm, cross(f - e, a - e)), sb = dot(nrm, cross(f - e, b - e));
-        if (orient(nrm, a, b, e) * orient(nrm, a, b, f) < 0 && sgn(sa) * sgn(sb) < 0) {
+        const Rational sa = pl.value(e, f, a), sb = pl.value(e, f, b);
+        if (pl.orient(a, b, e) * pl.orient(a, b, f) < 0 && sgn(sa) * sgn(sb) < 0) {
           c.common = a + Rational(sa / (sa - sb)) * (b - a);
           return c;
         }
@@ -631,6 +705,10 @@ RigidBody::RigidBody(ConvexPolytope p) {
   for (Index v = 0; v < nv; ++v) {
     d->approx[v] = poly.approx(v);
     d->bounds[v] = point_bounds(poly.point(v));
+    for (const Bounds& b : {d->bounds[v].x, d->bounds[v].y, d->bounds[v].z}) {
+      d->doubles = d->doubles && b.lo == b.hi;
+      d->exponent = std::min(d->exponent, dyadic_exponent(b.lo));
+    }
     cx += d->approx[v].x, cy += d->approx[v].y, cz += d->approx[v].z;
     d->first[v + 1] = d->first[v] + poly.vertex_degree(v);
   }

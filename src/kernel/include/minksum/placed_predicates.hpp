@@ -56,7 +56,12 @@
 // rounding mode, through overflow (bounds go to ±∞) and underflow (directed
 // rounding); so an interval that excludes 0 gives the exact sign, [0, 0]
 // proves the value 0, and anything else falls back to the same polynomial in
-// GMP rationals.  No bound to derive, and none to get wrong: the enclosure is
+// GMP rationals — or, for the climb sign with A and the points doubles, in
+// GMP integers: u_c = Σ_r A_rc n_r is a sum of products of two doubles
+// m 2^e, hence an integer U_c over 2^eu (eu the least e_A + e_n of its
+// non-zero products), b_c − a_c an integer B_c over 2^eb (eb the least
+// exponent of the six coordinates), and S = 2^(eu + eb) Σ_c U_c B_c
+// exactly.  No bound to derive, and none to get wrong: the enclosure is
 // the proof (R. E. Moore, "Interval Analysis", Prentice-Hall 1966; the
 // technique of CGAL's filtered predicates, S. Pion, "Interval arithmetic: an
 // efficient implementation and an application to computational geometry",
@@ -127,6 +132,8 @@ class PlacedMap {
   Point3 t() const;
   // True when A's entries and t's coordinates are all doubles.
   bool doubles() const { return !exact_a_ && !small_rotation_ && !exact_t_; }
+  // True when A's entries are all doubles (t may be any rational).
+  bool linear_doubles() const { return !exact_a_ && !small_rotation_; }
   // A p + t and A p, exactly.
   Point3 apply(const Point3& p) const;
   Point3 apply_linear(const Point3& p) const;
@@ -192,10 +199,32 @@ class PulledDirection {
   void make_enclosure() const;
   // Stages 2 and 3.
   int difference_sign_later(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
+  int difference_sign_integers(const PointBounds& ab, const PointBounds& bb) const;
   // Stage 1: û and U (see the top), when A and n are doubles in range.
   bool fast_ = false;
   std::array<double, 3> uf_{}, um_{};
   mutable std::optional<Point3> exact_;
+};
+
+// The interval stage of sign N · A (b − a) for an exact rational direction
+// N (a plane's normal, of any size: the feature plane's normals on
+// PlacedFrame integers exceed the range of doubles).  N 2^−k, with 2^k
+// within a factor two of its largest coordinate's magnitude (a positive
+// factor: the same sign), is enclosed coordinate by coordinate
+// (rational_bounds), pulled back through A's enclosure and dotted with the
+// enclosure of b − a, all in interval arithmetic (outward rounding, as in
+// stage 2 above): an interval that excludes 0 gives the sign, [0, 0] proves
+// 0.  Otherwise kOpen, and the caller evaluates the sign exactly.
+class PulledNormalFilter {
+ public:
+  static constexpr int kOpen = 2;
+  PulledNormalFilter(const PlacedMap& m, const Point3& n);
+  // −1, 0 or +1, or kOpen (a, b: enclosures of the points).
+  int difference_sign(const PointBounds& a, const PointBounds& b) const;
+
+ private:
+  std::array<Bounds, 3> u_{};  // an enclosure of Aᵀ N 2^−k
+  bool usable_ = false;        // N ≠ 0 and the enclosure finite
 };
 
 // sign n · ((A_q q + t_q) − (A_p p + t_p)): the gap along n between the
@@ -331,6 +360,58 @@ class PlacedTriangle {
   std::array<Bounds, 3> n_{}, up_{}, uq_{};
   std::array<std::array<Bounds, 3>, 3> d_{};
   mutable std::unique_ptr<Exact> exact_;
+};
+
+// Two placements' points in one exact frame, for computations that chain
+// many signs and products on the same placed points (the feature plane of
+// rigid_proximity.hpp: normals as cross products of placed differences,
+// climbs and level sets by dot products with them, orientations in a
+// plane; and the exact stage of placed_tetrahedron_holds_origin):
+//   Z_p(x) = K (A_p x + t_p − t_p) = K A_p x,
+//   Z_q(y) = K (A_q y + t_q − t_p),
+// one translation and one positive factor K for both, so every sign of a
+// polynomial that is invariant under a common translation and homogeneous
+// (or every sign of a homogeneous polynomial in the differences
+// Z_p − Z_q, which are K times the points of the Minkowski difference) is
+// the sign of the same polynomial on the placed points.  The placed point
+// is Z / K + t_p.
+//
+// Integers.  A non-zero double is m 2^e with m an integer, 2^52 ≤ |m| <
+// 2^53 (dyadic_exponent gives e; INT_MAX for zero).  When both matrices
+// and every point are doubles (the translations may be any rationals),
+// each product (A)_rc x_c is an integer multiple of 2^(e_A + e_x), with e_A
+// the least exponent over the matrix's non-zero entries and e_x at most
+// that of every coordinate of every point the frame will take (the
+// caller's bound, per body).  With E = min(e_A,p +
+// e_x,p, e_A,q + e_x,q, 0), t_q − t_p = T / D (D > 0 the least common
+// denominator of its three rationals, T integers) and K = D 2^−E, every Z
+// is an integer vector, computed exactly in GMP integers (no denominators,
+// no gcd in the arithmetic that follows).  Otherwise (a rational matrix, a
+// quaternion rotation or a rational point) K = 1 and Z are rationals.
+int dyadic_exponent(double x);
+class PlacedFrame {
+ public:
+  // `p_doubles`: every point of P the frame will take has double
+  // coordinates, `p_exponent` at most dyadic_exponent of each of their
+  // non-zero coordinates; likewise for Q.
+  PlacedFrame(const PlacedMap& mp, bool p_doubles, int p_exponent, const PlacedMap& mq, bool q_doubles,
+              int q_exponent);
+  Point3 p(const Point3& x, const PointBounds& xb) const;  // Z_p(x)
+  Point3 q(const Point3& y, const PointBounds& yb) const;  // Z_q(y)
+  Point3 placed(const Point3& z) const;                    // z / K + t_p
+  const Rational& factor() const { return k_; }            // K
+  bool integers() const { return integers_; }
+
+ private:
+  Point3 linear(int which, const PointBounds& xb) const;
+  const PlacedMap *mp_, *mq_;
+  bool integers_ = false;
+  int e_ = 0;                 // E
+  Integer d_{1};              // D
+  Rational k_{1};             // K
+  Point3 tq_;                 // K (t_q − t_p)
+  std::array<std::array<std::int64_t, 9>, 2> am_{};  // the matrices' entries m 2^e (integers mode)
+  std::array<std::array<int, 9>, 2> ae_{};
 };
 
 // How often the interval stage decided and how often the rationals did, on

@@ -35,7 +35,9 @@
 //     undecided — is decided in exact arithmetic: M = R_P P ⊕ (−R_Q Q) is
 //     built exactly and asked for t_Q − t_P (the cost of building M).
 // Every sign is an exact sign (placed_predicates.hpp: interval filter, then
-// rationals).
+// rationals; the feature plane and the tetrahedron's exact stage evaluate on
+// the points of one PlacedFrame, integers when the matrices and the vertices
+// are doubles, whatever the translations).
 #pragma once
 
 #include <minksum/placed_predicates.hpp>

@@ -417,7 +417,9 @@ TEST(PlacedPredicates, PulledNormalFilterAgreesWithRationals) {
       EXPECT_EQ(got, want);
     }
     const int back = f.difference_sign(point_bounds(b), point_bounds(a));
-    if (back != PulledNormalFilter::kOpen) EXPECT_EQ(back, -want);
+    if (back != PulledNormalFilter::kOpen) {
+      EXPECT_EQ(back, -want);
+    }
   }
   EXPECT_GT(zeros, 100);
   EXPECT_GT(decided, 400);
@@ -1117,7 +1119,9 @@ TEST(PlacedSimplexPoint, AgreesWithRationals) {
       EXPECT_EQ(sp.climb_sign_q(a, point_bounds(a), c, point_bounds(c)), sgn(dot(uq, c - a))) << "case " << i;
       // Level by construction: the climb sign between two points of a pair
       // set with the same partner is exactly 0.
-      if (k >= 2) EXPECT_EQ(sp.climb_sign_p(a, point_bounds(a), a, point_bounds(a)), 0);
+      if (k >= 2) {
+        EXPECT_EQ(sp.climb_sign_p(a, point_bounds(a), a, point_bounds(a)), 0);
+      }
     }
   }
 }

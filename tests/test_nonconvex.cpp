@@ -170,6 +170,95 @@ TEST(NonconvexValidation, SelfIntersectionReportsCgalsFirstPairOnThreads) {
   set_parallel_items(items);
 }
 
+namespace {
+// m with every coordinate divided by 3 (rationals that are not doubles).
+Mesh divided_by_three(const Mesh& m) {
+  Mesh r;
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    const Point3 p = m.points.exact(i);
+    r.points.push_back(Point3(p.x / 3, p.y / 3, p.z / 3));
+  }
+  r.faces = m.faces;
+  return r;
+}
+// A message without its parenthesised parts (the coordinates).
+std::string without_parentheses(const std::string& s) {
+  std::string out;
+  int depth = 0;
+  for (char c : s) {
+    depth += c == '(';
+    if (!depth) out += c;
+    depth -= c == ')' && depth > 0;
+  }
+  return out;
+}
+}  // namespace
+
+// A surface of doubles (such as a rounded output) is checked on its
+// doubles, any other on rationals: both name the same defect at the same
+// place (the first edge of each kind in the order of first use, the first
+// degenerate facet, the first vertex of several fans).
+TEST(NonconvexValidation, DoublesAndRationalsNameTheSameDefect) {
+  std::vector<std::pair<std::string, Mesh>> cases;
+  {
+    Mesh m = catalog_mesh("tube");
+    std::reverse(m.faces[3].begin(), m.faces[3].end());
+    cases.push_back({"inconsistent orientation: facet ", m});
+  }
+  {
+    Mesh m = catalog_mesh("torus:8:4");
+    m.faces.erase(m.faces.begin() + 5);
+    cases.push_back({"open mesh: the edge belongs to facet ", m});
+  }
+  {
+    Mesh m = catalog_mesh("torus:8:4");
+    m.faces[7] = {m.faces[7][0], m.faces[7][1], m.faces[7][0]};
+    cases.push_back({"uses a vertex twice", m});
+  }
+  {
+    Mesh m = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1, 2, 1, 2, 1, 2));
+    cases.push_back({"non-manifold vertex: its facets form more than one fan", m});
+  }
+  {
+    Mesh m = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1, 2, 0, 1, 0, 1));
+    cases.push_back({"non-manifold edge shared by 4 facets", m});
+  }
+  {
+    // Facet 1 is collinear: (0,0,0), (1,0,0), (2,0,0).
+    Mesh m;
+    for (const auto& [x, y] : std::vector<std::pair<int, int>>{{0, 0}, {1, 0}, {2, 0}, {0, 1}})
+      m.points.push_back(Point3(Rational(x), Rational(y), Rational(0)));
+    m.faces = {{0, 1, 3}, {0, 1, 2}};
+    cases.push_back({"m.off: facet 1: has zero area (its vertices are collinear)", m});
+  }
+  for (const auto& [expected, m] : cases) {
+    ASSERT_TRUE(m.points.all_doubles()) << expected;
+    const Mesh r = divided_by_three(m);
+    const std::string on_doubles = problem(m), on_rationals = problem(r);
+    EXPECT_NE(on_doubles.find(expected), std::string::npos) << on_doubles;
+    EXPECT_EQ(without_parentheses(on_doubles), without_parentheses(on_rationals)) << on_doubles << "\n" << on_rationals;
+  }
+}
+
+// Collinearity on doubles is decided exactly: (0,0,0), (1 + 2^-52, 1, 0),
+// (1, 1 - 2^-53, 0) span 2^-54 - 2^-106 of area, which the doubles' own
+// cross product rounds to zero.  The facet is not degenerate, and the open
+// surface is refused as open.
+TEST(NonconvexValidation, NearlyCollinearFacetOfDoublesIsNotDegenerate) {
+  Mesh m;
+  m.points.push_back(Point3(Rational(0), Rational(0), Rational(0)));
+  m.points.push_back(Point3(Rational(1.0 + 0x1p-52), Rational(1), Rational(0)));
+  m.points.push_back(Point3(Rational(1), Rational(1.0 - 0x1p-53), Rational(0)));
+  m.faces = {{0, 1, 2}};
+  ASSERT_TRUE(m.points.all_doubles());
+  const double bx = 1.0 + 0x1p-52, cy = 1.0 - 0x1p-53;
+  volatile double product = bx * cy;
+  ASSERT_EQ(product, 1.0);  // so a cross product in doubles says zero
+  const std::string p = problem(m);
+  EXPECT_EQ(p.find("zero area"), std::string::npos) << p;
+  EXPECT_NE(p.find("open mesh"), std::string::npos) << p;
+}
+
 TEST(NonconvexValidation, CubesTouchingAtAVertexAreNotAManifold) {
   const Mesh m = join(box_mesh(0, 1, 0, 1, 0, 1), box_mesh(1, 2, 1, 2, 1, 2));
   EXPECT_NE(problem(m).find("non-manifold vertex: its facets form more than one fan"), std::string::npos) << problem(m);

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <map>
 #include <numeric>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace minksum {
@@ -61,6 +62,16 @@ bool collinear(const Point3& a, const Point3& b, const Point3& c) {
   const RoundedPoint3 ra{a, da}, rb{b, db}, rc{c, dc};
   for (int k = 0; k < 3; ++k)
     if (orient2d(ra, rb, rc, k) != 0) return false;
+  return true;
+}
+
+bool same_point(const Vec3d& a, const Vec3d& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+// The same for points of doubles, exactly: the kernel's support_compare on
+// doubles.
+bool collinear(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  for (int k = 0; k < 3; ++k)
+    if (support_compare(a, b, c, kAxisApprox[k], kOriginApprox) != 0) return false;
   return true;
 }
 
@@ -183,7 +194,6 @@ void check_shell_orientation(const Solid& s, int volume_sign, const std::string&
     }
     shell[k].push_back({tris[t][0], tris[t][1], tris[t][2]});
   }
-  const std::vector<Point3> pts = s.triangles.points.to_points();
   auto name = [&](std::size_t k) { return "the shell of " + face_name(first_face[k]); };
   if (shell.size() == 1) {
     if (volume_sign < 0)
@@ -191,6 +201,7 @@ void check_shell_orientation(const Solid& s, int volume_sign, const std::string&
     if (volume_sign == 0) throw InputError(source, "", "the enclosed volume is zero");
     return;
   }
+  const std::vector<Point3> pts = s.triangles.points.to_points();
   // Per shell: signed volume and exact bounding box.
   std::vector<int> sign(shell.size());
   std::vector<Point3> lo, hi;
@@ -412,10 +423,17 @@ namespace {
 Solid checked_surface(const Mesh& mesh, const std::string& source, bool with_volume) {
   // Weld exactly equal points: canonical index = first of its value.
   const std::size_t n = mesh.points.size();
-  std::vector<Point3> exact = mesh.points.to_points();
+  // The exact points as rationals only when some coordinate is not a
+  // double (or a face has more than three corners): a surface of doubles,
+  // such as a rounded output, is checked on its doubles by the kernel's
+  // predicates, which are exact on them.
+  const bool doubles = mesh.points.all_doubles();
+  std::vector<Point3> exact;
+  if (!doubles) exact = mesh.points.to_points();
+  auto point = [&](Index v) { return doubles ? mesh.points.exact(v) : exact[v]; };
   std::vector<Index> order(n);
   std::iota(order.begin(), order.end(), Index(0));
-  if (mesh.points.all_doubles()) {
+  if (doubles) {
     // The doubles are the exact coordinates: the same order, without GMP.
     const std::vector<Vec3d>& d = mesh.points.approx();
     std::sort(order.begin(), order.end(), [&](Index a, Index b) {
@@ -433,7 +451,10 @@ Solid checked_surface(const Mesh& mesh, const std::string& source, bool with_vol
   }
   std::vector<Index> weld(n);
   for (std::size_t i = 0; i < n; ++i)
-    weld[order[i]] = (i > 0 && exact[order[i]] == exact[order[i - 1]]) ? weld[order[i - 1]] : order[i];
+    weld[order[i]] = (i > 0 && (doubles ? same_point(mesh.points.approx(order[i]), mesh.points.approx(order[i - 1]))
+                                        : exact[order[i]] == exact[order[i - 1]]))
+                         ? weld[order[i - 1]]
+                         : order[i];
 
   if (mesh.faces.empty()) throw InputError(source, "", "the mesh has no faces (a point cloud is not a solid)");
   // Faces: distinct vertices, planar, simple; triangulated.
@@ -449,11 +470,14 @@ Solid checked_surface(const Mesh& mesh, const std::string& source, bool with_vol
       if (std::adjacent_find(s.begin(), s.end()) != s.end())
         throw InputError(source, face_name(f), "uses a vertex twice (after welding equal points)");
     }
-    if (loop.size() == 3 && !collinear(exact[loop[0]], exact[loop[1]], exact[loop[2]])) {
+    if (loop.size() == 3 && (doubles ? !collinear(mesh.points.approx(loop[0]), mesh.points.approx(loop[1]),
+                                                  mesh.points.approx(loop[2]))
+                                     : !collinear(exact[loop[0]], exact[loop[1]], exact[loop[2]]))) {
       tris.push_back({loop[0], loop[1], loop[2]});
       tri_face.push_back(f);
       continue;
     }
+    if (exact.empty()) exact = mesh.points.to_points();
     std::vector<Point3> p;
     for (Index v : loop) p.push_back(exact[v]);
     const Point3 normal = polygon_normal(p);
@@ -485,64 +509,92 @@ Solid checked_surface(const Mesh& mesh, const std::string& source, bool with_vol
   // says the same of the same defect): the first edge of each kind in the
   // order the triangles first use it, non-manifold edges before
   // inconsistent ones before open ones, located by vertex numbers and
-  // coordinates.
-  struct EdgeUse {
-    Index count = 0, t0 = 0, t1 = 0;
-    bool same_direction = false;
-    Index from = 0;  // the first use's origin
-  };
-  std::vector<std::pair<Index, Index>> edge_order;
-  std::map<std::pair<Index, Index>, EdgeUse> uses;
-  for (Index t = 0; t < tris.size(); ++t)
-    for (int i = 0; i < 3; ++i) {
-      const Index u = tris[t][i], v = tris[t][(i + 1) % 3];
-      const auto key = std::make_pair(std::min(u, v), std::max(u, v));
-      EdgeUse& e = uses[key];
-      if (e.count == 0) {
-        edge_order.push_back(key);
-        e.t0 = t;
-        e.from = u;
-      } else if (e.count == 1) {
-        e.t1 = t;
-        e.same_direction = u == e.from;
-      }
-      ++e.count;
-    }
-  auto edge_place = [&](const std::pair<Index, Index>& k) {
-    return "edge " + std::to_string(k.first) + "-" + std::to_string(k.second) + " from " +
-           format_point(exact[k.first]) + " to " + format_point(exact[k.second]);
-  };
-  for (const auto& k : edge_order)
-    if (const EdgeUse& e = uses[k]; e.count > 2)
-      throw InputError(source, edge_place(k), "non-manifold edge shared by " + std::to_string(e.count) + " facets");
-  for (const auto& k : edge_order)
-    if (const EdgeUse& e = uses[k]; e.count == 2 && e.same_direction)
-      throw InputError(source, edge_place(k),
-                       "inconsistent orientation: " + face_name(tri_face[e.t0]) + " and " + face_name(tri_face[e.t1]) +
-                           " traverse this edge in the same direction");
-  for (const auto& k : edge_order)
-    if (const EdgeUse& e = uses[k]; e.count == 1)
-      throw InputError(source, edge_place(k), "open mesh: the edge belongs to " + face_name(tri_face[e.t0]) + " only");
-
-  // Vertices: the triangles around each form one cycle (a single fan).
-  std::vector<std::vector<std::pair<Index, Index>>> around(n);  // v -> (next, prev) of each corner
+  // coordinates.  The corners leaving each vertex, in the order of the
+  // triangles, give each edge's uses; walking the triangles' edges in order,
+  // the first one of a kind met is the first of that kind in the order of
+  // first uses (an edge met earlier would have been used earlier).
+  std::vector<Index> leaving_start(n + 1, 0);
   for (const auto& t : tris)
-    for (int i = 0; i < 3; ++i) around[t[i]].push_back({t[(i + 1) % 3], t[(i + 2) % 3]});
+    for (Index v : t) ++leaving_start[v + 1];
+  for (std::size_t v = 0; v < n; ++v) leaving_start[v + 1] += leaving_start[v];
+  std::vector<std::pair<Index, Index>> leaving(leaving_start[n]);  // (to, triangle), by origin
+  {
+    std::vector<Index> fill(leaving_start.begin(), leaving_start.end() - 1);
+    for (Index t = 0; t < tris.size(); ++t)
+      for (int i = 0; i < 3; ++i) leaving[fill[tris[t][i]]++] = {tris[t][(i + 1) % 3], t};
+  }
+  struct EdgeUse {
+    Index count = 0, forward = 0, t0 = kNoIndex, t1 = kNoIndex;  // t0 < t1: its first two triangles
+  };
+  auto uses_of = [&](Index u, Index v) {
+    EdgeUse e;
+    auto add = [&](Index from, Index to, bool forward) {
+      for (Index k = leaving_start[from]; k < leaving_start[from + 1]; ++k)
+        if (leaving[k].first == to) {
+          ++e.count;
+          e.forward += forward;
+          const Index t = leaving[k].second;
+          if (e.t0 == kNoIndex || t < e.t0) {
+            e.t1 = e.t0;
+            e.t0 = t;
+          } else if (e.t1 == kNoIndex || t < e.t1) {
+            e.t1 = t;
+          }
+        }
+    };
+    add(u, v, true);
+    add(v, u, false);
+    return e;
+  };
+  auto edge_place = [&](Index u, Index v) {
+    const Index a = std::min(u, v), b = std::max(u, v);
+    return "edge " + std::to_string(a) + "-" + std::to_string(b) + " from " + format_point(point(a)) + " to " +
+           format_point(point(b));
+  };
+  for (int kind = 0; kind < 3; ++kind)
+    for (Index t = 0; t < tris.size(); ++t)
+      for (int i = 0; i < 3; ++i) {
+        const Index u = tris[t][i], v = tris[t][(i + 1) % 3];
+        const EdgeUse e = uses_of(u, v);
+        if (kind == 0 && e.count > 2)
+          throw InputError(source, edge_place(u, v),
+                           "non-manifold edge shared by " + std::to_string(e.count) + " facets");
+        if (kind == 1 && e.count == 2 && e.forward != 1)
+          throw InputError(source, edge_place(u, v),
+                           "inconsistent orientation: " + face_name(tri_face[e.t0]) + " and " +
+                               face_name(tri_face[e.t1]) + " traverse this edge in the same direction");
+        if (kind == 2 && e.count == 1)
+          throw InputError(source, edge_place(u, v),
+                           "open mesh: the edge belongs to " + face_name(tri_face[e.t0]) + " only");
+      }
+
+  // Vertices: the triangles around each form one cycle (a single fan).  The
+  // corners at v, as its leaving edges v -> next: each (next, prev) links
+  // next to prev (the edges being sound, every next is one corner's); the
+  // walk from the first corner's next must go through all of them.
   std::size_t used = 0;
   for (Index v = 0; v < n; ++v) {
-    auto& fan = around[v];
-    if (fan.empty()) continue;
+    const Index b = leaving_start[v], e = leaving_start[v + 1];
+    if (b == e) continue;
     ++used;
-    std::unordered_map<Index, Index> link;  // corner's next vertex -> its prev vertex
-    for (const auto& [a, b] : fan) link[a] = b;
-    Index w = fan[0].first;
+    auto link = [&](Index w) {  // the prev of the corner whose next is w
+      for (Index k = b; k < e; ++k)
+        if (leaving[k].first == w) {
+          const auto& t = tris[leaving[k].second];
+          for (Index u : t)
+            if (u != v && u != w) return u;
+        }
+      throw std::logic_error("checked_surface: a vertex's edges are not matched");
+    };
+    const Index start = leaving[b].first;
+    Index w = start;
     std::size_t steps = 0;
     do {
-      w = link.at(w);
+      w = link(w);
       ++steps;
-    } while (w != fan[0].first && steps <= fan.size());
-    if (steps != fan.size())
-      throw InputError(source, vertex_name(v) + " at " + format_point(exact[v]),
+    } while (w != start && steps <= e - b);
+    if (steps != e - b)
+      throw InputError(source, vertex_name(v) + " at " + format_point(point(v)),
                        "non-manifold vertex: its facets form more than one fan");
   }
 

@@ -39,6 +39,7 @@
 // distance from an exact point to where it went is reported.
 #include <minksum/error.hpp>
 #include <minksum/nonconvex.hpp>
+#include <minksum/parallel.hpp>
 
 #include "nonconvex/morphology.hpp"
 #include "nonconvex/triangles_meet.hpp"
@@ -392,9 +393,12 @@ Box box_of(const Tri& t, const std::vector<Vec3d>& at, std::size_t i) {
 }
 
 // The pairs of triangles that meet wrongly, among the pairs with at least
-// one triangle marked in `dirty` (all pairs when every one is).  False
-// when there are more than `most` of them (or too many pairs of boxes to
-// test): the surface is too far from valid for local repair.
+// one triangle marked in `dirty` (all pairs when every one is), in the
+// order the boxes report them.  False when there are more than `most` of
+// them (or too many pairs of boxes to test): the surface is too far from
+// valid for local repair.  The pairs of boxes are gathered in batches and
+// each batch is tested on every hardware thread (the predicates are CGAL's
+// filtered ones on doubles, which keep no shared state).
 struct TooMany {};
 bool meeting_pairs(const std::vector<Tri>& tris, const std::vector<Vec3d>& at, const std::vector<EP>& ep,
                    const std::vector<char>& dirty, std::size_t most,
@@ -407,24 +411,44 @@ bool meeting_pairs(const std::vector<Tri>& tris, const std::vector<Vec3d>& at, c
     if (dirty[i]) some.push_back(all.back());
   }
   if (some.empty()) return true;
-  std::unordered_set<std::uint64_t> seen;
+  const bool every = some.size() == all.size();
+  constexpr std::size_t kBatch = std::size_t(1) << 18, kChunk = 512;
+  std::vector<std::pair<std::size_t, std::size_t>> batch;
+  batch.reserve(std::min(kBatch, 16 * tris.size() + 16));
+  std::vector<char> meets;
   std::size_t tested = 0;
-  auto test = [&](const Box& x, const Box& y) {
+  auto test_batch = [&] {
+    meets.assign(batch.size(), 0);
+    const std::size_t chunks = (batch.size() + kChunk - 1) / kChunk;
+    const unsigned workers = batch.size() >= parallel_items() ? parallel_threads(0, chunks) : 1;
+    parallel_for(chunks, workers, [&](std::size_t c) {
+      const std::size_t end = std::min(batch.size(), (c + 1) * kChunk);
+      for (std::size_t k = c * kChunk; k < end; ++k)
+        meets[k] = triangles_meet(tris[batch[k].first], tris[batch[k].second], ep);
+    });
+    for (std::size_t k = 0; k < batch.size(); ++k)
+      if (meets[k]) {
+        hits.push_back(batch[k]);
+        if (hits.size() > most) throw TooMany{};
+      }
+    batch.clear();
+  };
+  auto gather = [&](const Box& x, const Box& y) {
     std::size_t i = x.info(), j = y.info();
     if (i == j) return;
+    // Two marked triangles are reported from each one's box: kept once.
+    if (!every && dirty[j] && j < i) return;
     if (i > j) std::swap(i, j);
-    if (!seen.insert(pack(Index(i), Index(j))).second) return;
     if (++tested > 16 * tris.size() + 64 * most) throw TooMany{};
-    if (triangles_meet(tris[i], tris[j], ep)) {
-      hits.push_back({i, j});
-      if (hits.size() > most) throw TooMany{};
-    }
+    batch.emplace_back(i, j);
+    if (batch.size() == kBatch) test_batch();
   };
   try {
-    if (some.size() == all.size())
-      CGAL::box_self_intersection_d(all.begin(), all.end(), test);
+    if (every)
+      CGAL::box_self_intersection_d(all.begin(), all.end(), gather);
     else
-      CGAL::box_intersection_d(some.begin(), some.end(), all.begin(), all.end(), test);
+      CGAL::box_intersection_d(some.begin(), some.end(), all.begin(), all.end(), gather);
+    test_batch();
   } catch (const TooMany&) {
     return false;
   }
@@ -511,10 +535,28 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
     std::unordered_map<Key, Index, KeyHash> last_at;
     last_at.reserve(exact_pts.size());
     std::vector<Index> before;  // welded point -> the one before it at its position
-    for (std::size_t i = 0; i < exact_pts.size(); ++i) {
+    // Each point rounded (on every hardware thread), with the
+    // number of its coordinates that are not of the format.  A coordinate
+    // equal to its rounding is that double: its nearest double is the
+    // rounding too, so only those are compared exactly.
+    const std::size_t np = exact_pts.size();
+    std::vector<Vec3d> rounding(np);
+    std::vector<unsigned char> inexact(np);
+    parallel_for(np, parallel_threads(0, np / 1024 + 1), [&](std::size_t i) {
       double c[3];
+      unsigned char count = 0;
+      const Vec3d& near = tri.points.approx(i);
       for (int k = 0; k < 3; ++k) {
         c[k] = to_format(exact_pts[i][k], floats);
+        // (Beyond the format's range: refused below.)
+        if (std::isfinite(c[k])) count += near[k] != c[k] || Rational(c[k]) != exact_pts[i][k];
+      }
+      rounding[i] = Vec3d{c[0], c[1], c[2]};
+      inexact[i] = count;
+    });
+    for (std::size_t i = 0; i < np; ++i) {
+      const double c[3] = {rounding[i].x, rounding[i].y, rounding[i].z};
+      for (int k = 0; k < 3; ++k) {
         if (!std::isfinite(c[k]))
           throw RoundingError(std::string("a coordinate is beyond the range of ") +
                               (floats ? "32-bit floats" : "doubles"));
@@ -530,11 +572,7 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
         nearest.push_back(Vec3d{c[0], c[1], c[2]});
         before.push_back(slot->second);
         slot->second = w;
-        // A coordinate equal to its rounding is that double: its nearest
-        // double is c too, so only those are compared exactly.
-        const Vec3d& near = tri.points.approx(i);
-        for (int k = 0; k < 3; ++k)
-          r.rounded_coordinates += near[k] != c[k] || Rational(c[k]) != exact_pts[i][k];
+        r.rounded_coordinates += inexact[i];
       }
       weld[i] = w;
     }
@@ -626,16 +664,26 @@ RoundedSolid round_solid(const Mesh& exact, bool floats, const std::string& name
     return m;
   };
   auto finish = [&](Mesh&& m) {
+    // The points in blocks, on every hardware thread.
+    const std::size_t blocks = std::min<std::size_t>(n, 256);
+    std::vector<double> block_moved(blocks, 0.0);
+    parallel_for(blocks, parallel_threads(0, n / 1024 + 1), [&](std::size_t k) {
+      double most = 0;
+      Rational d[3];
+      for (std::size_t c = n * k / blocks; c < n * (k + 1) / blocks; ++c) {
+        const Vec3d& q = at[id[c]];
+        const Point3& p = pts[fans.vertex[c]];
+        for (int i = 0; i < 3; ++i) d[i] = Rational(q[i]) - p[i];
+        // hypot of the components: |d|^2 overflows doubles for coordinates
+        // above 2^512.
+        most = std::max(most, std::hypot(to_double(d[0]), to_double(d[1]), to_double(d[2])));
+      }
+      block_moved[k] = most;
+    });
     double moved = 0;
+    for (double m : block_moved) moved = std::max(moved, m);
     int coarsest_used = kNearest;
-    for (std::size_t c = 0; c < n; ++c) {
-      const Vec3d& q = at[id[c]];
-      const Point3 d = Point3(Rational(q.x), Rational(q.y), Rational(q.z)) - pts[fans.vertex[c]];
-      // hypot of the components: |d|^2 overflows doubles for coordinates
-      // above 2^512.
-      moved = std::max(moved, std::hypot(to_double(d.x), to_double(d.y), to_double(d.z)));
-      coarsest_used = std::max(coarsest_used, grid[c]);
-    }
+    for (std::size_t c = 0; c < n; ++c) coarsest_used = std::max(coarsest_used, grid[c]);
     // Each component is within half an ulp, hypot within one: rounded up.
     if (moved > 0) moved = std::nextafter(moved * (1 + 0x1p-50), HUGE_VAL);
     r.mesh = std::move(m);

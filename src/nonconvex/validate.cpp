@@ -143,11 +143,25 @@ bool ear_clip_face(const std::vector<Index>& loop, const std::vector<Point3>& pt
   std::vector<Vec3d> approx(n);
   for (std::size_t i = 0; i < n; ++i) approx[i] = to_double(pts[loop[i]]);
   auto at = [&](std::size_t i) { return RoundedPoint3{pts[loop[i]], approx[i]}; };
+  // Any axis along which the plane's normal has a non-zero component gives
+  // the same ears (each orientation in the projection is the 3D one times
+  // the sign of that component, which ccw below takes out); the largest
+  // component is the best conditioned.  It is taken from the doubles'
+  // cross product when the exact sign there is non-zero, else exactly.
   int drop = -1;
   for (std::size_t i = 0; i < n && drop < 0; ++i) {
     const std::size_t a = (i + n - 1) % n, c = (i + 1) % n;
     for (int k = 0; k < 3 && drop < 0; ++k)
-      if (orient2d(at(a), at(i), at(c), k) != 0) drop = drop_axis(cross(pts[loop[i]] - pts[loop[a]], pts[loop[c]] - pts[loop[a]]));
+      if (orient2d(at(a), at(i), at(c), k) != 0) {
+        const Vec3d u{approx[i].x - approx[a].x, approx[i].y - approx[a].y, approx[i].z - approx[a].z};
+        const Vec3d w{approx[c].x - approx[a].x, approx[c].y - approx[a].y, approx[c].z - approx[a].z};
+        const double m[3] = {std::fabs(u.y * w.z - u.z * w.y), std::fabs(u.z * w.x - u.x * w.z),
+                             std::fabs(u.x * w.y - u.y * w.x)};
+        const int guess = m[0] >= m[1] ? (m[0] >= m[2] ? 0 : 2) : (m[1] >= m[2] ? 1 : 2);
+        drop = guess == k || orient2d(at(a), at(i), at(c), guess) != 0
+                   ? guess
+                   : drop_axis(cross(pts[loop[i]] - pts[loop[a]], pts[loop[c]] - pts[loop[a]]));
+      }
   }
   if (drop < 0) return false;
   const int iu = (drop + 1) % 3, iv = (drop + 2) % 3;

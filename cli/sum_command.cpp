@@ -226,8 +226,8 @@ int run_sum_command(const SumCommand& c) {
   {
     ProgressTicker ticker(std::string("minksum ") + kCommand[int(c.request.operation)]);
     request.options = ticker.sum_options();
-    // A convex sum's volume is for --json only; a solid's is computed below,
-    // on its own thread while the file is written (the two take about as long).
+    // The volume is for --json only; a solid's is computed below, on its own
+    // thread while the file is written.
     request.options.volume = c.json && !solid;
     if (solid) request.options.release = [&pieces](std::shared_ptr<void> data) { pieces = std::move(data); };
     s = minkowski_sum(operands, request);
@@ -242,10 +242,13 @@ int run_sum_command(const SumCommand& c) {
   const Mesh* boundary = s.solid();
   const bool empty = boundary && boundary->faces.empty();
   if (pieces) leave_to_exit(std::move(pieces));
-  // Both only read the boundary; the volume's thread is joined before s
-  // changes (get() below, or the future's destructor when the write throws).
+  // A solid's exact volume is for --json only (the text report does not
+  // give it).  Both only read the boundary; the volume's thread is joined
+  // before s changes (get() below, or the future's destructor when the write
+  // throws).
   std::future<Rational> volume;
-  if (boundary) volume = std::async(std::launch::async, [&s] { return result_volume(s); });
+  const bool with_volume = boundary && c.json;
+  if (with_volume) volume = std::async(std::launch::async, [&s] { return result_volume(s); });
   const auto w0 = std::chrono::steady_clock::now();
   std::string rounding = "null";
   if (c.output) {
@@ -270,7 +273,7 @@ int run_sum_command(const SumCommand& c) {
     }
   }
   const double write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
-  if (boundary) s.report.volume = volume.get();
+  if (with_volume) s.report.volume = volume.get();
   std::ostream& report = c.output ? c.output->report_stream() : std::cout;
   if (c.json)
     report << sum_report_json(s.report, c.names, load, write_seconds, c.output, rounding) << "\n";

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <random>
 
 using namespace minksum;
@@ -139,6 +140,35 @@ TEST(Erosion, ConvexAIsItsFacetsMovedBySupport) {
   }
   for (Index f = 0; f < e.num_facets(); ++f) EXPECT_TRUE(moved.count(e.plane(f))) << "facet " << f;
   EXPECT_LT(e.volume(), a.volume);
+}
+
+// The erosion of a convex A is the same polytope, vertex for vertex and
+// facet for facet, whatever the heap looks like: CGAL lists the dual hull in
+// an order that follows memory addresses, and halfspace_erosion numbers it
+// by its input.  (Python's opening of a dodecahedron by a ball wrote one of
+// two triangulations of the same faces, call after call.)  Blocks of
+// various sizes are allocated between the calls, and each call is made on
+// fresh copies of the operands.
+TEST(Erosion, ConvexErosionDoesNotDependOnTheHeap) {
+  const Solid a0 = solid("dodecahedron"), b0 = solid("sphere:2@scale:1/10");
+  auto loops = [](const ConvexPolytope& p) {
+    std::vector<std::vector<Index>> out;
+    for (Index f = 0; f < p.num_facets(); ++f) out.push_back(p.facet_vertices(f));
+    return out;
+  };
+  const ConvexPolytope first = *nonconvex_detail::halfspace_erosion(*a0.convex, *b0.convex);
+  std::vector<std::unique_ptr<char[]>> noise;
+  for (int i = 0; i < 24; ++i) {
+    for (int k = 0; k <= i % 5; ++k) noise.push_back(std::make_unique<char[]>(std::size_t(48 + 40 * k * i)));
+    const Solid a = a0, b = b0;
+    const std::optional<ConvexPolytope> e = nonconvex_detail::halfspace_erosion(*a.convex, *b.convex);
+    ASSERT_TRUE(e);
+    ASSERT_EQ(e->points(), first.points()) << "call " << i;
+    ASSERT_EQ(loops(*e), loops(first)) << "call " << i;
+    const NonconvexSum o = opening(a, b);
+    ASSERT_TRUE(o.convex);
+    if (i % 3 == 0) noise.erase(noise.begin(), noise.begin() + std::ptrdiff_t(noise.size() / 2));
+  }
 }
 
 // The erosion of a convex A swept (A's convex polytope left out of the

@@ -96,23 +96,21 @@ DualHull dual_hull(const std::vector<Point3>& dual) {
                        sm.point(sm.target(sm.next(o)))))
       parent[find(Index(std::size_t(sm.face(h))))] = find(Index(std::size_t(sm.face(o))));
   }
-  std::vector<Index> facet(parent.size(), kNoIndex);  // triangle -> facet of H
-  Index facets = 0;
-  for (Index f = 0; f < parent.size(); ++f) {
-    Index& r = facet[find(f)];
-    if (r == kNoIndex) r = facets++;
-    facet[f] = r;
-  }
-  DualHull d;
-  std::vector<std::vector<Index>> corners_of(facets);
+  // The corners of H (vertices around which the triangles lie in three
+  // facets or more), each with the facets around it counter-clockwise seen
+  // from outside (the outgoing half-edge h, then the opposite of the one
+  // before it), the facets by their triangle sets' roots for now.
+  struct Corner {
+    Index point;               // the input point
+    std::vector<Index> roots;  // around it
+  };
+  std::vector<Corner> found;
   for (auto v : sm.vertices()) {
-    // The facets around v, counter-clockwise seen from outside (the outgoing
-    // half-edge h, then the opposite of the one before it), each once.
     std::vector<Index> around;
     const auto h0 = sm.opposite(sm.halfedge(v));
     auto h = h0;
     do {
-      const Index g = facet[std::size_t(sm.face(h))];
+      const Index g = find(Index(std::size_t(sm.face(h))));
       if (around.empty() || around.back() != g) around.push_back(g);
       h = sm.opposite(sm.prev(h));
     } while (h != h0);
@@ -120,13 +118,37 @@ DualHull dual_hull(const std::vector<Point3>& dual) {
     if (around.size() < 3) continue;  // not a corner
     const auto it = input.find(id(sm.point(v)));
     if (it == input.end()) throw std::logic_error("halfspace_erosion: a hull vertex that is no dual point");
-    for (Index g : around) corners_of[g].push_back(it->second);
-    d.around.push_back(std::move(around));
+    found.push_back(Corner{it->second, std::move(around)});
   }
-  d.corners.resize(facets);
-  for (Index g = 0; g < facets; ++g) {
-    if (corners_of[g].size() < 3) throw std::logic_error("halfspace_erosion: a hull facet with fewer than three corners");
-    d.corners[g] = {corners_of[g][0], corners_of[g][1], corners_of[g][2]};
+  // Numbered so that the erosion does not depend on the order in which CGAL
+  // lists the hull (which follows memory addresses): corners by input
+  // point, facets of H by their corners (ascending lists, compared
+  // lexicographically), each corner's cycle from its lowest facet.
+  std::sort(found.begin(), found.end(), [](const Corner& x, const Corner& y) { return x.point < y.point; });
+  std::unordered_map<Index, std::vector<Index>> corners_of_root;
+  for (const Corner& c : found)
+    for (Index r : c.roots) corners_of_root[r].push_back(c.point);  // ascending, as `found` is
+  std::vector<std::pair<std::vector<Index>, Index>> by_corners;  // (corners, root)
+  by_corners.reserve(corners_of_root.size());
+  for (auto& [root, corners] : corners_of_root) {
+    if (corners.size() < 3) throw std::logic_error("halfspace_erosion: a hull facet with fewer than three corners");
+    by_corners.emplace_back(std::move(corners), root);
+  }
+  std::sort(by_corners.begin(), by_corners.end());
+  std::unordered_map<Index, Index> facet_of_root;
+  DualHull d;
+  d.corners.reserve(by_corners.size());
+  for (const auto& [corners, root] : by_corners) {
+    facet_of_root.emplace(root, Index(d.corners.size()));
+    d.corners.push_back({corners[0], corners[1], corners[2]});
+  }
+  d.around.reserve(found.size());
+  for (const Corner& c : found) {
+    std::vector<Index> around;
+    around.reserve(c.roots.size());
+    for (Index r : c.roots) around.push_back(facet_of_root.at(r));
+    std::rotate(around.begin(), std::min_element(around.begin(), around.end()), around.end());
+    d.around.push_back(std::move(around));
   }
   return d;
 }

@@ -20,6 +20,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <iterator>
 #include <map>
 #include <memory>
@@ -238,6 +239,44 @@ TEST(NonconvexValidation, DoublesAndRationalsNameTheSameDefect) {
     EXPECT_NE(on_doubles.find(expected), std::string::npos) << on_doubles;
     EXPECT_EQ(without_parentheses(on_doubles), without_parentheses(on_rationals)) << on_doubles << "\n" << on_rationals;
   }
+}
+
+// Vertices of high degree: a double pyramid over a star polygon of 1 200
+// corners (each apex on 1 200 triangles; coordinates doubles) is a solid;
+// with one triangle flipped, the first inconsistent edge in the order of
+// first use is named, between the two facets that use it the same way.
+TEST(NonconvexValidation, HighDegreeVerticesAreCheckedEdgeByEdge) {
+  const Index n = 1200, top = n, bottom = n + 1;
+  Mesh m;
+  for (Index i = 0; i < n; ++i) {
+    const double r = i % 2 ? 0.5 : 1.0, a = 2 * M_PI * double(i) / double(n);
+    m.points.push_back(Point3(Rational(r * std::cos(a)), Rational(r * std::sin(a)), Rational(0)));
+  }
+  m.points.push_back(Point3(Rational(0), Rational(0), Rational(1)));
+  m.points.push_back(Point3(Rational(0), Rational(0), Rational(-1)));
+  for (Index i = 0; i < n; ++i) {
+    const Index j = (i + 1) % n;
+    m.faces.push_back({i, j, top});
+    m.faces.push_back({j, i, bottom});
+  }
+  ASSERT_TRUE(m.points.all_doubles());
+  EXPECT_EQ(problem(m), "");
+  EXPECT_EQ(validate_solid(m, "m.off").vertices, std::size_t(n + 2));
+  // Facet 10 (5 -> 6 -> top) flipped to 6 -> 5 -> top: its edge 5 -> top
+  // is facet 8's (4 -> 5 -> top) too, which uses it first.
+  Mesh flipped = m;
+  std::swap(flipped.faces[10][0], flipped.faces[10][1]);
+  const std::string p = problem(flipped);
+  EXPECT_EQ(p.rfind("m.off: edge 5-1200 from ", 0), 0u) << p;
+  EXPECT_NE(p.find(": inconsistent orientation: facet 8 and facet 10 traverse this edge in the same direction"),
+            std::string::npos)
+      << p;
+  // And a vertex of two fans: the two apexes merged into one.
+  Mesh pinched = m;
+  for (auto& f : pinched.faces)
+    for (Index& v : f)
+      if (v == bottom) v = top;
+  EXPECT_NE(problem(pinched).find("non-manifold"), std::string::npos) << problem(pinched);
 }
 
 // Collinearity on doubles is decided exactly: (0,0,0), (1 + 2^-52, 1, 0),

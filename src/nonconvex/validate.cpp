@@ -526,10 +526,11 @@ Solid checked_surface(const Mesh& mesh, const std::string& source, bool with_vol
   // says the same of the same defect): the first edge of each kind in the
   // order the triangles first use it, non-manifold edges before
   // inconsistent ones before open ones, located by vertex numbers and
-  // coordinates.  The corners leaving each vertex, in the order of the
-  // triangles, give each edge's uses; walking the triangles' edges in order,
-  // the first one of a kind met is the first of that kind in the order of
-  // first uses (an edge met earlier would have been used earlier).
+  // coordinates.  The corners leaving each vertex, sorted by the vertex
+  // they lead to and then by triangle, give each edge's uses by binary
+  // search; walking the triangles' edges in order, the first one of a kind
+  // met is the first of that kind in the order of first uses (an edge met
+  // earlier would have been used earlier).
   std::vector<Index> leaving_start(n + 1, 0);
   for (const auto& t : tris)
     for (Index v : t) ++leaving_start[v + 1];
@@ -539,25 +540,35 @@ Solid checked_surface(const Mesh& mesh, const std::string& source, bool with_vol
     std::vector<Index> fill(leaving_start.begin(), leaving_start.end() - 1);
     for (Index t = 0; t < tris.size(); ++t)
       for (int i = 0; i < 3; ++i) leaving[fill[tris[t][i]]++] = {tris[t][(i + 1) % 3], t};
+    for (std::size_t v = 0; v < n; ++v)
+      std::sort(leaving.begin() + leaving_start[v], leaving.begin() + leaving_start[v + 1]);
   }
+  // The corners leaving `from` towards `to`, ascending by triangle.
+  auto corners_towards = [&](Index from, Index to) {
+    return std::equal_range(leaving.begin() + leaving_start[from], leaving.begin() + leaving_start[from + 1],
+                            std::make_pair(to, Index(0)),
+                            [](const std::pair<Index, Index>& x, const std::pair<Index, Index>& y) {
+                              return x.first < y.first;
+                            });
+  };
   struct EdgeUse {
     Index count = 0, forward = 0, t0 = kNoIndex, t1 = kNoIndex;  // t0 < t1: its first two triangles
   };
   auto uses_of = [&](Index u, Index v) {
     EdgeUse e;
     auto add = [&](Index from, Index to, bool forward) {
-      for (Index k = leaving_start[from]; k < leaving_start[from + 1]; ++k)
-        if (leaving[k].first == to) {
-          ++e.count;
-          e.forward += forward;
-          const Index t = leaving[k].second;
-          if (e.t0 == kNoIndex || t < e.t0) {
-            e.t1 = e.t0;
-            e.t0 = t;
-          } else if (e.t1 == kNoIndex || t < e.t1) {
-            e.t1 = t;
-          }
+      const auto [first, last] = corners_towards(from, to);
+      for (auto k = first; k != last; ++k) {
+        ++e.count;
+        e.forward += forward;
+        const Index t = k->second;
+        if (e.t0 == kNoIndex || t < e.t0) {
+          e.t1 = e.t0;
+          e.t0 = t;
+        } else if (e.t1 == kNoIndex || t < e.t1) {
+          e.t1 = t;
         }
+      }
     };
     add(u, v, true);
     add(v, u, false);
@@ -595,13 +606,11 @@ Solid checked_surface(const Mesh& mesh, const std::string& source, bool with_vol
     if (b == e) continue;
     ++used;
     auto link = [&](Index w) {  // the prev of the corner whose next is w
-      for (Index k = b; k < e; ++k)
-        if (leaving[k].first == w) {
-          const auto& t = tris[leaving[k].second];
-          for (Index u : t)
-            if (u != v && u != w) return u;
-        }
-      throw std::logic_error("checked_surface: a vertex's edges are not matched");
+      const auto [first, last] = corners_towards(v, w);
+      if (first == last) throw std::logic_error("checked_surface: a vertex's edges are not matched");
+      for (Index u : tris[first->second])
+        if (u != v && u != w) return u;
+      throw std::logic_error("checked_surface: a triangle with a repeated vertex");
     };
     const Index start = leaving[b].first;
     Index w = start;

@@ -475,13 +475,14 @@ int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const 
   return exact_sign(dot(Point3(n.x, n.y, n.z), mq.apply(q) - mp.apply(p)));
 }
 
-bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 4>& p,
-                                     const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
-                                     const std::array<const PointBounds*, 4>& qb) {
-  // The five signed volumes, orient3d(d0, d1, d2, d3) = det(d1 − d0, d2 − d0,
-  // d3 − d0) and the same with d_k the origin, evaluated on intervals first;
-  // the exact stage evaluates only those the intervals left open.
-  std::array<int, 5> sig;
+namespace {
+// The interval stage of placed_tetrahedron_holds_origin: the five signed
+// volumes, orient3d(d0, d1, d2, d3) = det(d1 − d0, d2 − d0, d3 − d0) and the
+// same with d_k the origin, on intervals; sig[k] kUncertain for those left
+// open.  1 or 0 when they decide, kTetrahedronOpen otherwise.
+int tetrahedron_intervals(const PlacedMap& mp, const PlacedMap& mq, const std::array<const PointBounds*, 4>& pb,
+                          const std::array<const PointBounds*, 4>& qb, std::array<int, 5>& sig) {
+  sig.fill(kUncertain);
   {
     CGAL::Protect_FPU_rounding<true> upward;
     std::array<FastIPoint, 4> d;
@@ -504,6 +505,13 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
       return !outside;
     }
   }
+  return kTetrahedronOpen;
+}
+
+// The exact stage, for the volumes sig leaves open.
+bool tetrahedron_exact(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 4>& p,
+                       const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
+                       const std::array<const PointBounds*, 4>& qb, const std::array<int, 5>& sig) {
   ++g_counts.exact;
   // The points K d_k = Z_p(p_k) − Z_q(q_k) of one PlacedFrame (integers when
   // the matrices and the points are doubles): the volumes are homogeneous of
@@ -529,6 +537,22 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
   for (int k = 1; k < 5; ++k)
     if (volume(k) != total) return false;
   return true;
+}
+}  // namespace
+
+int placed_tetrahedron_filter(const PlacedMap& mp, const PlacedMap& mq, const std::array<const PointBounds*, 4>& pb,
+                              const std::array<const PointBounds*, 4>& qb) {
+  std::array<int, 5> sig;
+  return tetrahedron_intervals(mp, mq, pb, qb, sig);
+}
+
+bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 4>& p,
+                                     const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
+                                     const std::array<const PointBounds*, 4>& qb) {
+  std::array<int, 5> sig;
+  const int f = tetrahedron_intervals(mp, mq, pb, qb, sig);
+  if (f != kTetrahedronOpen) return f == 1;
+  return tetrahedron_exact(mp, mq, p, pb, q, qb, sig);
 }
 
 struct PlacedSimplexPoint::Exact {

@@ -238,6 +238,12 @@ struct Query {
     }
     return placed_tetrahedron_holds_origin(P.map, Q.map, p, pb, q, qb);
   }
+  // The interval stage only: 1, 0 or kTetrahedronOpen.
+  int filter_tetrahedron(const std::array<SimplexVertex, 4>& s) const {
+    std::array<const PointBounds*, 4> pb, qb;
+    for (int k = 0; k < 4; ++k) pb[k] = &dp.bounds[s[k].p], qb[k] = &dq.bounds[s[k].q];
+    return placed_tetrahedron_filter(P.map, Q.map, pb, qb);
+  }
   SimplexVertex support(const V3& dir, Index ip, Index iq) const {
     // The support of D = P' − Q' along dir: P's along dir minus Q's along −dir.
     const Index a = P.support(dir, ip), b = Q.support(-dir, iq);
@@ -280,15 +286,21 @@ void count(RigidCertificate c) {
 // along the triangle's two normals; the three tetrahedra (a+, a−, two
 // vertices of the triangle) cover the double pyramid, and one of them
 // holds an origin that lies inside it strictly.  True when one is
-// certified (s then holds it).
-bool blow_up_triangle(const Query& qu, std::array<SimplexVertex, 4>& s) {
+// certified (s then holds it).  With `deferred`, a tetrahedron whose
+// intervals leave the answer open (the origin within rounding of its
+// boundary) is not evaluated exactly but appended there, for the caller to
+// evaluate after cheaper certificates.
+using Tetrahedra = std::vector<std::array<SimplexVertex, 4>>;
+bool blow_up_triangle(const Query& qu, std::array<SimplexVertex, 4>& s, Tetrahedra* deferred = nullptr) {
   const V3 nrm = cross(s[1].w - s[0].w, s[2].w - s[0].w);
   if (!(dot(nrm, nrm) > 0) || !std::isfinite(dot(nrm, nrm))) return false;
   const SimplexVertex up = qu.support(nrm, s[0].p, s[0].q), down = qu.support(-nrm, s[0].p, s[0].q);
   static constexpr int pairs[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   for (const auto& e : pairs) {
     const std::array<SimplexVertex, 4> t{up, down, s[e[0]], s[e[1]]};
-    if (qu.certify_tetrahedron(t)) {
+    const int f = deferred ? qu.filter_tetrahedron(t) : int(qu.certify_tetrahedron(t));
+    if (f == kTetrahedronOpen) deferred->push_back(t);
+    if (f == 1) {
       s = t;
       return true;
     }
@@ -777,6 +789,7 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
     return Vec3d{nt.x, nt.y, nt.z};
   };
   bool tried_triangle = false;
+  Tetrahedra deferred;  // tetrahedra the intervals left open
   for (int it = 0; it < kMaxIterations && !decided; ++it) {
     ++g_stats.iterations;
     const double vv = dot(v, v);
@@ -802,17 +815,20 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
     s[n++] = w;
     tried_triangle = false;
     if (!closest_on_simplex(s, n, v)) {
-      if (qu.certify_tetrahedron(s)) {
+      const int f = qu.filter_tetrahedron(s);
+      if (f == 1) {
         r.status = ContactStatus::penetrating;
         r.certificate = RigidCertificate::simplex;
         r.p = w.p, r.q = w.q;
         decided = true;
+      } else if (f == kTetrahedronOpen) {
+        deferred.push_back(s);
       }
       break;
     }
   }
   if (!decided && n == 3 && !tried_triangle) decided = try_plane(triangle_normal(), s[0].p, s[0].q);
-  if (!decided && n == 3 && blow_up_triangle(qu, s)) {
+  if (!decided && n == 3 && blow_up_triangle(qu, s, &deferred)) {
     r.status = ContactStatus::penetrating;
     r.certificate = RigidCertificate::simplex;
     r.p = s[0].p, r.q = s[0].q;
@@ -825,6 +841,18 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
       r.certificate = RigidCertificate::feature_plane;
       r.normal = to_double(c->normal);
       r.p = c->p, r.q = c->q;
+      decided = true;
+    }
+  }
+  // The tetrahedra whose intervals left them open, exactly: after the
+  // feature plane, which decides the touching poses where none of them can
+  // hold the origin strictly.
+  for (const auto& t : deferred) {
+    if (decided) break;
+    if (qu.certify_tetrahedron(t)) {
+      r.status = ContactStatus::penetrating;
+      r.certificate = RigidCertificate::simplex;
+      r.p = t[0].p, r.q = t[0].q;
       decided = true;
     }
   }

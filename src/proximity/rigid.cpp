@@ -373,64 +373,107 @@ class FeaturePlane {
     for (int k = 0; k < n; ++k) add(sp, s[k].p), add(sq, s[k].q);
     add(sp, ip), add(sq, iq);
     const V3 cp = centre(qu_.P), cq = centre(qu_.Q);
-    // Orient N so that `inside` (a centre, doubles: only a choice, the
-    // climbs decide) lies on the side of sign `side` of the plane through a.
-    const auto oriented = [](Point3 nrm, const V3& a, const V3& inside, double side) {
-      const Vec3d d = scaled_direction(nrm);
-      if (side * (d.x * (inside.x - a.x) + d.y * (inside.y - a.y) + d.z * (inside.z - a.z)) < 0) nrm = -nrm;
-      return nrm;
-    };
-    // Each candidate is tried as soon as it is made (in this order); the
-    // first plane that decides answers.
-    std::optional<FeatureContact> c;
-    const auto attempt = [&](const Point3& nrm) {
-      c = try_plane(nrm, sp[0], sq[0]);
-      if (c) c = placed(*c);
-      return c.has_value();
-    };
-    // A facet of P' through three of its points in the simplex (P' below),
-    // a facet of Q' (Q' above), the edges of each.
-    if (sp.size() >= 3) {
-      const Point3 nrm = cross(pp(sp[1]) - pp(sp[0]), pp(sp[2]) - pp(sp[0]));
-      if (!is_zero(nrm) && attempt(oriented(nrm, qu_.P.point(sp[0]), cp, -1))) return c;
-    }
-    if (sq.size() >= 3) {
-      const Point3 nrm = cross(pq(sq[1]) - pq(sq[0]), pq(sq[2]) - pq(sq[0]));
-      if (!is_zero(nrm) && attempt(oriented(nrm, qu_.Q.point(sq[0]), cq, 1))) return c;
-    }
+    // The candidate planes: a facet of P' through three of its points in
+    // the simplex (P' below), a facet of Q' (Q' above), the edges of each;
+    // then, for a smaller simplex (the search stopped on an edge or a vertex
+    // of D), the facets around its vertices and the edges at its first
+    // pair.  Neighbours run counter-clockwise seen from outside, so two
+    // consecutive ones and the vertex span a facet, the cross product of
+    // their edges outward (a placement keeps orientation).
+    std::vector<Candidate> cands;
+    if (sp.size() >= 3) cands.push_back({Candidate::p_facet, sp[0], sp[1], sp[2], 0, true, 0});
+    if (sq.size() >= 3) cands.push_back({Candidate::q_facet, sq[0], sq[1], sq[2], 0, true, 0});
     for (std::size_t i = 0; i < sp.size(); ++i)
       for (std::size_t j = i + 1; j < sp.size(); ++j)
         for (std::size_t k = 0; k < sq.size(); ++k)
-          for (std::size_t l = k + 1; l < sq.size(); ++l) {
-            const Point3 nrm = cross(pp(sp[j]) - pp(sp[i]), pq(sq[l]) - pq(sq[k]));
-            if (!is_zero(nrm) && attempt(oriented(nrm, cp, cq, 1))) return c;
-          }
-    // A smaller simplex (the search stopped on an edge or a vertex of D):
-    // the facets around its vertices, then the edges at its first pair.
-    // Neighbours run counter-clockwise seen from outside, so two
-    // consecutive ones and the vertex span a facet, the cross product of
-    // their edges outward (a placement keeps orientation).
+          for (std::size_t l = k + 1; l < sq.size(); ++l)
+            cands.push_back({Candidate::edges, sp[i], sp[j], sq[k], sq[l], true, 0});
     for (Index v : sp)
-      for (Index k = qu_.dp.first[v], e = qu_.dp.first[v + 1]; k < e; ++k) {
-        const Index w = qu_.dp.nbr[k], x = qu_.dp.nbr[k + 1 < e ? k + 1 : qu_.dp.first[v]];
-        const Point3 nrm = cross(pp(w) - pp(v), pp(x) - pp(v));
-        if (!is_zero(nrm) && attempt(nrm)) return c;
-      }
+      for (Index k = qu_.dp.first[v], e = qu_.dp.first[v + 1]; k < e; ++k)
+        cands.push_back({Candidate::p_facet, v, qu_.dp.nbr[k], qu_.dp.nbr[k + 1 < e ? k + 1 : qu_.dp.first[v]], 0,
+                         false, 0});
     for (Index v : sq)
-      for (Index k = qu_.dq.first[v], e = qu_.dq.first[v + 1]; k < e; ++k) {
-        const Index w = qu_.dq.nbr[k], x = qu_.dq.nbr[k + 1 < e ? k + 1 : qu_.dq.first[v]];
-        const Point3 nrm = cross(pq(x) - pq(v), pq(w) - pq(v));  // Q's inward normal
-        if (!is_zero(nrm) && attempt(nrm)) return c;
-      }
+      for (Index k = qu_.dq.first[v], e = qu_.dq.first[v + 1]; k < e; ++k)  // Q's inward normal
+        cands.push_back({Candidate::q_facet, v, qu_.dq.nbr[k + 1 < e ? k + 1 : qu_.dq.first[v]], qu_.dq.nbr[k], 0,
+                         false, 0});
     for (Index k = qu_.dp.first[sp[0]]; k < qu_.dp.first[sp[0] + 1]; ++k)
-      for (Index l = qu_.dq.first[sq[0]]; l < qu_.dq.first[sq[0] + 1]; ++l) {
-        const Point3 nrm = cross(pp(qu_.dp.nbr[k]) - pp(sp[0]), pq(qu_.dq.nbr[l]) - pq(sq[0]));
-        if (!is_zero(nrm) && attempt(oriented(nrm, cp, cq, 1))) return c;
+      for (Index l = qu_.dq.first[sq[0]]; l < qu_.dq.first[sq[0] + 1]; ++l)
+        cands.push_back({Candidate::edges, sp[0], qu_.dp.nbr[k], sq[0], qu_.dq.nbr[l], true, 0});
+    // Their order, a choice in doubles (the exact climbs decide whatever
+    // the order): the plane of the contact has h_P = l_Q, a plane that
+    // proves nothing h_P > l_Q.  So each candidate's normal, oriented as
+    // the exact one will be, and the gap l_Q − h_P along it over the double
+    // supports (climbed from the simplex's first pair) rank them, largest
+    // first; the exact climbs start from those supports.
+    for (Candidate& c : cands) {
+      V3 nd = normal_double(c);
+      if (c.orient) {
+        // Orient N so that P's centre (a facet of P), Q's centre (a facet
+        // of Q), or Q's centre minus P's (edges) lies on its side.
+        const V3 a = c.kind == Candidate::q_facet ? qu_.Q.point(c.a) : qu_.P.point(c.a);
+        const double side = c.kind == Candidate::p_facet   ? -dot(nd, cp - a)
+                            : c.kind == Candidate::q_facet ? dot(nd, cq - a)
+                                                           : dot(nd, cq - cp);
+        c.flip = side < 0;
+        if (c.flip) nd = -nd;
       }
+      const double l = std::sqrt(dot(nd, nd));
+      if (!(l > 0) || !std::isfinite(l)) {
+        c.gap = -std::numeric_limits<double>::infinity();
+        c.from_p = sp[0], c.from_q = sq[0];
+        continue;
+      }
+      nd = (1 / l) * nd;
+      c.from_p = qu_.P.support(nd, sp[0]), c.from_q = qu_.Q.support(-nd, sq[0]);
+      c.gap = dot(nd, qu_.Q.point(c.from_q) - qu_.P.point(c.from_p));
+      if (!std::isfinite(c.gap)) c.gap = -std::numeric_limits<double>::infinity();
+    }
+    std::stable_sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) { return a.gap > b.gap; });
+    // Each is tried in that order; the first plane that decides answers.
+    for (const Candidate& c : cands) {
+      Point3 nrm = normal_exact(c);
+      if (is_zero(nrm)) continue;
+      if (c.flip) nrm = -nrm;
+      if (auto r = try_plane(nrm, c.from_p, c.from_q)) return placed(*r);
+    }
     return std::nullopt;
   }
 
  private:
+  // A candidate plane: the facet of P' through the points a, b, c
+  // (normal (b − a) × (c − a)), of Q' likewise, or the edges ab of P' and
+  // cd of Q' (normal (b − a) × (d − c)); `orient`: the normal is turned by
+  // the centres (else it is outward from P', inward into Q', as the
+  // vertex graph's order gives it), `flip` the turn chosen.
+  struct Candidate {
+    enum Kind { p_facet, q_facet, edges } kind;
+    Index a, b, c, d;
+    bool orient;
+    double gap;
+    bool flip = false;
+    Index from_p = 0, from_q = 0;  // the double supports along it
+  };
+  V3 normal_double(const Candidate& c) const {
+    switch (c.kind) {
+      case Candidate::p_facet:
+        return cross(qu_.P.point(c.b) - qu_.P.point(c.a), qu_.P.point(c.c) - qu_.P.point(c.a));
+      case Candidate::q_facet:
+        return cross(qu_.Q.point(c.b) - qu_.Q.point(c.a), qu_.Q.point(c.c) - qu_.Q.point(c.a));
+      default:
+        return cross(qu_.P.point(c.b) - qu_.P.point(c.a), qu_.Q.point(c.d) - qu_.Q.point(c.c));
+    }
+  }
+  Point3 normal_exact(const Candidate& c) {
+    switch (c.kind) {
+      case Candidate::p_facet:
+        return cross(pp(c.b) - pp(c.a), pp(c.c) - pp(c.a));
+      case Candidate::q_facet:
+        return cross(pq(c.b) - pq(c.a), pq(c.c) - pq(c.a));
+      default:
+        return cross(pp(c.b) - pp(c.a), pq(c.d) - pq(c.c));
+    }
+  }
+
   const Query& qu_;
   // The placed points in one frame: K (x' − t_P) for a positive K, integers
   // when the maps and the vertices are doubles (PlacedFrame).  Every test

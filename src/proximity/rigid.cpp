@@ -360,6 +360,33 @@ Vec3d scaled_direction(const Point3& n) {
   return {at(0), at(1), at(2)};
 }
 
+// The frame's points are integer vectors when the maps and the vertices are
+// doubles (PlacedFrame): their signs below are then evaluated on the
+// numerators alone, in GMP integers (no gcd, no temporaries), and in
+// rationals otherwise.  The same polynomials, so the same signs.
+bool integral(const Point3& p) {
+  return mpz_cmp_ui(p.x.get_den_mpz_t(), 1) == 0 && mpz_cmp_ui(p.y.get_den_mpz_t(), 1) == 0 &&
+         mpz_cmp_ui(p.z.get_den_mpz_t(), 1) == 0;
+}
+struct IntegerScratch {
+  mpz_class t, u, acc;
+};
+IntegerScratch& scratch() {
+  thread_local IntegerScratch s;
+  return s;
+}
+// sign n · (b − a).
+int dot_difference_sign(const Point3& n, const Point3& a, const Point3& b) {
+  if (!integral(n) || !integral(a) || !integral(b)) return sgn(dot(n, b - a));
+  IntegerScratch& z = scratch();
+  mpz_set_ui(z.acc.get_mpz_t(), 0);
+  for (int r = 0; r < 3; ++r) {
+    mpz_sub(z.t.get_mpz_t(), b[r].get_num_mpz_t(), a[r].get_num_mpz_t());
+    mpz_addmul(z.acc.get_mpz_t(), n[r].get_num_mpz_t(), z.t.get_mpz_t());
+  }
+  return mpz_sgn(z.acc.get_mpz_t());
+}
+
 class FeaturePlane {
  public:
   explicit FeaturePlane(const Query& qu)
@@ -501,7 +528,7 @@ class FeaturePlane {
                        Index w) {
     const int s = f.difference_sign(d.bounds[u], d.bounds[w]);
     if (s != PulledNormalFilter::kOpen) return s;
-    return sgn(dot(nrm, pt(w) - pt(u)));
+    return dot_difference_sign(nrm, pt(u), pt(w));
   }
   // A vertex maximising sign·N·x over a placed body (exact: a vertex no
   // neighbour of which is further is a maximum), from v; its value.
@@ -563,7 +590,18 @@ class FeaturePlane {
       if (s < 0) v = -v;
       return v;
     }
-    int orient(const Point3& a, const Point3& b, const Point3& c) const { return sgn(value(a, b, c)); }
+    int orient(const Point3& a, const Point3& b, const Point3& c) const {
+      if (!integral(a) || !integral(b) || !integral(c)) return sgn(value(a, b, c));
+      const int i = (r + 1) % 3, j = (r + 2) % 3;
+      IntegerScratch& z = scratch();
+      mpz_sub(z.t.get_mpz_t(), b[i].get_num_mpz_t(), a[i].get_num_mpz_t());
+      mpz_sub(z.u.get_mpz_t(), c[j].get_num_mpz_t(), a[j].get_num_mpz_t());
+      mpz_mul(z.acc.get_mpz_t(), z.t.get_mpz_t(), z.u.get_mpz_t());
+      mpz_sub(z.t.get_mpz_t(), b[j].get_num_mpz_t(), a[j].get_num_mpz_t());
+      mpz_sub(z.u.get_mpz_t(), c[i].get_num_mpz_t(), a[i].get_num_mpz_t());
+      mpz_submul(z.acc.get_mpz_t(), z.t.get_mpz_t(), z.u.get_mpz_t());
+      return s * mpz_sgn(z.acc.get_mpz_t());
+    }
   };
   // Whether y (in the plane) lies in the convex face of points `f` with
   // edges `e`: equal to its point, on its segment, or on the inner side of

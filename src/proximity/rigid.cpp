@@ -339,7 +339,7 @@ struct FeatureContact {
   ContactStatus status = ContactStatus::separate;
   Point3 normal;  // N
   Index p = kNoIndex, q = kNoIndex;  // the climbs' vertices
-  Point3 common;  // touching: a point of P' ∩ Q'
+  Point3 common;  // touching: a point of P' ∩ Q' (placed only when decide() is asked for it)
 };
 
 // Doubles along the direction of a rational vector, whatever its size (the
@@ -392,7 +392,11 @@ class FeaturePlane {
   explicit FeaturePlane(const Query& qu)
       : qu_(qu), frame_(qu.P.map, qu.dp.doubles, qu.dp.exponent, qu.Q.map, qu.dq.doubles, qu.dq.exponent) {}
 
-  std::optional<FeatureContact> decide(const std::array<SimplexVertex, 4>& s, int n, Index ip, Index iq) {
+  // `common`: the touching answer's common point is wanted (distance);
+  // collide asks for the status and the normal only.
+  std::optional<FeatureContact> decide(const std::array<SimplexVertex, 4>& s, int n, Index ip, Index iq,
+                                       bool common = true) {
+    want_common_ = common;
     std::vector<Index> sp, sq;
     const auto add = [](std::vector<Index>& v, Index i) {
       if (std::find(v.begin(), v.end(), i) == v.end()) v.push_back(i);
@@ -636,9 +640,10 @@ class FeaturePlane {
   // frame points, K² times that of the placed points) over K².
   FeatureContact placed(FeatureContact c) const {
     if (frame_.factor() != 1) c.normal = Rational(1) / (frame_.factor() * frame_.factor()) * c.normal;
-    if (c.status == ContactStatus::touching) c.common = frame_.placed(c.common);
+    if (c.status == ContactStatus::touching && want_common_) c.common = frame_.placed(c.common);
     return c;
   }
+  bool want_common_ = true;
 
   std::optional<FeatureContact> try_plane(const Point3& nrm, Index from_p, Index from_q) {
     FeatureContact c;
@@ -917,7 +922,7 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
   }
   if (!decided) {
     FeaturePlane plane(qu);
-    if (const auto c = plane.decide(s, n, ip, iq)) {
+    if (const auto c = plane.decide(s, n, ip, iq, false)) {
       r.status = c->status;
       r.certificate = RigidCertificate::feature_plane;
       r.normal = to_double(c->normal);

@@ -535,10 +535,9 @@ class FeaturePlane {
     return dot_difference_sign(nrm, pt(u), pt(w));
   }
   // A vertex maximising sign·N·x over a placed body (exact: a vertex no
-  // neighbour of which is further is a maximum), from v; its value.
+  // neighbour of which is further is a maximum), from v.
   template <class Pt>
-  Index climb(const RigidBody::Data& d, Pt pt, const PulledNormalFilter& f, const Point3& nrm, int sign, Index v,
-              Rational& best) {
+  Index climb(const RigidBody::Data& d, Pt pt, const PulledNormalFilter& f, const Point3& nrm, int sign, Index v) {
     for (;;) {
       Index next = v;
       for (Index k = d.first[v]; k < d.first[v + 1]; ++k)
@@ -550,8 +549,6 @@ class FeaturePlane {
       v = next;
       ++g_stats.climb_steps;
     }
-    best = dot(nrm, pt(v));
-    if (sign < 0) best = -best;
     return v;
   }
   // The face of a placed body in the plane N·x = h through v: its vertices
@@ -647,17 +644,17 @@ class FeaturePlane {
 
   std::optional<FeatureContact> try_plane(const Point3& nrm, Index from_p, Index from_q) {
     FeatureContact c;
-    Rational hp, lq;
     const PulledNormalFilter filter_p(qu_.P.map, nrm), filter_q(qu_.Q.map, nrm);
-    c.p = climb(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, filter_p, nrm, 1, from_p, hp);
-    c.q = climb(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, filter_q, nrm, -1, from_q, lq);
-    lq = -lq;
+    c.p = climb(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, filter_p, nrm, 1, from_p);
+    c.q = climb(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, filter_q, nrm, -1, from_q);
     c.normal = nrm;
-    if (hp < lq) {
+    // sign (l_Q − h_P) = sign N · (x_q − x_p).
+    const int gap = dot_difference_sign(nrm, pp(c.p), pq(c.q));
+    if (gap > 0) {
       c.status = ContactStatus::separate;
       return c;
     }
-    if (hp > lq) return std::nullopt;
+    if (gap < 0) return std::nullopt;
     // h_P = l_Q: the faces in the plane.
     std::vector<Index> vp, vq;
     std::vector<std::pair<Index, Index>> ep, eq;
@@ -689,9 +686,11 @@ class FeaturePlane {
     for (const auto& [i, j] : lp)
       for (const auto& [k, l] : lq2) {
         const Point3 &a = fp[i], &b = fp[j], &e = fq[k], &f = fq[l];
-        const Rational sa = pl.value(e, f, a), sb = pl.value(e, f, b);
-        if (pl.orient(a, b, e) * pl.orient(a, b, f) < 0 && sgn(sa) * sgn(sb) < 0) {
-          c.common = a + Rational(sa / (sa - sb)) * (b - a);
+        if (pl.orient(a, b, e) * pl.orient(a, b, f) < 0 && pl.orient(e, f, a) * pl.orient(e, f, b) < 0) {
+          if (want_common_) {  // the crossing point (a rational of the frame), only when asked
+            const Rational sa = pl.value(e, f, a), sb = pl.value(e, f, b);
+            c.common = a + Rational(sa / (sa - sb)) * (b - a);
+          }
           return c;
         }
       }

@@ -172,6 +172,8 @@ TEST(PlacedPredicates, AgreeWithRationalsInAllRoundingModes) {
       const PulledDirection u(mm, n);
       EXPECT_EQ(u.difference_sign(a, point_bounds(a), b2, point_bounds(b2)), want_diff) << "mode " << mode;
       EXPECT_EQ(placed_gap_sign(n, m, a, point_bounds(a), m2, b2, point_bounds(b2)), want_gap) << "mode " << mode;
+      const int gf = placed_gap_filter(n, m, point_bounds(a), m2, point_bounds(b2));
+      EXPECT_TRUE(gf == kGapOpen || gf == want_gap) << "mode " << mode;  // its filters alone: open or right
       std::array<PointBounds, 4> pb, qb;
       std::array<const Point3*, 4> pp, qp;
       std::array<const PointBounds*, 4> pbp, qbp;

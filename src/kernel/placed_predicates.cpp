@@ -437,6 +437,13 @@ int PulledNormalFilter::difference_sign(const PointBounds& a, const PointBounds&
 
 int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const PointBounds& pb, const PlacedMap& mq,
                     const Point3& q, const PointBounds& qb) {
+  const int f = placed_gap_filter(n, mp, pb, mq, qb);
+  if (f != kGapOpen) return f;
+  return exact_sign(dot(Point3(n.x, n.y, n.z), mq.apply(q) - mp.apply(p)));
+}
+
+int placed_gap_filter(const Vec3d& n, const PlacedMap& mp, const PointBounds& pb, const PlacedMap& mq,
+                      const PointBounds& qb) {
   if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
     throw UsageError("a direction must have finite coordinates");
   if (mp.filter_ready() && mq.filter_ready() && in_range(n.x) && in_range(n.y) && in_range(n.z) && pb.doubles &&
@@ -472,7 +479,7 @@ int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const 
       return s;
     }
   }
-  return exact_sign(dot(Point3(n.x, n.y, n.z), mq.apply(q) - mp.apply(p)));
+  return kGapOpen;
 }
 
 namespace {

@@ -223,10 +223,20 @@ struct Query {
   const RigidBody::Data& dp;
   const RigidBody::Data& dq;
 
-  // Certify "separate" along n from the supports' guesses ip, iq.
-  bool certify_separation(const Vec3d& n, Index& ip, Index& iq) const {
+  // Certify "separate" along n from the supports' guesses ip, iq.  With
+  // `open`, a gap the filters leave open is not evaluated exactly: *open is
+  // set and the caller may evaluate it later (exact_gap).
+  bool certify_separation(const Vec3d& n, Index& ip, Index& iq, bool* open = nullptr) const {
     ip = P.certified_support(n, ip);
     iq = Q.certified_support(Vec3d{-n.x, -n.y, -n.z}, iq);
+    if (open) {
+      const int f = placed_gap_filter(n, P.map, dp.bounds[ip], Q.map, dq.bounds[iq]);
+      *open = f == kGapOpen;
+      return f == 1;
+    }
+    return exact_gap(n, ip, iq);
+  }
+  bool exact_gap(const Vec3d& n, Index ip, Index iq) const {
     return placed_gap_sign(n, P.map, dp.exact[ip], dp.bounds[ip], Q.map, dq.exact[iq], dq.bounds[iq]) > 0;
   }
   bool certify_tetrahedron(const std::array<SimplexVertex, 4>& s) const {
@@ -851,17 +861,31 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
   double last = std::numeric_limits<double>::infinity();
   // A separating plane of normal nrm (doubles, taken exactly), from the
   // support guesses cp, cq: certified or not.
-  const auto try_plane = [&](const Vec3d& nrm, Index cp, Index cq) {
-    // A normal that is zero, or not finite (the search's doubles overflow or
-    // underflow on bodies of extreme size), proves nothing.
-    const double l1 = std::fabs(nrm.x) + std::fabs(nrm.y) + std::fabs(nrm.z);
-    if (!(l1 > 0) || !std::isfinite(l1)) return false;
-    if (!qu.certify_separation(nrm, cp, cq)) return false;
+  // Planes whose gap the filters left open (within rounding of touching):
+  // evaluated exactly after the feature plane, which decides touching poses.
+  struct OpenGap {
+    Vec3d n;
+    Index p, q;
+  };
+  std::vector<OpenGap> open_gaps;
+  const auto separate = [&](const Vec3d& nrm, Index cp, Index cq) {
     r.status = ContactStatus::separate;
     r.certificate = RigidCertificate::separating_plane;
     r.normal = nrm;
     r.p = cp, r.q = cq;
     return true;
+  };
+  const auto try_plane = [&](const Vec3d& nrm, Index cp, Index cq) {
+    // A normal that is zero, or not finite (the search's doubles overflow or
+    // underflow on bodies of extreme size), proves nothing.
+    const double l1 = std::fabs(nrm.x) + std::fabs(nrm.y) + std::fabs(nrm.z);
+    if (!(l1 > 0) || !std::isfinite(l1)) return false;
+    bool open = false;
+    if (!qu.certify_separation(nrm, cp, cq, &open)) {
+      if (open) open_gaps.push_back({nrm, cp, cq});
+      return false;
+    }
+    return separate(nrm, cp, cq);
   };
   // The normal of the simplex's triangle, turned towards the origin.  Near
   // contact the closest point v is tiny and its direction is only as good
@@ -929,9 +953,13 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
       decided = true;
     }
   }
-  // The tetrahedra whose intervals left them open, exactly: after the
-  // feature plane, which decides the touching poses where none of them can
-  // hold the origin strictly.
+  // The planes and the tetrahedra whose filters left them open, exactly:
+  // after the feature plane, which decides the touching poses where no
+  // plane separates strictly and no tetrahedron holds the origin strictly.
+  for (const OpenGap& g : open_gaps) {
+    if (decided) break;
+    if (qu.exact_gap(g.n, g.p, g.q)) decided = separate(g.n, g.p, g.q);
+  }
   for (const auto& t : deferred) {
     if (decided) break;
     if (qu.certify_tetrahedron(t)) {

@@ -1033,24 +1033,30 @@ PlacedFrame::PlacedFrame(const PlacedMap& mp, bool p_doubles, int p_exponent, co
 }
 
 // D 2^−E A x for the map `which` (integers mode): each product m_a m_x
-// 2^(e_a + e_x) shifted by e_a + e_x − E ≥ 0 (the caller's bound).
+// 2^(e_a + e_x) shifted by e_a + e_x − E ≥ 0 (the caller's bound), summed
+// in GMP integers in place (no temporaries), plus K (t_q − t_p) for Q.
 Point3 PlacedFrame::linear(int which, const PointBounds& xb) const {
   const double c[3] = {xb.x.lo, xb.y.lo, xb.z.lo};
   Dyadic v[3];
   for (int k = 0; k < 3; ++k) v[k] = dyadic(c[k]);
   Point3 r;
-  Integer sum, term;
+  mpz_t term;
+  mpz_init(term);
   for (int i = 0; i < 3; ++i) {
-    sum = 0;
+    mpz_ptr sum = mpq_numref(r[i].get_mpq_t());  // the denominator stays 1
+    mpz_set_ui(sum, 0);
     for (int k = 0; k < 3; ++k) {
       const std::int64_t m = am_[which][3 * i + k];
       if (m == 0 || v[k].m == 0) continue;
-      term = Integer(static_cast<long>(m)) * Integer(static_cast<long>(v[k].m));
-      sum += term << static_cast<unsigned long>(ae_[which][3 * i + k] + v[k].e - e_);
+      mpz_set_si(term, static_cast<long>(m));
+      mpz_mul_si(term, term, static_cast<long>(v[k].m));
+      mpz_mul_2exp(term, term, static_cast<mp_bitcnt_t>(ae_[which][3 * i + k] + v[k].e - e_));
+      mpz_add(sum, sum, term);
     }
-    if (d_ != 1) sum *= d_;
-    r[i] = Rational(sum);
+    if (d_ != 1) mpz_mul(sum, sum, d_.get_mpz_t());
+    if (which == 1) mpz_add(sum, sum, mpq_numref(tq_[i].get_mpq_t()));  // an integer in this mode
   }
+  mpz_clear(term);
   return r;
 }
 
@@ -1061,7 +1067,7 @@ Point3 PlacedFrame::p(const Point3& x, const PointBounds& xb) const {
 
 Point3 PlacedFrame::q(const Point3& y, const PointBounds& yb) const {
   if (!integers_) return mq_->apply_linear(y) + tq_;
-  return linear(1, yb) + tq_;
+  return linear(1, yb);
 }
 
 Point3 PlacedFrame::placed(const Point3& z) const {

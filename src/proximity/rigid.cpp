@@ -397,6 +397,24 @@ int dot_difference_sign(const Point3& n, const Point3& a, const Point3& b) {
   return mpz_sgn(z.acc.get_mpz_t());
 }
 
+// (b − a) × (d − c), on the numerators when all four are integer vectors.
+Point3 cross_of_differences(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  if (!integral(a) || !integral(b) || !integral(c) || !integral(d)) return cross(b - a, d - c);
+  mpz_class u[3], w[3];
+  for (int r = 0; r < 3; ++r) {
+    mpz_sub(u[r].get_mpz_t(), b[r].get_num_mpz_t(), a[r].get_num_mpz_t());
+    mpz_sub(w[r].get_mpz_t(), d[r].get_num_mpz_t(), c[r].get_num_mpz_t());
+  }
+  Point3 n;  // denominators 1
+  for (int r = 0; r < 3; ++r) {
+    const int i = (r + 1) % 3, j = (r + 2) % 3;
+    mpz_ptr x = mpq_numref(n[r].get_mpq_t());
+    mpz_mul(x, u[i].get_mpz_t(), w[j].get_mpz_t());
+    mpz_submul(x, u[j].get_mpz_t(), w[i].get_mpz_t());
+  }
+  return n;
+}
+
 class FeaturePlane {
  public:
   explicit FeaturePlane(const Query& qu)
@@ -507,11 +525,11 @@ class FeaturePlane {
   Point3 normal_exact(const Candidate& c) {
     switch (c.kind) {
       case Candidate::p_facet:
-        return cross(pp(c.b) - pp(c.a), pp(c.c) - pp(c.a));
+        return cross_of_differences(pp(c.a), pp(c.b), pp(c.a), pp(c.c));
       case Candidate::q_facet:
-        return cross(pq(c.b) - pq(c.a), pq(c.c) - pq(c.a));
+        return cross_of_differences(pq(c.a), pq(c.b), pq(c.a), pq(c.c));
       default:
-        return cross(pp(c.b) - pp(c.a), pq(c.d) - pq(c.c));
+        return cross_of_differences(pp(c.a), pp(c.b), pq(c.c), pq(c.d));
     }
   }
 

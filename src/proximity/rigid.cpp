@@ -464,38 +464,64 @@ class FeaturePlane {
     // the exact one will be, and the gap l_Q − h_P along it over the double
     // supports (climbed from the simplex's first pair) rank them, largest
     // first; the exact climbs start from those supports.
-    for (Candidate& c : cands) {
-      V3 nd = normal_double(c);
-      if (c.orient) {
-        // Orient N so that P's centre (a facet of P), Q's centre (a facet
-        // of Q), or Q's centre minus P's (edges) lies on its side.
-        const V3 a = c.kind == Candidate::q_facet ? qu_.Q.point(c.a) : qu_.P.point(c.a);
-        const double side = c.kind == Candidate::p_facet   ? -dot(nd, cp - a)
-                            : c.kind == Candidate::q_facet ? dot(nd, cq - a)
-                                                           : dot(nd, cq - cp);
-        c.flip = side < 0;
-        if (c.flip) nd = -nd;
+    const auto rank = [&](std::vector<Candidate>& list) {
+      for (Candidate& c : list) {
+        V3 nd = normal_double(c);
+        if (c.orient) {
+          // Orient N so that P's centre (a facet of P), Q's centre (a facet
+          // of Q), or Q's centre minus P's (edges) lies on its side.
+          const V3 a = c.kind == Candidate::q_facet ? qu_.Q.point(c.a) : qu_.P.point(c.a);
+          const double side = c.kind == Candidate::p_facet   ? -dot(nd, cp - a)
+                              : c.kind == Candidate::q_facet ? dot(nd, cq - a)
+                                                             : dot(nd, cq - cp);
+          c.flip = side < 0;
+          if (c.flip) nd = -nd;
+        }
+        const double l = std::sqrt(dot(nd, nd));
+        if (!(l > 0) || !std::isfinite(l)) {
+          c.gap = -std::numeric_limits<double>::infinity();
+          c.from_p = sp[0], c.from_q = sq[0];
+          continue;
+        }
+        nd = (1 / l) * nd;
+        c.from_p = qu_.P.support(nd, sp[0]), c.from_q = qu_.Q.support(-nd, sq[0]);
+        c.gap = dot(nd, qu_.Q.point(c.from_q) - qu_.P.point(c.from_p));
+        if (!std::isfinite(c.gap)) c.gap = -std::numeric_limits<double>::infinity();
       }
-      const double l = std::sqrt(dot(nd, nd));
-      if (!(l > 0) || !std::isfinite(l)) {
-        c.gap = -std::numeric_limits<double>::infinity();
-        c.from_p = sp[0], c.from_q = sq[0];
-        continue;
-      }
-      nd = (1 / l) * nd;
-      c.from_p = qu_.P.support(nd, sp[0]), c.from_q = qu_.Q.support(-nd, sq[0]);
-      c.gap = dot(nd, qu_.Q.point(c.from_q) - qu_.P.point(c.from_p));
-      if (!std::isfinite(c.gap)) c.gap = -std::numeric_limits<double>::infinity();
-    }
-    std::stable_sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) { return a.gap > b.gap; });
+      std::stable_sort(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) { return a.gap > b.gap; });
+    };
     // Each is tried in that order; the first plane that decides answers.
-    for (const Candidate& c : cands) {
-      Point3 nrm = normal_exact(c);
-      if (is_zero(nrm)) continue;
-      if (c.flip) nrm = -nrm;
-      if (auto r = try_plane(nrm, c.from_p, c.from_q)) return placed(*r);
-    }
-    return std::nullopt;
+    const auto attempt = [&](std::vector<Candidate>& list) -> std::optional<FeatureContact> {
+      rank(list);
+      for (const Candidate& c : list) {
+        Point3 nrm = normal_exact(c);
+        if (is_zero(nrm)) continue;
+        if (c.flip) nrm = -nrm;
+        if (auto r = try_plane(nrm, c.from_p, c.from_q)) return placed(*r);
+      }
+      return std::nullopt;
+    };
+    if (auto r = attempt(cands)) return r;
+    // None decided: on a nearly flat stretch of a body (a mesh's hull: many
+    // facets within rounding of one plane) the search's simplex may lie on a
+    // facet next to the contact's.  The facets around the neighbours of the
+    // simplex's vertices, once, before M.
+    std::vector<Candidate> ring;
+    const auto ring_facets = [&](const RigidBody::Data& d, const std::vector<Index>& seeds, Candidate::Kind kind) {
+      std::vector<Index> around;
+      for (Index v : seeds)
+        for (Index k = d.first[v]; k < d.first[v + 1]; ++k)
+          if (std::find(seeds.begin(), seeds.end(), d.nbr[k]) == seeds.end()) add(around, d.nbr[k]);
+      for (Index v : around)
+        for (Index k = d.first[v], e = d.first[v + 1]; k < e; ++k) {
+          const Index w = d.nbr[k], x = d.nbr[k + 1 < e ? k + 1 : d.first[v]];
+          if (kind == Candidate::p_facet) ring.push_back({kind, v, w, x, 0, false, 0});
+          else ring.push_back({kind, v, x, w, 0, false, 0});  // Q's inward normal
+        }
+    };
+    ring_facets(qu_.dp, sp, Candidate::p_facet);
+    ring_facets(qu_.dq, sq, Candidate::q_facet);
+    return attempt(ring);
   }
 
  private:

@@ -172,6 +172,8 @@ TEST(PlacedPredicates, AgreeWithRationalsInAllRoundingModes) {
       const PulledDirection u(mm, n);
       EXPECT_EQ(u.difference_sign(a, point_bounds(a), b2, point_bounds(b2)), want_diff) << "mode " << mode;
       EXPECT_EQ(placed_gap_sign(n, m, a, point_bounds(a), m2, b2, point_bounds(b2)), want_gap) << "mode " << mode;
+      const int gf = placed_gap_filter(n, m, point_bounds(a), m2, point_bounds(b2));
+      EXPECT_TRUE(gf == kGapOpen || gf == want_gap) << "mode " << mode;  // its filters alone: open or right
       std::array<PointBounds, 4> pb, qb;
       std::array<const Point3*, 4> pp, qp;
       std::array<const PointBounds*, 4> pbp, qbp;
@@ -180,6 +182,9 @@ TEST(PlacedPredicates, AgreeWithRationalsInAllRoundingModes) {
         pp[k] = &ps[k], qp[k] = &qs[k], pbp[k] = &pb[k], qbp[k] = &qb[k];
       }
       EXPECT_EQ(placed_tetrahedron_holds_origin(m, m2, pp, pbp, qp, qbp), want_tetra == 1) << "mode " << mode;
+      // The interval stage alone: open, or the same answer.
+      const int f = placed_tetrahedron_filter(m, m2, pbp, qbp);
+      EXPECT_TRUE(f == kTetrahedronOpen || f == int(want_tetra == 1)) << "mode " << mode;
     }
   }
   EXPECT_GT(zeros, 20);  // the zero cases were exercised
@@ -342,6 +347,13 @@ TEST(PlacedPredicates, TetrahedronOnItsBoundaryWithRationalTranslations) {
     std::array<const PointBounds*, 4> pbp, qbp;
     for (int k = 0; k < 4; ++k) pp[k] = &ps[k], qp[k] = &qs[k], pbp[k] = &pb[k], qbp[k] = &qb[k];
     EXPECT_EQ(placed_tetrahedron_holds_origin(mp0, mq, pp, pbp, qp, qbp), want);
+    // The interval stage alone never claims a boundary origin inside (a
+    // vertex, an edge, a face: open or no), and agrees where it decides.
+    const int f = placed_tetrahedron_filter(mp0, mq, pbp, qbp);
+    EXPECT_TRUE(f == kTetrahedronOpen || f == int(want));
+    if (trial % 5 < 2) {
+      EXPECT_NE(f, 1);
+    }
   }
 }
 

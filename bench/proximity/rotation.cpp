@@ -158,7 +158,7 @@ int rotation_section(int argc, char** argv) {
                  {"penetrating", 0.5, false, true}};
   const std::size_t orientations = 16;
   // Touching poses (exact rational translations) are decided by the feature
-  // plane's exact stage, hundreds of microseconds each: fewer of them.
+  // plane's exact stage, tens of microseconds each: fewer of them.
   const std::size_t touching_poses = std::min<std::size_t>(poses, 1000);
 
   std::printf("## Collision, distance and depth under rigid motion: exact minksum (no M per pose) vs FCL\n\n");

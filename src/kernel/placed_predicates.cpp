@@ -437,6 +437,13 @@ int PulledNormalFilter::difference_sign(const PointBounds& a, const PointBounds&
 
 int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const PointBounds& pb, const PlacedMap& mq,
                     const Point3& q, const PointBounds& qb) {
+  const int f = placed_gap_filter(n, mp, pb, mq, qb);
+  if (f != kGapOpen) return f;
+  return exact_sign(dot(Point3(n.x, n.y, n.z), mq.apply(q) - mp.apply(p)));
+}
+
+int placed_gap_filter(const Vec3d& n, const PlacedMap& mp, const PointBounds& pb, const PlacedMap& mq,
+                      const PointBounds& qb) {
   if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
     throw UsageError("a direction must have finite coordinates");
   if (mp.filter_ready() && mq.filter_ready() && in_range(n.x) && in_range(n.y) && in_range(n.z) && pb.doubles &&
@@ -472,16 +479,17 @@ int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const 
       return s;
     }
   }
-  return exact_sign(dot(Point3(n.x, n.y, n.z), mq.apply(q) - mp.apply(p)));
+  return kGapOpen;
 }
 
-bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 4>& p,
-                                     const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
-                                     const std::array<const PointBounds*, 4>& qb) {
-  // The five signed volumes, orient3d(d0, d1, d2, d3) = det(d1 − d0, d2 − d0,
-  // d3 − d0) and the same with d_k the origin, evaluated on intervals first;
-  // the exact stage evaluates only those the intervals left open.
-  std::array<int, 5> sig;
+namespace {
+// The interval stage of placed_tetrahedron_holds_origin: the five signed
+// volumes, orient3d(d0, d1, d2, d3) = det(d1 − d0, d2 − d0, d3 − d0) and the
+// same with d_k the origin, on intervals; sig[k] kUncertain for those left
+// open.  1 or 0 when they decide, kTetrahedronOpen otherwise.
+int tetrahedron_intervals(const PlacedMap& mp, const PlacedMap& mq, const std::array<const PointBounds*, 4>& pb,
+                          const std::array<const PointBounds*, 4>& qb, std::array<int, 5>& sig) {
+  sig.fill(kUncertain);
   {
     CGAL::Protect_FPU_rounding<true> upward;
     std::array<FastIPoint, 4> d;
@@ -504,6 +512,13 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
       return !outside;
     }
   }
+  return kTetrahedronOpen;
+}
+
+// The exact stage, for the volumes sig leaves open.
+bool tetrahedron_exact(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 4>& p,
+                       const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
+                       const std::array<const PointBounds*, 4>& qb, const std::array<int, 5>& sig) {
   ++g_counts.exact;
   // The points K d_k = Z_p(p_k) − Z_q(q_k) of one PlacedFrame (integers when
   // the matrices and the points are doubles): the volumes are homogeneous of
@@ -529,6 +544,22 @@ bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, c
   for (int k = 1; k < 5; ++k)
     if (volume(k) != total) return false;
   return true;
+}
+}  // namespace
+
+int placed_tetrahedron_filter(const PlacedMap& mp, const PlacedMap& mq, const std::array<const PointBounds*, 4>& pb,
+                              const std::array<const PointBounds*, 4>& qb) {
+  std::array<int, 5> sig;
+  return tetrahedron_intervals(mp, mq, pb, qb, sig);
+}
+
+bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 4>& p,
+                                     const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
+                                     const std::array<const PointBounds*, 4>& qb) {
+  std::array<int, 5> sig;
+  const int f = tetrahedron_intervals(mp, mq, pb, qb, sig);
+  if (f != kTetrahedronOpen) return f == 1;
+  return tetrahedron_exact(mp, mq, p, pb, q, qb, sig);
 }
 
 struct PlacedSimplexPoint::Exact {
@@ -1002,24 +1033,30 @@ PlacedFrame::PlacedFrame(const PlacedMap& mp, bool p_doubles, int p_exponent, co
 }
 
 // D 2^−E A x for the map `which` (integers mode): each product m_a m_x
-// 2^(e_a + e_x) shifted by e_a + e_x − E ≥ 0 (the caller's bound).
+// 2^(e_a + e_x) shifted by e_a + e_x − E ≥ 0 (the caller's bound), summed
+// in GMP integers in place (no temporaries), plus K (t_q − t_p) for Q.
 Point3 PlacedFrame::linear(int which, const PointBounds& xb) const {
   const double c[3] = {xb.x.lo, xb.y.lo, xb.z.lo};
   Dyadic v[3];
   for (int k = 0; k < 3; ++k) v[k] = dyadic(c[k]);
   Point3 r;
-  Integer sum, term;
+  mpz_t term;
+  mpz_init(term);
   for (int i = 0; i < 3; ++i) {
-    sum = 0;
+    mpz_ptr sum = mpq_numref(r[i].get_mpq_t());  // the denominator stays 1
+    mpz_set_ui(sum, 0);
     for (int k = 0; k < 3; ++k) {
       const std::int64_t m = am_[which][3 * i + k];
       if (m == 0 || v[k].m == 0) continue;
-      term = Integer(static_cast<long>(m)) * Integer(static_cast<long>(v[k].m));
-      sum += term << static_cast<unsigned long>(ae_[which][3 * i + k] + v[k].e - e_);
+      mpz_set_si(term, static_cast<long>(m));
+      mpz_mul_si(term, term, static_cast<long>(v[k].m));
+      mpz_mul_2exp(term, term, static_cast<mp_bitcnt_t>(ae_[which][3 * i + k] + v[k].e - e_));
+      mpz_add(sum, sum, term);
     }
-    if (d_ != 1) sum *= d_;
-    r[i] = Rational(sum);
+    if (d_ != 1) mpz_mul(sum, sum, d_.get_mpz_t());
+    if (which == 1) mpz_add(sum, sum, mpq_numref(tq_[i].get_mpq_t()));  // an integer in this mode
   }
+  mpz_clear(term);
   return r;
 }
 
@@ -1030,7 +1067,7 @@ Point3 PlacedFrame::p(const Point3& x, const PointBounds& xb) const {
 
 Point3 PlacedFrame::q(const Point3& y, const PointBounds& yb) const {
   if (!integers_) return mq_->apply_linear(y) + tq_;
-  return linear(1, yb) + tq_;
+  return linear(1, yb);
 }
 
 Point3 PlacedFrame::placed(const Point3& z) const {

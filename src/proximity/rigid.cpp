@@ -223,10 +223,20 @@ struct Query {
   const RigidBody::Data& dp;
   const RigidBody::Data& dq;
 
-  // Certify "separate" along n from the supports' guesses ip, iq.
-  bool certify_separation(const Vec3d& n, Index& ip, Index& iq) const {
+  // Certify "separate" along n from the supports' guesses ip, iq.  With
+  // `open`, a gap the filters leave open is not evaluated exactly: *open is
+  // set and the caller may evaluate it later (exact_gap).
+  bool certify_separation(const Vec3d& n, Index& ip, Index& iq, bool* open = nullptr) const {
     ip = P.certified_support(n, ip);
     iq = Q.certified_support(Vec3d{-n.x, -n.y, -n.z}, iq);
+    if (open) {
+      const int f = placed_gap_filter(n, P.map, dp.bounds[ip], Q.map, dq.bounds[iq]);
+      *open = f == kGapOpen;
+      return f == 1;
+    }
+    return exact_gap(n, ip, iq);
+  }
+  bool exact_gap(const Vec3d& n, Index ip, Index iq) const {
     return placed_gap_sign(n, P.map, dp.exact[ip], dp.bounds[ip], Q.map, dq.exact[iq], dq.bounds[iq]) > 0;
   }
   bool certify_tetrahedron(const std::array<SimplexVertex, 4>& s) const {
@@ -237,6 +247,12 @@ struct Query {
       q[k] = &dq.exact[s[k].q], qb[k] = &dq.bounds[s[k].q];
     }
     return placed_tetrahedron_holds_origin(P.map, Q.map, p, pb, q, qb);
+  }
+  // The interval stage only: 1, 0 or kTetrahedronOpen.
+  int filter_tetrahedron(const std::array<SimplexVertex, 4>& s) const {
+    std::array<const PointBounds*, 4> pb, qb;
+    for (int k = 0; k < 4; ++k) pb[k] = &dp.bounds[s[k].p], qb[k] = &dq.bounds[s[k].q];
+    return placed_tetrahedron_filter(P.map, Q.map, pb, qb);
   }
   SimplexVertex support(const V3& dir, Index ip, Index iq) const {
     // The support of D = P' − Q' along dir: P's along dir minus Q's along −dir.
@@ -280,15 +296,21 @@ void count(RigidCertificate c) {
 // along the triangle's two normals; the three tetrahedra (a+, a−, two
 // vertices of the triangle) cover the double pyramid, and one of them
 // holds an origin that lies inside it strictly.  True when one is
-// certified (s then holds it).
-bool blow_up_triangle(const Query& qu, std::array<SimplexVertex, 4>& s) {
+// certified (s then holds it).  With `deferred`, a tetrahedron whose
+// intervals leave the answer open (the origin within rounding of its
+// boundary) is not evaluated exactly but appended there, for the caller to
+// evaluate after cheaper certificates.
+using Tetrahedra = std::vector<std::array<SimplexVertex, 4>>;
+bool blow_up_triangle(const Query& qu, std::array<SimplexVertex, 4>& s, Tetrahedra* deferred = nullptr) {
   const V3 nrm = cross(s[1].w - s[0].w, s[2].w - s[0].w);
   if (!(dot(nrm, nrm) > 0) || !std::isfinite(dot(nrm, nrm))) return false;
   const SimplexVertex up = qu.support(nrm, s[0].p, s[0].q), down = qu.support(-nrm, s[0].p, s[0].q);
   static constexpr int pairs[3][2] = {{0, 1}, {1, 2}, {2, 0}};
   for (const auto& e : pairs) {
     const std::array<SimplexVertex, 4> t{up, down, s[e[0]], s[e[1]]};
-    if (qu.certify_tetrahedron(t)) {
+    const int f = deferred ? qu.filter_tetrahedron(t) : int(qu.certify_tetrahedron(t));
+    if (f == kTetrahedronOpen) deferred->push_back(t);
+    if (f == 1) {
       s = t;
       return true;
     }
@@ -327,7 +349,7 @@ struct FeatureContact {
   ContactStatus status = ContactStatus::separate;
   Point3 normal;  // N
   Index p = kNoIndex, q = kNoIndex;  // the climbs' vertices
-  Point3 common;  // touching: a point of P' ∩ Q'
+  Point3 common;  // touching: a point of P' ∩ Q' (placed only when decide() is asked for it)
 };
 
 // Doubles along the direction of a rational vector, whatever its size (the
@@ -348,12 +370,61 @@ Vec3d scaled_direction(const Point3& n) {
   return {at(0), at(1), at(2)};
 }
 
+// The frame's points are integer vectors when the maps and the vertices are
+// doubles (PlacedFrame): their signs below are then evaluated on the
+// numerators alone, in GMP integers (no gcd, no temporaries), and in
+// rationals otherwise.  The same polynomials, so the same signs.
+bool integral(const Point3& p) {
+  return mpz_cmp_ui(p.x.get_den_mpz_t(), 1) == 0 && mpz_cmp_ui(p.y.get_den_mpz_t(), 1) == 0 &&
+         mpz_cmp_ui(p.z.get_den_mpz_t(), 1) == 0;
+}
+struct IntegerScratch {
+  mpz_class t, u, acc;
+};
+IntegerScratch& scratch() {
+  thread_local IntegerScratch s;
+  return s;
+}
+// sign n · (b − a).
+int dot_difference_sign(const Point3& n, const Point3& a, const Point3& b) {
+  if (!integral(n) || !integral(a) || !integral(b)) return sgn(dot(n, b - a));
+  IntegerScratch& z = scratch();
+  mpz_set_ui(z.acc.get_mpz_t(), 0);
+  for (int r = 0; r < 3; ++r) {
+    mpz_sub(z.t.get_mpz_t(), b[r].get_num_mpz_t(), a[r].get_num_mpz_t());
+    mpz_addmul(z.acc.get_mpz_t(), n[r].get_num_mpz_t(), z.t.get_mpz_t());
+  }
+  return mpz_sgn(z.acc.get_mpz_t());
+}
+
+// (b − a) × (d − c), on the numerators when all four are integer vectors.
+Point3 cross_of_differences(const Point3& a, const Point3& b, const Point3& c, const Point3& d) {
+  if (!integral(a) || !integral(b) || !integral(c) || !integral(d)) return cross(b - a, d - c);
+  mpz_class u[3], w[3];
+  for (int r = 0; r < 3; ++r) {
+    mpz_sub(u[r].get_mpz_t(), b[r].get_num_mpz_t(), a[r].get_num_mpz_t());
+    mpz_sub(w[r].get_mpz_t(), d[r].get_num_mpz_t(), c[r].get_num_mpz_t());
+  }
+  Point3 n;  // denominators 1
+  for (int r = 0; r < 3; ++r) {
+    const int i = (r + 1) % 3, j = (r + 2) % 3;
+    mpz_ptr x = mpq_numref(n[r].get_mpq_t());
+    mpz_mul(x, u[i].get_mpz_t(), w[j].get_mpz_t());
+    mpz_submul(x, u[j].get_mpz_t(), w[i].get_mpz_t());
+  }
+  return n;
+}
+
 class FeaturePlane {
  public:
   explicit FeaturePlane(const Query& qu)
       : qu_(qu), frame_(qu.P.map, qu.dp.doubles, qu.dp.exponent, qu.Q.map, qu.dq.doubles, qu.dq.exponent) {}
 
-  std::optional<FeatureContact> decide(const std::array<SimplexVertex, 4>& s, int n, Index ip, Index iq) {
+  // `common`: the touching answer's common point is wanted (distance);
+  // collide asks for the status and the normal only.
+  std::optional<FeatureContact> decide(const std::array<SimplexVertex, 4>& s, int n, Index ip, Index iq,
+                                       bool common = true) {
+    want_common_ = common;
     std::vector<Index> sp, sq;
     const auto add = [](std::vector<Index>& v, Index i) {
       if (std::find(v.begin(), v.end(), i) == v.end()) v.push_back(i);
@@ -361,64 +432,133 @@ class FeaturePlane {
     for (int k = 0; k < n; ++k) add(sp, s[k].p), add(sq, s[k].q);
     add(sp, ip), add(sq, iq);
     const V3 cp = centre(qu_.P), cq = centre(qu_.Q);
-    // Orient N so that `inside` (a centre, doubles: only a choice, the
-    // climbs decide) lies on the side of sign `side` of the plane through a.
-    const auto oriented = [](Point3 nrm, const V3& a, const V3& inside, double side) {
-      const Vec3d d = scaled_direction(nrm);
-      if (side * (d.x * (inside.x - a.x) + d.y * (inside.y - a.y) + d.z * (inside.z - a.z)) < 0) nrm = -nrm;
-      return nrm;
-    };
-    // Each candidate is tried as soon as it is made (in this order); the
-    // first plane that decides answers.
-    std::optional<FeatureContact> c;
-    const auto attempt = [&](const Point3& nrm) {
-      c = try_plane(nrm, sp[0], sq[0]);
-      if (c) c = placed(*c);
-      return c.has_value();
-    };
-    // A facet of P' through three of its points in the simplex (P' below),
-    // a facet of Q' (Q' above), the edges of each.
-    if (sp.size() >= 3) {
-      const Point3 nrm = cross(pp(sp[1]) - pp(sp[0]), pp(sp[2]) - pp(sp[0]));
-      if (!is_zero(nrm) && attempt(oriented(nrm, qu_.P.point(sp[0]), cp, -1))) return c;
-    }
-    if (sq.size() >= 3) {
-      const Point3 nrm = cross(pq(sq[1]) - pq(sq[0]), pq(sq[2]) - pq(sq[0]));
-      if (!is_zero(nrm) && attempt(oriented(nrm, qu_.Q.point(sq[0]), cq, 1))) return c;
-    }
+    // The candidate planes: a facet of P' through three of its points in
+    // the simplex (P' below), a facet of Q' (Q' above), the edges of each;
+    // then, for a smaller simplex (the search stopped on an edge or a vertex
+    // of D), the facets around its vertices and the edges at its first
+    // pair.  Neighbours run counter-clockwise seen from outside, so two
+    // consecutive ones and the vertex span a facet, the cross product of
+    // their edges outward (a placement keeps orientation).
+    std::vector<Candidate> cands;
+    if (sp.size() >= 3) cands.push_back({Candidate::p_facet, sp[0], sp[1], sp[2], 0, true, 0});
+    if (sq.size() >= 3) cands.push_back({Candidate::q_facet, sq[0], sq[1], sq[2], 0, true, 0});
     for (std::size_t i = 0; i < sp.size(); ++i)
       for (std::size_t j = i + 1; j < sp.size(); ++j)
         for (std::size_t k = 0; k < sq.size(); ++k)
-          for (std::size_t l = k + 1; l < sq.size(); ++l) {
-            const Point3 nrm = cross(pp(sp[j]) - pp(sp[i]), pq(sq[l]) - pq(sq[k]));
-            if (!is_zero(nrm) && attempt(oriented(nrm, cp, cq, 1))) return c;
-          }
-    // A smaller simplex (the search stopped on an edge or a vertex of D):
-    // the facets around its vertices, then the edges at its first pair.
-    // Neighbours run counter-clockwise seen from outside, so two
-    // consecutive ones and the vertex span a facet, the cross product of
-    // their edges outward (a placement keeps orientation).
+          for (std::size_t l = k + 1; l < sq.size(); ++l)
+            cands.push_back({Candidate::edges, sp[i], sp[j], sq[k], sq[l], true, 0});
     for (Index v : sp)
-      for (Index k = qu_.dp.first[v], e = qu_.dp.first[v + 1]; k < e; ++k) {
-        const Index w = qu_.dp.nbr[k], x = qu_.dp.nbr[k + 1 < e ? k + 1 : qu_.dp.first[v]];
-        const Point3 nrm = cross(pp(w) - pp(v), pp(x) - pp(v));
-        if (!is_zero(nrm) && attempt(nrm)) return c;
-      }
+      for (Index k = qu_.dp.first[v], e = qu_.dp.first[v + 1]; k < e; ++k)
+        cands.push_back({Candidate::p_facet, v, qu_.dp.nbr[k], qu_.dp.nbr[k + 1 < e ? k + 1 : qu_.dp.first[v]], 0,
+                         false, 0});
     for (Index v : sq)
-      for (Index k = qu_.dq.first[v], e = qu_.dq.first[v + 1]; k < e; ++k) {
-        const Index w = qu_.dq.nbr[k], x = qu_.dq.nbr[k + 1 < e ? k + 1 : qu_.dq.first[v]];
-        const Point3 nrm = cross(pq(x) - pq(v), pq(w) - pq(v));  // Q's inward normal
-        if (!is_zero(nrm) && attempt(nrm)) return c;
-      }
+      for (Index k = qu_.dq.first[v], e = qu_.dq.first[v + 1]; k < e; ++k)  // Q's inward normal
+        cands.push_back({Candidate::q_facet, v, qu_.dq.nbr[k + 1 < e ? k + 1 : qu_.dq.first[v]], qu_.dq.nbr[k], 0,
+                         false, 0});
     for (Index k = qu_.dp.first[sp[0]]; k < qu_.dp.first[sp[0] + 1]; ++k)
-      for (Index l = qu_.dq.first[sq[0]]; l < qu_.dq.first[sq[0] + 1]; ++l) {
-        const Point3 nrm = cross(pp(qu_.dp.nbr[k]) - pp(sp[0]), pq(qu_.dq.nbr[l]) - pq(sq[0]));
-        if (!is_zero(nrm) && attempt(oriented(nrm, cp, cq, 1))) return c;
+      for (Index l = qu_.dq.first[sq[0]]; l < qu_.dq.first[sq[0] + 1]; ++l)
+        cands.push_back({Candidate::edges, sp[0], qu_.dp.nbr[k], sq[0], qu_.dq.nbr[l], true, 0});
+    // Their order, a choice in doubles (the exact climbs decide whatever
+    // the order): the plane of the contact has h_P = l_Q, a plane that
+    // proves nothing h_P > l_Q.  So each candidate's normal, oriented as
+    // the exact one will be, and the gap l_Q − h_P along it over the double
+    // supports (climbed from the simplex's first pair) rank them, largest
+    // first; the exact climbs start from those supports.
+    const auto rank = [&](std::vector<Candidate>& list) {
+      for (Candidate& c : list) {
+        V3 nd = normal_double(c);
+        if (c.orient) {
+          // Orient N so that P's centre (a facet of P), Q's centre (a facet
+          // of Q), or Q's centre minus P's (edges) lies on its side.
+          const V3 a = c.kind == Candidate::q_facet ? qu_.Q.point(c.a) : qu_.P.point(c.a);
+          const double side = c.kind == Candidate::p_facet   ? -dot(nd, cp - a)
+                              : c.kind == Candidate::q_facet ? dot(nd, cq - a)
+                                                             : dot(nd, cq - cp);
+          c.flip = side < 0;
+          if (c.flip) nd = -nd;
+        }
+        const double l = std::sqrt(dot(nd, nd));
+        if (!(l > 0) || !std::isfinite(l)) {
+          c.gap = -std::numeric_limits<double>::infinity();
+          c.from_p = sp[0], c.from_q = sq[0];
+          continue;
+        }
+        nd = (1 / l) * nd;
+        c.from_p = qu_.P.support(nd, sp[0]), c.from_q = qu_.Q.support(-nd, sq[0]);
+        c.gap = dot(nd, qu_.Q.point(c.from_q) - qu_.P.point(c.from_p));
+        if (!std::isfinite(c.gap)) c.gap = -std::numeric_limits<double>::infinity();
       }
-    return std::nullopt;
+      std::stable_sort(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) { return a.gap > b.gap; });
+    };
+    // Each is tried in that order; the first plane that decides answers.
+    const auto attempt = [&](std::vector<Candidate>& list) -> std::optional<FeatureContact> {
+      rank(list);
+      for (const Candidate& c : list) {
+        Point3 nrm = normal_exact(c);
+        if (is_zero(nrm)) continue;
+        if (c.flip) nrm = -nrm;
+        if (auto r = try_plane(nrm, c.from_p, c.from_q)) return placed(*r);
+      }
+      return std::nullopt;
+    };
+    if (auto r = attempt(cands)) return r;
+    // None decided: on a nearly flat stretch of a body (a mesh's hull: many
+    // facets within rounding of one plane) the search's simplex may lie on a
+    // facet next to the contact's.  The facets around the neighbours of the
+    // simplex's vertices, once, before M.
+    std::vector<Candidate> ring;
+    const auto ring_facets = [&](const RigidBody::Data& d, const std::vector<Index>& seeds, Candidate::Kind kind) {
+      std::vector<Index> around;
+      for (Index v : seeds)
+        for (Index k = d.first[v]; k < d.first[v + 1]; ++k)
+          if (std::find(seeds.begin(), seeds.end(), d.nbr[k]) == seeds.end()) add(around, d.nbr[k]);
+      for (Index v : around)
+        for (Index k = d.first[v], e = d.first[v + 1]; k < e; ++k) {
+          const Index w = d.nbr[k], x = d.nbr[k + 1 < e ? k + 1 : d.first[v]];
+          if (kind == Candidate::p_facet) ring.push_back({kind, v, w, x, 0, false, 0});
+          else ring.push_back({kind, v, x, w, 0, false, 0});  // Q's inward normal
+        }
+    };
+    ring_facets(qu_.dp, sp, Candidate::p_facet);
+    ring_facets(qu_.dq, sq, Candidate::q_facet);
+    return attempt(ring);
   }
 
  private:
+  // A candidate plane: the facet of P' through the points a, b, c
+  // (normal (b − a) × (c − a)), of Q' likewise, or the edges ab of P' and
+  // cd of Q' (normal (b − a) × (d − c)); `orient`: the normal is turned by
+  // the centres (else it is outward from P', inward into Q', as the
+  // vertex graph's order gives it), `flip` the turn chosen.
+  struct Candidate {
+    enum Kind { p_facet, q_facet, edges } kind;
+    Index a, b, c, d;
+    bool orient;
+    double gap;
+    bool flip = false;
+    Index from_p = 0, from_q = 0;  // the double supports along it
+  };
+  V3 normal_double(const Candidate& c) const {
+    switch (c.kind) {
+      case Candidate::p_facet:
+        return cross(qu_.P.point(c.b) - qu_.P.point(c.a), qu_.P.point(c.c) - qu_.P.point(c.a));
+      case Candidate::q_facet:
+        return cross(qu_.Q.point(c.b) - qu_.Q.point(c.a), qu_.Q.point(c.c) - qu_.Q.point(c.a));
+      default:
+        return cross(qu_.P.point(c.b) - qu_.P.point(c.a), qu_.Q.point(c.d) - qu_.Q.point(c.c));
+    }
+  }
+  Point3 normal_exact(const Candidate& c) {
+    switch (c.kind) {
+      case Candidate::p_facet:
+        return cross_of_differences(pp(c.a), pp(c.b), pp(c.a), pp(c.c));
+      case Candidate::q_facet:
+        return cross_of_differences(pq(c.a), pq(c.b), pq(c.a), pq(c.c));
+      default:
+        return cross_of_differences(pp(c.a), pp(c.b), pq(c.c), pq(c.d));
+    }
+  }
+
   const Query& qu_;
   // The placed points in one frame: K (x' − t_P) for a positive K, integers
   // when the maps and the vertices are doubles (PlacedFrame).  Every test
@@ -446,13 +586,12 @@ class FeaturePlane {
                        Index w) {
     const int s = f.difference_sign(d.bounds[u], d.bounds[w]);
     if (s != PulledNormalFilter::kOpen) return s;
-    return sgn(dot(nrm, pt(w) - pt(u)));
+    return dot_difference_sign(nrm, pt(u), pt(w));
   }
   // A vertex maximising sign·N·x over a placed body (exact: a vertex no
-  // neighbour of which is further is a maximum), from v; its value.
+  // neighbour of which is further is a maximum), from v.
   template <class Pt>
-  Index climb(const RigidBody::Data& d, Pt pt, const PulledNormalFilter& f, const Point3& nrm, int sign, Index v,
-              Rational& best) {
+  Index climb(const RigidBody::Data& d, Pt pt, const PulledNormalFilter& f, const Point3& nrm, int sign, Index v) {
     for (;;) {
       Index next = v;
       for (Index k = d.first[v]; k < d.first[v + 1]; ++k)
@@ -464,8 +603,6 @@ class FeaturePlane {
       v = next;
       ++g_stats.climb_steps;
     }
-    best = dot(nrm, pt(v));
-    if (sign < 0) best = -best;
     return v;
   }
   // The face of a placed body in the plane N·x = h through v: its vertices
@@ -508,7 +645,18 @@ class FeaturePlane {
       if (s < 0) v = -v;
       return v;
     }
-    int orient(const Point3& a, const Point3& b, const Point3& c) const { return sgn(value(a, b, c)); }
+    int orient(const Point3& a, const Point3& b, const Point3& c) const {
+      if (!integral(a) || !integral(b) || !integral(c)) return sgn(value(a, b, c));
+      const int i = (r + 1) % 3, j = (r + 2) % 3;
+      IntegerScratch& z = scratch();
+      mpz_sub(z.t.get_mpz_t(), b[i].get_num_mpz_t(), a[i].get_num_mpz_t());
+      mpz_sub(z.u.get_mpz_t(), c[j].get_num_mpz_t(), a[j].get_num_mpz_t());
+      mpz_mul(z.acc.get_mpz_t(), z.t.get_mpz_t(), z.u.get_mpz_t());
+      mpz_sub(z.t.get_mpz_t(), b[j].get_num_mpz_t(), a[j].get_num_mpz_t());
+      mpz_sub(z.u.get_mpz_t(), c[i].get_num_mpz_t(), a[i].get_num_mpz_t());
+      mpz_submul(z.acc.get_mpz_t(), z.t.get_mpz_t(), z.u.get_mpz_t());
+      return s * mpz_sgn(z.acc.get_mpz_t());
+    }
   };
   // Whether y (in the plane) lies in the convex face of points `f` with
   // edges `e`: equal to its point, on its segment, or on the inner side of
@@ -543,23 +691,24 @@ class FeaturePlane {
   // frame points, K² times that of the placed points) over K².
   FeatureContact placed(FeatureContact c) const {
     if (frame_.factor() != 1) c.normal = Rational(1) / (frame_.factor() * frame_.factor()) * c.normal;
-    if (c.status == ContactStatus::touching) c.common = frame_.placed(c.common);
+    if (c.status == ContactStatus::touching && want_common_) c.common = frame_.placed(c.common);
     return c;
   }
+  bool want_common_ = true;
 
   std::optional<FeatureContact> try_plane(const Point3& nrm, Index from_p, Index from_q) {
     FeatureContact c;
-    Rational hp, lq;
     const PulledNormalFilter filter_p(qu_.P.map, nrm), filter_q(qu_.Q.map, nrm);
-    c.p = climb(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, filter_p, nrm, 1, from_p, hp);
-    c.q = climb(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, filter_q, nrm, -1, from_q, lq);
-    lq = -lq;
+    c.p = climb(qu_.dp, [&](Index v) -> const Point3& { return pp(v); }, filter_p, nrm, 1, from_p);
+    c.q = climb(qu_.dq, [&](Index v) -> const Point3& { return pq(v); }, filter_q, nrm, -1, from_q);
     c.normal = nrm;
-    if (hp < lq) {
+    // sign (l_Q − h_P) = sign N · (x_q − x_p).
+    const int gap = dot_difference_sign(nrm, pp(c.p), pq(c.q));
+    if (gap > 0) {
       c.status = ContactStatus::separate;
       return c;
     }
-    if (hp > lq) return std::nullopt;
+    if (gap < 0) return std::nullopt;
     // h_P = l_Q: the faces in the plane.
     std::vector<Index> vp, vq;
     std::vector<std::pair<Index, Index>> ep, eq;
@@ -591,9 +740,11 @@ class FeaturePlane {
     for (const auto& [i, j] : lp)
       for (const auto& [k, l] : lq2) {
         const Point3 &a = fp[i], &b = fp[j], &e = fq[k], &f = fq[l];
-        const Rational sa = pl.value(e, f, a), sb = pl.value(e, f, b);
-        if (pl.orient(a, b, e) * pl.orient(a, b, f) < 0 && sgn(sa) * sgn(sb) < 0) {
-          c.common = a + Rational(sa / (sa - sb)) * (b - a);
+        if (pl.orient(a, b, e) * pl.orient(a, b, f) < 0 && pl.orient(e, f, a) * pl.orient(e, f, b) < 0) {
+          if (want_common_) {  // the crossing point (a rational of the frame), only when asked
+            const Rational sa = pl.value(e, f, a), sb = pl.value(e, f, b);
+            c.common = a + Rational(sa / (sa - sb)) * (b - a);
+          }
           return c;
         }
       }
@@ -754,17 +905,31 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
   double last = std::numeric_limits<double>::infinity();
   // A separating plane of normal nrm (doubles, taken exactly), from the
   // support guesses cp, cq: certified or not.
-  const auto try_plane = [&](const Vec3d& nrm, Index cp, Index cq) {
-    // A normal that is zero, or not finite (the search's doubles overflow or
-    // underflow on bodies of extreme size), proves nothing.
-    const double l1 = std::fabs(nrm.x) + std::fabs(nrm.y) + std::fabs(nrm.z);
-    if (!(l1 > 0) || !std::isfinite(l1)) return false;
-    if (!qu.certify_separation(nrm, cp, cq)) return false;
+  // Planes whose gap the filters left open (within rounding of touching):
+  // evaluated exactly after the feature plane, which decides touching poses.
+  struct OpenGap {
+    Vec3d n;
+    Index p, q;
+  };
+  std::vector<OpenGap> open_gaps;
+  const auto separate = [&](const Vec3d& nrm, Index cp, Index cq) {
     r.status = ContactStatus::separate;
     r.certificate = RigidCertificate::separating_plane;
     r.normal = nrm;
     r.p = cp, r.q = cq;
     return true;
+  };
+  const auto try_plane = [&](const Vec3d& nrm, Index cp, Index cq) {
+    // A normal that is zero, or not finite (the search's doubles overflow or
+    // underflow on bodies of extreme size), proves nothing.
+    const double l1 = std::fabs(nrm.x) + std::fabs(nrm.y) + std::fabs(nrm.z);
+    if (!(l1 > 0) || !std::isfinite(l1)) return false;
+    bool open = false;
+    if (!qu.certify_separation(nrm, cp, cq, &open)) {
+      if (open) open_gaps.push_back({nrm, cp, cq});
+      return false;
+    }
+    return separate(nrm, cp, cq);
   };
   // The normal of the simplex's triangle, turned towards the origin.  Near
   // contact the closest point v is tiny and its direction is only as good
@@ -777,6 +942,7 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
     return Vec3d{nt.x, nt.y, nt.z};
   };
   bool tried_triangle = false;
+  Tetrahedra deferred;  // tetrahedra the intervals left open
   for (int it = 0; it < kMaxIterations && !decided; ++it) {
     ++g_stats.iterations;
     const double vv = dot(v, v);
@@ -802,17 +968,20 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
     s[n++] = w;
     tried_triangle = false;
     if (!closest_on_simplex(s, n, v)) {
-      if (qu.certify_tetrahedron(s)) {
+      const int f = qu.filter_tetrahedron(s);
+      if (f == 1) {
         r.status = ContactStatus::penetrating;
         r.certificate = RigidCertificate::simplex;
         r.p = w.p, r.q = w.q;
         decided = true;
+      } else if (f == kTetrahedronOpen) {
+        deferred.push_back(s);
       }
       break;
     }
   }
   if (!decided && n == 3 && !tried_triangle) decided = try_plane(triangle_normal(), s[0].p, s[0].q);
-  if (!decided && n == 3 && blow_up_triangle(qu, s)) {
+  if (!decided && n == 3 && blow_up_triangle(qu, s, &deferred)) {
     r.status = ContactStatus::penetrating;
     r.certificate = RigidCertificate::simplex;
     r.p = s[0].p, r.q = s[0].q;
@@ -820,11 +989,27 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
   }
   if (!decided) {
     FeaturePlane plane(qu);
-    if (const auto c = plane.decide(s, n, ip, iq)) {
+    if (const auto c = plane.decide(s, n, ip, iq, false)) {
       r.status = c->status;
       r.certificate = RigidCertificate::feature_plane;
       r.normal = to_double(c->normal);
       r.p = c->p, r.q = c->q;
+      decided = true;
+    }
+  }
+  // The planes and the tetrahedra whose filters left them open, exactly:
+  // after the feature plane, which decides the touching poses where no
+  // plane separates strictly and no tetrahedron holds the origin strictly.
+  for (const OpenGap& g : open_gaps) {
+    if (decided) break;
+    if (qu.exact_gap(g.n, g.p, g.q)) decided = separate(g.n, g.p, g.q);
+  }
+  for (const auto& t : deferred) {
+    if (decided) break;
+    if (qu.certify_tetrahedron(t)) {
+      r.status = ContactStatus::penetrating;
+      r.certificate = RigidCertificate::simplex;
+      r.p = t[0].p, r.q = t[0].q;
       decided = true;
     }
   }

@@ -234,6 +234,14 @@ class PulledNormalFilter {
 // Throws UsageError unless n is finite.
 int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const PointBounds& pb, const PlacedMap& mq,
                     const Point3& q, const PointBounds& qb);
+// Its doubles and interval stages alone: −1, 0 or +1 when they decide (the
+// sign of placed_gap_sign), kGapOpen when they do not (a gap within
+// rounding of 0, as along a plane that touches both bodies: then only the
+// exact stage decides).  A caller with a cheaper certificate to try first
+// defers that stage.
+inline constexpr int kGapOpen = 2;
+int placed_gap_filter(const Vec3d& n, const PlacedMap& mp, const PointBounds& pb, const PlacedMap& mq,
+                      const PointBounds& qb);
 
 // Whether the origin lies strictly inside the tetrahedron of the four points
 // d_k = (A_p p_k + t_p) − (A_q q_k + t_q), points of the Minkowski difference
@@ -244,6 +252,14 @@ int placed_gap_sign(const Vec3d& n, const PlacedMap& mp, const Point3& p, const 
 bool placed_tetrahedron_holds_origin(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 4>& p,
                                      const std::array<const PointBounds*, 4>& pb, const std::array<const Point3*, 4>& q,
                                      const std::array<const PointBounds*, 4>& qb);
+// Its interval stage alone: 1 or 0 when the intervals decide (the answer
+// of placed_tetrahedron_holds_origin), kTetrahedronOpen when some volume's
+// interval holds 0 (the origin within rounding of the tetrahedron's
+// boundary, as on touching poses: then only the exact stage decides).  A
+// caller with a cheaper certificate to try first defers that stage.
+inline constexpr int kTetrahedronOpen = 2;
+int placed_tetrahedron_filter(const PlacedMap& mp, const PlacedMap& mq, const std::array<const PointBounds*, 4>& pb,
+                              const std::array<const PointBounds*, 4>& qb);
 
 // The point v nearest the origin of the affine hull of k = 1, 2 or 3 points
 // d_j = (A_p p_j + t_p) − (A_q q_j + t_q) of the Minkowski difference of

@@ -298,3 +298,49 @@ TEST(Union, RandomPolytopesAgainstNef) {
     expect_like_nef(parts);
   }
 }
+
+// The cube map of DirectionIndex: each cell's list is the kBest normals of
+// largest dot product with the cell's centre, largest first and equal ones
+// in index order (the order of a sort of (−dot, index)), for normals with
+// many exact ties (a cube's and an octahedron's, repeated) and for random
+// ones (seed printed on failure).
+TEST(Union, DirectionIndexCellsHoldTheNormalsFacingTheirCentre) {
+  using nonconvex_detail::DirectionIndex;
+  auto check = [](const std::vector<Vec3d>& normals, const std::string& what) {
+    const DirectionIndex index(normals);
+    const std::size_t width = std::min(DirectionIndex::kBest, normals.size());
+    for (int face = 0; face < 6; ++face)
+      for (int i = 0; i < DirectionIndex::kCells; ++i)
+        for (int j = 0; j < DirectionIndex::kCells; ++j) {
+          const std::array<double, 3> d = DirectionIndex::cell_centre(face, i, j);
+          std::vector<std::pair<double, std::size_t>> rank;
+          for (std::size_t q = 0; q < normals.size(); ++q)
+            rank.push_back({-(normals[q].x * d[0] + normals[q].y * d[1] + normals[q].z * d[2]), q});
+          std::sort(rank.begin(), rank.end());
+          const std::uint16_t* got = nullptr;
+          ASSERT_EQ(index.best(d.data(), got), width) << what;
+          for (std::size_t k = 0; k < width; ++k)
+            ASSERT_EQ(got[k], rank[k].second) << what << ": face " << face << " cell " << i << "," << j << " rank " << k;
+        }
+  };
+  std::vector<Vec3d> ties;
+  for (int rep = 0; rep < 3; ++rep)
+    for (int a = 0; a < 3; ++a)
+      for (double s : {1.0, -1.0}) ties.push_back(Vec3d{a == 0 ? s : 0.0, a == 1 ? s : 0.0, a == 2 ? s : 0.0});
+  const double r = 1 / std::sqrt(3.0);
+  for (double x : {r, -r})
+    for (double y : {r, -r})
+      for (double z : {r, -r}) ties.push_back(Vec3d{x, y, z});
+  check(ties, "cube and octahedron normals");
+  check(std::vector<Vec3d>(ties.begin(), ties.begin() + 4), "four normals");
+  const unsigned seed = 20261207;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g;
+  std::vector<Vec3d> random;
+  for (int k = 0; k < 300; ++k) {
+    Vec3d n{g(rng), g(rng), g(rng)};
+    const double len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    random.push_back(Vec3d{n.x / len, n.y / len, n.z / len});
+  }
+  check(random, "300 random normals, seed " + std::to_string(seed));
+}

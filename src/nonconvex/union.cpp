@@ -1252,21 +1252,37 @@ DirectionIndex::DirectionIndex(std::vector<Vec3d> unit_normals) : normals_(std::
   }
   width_ = std::min<std::size_t>(kBest, normals_.size());
   cell_.resize(std::size_t(6) * kCells * kCells * width_);
-  std::vector<std::pair<double, std::size_t>> rank(normals_.size());
-  for (int face = 0; face < 6; ++face)
-    for (int i = 0; i < kCells; ++i)
-      for (int j = 0; j < kCells; ++j) {
-        const int axis = face / 2;
-        double d[3];
-        d[axis] = face % 2 ? -1.0 : 1.0;
-        d[(axis + 1) % 3] = (2.0 * i + 1.0) / kCells - 1.0;
-        d[(axis + 2) % 3] = (2.0 * j + 1.0) / kCells - 1.0;
-        for (std::size_t q = 0; q < normals_.size(); ++q)
-          rank[q] = {-(normals_[q].x * d[0] + normals_[q].y * d[1] + normals_[q].z * d[2]), q};
-        std::partial_sort(rank.begin(), rank.begin() + std::ptrdiff_t(width_), rank.end());
-        std::uint16_t* out = &cell_[((std::size_t(face) * kCells + std::size_t(i)) * kCells + std::size_t(j)) * width_];
-        for (std::size_t q = 0; q < width_; ++q) out[q] = std::uint16_t(rank[q].second);
-      }
+  filled_ = std::make_unique<std::once_flag[]>(std::size_t(6) * kCells * kCells);
+}
+
+std::array<double, 3> DirectionIndex::cell_centre(int face, int i, int j) {
+  const int axis = face / 2;
+  std::array<double, 3> d;
+  d[axis] = face % 2 ? -1.0 : 1.0;
+  d[(axis + 1) % 3] = (2.0 * i + 1.0) / kCells - 1.0;
+  d[(axis + 2) % 3] = (2.0 * j + 1.0) / kCells - 1.0;
+  return d;
+}
+
+void DirectionIndex::fill(int face, int i, int j, std::uint16_t* out) const {
+  // The width_ normals of largest dot product with the cell's centre,
+  // largest first, equal ones in index order: each normal is inserted into
+  // the short sorted list when it beats its last (a later normal never goes
+  // before an equal one).
+  const std::array<double, 3> d = cell_centre(face, i, j);
+  double top[kBest];
+  std::size_t filled = 0;
+  for (std::size_t q = 0; q < normals_.size(); ++q) {
+    const double x = normals_[q].x * d[0] + normals_[q].y * d[1] + normals_[q].z * d[2];
+    if (filled == width_ && !(x > top[width_ - 1])) continue;
+    std::size_t at = filled < width_ ? filled++ : width_ - 1;
+    for (; at > 0 && x > top[at - 1]; --at) {
+      top[at] = top[at - 1];
+      out[at] = out[at - 1];
+    }
+    top[at] = x;
+    out[at] = std::uint16_t(q);
+  }
 }
 
 std::size_t DirectionIndex::best(const double d[3], const std::uint16_t*& out) const {
@@ -1278,11 +1294,18 @@ std::size_t DirectionIndex::best(const double d[3], const std::uint16_t*& out) c
   const double m = std::fabs(d[axis]);
   if (!(m > 0) || !std::isfinite(m)) return 0;
   auto index = [&](double x) {
-    const double t = (x / m + 1.0) * 0.5 * kCells;
-    return std::size_t(std::clamp(t, 0.0, double(kCells - 1)));
+    const double t = (x / m + 1.0) * 0.5 * kCells;  // in [0, kCells] (|x| <= m), NaN taken as 0
+    return t >= 0 ? int(std::min(t, double(kCells - 1))) : 0;
   };
   const int face = 2 * axis + (d[axis] < 0 ? 1 : 0);
-  out = &cell_[((std::size_t(face) * kCells + index(d[(axis + 1) % 3])) * kCells + index(d[(axis + 2) % 3])) * width_];
+  const int i = index(d[(axis + 1) % 3]), j = index(d[(axis + 2) % 3]);
+  const std::size_t cell = (std::size_t(face) * kCells + std::size_t(i)) * kCells + std::size_t(j);
+  std::uint16_t* list = &cell_[cell * width_];
+  // Each cell's list is made when first asked for (a small union asks for
+  // a few hundred of the 6144), once, whichever thread asks first; the
+  // others wait for it.
+  std::call_once(filled_[cell], [&] { fill(face, i, j, list); });
+  out = list;
   return width_;
 }
 

@@ -9,6 +9,8 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -26,7 +28,8 @@ namespace minksum::nonconvex_detail {
 // map of the sphere of directions: each cell holds the facets whose normals
 // are closest to the cell's centre, closest first, so the facets facing a
 // direction are found in constant time (an order of exact tests, never a
-// decision).
+// decision).  A cell's list is made when first asked for; best() may be
+// called from several threads at once.
 class DirectionIndex {
  public:
   DirectionIndex() = default;
@@ -37,12 +40,18 @@ class DirectionIndex {
   std::size_t best(const double d[3], const std::uint16_t*& out) const;
   std::size_t size() const { return normals_.size(); }
 
- private:
   static constexpr int kCells = 32;  // per side of each face of the cube
   static constexpr std::size_t kBest = 6;  // facets kept per cell
+  // The direction at the centre of cell (i, j) of a face of the cube (face
+  // 2a + s: the face (−1)^s along axis a), the direction its list is for.
+  static std::array<double, 3> cell_centre(int face, int i, int j);
+
+ private:
+  void fill(int face, int i, int j, std::uint16_t* out) const;
   std::vector<Vec3d> normals_;
   std::size_t width_ = 0;
-  std::vector<std::uint16_t> cell_;  // 6 kCells kCells cells of width_ entries
+  mutable std::vector<std::uint16_t> cell_;      // 6 kCells kCells cells of width_ entries
+  std::unique_ptr<std::once_flag[]> filled_;  // per cell: its list made
 };
 
 struct Piece;

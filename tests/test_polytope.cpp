@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 
@@ -966,5 +967,63 @@ TEST(PolytopeBad, ZeroAreaFacetsInSeveralBlocksNameTheFirst) {
     }
     ASSERT_EQ(first, *std::min_element(flat.begin(), flat.end()));
     EXPECT_EQ(build_error(m), "case.off: facet " + std::to_string(first) + ": has zero area");
+  }
+}
+
+// build_if_convex, the probe of the commands that try the convex path first:
+// the polytope build makes for a convex mesh; nullopt exactly where build
+// refuses a closed 2-manifold surface as not one topological sphere (a
+// genus, two components) or as not convex in its last test (a reflex edge,
+// a vertex, an L-shaped face: on one thread and, with 4 096 vertices, in
+// parallel blocks); the same InputError as build for any other defect.
+TEST(PolytopeBuilder, BuildIfConvexAnswersNotConvexWithoutAnError) {
+  const Mesh cube = cube_mesh();
+  const std::optional<ConvexPolytope> p = PolytopeBuilder::build_if_convex(cube, "cube.off");
+  ASSERT_TRUE(p.has_value());
+  const ConvexPolytope q = PolytopeBuilder::build(cube, "cube.off");
+  EXPECT_EQ(p->num_vertices(), q.num_vertices());
+  EXPECT_EQ(p->num_facets(), q.num_facets());
+  EXPECT_EQ(p->volume(), q.volume());
+  Mesh two = cube_mesh(1);
+  const Mesh far = box_mesh(5, 6, 5, 6, 5, 6);
+  for (const Point3& x : far.points) two.points.push_back(x);
+  for (auto f : far.faces) {
+    for (auto& v : f) v += 8;
+    two.faces.push_back(f);
+  }
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"lshape", "is not a convex polygon"},
+      {"star:5", "is not a convex polygon"},
+      {"tube", "not a topological sphere"},
+      {"torus:8:4", "not a topological sphere"},
+      {"torus:64:64", "not a topological sphere"},
+      {"two cubes", "more than one connected component"}};
+  for (const auto& [spec, why] : refused) {
+    const Mesh m = spec == "two cubes" ? two : catalog_mesh(spec);
+    EXPECT_FALSE(PolytopeBuilder::build_if_convex(m, spec).has_value()) << spec;
+    EXPECT_NE(build_error(m).find(why), std::string::npos) << spec << ": " << build_error(m);
+  }
+  // A sphere's topology, not convex: a geodesic sphere of 10 242 vertices
+  // (its points as doubles: the validation's parallel blocks of vertices)
+  // with one vertex pushed in halfway to the centre.
+  const Mesh sphere = catalog_mesh("sphere:5");
+  Mesh dimpled;
+  dimpled.faces = sphere.faces;
+  for (Index v = 0; v < sphere.points.size(); ++v) {
+    const Vec3d x = to_double(sphere.points.exact(v));
+    dimpled.points.push_back(v == 0 ? Vec3d{x.x / 2, x.y / 2, x.z / 2} : x);
+  }
+  EXPECT_FALSE(PolytopeBuilder::build_if_convex(dimpled, "dimpled").has_value());
+  EXPECT_NE(build_error(dimpled).find("not convex"), std::string::npos) << build_error(dimpled);
+  Mesh bent = cube_mesh();
+  bent.points.set(7, P(1, 1, 2));  // a quad no longer planar: refused before the last test
+  EXPECT_THROW(PolytopeBuilder::build_if_convex(bent, "case.off"), NotConvexError);
+  Mesh open = cube_mesh();
+  open.faces.pop_back();
+  try {
+    PolytopeBuilder::build_if_convex(open, "case.off");
+    ADD_FAILURE() << "an open mesh was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), build_error(open));
   }
 }

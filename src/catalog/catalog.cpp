@@ -488,6 +488,8 @@ void apply_transforms(Mesh& mesh, const std::string& spec, const std::string& tr
   for (const Transform& t : parsed) t(mesh);
 }
 
+bool is_nonconvex_catalog_spec(const std::string& spec) { return is_nonconvex_name(base_name(split(spec, '@')[0])); }
+
 ConvexPolytope catalog_polytope(const std::string& spec) {
   if (spec.empty()) throw UsageError("empty catalog spec; see 'minksum gen --help' for the names");
   const std::vector<std::string> parts = split(spec, '@');

@@ -103,8 +103,12 @@ struct Graph {
 // their first corner (as they first appear in the polygons), and the first
 // error of each kind is the one on the edge that appears first: the
 // numbering and the messages do not depend on how edges are matched.
+// With `not_sphere`, a closed 2-manifold surface that is not one
+// topological sphere (several components, or a genus) sets it and returns
+// instead of throwing: it bounds no convex polytope (a probe's answer).
 Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::string& source,
-           const std::vector<Index>& vname, const std::vector<Index>& fname, const PointList& named) {
+           const std::vector<Index>& vname, const std::vector<Index>& fname, const PointList& named,
+           bool* not_sphere = nullptr) {
   const Index nf = Index(faces.size());
   // Corners in polygon order: corner c runs from co[c] to co[succ(c)].
   std::vector<Index> face_start = big_array<Index>(std::size_t(nf) + 1);
@@ -277,12 +281,21 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
     for (Index h = 0; h < nh; h += 2) uf.unite(g.origin[h], g.origin[h + 1]);
     const Index root = uf.find(co[0]);
     for (Index f = 1; f < nf; ++f)
-      if (uf.find(co[face_start[f]]) != root)
+      if (uf.find(co[face_start[f]]) != root) {
+        if (not_sphere) {
+          *not_sphere = true;
+          return g;
+        }
         throw InputError(source, fct(fname[f]),
                          "the mesh has more than one connected component (this facet is not connected to " +
                              fct(fname[0]) + ")");
+      }
   }
   long chi = long(nv) - long(num_edges) + long(faces.size());
+  if (chi != 2 && not_sphere) {
+    *not_sphere = true;
+    return g;
+  }
   if (chi != 2)
     throw InputError(source, "",
                      "the surface is not a topological sphere (V - E + F = " + std::to_string(chi) +
@@ -651,9 +664,18 @@ struct Validation {
 
   Validation(const Mesh& m, const std::string& s) : mesh(m), source(s) {}
 
+  // A probe (PolytopeBuilder::build_if_convex): link_faces records a
+  // surface that is not one topological sphere, check_convexity a
+  // non-convex edge, vertex or polygon, in not_convex instead of throwing.
+  bool probe = false;
+  bool not_convex = false;
+
+
   void check_indices();
   void weld();
-  void link_faces() { g = link(Index(pts.size()), faces(), source, vname, fname, mesh.points); }
+  void link_faces() {
+    g = link(Index(pts.size()), faces(), source, vname, fname, mesh.points, probe ? &not_convex : nullptr);
+  }
   void prepare_intervals();
   void check_facets();
   int volume_sign();
@@ -1093,8 +1115,13 @@ void Validation::check_convexity() {
   for (Index f = 0; f < final_faces.size(); ++f) {
     const auto& poly = final_faces[f];
     if (poly.size() == 3) continue;  // a triangle turns counter-clockwise about its own normal
-    if (!convex_polygon(poly, fip, fpts, finrm[f], [&]() -> const Point3& { return fnormal(f); }, scratch))
+    if (!convex_polygon(poly, fip, fpts, finrm[f], [&]() -> const Point3& { return fnormal(f); }, scratch)) {
+      if (probe) {
+        not_convex = true;
+        return;
+      }
       throw NotConvexError(source, fct(merged_name[f]), "is not a convex polygon (the solid is not convex)");
+    }
   }
   for (Index h = 0; h < fg.num_halfedges(); h += 2) {
     Index f = fg.facet[h], o = fg.facet[h + 1];
@@ -1107,6 +1134,10 @@ void Validation::check_convexity() {
         s = -*t;
       else
         s = sgn(dot(cross(fnormal(f), fnormal(o)), fpoint(fg.origin[h + 1]) - fpoint(fg.origin[h])));
+    }
+    if (s <= 0 && probe) {
+      not_convex = true;
+      return;
     }
     if (s <= 0)
       throw NotConvexError(source, edge_place(fname_v[fg.origin[h]], fname_v[fg.origin[h + 1]], mesh.points),
@@ -1130,31 +1161,53 @@ void Validation::check_convexity() {
       });
     const WedgeSigns wedges{below.data(), fg.facet.data()};
     const TriangleNormals<DoubleIntervals> tn{&dip, fg.origin.data(), fg.next.data(), fg.facet_he.data()};
+    std::atomic<bool> found{false};  // a probe's non-convex vertex
     in_blocks(fpts.size(), threads, [&](std::size_t begin, std::size_t end) {
       std::vector<Index> around;
       FanScratch block_scratch;
-      for (Index v = Index(begin); v < end; ++v)
+      for (Index v = Index(begin); v < end && !(probe && found.load(std::memory_order_relaxed)); ++v)
         if (!(c && convex_vertex_on_doubles(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), pts.approx(),
                                             *c, around, &wedges)) &&
             !convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), dip, tn, fpts,
-                           block_scratch))
+                           block_scratch)) {
+          if (probe) {
+            found.store(true, std::memory_order_relaxed);
+            return;
+          }
           throw NotConvexError(source, vertex_place(fname_v[v], mesh.points), "the solid is not convex around this vertex");
+        }
     });
+    not_convex = found.load();
   } else {
     for (Index v = 0; v < fpts.size(); ++v)
       if (!convex_vertex(v, fg.vertex_he[v], fg.origin.data(), fg.prev.data(), fg.facet.data(), fip, finrm, fpts,
-                         scratch))
+                         scratch)) {
+        if (probe) {
+          not_convex = true;
+          return;
+        }
         throw NotConvexError(source, vertex_place(fname_v[v], mesh.points), "the solid is not convex around this vertex");
+      }
   }
 }
 
 }  // namespace
 
 ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& source) {
+  return *build(mesh, source, false);
+}
+
+std::optional<ConvexPolytope> PolytopeBuilder::build_if_convex(const Mesh& mesh, const std::string& source) {
+  return build(mesh, source, true);
+}
+
+std::optional<ConvexPolytope> PolytopeBuilder::build(const Mesh& mesh, const std::string& source, bool probe) {
   Validation s(mesh, source);
+  s.probe = probe;
   s.check_indices();
   s.weld();
   s.link_faces();
+  if (s.not_convex) return std::nullopt;
   s.prepare_intervals();
   {
     // From here on every interval operation runs with the FPU rounding
@@ -1171,13 +1224,14 @@ ConvexPolytope PolytopeBuilder::build(const Mesh& mesh, const std::string& sourc
         flipped.points = mesh.points;
         flipped.faces = mesh.faces;
         for (auto& poly : flipped.faces) std::reverse(poly.begin(), poly.end());
-        return build(flipped, source);
+        return build(flipped, source, probe);
       }
       s.reverse_own_facets();
     }
     s.merge_coplanar();
     s.drop_vertices();
     s.check_convexity();
+    if (s.not_convex) return std::nullopt;
   }
 
   // 9. The polytope.

@@ -6,6 +6,7 @@
 
 #include "kernel/interval.hpp"
 #include "kernel/plane.hpp"
+#include "mesh/builder.hpp"
 #include "nonconvex/morton.hpp"
 #include "nonconvex/nef.hpp"
 #include "nonconvex/sweep.hpp"
@@ -18,6 +19,7 @@
 #include <cstdint>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -390,7 +392,8 @@ Rational mesh_volume(const Mesh& mesh) {
 Solid validate_solid(const Mesh& mesh, const std::string& source) {
   // A convex polytope is a valid solid: the convex path, no further test.
   try {
-    return solid_of(ConvexPolytope::from_mesh(mesh, source));
+    if (std::optional<ConvexPolytope> p = PolytopeBuilder::build_if_convex(mesh, source))
+      return solid_of(std::move(*p));
   } catch (const InputError&) {
     // Not convex (or not valid at all): the general checks say why.
   }

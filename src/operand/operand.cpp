@@ -4,6 +4,8 @@
 #include <minksum/io.hpp>
 #include <minksum/operand.hpp>
 
+#include "mesh/builder.hpp"
+
 #include <chrono>
 #include <optional>
 #include <sys/stat.h>
@@ -154,9 +156,15 @@ AnyOperand convex_or_mesh(Mesh mesh, const std::string& name, LoadPhases* phases
   AnyOperand o;
   const auto t1 = Clock::now();
   try {
-    ConvexSet set = ConvexSet::from_mesh(mesh, name);  // one face: a polygon
-    if (set.full()) o.polytope = std::move(set).release_polytope();
-    else o.flat = std::move(set);
+    if (mesh.faces.size() == 1) {
+      ConvexSet set = ConvexSet::from_mesh(mesh, name);  // one face: a polygon
+      if (set.full()) o.polytope = std::move(set).release_polytope();
+      else o.flat = std::move(set);
+    } else if (std::optional<ConvexPolytope> p = PolytopeBuilder::build_if_convex(mesh, name)) {
+      o.polytope = std::move(*p);
+    } else {
+      o.mesh = std::move(mesh);  // a closed surface, not convex
+    }
   } catch (const InputError&) {  // not a convex set: validate_solid says what it is
     o.mesh = std::move(mesh);
   }
@@ -174,6 +182,14 @@ AnyOperand load_any_operand(const std::string& spec, LoadPhases* phases, std::op
   const auto t0 = Clock::now();
   if (is_file_operand(spec)) return convex_or_mesh(read_file_operand(spec, given), spec, phases, t0);
   AnyOperand o;
+  // A non-convex solid of the catalog is asked for as a mesh directly (no
+  // NotConvexError to catch: a process's first exception costs
+  // milliseconds, mesh/builder.hpp).
+  if (is_nonconvex_catalog_spec(spec)) {
+    o.mesh = catalog_mesh(spec);
+    if (phases) *phases = {seconds(t0, Clock::now()), 0};
+    return o;
+  }
   try {
     ConvexSet set = catalog_convex_set(spec);
     if (set.full()) o.polytope = std::move(set).release_polytope();

@@ -59,6 +59,11 @@ const std::vector<CatalogEntry>& nonconvex_catalog_entries();
 // "foo.off" or "./cube" are never catalog specs.
 bool is_catalog_spec(const std::string& spec);
 
+// True if `spec`'s base name is one of the catalog's non-convex solids
+// (nonconvex_catalog_entries: catalog_mesh gives them, catalog_polytope
+// refuses them).  Parameters and transforms are not checked here.
+bool is_nonconvex_catalog_spec(const std::string& spec);
+
 // The catalog name closest to the base name of `spec` (within two edits, else
 // a name that the text begins), or "" when none is close: the "did you mean"
 // of error messages.

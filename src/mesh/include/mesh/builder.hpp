@@ -16,6 +16,18 @@ class PolytopeBuilder {
   // `source` names the file in the InputError of the first defect.
   static ConvexPolytope build(const Mesh& mesh, const std::string& source);
 
+  // As build, but nullopt, not an InputError, for a closed 2-manifold
+  // surface that bounds no convex polytope: one that is not a single
+  // topological sphere (several components, a genus), or whose edges,
+  // vertices or merged polygons are not convex.  The probes that try the
+  // convex path first (a solid read from a file) then pay no exception for
+  // the common non-convex solid.  (A process's first exception makes the
+  // unwinder sort its table of functions: milliseconds in the statically
+  // linked command.)  Other defects, including the earlier signs of
+  // non-convexity (a polygon not planar, coplanar facets that are not one
+  // convex polygon), still throw.
+  static std::optional<ConvexPolytope> build_if_convex(const Mesh& mesh, const std::string& source);
+
   // The exact convex hull of `points`, the same polytope as
   // ConvexPolytope::hull(points) gives (vertices in input order, facets
   // canonical), computed for doubles by an incremental triangulation in
@@ -53,6 +65,8 @@ class PolytopeBuilder {
   static std::optional<ConvexPolytope> moved(const ConvexPolytope& p, const PointList& points,
                                              std::size_t* split);
 
+ private:
+  static std::optional<ConvexPolytope> build(const Mesh& mesh, const std::string& source, bool probe);
 };
 
 // Sign of det(a, b, c) = <a, b x c>, exact.

@@ -72,6 +72,20 @@ TEST(NonconvexValidation, ConvexMeshKeepsTheConvexPath) {
   EXPECT_EQ(s.volume, Rational(8));
 }
 
+// solid_of without its volume (what the sums ask for: they do not read it)
+// leaves the volume 0 and gives the same sum, exactly.
+TEST(NonconvexValidation, ConvexSolidWithoutItsVolumeSumsTheSame) {
+  const ConvexPolytope b = catalog_polytope("sphere:1@scale:1/4");
+  const Solid with = solid_of(b), without = solid_of(b, false);
+  EXPECT_EQ(with.volume, b.volume());
+  EXPECT_EQ(without.volume, Rational(0));
+  const Solid a = solid("lshape");
+  const NonconvexSum r1 = minkowski_sum_nonconvex(a, with), r2 = minkowski_sum_nonconvex(a, without);
+  EXPECT_EQ(r1.mesh.faces, r2.mesh.faces);
+  EXPECT_EQ(mesh_volume(r1.mesh), mesh_volume(r2.mesh));
+  EXPECT_GT(mesh_volume(r1.mesh), Rational(3));  // the L's volume, and more
+}
+
 TEST(NonconvexValidation, OpenMeshIsRefused) {
   Mesh m = catalog_mesh("tube");
   m.faces.pop_back();

@@ -5,6 +5,7 @@
 #include <minksum/sum.hpp>
 
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 namespace minksum {
@@ -120,7 +121,15 @@ OperandSum solid_sum(const std::vector<Operand>& operands, const SumRequest& req
   if (request.operation != SumOperation::sum && !operands[1].polytope() && !operands[1].solid()->convex)
     throw InputError(operands[1].name(), "", std::string("is not convex: 'minksum ") + command +
                                                  "' takes a convex polytope B (a solid A of any shape)");
-  const Solid a = operands[0].to_solid(), b = operands[1].to_solid();
+  // The operands as solids: a solid operand's own (not copied), a convex
+  // polytope's made here without its volume (the sums do not read it).
+  std::optional<Solid> made[2];
+  auto solid = [&](int k) -> const Solid& {
+    if (const Solid* s = operands[k].solid()) return *s;
+    return made[k].emplace(solid_of(*operands[k].polytope(), false));
+  };
+  const Solid& a = solid(0);
+  const Solid& b = solid(1);
   const Method m = request.method == Method::automatic ? Method::walk : request.method;
   OperandSum out;
   NonconvexSum r;

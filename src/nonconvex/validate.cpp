@@ -657,7 +657,7 @@ Solid checked_surface(const Mesh& mesh, const std::string& source, bool with_vol
 
 }  // namespace
 
-Solid solid_of(const ConvexPolytope& p) {
+Solid solid_of(const ConvexPolytope& p, bool with_volume) {
   Solid s;
   const Mesh m = p.to_mesh();
   s.faces = m.faces.size();
@@ -668,7 +668,7 @@ Solid solid_of(const ConvexPolytope& p) {
       s.triangles.faces.push_back({m.faces[f][0], m.faces[f][i], m.faces[f][i + 1]});
       s.source_face.push_back(f);
     }
-  s.volume = p.volume();
+  if (with_volume) s.volume = p.volume();
   s.convex = p;
   return s;
 }

@@ -88,8 +88,10 @@ struct SolidStats {
   Point3 min, max;
 };
 SolidStats solid_stats(const Mesh& faces);
-// A convex polytope as a Solid (no validation needed).
-Solid solid_of(const ConvexPolytope& p);
+// A convex polytope as a Solid (no validation needed).  Without
+// `with_volume` its volume is left 0 (not computed), as the sums, which do
+// not read it, ask.
+Solid solid_of(const ConvexPolytope& p, bool with_volume = true);
 
 // The exact convex decomposition of a solid (CGAL's convex_decomposition_3
 // on its Nef polyhedron: cuts along the planes of the reflex edges, O(r^2)

@@ -488,7 +488,7 @@ void apply_transforms(Mesh& mesh, const std::string& spec, const std::string& tr
   for (const Transform& t : parsed) t(mesh);
 }
 
-bool is_nonconvex_catalog_spec(const std::string& spec) { return is_nonconvex_name(base_name(split(spec, '@')[0])); }
+bool is_nonconvex_catalog_spec(const std::string& spec) { return is_nonconvex_name(base_name(spec)); }
 
 ConvexPolytope catalog_polytope(const std::string& spec) {
   if (spec.empty()) throw UsageError("empty catalog spec; see 'minksum gen --help' for the names");

@@ -190,13 +190,9 @@ AnyOperand load_any_operand(const std::string& spec, LoadPhases* phases, std::op
     if (phases) *phases = {seconds(t0, Clock::now()), 0};
     return o;
   }
-  try {
-    ConvexSet set = catalog_convex_set(spec);
-    if (set.full()) o.polytope = std::move(set).release_polytope();
-    else o.flat = std::move(set);
-  } catch (const NotConvexError&) {  // a non-convex solid of the catalog
-    o.mesh = catalog_mesh(spec);
-  }
+  ConvexSet set = catalog_convex_set(spec);
+  if (set.full()) o.polytope = std::move(set).release_polytope();
+  else o.flat = std::move(set);
   if (phases) *phases = {seconds(t0, Clock::now()), 0};
   return o;
 }

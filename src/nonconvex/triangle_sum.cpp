@@ -17,8 +17,9 @@
 // have different normals (A: facet normals of B; B: ±n_t, which are not
 // facet normals of B there; C: inside open arcs of B's map and not ±n_t), so
 // each facet is found once.  Every sign is a kernel predicate on the exact
-// points (support_compare and dot_difference_sign, filtered on cached roundings); the
-// planes are exact canonical integer planes.
+// points (support_compare and dot_difference_sign, filtered on cached roundings).
+// Every plane is lazy (LazyPlane): its doubles, and its exact canonical
+// integer plane only for a candidate or when the union asks (build).
 #include <minksum/error.hpp>
 #include <minksum/parallel.hpp>
 #include <minksum/dot_difference.hpp>
@@ -171,44 +172,60 @@ void cross_integers(const Integer x[3], const Integer y[3], Integer out[3]) {
   }
 }
 
-// The canonical plane with normal a positive multiple of n (not zero)
-// through p + q, as canonical_plane_through_sum gives it, with smaller
-// gcds: n made primitive first (n' = n / gcd(n), numbers the size of n),
-// then the plane n' M . x = D with M = p.den q.den and D = n' . (p.num q.den
-// + q.num p.den), whose coefficients have the gcd gcd(M gcd(n'), D) =
-// gcd(M, D): one gcd with D instead of three with numbers the size of n M.
-Plane plane_through_sum(const Integer n[3], const ScaledPoint& p, const ScaledPoint& q) {
-  Integer g, m[3], dd, d, t;
+// The plane with normal a positive multiple of n (not zero) through p + q:
+// its primitive normal m = n / gcd(n) and its offset along m, num / den
+// with den = p.den q.den and num = m . (p.num q.den + q.num p.den) (the
+// fraction not reduced).
+struct SumPlane {
+  Integer m[3], num, den;
+};
+
+void sum_plane(const Integer n[3], const ScaledPoint& p, const ScaledPoint& q, SumPlane& out) {
+  Integer& g = out.num;  // (scratch until the offset)
   mpz_gcd(g.get_mpz_t(), n[0].get_mpz_t(), n[1].get_mpz_t());
   mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), n[2].get_mpz_t());
   for (int j = 0; j < 3; ++j) {
-    if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) mpz_divexact(m[j].get_mpz_t(), n[j].get_mpz_t(), g.get_mpz_t());
-    else m[j] = n[j];
+    if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) mpz_divexact(out.m[j].get_mpz_t(), n[j].get_mpz_t(), g.get_mpz_t());
+    else out.m[j] = n[j];
   }
-  mpz_mul(dd.get_mpz_t(), p.den.get_mpz_t(), q.den.get_mpz_t());
+  mpz_mul(out.den.get_mpz_t(), p.den.get_mpz_t(), q.den.get_mpz_t());
+  mpz_set_ui(out.num.get_mpz_t(), 0);
+  thread_local Integer t;
   for (const auto& [x, other] : {std::pair<const ScaledPoint*, const ScaledPoint*>{&p, &q}, {&q, &p}}) {
-    mpz_mul(t.get_mpz_t(), m[0].get_mpz_t(), x->num[0].get_mpz_t());
-    mpz_addmul(t.get_mpz_t(), m[1].get_mpz_t(), x->num[1].get_mpz_t());
-    mpz_addmul(t.get_mpz_t(), m[2].get_mpz_t(), x->num[2].get_mpz_t());
-    mpz_addmul(d.get_mpz_t(), t.get_mpz_t(), other->den.get_mpz_t());
+    mpz_mul(t.get_mpz_t(), out.m[0].get_mpz_t(), x->num[0].get_mpz_t());
+    mpz_addmul(t.get_mpz_t(), out.m[1].get_mpz_t(), x->num[1].get_mpz_t());
+    mpz_addmul(t.get_mpz_t(), out.m[2].get_mpz_t(), x->num[2].get_mpz_t());
+    mpz_addmul(out.num.get_mpz_t(), t.get_mpz_t(), other->den.get_mpz_t());
   }
-  mpz_gcd(g.get_mpz_t(), dd.get_mpz_t(), d.get_mpz_t());
+}
+
+// The canonical plane of s: (m den, num) / gcd(den, num), whose
+// coefficients have the gcd gcd(den gcd(m), num) = gcd(den, num) (m is
+// primitive).  Changes s.
+Plane canonical_plane(SumPlane& s) {
+  thread_local Integer g;
+  mpz_gcd(g.get_mpz_t(), s.den.get_mpz_t(), s.num.get_mpz_t());
   if (mpz_cmp_ui(g.get_mpz_t(), 1) != 0) {
-    mpz_divexact(dd.get_mpz_t(), dd.get_mpz_t(), g.get_mpz_t());
-    mpz_divexact(d.get_mpz_t(), d.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(s.den.get_mpz_t(), s.den.get_mpz_t(), g.get_mpz_t());
+    mpz_divexact(s.num.get_mpz_t(), s.num.get_mpz_t(), g.get_mpz_t());
   }
   Plane out;
-  mpz_mul(out.a.get_mpz_t(), m[0].get_mpz_t(), dd.get_mpz_t());
-  mpz_mul(out.b.get_mpz_t(), m[1].get_mpz_t(), dd.get_mpz_t());
-  mpz_mul(out.c.get_mpz_t(), m[2].get_mpz_t(), dd.get_mpz_t());
-  mpz_swap(out.d.get_mpz_t(), d.get_mpz_t());
+  mpz_mul(out.a.get_mpz_t(), s.m[0].get_mpz_t(), s.den.get_mpz_t());
+  mpz_mul(out.b.get_mpz_t(), s.m[1].get_mpz_t(), s.den.get_mpz_t());
+  mpz_mul(out.c.get_mpz_t(), s.m[2].get_mpz_t(), s.den.get_mpz_t());
+  mpz_swap(out.d.get_mpz_t(), s.num.get_mpz_t());
   return out;
 }
 
-struct Built {
-  Plane plane;
-  std::vector<Point3> loop;  // empty: not a candidate
-};
+// The canonical plane with normal a positive multiple of n (not zero)
+// through p + q, as canonical_plane_through_sum gives it, with smaller
+// gcds: n made primitive first (numbers the size of n), then one gcd of the
+// offset's fraction instead of three with numbers the size of n M.
+Plane plane_through_sum(const Integer n[3], const ScaledPoint& p, const ScaledPoint& q) {
+  SumPlane s;
+  sum_plane(n, p, q, s);
+  return canonical_plane(s);
+}
 
 }  // namespace
 
@@ -219,6 +236,32 @@ namespace {
 // magnitude in [2^-480, 2^480).
 constexpr double kLazyFilterMin = 0x1p-480;
 constexpr double kLazyFilterMax = 0x1p+480;
+
+// The doubles of s as a lazy plane: its primitive normal and its offset
+// along it, each rounded towards zero (mpz_get_d truncates), as the facets
+// of B's lazy planes have them, so that equal planes of any two kinds have
+// equal doubles; usable in the filter when each is below 2^480 and the
+// offset zero exactly or at least 2^-480.
+void lazy_of(const SumPlane& s, LazyPlane& out) {
+  bool usable = true;
+  double* abc[3] = {&out.a, &out.b, &out.c};
+  for (int j = 0; j < 3; ++j) {
+    *abc[j] = mpz_get_d(s.m[j].get_mpz_t());
+    usable = usable && mpz_sizeinbase(s.m[j].get_mpz_t(), 2) < 480;
+  }
+  out.d = truncated_ratio(s.num, s.den);
+  out.filtered = usable && std::isfinite(out.d) && std::fabs(out.d) < kLazyFilterMax &&
+                 (out.d == 0 ? sgn(s.num) == 0 : std::fabs(out.d) >= kLazyFilterMin);
+}
+
+// The tags of the lazy planes of t ⊕ B (LazyPlane::tag), with their codes:
+//   A. facet k of B (plane k) moved to vertex `tag` (0..2) of t, the one at
+//      its top;
+//   B. kBFacet + side: t + vertex `code` of B, normal n_t (side 0) or −n_t
+//      (side 1);
+//   C. kCFacet + k + 3 (σ < 0): t's edge k (from corner k to k + 1) ⊕ edge
+//      `code` of B, normal σ (b − a) × (g1 − g0).
+constexpr std::uint8_t kBFacet = 3, kCFacet = 5;
 
 }  // namespace
 
@@ -299,11 +342,46 @@ void SweptPolytope::release() {
 }
 
 Plane SweptPolytope::build(const Piece& piece, Index k) const {
-  const Facet& f = facets_[k];
-  const ScaledPoint q = scaled_point(*piece.corner[piece.lazy[k].tag]);
-  Integer work[3];
-  offset_along(f, q, work);
-  return canonical_from_offset(f, work);
+  const LazyPlane& l = piece.lazy[k];
+  Integer n[3];
+  if (k < facets_.size()) {
+    offset_along(facets_[k], *piece.scaled_corner[l.tag], n);
+    return canonical_from_offset(facets_[k], n);
+  }
+  const ScaledPoint* const* s = piece.scaled_corner;
+  if (l.tag < kCFacet) {
+    Integer e1[3], e2[3];
+    scaled_difference(*s[0], *s[1], e1);
+    scaled_difference(*s[0], *s[2], e2);
+    cross_integers(e1, e2, n);  // a positive multiple of n_t
+    if (l.tag != kBFacet)
+      for (Integer& x : n) mpz_neg(x.get_mpz_t(), x.get_mpz_t());
+    return plane_through_sum(n, *s[0], scaled_[l.code]);
+  }
+  const int edge = (l.tag - kCFacet) % 3;
+  const Edge& g = edges_[l.code];
+  Integer e[3];
+  scaled_difference(*s[edge], *s[(edge + 1) % 3], e);
+  cross_integers(e, g.direction, n);
+  if (l.tag >= kCFacet + 3)
+    for (Integer& x : n) mpz_neg(x.get_mpz_t(), x.get_mpz_t());
+  return plane_through_sum(n, *s[edge], scaled_[g.v0]);
+}
+
+bool SweptPolytope::contains(const Piece& piece, Index k, std::uint64_t label) const {
+  const Index m = Index(label >> 32), v = Index(label & 0xffffffffu);
+  const LazyPlane& l = piece.lazy[k];
+  const Index* id = piece.corner_id;
+  if (k < facets_.size()) {  // f + p_top: holds p_top + b for every vertex b of f
+    const std::vector<Index>& loop = facets_[k].loop;
+    return m == id[l.tag] && std::find(loop.begin(), loop.end(), v) != loop.end();
+  }
+  if (l.tag < kCFacet)  // t + b_code (and more), normal ±n_t: holds every corner plus b_code
+    return v == l.code && (m == id[0] || m == id[1] || m == id[2]);
+  // e ⊕ g: holds both ends of t's edge plus both ends of g.
+  const int e = (l.tag - kCFacet) % 3;
+  const Edge& g = edges_[l.code];
+  return (v == g.v0 || v == g.v1) && (m == id[e] || m == id[(e + 1) % 3]);
 }
 
 // The vertices of B highest along sign · n_t (n_t the normal of t =
@@ -345,12 +423,25 @@ void SweptPolytope::extreme_face(const RoundedPoint3 p[3], const Vec3d& na, int 
 Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   const auto& c = cones.triangle(t);
   const RoundedPoint3 p[3] = {cones.rounded(c[0]), cones.rounded(c[1]), cones.rounded(c[2])};
-  std::vector<Built> built;
-  built.reserve(32);
-  std::vector<LazyPlane> lazy(facets_.size());
+  // The planes, in the thread's buffer (copied out at their final count).
+  thread_local std::vector<LazyPlane> buffer;
+  std::vector<LazyPlane>& lazy = buffer;
+  lazy.assign(facets_.size(), LazyPlane());
   std::vector<Plane> lazy_exact;
   std::vector<Index> candidates;
   std::vector<std::vector<Point3>> loops;
+  std::vector<std::vector<std::uint64_t>> labels;  // (contains)
+  // The label of the point p_k + b_v (corner k of t, vertex v of B).
+  auto label = [&](int k, Index v) { return std::uint64_t(c[k]) << 32 | v; };
+  SumPlane plane;  // the last plane of kind B or C
+  // That plane, a candidate: held exactly, with its loop and its points' labels.
+  auto hold = [&](LazyPlane& lp, std::vector<Point3> loop, std::vector<std::uint64_t> names) {
+    lp.exact = std::int32_t(lazy_exact.size());
+    lazy_exact.push_back(canonical_plane(plane));
+    candidates.push_back(Index(&lp - lazy.data()));
+    loops.push_back(std::move(loop));
+    labels.push_back(std::move(names));
+  };
   // t's points as integers over a common denominator.
   const ScaledPoint* const sp[3] = {&cones.scaled(c[0]), &cones.scaled(c[1]), &cones.scaled(c[2])};
   Integer work[3];
@@ -410,8 +501,12 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       lazy_exact.push_back(canonical_from_offset(f, work));
       candidates.push_back(Index(fi));
       std::vector<Point3> loop;
+      std::vector<std::uint64_t> names;
       if (count == 1) {
-        for (Index v : f.loop) loop.push_back(points_[v] + q);
+        for (Index v : f.loop) {
+          loop.push_back(points_[v] + q);
+          names.push_back(label(top, v));
+        }
       } else {
         std::vector<Point3> sums;
         for (int k = 0; k < 3; ++k)
@@ -420,6 +515,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
         loop = plane_hull(std::move(sums), f.normal);
       }
       loops.push_back(std::move(loop));
+      labels.push_back(std::move(names));
     }
   }
 
@@ -442,20 +538,28 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       const Point3 u = side == 0 ? cones.normal(t) : Rational(-1) * cones.normal(t);
       const Vec3d ua = side == 0 ? cones.normal_approx(t) : Vec3d{-cones.normal_approx(t).x, -cones.normal_approx(t).y,
                                                                    -cones.normal_approx(t).z};
-      Built x;
-      x.plane = plane_through_sum(n[side], *sp[0], scaled_[face[0]]);
+      LazyPlane& lp = lazy.emplace_back();
+      sum_plane(n[side], *sp[0], scaled_[face[0]], plane);
+      lazy_of(plane, lp);
+      lp.tag = static_cast<std::uint8_t>(kBFacet + side);
+      lp.code = face[0];
       const bool whole[3] = {true, true, true};  // t is face_u(t)
       if (cones.candidate(t, RoundedPoint3{u, ua}, whole) && on_surface(face[0], RoundedPoint3{u, ua})) {
+        std::vector<Point3> loop;
+        std::vector<std::uint64_t> names;
         if (face.size() == 1) {
-          for (int k = 0; k < 3; ++k) x.loop.push_back(p[side == 0 ? k : 2 - k].exact + points_[face[0]]);
+          for (int k = 0; k < 3; ++k) {
+            loop.push_back(p[side == 0 ? k : 2 - k].exact + points_[face[0]]);
+            names.push_back(label(side == 0 ? k : 2 - k, face[0]));
+          }
         } else {
           std::vector<Point3> sums;
           for (int k = 0; k < 3; ++k)
             for (Index v : face) sums.push_back(p[k].exact + points_[v]);
-          x.loop = plane_hull(std::move(sums), u);
+          loop = plane_hull(std::move(sums), u);
         }
+        hold(lp, std::move(loop), std::move(names));
       }
-      built.push_back(std::move(x));
     }
   }
 
@@ -490,8 +594,11 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       cross_integers(e, g.direction, n);
       if (sigma < 0)
         for (Integer& x : n) mpz_neg(x.get_mpz_t(), x.get_mpz_t());
-      Built x;
-      x.plane = plane_through_sum(n, *sp[k], scaled_[g.v0]);
+      LazyPlane& lp = lazy.emplace_back();
+      sum_plane(n, *sp[k], scaled_[g.v0], plane);
+      lazy_of(plane, lp);
+      lp.tag = static_cast<std::uint8_t>(kCFacet + k + (sigma < 0 ? 3 : 0));
+      lp.code = Index(&g - edges_.data());
       const Point3 u{Rational(n[0]), Rational(n[1]), Rational(n[2])};
       // Faithful roundings (mpz_get_d truncates), as the cone tests allow.
       const Vec3d ua{mpz_get_d(n[0].get_mpz_t()), mpz_get_d(n[1].get_mpz_t()), mpz_get_d(n[2].get_mpz_t())};
@@ -501,32 +608,34 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
           on_surface(g.v0, RoundedPoint3{u, ua})) {
         // e ⊕ g with normal e × g is counter-clockwise in the order
         // a + g0, b + g0, b + g1, a + g1; reversed for σ < 0.
-        x.loop = {a.exact + points_[g.v0], b.exact + points_[g.v0], b.exact + points_[g.v1], a.exact + points_[g.v1]};
-        if (sigma < 0) std::reverse(x.loop.begin(), x.loop.end());
+        const int j = (k + 1) % 3;
+        std::vector<Point3> loop = {a.exact + points_[g.v0], b.exact + points_[g.v0], b.exact + points_[g.v1],
+                                    a.exact + points_[g.v1]};
+        std::vector<std::uint64_t> names = {label(k, g.v0), label(j, g.v0), label(j, g.v1), label(k, g.v1)};
+        if (sigma < 0) {
+          std::reverse(loop.begin(), loop.end());
+          std::reverse(names.begin(), names.end());
+        }
+        hold(lp, std::move(loop), std::move(names));
       }
-      built.push_back(std::move(x));
     }
   }
 
   // The planes in the order built (facet k of B first, as plane k: the
-  // union's directions; lazy), the candidates ascending.
+  // union's directions), all lazy; the candidates ascending.
   Piece piece;
   piece.directions = &directions_;
   piece.builder = this;
-  for (int k = 0; k < 3; ++k) piece.corner[k] = &p[k].exact;
-  piece.lazy = std::move(lazy);
+  for (int k = 0; k < 3; ++k) {
+    piece.corner[k] = &p[k].exact;
+    piece.scaled_corner[k] = sp[k];
+    piece.corner_id[k] = c[k];
+  }
+  piece.lazy.assign(lazy.begin(), lazy.end());
   piece.lazy_exact = std::move(lazy_exact);
   piece.candidates = std::move(candidates);
   piece.loops = std::move(loops);
-  piece.planes.reserve(built.size());
-  const Index first = Index(facets_.size());
-  for (Index i = 0; i < built.size(); ++i) {
-    if (!built[i].loop.empty()) {
-      piece.candidates.push_back(first + i);
-      piece.loops.push_back(std::move(built[i].loop));
-    }
-    piece.planes.push_back(std::move(built[i].plane));
-  }
+  piece.labels = std::move(labels);
   // The box: t's box plus B's, exactly, then rounded to nearest (monotone,
   // so it holds the nearest doubles of every point of the piece).
   for (int k = 0; k < 3; ++k) {

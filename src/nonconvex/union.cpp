@@ -89,12 +89,16 @@ struct CutPoint {
 // polygon's own that holds the edge from this vertex to the next: a cut
 // point is then the meeting point of three integer planes, whose size does
 // not grow with the number of cuts.
+// `label`, when not kNoLabel, is the point's label in the piece its facet
+// came from (Piece::labels), for PlaneBuilder::contains.
+constexpr std::uint64_t kNoLabel = ~std::uint64_t(0);
 struct V3 {
   const Point3* p = nullptr;
   const CutPoint* c = nullptr;
   Vec3d d;
   bool filtered = false;
   const Plane* edge = nullptr;
+  std::uint64_t label = kNoLabel;
   const Point3& exact() const { return p ? *p : c->point(); }
 };
 
@@ -237,6 +241,23 @@ Half half_of(const Plane& q) {
   return h;
 }
 
+// The doubles a lazy plane equal to q has (LazyPlane): the primitive normal
+// (a, b, c) / g, g = gcd(a, b, c), and the offset d / g along it, each
+// rounded towards zero.
+std::array<double, 4> lazy_doubles(const Plane& q) {
+  Integer g, m;
+  mpz_gcd(g.get_mpz_t(), q.a.get_mpz_t(), q.b.get_mpz_t());
+  mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), q.c.get_mpz_t());
+  std::array<double, 4> out{};
+  const Integer* abc[3] = {&q.a, &q.b, &q.c};
+  for (int j = 0; j < 3; ++j) {
+    mpz_divexact(m.get_mpz_t(), abc[j]->get_mpz_t(), g.get_mpz_t());
+    out[std::size_t(j)] = mpz_get_d(m.get_mpz_t());
+  }
+  out[3] = truncated_ratio(q.d, g);
+  return out;
+}
+
 // The facet half-spaces of one piece, in the order of its planes: the lazy
 // ones made from the piece's LazyPlane when asked (their doubles are the
 // piece's own, not copied for every piece of the union), the others kept.
@@ -263,10 +284,14 @@ struct HalfSet {
   }
 };
 
-// > 0 outside, 0 on the plane, < 0 inside.
+// > 0 outside, 0 on the plane, < 0 inside.  A point the filter leaves open
+// is most often on the plane by construction (a point of a facet of a
+// neighbouring piece, made from the same point of the surface and vertex
+// of B): the builder tells that from the labels, else the exact value.
 int side(const Half& h, const V3& v) {
   if (h.filtered && v.filtered)
     if (const auto s = half_space_side_filter(h.da, h.db, h.dc, h.dd, v.d.x, v.d.y, v.d.z)) return *s;
+  if (v.label != kNoLabel && h.piece && h.piece->builder->contains(*h.piece, h.index, v.label)) return 0;
   const Plane& plane = h.plane ? *h.plane : built_plane(h);
   if (v.c) return side_of_cut(plane, *v.c);
   return plane.side(*v.p);  // integer arithmetic, no rational normalisation
@@ -899,9 +924,11 @@ struct PlaneResult {
 // that such an edge is an edge of this face too (a non-manifold edge).
 // `facets` are the candidate facets on the plane, `below` the other pieces
 // with a facet on it facing the same way (not candidates), ascending.
+// `labelled`: the pieces share one builder, whose labels of their points
+// (Piece::labels) may be asked about any piece's planes.
 PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& facets, const std::vector<Index>& below,
                            const std::vector<Piece>& parts, const std::vector<HalfSet>& halves,
-                           const PieceGrid& grid, const std::vector<Segment>& slits = {}) {
+                           const PieceGrid& grid, bool labelled, const std::vector<Segment>& slits = {}) {
   PlaneResult r;
   Arena arena;
   const Integer normal_integers[3] = {plane.a, plane.b, plane.c};
@@ -922,8 +949,12 @@ PlaneResult plane_boundary(const Plane& plane, const std::vector<FacetRef>& face
     const std::vector<Point3>& loop = own.loops[f.facet];
     scaled.clear();
     for (const Point3& p : loop) scaled.push_back(scaled_point(p));
+    const std::vector<std::uint64_t>* names =
+        labelled && f.facet < own.labels.size() && own.labels[f.facet].size() == loop.size() ? &own.labels[f.facet]
+                                                                                             : nullptr;
     for (std::size_t k = 0; k < loop.size(); ++k) {
       frags[0].push_back(make_v3(loop[k]));
+      if (names) frags[0].back().label = (*names)[k];
       box.add(frags[0].back().d);
       // The plane through the edge perpendicular to this one.
       arena.planes.push_back(edge_plane(scaled[k], scaled[(k + 1) % loop.size()], normal_integers));
@@ -1382,11 +1413,11 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
   };
   std::unordered_map<const Plane*, std::size_t, PlaneHash, PlaneEq> group_of;
   std::vector<Group> groups;
-  // The lazy candidates' planes also by their doubles: a lazy plane equal to
-  // one of them has the same doubles (each the rounding towards zero of the
-  // same value), and a lazy plane never equals a plane that is not lazy
-  // (the sweep's lazy planes have the convex operand's facet normals, its
-  // other planes never: docs/nonconvex.md, "Pieces").
+  // The candidates' planes also by their lazy doubles (the primitive normal
+  // and the offset along it, each rounded towards zero): a lazy plane equal
+  // to one of them has the same doubles.  A held candidate's are made only
+  // when some piece has lazy planes (the sweep's pieces are all lazy, the
+  // others all held: usually none is needed).
   struct DoublesHash {
     std::size_t operator()(const std::array<double, 4>& k) const {
       std::size_t h = 0;
@@ -1395,6 +1426,10 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     }
   };
   std::unordered_multimap<std::array<double, 4>, std::size_t, DoublesHash> lazy_group_of;
+  bool any_lazy = false;
+  for (const Piece& p : parts) any_lazy = any_lazy || !p.lazy.empty();
+  bool labelled = !parts.empty() && parts.front().builder;
+  for (const Piece& p : parts) labelled = labelled && p.builder == parts.front().builder;
   for (Index i = 0; i < parts.size(); ++i)
     for (Index f = 0; f < parts[i].candidates.size(); ++f) {
       const Index k = parts[i].candidates[f];
@@ -1405,6 +1440,8 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
         if (k < parts[i].lazy.size()) {
           const LazyPlane& l = parts[i].lazy[k];
           lazy_group_of.emplace(std::array<double, 4>{l.a, l.b, l.c, l.d}, it->second);
+        } else if (any_lazy) {
+          lazy_group_of.emplace(lazy_doubles(*pl), it->second);
         }
       }
       groups[it->second].facets.push_back(FacetRef{i, f});
@@ -1463,7 +1500,7 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     parallel_for(count, workers, [&](std::size_t k) {
       const std::size_t at = visit[start + k];
       const Group& g = *planes[at];
-      results[at] = plane_boundary(*g.plane, g.facets, g.below, parts, halves, grid);
+      results[at] = plane_boundary(*g.plane, g.facets, g.below, parts, halves, grid, labelled);
     });
     options.report("union", double(start + count) / double(n));
   }
@@ -1564,7 +1601,8 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     std::vector<PlaneResult> redone(n);
     parallel_for(n, workers, [&](std::size_t g) {
       if (!slits[g].empty())
-        redone[g] = plane_boundary(*planes[g]->plane, planes[g]->facets, planes[g]->below, parts, halves, grid, slits[g]);
+        redone[g] =
+            plane_boundary(*planes[g]->plane, planes[g]->facets, planes[g]->below, parts, halves, grid, labelled, slits[g]);
     });
     for (std::size_t g = 0; g < n; ++g)
       if (!slits[g].empty()) results[g] = std::move(redone[g]);

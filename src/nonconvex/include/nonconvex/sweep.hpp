@@ -136,14 +136,20 @@ class SweptPolytope final : public PlaneBuilder {
   // unless its face of B can hold a point o of O's surface with the
   // facet's normal u in O's local normal cone at o (on_surface).
   explicit SweptPolytope(const ConvexPolytope& b, const SurfaceCones* surface = nullptr);
-  // The canonical plane of facet k of B moved to the vertex of piece's
-  // triangle at its top (piece.lazy[k].tag), as sum's lazy planes.
+  // The canonical plane k of a piece, from its tag and code (triangle_sum.cpp):
+  // facet k of B moved to the vertex of t at its top, t plus a vertex of B,
+  // or an edge of t plus an edge of B.
   Plane build(const Piece& piece, Index k) const override;
+  // Whether plane k of a piece holds p_m + b_v, the label m << 32 | v
+  // (surface point m, vertex v of B), by construction: m the top corner and
+  // v on the facet (A), v the plane's vertex of B and m a corner (B), m an
+  // end of the plane's edge of t and v an end of its edge of B (C).
+  bool contains(const Piece& piece, Index k, std::uint64_t label) const override;
 
   // t ⊕ B for triangle t of `cones`' surface, built from the Gaussian maps
-  // of t and B without constructing its vertices: every facet's canonical
-  // plane, the vertex loops of the facets that SurfaceCones::candidate
-  // keeps (the candidates first), and its box.
+  // of t and B without constructing its vertices: every facet's lazy plane
+  // (the candidates' held exactly), the vertex loops of the facets that
+  // SurfaceCones::candidate keeps with their points' labels, and its box.
   Piece sum(const SurfaceCones& cones, Index t) const;
   // Makes, for every point v of `cones`' surface and facet f of B, the
   // doubles of the lazy plane f + v (what sum computes for each triangle

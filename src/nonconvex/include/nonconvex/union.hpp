@@ -14,6 +14,10 @@
 #include <utility>
 #include <vector>
 
+namespace minksum {
+struct ScaledPoint;  // kernel/plane.hpp
+}
+
 namespace minksum::nonconvex_detail {
 
 // A convex polytope as the union needs it: the canonical plane of every
@@ -56,23 +60,28 @@ class DirectionIndex {
 
 struct Piece;
 
-// A facet plane that a piece builds only when an exact test needs it (the
-// sweep's planes f + face_u(t), one per facet f of the convex operand, most
-// of which only ever meet the filter): the doubles of a positive multiple of
-// it, (a, b, c) the operand's primitive integer normal and d the offset
-// along it, each the rounding towards zero of its exact value (so equal
-// planes have equal doubles), and what its builder needs.
+// A facet plane that a piece builds only when an exact test needs it (every
+// plane of the sweep's pieces t ⊕ B, most of which only ever meet the
+// filter): the doubles of a positive multiple of it, (a, b, c) its primitive
+// integer normal and d the offset along it, each the rounding towards zero
+// of its exact value (so equal planes have equal doubles, whichever piece
+// and kind of facet they come from), and what its builder needs.
 struct LazyPlane {
   double a = 0, b = 0, c = 0, d = 0;
   bool filtered = false;    // all four usable in the union's half-space filter
-  std::uint8_t tag = 0;     // the builder's (the sweep: the vertex of t at the top)
+  std::uint8_t tag = 0;     // the builder's (the sweep: the kind of facet and the vertex or edge of t)
   std::int32_t exact = -1;  // the plane in Piece::lazy_exact, when the piece holds it
+  std::uint32_t code = 0;   // the builder's (the sweep: the vertex or edge of B)
 };
 
 // Builds plane k (< piece.lazy.size()) of a piece exactly, canonical.
 class PlaneBuilder {
  public:
   virtual Plane build(const Piece& piece, Index k) const = 0;
+  // Whether plane k of `piece` holds the point of label `label` (a label of
+  // Piece::labels of a piece of the same builder) by construction; false
+  // when it cannot tell.  Exact: true only when the point is on the plane.
+  virtual bool contains(const Piece& piece, Index k, std::uint64_t label) const = 0;
 
  protected:
   ~PlaneBuilder() = default;
@@ -86,9 +95,14 @@ struct Piece {
   std::vector<Plane> lazy_exact;
   const PlaneBuilder* builder = nullptr;
   const Point3* corner[3] = {nullptr, nullptr, nullptr};
+  const ScaledPoint* scaled_corner[3] = {nullptr, nullptr, nullptr};  // the corners over common denominators
+  Index corner_id[3] = {0, 0, 0};                                      // the builder's numbers of the corners
   std::vector<Plane> planes;
   std::vector<Index> candidates;
   std::vector<std::vector<Point3>> loops;  // one per candidate
+  // Per candidate, empty or a label per point of its loop, which
+  // builder->contains reads (the sweep: corner and vertex of B summed).
+  std::vector<std::vector<std::uint64_t>> labels;
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   const DirectionIndex* directions = nullptr;
 

@@ -220,16 +220,16 @@ int run_sum_command(const SumCommand& c) {
   // memory is the sum's.
   request.provenance = false;
   OperandSum s;
-  // A solid sum's pieces (SumOptions::release): dead once the sum is made,
-  // left to the end of the process (leave_to_exit).
-  std::shared_ptr<void> pieces;
+  // A solid sum's working data (SumOptions::release: the pieces, the
+  // union's faces): dead once the sum is made, left to the end of the
+  // process (leave_to_exit), where it costs nothing to free.
   {
     ProgressTicker ticker(std::string("minksum ") + kCommand[int(c.request.operation)]);
     request.options = ticker.sum_options();
     // The volume is for --json only; a solid's is computed below, on its own
     // thread while the file is written.
     request.options.volume = c.json && !solid;
-    if (solid) request.options.release = [&pieces](std::shared_ptr<void> data) { pieces = std::move(data); };
+    if (solid) request.options.release = [](std::shared_ptr<void> data) { leave_to_exit(std::move(data)); };
     s = minkowski_sum(operands, request);
   }
   // The operands are freed before the sum is rounded and written (only
@@ -241,7 +241,6 @@ int run_sum_command(const SumCommand& c) {
   if (!scene) std::vector<Operand>().swap(operands);
   const Mesh* boundary = s.solid();
   const bool empty = boundary && boundary->faces.empty();
-  if (pieces) leave_to_exit(std::move(pieces));
   // A solid's exact volume is for --json only (the text report does not
   // give it).  Both only read the boundary; the volume's thread is joined
   // before s changes (get() below, or the future's destructor when the write

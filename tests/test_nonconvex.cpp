@@ -587,17 +587,21 @@ TEST(NonconvexSum, ReportsProgressAndHonoursCancel) {
   EXPECT_THROW(minkowski_sum_nonconvex(solid("tube"), solid("cube"), c), Cancelled);
 }
 
-// SumOptions::release: the boundary sweep hands its pieces over once,
-// alive (the last pointer frees them), and the sum is the same.
+// SumOptions::release: the boundary sweep hands over the union's faces
+// before their points are welded, then its pieces, each once and alive (the
+// last pointer frees them), and the sum is the same.
 TEST(NonconvexSum, ReleaseHandsThePiecesOver) {
   const NonconvexSum plain = minkowski_sum_nonconvex(solid("tube"), solid("cube@scale:1/8"));
   std::vector<std::shared_ptr<void>> handed;
   SumOptions o;
   o.release = [&](std::shared_ptr<void> data) { handed.push_back(std::move(data)); };
   const NonconvexSum kept = minkowski_sum_nonconvex(solid("tube"), solid("cube@scale:1/8"), o);
-  ASSERT_EQ(handed.size(), 1u);
-  EXPECT_NE(handed[0], nullptr);
-  EXPECT_EQ(handed[0].use_count(), 1);
+  ASSERT_EQ(handed.size(), 2u);
+  for (const auto& data : handed) {
+    EXPECT_NE(data, nullptr);
+    EXPECT_EQ(data.use_count(), 1);
+  }
+  EXPECT_NE(handed[0], handed[1]);
   EXPECT_EQ(kept.volume, plain.volume);
   EXPECT_EQ(kept.mesh.faces, plain.mesh.faces);
   EXPECT_EQ(kept.mesh.points.to_points(), plain.mesh.points.to_points());

@@ -1707,6 +1707,12 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     const Vec3d d = to_double(x);
     weld(x, d);
   }
+  // The segments' other copies of the points (a million rationals on a
+  // large sum): handed to the caller's release, else freed on every thread.
+  if (options.release)
+    options.release(std::make_shared<std::vector<PlaneResult>>(std::move(results)));
+  else
+    parallel_for(n, workers, [&](std::size_t g) { results[g] = PlaneResult(); });
   results.clear();
   part.clear();
   end.clear();
@@ -1787,7 +1793,7 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
         for (Index& v : f) {
           if (renumber[v] == Index(-1)) {
             renumber[v] = Index(kept.size());
-            kept.push_back(pts[v]);
+            kept.push_back(std::move(pts[v]));  // (pts is replaced below; each v is moved once)
           }
           v = renumber[v];
         }
@@ -1798,7 +1804,8 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     pts = std::move(kept);
   }
   out.mesh = Mesh{};
-  for (const Point3& p : pts) out.mesh.points.push_back(p);
+  out.mesh.points.reserve(pts.size());
+  for (Point3& p : pts) out.mesh.points.push_back(std::move(p));
   std::vector<Index> face_plane;
   for (std::size_t g = 0; g < n; ++g)
     for (auto& f : faces[g]) {
@@ -1849,7 +1856,7 @@ void union_boundary(const std::vector<Piece>& parts, const SumOptions& options, 
     ++out.non_manifold_edges;
     // The edge's direction D = b - a; each face's way into itself from the
     // edge, w = n x (its direction of the edge); angles about D.
-    const Point3 d = pts[e.second] - pts[e.first];
+    const Point3 d = out.mesh.points.exact(e.second) - out.mesh.points.exact(e.first);
     struct Around {
       std::size_t face;
       Point3 w;

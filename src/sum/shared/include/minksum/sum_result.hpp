@@ -131,12 +131,13 @@ struct SumOptions {
   // it writes the file: the two take about as long on real meshes).
   bool volume = true;
   // Non-convex sums: when set, the sum's working data that outlives its
-  // last step (the boundary sweep's pieces, about 15 KB each, a gigabyte
-  // for the largest sums) is handed to this callback, on the sum's thread,
-  // instead of being freed before the sum returns; the data is then freed
-  // when the last copy of the pointer goes.  The command line frees it on
-  // another thread while it writes the file.  Unset: freed by the sum, on
-  // its threads.
+  // last step (the boundary sweep's pieces, about 8 KB each, and the
+  // union's faces before their points are welded: hundreds of megabytes for
+  // the largest sums) is handed to this callback, on the sum's thread, once
+  // or more, instead of being freed before the sum returns; the data is
+  // then freed when the last copy of the pointer goes.  The command line
+  // keeps it to the end of the process (which frees it at once).  Unset:
+  // freed by the sum, on its threads.
   std::function<void(std::shared_ptr<void> data)> release;
 
   // A report point, as the methods call it: throw Cancelled if the flag is

@@ -424,7 +424,8 @@ TEST(NonconvexSweep, ContainsSaysOnlyWhatIsExactlyTrue) {
 // triangles at an edge run it opposite ways), and the pieces built with the
 // tables of SweptPolytope::prepare (the lazy planes' doubles per point, the
 // signs of the edges along B's facet normals, the memo of the vertex cones'
-// test) are the pieces built without them: the same planes, lazy doubles, candidates and loops.
+// test) are the pieces built without them: the same planes, lazy doubles,
+// tags and codes, candidates, loops and labels.
 TEST(NonconvexSweep, PreparedPiecesAreThePiecesWithoutTables) {
   const std::pair<const char*, const char*> cases[] = {{"torus:8:6", "sphere:1@scale:1/5"},
                                                        {"lshape", "box:1:1:1"},
@@ -457,11 +458,16 @@ TEST(NonconvexSweep, PreparedPiecesAreThePiecesWithoutTables) {
       for (Index k = 0; k < x.num_planes(); ++k) EXPECT_EQ(x.plane(k), y.plane(k)) << t << " " << k;
       ASSERT_EQ(x.lazy.size(), y.lazy.size());
       for (std::size_t k = 0; k < x.lazy.size(); ++k) {
+        EXPECT_EQ(x.lazy[k].a, y.lazy[k].a);
+        EXPECT_EQ(x.lazy[k].b, y.lazy[k].b);
+        EXPECT_EQ(x.lazy[k].c, y.lazy[k].c);
         EXPECT_EQ(x.lazy[k].d, y.lazy[k].d);
         EXPECT_EQ(x.lazy[k].filtered, y.lazy[k].filtered);
         EXPECT_EQ(x.lazy[k].tag, y.lazy[k].tag);
+        EXPECT_EQ(x.lazy[k].code, y.lazy[k].code);
         EXPECT_EQ(x.lazy[k].exact, y.lazy[k].exact);
       }
+      EXPECT_EQ(x.labels, y.labels);
       EXPECT_EQ(x.candidates, y.candidates);
       EXPECT_EQ(x.loops, y.loops);
     }

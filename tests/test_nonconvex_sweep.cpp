@@ -373,17 +373,20 @@ TEST(NonconvexSweep, EachCandidateFacetIsBuiltOnce) {
   }
 }
 
+// Whole surfaces swept by convex operands: a curved genus-1 surface, a
+// box-like solid with parallel facets, a tube by a rotated cube, a gear by a prism.
+const std::pair<const char*, const char*> kWholeSurfaces[] = {{"torus:8:6", "sphere:1@scale:1/5"},
+                                                             {"lshape", "box:1:1:1"},
+                                                             {"tube", "cube@scale:1/4@rot:3"},
+                                                             {"gear:6", "prism:8@scale:1/8"}};
+
 // PlaneBuilder::contains, which the union asks before an exact test: a
 // plane said to hold a labelled point (a point of a candidate's loop, the
 // sum of a surface point and a vertex of B) holds it exactly, over every
 // pair of pieces of whole surfaces; every candidate's own points are said
 // to be on its own plane; and neighbouring pieces share many such points.
 TEST(NonconvexSweep, ContainsSaysOnlyWhatIsExactlyTrue) {
-  const std::pair<const char*, const char*> cases[] = {{"torus:8:6", "sphere:1@scale:1/5"},
-                                                       {"lshape", "box:1:1:1"},
-                                                       {"tube", "cube@scale:1/4@rot:3"},
-                                                       {"gear:6", "prism:8@scale:1/8"}};
-  for (const auto& [a, b] : cases) {
+  for (const auto& [a, b] : kWholeSurfaces) {
     SCOPED_TRACE(std::string(a) + " + " + b);
     const Solid s = solid(a);
     const nonconvex_detail::SurfaceCones cones(s.triangles);
@@ -427,11 +430,7 @@ TEST(NonconvexSweep, ContainsSaysOnlyWhatIsExactlyTrue) {
 // test) are the pieces built without them: the same planes, lazy doubles,
 // tags and codes, candidates, loops and labels.
 TEST(NonconvexSweep, PreparedPiecesAreThePiecesWithoutTables) {
-  const std::pair<const char*, const char*> cases[] = {{"torus:8:6", "sphere:1@scale:1/5"},
-                                                       {"lshape", "box:1:1:1"},
-                                                       {"tube", "cube@scale:1/4@rot:3"},
-                                                       {"gear:6", "prism:8@scale:1/8"}};
-  for (const auto& [a, b] : cases) {
+  for (const auto& [a, b] : kWholeSurfaces) {
     SCOPED_TRACE(std::string(a) + " + " + b);
     const Solid s = solid(a);
     const nonconvex_detail::SurfaceCones cones(s.triangles);

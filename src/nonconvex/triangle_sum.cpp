@@ -237,22 +237,8 @@ namespace {
 constexpr double kLazyFilterMin = 0x1p-480;
 constexpr double kLazyFilterMax = 0x1p+480;
 
-// The doubles of s as a lazy plane: its primitive normal and its offset
-// along it, each rounded towards zero (mpz_get_d truncates), as the facets
-// of B's lazy planes have them, so that equal planes of any two kinds have
-// equal doubles; usable in the filter when each is below 2^480 and the
-// offset zero exactly or at least 2^-480.
-void lazy_of(const SumPlane& s, LazyPlane& out) {
-  bool usable = true;
-  double* abc[3] = {&out.a, &out.b, &out.c};
-  for (int j = 0; j < 3; ++j) {
-    *abc[j] = mpz_get_d(s.m[j].get_mpz_t());
-    usable = usable && mpz_sizeinbase(s.m[j].get_mpz_t(), 2) < 480;
-  }
-  out.d = truncated_ratio(s.num, s.den);
-  out.filtered = usable && std::isfinite(out.d) && std::fabs(out.d) < kLazyFilterMax &&
-                 (out.d == 0 ? sgn(s.num) == 0 : std::fabs(out.d) >= kLazyFilterMin);
-}
+// The doubles of s as a lazy plane (the key B's facets moved have too).
+void lazy_of(const SumPlane& s, LazyPlane& out) { lazy_plane_doubles(s.m, s.num, s.den, out); }
 
 // The tags of the lazy planes of t ⊕ B (LazyPlane::tag), with their codes:
 //   A. facet k of B (plane k) moved to vertex `tag` (0..2) of t, the one at

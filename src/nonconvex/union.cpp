@@ -241,21 +241,17 @@ Half half_of(const Plane& q) {
   return h;
 }
 
-// The doubles a lazy plane equal to q has (LazyPlane): the primitive normal
-// (a, b, c) / g, g = gcd(a, b, c), and the offset d / g along it, each
-// rounded towards zero.
+// The doubles a lazy plane equal to q has: those of the primitive normal
+// (a, b, c) / g, g = gcd(a, b, c), with the offset d / g along it.
 std::array<double, 4> lazy_doubles(const Plane& q) {
-  Integer g, m;
+  Integer g, m[3];
   mpz_gcd(g.get_mpz_t(), q.a.get_mpz_t(), q.b.get_mpz_t());
   mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), q.c.get_mpz_t());
-  std::array<double, 4> out{};
   const Integer* abc[3] = {&q.a, &q.b, &q.c};
-  for (int j = 0; j < 3; ++j) {
-    mpz_divexact(m.get_mpz_t(), abc[j]->get_mpz_t(), g.get_mpz_t());
-    out[std::size_t(j)] = mpz_get_d(m.get_mpz_t());
-  }
-  out[3] = truncated_ratio(q.d, g);
-  return out;
+  for (int j = 0; j < 3; ++j) mpz_divexact(m[j].get_mpz_t(), abc[j]->get_mpz_t(), g.get_mpz_t());
+  LazyPlane l;
+  lazy_plane_doubles(m, q.d, g, l);
+  return {l.a, l.b, l.c, l.d};
 }
 
 // The facet half-spaces of one piece, in the order of its planes: the lazy
@@ -1275,6 +1271,18 @@ std::vector<std::vector<Index>> plane_faces(const std::vector<std::vector<Index>
 }
 
 }  // namespace
+
+void lazy_plane_doubles(const Integer m[3], const Integer& num, const Integer& den, LazyPlane& out) {
+  bool usable = true;
+  double* abc[3] = {&out.a, &out.b, &out.c};
+  for (int j = 0; j < 3; ++j) {
+    *abc[j] = mpz_get_d(m[j].get_mpz_t());  // (truncates)
+    usable = usable && mpz_sizeinbase(m[j].get_mpz_t(), 2) < 480;
+  }
+  out.d = truncated_ratio(num, den);
+  out.filtered = usable && std::isfinite(out.d) && std::fabs(out.d) < kHalfSpaceFilterMax &&
+                 (out.d == 0 ? sgn(num) == 0 : std::fabs(out.d) >= kHalfSpaceFilterMin);
+}
 
 DirectionIndex::DirectionIndex(std::vector<Vec3d> unit_normals) : normals_(std::move(unit_normals)) {
   if (normals_.empty() || normals_.size() > 65535) {

@@ -74,6 +74,13 @@ struct LazyPlane {
   std::uint32_t code = 0;   // the builder's (the sweep: the vertex or edge of B)
 };
 
+// The doubles of the lazy plane m · x = num / den (m a primitive integer
+// normal, den > 0) into out: each of m's integers and num / den rounded
+// towards zero, and whether the union's filter may use them (each below
+// 2^480, the offset zero exactly or at least 2^-480).  The one key of equal
+// planes, whichever piece and kind of facet they come from.
+void lazy_plane_doubles(const Integer m[3], const Integer& num, const Integer& den, LazyPlane& out);
+
 // Builds plane k (< piece.lazy.size()) of a piece exactly, canonical.
 class PlaneBuilder {
  public:

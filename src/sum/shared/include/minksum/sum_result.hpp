@@ -131,7 +131,7 @@ struct SumOptions {
   // it writes the file: the two take about as long on real meshes).
   bool volume = true;
   // Non-convex sums: when set, the sum's working data that outlives its
-  // last step (the boundary sweep's pieces, about 8 KB each, and the
+  // last step (the boundary sweep's pieces, about 10 KB each, and the
   // union's faces before their points are welded: hundreds of megabytes for
   // the largest sums) is handed to this callback, on the sum's thread, once
   // or more, instead of being freed before the sum returns; the data is

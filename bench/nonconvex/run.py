@@ -53,6 +53,7 @@ import re
 import struct
 import subprocess
 import sys
+import threading
 import time
 from fractions import Fraction
 
@@ -97,22 +98,31 @@ def run(argv, timeout=None, allow=(0,)):
 
 def timed(argv, out_path, timeout=None):
     """Runs argv with stdout to out_path: (status, wall s, cpu s, peak MiB, stderr); status None when it
-    was stopped after `timeout` seconds."""
+    was stopped after `timeout` seconds.  The wait blocks, so the wall time ends when the process does,
+    not at the next poll; a timer kills the process at the timeout.  The first wait leaves the process a
+    zombie (WNOWAIT) until the timer is stopped, so the timer never signals a reused pid."""
     err_path = out_path + ".err"
     with open(out_path, "w") as out, open(err_path, "w") as err:
         t0 = time.perf_counter()
         p = subprocess.Popen(argv, stdout=out, stderr=err)
-        while True:
-            pid, status, usage = os.wait4(p.pid, os.WNOHANG)
-            if pid:
-                break
-            if timeout is not None and time.perf_counter() - t0 > timeout:
-                p.kill()
-                os.wait4(p.pid, 0)
-                p.returncode = -9
-                return None, time.perf_counter() - t0, 0.0, 0.0, ""
-            time.sleep(0.005)
+        stopped = []
+
+        def stop():
+            stopped.append(True)
+            p.kill()
+
+        timer = threading.Timer(timeout, stop) if timeout is not None else None
+        if timer:
+            timer.start()
+        os.waitid(os.P_PID, p.pid, os.WEXITED | os.WNOWAIT)
         wall = time.perf_counter() - t0
+        if timer:
+            timer.cancel()
+            timer.join()
+        _, status, usage = os.wait4(p.pid, 0)
+        if stopped:
+            p.returncode = -9
+            return None, wall, 0.0, 0.0, ""
     p.returncode = os.waitstatus_to_exitcode(status)
     with open(err_path) as f:
         stderr = f.read()

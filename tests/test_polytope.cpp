@@ -90,6 +90,39 @@ TEST(Polytope, CubeCountsPlanesVolume) {
   EXPECT_TRUE(c.coordinates_are_doubles());
 }
 
+// A pyramid over a polygon inscribed in a circle (rational points
+// ((m^2 - k^2) / (m^2 + k^2), 2km / (m^2 + k^2), 0)), apex (0, 0, h): volume
+// = area * h / 3, the area by the shoelace formula.  Few distinct
+// denominators (m = 3, |k| <= 2) take volume()'s path on integers over their
+// least common multiple; many (m = 20, |k| <= 19) take the path on the
+// rationals themselves.  Both must give the closed form exactly.
+TEST(Polytope, VolumeOfRationalCoordinatesIsTheClosedForm) {
+  for (const auto& [m, kmax] : {std::pair<long, long>{3, 2}, std::pair<long, long>{20, 19}}) {
+    const Rational h(7, 3);
+    std::vector<Point3> pts;
+    std::vector<std::pair<Rational, Rational>> base;
+    for (long k = -kmax; k <= kmax; ++k) {  // counter-clockwise: the angle grows with k
+      const Rational den(m * m + k * k);
+      base.push_back({Rational(m * m - k * k) / den, Rational(2 * k * m) / den});
+      pts.push_back(Point3(base.back().first, base.back().second, Rational(0)));
+    }
+    pts.push_back(Point3(Rational(0), Rational(0), h));
+    Rational twice_area = 0;
+    for (std::size_t i = 0; i < base.size(); ++i) {
+      const auto& [x0, y0] = base[i];
+      const auto& [x1, y1] = base[(i + 1) % base.size()];
+      twice_area += x0 * y1 - x1 * y0;
+    }
+    const ConvexPolytope p = ConvexPolytope::hull(pts);
+    ASSERT_EQ(p.num_vertices(), base.size() + 1) << "m " << m;
+    EXPECT_FALSE(p.coordinates_are_doubles());
+    EXPECT_EQ(p.volume(), twice_area / 2 * h / 3) << "m " << m;
+    // The same solid translated by a point of other denominators.
+    const ConvexPolytope t = p.translated(Point3(Rational(1, 5), Rational(-2, 9), Rational(3, 11)));
+    EXPECT_EQ(t.volume(), twice_area / 2 * h / 3) << "m " << m;
+  }
+}
+
 TEST(Polytope, HalfedgeConventions) {
   ConvexPolytope c = ConvexPolytope::from_mesh(octahedron_mesh());
   ASSERT_EQ(c.num_facets(), 8u);

@@ -1583,26 +1583,84 @@ const Plane& ConvexPolytope::plane(Index f) const {
 
 Rational ConvexPolytope::volume() const {
   // Six times the volume: the sum over facets (fanned from their first
-  // vertex) of det(p0 - o, pi - o, pi+1 - o).
-  auto fan = [&](auto&& term) {  // (along the half-edges: no list of corners per facet)
+  // vertex) of det(p0 - o, pi - o, pi+1 - o), on integer coordinates D
+  // (vertex-major, three per vertex) that are the points times one common
+  // factor s; the determinant scales by s^3.
+  auto six_times = [&](std::vector<Integer>& D) {
+    // D = the points minus vertex 0, in place (vertex 0 last): one
+    // subtraction per coordinate instead of nine per triangle.
+    const std::size_t n3 = std::size_t(num_vertices()) * 3;
+    for (std::size_t i = n3; i-- > 0;) mpz_sub(D[i].get_mpz_t(), D[i].get_mpz_t(), D[i % 3].get_mpz_t());
+    // GMP's functions on preallocated integers (mul, submul, addmul): no
+    // temporary per operation.  Fanned along the half-edges: no list of
+    // corners per facet.
+    Integer six = 0, t;
     for (Index f = 0; f < num_facets(); ++f) {
-      const Index h0 = facet_he_[f], v0 = he_origin_[h0];
-      for (Index h = he_next_[h0], g = he_next_[h]; g != h0; h = g, g = he_next_[g])
-        term(v0, he_origin_[h], he_origin_[g]);
+      const Index h0 = facet_he_[f];
+      const std::size_t pa = 3 * std::size_t(he_origin_[h0]);
+      for (Index h = he_next_[h0], g = he_next_[h]; g != h0; h = g, g = he_next_[g]) {
+        const std::size_t pb = 3 * std::size_t(he_origin_[h]), pc = 3 * std::size_t(he_origin_[g]);
+        for (std::size_t k = 0; k < 3; ++k) {
+          const std::size_t k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+          mpz_mul(t.get_mpz_t(), D[pb + k1].get_mpz_t(), D[pc + k2].get_mpz_t());
+          mpz_submul(t.get_mpz_t(), D[pb + k2].get_mpz_t(), D[pc + k1].get_mpz_t());
+          mpz_addmul(six.get_mpz_t(), D[pa + k].get_mpz_t(), t.get_mpz_t());
+        }
+      }
     }
+    return six;
   };
-  if (coords_.form() == PointList::Form::rationals) {
-    Rational six = 0;
-    const Point3& o = coords_.exact_ref(0);
-    fan([&](Index a, Index b, Index c) {
-      six += dot(coords_.exact_ref(a) - o, cross(coords_.exact_ref(b) - o, coords_.exact_ref(c) - o));
-    });
-    return six / 6;
-  }
-  // Dyadic coordinates: integers after one common scaling by 2^-e; the
-  // determinant scales by 2^(3e).
-  const bool pairs = coords_.form() == PointList::Form::double_pairs;
   const Index nv = num_vertices();
+  if (coords_.form() == PointList::Form::rationals) {
+    // The common factor is the least common multiple L of the coordinates'
+    // denominators.  The sum of two operands' vertices typically has few
+    // distinct denominators (powers of two, or the one of a scaled
+    // catalog shape), so L stays small and the integers are about as long
+    // as the numerators: a tenth of the work of reduced rationals, whose
+    // every product and sum takes a gcd.  When L grows past a few times the
+    // longest denominator (many unrelated denominators), the sum is taken
+    // on the rationals themselves: same value, no blow-up of L.
+    Integer L = 1;
+    std::size_t longest = 1;
+    bool common = true;
+    for (Index v = 0; v < nv && common; ++v)
+      for (int k = 0; k < 3; ++k) {
+        const mpz_srcptr d = mpq_denref(coords_.exact_ref(v)[k].get_mpq_t());
+        if (mpz_divisible_p(L.get_mpz_t(), d)) continue;
+        longest = std::max(longest, mpz_sizeinbase(d, 2));
+        mpz_lcm(L.get_mpz_t(), L.get_mpz_t(), d);
+        if (mpz_sizeinbase(L.get_mpz_t(), 2) > 4 * longest + 64) {
+          common = false;
+          break;
+        }
+      }
+    if (!common) {
+      Rational six = 0;
+      const Point3& o = coords_.exact_ref(0);
+      for (Index f = 0; f < num_facets(); ++f) {
+        const Index h0 = facet_he_[f];
+        const Point3 a = coords_.exact_ref(he_origin_[h0]) - o;
+        for (Index h = he_next_[h0], g = he_next_[h]; g != h0; h = g, g = he_next_[g])
+          six += dot(a, cross(coords_.exact_ref(he_origin_[h]) - o, coords_.exact_ref(he_origin_[g]) - o));
+      }
+      return six / 6;
+    }
+    std::vector<Integer> D(std::size_t(nv) * 3);
+    for (Index v = 0; v < nv; ++v)
+      for (int k = 0; k < 3; ++k) {
+        const mpq_srcptr q = coords_.exact_ref(v)[k].get_mpq_t();
+        Integer& x = D[3 * std::size_t(v) + k];
+        mpz_divexact(x.get_mpz_t(), L.get_mpz_t(), mpq_denref(q));
+        mpz_mul(x.get_mpz_t(), x.get_mpz_t(), mpq_numref(q));
+      }
+    Rational r(six_times(D));
+    Integer L3 = L * L * L * 6;
+    mpz_set(mpq_denref(r.get_mpq_t()), L3.get_mpz_t());
+    r.canonicalize();
+    return r;
+  }
+  // Dyadic coordinates: integers after one common scaling by 2^-e.
+  const bool pairs = coords_.form() == PointList::Form::double_pairs;
   std::vector<double> raw(std::size_t(nv) * (pairs ? 6 : 3));
   for (Index v = 0; v < nv; ++v)
     for (int k = 0; k < 3; ++k) {
@@ -1610,26 +1668,11 @@ Rational ConvexPolytope::volume() const {
       if (pairs) raw[3 * (std::size_t(nv) + v) + k] = coords_.low(v)[k];
     }
   ScaledIntegers si(raw.data(), raw.size());
-  // D = the points minus vertex 0, in place (vertex 0 last): one
-  // subtraction per coordinate instead of nine per triangle.
   std::vector<Integer>& D = si.value;
   const std::size_t n3 = std::size_t(nv) * 3;
   if (pairs)
     for (std::size_t i = 0; i < n3; ++i) mpz_add(D[i].get_mpz_t(), D[i].get_mpz_t(), D[n3 + i].get_mpz_t());
-  for (std::size_t i = n3; i-- > 0;) mpz_sub(D[i].get_mpz_t(), D[i].get_mpz_t(), D[i % 3].get_mpz_t());
-  // GMP's functions on preallocated integers (mul, submul, addmul): no
-  // temporary per operation.
-  Integer six = 0, t;
-  fan([&](Index a, Index b, Index c) {
-    const std::size_t pa = 3 * std::size_t(a), pb = 3 * std::size_t(b), pc = 3 * std::size_t(c);
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::size_t k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-      mpz_mul(t.get_mpz_t(), D[pb + k1].get_mpz_t(), D[pc + k2].get_mpz_t());
-      mpz_submul(t.get_mpz_t(), D[pb + k2].get_mpz_t(), D[pc + k1].get_mpz_t());
-      mpz_addmul(six.get_mpz_t(), D[pa + k].get_mpz_t(), t.get_mpz_t());
-    }
-  });
-  return si.unscale(six, 3) / 6;
+  return si.unscale(six_times(D), 3) / 6;
 }
 
 Mesh ConvexPolytope::to_mesh() const {

@@ -176,10 +176,19 @@ ConvexPolytope writable_polytope(const ConvexPolytope& p, Format format, const W
   m.faces.reserve(p.num_facets());
   for (Index f = 0; f < p.num_facets(); ++f) split_if_not_planar(m, p.facet_vertices(f), r.split);
 
-  ConvexPolytope q;
+  // A rounded surface that is no longer convex (the usual failure) is told
+  // by the probe without an exception (a process's first one costs
+  // milliseconds: builder.hpp); other defects throw.  Either way the exact
+  // hull of the rounded points follows.
+  std::optional<ConvexPolytope> built;
   try {
-    q = ConvexPolytope::from_mesh(m);
+    built = PolytopeBuilder::build_if_convex(m, "");
   } catch (const InputError&) {
+  }
+  ConvexPolytope q;
+  if (built) {
+    q = std::move(*built);
+  } else {
     r.split = 0;
     r.hull = true;
     try {

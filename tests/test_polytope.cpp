@@ -2,6 +2,7 @@
 #include <minksum/catalog.hpp>
 #include <minksum/error.hpp>
 #include <minksum/minkowski.hpp>
+#include <minksum/nonconvex.hpp>
 #include <minksum/polytope.hpp>
 #include <minksum/predicates.hpp>
 
@@ -1006,9 +1007,10 @@ TEST(PolytopeBad, ZeroAreaFacetsInSeveralBlocksNameTheFirst) {
 // build_if_convex, the probe of the commands that try the convex path first:
 // the polytope build makes for a convex mesh; nullopt exactly where build
 // refuses a closed 2-manifold surface as not one topological sphere (a
-// genus, two components) or as not convex in its last test (a reflex edge,
-// a vertex, an L-shaped face: on one thread and, with 4 096 vertices, in
-// parallel blocks); the same InputError as build for any other defect.
+// genus, two components), as coplanar facets around a hole (a boss on a
+// face) or as not convex in its last test (a reflex edge, a vertex, an
+// L-shaped face: on one thread and, with 4 096 vertices, in parallel
+// blocks); the same InputError as build for any other defect.
 TEST(PolytopeBuilder, BuildIfConvexAnswersNotConvexWithoutAnError) {
   const Mesh cube = cube_mesh();
   const std::optional<ConvexPolytope> p = PolytopeBuilder::build_if_convex(cube, "cube.off");
@@ -1036,6 +1038,20 @@ TEST(PolytopeBuilder, BuildIfConvexAnswersNotConvexWithoutAnError) {
     EXPECT_FALSE(PolytopeBuilder::build_if_convex(m, spec).has_value()) << spec;
     EXPECT_NE(build_error(m).find(why), std::string::npos) << spec << ": " << build_error(m);
   }
+  // A box with a boss on its top face, the top face as four coplanar quads
+  // around the boss: one face with a hole, a sphere's topology.
+  Mesh boss;
+  boss.points = {P(0, 0, 0), P(3, 0, 0), P(3, 3, 0), P(0, 3, 0),   // bottom
+                 P(0, 0, 3), P(3, 0, 3), P(3, 3, 3), P(0, 3, 3),   // top, outer
+                 P(1, 1, 3), P(2, 1, 3), P(2, 2, 3), P(1, 2, 3),   // top, inner
+                 P(1, 1, 4), P(2, 1, 4), P(2, 2, 4), P(1, 2, 4)};  // the boss's top
+  boss.faces = {{0, 3, 2, 1},   {0, 1, 5, 4},   {1, 2, 6, 5},     {2, 3, 7, 6},     {3, 0, 4, 7},
+                {4, 5, 9, 8},   {5, 6, 10, 9},  {6, 7, 11, 10},   {7, 4, 8, 11},    {8, 9, 13, 12},
+                {9, 10, 14, 13}, {10, 11, 15, 14}, {11, 8, 12, 15}, {12, 13, 14, 15}};
+  EXPECT_FALSE(PolytopeBuilder::build_if_convex(boss, "boss.off").has_value());
+  EXPECT_NE(build_error(boss).find("coplanar facets form a polygon with a hole"), std::string::npos)
+      << build_error(boss);
+  EXPECT_EQ(mesh_volume(boss), Rational(28));  // still a valid solid: 27 + 1
   // A sphere's topology, not convex: a geodesic sphere of 10 242 vertices
   // (its points as doubles: the validation's parallel blocks of vertices)
   // with one vertex pushed in halfway to the centre.

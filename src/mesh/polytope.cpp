@@ -665,8 +665,9 @@ struct Validation {
   Validation(const Mesh& m, const std::string& s) : mesh(m), source(s) {}
 
   // A probe (PolytopeBuilder::build_if_convex): link_faces records a
-  // surface that is not one topological sphere, check_convexity a
-  // non-convex edge, vertex or polygon, in not_convex instead of throwing.
+  // surface that is not one topological sphere, merge_coplanar coplanar
+  // facets that are not one convex polygon, check_convexity a non-convex
+  // edge, vertex or polygon, in not_convex instead of throwing.
   bool probe = false;
   bool not_convex = false;
 
@@ -1039,6 +1040,10 @@ void Validation::merge_coplanar() {
     Index gr = group_of[g.facet[h]];
     if (gr == group_of[g.facet[h ^ 1u]]) continue;
     auto [it, ok] = out.try_emplace((std::uint64_t(gr) << 32) | g.origin[h], h);
+    if (!ok && probe) {
+      not_convex = true;
+      return;
+    }
     if (!ok)
       throw NotConvexError(source, fct(merged_name[gr]),
                            "coplanar facets around " + vtx(vname[g.origin[h]]) +
@@ -1054,9 +1059,14 @@ void Validation::merge_coplanar() {
       merged[gr].push_back(g.origin[h]);
       h = out.find((std::uint64_t(gr) << 32) | g.origin[h ^ 1u])->second;
     } while (h != start[gr] && merged[gr].size() <= boundary_count[gr]);
-    if (merged[gr].size() != boundary_count[gr])
+    if (merged[gr].size() != boundary_count[gr]) {
+      if (probe) {
+        not_convex = true;
+        return;
+      }
       throw NotConvexError(source, fct(merged_name[gr]),
                            "coplanar facets form a polygon with a hole (the solid is not convex)");
+    }
   }
 }
 
@@ -1229,6 +1239,7 @@ std::optional<ConvexPolytope> PolytopeBuilder::build(const Mesh& mesh, const std
       s.reverse_own_facets();
     }
     s.merge_coplanar();
+    if (s.not_convex) return std::nullopt;
     s.drop_vertices();
     s.check_convexity();
     if (s.not_convex) return std::nullopt;

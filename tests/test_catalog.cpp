@@ -295,7 +295,25 @@ TEST(CatalogSphere, MeshIsDeterministicAndKeepsCoarserVerticesFirst) {
 
 TEST(CatalogSphere, SubdivisionMeshIsExactlyConvexWithoutFallback) {
   // from_mesh accepts the subdivided mesh as it is: every level is exactly
-  // convex, the hull fallback is not needed.
+  // convex, the hull fallback is not needed.  Level 1, the icosahedron,
+  // whose triangles the generator has as a table: each is a facet of the
+  // hull, counter-clockwise seen from outside (the nine other vertices
+  // strictly below its plane, exactly), and they are all the facets.
+  const Mesh ico = cd::sphere_mesh(1);
+  ASSERT_EQ(ico.points.size(), 12u);
+  ASSERT_EQ(ico.faces.size(), 20u);
+  std::set<std::set<Index>> distinct;
+  for (const auto& f : ico.faces) {
+    ASSERT_EQ(f.size(), 3u);
+    distinct.insert({f[0], f[1], f[2]});
+    const Point3 a = ico.points.exact(f[0]);
+    const Point3 n = cross(ico.points.exact(f[1]) - a, ico.points.exact(f[2]) - a);
+    for (Index v = 0; v < 12; ++v) {
+      if (v == f[0] || v == f[1] || v == f[2]) continue;
+      EXPECT_LT(sgn(dot(n, ico.points.exact(v) - a)), 0) << v;
+    }
+  }
+  EXPECT_EQ(distinct.size(), 20u);
   for (int level = 1; level <= 6; ++level) {
     const Mesh m = cd::sphere_mesh(level);
     const ConvexPolytope p = ConvexPolytope::from_mesh(m, "sphere");

@@ -8,6 +8,7 @@
 #include "mesh/builder.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -60,29 +61,16 @@ std::vector<Vec> icosahedron_vertices() {
   return v;
 }
 
-// The triangles of the hull of a small point set in convex position whose
-// facets are all triangles, counter-clockwise seen from outside, found
-// exactly: (i, j, k) is a facet when every other point is strictly below its
-// plane.
-std::vector<std::vector<Index>> simplicial_hull_faces(const std::vector<Point3>& p) {
-  std::vector<std::vector<Index>> faces;
-  const Index n = static_cast<Index>(p.size());
-  for (Index i = 0; i < n; ++i)
-    for (Index j = i + 1; j < n; ++j)
-      for (Index k = j + 1; k < n; ++k) {
-        const Point3 nrm = cross(p[j] - p[i], p[k] - p[i]);
-        int below = 0, above = 0;
-        for (Index l = 0; l < n; ++l) {
-          if (l == i || l == j || l == k) continue;
-          const int s = sgn(dot(nrm, p[l] - p[i]));
-          if (s < 0) ++below;
-          if (s > 0) ++above;
-        }
-        if (below == int(n) - 3) faces.push_back({i, j, k});
-        else if (above == int(n) - 3) faces.push_back({i, k, j});
-      }
-  return faces;
-}
+// The icosahedron's 20 triangles on those vertices, counter-clockwise seen
+// from outside: the triples whose plane has the nine other vertices strictly
+// below it, found once exactly (test CatalogSphere.
+// SubdivisionMeshIsExactlyConvexWithoutFallback checks them) and written
+// out, so that a process making any sphere does not repeat the 2 000 exact
+// sign tests (about 5 ms: the ball of every rounding).
+constexpr std::array<std::array<Index, 3>, 20> kIcosahedronFaces = {{
+    {0, 2, 4},  {0, 5, 2},  {0, 4, 8},  {0, 10, 5}, {0, 8, 10}, {1, 6, 3},  {1, 3, 7},
+    {1, 8, 6},  {1, 7, 10}, {1, 10, 8}, {2, 9, 4},  {2, 5, 11}, {2, 11, 9}, {3, 6, 9},
+    {3, 11, 7}, {3, 9, 11}, {4, 6, 8},  {4, 9, 6},  {5, 10, 7}, {5, 7, 11}}};
 
 }  // namespace
 
@@ -91,12 +79,7 @@ std::vector<std::vector<Index>> simplicial_hull_faces(const std::vector<Point3>&
 
 Mesh sphere_mesh(int level) {
   std::vector<Vec> pts = icosahedron_vertices();
-  std::vector<std::array<Index, 3>> tris;
-  {
-    std::vector<Point3> exact;
-    for (const Vec& v : pts) exact.push_back(to_point(v));
-    for (const auto& f : simplicial_hull_faces(exact)) tris.push_back({f[0], f[1], f[2]});
-  }
+  std::vector<std::array<Index, 3>> tris(kIcosahedronFaces.begin(), kIcosahedronFaces.end());
   for (int l = 1; l < level; ++l) {
     std::unordered_map<std::uint64_t, Index> midpoint;
     midpoint.reserve(tris.size() * 2);

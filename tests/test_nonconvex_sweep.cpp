@@ -241,7 +241,9 @@ std::vector<Point3> rotated_to_smallest(std::vector<Point3> loop) {
   return loop;
 }
 
-void expect_piece_is_the_hull(const std::array<Point3, 3>& t, const ConvexPolytope& b, const std::string& trace) {
+// `scaled` counts the piece's lazy planes whose doubles are scaled.
+void expect_piece_is_the_hull(const std::array<Point3, 3>& t, const ConvexPolytope& b, const std::string& trace,
+                              std::size_t& scaled) {
   SCOPED_TRACE(trace);
   const Mesh surface = tetrahedron_on(t);
   const nonconvex_detail::SurfaceCones cones(surface);
@@ -257,22 +259,35 @@ void expect_piece_is_the_hull(const std::array<Point3, 3>& t, const ConvexPolyto
   for (Index f = 0; f < hull.num_facets(); ++f) expected.push_back(hull.plane(f));
   // Every plane is lazy (the facets of B moved, t plus a vertex or an edge
   // of B, an edge of t plus an edge of B).  Its doubles: the primitive
-  // normal's and the offset along it, each rounded towards zero from the
-  // built plane's own value, so that equal planes have equal doubles (the
-  // union's key for them); a candidate's held plane is the one its tag and
-  // code build.
+  // normal's and the offset along it, times 2^-k (k = 0 unless the normal
+  // has 480 bits or more, then its longest integer becomes 470 bits long),
+  // each rounded towards zero from the built plane's own value (mpq_get_d
+  // truncates), so that equal planes have equal doubles (the union's key
+  // for them), usable in the filter however long the integers; a
+  // candidate's held plane is the one its tag and code build.
   EXPECT_TRUE(piece.planes.empty());
   for (Index k = 0; k < piece.lazy.size(); ++k) {
     const Plane& h = built[k];
     Integer g;
     mpz_gcd(g.get_mpz_t(), h.a.get_mpz_t(), h.b.get_mpz_t());
     mpz_gcd(g.get_mpz_t(), g.get_mpz_t(), h.c.get_mpz_t());
+    const Integer m[3] = {h.a / g, h.b / g, h.c / g};
+    std::size_t longest = 0;
+    for (const Integer& x : m) longest = std::max(longest, mpz_sizeinbase(x.get_mpz_t(), 2));
+    const long scale = longest >= 480 ? long(longest) - 470 : 0;
+    EXPECT_EQ(nonconvex_detail::lazy_plane_scale(m), scale) << "lazy plane " << k;
+    scaled += scale > 0;
+    auto truncated = [&](const Rational& x) {
+      Rational y = x;
+      mpq_div_2exp(y.get_mpq_t(), y.get_mpq_t(), mp_bitcnt_t(scale));
+      return mpq_get_d(y.get_mpq_t());
+    };
     const nonconvex_detail::LazyPlane& l = piece.lazy[k];
-    EXPECT_EQ(l.a, mpz_get_d(Integer(h.a / g).get_mpz_t())) << "lazy plane " << k;
-    EXPECT_EQ(l.b, mpz_get_d(Integer(h.b / g).get_mpz_t())) << "lazy plane " << k;
-    EXPECT_EQ(l.c, mpz_get_d(Integer(h.c / g).get_mpz_t())) << "lazy plane " << k;
-    EXPECT_EQ(l.d, truncated_ratio(h.d, g)) << "lazy plane " << k;
-    EXPECT_TRUE(l.filtered);
+    EXPECT_EQ(l.a, truncated(Rational(m[0]))) << "lazy plane " << k;
+    EXPECT_EQ(l.b, truncated(Rational(m[1]))) << "lazy plane " << k;
+    EXPECT_EQ(l.c, truncated(Rational(m[2]))) << "lazy plane " << k;
+    EXPECT_EQ(l.d, truncated(Rational(h.d, g))) << "lazy plane " << k;
+    EXPECT_TRUE(l.filtered) << "lazy plane " << k;
     EXPECT_EQ(swept.build(piece, k), h) << "lazy plane " << k;
   }
   EXPECT_GE(piece.lazy.size(), b.num_facets());
@@ -313,6 +328,7 @@ void expect_piece_is_the_hull(const std::array<Point3, 3>& t, const ConvexPolyto
 TEST(NonconvexSweep, GaussianMapPiecesAreTheHullsOfTheSums) {
   const char* operands[] = {"cube",   "box:1:2:3@rot:3", "octahedron", "tetra",
                             "sphere:1", "prism:6",       "random:12:5", "cube@scale:1/10"};
+  std::size_t scaled_short = 0, scaled_long = 0;
   for (const char* spec : operands) {
     const ConvexPolytope b = catalog_polytope(spec);
     for (std::uint64_t seed = 1; seed <= 60; ++seed) {
@@ -325,10 +341,25 @@ TEST(NonconvexSweep, GaussianMapPiecesAreTheHullsOfTheSums) {
       }
       if (seed % 3 == 0)  // rational coordinates too
         for (Point3& p : t) p = Rational(2, 7) * p;
-      expect_piece_is_the_hull(t, b, std::string(spec) + ", seed " + std::to_string(seed));
+      if (seed % 5 == 0) {
+        // Coordinates of several hundred bits, as an erosion's vertices have:
+        // each corner moved by its own tiny rational, so that the edge
+        // directions, and the normals of t's edges plus B's edges, have
+        // integers of 480 bits and more (their doubles scaled).
+        for (std::size_t c = 0; c < 3; ++c) {
+          const Rational tiny(Integer(1), (Integer(1) << 301) + Integer(2 * c + 3) * (Integer(1) << 150) + 1);
+          t[c] = t[c] + Point3(tiny * (c + 1), tiny * (c + 2), tiny * (c + 3));
+        }
+      }
+      std::size_t& count = seed % 5 == 0 ? scaled_long : scaled_short;
+      expect_piece_is_the_hull(t, b, std::string(spec) + ", seed " + std::to_string(seed), count);
       if (::testing::Test::HasFatalFailure()) return;
     }
   }
+  // Doubles are scaled exactly where the normals are long: never for small
+  // coordinates, for many planes of the long ones.
+  EXPECT_EQ(scaled_short, 0u);
+  EXPECT_GT(scaled_long, 100u);
 }
 
 // Each candidate facet once over a whole surface (SurfaceCones::keeps): the

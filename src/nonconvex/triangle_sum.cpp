@@ -60,13 +60,14 @@ SweptPolytope::SweptPolytope(const ConvexPolytope& b, const SurfaceCones* surfac
     x.primitive_integer[0] = h.a / g;
     x.primitive_integer[1] = h.b / g;
     x.primitive_integer[2] = h.c / g;
-    // Their doubles, truncated towards zero (faithful, and the same for
-    // equal normals), usable in the union's filter below 2^480.
+    // Their doubles, scaled and truncated towards zero as every lazy
+    // plane's (lazy_plane_doubles: faithful, and the same for equal planes
+    // of any kind).
+    x.scale = lazy_plane_scale(x.primitive_integer);
     x.primitive_usable = true;
-    for (int j = 0; j < 3; ++j) {
-      x.primitive_approx[j] = mpz_get_d(x.primitive_integer[j].get_mpz_t());
-      if (mpz_sizeinbase(x.primitive_integer[j].get_mpz_t(), 2) >= 480) x.primitive_usable = false;
-    }
+    for (int j = 0; j < 3; ++j)
+      x.primitive_usable =
+          lazy_scaled_double(x.primitive_integer[j], x.scale, x.primitive_approx[j]) && x.primitive_usable;
     Rational offset(h.d, g);
     offset.canonicalize();
     x.offset_num = offset.get_num();
@@ -282,9 +283,16 @@ Plane SweptPolytope::canonical_from_offset(const Facet& f, Integer work[3]) {
 }
 
 // The doubles of the lazy plane primitive · x = work[0] / work[1]: the
-// offset rounded towards zero, and whether the union's filter may use them.
+// offset scaled by 2^-f.scale and rounded towards zero (lazy_plane_doubles),
+// and whether the union's filter may use them.
 void SweptPolytope::lazy_doubles(const Facet& f, const Integer work[3], double& d, bool& filtered) {
-  d = truncated_ratio(work[0], work[1]);
+  if (f.scale == 0) {
+    d = truncated_ratio(work[0], work[1]);
+  } else {
+    Integer scaled_den;
+    mpz_mul_2exp(scaled_den.get_mpz_t(), work[1].get_mpz_t(), mp_bitcnt_t(f.scale));
+    d = truncated_ratio(work[0], scaled_den);
+  }
   filtered = f.primitive_usable && std::isfinite(d) && std::fabs(d) < kLazyFilterMax &&
              (d == 0 ? sgn(work[0]) == 0 : std::fabs(d) >= kLazyFilterMin);
 }

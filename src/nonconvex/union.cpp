@@ -1272,14 +1272,40 @@ std::vector<std::vector<Index>> plane_faces(const std::vector<std::vector<Index>
 
 }  // namespace
 
-void lazy_plane_doubles(const Integer m[3], const Integer& num, const Integer& den, LazyPlane& out) {
-  bool usable = true;
-  double* abc[3] = {&out.a, &out.b, &out.c};
-  for (int j = 0; j < 3; ++j) {
-    *abc[j] = mpz_get_d(m[j].get_mpz_t());  // (truncates)
-    usable = usable && mpz_sizeinbase(m[j].get_mpz_t(), 2) < 480;
+long lazy_plane_scale(const Integer m[3]) {
+  std::size_t bits = 0;
+  for (int j = 0; j < 3; ++j)
+    if (sgn(m[j]) != 0) bits = std::max(bits, mpz_sizeinbase(m[j].get_mpz_t(), 2));
+  return bits >= 480 ? long(bits) - 470 : 0;
+}
+
+bool lazy_scaled_double(const Integer& x, long k, double& out) {
+  if (sgn(x) == 0) {
+    out = 0.0;
+    return true;
   }
-  out.d = truncated_ratio(num, den);
+  long e = 0;
+  const double m = mpz_get_d_2exp(&e, x.get_mpz_t());  // the leading 53 bits, truncated; 0.5 <= |m| < 1
+  if (e - k - 1 < -480 || e - k > 480) {
+    out = 0.0;
+    return false;
+  }
+  out = std::ldexp(m, int(e - k));  // exact: a normal double
+  return true;
+}
+
+void lazy_plane_doubles(const Integer m[3], const Integer& num, const Integer& den, LazyPlane& out) {
+  const long k = lazy_plane_scale(m);
+  bool usable = lazy_scaled_double(m[0], k, out.a);
+  usable = lazy_scaled_double(m[1], k, out.b) && usable;
+  usable = lazy_scaled_double(m[2], k, out.c) && usable;
+  if (k == 0) {
+    out.d = truncated_ratio(num, den);
+  } else {
+    Integer scaled_den;
+    mpz_mul_2exp(scaled_den.get_mpz_t(), den.get_mpz_t(), mp_bitcnt_t(k));
+    out.d = truncated_ratio(num, scaled_den);
+  }
   out.filtered = usable && std::isfinite(out.d) && std::fabs(out.d) < kHalfSpaceFilterMax &&
                  (out.d == 0 ? sgn(num) == 0 : std::fabs(out.d) >= kHalfSpaceFilterMin);
 }

@@ -170,8 +170,9 @@ class SweptPolytope final : public PlaneBuilder {
     Point3 normal;        // (a, b, c) of the canonical plane
     Vec3d normal_approx;  // nearest doubles
     Integer primitive_integer[3];  // (a, b, c) / gcd(a, b, c)
-    double primitive_approx[3];    // their doubles (mpz_get_d: towards zero)
-    bool primitive_usable;         // each below 2^480
+    long scale;                    // lazy_plane_scale of the primitive normal
+    double primitive_approx[3];    // their doubles, scaled by 2^-scale (towards zero)
+    bool primitive_usable;         // each usable in the filter
     Integer offset_num, offset_den;  // d / gcd(a, b, c) in lowest terms: primitive . x = offset on the facet
     std::vector<Index> loop;
   };

@@ -63,9 +63,10 @@ struct Piece;
 // A facet plane that a piece builds only when an exact test needs it (every
 // plane of the sweep's pieces t ⊕ B, most of which only ever meet the
 // filter): the doubles of a positive multiple of it, (a, b, c) its primitive
-// integer normal and d the offset along it, each the rounding towards zero
-// of its exact value (so equal planes have equal doubles, whichever piece
-// and kind of facet they come from), and what its builder needs.
+// integer normal and d the offset along it (both times 2^-k when the normal
+// is long: lazy_plane_doubles), each the rounding towards zero of its exact
+// value (so equal planes have equal doubles, whichever piece and kind of
+// facet they come from), and what its builder needs.
 struct LazyPlane {
   double a = 0, b = 0, c = 0, d = 0;
   bool filtered = false;    // all four usable in the union's half-space filter
@@ -75,11 +76,27 @@ struct LazyPlane {
 };
 
 // The doubles of the lazy plane m · x = num / den (m a primitive integer
-// normal, den > 0) into out: each of m's integers and num / den rounded
-// towards zero, and whether the union's filter may use them (each below
-// 2^480, the offset zero exactly or at least 2^-480).  The one key of equal
-// planes, whichever piece and kind of facet they come from.
+// normal, den > 0) into out: each of 2^-k m's integers and 2^-k num / den
+// rounded towards zero, k = lazy_plane_scale(m), and whether the union's
+// filter may use them (each zero exactly or of magnitude in [2^-480,
+// 2^480)).  The one key of equal planes, whichever piece and kind of facet
+// they come from.  The filter's sign is the plane's own for the same
+// reasons as for plane_filter_doubles (kernel/plane.hpp): 2^-k > 0, and a
+// truncation scaled by a power of two is the truncation of the scaled value
+// in the normal range, which the range check keeps to.
 void lazy_plane_doubles(const Integer m[3], const Integer& num, const Integer& den, LazyPlane& out);
+
+// The k of lazy_plane_doubles: 0 when each integer of the primitive normal
+// m is below 2^480 (the usual case), else L − 470 for L the bit length of
+// the longest (the edge ⊕ edge planes through an erosion's vertices, of
+// several hundred bits, have normals of thousands: unscaled, their doubles
+// would be infinite and every test of them exact).  A function of m alone,
+// so that equal planes are scaled alike.
+long lazy_plane_scale(const Integer m[3]);
+
+// 2^-k x truncated towards zero into out; whether the filter may use it
+// (zero exactly, or of magnitude in [2^-480, 2^480)).
+bool lazy_scaled_double(const Integer& x, long k, double& out);
 
 // Builds plane k (< piece.lazy.size()) of a piece exactly, canonical.
 class PlaneBuilder {

@@ -130,23 +130,25 @@ bool plane_filter_doubles(const Integer& a, const Integer& b, const Integer& c, 
     if (sgn(*x) != 0) bits = std::max(bits, mpz_sizeinbase(x->get_mpz_t(), 2));
   const long k = bits >= 480 ? long(bits) - 470 : 0;
   bool usable = true;
-  for (int i = 0; i < 4; ++i) {
-    if (sgn(*v[i]) == 0) {
-      out[i] = 0.0;
-      continue;
-    }
-    long e = 0;
-    const double m = mpz_get_d_2exp(&e, v[i]->get_mpz_t());
-    // |m 2^(e - k)| in [2^(e - k - 1), 2^(e - k)): usable when e - k - 1 >= -480
-    // (and e - k <= 470 by the choice of k).
-    if (e - k - 1 < -480) {
-      out[i] = 0.0;
-      usable = false;
-      continue;
-    }
-    out[i] = std::ldexp(m, int(e - k));
-  }
+  for (int i = 0; i < 4; ++i) usable = scaled_filter_double(*v[i], k, out[i]) && usable;
   return usable;
+}
+
+bool scaled_filter_double(const Integer& x, long k, double& out) {
+  if (sgn(x) == 0) {
+    out = 0.0;
+    return true;
+  }
+  long e = 0;
+  const double m = mpz_get_d_2exp(&e, x.get_mpz_t());
+  // |m 2^(e - k)| in [2^(e - k - 1), 2^(e - k)): usable when e - k - 1 >= -480
+  // and e - k <= 480 (plane_filter_doubles' choice of k keeps e - k <= 470).
+  if (e - k - 1 < -480 || e - k > 480) {
+    out = 0.0;
+    return false;
+  }
+  out = std::ldexp(m, int(e - k));
+  return true;
 }
 
 ScaledIntegers::ScaledIntegers(const double* values, std::size_t n) {

@@ -67,7 +67,7 @@ SweptPolytope::SweptPolytope(const ConvexPolytope& b, const SurfaceCones* surfac
     x.primitive_usable = true;
     for (int j = 0; j < 3; ++j)
       x.primitive_usable =
-          lazy_scaled_double(x.primitive_integer[j], x.scale, x.primitive_approx[j]) && x.primitive_usable;
+          scaled_filter_double(x.primitive_integer[j], x.scale, x.primitive_approx[j]) && x.primitive_usable;
     Rational offset(h.d, g);
     offset.canonicalize();
     x.offset_num = offset.get_num();

@@ -1279,26 +1279,11 @@ long lazy_plane_scale(const Integer m[3]) {
   return bits >= 480 ? long(bits) - 470 : 0;
 }
 
-bool lazy_scaled_double(const Integer& x, long k, double& out) {
-  if (sgn(x) == 0) {
-    out = 0.0;
-    return true;
-  }
-  long e = 0;
-  const double m = mpz_get_d_2exp(&e, x.get_mpz_t());  // the leading 53 bits, truncated; 0.5 <= |m| < 1
-  if (e - k - 1 < -480 || e - k > 480) {
-    out = 0.0;
-    return false;
-  }
-  out = std::ldexp(m, int(e - k));  // exact: a normal double
-  return true;
-}
-
 void lazy_plane_doubles(const Integer m[3], const Integer& num, const Integer& den, LazyPlane& out) {
   const long k = lazy_plane_scale(m);
-  bool usable = lazy_scaled_double(m[0], k, out.a);
-  usable = lazy_scaled_double(m[1], k, out.b) && usable;
-  usable = lazy_scaled_double(m[2], k, out.c) && usable;
+  bool usable = scaled_filter_double(m[0], k, out.a);
+  usable = scaled_filter_double(m[1], k, out.b) && usable;
+  usable = scaled_filter_double(m[2], k, out.c) && usable;
   if (k == 0) {
     out.d = truncated_ratio(num, den);
   } else {

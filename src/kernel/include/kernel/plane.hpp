@@ -61,6 +61,11 @@ double truncated_ratio(const Integer& X, const Integer& W);
 // (2^-480 is far above the smallest normal double, 2^-1022).
 bool plane_filter_doubles(const Integer& a, const Integer& b, const Integer& c, const Integer& d, double out[4]);
 
+// 2^-k x truncated towards zero into out (the step of plane_filter_doubles
+// for one coefficient); whether the filter may use it: zero exactly, or of
+// magnitude in [2^-480, 2^480) (else out = 0).
+bool scaled_filter_double(const Integer& x, long k, double& out);
+
 // Finite doubles as integers with one common power of two: values[i] =
 // value[i] * 2^exponent exactly (exponent = the smallest exponent of the
 // nonzero values' last mantissa bits).

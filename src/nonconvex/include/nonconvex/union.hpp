@@ -94,10 +94,6 @@ void lazy_plane_doubles(const Integer m[3], const Integer& num, const Integer& d
 // so that equal planes are scaled alike.
 long lazy_plane_scale(const Integer m[3]);
 
-// 2^-k x truncated towards zero into out; whether the filter may use it
-// (zero exactly, or of magnitude in [2^-480, 2^480)).
-bool lazy_scaled_double(const Integer& x, long k, double& out);
-
 // Builds plane k (< piece.lazy.size()) of a piece exactly, canonical.
 class PlaneBuilder {
  public:

@@ -103,9 +103,10 @@ struct Graph {
 // their first corner (as they first appear in the polygons), and the first
 // error of each kind is the one on the edge that appears first: the
 // numbering and the messages do not depend on how edges are matched.
-// With `not_sphere`, a closed 2-manifold surface that is not one
-// topological sphere (several components, or a genus) sets it and returns
-// instead of throwing: it bounds no convex polytope (a probe's answer).
+// With `not_sphere`, a surface that is not one topological sphere (an open,
+// non-manifold or inconsistently oriented one, several components, or a
+// genus) sets it and returns instead of throwing: it bounds no convex
+// polytope (a probe's answer).
 Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::string& source,
            const std::vector<Index>& vname, const std::vector<Index>& fname, const PointList& named,
            bool* not_sphere = nullptr) {
@@ -204,6 +205,10 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
     open.note(z.first, z.u, z.w, z.count, z.c0, z.c1);
   }
   auto edge_name = [&](const Failure& x) { return edge_place(vname[x.u], vname[x.w], named); };
+  if (not_sphere && (non_manifold.first != kNoIndex || same_direction.first != kNoIndex || open.first != kNoIndex)) {
+    *not_sphere = true;  // a probe: no closed 2-manifold, no convex polytope
+    return Graph{};
+  }
   if (non_manifold.first != kNoIndex)
     throw InputError(source, edge_name(non_manifold),
                      "non-manifold edge shared by " + std::to_string(non_manifold.count) + " facets");
@@ -260,6 +265,7 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
   // Vertex manifoldness: the facets around each vertex form a single fan.
   std::vector<Index> outdeg = big_array<Index>(nv, 0);
   for (Index h = 0; h < nh; ++h) ++outdeg[g.origin[h]];
+  std::atomic<bool> fans{true};
   in_blocks(nv, threads, [&](std::size_t vbegin, std::size_t vend) {
     for (Index v = Index(vbegin); v < vend; ++v) {
       Index h = g.vertex_he[v], steps = 0;
@@ -267,10 +273,19 @@ Graph link(Index nv, const std::vector<std::vector<Index>>& faces, const std::st
         h = g.prev[h] ^ 1u;
         ++steps;
       } while (h != g.vertex_he[v] && steps <= outdeg[v]);
-      if (steps != outdeg[v])
+      if (steps != outdeg[v]) {
+        if (not_sphere) {
+          fans = false;
+          return;
+        }
         throw InputError(source, vertex_place(vname[v], named), "non-manifold vertex: its facets form more than one fan");
+      }
     }
   });
+  if (!fans) {
+    *not_sphere = true;
+    return g;
+  }
   // Connected, sphere topology.  Every vertex now has one fan, so two
   //    facets are connected across edges exactly when their vertices are
   //    connected along edges (a path of edges passes from fan to fan), and

@@ -16,16 +16,16 @@ class PolytopeBuilder {
   // `source` names the file in the InputError of the first defect.
   static ConvexPolytope build(const Mesh& mesh, const std::string& source);
 
-  // As build, but nullopt, not an InputError, for a closed 2-manifold
-  // surface that bounds no convex polytope: one that is not a single
-  // topological sphere (several components, a genus), whose coplanar
-  // facets do not form one convex polygon, or whose edges, vertices or
-  // merged polygons are not convex.  The probes that try the
-  // convex path first (a solid read from a file) then pay no exception for
-  // the common non-convex solid.  (A process's first exception makes the
-  // unwinder sort its table of functions: milliseconds in the statically
-  // linked command.)  Other defects, including a polygon that is not
-  // planar, still throw.
+  // As build, but nullopt, not an InputError, for a surface that bounds no
+  // convex polytope: one that is not a single topological sphere (open,
+  // non-manifold, inconsistently oriented, several components, a genus),
+  // whose coplanar facets do not form one convex polygon, or whose edges,
+  // vertices or merged polygons are not convex.  The probes that try the
+  // convex path first (a solid read from a file, a rounded surface before
+  // it is written) then pay no exception for the common case.  (A
+  // process's first exception makes the unwinder sort its table of
+  // functions: milliseconds in the statically linked command.)  Other
+  // defects, including a polygon that is not planar, still throw.
   static std::optional<ConvexPolytope> build_if_convex(const Mesh& mesh, const std::string& source);
 
   // The exact convex hull of `points`, the same polytope as

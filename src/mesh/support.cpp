@@ -7,17 +7,26 @@ namespace minksum {
 
 namespace {
 
-// higher(x, y) for an exact direction: sign <n, p(x) − p(y)> (filtered).
+// higher(x, y) for an exact direction: sign <n, p(x) − p(y)>, as
+// dot_sign(p(y), p(x), 0, n) on the polytope's cached roundings and n's
+// (no rational converted per comparison).
 struct Along {
   const ConvexPolytope& p;
   const Point3& n;
-  int operator()(Index x, Index y) const { return compare_along(n, p.point(x), p.point(y)); }
+  Vec3d n_approx = to_double(n);
+  Point3 zero{Rational(0), Rational(0), Rational(0)};
+  Vec3d zero_approx{0, 0, 0};
+  Along(const ConvexPolytope& polytope, const Point3& direction) : p(polytope), n(direction) {}
+  int operator()(Index x, Index y) const {
+    return dot_sign(RoundedPoint3{p.point(y), p.approx(y)}, RoundedPoint3{p.point(x), p.approx(x)},
+                    RoundedPoint3{zero, zero_approx}, RoundedPoint3{n, n_approx});
+  }
 };
 
 }  // namespace
 
 Support support(const ConvexPolytope& p, const Point3& n, Index start) {
-  const Along higher{p, n};
+  const Along higher(p, n);
   const Index b = climb(p, start, higher);
   const std::optional<Feature> face = support_face_at(p, b, higher);
   if (!face) throw std::logic_error("support: hill climbing stopped below the top");
@@ -25,7 +34,7 @@ Support support(const ConvexPolytope& p, const Point3& n, Index start) {
 }
 
 std::vector<Index> support_vertices(const ConvexPolytope& p, const Point3& n) {
-  return support_scan(p, Along{p, n});
+  return support_scan(p, Along(p, n));
 }
 
 Feature feature_of_vertices(const ConvexPolytope& p, const std::vector<Index>& vs) {

@@ -1,7 +1,7 @@
 // The erosion of a convex polytope by a convex polytope as the intersection
 // of A's facet half-spaces moved inwards by B's support, built exactly:
-// minksum's exact numbers and support, CGAL's exact hull as
-// ConvexPolytope::hull takes it (docs/nonconvex.md, "Erosion, opening,
+// minksum's exact numbers and support, and an exact hull of the dual points
+// on integer determinants (docs/nonconvex.md, "Erosion, opening,
 // closing": convex A).  erode, opening and closing take it for a convex A
 // (morphology.cpp).
 //
@@ -19,8 +19,8 @@
 // without being a corner — is redundant), its vertices one per facet of H
 // (the point where the planes of that facet's corners meet), and the
 // erosion's facet of a vertex v of H has as corners the points of the
-// facets of H around v, in their order.  H is CGAL's exact hull of the
-// dual points, its triangles grouped into facets exactly (dual_hull); every
+// facets of H around v, in their order.  H is the exact hull of the dual
+// points, its triangles grouped into facets exactly (dual_hull); every
 // corner is the exact intersection of three of the moved planes (any three
 // corners of a facet of H are not collinear, so their planes meet in one
 // point); the polytope is built from those polygons, not validated again.  No point strictly inside found
@@ -31,12 +31,13 @@
 #include "mesh/builder.hpp"
 #include "mesh/support.hpp"
 
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/convex_hull_3.h>
+#include "mesh/homogeneous_hull.hpp"
+
+#include <CGAL/FPU.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <unordered_map>
@@ -53,6 +54,26 @@ Point3 centroid(const std::vector<Point3>& points) {
   return Rational(1, long(points.size())) * s;
 }
 
+// A rational point as integers over one positive denominator:
+// (x / w, y / w, z / w), w the lcm of the coordinates' denominators.
+struct IntegerPoint {
+  Integer x, y, z, w;
+};
+IntegerPoint integer_point(const Point3& p) {
+  IntegerPoint r;
+  mpz_lcm(r.w.get_mpz_t(), p.x.get_den_mpz_t(), p.y.get_den_mpz_t());
+  mpz_lcm(r.w.get_mpz_t(), r.w.get_mpz_t(), p.z.get_den_mpz_t());
+  r.x = p.x.get_num() * (r.w / p.x.get_den());
+  r.y = p.y.get_num() * (r.w / p.y.get_den());
+  r.z = p.z.get_num() * (r.w / p.z.get_den());
+  return r;
+}
+
+// The cross product of two planes' normals (w unused).
+IntegerPoint cross(const Plane& u, const Plane& v) {
+  return {u.b * v.c - u.c * v.b, u.c * v.a - u.a * v.c, u.a * v.b - u.b * v.a, Integer(1)};
+}
+
 // The convex hull H of the dual points, as the erosion is read off it: for
 // each facet of H, the input points (planes) of three of its corners; for
 // each corner of H, the facets around it, counter-clockwise seen from
@@ -62,69 +83,72 @@ struct DualHull {
   std::vector<std::vector<Index>> around;
 };
 
-// CGAL's convex_hull_3 on exact points (Epeck: filtered exact predicates, the
-// dual points' rationals exactly), a triangulated surface whose vertices are
-// input points.  Its triangles are grouped into H's facets across the edges
-// whose two triangles are coplanar (exact test: a facet with more than
-// three corners, or with input points inside it or on its sides, is
-// several triangles); a vertex around which the triangles lie in three
-// facets or more is a corner of H, one in one or two facets (inside a
-// facet, or inside an edge) is not.
-DualHull dual_hull(const std::vector<Point3>& dual) {
-  using K = CGAL::Exact_predicates_exact_constructions_kernel;
-  std::vector<K::Point_3> points;
-  points.reserve(dual.size());
-  // A point's shared representation (copies of a point share it) -> its index.
-  auto id = [](const K::Point_3& p) { return static_cast<const CGAL::Handle&>(p).id(); };
-  std::unordered_map<CGAL::Handle::Id_type, Index> input;
-  for (const Point3& p : dual) {
-    points.emplace_back(K::FT(p.x), K::FT(p.y), K::FT(p.z));
-    input.emplace(id(points.back()), Index(points.size() - 1));
+// The exact hull of the dual points p_i = (n_i scale_i) / w_i, given in
+// homogeneous integer coordinates (n_i scale_i, w_i), scale_i, w_i > 0:
+// Quickhull on integer determinants (mesh/homogeneous_hull.hpp), no
+// rational arithmetic.  Its triangles are grouped into H's facets across the
+// edges whose two triangles are coplanar (exact: a facet with more than
+// three corners, or with dual points inside it or on its sides, is several
+// triangles); a vertex around which the triangles lie in three facets or
+// more is a corner of H, one in one or two facets (inside a facet, or
+// inside an edge) is not.
+DualHull dual_hull(const ConvexPolytope& polytope, const std::vector<Integer>& scale, const std::vector<Integer>& w) {
+  HomogeneousHull sm;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;  // the kernel's interval filter
+    std::vector<detail::HomogeneousPoint> points;
+    points.reserve(w.size());
+    for (Index i = 0; i < w.size(); ++i) {
+      const Plane& h = polytope.plane(i);  // integer normal (h.a, h.b, h.c)
+      points.push_back(detail::homogeneous_point(Integer(h.a * scale[i]), Integer(h.b * scale[i]),
+                                                 Integer(h.c * scale[i]), w[i]));
+    }
+    sm = homogeneous_hull(points);
   }
-  CGAL::Surface_mesh<K::Point_3> sm;
-  CGAL::convex_hull_3(points.begin(), points.end(), sm);
+  const Index nt = Index(sm.triangles.size());
   // Union-find over the triangles: one set per facet of H.
-  std::vector<Index> parent(sm.number_of_faces());
-  for (Index f = 0; f < parent.size(); ++f) parent[f] = f;
+  std::vector<Index> parent(nt);
+  for (Index f = 0; f < nt; ++f) parent[f] = f;
   auto find = [&](Index f) {
     while (parent[f] != f) f = parent[f] = parent[parent[f]];
     return f;
   };
-  for (auto e : sm.edges()) {
-    const auto h = sm.halfedge(e), o = sm.opposite(h);
-    if (CGAL::coplanar(sm.point(sm.source(h)), sm.point(sm.target(h)), sm.point(sm.target(sm.next(h))),
-                       sm.point(sm.target(sm.next(o)))))
-      parent[find(Index(std::size_t(sm.face(h))))] = find(Index(std::size_t(sm.face(o))));
-  }
+  for (Index t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k)
+      if (sm.flat[t][k]) parent[find(t)] = find(sm.neighbour[t][k]);
   // The corners of H (vertices around which the triangles lie in three
   // facets or more), each with the facets around it counter-clockwise seen
-  // from outside (the outgoing half-edge h, then the opposite of the one
-  // before it), the facets by their triangle sets' roots for now.
+  // from outside (from a triangle t at the vertex, on to the triangle across
+  // t's edge into the vertex), the facets by their triangle sets' roots for
+  // now.
   struct Corner {
     Index point;               // the input point
     std::vector<Index> roots;  // around it
   };
+  std::vector<std::pair<Index, Index>> at(w.size(), {kNoIndex, 0});  // point -> (a triangle, its corner)
+  for (Index t = 0; t < nt; ++t)
+    for (Index k = 0; k < 3; ++k) at[sm.triangles[t][k]] = {t, k};
   std::vector<Corner> found;
-  for (auto v : sm.vertices()) {
+  for (Index v = 0; v < at.size(); ++v) {
+    if (at[v].first == kNoIndex) continue;
     std::vector<Index> around;
-    const auto h0 = sm.opposite(sm.halfedge(v));
-    auto h = h0;
+    const Index t0 = at[v].first;
+    Index t = t0, k = at[v].second;
     do {
-      const Index g = find(Index(std::size_t(sm.face(h))));
+      const Index g = find(t);
       if (around.empty() || around.back() != g) around.push_back(g);
-      h = sm.opposite(sm.prev(h));
-    } while (h != h0);
+      const Index u = sm.neighbour[t][(k + 2) % 3];  // across (v_(k+2), v)
+      k = sm.triangles[u][0] == v ? 0 : sm.triangles[u][1] == v ? 1 : 2;
+      t = u;
+    } while (t != t0);
     if (around.size() > 1 && around.front() == around.back()) around.pop_back();
     if (around.size() < 3) continue;  // not a corner
-    const auto it = input.find(id(sm.point(v)));
-    if (it == input.end()) throw std::logic_error("halfspace_erosion: a hull vertex that is no dual point");
-    found.push_back(Corner{it->second, std::move(around)});
+    found.push_back(Corner{v, std::move(around)});
   }
-  // Numbered so that the erosion does not depend on the order in which CGAL
-  // lists the hull (which follows memory addresses): corners by input
-  // point, facets of H by their corners (ascending lists, compared
+  // Numbered so that the erosion depends on the hull's facets, not on the
+  // order in which the hull lists its triangles: corners by input point
+  // (as `found` is), facets of H by their corners (ascending lists, compared
   // lexicographically), each corner's cycle from its lowest facet.
-  std::sort(found.begin(), found.end(), [](const Corner& x, const Corner& y) { return x.point < y.point; });
   std::unordered_map<Index, std::vector<Index>> corners_of_root;
   for (const Corner& c : found)
     for (Index r : c.roots) corners_of_root[r].push_back(c.point);  // ascending, as `found` is
@@ -188,44 +212,74 @@ ConvexPolytope trusted_polytope(PointList points, const std::vector<std::vector<
 }  // namespace
 
 std::optional<ConvexPolytope> halfspace_erosion(const ConvexPolytope& a, const ConvexPolytope& b) {
+  // Integers throughout, over denominators kept apart (no gcd until the
+  // corners): B's vertices y = Y / D, the moved offsets o_i = d_i - n_i . y
+  // = O_i / D_i (y the support of n_i), the interior point q = Q / E and the
+  // slacks e_i = o_i - n_i . q = S_i / (D_i E).
   const Index n = a.num_facets();
-  std::vector<Point3> normal(n);
-  std::vector<Rational> offset(n);  // n_i . x <= offset_i
+  std::vector<IntegerPoint> vertex_of_b(b.num_vertices());
+  std::vector<char> made(b.num_vertices(), 0);
+  std::vector<Integer> offset(n), denominator(n);  // O_i, D_i
   Index start = 0;
   for (Index f = 0; f < n; ++f) {
     const Plane& h = a.plane(f);
-    normal[f] = h.normal();
-    start = support(b, normal[f], start).vertex;
-    offset[f] = Rational(h.d) - dot(normal[f], b.point(start));
+    start = support(b, h.normal(), start).vertex;
+    if (!made[start]) vertex_of_b[start] = integer_point(b.point(start)), made[start] = 1;
+    const IntegerPoint& y = vertex_of_b[start];
+    offset[f] = h.d * y.w - (h.a * y.x + h.b * y.y + h.c * y.z);
+    denominator[f] = y.w;
   }
   // A point strictly inside every moved half-space: the difference of A's
   // and B's vertex centroids (inside the erosion for most B small against
-  // A), rounded to doubles first (shorter numbers for what follows), else
-  // exactly.
-  std::vector<Rational> slack(n);  // e_i = offset_i - n_i . q
-  auto strictly_inside = [&](const Point3& q) {
+  // A), first on the vertices' doubles (short numbers; A's exact
+  // coordinates are not made), else exactly.  The erosion does not depend on
+  // which point it is (the dual hull's structure is the erosion's).
+  std::vector<Integer> slack(n);  // S_i
+  IntegerPoint q;
+  auto strictly_inside = [&](const Point3& point) {
+    q = integer_point(point);
     for (Index f = 0; f < n; ++f) {
-      slack[f] = offset[f] - dot(normal[f], q);
+      const Plane& h = a.plane(f);
+      slack[f] = offset[f] * q.w - (h.a * q.x + h.b * q.y + h.c * q.z) * denominator[f];
       if (sgn(slack[f]) <= 0) return false;
     }
     return true;
   };
-  const Point3 exact = centroid(a.points()) - centroid(b.points());
-  const Vec3d near = to_double(exact);
-  if (!strictly_inside(Point3(near.x, near.y, near.z)) && !strictly_inside(exact)) return std::nullopt;
+  double near[3] = {0, 0, 0};
+  for (int k = 0; k < 3; ++k) {
+    for (Index v = 0; v < a.num_vertices(); ++v) near[k] += a.approx(v)[k] / a.num_vertices();
+    for (Index v = 0; v < b.num_vertices(); ++v) near[k] -= b.approx(v)[k] / b.num_vertices();
+  }
+  if (!(std::isfinite(near[0]) && std::isfinite(near[1]) && std::isfinite(near[2]) &&
+        strictly_inside(Point3(near[0], near[1], near[2]))) &&
+      !strictly_inside(centroid(a.points()) - centroid(b.points())))
+    return std::nullopt;
 
-  std::vector<Point3> dual(n);
-  for (Index f = 0; f < n; ++f) dual[f] = Rational(1 / slack[f]) * normal[f];
-  const DualHull hull = dual_hull(dual);
+  // The dual points n_i / e_i = (n_i D_i E, S_i) homogeneously.
+  std::vector<Integer> scale(n);
+  for (Index f = 0; f < n; ++f) scale[f] = denominator[f] * q.w;
+  const DualHull hull = dual_hull(a, scale, slack);
 
   // One corner per facet of H: where the planes of three of its corners
-  // meet (Cramer's rule on the moved planes).
+  // meet (Cramer's rule on the moved planes), x = Σ o_i (n_j × n_k) / det
+  // = Σ O_i D_j D_k (n_j × n_k) / (D_i D_j D_k det), each coordinate then
+  // in lowest terms once.
   PointList corners;
   corners.reserve(hull.corners.size());
   for (const auto& [i, j, k] : hull.corners) {
-    const Point3 jk = cross(normal[j], normal[k]), ki = cross(normal[k], normal[i]), ij = cross(normal[i], normal[j]);
-    const Rational det = dot(normal[i], jk);
-    corners.push_back(Rational(1 / det) * (offset[i] * jk + offset[j] * ki + offset[k] * ij));
+    const Plane &hi = a.plane(i), &hj = a.plane(j), &hk = a.plane(k);
+    const IntegerPoint jk = cross(hj, hk), ki = cross(hk, hi), ij = cross(hi, hj);
+    const Integer det = hi.a * jk.x + hi.b * jk.y + hi.c * jk.z;
+    const Integer ci = offset[i] * denominator[j] * denominator[k], cj = offset[j] * denominator[i] * denominator[k],
+                  ck = offset[k] * denominator[i] * denominator[j];
+    const Integer den = det * denominator[i] * denominator[j] * denominator[k];
+    auto coordinate = [&](const Integer& x, const Integer& y, const Integer& z) {
+      Rational r(Integer(ci * x + cj * y + ck * z), den);
+      r.canonicalize();
+      return r;
+    };
+    corners.push_back(Point3(coordinate(jk.x, ki.x, ij.x), coordinate(jk.y, ki.y, ij.y),
+                             coordinate(jk.z, ki.z, ij.z)));
   }
   // One facet per corner v of H, its corners those of the facets of H around
   // v in their order (counter-clockwise seen from outside, as polarity keeps

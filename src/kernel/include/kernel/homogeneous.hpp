@@ -27,7 +27,7 @@
 // excludes zero its sign is the exact sign (interval arithmetic rounded
 // outward, CGAL::Interval_nt, under a Protect_FPU_rounding<true> guard that
 // the caller holds).  Otherwise the exact plane (integers, made once per
-// triangle) decides.  tests/test_predicates.cpp (HomogeneousSide.*) checks
+// triangle) decides.  tests/test_homogeneous.cpp (HomogeneousSide.*) checks
 // every filtered sign against the exact determinant on random and coplanar
 // inputs.
 #pragma once

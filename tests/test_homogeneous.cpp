@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <cmath>
+#include <cstdio>
 #include <random>
 #include <set>
 #include <string>
@@ -48,15 +50,17 @@ TEST(HomogeneousSide, BeyondIsTheSideSeenCounterClockwise) {
 }
 
 // Every sign the filter decides is the exact determinant's, on random
-// points of short and long coordinates, and on points made coplanar exactly
-// (the filter cannot decide those: the exact plane answers 0).
+// points of short and long coordinates, on points made coplanar exactly
+// (the filter cannot decide those: the exact plane answers 0) and on points
+// one unit off that plane (nonzero, near zero: where an enclosure rounded
+// the wrong way would show).  The filter decides nearly every random case.
 TEST(HomogeneousSide, FilterAgreesWithTheExactDeterminant) {
   CGAL::Protect_FPU_rounding<true> upward;
   for (int bits : {8, 60, 200, 700}) {
     const unsigned seed = 1000u + unsigned(bits);
     std::mt19937_64 rng(seed);
-    int zeros = 0;
-    for (int trial = 0; trial < 400; ++trial) {
+    int zeros = 0, random_decided = 0, near_decided = 0;
+    for (int trial = 0; trial < 600; ++trial) {
       SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
       auto point = [&] {
         Integer w = random_integer(rng, bits / 2 + 1);
@@ -66,7 +70,8 @@ TEST(HomogeneousSide, FilterAgreesWithTheExactDeterminant) {
       };
       const HomogeneousPoint a = point(), b = point(), c = point();
       HomogeneousPoint x = point();
-      if (trial % 2 == 1) {
+      const int kind = trial % 3;  // 0 random, 1 on the plane, 2 one unit off it
+      if (kind != 0) {
         // x = a + (b - a) s + (c - a) t in Cartesian terms, with integers:
         // x w = a_c wb wc + ... written over the common w = wa wb wc.
         const Integer s = random_integer(rng, 6), t = random_integer(rng, 6);
@@ -77,22 +82,52 @@ TEST(HomogeneousSide, FilterAgreesWithTheExactDeterminant) {
         for (int k = 0; k < 3; ++k)
           xc[k] = a.c[k] * wb * wc + s * (b.c[k] * wa * wc - a.c[k] * wb * wc) + t * (c.c[k] * wa * wb - a.c[k] * wb * wc);
         xc[3] = wa * wb * wc;
+        if (kind == 2) xc[trial % 2] += 1;
         x = detail::homogeneous_point(xc[0], xc[1], xc[2], xc[3]);
       }
       const detail::HomogeneousPlane h = detail::homogeneous_plane(a, b, c);
       const int exact = detail::side_exact(a, b, c, x);
+      const int filtered = detail::side_filter(h, x);
+      if (filtered != kUncertain) {
+        ASSERT_EQ(filtered, exact);
+      }
       ASSERT_EQ(detail::side(h, a, b, c, x), exact);
-      if (trial % 2 == 1) {
+      if (kind == 1) {
         ASSERT_EQ(exact, 0);
       }
+      if (kind == 2) {
+        ASSERT_NE(exact, 0);
+      }
       zeros += exact == 0;
+      random_decided += kind == 0 && filtered != kUncertain;
+      near_decided += kind == 2 && filtered != kUncertain;
     }
     EXPECT_EQ(zeros, 200) << bits << " bits";
+    EXPECT_GE(random_decided, 195) << bits << " bits";  // of 200
+    std::printf("%d bits: the filter decided %d of 200 random and %d of 200 near-coplanar signs\n", bits,
+                random_decided, near_decided);
   }
 }
 
-// The hull as a polytope: its triangles through the validating builder
-// (which merges coplanar triangles and drops vertices inside facets).
+// A coordinate far shorter than its point's longest (w of 1 200 bits, x of
+// one): its scaled interval is the one around 0 of width 2^-999, still an
+// enclosure, and the signs stay exact.
+TEST(HomogeneousSide, TinyScaledCoordinatesStayEnclosed) {
+  CGAL::Protect_FPU_rounding<true> upward;
+  const Integer big = Integer(1) << 1200;
+  // (0,0,0), (1,0,0), (0,1,0) and x = (1, 1, ±1) / 2^1200 + ... as homogeneous rows.
+  const HomogeneousPoint a = detail::homogeneous_point(0, 0, 0, 1), b = detail::homogeneous_point(1, 0, 0, 1),
+                         c = detail::homogeneous_point(0, 1, 0, 1);
+  const detail::HomogeneousPlane h = detail::homogeneous_plane(a, b, c);
+  for (int z : {-1, 0, 1}) {
+    const HomogeneousPoint x = detail::homogeneous_point(1, 1, z, big);
+    EXPECT_LE(x.s[0].sup(), std::ldexp(1.0, -1000));
+    EXPECT_GE(x.s[0].inf(), -std::ldexp(1.0, -1000));
+    EXPECT_EQ(detail::side(h, a, b, c, x), z) << z;
+    EXPECT_EQ(detail::side_exact(a, b, c, x), z) << z;
+  }
+}
+
 // The builder takes the points the triangles use, renumbered.
 ConvexPolytope polytope_of(const HomogeneousHull& h, const std::vector<Point3>& cartesian) {
   std::vector<Index> used(cartesian.size(), kNoIndex);
@@ -144,7 +179,8 @@ TEST(HomogeneousHull, SameAsTheExactHullOfTheRationals) {
         w = random_integer(rng, 90);
         if (sgn(w) <= 0) w = -w + 1;
       }
-      const Point3 p(Rational(x, w), Rational(y, w), Rational(z, w));
+      Point3 p(Rational(x, w), Rational(y, w), Rational(z, w));
+      for (int k = 0; k < 3; ++k) p[k].canonicalize();
       if (!seen.insert(p).second) continue;  // distinct points, as the dual points are
       cartesian.push_back(p);
       points.push_back(detail::homogeneous_point(x, y, z, w));
@@ -156,6 +192,10 @@ TEST(HomogeneousHull, SameAsTheExactHullOfTheRationals) {
     EXPECT_EQ(vertex_set(mine), vertex_set(cgal));
     EXPECT_EQ(mine.num_facets(), cgal.num_facets());
     EXPECT_EQ(mine.volume(), cgal.volume());
+    // Outward: every point on or beneath every triangle.
+    for (const auto& tri : h.triangles)
+      for (const HomogeneousPoint& x : points)
+        ASSERT_LE(detail::side_exact(points[tri[0]], points[tri[1]], points[tri[2]], x), 0);
     // Neighbours are mutual, and flat is the exact coplanarity.
     for (Index t = 0; t < h.triangles.size(); ++t)
       for (int k = 0; k < 3; ++k) {
@@ -175,6 +215,27 @@ TEST(HomogeneousHull, SameAsTheExactHullOfTheRationals) {
   }
 }
 
+// Repeated points (the same point with other w's) take no part, even when
+// the start's two far points are copies of each other.
+TEST(HomogeneousHull, RepeatedPointsAreOnePoint) {
+  CGAL::Protect_FPU_rounding<true> upward;
+  const Integer big = Integer(1) << 80;
+  std::vector<HomogeneousPoint> points;
+  // The corner (B, B, B) three times (w = 1, 3, 7), then the unit offsets.
+  for (int w : {1, 3, 7}) points.push_back(scaled_point(big, big, big, w));
+  points.push_back(scaled_point(Integer(big + 1), big, big, 2));
+  points.push_back(scaled_point(big, Integer(big + 1), big, 5));
+  points.push_back(scaled_point(big, big, Integer(big + 1), 1));
+  const HomogeneousHull h = homogeneous_hull(points);
+  ASSERT_EQ(h.triangles.size(), 4u);
+  std::set<Index> used;
+  for (const auto& t : h.triangles) used.insert(t.begin(), t.end());
+  EXPECT_EQ(used.size(), 4u);
+  EXPECT_EQ(used.count(3), 1u);
+  EXPECT_EQ(used.count(4), 1u);
+  EXPECT_EQ(used.count(5), 1u);
+}
+
 TEST(HomogeneousHull, PointsThatSpanNoVolumeAreRefused) {
   CGAL::Protect_FPU_rounding<true> upward;
   std::vector<HomogeneousPoint> flat;
@@ -183,6 +244,20 @@ TEST(HomogeneousHull, PointsThatSpanNoVolumeAreRefused) {
   std::vector<HomogeneousPoint> three;
   for (int i = 0; i < 3; ++i) three.push_back(detail::homogeneous_point(i, 1, 2, 1));
   EXPECT_THROW(homogeneous_hull(three), std::invalid_argument);
+  std::vector<HomogeneousPoint> line, copies;
+  for (int i = 0; i < 8; ++i) line.push_back(scaled_point(i, 2 * i, -i, 1 + i));
+  EXPECT_THROW(homogeneous_hull(line), std::invalid_argument);
+  for (int i = 0; i < 8; ++i) copies.push_back(scaled_point(3, 4, 5, 1 + i));
+  EXPECT_THROW(homogeneous_hull(copies), std::invalid_argument);
+}
+
+TEST(HomogeneousHull, RefusedWithoutTheRoundingGuard) {
+  std::vector<HomogeneousPoint> points;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    for (int i = 0; i < 4; ++i) points.push_back(detail::homogeneous_point(i == 1, i == 2, i == 3, 1));
+  }
+  EXPECT_THROW(homogeneous_hull(points), std::logic_error);
 }
 
 }  // namespace

@@ -11,7 +11,7 @@ namespace minksum::detail {
 namespace {
 
 // An interval enclosing z · 2^-k, for |z| < 2^k (so the result lies in
-// (-1, 1)).  mpz_get_d_2exp gives m with 0.5 <= |m| < 1 truncated towards
+// [-1, 1]).  mpz_get_d_2exp gives m with 0.5 <= |m| < 1 truncated towards
 // zero, z = (m + δ) 2^e with δ of m's sign and |δ| < 2^-53; m ± 2^-53 is a
 // double (m's last place), and the scaling by 2^(e - k) is exact unless the
 // result would fall below 2^-1000, in which case [-2^-1000, 2^-1000]
@@ -64,9 +64,11 @@ HomogeneousPlane homogeneous_plane(const HomogeneousPoint& a, const HomogeneousP
   return HomogeneousPlane{plane_of(a.s, b.s, c.s), nullptr};
 }
 
+int side_filter(const HomogeneousPlane& h, const HomogeneousPoint& x) { return sign_of(dot4(h.s, x.s)); }
+
 int side(const HomogeneousPlane& h, const HomogeneousPoint& a, const HomogeneousPoint& b, const HomogeneousPoint& c,
          const HomogeneousPoint& x) {
-  const int s = sign_of(dot4(h.s, x.s));
+  const int s = side_filter(h, x);
   if (s != kUncertain) return s;
   if (!h.exact) h.exact = std::make_unique<std::array<Integer, 4>>(plane_of(a.c, b.c, c.c));
   return sgn(Integer(dot4(*h.exact, x.c)));

@@ -4,6 +4,8 @@
 
 #include <minksum/polytope.hpp>  // Index, kNoIndex
 
+#include <CGAL/FPU.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -90,6 +92,15 @@ class Quickhull {
     return false;
   }
 
+  // Whether points i and j are the same point: x_i w_j = x_j w_i for each
+  // coordinate.
+  bool same(Index i, Index j) const {
+    if (i == j) return true;
+    for (int k = 0; k < 3; ++k)
+      if (p_[i].c[k] * p_[j].c[3] != p_[j].c[k] * p_[i].c[3]) return false;
+    return true;
+  }
+
   // A start tetrahedron: two points far apart along an axis (by doubles),
   // a third far from their line, then the first point off their plane
   // (exact); if the three are collinear exactly, other thirds in turn.
@@ -107,7 +118,14 @@ class Quickhull {
       }
       if (coord(hi, k) - coord(lo, k) > spread) spread = coord(hi, k) - coord(lo, k), a = lo, b = hi;
     }
-    if (a == b) b = a == 0 ? 1 : 0;
+    // b a point other than a exactly (a repeated point may share a's doubles
+    // or even be a's copy with another w).
+    if (same(a, b)) {
+      b = kNoIndex;
+      for (Index i = 0; i < n && b == kNoIndex; ++i)
+        if (!same(a, i)) b = i;
+      if (b == kNoIndex) throw std::invalid_argument("homogeneous_hull: the points do not span three dimensions");
+    }
     // Thirds by decreasing distance from the line ab (doubles).
     std::vector<std::pair<double, Index>> thirds;
     thirds.reserve(n);
@@ -247,6 +265,8 @@ class Quickhull {
 }  // namespace
 
 HomogeneousHull homogeneous_hull(const std::vector<detail::HomogeneousPoint>& points) {
+  if (CGAL::FPU_get_cw() != CGAL_FE_UPWARD)
+    throw std::logic_error("homogeneous_hull: called without the upward rounding guard its interval filter needs");
   return Quickhull(points).run();
 }
 

@@ -62,6 +62,10 @@ HomogeneousPlane homogeneous_plane(const HomogeneousPoint& a, const HomogeneousP
 int side(const HomogeneousPlane& h, const HomogeneousPoint& a, const HomogeneousPoint& b,
          const HomogeneousPoint& c, const HomogeneousPoint& x);
 
+// The filter alone: the sign when the intervals decide it, kUncertain
+// otherwise.  Needs the upward rounding guard.
+int side_filter(const HomogeneousPlane& h, const HomogeneousPoint& x);
+
 // The exact sign, without the filter (for the tests).
 int side_exact(const HomogeneousPoint& a, const HomogeneousPoint& b, const HomogeneousPoint& c,
                const HomogeneousPoint& x);

@@ -36,8 +36,9 @@ struct HomogeneousHull {
 };
 
 // The hull of `points`, which must span three dimensions
-// (std::invalid_argument otherwise).  The caller holds a
-// CGAL::Protect_FPU_rounding<true> guard (the points were made under it).
+// (std::invalid_argument otherwise); a point may repeat (the same point
+// with another w, too).  The caller holds a CGAL::Protect_FPU_rounding<true>
+// guard (std::logic_error otherwise).
 HomogeneousHull homogeneous_hull(const std::vector<detail::HomogeneousPoint>& points);
 
 }  // namespace minksum

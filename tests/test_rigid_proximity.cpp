@@ -456,6 +456,54 @@ TEST(PlacedMap, RejectsSingularReflectedAndNonFiniteMatrices) {
   EXPECT_TRUE(PlacedMap().doubles());
 }
 
+// A matrix of doubles is accepted exactly when its exact determinant is
+// positive, whichever stage decides (doubles with the permanent's bound,
+// intervals, rationals): rotations (det ≈ 1), random matrices, matrices made
+// singular exactly and then moved by one ulp in one entry (det a few ulps
+// either side of 0), in every rounding mode.
+TEST(PlacedMap, DeterminantSignOfDoubleMatricesIsExact) {
+  const std::uint64_t seed = 4417;
+  Rng r(seed);
+  int accepted = 0, refused = 0;
+  for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO})
+    for (int trial = 0; trial < 300; ++trial) {
+      SCOPED_TRACE("seed " + std::to_string(seed) + ", mode " + std::to_string(mode) + ", trial " +
+                   std::to_string(trial));
+      std::array<double, 9> a;
+      for (double& x : a) x = r.uniform(-2, 2);
+      if (trial % 3 == 1) {  // row 2 = row 0 + row 1 with small integers: singular, then one ulp off
+        for (int c = 0; c < 3; ++c) {
+          a[c] = double(r.integer(-8, 8)), a[3 + c] = double(r.integer(-8, 8));
+          a[6 + c] = a[c] + a[3 + c];
+        }
+        const int k = int(r.integer(0, 8));
+        a[k] = std::nextafter(a[k], r.integer(0, 1) ? INFINITY : -INFINITY);
+      } else if (trial % 3 == 2) {  // a rotation's doubles
+        const double t = r.uniform(0, 6.28), c = std::cos(t), s = std::sin(t);
+        a = {c, -s, 0, s, c, 0, 0, 0, 1};
+      }
+      Rational det = 0;
+      {
+        const auto e = [&](int i) { return Rational(a[i]); };
+        det = e(0) * (e(4) * e(8) - e(5) * e(7)) - e(1) * (e(3) * e(8) - e(5) * e(6)) +
+              e(2) * (e(3) * e(7) - e(4) * e(6));
+      }
+      const int old = std::fegetround();
+      std::fesetround(mode);
+      bool threw = false;
+      try {
+        PlacedMap m(a, Vec3d{0, 0, 0});
+      } catch (const UsageError&) {
+        threw = true;
+      }
+      std::fesetround(old);
+      ASSERT_EQ(threw, sgn(det) <= 0) << "det " << det;
+      (threw ? refused : accepted) += 1;
+    }
+  EXPECT_GT(accepted, 300);
+  EXPECT_GT(refused, 200);
+}
+
 // The rotation of an integer quaternion (machine integers for components up
 // to 2^25 when rounding to nearest, GMP otherwise) is the map of the
 // rational matrix built here, entry by entry: the same exact entries, the

@@ -250,6 +250,32 @@ void PlacedMap::set_fast() {
 }
 
 void PlacedMap::check_determinant() const {
+  // Stage 1, doubles (a matrix of doubles, every entry zero or of magnitude
+  // in [2^-240, 2^240): no product of three leaves the normal range).  With
+  // u = 2^-52 (one operation in any rounding mode), each 2×2 minor
+  // fl(fl(x y) − fl(z w)) is within γ_2 (|x y| + |z w|) of the exact one,
+  // its product with an entry adds one rounding, the two additions two more:
+  // |d̂ − det| ≤ γ_5 P with P the permanent Σ |a_0i| (|a_1j a_2k| + |a_1k a_2j|)
+  // (γ_5 = 5u / (1 − 5u)).  P̂, the same expression on the absolute values,
+  // takes at most five roundings of non-negative doubles: P̂ ≥ (1 − u)^5 P.
+  // So d̂ > 2^-48 P̂ = 16 u P̂ ≥ 16 u (1 − u)^5 P > γ_5 P proves det > 0; a
+  // rotation matrix of doubles (det ≈ 1, P ≤ 6) passes at once, without
+  // switching the rounding mode.  Otherwise the stages below decide.
+  if (!exact_a_ && !small_rotation_) {
+    const auto& a = approx_a_;
+    bool range = true;
+    for (double x : a) range = range && in_range(x);
+    if (range) {
+      const double d = a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) +
+                       a[2] * (a[3] * a[7] - a[4] * a[6]);
+      const auto m = [](double x, double y, double z, double w) {
+        return std::fabs(x) * std::fabs(y) + std::fabs(z) * std::fabs(w);
+      };
+      const double perm = std::fabs(a[0]) * m(a[4], a[8], a[5], a[7]) + std::fabs(a[1]) * m(a[3], a[8], a[5], a[6]) +
+                          std::fabs(a[2]) * m(a[3], a[7], a[4], a[6]);
+      if (d > 0x1p-48 * perm) return;
+    }
+  }
   {
     CGAL::Protect_FPU_rounding<true> upward;
     const auto& b = bounds_a_;

@@ -122,6 +122,22 @@ PlacedMap PlacedMap::rotation(const std::array<Integer, 4>& q, const Point3& t) 
   return m;
 }
 
+PlacedMap PlacedMap::rotation(const std::array<std::int64_t, 4>& q, const Vec3d& t) {
+  for (double x : {t.x, t.y, t.z})
+    if (!std::isfinite(x)) throw UsageError("a placement's translation must be finite");
+  PlacedMap m;
+  if (!m.set_small_rotation(q)) {
+    std::array<Integer, 4> big;
+    for (int k = 0; k < 4; ++k) mpz_set_si(big[k].get_mpz_t(), static_cast<long>(q[k]));
+    m.set_rotation_gmp(big);
+  }
+  m.approx_t_ = t;
+  m.bounds_t_ = {{t.x, t.x}, {t.y, t.y}, {t.z, t.z}};
+  m.exact_t_.reset();
+  m.set_fast();
+  return m;
+}
+
 PlacedMap PlacedMap::rotation(const std::array<Integer, 4>& q, const Vec3d& t) {
   for (double x : {t.x, t.y, t.z})
     if (!std::isfinite(x)) throw UsageError("a placement's translation must be finite");
@@ -166,16 +182,26 @@ void small_rotation_entry(const std::array<std::int64_t, 4>& q, int k, std::int6
 }  // namespace
 
 void PlacedMap::set_rotation(const std::array<Integer, 4>& q) {
-  // Components of at most 2^25 in magnitude, rounding to nearest: each
-  // entry's nearest double is one division e_k / n (both exact doubles:
-  // correctly rounded, ties to even, the value of to_double), exact when
-  // d·n − e_k = 0 (one fma, exact in sign); the exact entries are not stored but made from the components
-  // by a() when an exact stage asks (no GMP number is made here).
   constexpr long kSmall = 1L << 25;
-  bool small = std::fegetround() == FE_TONEAREST;
+  bool small = true;
   for (const Integer& x : q) small = small && mpz_cmpabs_ui(x.get_mpz_t(), kSmall) <= 0;
-  if (small) {
-    for (int k = 0; k < 4; ++k) quaternion_[k] = q[k].get_si();
+  if (small && set_small_rotation({q[0].get_si(), q[1].get_si(), q[2].get_si(), q[3].get_si()})) return;
+  set_rotation_gmp(q);
+}
+
+// Components of at most 2^25 in magnitude, rounding to nearest: each
+// entry's nearest double is one division e_k / n (both exact doubles:
+// correctly rounded, ties to even, the value of to_double), exact when
+// d·n − e_k = 0 (one fma, exact in sign); the exact entries are not stored
+// but made from the components by a() when an exact stage asks (no GMP
+// number is made here).  False (nothing set) when that does not apply.
+bool PlacedMap::set_small_rotation(const std::array<std::int64_t, 4>& q) {
+  constexpr std::int64_t kSmall = std::int64_t(1) << 25;
+  for (std::int64_t x : q)
+    if (x < -kSmall || x > kSmall) return false;
+  if (std::fegetround() != FE_TONEAREST) return false;
+  {
+    quaternion_ = q;
     if (!quaternion_[0] && !quaternion_[1] && !quaternion_[2] && !quaternion_[3])
       throw UsageError("a rotation needs a non-zero quaternion, got 0,0,0,0");
     bool doubles = true;
@@ -193,8 +219,11 @@ void PlacedMap::set_rotation(const std::array<Integer, 4>& q) {
     }
     exact_a_.reset();
     small_rotation_ = !doubles;
-    return;
   }
+  return true;
+}
+
+void PlacedMap::set_rotation_gmp(const std::array<Integer, 4>& q) {
   const Integer &a = q[0], &b = q[1], &c = q[2], &d = q[3];
   const Integer aa = a * a, bb = b * b, cc = c * c, dd = d * d;
   const Integer n = aa + bb + cc + dd;

@@ -119,6 +119,9 @@ class PlacedMap {
   // The same with a translation of doubles taken exactly (throws UsageError
   // unless finite).
   static PlacedMap rotation(const std::array<Integer, 4>& q, const Vec3d& t);
+  // The same for machine-integer components (a batch of poses from numpy's
+  // int64 arrays: no GMP number is made for components of at most 2^25).
+  static PlacedMap rotation(const std::array<std::int64_t, 4>& q, const Vec3d& t);
 
   // The nearest doubles of A (row-major) and t: for the searches, never for
   // a decision.
@@ -141,6 +144,8 @@ class PlacedMap {
  private:
   void set_rational_a(const std::array<std::array<Rational, 3>, 3>& a);
   void set_rotation(const std::array<Integer, 4>& q);  // the matrix of rotation(q, t)
+  bool set_small_rotation(const std::array<std::int64_t, 4>& q);  // its machine-integer path, when it applies
+  void set_rotation_gmp(const std::array<Integer, 4>& q);          // and its GMP path
   void set_double_a(const std::array<double, 9>& a);
   void set_t(const Point3& t);
   void check_determinant() const;

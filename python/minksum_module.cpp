@@ -1016,8 +1016,8 @@ RigidPose make_pose(const PoseInput& in, const char* rn, std::size_t i) {
       const std::array<long long, 4>& d = in.quaternions[in.quaternions.size() == 1 ? 0 : i];
       const std::array<std::int64_t, 4> small{static_cast<std::int64_t>(d[0]), static_cast<std::int64_t>(d[1]),
                                                static_cast<std::int64_t>(d[2]), static_cast<std::int64_t>(d[3])};
-      if (in.t.size() == 0) return RigidPose::quaternion(small, Vec3d{0, 0, 0});
-      if (in.t.is_double(it)) return RigidPose::quaternion(small, in.t.approx(it));
+      if (in.t.size() == 0) return RigidPose::quaternion64(small, Vec3d{0, 0, 0});
+      if (in.t.is_double(it)) return RigidPose::quaternion64(small, in.t.approx(it));
       thread_local Quaternion q;  // its integers' storage reused from pose to pose (no allocation)
       for (int k = 0; k < 4; ++k) mpz_set_si(q[k].get_mpz_t(), static_cast<long>(d[k]));
       return RigidPose::quaternion(q, in.t.exact(it));

@@ -504,7 +504,8 @@ TEST(PlacedMap, DeterminantSignOfDoubleMatricesIsExact) {
   EXPECT_GT(refused, 200);
 }
 
-// The rotation of machine-integer components (Python's int64 arrays) is the
+// The rotation of machine-integer components (rotation64, quaternion64:
+// Python's int64 arrays) is the
 // rotation of the same components as GMP integers: the same nearest doubles,
 // enclosures and exact entries, up to 2^25 on the machine-integer path and
 // beyond it on GMP's.
@@ -520,7 +521,7 @@ TEST(PlacedMap, MachineIntegerQuaternionIsTheGmpOne) {
     Quaternion big;
     for (int k = 0; k < 4; ++k) big[k] = Integer(static_cast<long>(q[k]));
     const Vec3d t{r.uniform(-3, 3), 0.5, -2};
-    const PlacedMap a = PlacedMap::rotation(q, t), b = PlacedMap::rotation(big, t);
+    const PlacedMap a = PlacedMap::rotation64(q, t), b = PlacedMap::rotation(big, t);
     EXPECT_EQ(a.approx_a(), b.approx_a());
     for (int k = 0; k < 9; ++k) {
       EXPECT_EQ(a.bounds_a()[k].lo, b.bounds_a()[k].lo);
@@ -529,10 +530,13 @@ TEST(PlacedMap, MachineIntegerQuaternionIsTheGmpOne) {
     }
     EXPECT_EQ(a.t(), b.t());
     EXPECT_EQ(a.doubles(), b.doubles());
-    EXPECT_EQ(RigidPose::quaternion(q, t).map().approx_a(), a.approx_a());
+    EXPECT_EQ(RigidPose::quaternion64(q, t).map().approx_a(), a.approx_a());
   }
-  EXPECT_THROW(PlacedMap::rotation(std::array<std::int64_t, 4>{0, 0, 0, 0}, Vec3d{0, 0, 0}), UsageError);
-  EXPECT_THROW(PlacedMap::rotation(std::array<std::int64_t, 4>{1, 0, 0, 0}, Vec3d{NAN, 0, 0}), UsageError);
+  EXPECT_THROW(PlacedMap::rotation64({0, 0, 0, 0}, Vec3d{0, 0, 0}), UsageError);
+  EXPECT_THROW(PlacedMap::rotation64({1, 0, 0, 0}, Vec3d{NAN, 0, 0}), UsageError);
+  // A braced quaternion still names one overload (docs/proximity.md's example).
+  EXPECT_EQ(RigidPose::quaternion({1, 2, 3, 4}, Vec3d{0, 0, 0}).map().approx_a(),
+            RigidPose::quaternion64({1, 2, 3, 4}, Vec3d{0, 0, 0}).map().approx_a());
 }
 
 // The rotation of an integer quaternion (machine integers for components up

@@ -122,7 +122,7 @@ PlacedMap PlacedMap::rotation(const std::array<Integer, 4>& q, const Point3& t) 
   return m;
 }
 
-PlacedMap PlacedMap::rotation(const std::array<std::int64_t, 4>& q, const Vec3d& t) {
+PlacedMap PlacedMap::rotation64(const std::array<std::int64_t, 4>& q, const Vec3d& t) {
   for (double x : {t.x, t.y, t.z})
     if (!std::isfinite(x)) throw UsageError("a placement's translation must be finite");
   PlacedMap m;

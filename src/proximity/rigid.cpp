@@ -841,8 +841,8 @@ RigidPose RigidPose::translation(const Point3& t) {
 }
 RigidPose RigidPose::quaternion(const Quaternion& q, const Point3& t) { return RigidPose(PlacedMap::rotation(q, t)); }
 RigidPose RigidPose::quaternion(const Quaternion& q, const Vec3d& t) { return RigidPose(PlacedMap::rotation(q, t)); }
-RigidPose RigidPose::quaternion(const std::array<std::int64_t, 4>& q, const Vec3d& t) {
-  return RigidPose(PlacedMap::rotation(q, t));
+RigidPose RigidPose::quaternion64(const std::array<std::int64_t, 4>& q, const Vec3d& t) {
+  return RigidPose(PlacedMap::rotation64(q, t));
 }
 RigidPose RigidPose::matrix(const std::array<double, 9>& r, const Point3& t) { return RigidPose(PlacedMap(r, t)); }
 RigidPose RigidPose::matrix(const std::array<double, 9>& r, const Vec3d& t) { return RigidPose(PlacedMap(r, t)); }

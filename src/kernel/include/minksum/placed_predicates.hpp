@@ -121,7 +121,8 @@ class PlacedMap {
   static PlacedMap rotation(const std::array<Integer, 4>& q, const Vec3d& t);
   // The same for machine-integer components (a batch of poses from numpy's
   // int64 arrays: no GMP number is made for components of at most 2^25).
-  static PlacedMap rotation(const std::array<std::int64_t, 4>& q, const Vec3d& t);
+  // Its own name: rotation({1, 2, 3, 4}, t) stays unambiguous.
+  static PlacedMap rotation64(const std::array<std::int64_t, 4>& q, const Vec3d& t);
 
   // The nearest doubles of A (row-major) and t: for the searches, never for
   // a decision.

@@ -63,8 +63,9 @@ class RigidPose {
   // The rotation of the non-zero integer quaternion q, then t.
   static RigidPose quaternion(const Quaternion& q, const Point3& t);
   static RigidPose quaternion(const Quaternion& q, const Vec3d& t);  // t's doubles taken exactly
-  // Machine-integer components (no GMP number made for those of at most 2^25).
-  static RigidPose quaternion(const std::array<std::int64_t, 4>& q, const Vec3d& t);
+  // Machine-integer components (no GMP number made for those of at most
+  // 2^25); its own name, so that quaternion({1, 2, 3, 4}, t) stays unambiguous.
+  static RigidPose quaternion64(const std::array<std::int64_t, 4>& q, const Vec3d& t);
   // A row-major matrix of doubles, taken exactly, then t.  Throws
   // UsageError for a non-finite entry or a determinant ≤ 0.
   static RigidPose matrix(const std::array<double, 9>& r, const Point3& t);

@@ -91,11 +91,8 @@ PlacedMap::PlacedMap() : approx_a_{1, 0, 0, 0, 1, 0, 0, 0, 1}, approx_t_{0, 0, 0
 }
 
 PlacedMap::PlacedMap(const std::array<double, 9>& a, const Vec3d& t) {
-  for (double x : {t.x, t.y, t.z})
-    if (!std::isfinite(x)) throw UsageError("a placement's translation must be finite");
+  set_double_t(t);
   set_double_a(a);
-  approx_t_ = t;
-  bounds_t_ = {{t.x, t.x}, {t.y, t.y}, {t.z, t.z}};
   check_determinant();
   set_fast();
 }
@@ -123,29 +120,21 @@ PlacedMap PlacedMap::rotation(const std::array<Integer, 4>& q, const Point3& t) 
 }
 
 PlacedMap PlacedMap::rotation64(const std::array<std::int64_t, 4>& q, const Vec3d& t) {
-  for (double x : {t.x, t.y, t.z})
-    if (!std::isfinite(x)) throw UsageError("a placement's translation must be finite");
   PlacedMap m;
+  m.set_double_t(t);
   if (!m.set_small_rotation(q)) {
     std::array<Integer, 4> big;
     for (int k = 0; k < 4; ++k) mpz_set_si(big[k].get_mpz_t(), static_cast<long>(q[k]));
     m.set_rotation_gmp(big);
   }
-  m.approx_t_ = t;
-  m.bounds_t_ = {{t.x, t.x}, {t.y, t.y}, {t.z, t.z}};
-  m.exact_t_.reset();
   m.set_fast();
   return m;
 }
 
 PlacedMap PlacedMap::rotation(const std::array<Integer, 4>& q, const Vec3d& t) {
-  for (double x : {t.x, t.y, t.z})
-    if (!std::isfinite(x)) throw UsageError("a placement's translation must be finite");
   PlacedMap m;
+  m.set_double_t(t);
   m.set_rotation(q);
-  m.approx_t_ = t;
-  m.bounds_t_ = {{t.x, t.x}, {t.y, t.y}, {t.z, t.z}};
-  m.exact_t_.reset();
   m.set_fast();
   return m;
 }
@@ -263,6 +252,14 @@ void PlacedMap::set_rational_a(const std::array<std::array<Rational, 3>, 3>& a) 
   if (doubles) exact_a_.reset();
   else exact_a_ = std::make_shared<const std::array<std::array<Rational, 3>, 3>>(a);
   small_rotation_ = false;
+}
+
+void PlacedMap::set_double_t(const Vec3d& t) {
+  for (double x : {t.x, t.y, t.z})
+    if (!std::isfinite(x)) throw UsageError("a placement's translation must be finite");
+  approx_t_ = t;
+  bounds_t_ = {{t.x, t.x}, {t.y, t.y}, {t.z, t.z}};
+  exact_t_.reset();
 }
 
 void PlacedMap::set_t(const Point3& t) {

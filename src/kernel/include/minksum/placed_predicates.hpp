@@ -149,6 +149,7 @@ class PlacedMap {
   void set_rotation_gmp(const std::array<Integer, 4>& q);          // and its GMP path
   void set_double_a(const std::array<double, 9>& a);
   void set_t(const Point3& t);
+  void set_double_t(const Vec3d& t);  // throws UsageError unless finite
   void check_determinant() const;
   void set_fast();
   std::array<double, 9> approx_a_{};

@@ -31,6 +31,7 @@
 #include "mesh/builder.hpp"
 #include "mesh/support.hpp"
 
+#include "kernel/plane.hpp"  // scaled_point
 #include "mesh/homogeneous_hull.hpp"
 
 #include <CGAL/FPU.h>
@@ -54,24 +55,9 @@ Point3 centroid(const std::vector<Point3>& points) {
   return Rational(1, long(points.size())) * s;
 }
 
-// A rational point as integers over one positive denominator:
-// (x / w, y / w, z / w), w the lcm of the coordinates' denominators.
-struct IntegerPoint {
-  Integer x, y, z, w;
-};
-IntegerPoint integer_point(const Point3& p) {
-  IntegerPoint r;
-  mpz_lcm(r.w.get_mpz_t(), p.x.get_den_mpz_t(), p.y.get_den_mpz_t());
-  mpz_lcm(r.w.get_mpz_t(), r.w.get_mpz_t(), p.z.get_den_mpz_t());
-  r.x = p.x.get_num() * (r.w / p.x.get_den());
-  r.y = p.y.get_num() * (r.w / p.y.get_den());
-  r.z = p.z.get_num() * (r.w / p.z.get_den());
-  return r;
-}
-
-// The cross product of two planes' normals (w unused).
-IntegerPoint cross(const Plane& u, const Plane& v) {
-  return {u.b * v.c - u.c * v.b, u.c * v.a - u.a * v.c, u.a * v.b - u.b * v.a, Integer(1)};
+// The cross product of two planes' normals.
+std::array<Integer, 3> cross(const Plane& u, const Plane& v) {
+  return {u.b * v.c - u.c * v.b, u.c * v.a - u.a * v.c, u.a * v.b - u.b * v.a};
 }
 
 // The convex hull H of the dual points, as the erosion is read off it: for
@@ -217,17 +203,17 @@ std::optional<ConvexPolytope> halfspace_erosion(const ConvexPolytope& a, const C
   // = O_i / D_i (y the support of n_i), the interior point q = Q / E and the
   // slacks e_i = o_i - n_i . q = S_i / (D_i E).
   const Index n = a.num_facets();
-  std::vector<IntegerPoint> vertex_of_b(b.num_vertices());
+  std::vector<ScaledPoint> vertex_of_b(b.num_vertices());
   std::vector<char> made(b.num_vertices(), 0);
   std::vector<Integer> offset(n), denominator(n);  // O_i, D_i
   Index start = 0;
   for (Index f = 0; f < n; ++f) {
     const Plane& h = a.plane(f);
     start = support(b, h.normal(), start).vertex;
-    if (!made[start]) vertex_of_b[start] = integer_point(b.point(start)), made[start] = 1;
-    const IntegerPoint& y = vertex_of_b[start];
-    offset[f] = h.d * y.w - (h.a * y.x + h.b * y.y + h.c * y.z);
-    denominator[f] = y.w;
+    if (!made[start]) vertex_of_b[start] = scaled_point(b.point(start)), made[start] = 1;
+    const ScaledPoint& y = vertex_of_b[start];
+    offset[f] = h.d * y.den - (h.a * y.num[0] + h.b * y.num[1] + h.c * y.num[2]);
+    denominator[f] = y.den;
   }
   // A point strictly inside every moved half-space: the difference of A's
   // and B's vertex centroids (inside the erosion for most B small against
@@ -235,12 +221,12 @@ std::optional<ConvexPolytope> halfspace_erosion(const ConvexPolytope& a, const C
   // coordinates are not made), else exactly.  The erosion does not depend on
   // which point it is (the dual hull's structure is the erosion's).
   std::vector<Integer> slack(n);  // S_i
-  IntegerPoint q;
+  ScaledPoint q;
   auto strictly_inside = [&](const Point3& point) {
-    q = integer_point(point);
+    q = scaled_point(point);
     for (Index f = 0; f < n; ++f) {
       const Plane& h = a.plane(f);
-      slack[f] = offset[f] * q.w - (h.a * q.x + h.b * q.y + h.c * q.z) * denominator[f];
+      slack[f] = offset[f] * q.den - (h.a * q.num[0] + h.b * q.num[1] + h.c * q.num[2]) * denominator[f];
       if (sgn(slack[f]) <= 0) return false;
     }
     return true;
@@ -257,7 +243,7 @@ std::optional<ConvexPolytope> halfspace_erosion(const ConvexPolytope& a, const C
 
   // The dual points n_i / e_i = (n_i D_i E, S_i) homogeneously.
   std::vector<Integer> scale(n);
-  for (Index f = 0; f < n; ++f) scale[f] = denominator[f] * q.w;
+  for (Index f = 0; f < n; ++f) scale[f] = denominator[f] * q.den;
   const DualHull hull = dual_hull(a, scale, slack);
 
   // One corner per facet of H: where the planes of three of its corners
@@ -268,8 +254,8 @@ std::optional<ConvexPolytope> halfspace_erosion(const ConvexPolytope& a, const C
   corners.reserve(hull.corners.size());
   for (const auto& [i, j, k] : hull.corners) {
     const Plane &hi = a.plane(i), &hj = a.plane(j), &hk = a.plane(k);
-    const IntegerPoint jk = cross(hj, hk), ki = cross(hk, hi), ij = cross(hi, hj);
-    const Integer det = hi.a * jk.x + hi.b * jk.y + hi.c * jk.z;
+    const std::array<Integer, 3> jk = cross(hj, hk), ki = cross(hk, hi), ij = cross(hi, hj);
+    const Integer det = hi.a * jk[0] + hi.b * jk[1] + hi.c * jk[2];
     const Integer ci = offset[i] * denominator[j] * denominator[k], cj = offset[j] * denominator[i] * denominator[k],
                   ck = offset[k] * denominator[i] * denominator[j];
     const Integer den = det * denominator[i] * denominator[j] * denominator[k];
@@ -278,8 +264,8 @@ std::optional<ConvexPolytope> halfspace_erosion(const ConvexPolytope& a, const C
       r.canonicalize();
       return r;
     };
-    corners.push_back(Point3(coordinate(jk.x, ki.x, ij.x), coordinate(jk.y, ki.y, ij.y),
-                             coordinate(jk.z, ki.z, ij.z)));
+    corners.push_back(Point3(coordinate(jk[0], ki[0], ij[0]), coordinate(jk[1], ki[1], ij[1]),
+                             coordinate(jk[2], ki[2], ij[2])));
   }
   // One facet per corner v of H, its corners those of the facets of H around
   // v in their order (counter-clockwise seen from outside, as polarity keeps

@@ -28,6 +28,28 @@ struct RigidBody::Data {
   // the non-zero ones (the feature plane's PlacedFrame).
   bool doubles = true;
   int exponent = std::numeric_limits<int>::max();
+  // Where the searches' climbs start (a guess: every support is climbed to
+  // a local maximum from wherever it starts).  The unit cube's six faces are
+  // cut into side × side cells; seeds[(face · side + i) · side + j] is a
+  // vertex maximising, in doubles, the direction to the centre of cell
+  // (i, j).  seed(u) is that of the cell u points through, a few steps from
+  // u's support where a climb from a far vertex takes about √V steps.
+  // Empty only for a body without vertices.
+  int side = 0;
+  std::vector<Index> seeds;
+  Index seed(double x, double y, double z) const {
+    const double ax = std::fabs(x), ay = std::fabs(y), az = std::fabs(z);
+    int face;
+    double m, a, b;
+    if (ax >= ay && ax >= az) face = x < 0, m = ax, a = y, b = z;
+    else if (ay >= az) face = 2 + (y < 0), m = ay, a = z, b = x;
+    else face = 4 + (z < 0), m = az, a = x, b = y;
+    if (!(m > 0) || !std::isfinite(m)) return seeds[0];  // (NaN fails every comparison)
+    // |a| ≤ m, so a / m is in [−1, 1] (division rounds monotonically).
+    const double h = 0.5 * side;
+    const int i = std::min(side - 1, int((a / m + 1) * h)), j = std::min(side - 1, int((b / m + 1) * h));
+    return seeds[(std::size_t(face) * side + i) * side + j];
+  }
 };
 
 namespace {
@@ -69,6 +91,11 @@ struct Placed {
   Index support(const V3& n, Index v) const {
     const V3 u = pull(n);
     double best = dot(u, v3(d.approx[v]));
+    if (!d.seeds.empty()) {  // from the better of v and u's seed
+      const Index s = d.seed(u.x, u.y, u.z);
+      const double at_s = dot(u, v3(d.approx[s]));
+      if (at_s > best) best = at_s, v = s;
+    }
     for (;;) {
       Index next = v;
       for (Index k = d.first[v]; k < d.first[v + 1]; ++k) {
@@ -872,6 +899,30 @@ RigidBody::RigidBody(ConvexPolytope p) {
   for (Index v = 0; v < nv; ++v) {
     Index k = d->first[v];
     for (Index w : poly.vertex_neighbours(v)) d->nbr[k++] = w;
+  }
+  // The seeds: about one cell per vertex, 2 × 2 to 16 × 16 a face.  Each
+  // cell's vertex is climbed (steepest ascent in doubles) from the previous
+  // cell's, its neighbour on the face.
+  if (nv > 0) {
+    d->side = std::min(16, int(std::ceil(std::sqrt(nv / 6.0))));
+    const int side = d->side;
+    d->seeds.resize(std::size_t(6) * side * side);
+    Index v = 0;
+    for (int face = 0; face < 6; ++face)
+      for (int i = 0; i < side; ++i)
+        for (int j = 0; j < side; ++j) {
+          const double a = -1 + (2 * i + 1) / double(side), b = -1 + (2 * j + 1) / double(side);
+          const double m = face % 2 ? -1 : 1;
+          const Vec3d u = face < 2 ? Vec3d{m, a, b} : face < 4 ? Vec3d{b, m, a} : Vec3d{a, b, m};
+          const auto at = [&](Index w) { return u.x * d->approx[w].x + u.y * d->approx[w].y + u.z * d->approx[w].z; };
+          double best = at(v);
+          for (Index next = v;; v = next) {
+            for (Index k = d->first[v]; k < d->first[v + 1]; ++k)
+              if (const double s = at(d->nbr[k]); s > best) best = s, next = d->nbr[k];
+            if (next == v) break;
+          }
+          d->seeds[(std::size_t(face) * side + i) * side + j] = v;
+        }
   }
   d_ = std::move(d);
 }

@@ -77,9 +77,10 @@ class RigidPose {
 };
 
 // A convex polytope prepared for queries under rigid motion: its vertex
-// graph, its vertices as doubles and their interval enclosures.  Built once
-// (O(V + E)); copies share it, and every pose and every thread reads it
-// without synchronisation.
+// graph, its vertices as doubles and their interval enclosures, and where
+// the searches' climbs start for each direction (about one seed vertex per
+// vertex; docs/proximity.md "Search").  Built once; copies share it, and
+// every pose and every thread reads it without synchronisation.
 class RigidBody {
  public:
   explicit RigidBody(ConvexPolytope p);

@@ -1161,6 +1161,61 @@ TEST(RigidDistance, ParallelEdgesAndTheClosestPointInsideAFace) {
   expect_distance_agrees(cube, RigidPose(), cube, turned, e, "edge-face, turned");
 }
 
+TEST(RigidDistance, NearTouchingOnNearlyCoplanarFacetsWithoutM) {
+  // A mesh-like hull: grids on the faces of [-1, 1]^3 bulging out by up to
+  // 2e-7 (a cap of a paraboloid, jittered), so that neighbouring facets
+  // differ by about 1e-8 rad, and poses
+  // of a small cube at 1e-9 of its contact (the exact contact translation
+  // along a random direction, times 1 + 1e-9, then rounded to doubles).
+  // The search's doubles then stop near the closest features, not always
+  // on them; the certificate fails there and exact GJK steps go on from
+  // the search's simplex (refine_closest).  Every answer is the exact
+  // obstacle's, and M is built for none of them.
+  const std::uint64_t seed = 48;
+  Rng r(seed);
+  PointList pts;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double side : {-1.0, 1.0})
+      for (int i = 0; i <= 12; ++i)
+        for (int j = 0; j <= 12; ++j) {
+          double c[3];
+          const double x = -1 + i / 6.0, y = -1 + j / 6.0;
+          c[axis] = side * (1 + 1e-7 * (2 - x * x - y * y + r.uniform(0, 0.01)));
+          c[(axis + 1) % 3] = x, c[(axis + 2) % 3] = y;
+          pts.push_back(Vec3d{c[0], c[1], c[2]});
+        }
+  const ConvexPolytope hull = ConvexPolytope::hull(pts);
+  ASSERT_GT(hull.num_facets(), 1000u);
+  const ConvexPolytope small = catalog_polytope("cube@scale:1/4");
+  const RigidBody a(hull), b(small);
+  const RigidStats before = rigid_stats();
+  int separate = 0, poses = 0;
+  for (int k = 0; k < 4; ++k) {
+    const std::array<double, 9> ra = random_matrix(r), rb = random_matrix(r);
+    TranslationalObstacle ob(placed_linear(hull, PlacedMap(ra, Vec3d{0, 0, 0})),
+                                   placed_linear(small, PlacedMap(rb, Vec3d{0, 0, 0})));
+    const Point3 c = ob.interior_point();
+    RigidWarmStart warm;
+    for (int i = 0; i < 50; ++i, ++poses) {
+      const Point3 u(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
+      const Rational alpha = ob.directional_depth_point(c, -u).t;
+      const Point3 s = c + (alpha * Rational(1 + 1e-9)) * u;
+      const Vec3d sd = to_double(s);
+      const RigidPose pa = RigidPose::matrix(ra, Vec3d{0, 0, 0}), pb = RigidPose::matrix(rb, sd);
+      const RigidDistance d = distance(a, pa, b, pb, &warm);
+      const std::string what = "seed " + std::to_string(seed) + ", orientation " + std::to_string(k) + ", pose " +
+                               std::to_string(i);
+      const DistanceResult want = ob.distance_point(Point3(sd.x, sd.y, sd.z));
+      EXPECT_EQ(d.status, want.status) << what;
+      EXPECT_EQ(exact_values(a, pa, b, pb, d).squared_distance, want.squared_distance()) << what;
+      separate += d.status == ContactStatus::separate;
+    }
+  }
+  EXPECT_EQ(poses, 200);
+  EXPECT_GT(separate, 150) << "seed " << seed;
+  EXPECT_EQ(rigid_stats().exact - before.exact, 0u) << "seed " << seed;
+}
+
 TEST(RigidDistance, BatchEqualsSingleQueries) {
   const RigidBody a(catalog_polytope("random:50:1")), b(catalog_polytope("sphere:2"));
   std::vector<RigidPose> pp, pq;

@@ -1190,12 +1190,13 @@ bool certify_closest(const Query& qu, const std::array<SimplexVertex, 4>& pairs,
   return true;
 }
 
-// The subsets of the simplex's pairs to try, largest first: the double
-// search's reduction may keep a pair whose exact λ is negative (the closest
-// point then lies on a smaller face) or drop to a degenerate one.
+// The subsets of the simplex's pairs to try, largest first (at most 3
+// pairs: of a tetrahedron, its faces): the double search's reduction may
+// keep a pair whose exact λ is negative (the closest point then lies on a
+// smaller face) or drop to a degenerate one.
 bool certify_closest_subsets(const Query& qu, const std::array<SimplexVertex, 4>& s, int n, RigidDistance& r) {
-  if (certify_closest(qu, s, n, r)) return true;
-  for (int size = n - 1; size >= 1; --size)
+  if (n <= 3 && certify_closest(qu, s, n, r)) return true;
+  for (int size = std::min(n - 1, 3); size >= 1; --size)
     for (unsigned mask = 1; mask < (1u << n); ++mask) {
       if (std::popcount(mask) != size) continue;
       std::array<SimplexVertex, 4> sub;
@@ -1204,6 +1205,77 @@ bool certify_closest_subsets(const Query& qu, const std::array<SimplexVertex, 4>
         if (mask & (1u << j)) sub[m++] = s[j];
       if (certify_closest(qu, sub, m, r)) return true;
     }
+  return false;
+}
+
+// When no subset of the search's simplex certifies (the doubles stopped
+// near the closest features, not on them: on the hull of a mesh, facets
+// within rounding of one plane, and a distance of 1e-9 its size), GJK goes
+// on in exact signs from there.  Of the subsets whose exact closest point
+// v_S lies in their relative interior (λ_j ≥ 0), the one with the least
+// |v_S|² holds the closest point v of the simplex's hull; the exact
+// supports of D along −v (climbs from its first pair, exact signs) give a
+// new pair, strictly beyond v's plane unless v's certificate holds, so |v|
+// decreases strictly from step to step and no simplex comes back (GJK's
+// argument, here without rounding).  At most kRefineSteps steps, each
+// followed by the certificate on the subsets; false when the origin is in
+// the hull (not separate) or no certificate came.
+constexpr int kRefineSteps = 16;
+bool refine_closest(const Query& qu, std::array<SimplexVertex, 4> s, int n, RigidDistance& r) {
+  const RigidBody::Data &dp = qu.dp, &dq = qu.dq;
+  for (int step = 0; step < kRefineSteps; ++step) {
+    std::array<SimplexVertex, 4> best_sub;
+    int best_m = 0;
+    std::unique_ptr<PlacedSimplexPoint> best;
+    for (unsigned mask = 1; mask < (1u << n); ++mask) {
+      const int m = std::popcount(mask);
+      if (m > 3) continue;
+      std::array<SimplexVertex, 4> sub;
+      std::array<const Point3*, 3> p{}, q{};
+      std::array<const PointBounds*, 3> pb{}, qb{};
+      int j = 0;
+      for (int i = 0; i < n; ++i)
+        if (mask & (1u << i)) {
+          sub[j] = s[i];
+          p[j] = &dp.exact[s[i].p], pb[j] = &dp.bounds[s[i].p], q[j] = &dq.exact[s[i].q], qb[j] = &dq.bounds[s[i].q];
+          ++j;
+        }
+      auto sp = std::make_unique<PlacedSimplexPoint>(qu.P.map, qu.Q.map, m, p, pb, q, qb);
+      if (!sp->independent()) continue;
+      bool inside = true;
+      for (int i = 0; i < m && inside; ++i) inside = sp->lambda_sign(i) >= 0;
+      if (!inside) continue;
+      if (!sp->nonzero()) return false;  // the origin in the hull, which lies in D: not separate
+      if (best) {
+        const Bounds a = sp->squared_norm_bounds(), b = best->squared_norm_bounds();
+        const bool less = a.hi < b.lo ? true : a.lo > b.hi ? false : sp->squared_norm() < best->squared_norm();
+        if (!less) continue;
+      }
+      best = std::move(sp), best_sub = sub, best_m = m;
+    }
+    if (!best) return false;
+    // The exact supports along −v: P's maximum, Q's minimum.
+    Index a = best_sub[0].p, b = best_sub[0].q;
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (Index e = dp.first[a]; e < dp.first[a + 1] && !moved; ++e)
+        if (best->climb_sign_p(dp.exact[a], dp.bounds[a], dp.exact[dp.nbr[e]], dp.bounds[dp.nbr[e]]) > 0)
+          a = dp.nbr[e], moved = true, ++g_stats.climb_steps;
+    }
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (Index e = dq.first[b]; e < dq.first[b + 1] && !moved; ++e)
+        if (best->climb_sign_q(dq.exact[b], dq.bounds[b], dq.exact[dq.nbr[e]], dq.bounds[dq.nbr[e]]) > 0)
+          b = dq.nbr[e], moved = true, ++g_stats.climb_steps;
+    }
+    // The first pair supports D along −v: every pair of the subset is level
+    // with it, so v's certificate holds.
+    if (a == best_sub[0].p && b == best_sub[0].q) return certify_closest(qu, best_sub, best_m, r);
+    s = best_sub;
+    s[best_m] = {qu.P.point(a) - qu.Q.point(b), a, b};
+    n = best_m + 1;
+    if (certify_closest_subsets(qu, s, n, r)) return true;
+  }
   return false;
 }
 
@@ -1275,6 +1347,7 @@ RigidDistance distance(const RigidBody& p, const RigidPose& pose_p, const RigidB
   } else {
     decided = certify_closest_subsets(qu, s, n, r);
     if (!decided && n == 3 && blow_up_triangle(qu, s)) decided = simplex_answer();
+    if (!decided) decided = refine_closest(qu, s, n, r);
   }
   if (!decided) {
     // Touching (the closest-points certificate needs v ≠ 0): the feature

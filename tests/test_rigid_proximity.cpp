@@ -190,6 +190,82 @@ TEST(PlacedPredicates, AgreeWithRationalsInAllRoundingModes) {
   EXPECT_GT(zeros, 20);  // the zero cases were exercised
 }
 
+TEST(PlacedPredicates, TriangleOnSharedEnclosuresAgreesWithRationals) {
+  // PlacedTriangle from its pairs, and from the enclosures of its corners
+  // made once (placed_difference_bounds, as EPA's surface shares them):
+  // the same signs, each the sign of the rational polynomial.  Zeros on
+  // purpose: the origin on the plane (P and Q placed alike, p_0 = q_0), two
+  // triangles of one plane (the corners turned), a climb along no edge.
+  const std::uint64_t seed = 3907;
+  Rng r(seed);
+  int zeros = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
+    const PlacedMap m = random_pose(r, 3, trial % 2 == 0).map();
+    const PlacedMap m2 = trial % 4 == 0 ? m : random_pose(r, 3, trial % 2 == 1).map();
+    const auto point = [&](int k) {
+      if (k % 3 == 0) return Point3(Rational(r.integer(-30, 30), 3), Rational(r.integer(-30, 30), 7), Rational(1, 5));
+      return Point3(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
+    };
+    std::array<Point3, 3> ps{point(trial), point(trial + 1), point(trial + 2)};
+    std::array<Point3, 3> qs{trial % 4 == 0 ? ps[0] : point(trial + 3), point(trial + 4), point(trial + 5)};
+    std::array<PointBounds, 3> pb, qb, db;
+    std::array<const Point3*, 3> pp, qp, pp2, qp2;
+    std::array<const PointBounds*, 3> pbp, qbp, dbp, pbp2, qbp2, dbp2;
+    std::array<Point3, 3> d;
+    for (int j = 0; j < 3; ++j) {
+      pb[j] = point_bounds(ps[j]), qb[j] = point_bounds(qs[j]);
+      d[j] = m.apply(ps[j]) - m2.apply(qs[j]);
+    }
+    const Point3 n = cross(d[1] - d[0], d[2] - d[0]);
+    const Rational h = dot(n, d[0]), nn = dot(n, n);
+    // The second triangle: the same corners turned (the same plane), or
+    // the first two with a new third pair.
+    const bool same_plane = trial % 3 == 0;
+    const Point3 p3 = point(trial + 6), q3 = point(trial + 7);
+    const PointBounds p3b = point_bounds(p3), q3b = point_bounds(q3);
+    const Point3 d3 = m.apply(p3) - m2.apply(q3);
+    const Point3 n2 = same_plane ? n : cross(d[1] - d[0], d3 - d[0]);
+    const Rational h2 = dot(n2, d[0]), nn2 = dot(n2, n2);
+    const Point3 x = point(trial + 8), y = trial % 5 == 0 ? x : point(trial + 9);
+    const int want_offset = sgn(h), want_compare = sgn(h * h * nn2 - h2 * h2 * nn);
+    const int want_p = sgn(dot(n, m.apply_linear(y - x))), want_q = sgn(-dot(n, m2.apply_linear(y - x)));
+    zeros += (want_offset == 0) + (want_compare == 0) + (want_p == 0);
+    for (int mode : {FE_TONEAREST, FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+      RoundingMode guard(mode);
+      for (int j = 0; j < 3; ++j) {
+        db[j] = placed_difference_bounds(m, pb[j], m2, qb[j]);
+        pp[j] = &ps[j], qp[j] = &qs[j], pbp[j] = &pb[j], qbp[j] = &qb[j], dbp[j] = &db[j];
+      }
+      for (int j = 0; j < 3; ++j) {
+        const int k = same_plane ? (j + 1) % 3 : j;  // turned, or the new third pair
+        pp2[j] = pp[k], qp2[j] = qp[k], pbp2[j] = pbp[k], qbp2[j] = qbp[k], dbp2[j] = dbp[k];
+      }
+      PointBounds d3b;
+      if (!same_plane) {
+        d3b = placed_difference_bounds(m, p3b, m2, q3b);
+        pp2[2] = &p3, qp2[2] = &q3, pbp2[2] = &p3b, qbp2[2] = &q3b, dbp2[2] = &d3b;
+      }
+      const PlacedTriangle full(m, m2, pp, pbp, qp, qbp), shared(m, m2, pp, pbp, qp, qbp, dbp);
+      const PlacedTriangle other(m, m2, pp2, pbp2, qp2, qbp2, dbp2);
+      for (const PlacedTriangle* t : {&full, &shared}) {
+        EXPECT_EQ(t->offset_sign(), want_offset) << "mode " << mode;
+        EXPECT_EQ(compare_distance(*t, other), want_compare) << "mode " << mode;
+        EXPECT_EQ(compare_distance(other, *t), -want_compare) << "mode " << mode;
+        EXPECT_EQ(t->climb_sign_p(x, point_bounds(x), y, point_bounds(y)), want_p) << "mode " << mode;
+        EXPECT_EQ(t->climb_sign_q(x, point_bounds(x), y, point_bounds(y)), want_q) << "mode " << mode;
+        if (sgn(nn) > 0) {
+          const Bounds b = t->squared_distance_bounds();
+          const Rational sq = h * h / nn;
+          EXPECT_TRUE(Rational(b.lo) <= sq && sq <= Rational(b.hi)) << "mode " << mode;
+          EXPECT_EQ(t->squared_distance(), sq) << "mode " << mode;
+        }
+      }
+    }
+  }
+  EXPECT_GT(zeros, 100);  // the zero cases were exercised
+}
+
 TEST(PlacedPredicates, NearZeroFallsBackToRationals) {
   // b − a = (1, 2^-60, 0) against n = (2^-60, −1, 0) under the identity:
   // n·(b − a) = 2^-60 − 2^-60 = 0 exactly, and (2^-60, −1 + 2^-52, 0) a

@@ -902,17 +902,36 @@ PlacedTriangle::PlacedTriangle(const PlacedMap& mp, const PlacedMap& mq, const s
                                const std::array<const PointBounds*, 3>& pb, const std::array<const Point3*, 3>& q,
                                const std::array<const PointBounds*, 3>& qb)
     : mp_(&mp), mq_(&mq), p_(p), q_(q), pb_(pb), qb_(qb) {
+  std::array<PointBounds, 3> d;
+  for (int j = 0; j < 3; ++j) d[j] = placed_difference_bounds(mp, *pb[j], mq, *qb[j]);
+  set_from(d);
+}
+
+PlacedTriangle::PlacedTriangle(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 3>& p,
+                               const std::array<const PointBounds*, 3>& pb, const std::array<const Point3*, 3>& q,
+                               const std::array<const PointBounds*, 3>& qb,
+                               const std::array<const PointBounds*, 3>& d)
+    : mp_(&mp), mq_(&mq), p_(p), q_(q), pb_(pb), qb_(qb) {
+  set_from({*d[0], *d[1], *d[2]});
+}
+
+PointBounds placed_difference_bounds(const PlacedMap& mp, const PointBounds& pb, const PlacedMap& mq,
+                                     const PointBounds& qb) {
   CGAL::Protect_FPU_rounding<true> upward;
-  std::array<FastIPoint, 3> d;
-  for (int j = 0; j < 3; ++j) d[j] = apply(mp, iv(*pb[j]), true) - apply(mq, iv(*qb[j]), true);
+  const FastIPoint d = apply(mp, iv(pb), true) - apply(mq, iv(qb), true);
+  return {to_bounds(d.x), to_bounds(d.y), to_bounds(d.z)};
+}
+
+// n, h and |n|² on the corners' enclosures (each an interval operation
+// rounded outward on enclosures: enclosures again).
+void PlacedTriangle::set_from(const std::array<PointBounds, 3>& db) {
+  CGAL::Protect_FPU_rounding<true> upward;
+  const std::array<FastIPoint, 3> d{iv(db[0]), iv(db[1]), iv(db[2])};
   const FastIPoint n = cross(d[1] - d[0], d[2] - d[0]);
   const FastInterval h = dot(n, d[0]), nn = dot(n, n);
   h_ = to_bounds(h), nn_ = to_bounds(nn);
-  for (int j = 0; j < 3; ++j) d_[j] = {to_bounds(d[j].x), to_bounds(d[j].y), to_bounds(d[j].z)};
+  for (int j = 0; j < 3; ++j) d_[j] = {db[j].x, db[j].y, db[j].z};
   n_ = {to_bounds(n.x), to_bounds(n.y), to_bounds(n.z)};
-  const FastIPoint up = pull(mp, n), uq = -pull(mq, n);
-  up_ = {to_bounds(up.x), to_bounds(up.y), to_bounds(up.z)};
-  uq_ = {to_bounds(uq.x), to_bounds(uq.y), to_bounds(uq.z)};
 }
 
 PlacedTriangle::~PlacedTriangle() = default;
@@ -958,6 +977,14 @@ int compare_distance(const PlacedTriangle& a, const PlacedTriangle& b) {
 
 int PlacedTriangle::climb_sign(bool on_p, const Point3& a, const PointBounds& ab, const Point3& b,
                                const PointBounds& bb) const {
+  if (!pulled_) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const FastIPoint n{iv(n_[0]), iv(n_[1]), iv(n_[2])};
+    const FastIPoint up = pull(*mp_, n), uq = -pull(*mq_, n);
+    up_ = {to_bounds(up.x), to_bounds(up.y), to_bounds(up.z)};
+    uq_ = {to_bounds(uq.x), to_bounds(uq.y), to_bounds(uq.z)};
+    pulled_ = true;
+  }
   return pulled_sign(on_p ? up_ : uq_, a, ab, b, bb, [&]() -> const Point3& {
     const Exact& e = exact();
     std::optional<Point3>& u = on_p ? e.up : e.uq;

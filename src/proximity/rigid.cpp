@@ -1602,41 +1602,58 @@ bool plane_supports(const Query& qu, const PlacedTriangle& F, const LevelSets& l
   return true;
 }
 
-PlacedTriangle placed_triangle(const Query& qu, const std::vector<SimplexVertex>& verts, const EpaFace& f) {
+// The placed triangle of EPA's face f; `db`: the enclosures of the
+// vertices (placed_difference_bounds), when made already.
+PlacedTriangle placed_triangle(const Query& qu, const std::vector<SimplexVertex>& verts, const EpaFace& f,
+                               const std::vector<PointBounds>* db = nullptr) {
   std::array<const Point3*, 3> p, q;
-  std::array<const PointBounds*, 3> pb, qb;
+  std::array<const PointBounds*, 3> pb, qb, d;
   for (int j = 0; j < 3; ++j) {
     const SimplexVertex& x = verts[f.v[j]];
     p[j] = &qu.dp.exact[x.p], pb[j] = &qu.dp.bounds[x.p], q[j] = &qu.dq.exact[x.q], qb[j] = &qu.dq.bounds[x.q];
+    if (db) d[j] = &(*db)[f.v[j]];
   }
+  if (db) return PlacedTriangle(qu.P.map, qu.Q.map, p, pb, q, qb, d);
   return PlacedTriangle(qu.P.map, qu.Q.map, p, pb, q, qb);
 }
 
 // The certificate of a depth (rigid_proximity.hpp) on EPA's surface.
 bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, const std::vector<EpaFace>& faces,
                    RigidDepth& r) {
-  // A closed, consistently oriented surface of genus 0.
-  std::vector<std::pair<int, int>> edges;
+  // A closed, consistently oriented surface of genus 0: its directed edges
+  // (a, b), each once, are its reversed edges (b, a) (two sorted lists of
+  // keys a·2^32 + b compared), and V − E + F = 2.
+  std::vector<std::uint64_t> edges, reversed;
   std::vector<int> used;
+  std::vector<char> seen(verts.size(), 0);
   std::vector<const EpaFace*> alive;
   for (const EpaFace& f : faces) {
     if (!f.alive) continue;
     alive.push_back(&f);
-    for (int e = 0; e < 3; ++e) edges.push_back({f.v[e], f.v[(e + 1) % 3]}), used.push_back(f.v[e]);
+    for (int e = 0; e < 3; ++e) {
+      const std::uint64_t a = std::uint32_t(f.v[e]), b = std::uint32_t(f.v[(e + 1) % 3]);
+      edges.push_back(a << 32 | b), reversed.push_back(b << 32 | a);
+      if (!seen[f.v[e]]) seen[f.v[e]] = 1, used.push_back(f.v[e]);
+    }
   }
   const int nf = int(alive.size());
   std::sort(edges.begin(), edges.end());
-  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return false;
-  for (const auto& [a, b] : edges)
-    if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(b, a))) return false;
-  std::sort(used.begin(), used.end());
-  const int nv = int(std::unique(used.begin(), used.end()) - used.begin());
+  std::sort(reversed.begin(), reversed.end());
+  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end() || edges != reversed) return false;
+  const int nv = int(used.size());
   if (nv - int(edges.size()) / 2 + nf != 2) return false;
+  // The enclosures of the surface's vertices, once (each is a corner of
+  // several faces).
+  std::vector<PointBounds> db(verts.size());
+  for (int v = 0; v < nv; ++v) {
+    const SimplexVertex& x = verts[used[v]];
+    db[used[v]] = placed_difference_bounds(qu.P.map, qu.dp.bounds[x.p], qu.Q.map, qu.dq.bounds[x.q]);
+  }
   std::vector<PlacedTriangle> tris;
   tris.reserve(nf);
   int nearest = 0;
   for (int k = 0; k < nf; ++k) {
-    tris.push_back(placed_triangle(qu, verts, *alive[k]));
+    tris.push_back(placed_triangle(qu, verts, *alive[k], &db));
     if (tris.back().offset_sign() <= 0) return false;
     if (alive[k]->dist < alive[nearest]->dist) nearest = k;
   }

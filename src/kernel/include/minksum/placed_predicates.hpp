@@ -343,6 +343,12 @@ class PlacedTriangle {
   PlacedTriangle(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 3>& p,
                  const std::array<const PointBounds*, 3>& pb, const std::array<const Point3*, 3>& q,
                  const std::array<const PointBounds*, 3>& qb);
+  // The same with the enclosures of the three d_j given (each from
+  // placed_difference_bounds of its pair): the faces of one surface share
+  // their vertices, whose enclosures are then made once.
+  PlacedTriangle(const PlacedMap& mp, const PlacedMap& mq, const std::array<const Point3*, 3>& p,
+                 const std::array<const PointBounds*, 3>& pb, const std::array<const Point3*, 3>& q,
+                 const std::array<const PointBounds*, 3>& qb, const std::array<const PointBounds*, 3>& d);
   ~PlacedTriangle();
   PlacedTriangle(PlacedTriangle&&) noexcept;
   // sign h = orient(0, d_0, d_1, d_2): positive when the origin lies
@@ -380,10 +386,20 @@ class PlacedTriangle {
   std::array<const Point3*, 3> p_, q_;
   std::array<const PointBounds*, 3> pb_, qb_;
   Bounds h_{}, nn_{};
-  std::array<Bounds, 3> n_{}, up_{}, uq_{};
+  std::array<Bounds, 3> n_{};
+  // The pulled normals A_pᵀ n and −A_qᵀ n, made by the first climb sign.
+  mutable std::array<Bounds, 3> up_{}, uq_{};
+  mutable bool pulled_ = false;
   std::array<std::array<Bounds, 3>, 3> d_{};
   mutable std::unique_ptr<Exact> exact_;
+  void set_from(const std::array<PointBounds, 3>& d);
 };
+
+// An enclosure of A_p p + t_p − (A_q q + t_q) from enclosures of p and q
+// (intervals rounded outward): the enclosure of a point of D that
+// PlacedTriangle makes for each of its corners.
+PointBounds placed_difference_bounds(const PlacedMap& mp, const PointBounds& pb, const PlacedMap& mq,
+                                     const PointBounds& qb);
 
 // Two placements' points in one exact frame, for computations that chain
 // many signs and products on the same placed points (the feature plane of

@@ -1074,6 +1074,50 @@ TEST(RigidCollide, CoherentTrajectoryStaysCheap) {
   EXPECT_LT(after.climb_steps - before.climb_steps, 400u * 60u);
 }
 
+TEST(RigidCollide, WarmTetrahedronIsOnlyAGuess) {
+  // A coherent trajectory through penetration: most penetrating steps are
+  // proved by the previous step's tetrahedron (the warm start's), and
+  // every answer checked agrees with the exact one.
+  const RigidBody a(catalog_polytope("sphere:3")), b(catalog_polytope("sphere:3"));
+  RigidWarmStart warm;
+  const auto before = rigid_stats();
+  int penetrating = 0, checked = 0;
+  for (int i = 0; i < 600; ++i) {
+    const double ang = 0.002 * i, c = std::cos(ang), s = std::sin(ang);
+    const std::array<double, 9> rz{c, -s, 0, s, c, 0, 0, 0, 1};
+    const RigidPose pq = RigidPose::matrix(rz, Vec3d{2.5 - 0.005 * i, 0.2, -0.1});
+    const RigidCollision got = collide(a, RigidPose(), b, pq, &warm);
+    penetrating += got.status == ContactStatus::penetrating;
+    if (i % 30 == 0) {
+      EXPECT_EQ(got.status, collide_exact(a, RigidPose(), b, pq)) << "step " << i;
+      ++checked;
+    }
+  }
+  const auto after = rigid_stats();
+  EXPECT_EQ(checked, 20);
+  EXPECT_GT(penetrating, 300);
+  EXPECT_GT(after.warm_tetrahedra - before.warm_tetrahedra, std::uint64_t(penetrating) / 2);
+  EXPECT_LE(after.warm_tetrahedra - before.warm_tetrahedra, after.simplex - before.simplex);
+  // A stale tetrahedron: of a penetrating pose, then given with separate
+  // and touching poses, with another pair of bodies (indices beyond their
+  // vertices), and made of arbitrary pairs: each answer is the exact one.
+  const RigidBody cube(catalog_polytope("cube"));
+  const RigidWarmStart deep = warm;
+  for (const Vec3d& t : {Vec3d{5, 0, 0}, Vec3d{0.5, 0.2, 0}}) {
+    const RigidPose pq = RigidPose::translation(Point3(t.x, t.y, t.z));
+    RigidWarmStart w = deep;
+    EXPECT_EQ(collide(a, RigidPose(), b, pq, &w).status, collide_exact(a, RigidPose(), b, pq));
+    w = deep;
+    EXPECT_EQ(collide(cube, RigidPose(), cube, pq, &w).status, collide_exact(cube, RigidPose(), cube, pq));
+    w = RigidWarmStart{};
+    w.tetrahedron = true, w.tp = {0, 1, 2, 3}, w.tq = {4, 5, 6, 7};
+    EXPECT_EQ(collide(cube, RigidPose(), cube, pq, &w).status, collide_exact(cube, RigidPose(), cube, pq));
+  }
+  const RigidPose face = RigidPose::translation(Point3(2, 0, 0));  // cube on cube, face to face
+  RigidWarmStart w = deep;
+  EXPECT_EQ(collide(cube, RigidPose(), cube, face, &w).status, ContactStatus::touching);
+}
+
 TEST(RigidCollide, IncoherentPosesClimbFromTheSeeds) {
   // Every pose unrelated to the previous one (a new rotation of each body
   // and a new translation), so the warm start is no help: each search's

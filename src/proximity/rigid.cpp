@@ -796,7 +796,21 @@ RigidWarmStart checked_start(const RigidBody& p, const RigidBody& q, const Rigid
   if (warm) start = *warm;
   if (start.p >= p.data().approx.size()) start.p = 0;
   if (start.q >= q.data().approx.size()) start.q = 0;
+  for (int k = 0; k < 4 && start.tetrahedron; ++k)
+    start.tetrahedron = start.tp[k] < p.data().approx.size() && start.tq[k] < q.data().approx.size();
   return start;
+}
+
+// Whether the origin lies strictly inside the tetrahedron of the four
+// points, in doubles (a guess: the tetrahedron filter decides).
+bool holds_origin_doubles(const std::array<SimplexVertex, 4>& t) {
+  const auto det = [](const V3& a, const V3& b, const V3& c) { return dot(a, cross(b, c)); };
+  const V3 &a = t[0].w, &b = t[1].w, &c = t[2].w, &d = t[3].w;
+  const double total = det(b - a, c - a, d - a);
+  if (!(total != 0) || !std::isfinite(total)) return false;
+  // The origin's side of each face, against the fourth vertex's.
+  const double s0 = det(b, c, d), s1 = -det(a, c, d), s2 = det(a, b, d), s3 = -det(a, b, c);
+  return total > 0 ? (s0 > 0 && s1 > 0 && s2 > 0 && s3 > 0) : (s0 < 0 && s1 < 0 && s2 < 0 && s3 < 0);
 }
 
 // The batches: N answers from N poses (or one) of each body, in runs of
@@ -942,14 +956,34 @@ ContactStatus collide_exact(const RigidBody& p, const RigidPose& pose_p, const R
   return ob.collide(pose_p.map().t(), pose_q.map().t()).status;
 }
 
-RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
-                       RigidWarmStart* warm) {
+namespace {
+
+// collide, with `warm_tetrahedron`: whether the warm start's tetrahedron is
+// tried first (the depths run the search, whose last direction and
+// witnesses their own search starts from).
+RigidCollision collide_search(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q,
+                              const RigidPose& pose_q, RigidWarmStart* warm, bool warm_tetrahedron) {
   ++g_stats.queries;
   const Query qu{Placed(p.data(), pose_p.map()), Placed(q.data(), pose_q.map()), p.data(), q.data()};
   const RigidWarmStart start = checked_start(p, q, warm);
+  RigidCollision r;
+  // The previous answer's tetrahedron, when it still holds the origin (the
+  // filter decides; an open or failed filter leaves the search to decide).
+  if (warm_tetrahedron && start.tetrahedron) {
+    std::array<SimplexVertex, 4> t;
+    for (int k = 0; k < 4; ++k) t[k] = {qu.P.point(start.tp[k]) - qu.Q.point(start.tq[k]), start.tp[k], start.tq[k]};
+    if (holds_origin_doubles(t) && qu.filter_tetrahedron(t) == 1) {
+      r.status = ContactStatus::penetrating;
+      r.certificate = RigidCertificate::simplex;
+      r.p = t[0].p, r.q = t[0].q;
+      count(r.certificate);
+      ++g_stats.warm_tetrahedra;
+      if (warm) warm->p = r.p, warm->q = r.q;  // the direction and the tetrahedron stay
+      return r;
+    }
+  }
   const V3 dir = initial_direction(qu, start);
 
-  RigidCollision r;
   std::array<SimplexVertex, 4> s;
   int n = 1;
   s[0] = qu.support(-dir, start.p, start.q);
@@ -997,6 +1031,7 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
   };
   bool tried_triangle = false;
   Tetrahedra deferred;  // tetrahedra the intervals left open
+  const std::array<SimplexVertex, 4>* tetra = nullptr;  // the certificate's, when penetrating
   for (int it = 0; it < kMaxIterations && !decided; ++it) {
     ++g_stats.iterations;
     const double vv = dot(v, v);
@@ -1028,6 +1063,7 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
         r.certificate = RigidCertificate::simplex;
         r.p = w.p, r.q = w.q;
         decided = true;
+        tetra = &s;
       } else if (f == kTetrahedronOpen) {
         deferred.push_back(s);
       }
@@ -1040,6 +1076,7 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
     r.certificate = RigidCertificate::simplex;
     r.p = s[0].p, r.q = s[0].q;
     decided = true;
+    tetra = &s;
   }
   if (!decided) {
     FeaturePlane plane(qu);
@@ -1065,6 +1102,7 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
       r.certificate = RigidCertificate::simplex;
       r.p = t[0].p, r.q = t[0].q;
       decided = true;
+      tetra = &t;
     }
   }
   if (!decided) {
@@ -1076,8 +1114,18 @@ RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidB
   if (warm) {
     warm->p = r.p, warm->q = r.q;
     warm->direction = {v.x, v.y, v.z};
+    warm->tetrahedron = tetra != nullptr;
+    if (tetra)
+      for (int k = 0; k < 4; ++k) warm->tp[k] = (*tetra)[k].p, warm->tq[k] = (*tetra)[k].q;
   }
   return r;
+}
+
+}  // namespace
+
+RigidCollision collide(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
+                       RigidWarmStart* warm) {
+  return collide_search(p, pose_p, q, pose_q, warm, true);
 }
 
 void collide(const RigidBody& p, std::span<const RigidPose> poses_p, const RigidBody& q,
@@ -1676,9 +1724,17 @@ bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, con
   return true;
 }
 
+// The tetrahedron of D that proved collide's penetrating answer (left in
+// the warm start), on this pose's doubles: EPA starts from it.
+bool collision_tetrahedron(const Query& qu, const RigidWarmStart& w, std::array<SimplexVertex, 4>& s) {
+  if (!w.tetrahedron) return false;
+  for (int k = 0; k < 4; ++k) s[k] = {qu.P.point(w.tp[k]) - qu.Q.point(w.tq[k]), w.tp[k], w.tq[k]};
+  return true;
+}
+
 // A tetrahedron of D holding the origin (in doubles), by the search again
-// from the witnesses collide left (a few steps); a triangle holding it is
-// blown up as collide does.
+// from the witnesses collide left (a few steps), when collide's answer came
+// from M; a triangle holding it is blown up as collide does.
 bool search_tetrahedron(const Query& qu, const RigidWarmStart& start, std::array<SimplexVertex, 4>& s) {
   const V3 dir = initial_direction(qu, start);
   int n = 1;
@@ -1723,16 +1779,22 @@ RigidDepthExact depth_exact(const RigidBody& p, const RigidPose& pose_p, const R
 RigidDepth penetration_depth(const RigidBody& p, const RigidPose& pose_p, const RigidBody& q, const RigidPose& pose_q,
                              RigidWarmStart* warm) {
   RigidDepth r;
-  const RigidCollision c = collide(p, pose_p, q, pose_q, warm);
+  RigidWarmStart local;
+  if (!warm) warm = &local;
+  const RigidCollision c = collide_search(p, pose_p, q, pose_q, warm, false);
   r.status = c.status;
   r.certificate = c.certificate;
   if (c.status != ContactStatus::penetrating) return r;
   const Query qu{Placed(p.data(), pose_p.map()), Placed(q.data(), pose_q.map()), p.data(), q.data()};
+  // EPA from collide's tetrahedron; when its surface is not certified (the
+  // doubles' choices), once more from the search's.
   std::array<SimplexVertex, 4> s;
-  const bool tetrahedron = search_tetrahedron(qu, checked_start(p, q, warm), s);
   std::vector<SimplexVertex> verts;
   std::vector<EpaFace> faces;
-  if (tetrahedron && grow(qu, s, verts, faces, nearest_face) && certify_depth(qu, verts, faces, r)) {
+  if ((collision_tetrahedron(qu, *warm, s) && grow(qu, s, verts, faces, nearest_face) &&
+       certify_depth(qu, verts, faces, r)) ||
+      (search_tetrahedron(qu, checked_start(p, q, warm), s) && grow(qu, s, verts, faces, nearest_face) &&
+       certify_depth(qu, verts, faces, r))) {
     count(r.certificate);
     return r;
   }
@@ -1791,7 +1853,9 @@ RigidDirectionalDepth directional_depth(const RigidBody& p, const RigidPose& pos
                                         const RigidPose& pose_q, const Point3& d, RigidWarmStart* warm) {
   if (is_zero(d)) throw UsageError("directional_depth: the direction must not be the zero vector");
   RigidDirectionalDepth r;
-  const RigidCollision c = collide(p, pose_p, q, pose_q, warm);
+  RigidWarmStart local;
+  if (!warm) warm = &local;
+  const RigidCollision c = collide_search(p, pose_p, q, pose_q, warm, false);
   r.status = c.status;
   r.certificate = c.certificate;
   if (c.status != ContactStatus::penetrating) return r;
@@ -1803,24 +1867,28 @@ RigidDirectionalDepth directional_depth(const RigidBody& p, const RigidPose& pos
   std::vector<SimplexVertex> verts;
   std::vector<EpaFace> faces;
   const CrossedFace crossed{V3{ud.x, ud.y, ud.z}};
-  if (search_tetrahedron(qu, checked_start(p, q, warm), s) && grow(qu, s, verts, faces, crossed)) {
+  // From collide's tetrahedron, then (its surface not certified) from the
+  // search's, as for the depth.
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (!(attempt == 0 ? collision_tetrahedron(qu, *warm, s) : search_tetrahedron(qu, checked_start(p, q, warm), s)) ||
+        !grow(qu, s, verts, faces, crossed))
+      continue;
     const int k = crossed(verts, faces);
-    if (k >= 0) {
-      const EpaFace& f = faces[k];
-      const PlacedTriangle T = placed_triangle(qu, verts, f);
-      bool ok = T.offset_sign() > 0 && T.direction_sign(u, ub) > 0;
-      for (int e = 0; e < 3 && ok; ++e) ok = T.edge_sign(e, u, ub) >= 0;
-      if (ok && plane_supports(qu, T, level_sets(qu, verts, f), verts[f.v[0]].p, verts[f.v[0]].q)) {
-        r.certificate = RigidCertificate::exit_facet;
-        count(r.certificate);
-        for (int j = 0; j < 3; ++j) r.p[j] = verts[f.v[j]].p, r.q[j] = verts[f.v[j]].q;
-        const Bounds b = T.ray_parameter_bounds(ub);
-        r.lower = std::max(0.0, b.lo), r.upper = b.hi;
-        const V3 a = verts[f.v[0]].w;
-        const double nu = dot(f.n, V3{ud.x, ud.y, ud.z});
-        r.t = std::clamp(nu > 0 ? dot(f.n, a) / nu : r.lower, r.lower, r.upper);
-        return r;
-      }
+    if (k < 0) continue;
+    const EpaFace& f = faces[k];
+    const PlacedTriangle T = placed_triangle(qu, verts, f);
+    bool ok = T.offset_sign() > 0 && T.direction_sign(u, ub) > 0;
+    for (int e = 0; e < 3 && ok; ++e) ok = T.edge_sign(e, u, ub) >= 0;
+    if (ok && plane_supports(qu, T, level_sets(qu, verts, f), verts[f.v[0]].p, verts[f.v[0]].q)) {
+      r.certificate = RigidCertificate::exit_facet;
+      count(r.certificate);
+      for (int j = 0; j < 3; ++j) r.p[j] = verts[f.v[j]].p, r.q[j] = verts[f.v[j]].q;
+      const Bounds b = T.ray_parameter_bounds(ub);
+      r.lower = std::max(0.0, b.lo), r.upper = b.hi;
+      const V3 a = verts[f.v[0]].w;
+      const double nu = dot(f.n, V3{ud.x, ud.y, ud.z});
+      r.t = std::clamp(nu > 0 ? dot(f.n, a) / nu : r.lower, r.lower, r.upper);
+      return r;
     }
   }
   count(RigidCertificate::exact);

@@ -121,12 +121,18 @@ struct RigidCollision {
 };
 
 // The witnesses a query starts from and leaves for the next one: the last
-// support vertices of P and Q and the last search direction (zero: none).
-// A coherent sequence of poses passed with the same RigidWarmStart costs a
-// few support steps per query.
+// support vertices of P and Q and the last search direction (zero: none),
+// and, after collide answered penetrating by a tetrahedron, its four pairs
+// of vertices (tp[k], tq[k]), which the next collide checks first: on a
+// coherent trajectory the same tetrahedron of D usually still holds the
+// origin.  A coherent sequence of poses passed with the same RigidWarmStart
+// costs a few support steps per query.  Every field is a guess that the
+// query certifies or drops.
 struct RigidWarmStart {
   Index p = 0, q = 0;
   Vec3d direction;
+  bool tetrahedron = false;
+  std::array<Index, 4> tp{}, tq{};
 };
 
 // Counters of the calling thread since it started: queries (collide and
@@ -135,6 +141,7 @@ struct RigidStats {
   std::uint64_t queries = 0, separating_plane = 0, simplex = 0, exact = 0, closest_points = 0, nearest_facet = 0,
                 exit_facet = 0, feature_plane = 0;
   std::uint64_t iterations = 0, climb_steps = 0;
+  std::uint64_t warm_tetrahedra = 0;  // collide answers proved by the warm start's tetrahedron (counted in simplex too)
 };
 RigidStats rigid_stats();
 

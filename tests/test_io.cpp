@@ -1791,3 +1791,22 @@ TEST(IoRounding, FoldMadeReflexByRoundingIsNotCertified) {
   EXPECT_EQ(w.check_invariants(), "");
   for (const WriteMode& m : every_write_mode()) expect_reads_back(p, m, "reflex roof");
 }
+
+// The same roof: its rounded fold is strictly reflex between two facets
+// that are still planar (a triangle and the quadrilateral, which are kept
+// as they are), so the validation would refuse the split mesh and the
+// hull is written without it; the written polytope is the exact hull of
+// the rounded points, vertex for vertex and facet for facet.
+TEST(IoRounding, ReflexFoldBetweenPlanarFacetsIsTheHullOfTheRoundedPoints) {
+  const ConvexPolytope p = roof(Point3(Rational(0), Rational(2) - pow2(-58), 7 * pow2(-62)),
+                               Point3(Rational(1), Rational(2), Rational(0)));
+  RoundingReport r;
+  const ConvexPolytope w = writable_polytope(p, Format::off, {}, &r);
+  const ConvexPolytope h = ConvexPolytope::hull(nearest_doubles(p));
+  EXPECT_TRUE(r.hull);
+  EXPECT_EQ(r.split, 0u);
+  EXPECT_EQ(vertex_set(w), vertex_set(h));
+  ASSERT_EQ(w.num_facets(), h.num_facets());
+  for (Index f = 0; f < w.num_facets(); ++f) EXPECT_EQ(w.plane(f), h.plane(f)) << "facet " << f;
+  EXPECT_EQ(w.volume(), h.volume());
+}

@@ -173,17 +173,41 @@ ConvexPolytope writable_polytope(const ConvexPolytope& p, Format format, const W
     seen.reserve(n);
     for (const Vec3d& v : m.points.approx()) r.merged += !seen.insert(v).second;
   }
-  m.faces.reserve(p.num_facets());
-  for (Index f = 0; f < p.num_facets(); ++f) split_if_not_planar(m, p.facet_vertices(f), r.split);
-
+  // With no two vertices rounded together, the mesh below keeps every facet
+  // of p whose rounded corners are still exactly coplanar as it is, so an
+  // edge between two such facets that the rounding made strictly reflex
+  // stays in it, and the validation refuses it as not convex: the hull
+  // follows, whatever the splits.  Such an edge is looked for first,
+  // exactly: orient3d(p, q, c, d) for the edge p->q, the corner c after q
+  // in its facet and the corner d after p in the other facet is > 0 when d
+  // lies strictly above the plane of p, q, c, which is the first facet's
+  // (or, when that facet is no longer convex at q, the validation refuses
+  // it too).
+  bool doomed = false;
+  if (r.merged == 0) {
+    const auto& v = m.points.approx();
+    std::vector<char> planar(p.num_facets(), 1);
+    for (Index f = 0; f < p.num_facets(); ++f) {
+      const std::vector<Index> c = p.facet_vertices(f);
+      for (std::size_t i = 3; i < c.size() && planar[f]; ++i)
+        planar[f] = orient3d(v[c[0]], v[c[1]], v[c[2]], v[c[i]]) == 0;
+    }
+    for (Index h = 0; h < p.num_halfedges() && !doomed; h += 2)
+      if (planar[p.facet(h)] && planar[p.facet(h ^ 1u)])
+        doomed = orient3d(v[p.origin(h)], v[p.target(h)], v[p.target(p.next(h))], v[p.target(p.next(h ^ 1u))]) > 0;
+  }
   // A rounded surface that is no longer convex (the usual failure) is told
   // by the probe without an exception (a process's first one costs
   // milliseconds: builder.hpp); other defects throw.  Either way the exact
   // hull of the rounded points follows.
   std::optional<ConvexPolytope> built;
-  try {
-    built = PolytopeBuilder::build_if_convex(m, "");
-  } catch (const InputError&) {
+  if (!doomed) {
+    m.faces.reserve(p.num_facets());
+    for (Index f = 0; f < p.num_facets(); ++f) split_if_not_planar(m, p.facet_vertices(f), r.split);
+    try {
+      built = PolytopeBuilder::build_if_convex(m, "");
+    } catch (const InputError&) {
+    }
   }
   ConvexPolytope q;
   if (built) {

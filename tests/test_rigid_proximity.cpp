@@ -127,6 +127,14 @@ void random_pose_pairs(std::uint64_t seed, int n, double spread, std::vector<Rig
   }
 }
 
+// A random point for the predicates' tests: every third one with rational
+// coordinates that are not doubles (thirds, sevenths, fifths), the others
+// doubles.
+Point3 mixed_point(Rng& r, int k) {
+  if (k % 3 == 0) return Point3(Rational(r.integer(-30, 30), 3), Rational(r.integer(-30, 30), 7), Rational(1, 5));
+  return Point3(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
+}
+
 struct RoundingMode {
   explicit RoundingMode(int m) { std::fesetround(m); }
   ~RoundingMode() { std::fesetround(FE_TONEAREST); }
@@ -147,10 +155,7 @@ TEST(PlacedPredicates, AgreeWithRationalsInAllRoundingModes) {
     const PlacedMap m = random_pose(r, 3, quat).map();
     const PlacedMap m2 = random_pose(r, 3, !quat).map();
     // Points: doubles, thirds (not doubles), and some on purpose equal.
-    const auto point = [&](int k) {
-      if (k % 3 == 0) return Point3(Rational(r.integer(-30, 30), 3), Rational(r.integer(-30, 30), 7), Rational(1, 5));
-      return Point3(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
-    };
+    const auto point = [&](int k) { return mixed_point(r, k); };
     const Point3 a = point(trial), b = trial % 5 == 0 ? a : point(trial + 1);
     Vec3d n{r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1)};
     if (trial % 7 == 0) {
@@ -203,10 +208,7 @@ TEST(PlacedPredicates, TriangleOnSharedEnclosuresAgreesWithRationals) {
     SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
     const PlacedMap m = random_pose(r, 3, trial % 2 == 0).map();
     const PlacedMap m2 = trial % 4 == 0 ? m : random_pose(r, 3, trial % 2 == 1).map();
-    const auto point = [&](int k) {
-      if (k % 3 == 0) return Point3(Rational(r.integer(-30, 30), 3), Rational(r.integer(-30, 30), 7), Rational(1, 5));
-      return Point3(r.uniform(-2, 2), r.uniform(-2, 2), r.uniform(-2, 2));
-    };
+    const auto point = [&](int k) { return mixed_point(r, k); };
     std::array<Point3, 3> ps{point(trial), point(trial + 1), point(trial + 2)};
     std::array<Point3, 3> qs{trial % 4 == 0 ? ps[0] : point(trial + 3), point(trial + 4), point(trial + 5)};
     std::array<PointBounds, 3> pb, qb, db;

@@ -1283,18 +1283,12 @@ TEST(RigidDistance, ParallelEdgesAndTheClosestPointInsideAFace) {
   expect_distance_agrees(cube, RigidPose(), cube, turned, e, "edge-face, turned");
 }
 
-TEST(RigidDistance, NearTouchingOnNearlyCoplanarFacetsWithoutM) {
-  // A mesh-like hull: grids on the faces of [-1, 1]^3 bulging out by up to
-  // 2e-7 (a cap of a paraboloid, jittered), so that neighbouring facets
-  // differ by about 1e-8 rad, and poses
-  // of a small cube at 1e-9 of its contact (the exact contact translation
-  // along a random direction, times 1 + 1e-9, then rounded to doubles).
-  // The search's doubles then stop near the closest features, not always
-  // on them; the certificate fails there and exact GJK steps go on from
-  // the search's simplex (refine_closest).  Every answer is the exact
-  // obstacle's, and M is built for none of them.
-  const std::uint64_t seed = 48;
-  Rng r(seed);
+namespace {
+
+// A mesh-like hull: grids on the faces of [-1, 1]^3 bulging out by up to
+// 2e-7 (a cap of a paraboloid, jittered), so that neighbouring facets
+// differ by about 1e-8 rad.
+ConvexPolytope flattened_hull(Rng& r) {
   PointList pts;
   for (int axis = 0; axis < 3; ++axis)
     for (double side : {-1.0, 1.0})
@@ -1306,36 +1300,96 @@ TEST(RigidDistance, NearTouchingOnNearlyCoplanarFacetsWithoutM) {
           c[(axis + 1) % 3] = x, c[(axis + 2) % 3] = y;
           pts.push_back(Vec3d{c[0], c[1], c[2]});
         }
-  const ConvexPolytope hull = ConvexPolytope::hull(pts);
+  return ConvexPolytope::hull(pts);
+}
+
+// Poses of `small` at 1e-9 of its contact with `hull`: for 4 random
+// orientation pairs, 50 translations each, the exact contact translation
+// along a random direction times f (1 ± 1e-9), rounded to doubles.  `check`
+// gets each pose with its orientation pair's exact obstacle and the
+// translation.
+template <class Check>
+void near_contact_poses(Rng& r, const ConvexPolytope& hull, const ConvexPolytope& small, double f, const Check& check) {
+  for (int k = 0; k < 4; ++k) {
+    const std::array<double, 9> ra = random_matrix(r), rb = random_matrix(r);
+    TranslationalObstacle ob(placed_linear(hull, PlacedMap(ra, Vec3d{0, 0, 0})),
+                             placed_linear(small, PlacedMap(rb, Vec3d{0, 0, 0})));
+    const Point3 c = ob.interior_point();
+    for (int i = 0; i < 50; ++i) {
+      const Point3 u(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
+      const Rational alpha = ob.directional_depth_point(c, -u).t;
+      const Vec3d sd = to_double(c + (alpha * Rational(f)) * u);
+      check(RigidPose::matrix(ra, Vec3d{0, 0, 0}), RigidPose::matrix(rb, sd), ob, Point3(sd.x, sd.y, sd.z),
+            "orientation " + std::to_string(k) + ", pose " + std::to_string(i));
+    }
+  }
+}
+
+}  // namespace
+
+TEST(RigidDistance, NearTouchingOnNearlyCoplanarFacetsWithoutM) {
+  // A small cube at 1e-9 outside its contact with the flattened hull: the
+  // search's doubles then stop near the closest features, not always on
+  // them; the certificate fails there and exact GJK steps go on from the
+  // search's simplex (refine_closest).  Every answer is the exact
+  // obstacle's, and M is built for none of them.
+  const std::uint64_t seed = 48;
+  Rng r(seed);
+  const ConvexPolytope hull = flattened_hull(r);
   ASSERT_GT(hull.num_facets(), 1000u);
   const ConvexPolytope small = catalog_polytope("cube@scale:1/4");
   const RigidBody a(hull), b(small);
   const RigidStats before = rigid_stats();
   int separate = 0, poses = 0;
-  for (int k = 0; k < 4; ++k) {
-    const std::array<double, 9> ra = random_matrix(r), rb = random_matrix(r);
-    TranslationalObstacle ob(placed_linear(hull, PlacedMap(ra, Vec3d{0, 0, 0})),
-                                   placed_linear(small, PlacedMap(rb, Vec3d{0, 0, 0})));
-    const Point3 c = ob.interior_point();
-    RigidWarmStart warm;
-    for (int i = 0; i < 50; ++i, ++poses) {
-      const Point3 u(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
-      const Rational alpha = ob.directional_depth_point(c, -u).t;
-      const Point3 s = c + (alpha * Rational(1 + 1e-9)) * u;
-      const Vec3d sd = to_double(s);
-      const RigidPose pa = RigidPose::matrix(ra, Vec3d{0, 0, 0}), pb = RigidPose::matrix(rb, sd);
-      const RigidDistance d = distance(a, pa, b, pb, &warm);
-      const std::string what = "seed " + std::to_string(seed) + ", orientation " + std::to_string(k) + ", pose " +
-                               std::to_string(i);
-      const DistanceResult want = ob.distance_point(Point3(sd.x, sd.y, sd.z));
-      EXPECT_EQ(d.status, want.status) << what;
-      EXPECT_EQ(exact_values(a, pa, b, pb, d).squared_distance, want.squared_distance()) << what;
-      separate += d.status == ContactStatus::separate;
-    }
-  }
+  RigidWarmStart warm;
+  near_contact_poses(r, hull, small, 1 + 1e-9,
+                     [&](const RigidPose& pa, const RigidPose& pb, TranslationalObstacle& ob, const Point3& s,
+                         const std::string& where) {
+                       const RigidDistance d = distance(a, pa, b, pb, &warm);
+                       const std::string what = "seed " + std::to_string(seed) + ", " + where;
+                       const DistanceResult want = ob.distance_point(s);
+                       EXPECT_EQ(d.status, want.status) << what;
+                       EXPECT_EQ(exact_values(a, pa, b, pb, d).squared_distance, want.squared_distance()) << what;
+                       separate += d.status == ContactStatus::separate;
+                       ++poses;
+                     });
   EXPECT_EQ(poses, 200);
   EXPECT_GT(separate, 150) << "seed " << seed;
   EXPECT_EQ(rigid_stats().exact - before.exact, 0u) << "seed " << seed;
+}
+
+TEST(RigidCollide, NearTouchingInsideOnNearlyCoplanarFacets) {
+  // The cube at 1e-9 inside its contact with the flattened hull: the search
+  // in doubles often finds no tetrahedron (the origin within rounding of
+  // ∂D) and no candidate plane separates or touches; a tetrahedron over the
+  // face of D nearest the origin, certified exactly, proves the
+  // penetration (FeaturePlane::inward_tetrahedron) where M was built.
+  // Every answer is the exact obstacle's.
+  const std::uint64_t seed = 49;
+  Rng r(seed);
+  const ConvexPolytope hull = flattened_hull(r);
+  const ConvexPolytope small = catalog_polytope("cube@scale:1/4");
+  const RigidBody a(hull), b(small);
+  const RigidStats before = rigid_stats();
+  int penetrating = 0, poses = 0;
+  RigidWarmStart warm;
+  near_contact_poses(r, hull, small, 1 - 1e-9,
+                     [&](const RigidPose& pa, const RigidPose& pb, TranslationalObstacle& ob, const Point3& s,
+                         const std::string& where) {
+                       const RigidCollision c = collide(a, pa, b, pb, &warm);
+                       EXPECT_EQ(c.status, ob.collide_point(s).status)
+                           << "seed " << seed << ", " << where;
+                       penetrating += c.status == ContactStatus::penetrating;
+                       ++poses;
+                     });
+  const RigidStats after = rigid_stats();
+  EXPECT_EQ(poses, 200);
+  EXPECT_GT(penetrating, 150) << "seed " << seed;
+  EXPECT_GE(after.inward_tetrahedra - before.inward_tetrahedra, 10u) << "seed " << seed;
+  EXPECT_LE(after.exact - before.exact, 4u) << "seed " << seed;  // 16 without the tetrahedra over the face
+  std::printf("flattened hull / cube 1e-9 inside: %llu inward tetrahedra, M built for %llu of 200 poses\n",
+              static_cast<unsigned long long>(after.inward_tetrahedra - before.inward_tetrahedra),
+              static_cast<unsigned long long>(after.exact - before.exact));
 }
 
 TEST(RigidDistance, BatchEqualsSingleQueries) {

@@ -453,73 +453,11 @@ class FeaturePlane {
                                        bool common = true) {
     want_common_ = common;
     std::vector<Index> sp, sq;
-    const auto add = [](std::vector<Index>& v, Index i) {
-      if (std::find(v.begin(), v.end(), i) == v.end()) v.push_back(i);
-    };
-    for (int k = 0; k < n; ++k) add(sp, s[k].p), add(sq, s[k].q);
-    add(sp, ip), add(sq, iq);
-    const V3 cp = centre(qu_.P), cq = centre(qu_.Q);
-    // The candidate planes: a facet of P' through three of its points in
-    // the simplex (P' below), a facet of Q' (Q' above), the edges of each;
-    // then, for a smaller simplex (the search stopped on an edge or a vertex
-    // of D), the facets around its vertices and the edges at its first
-    // pair.  Neighbours run counter-clockwise seen from outside, so two
-    // consecutive ones and the vertex span a facet, the cross product of
-    // their edges outward (a placement keeps orientation).
-    std::vector<Candidate> cands;
-    if (sp.size() >= 3) cands.push_back({Candidate::p_facet, sp[0], sp[1], sp[2], 0, true, 0});
-    if (sq.size() >= 3) cands.push_back({Candidate::q_facet, sq[0], sq[1], sq[2], 0, true, 0});
-    for (std::size_t i = 0; i < sp.size(); ++i)
-      for (std::size_t j = i + 1; j < sp.size(); ++j)
-        for (std::size_t k = 0; k < sq.size(); ++k)
-          for (std::size_t l = k + 1; l < sq.size(); ++l)
-            cands.push_back({Candidate::edges, sp[i], sp[j], sq[k], sq[l], true, 0});
-    for (Index v : sp)
-      for (Index k = qu_.dp.first[v], e = qu_.dp.first[v + 1]; k < e; ++k)
-        cands.push_back({Candidate::p_facet, v, qu_.dp.nbr[k], qu_.dp.nbr[k + 1 < e ? k + 1 : qu_.dp.first[v]], 0,
-                         false, 0});
-    for (Index v : sq)
-      for (Index k = qu_.dq.first[v], e = qu_.dq.first[v + 1]; k < e; ++k)  // Q's inward normal
-        cands.push_back({Candidate::q_facet, v, qu_.dq.nbr[k + 1 < e ? k + 1 : qu_.dq.first[v]], qu_.dq.nbr[k], 0,
-                         false, 0});
-    for (Index k = qu_.dp.first[sp[0]]; k < qu_.dp.first[sp[0] + 1]; ++k)
-      for (Index l = qu_.dq.first[sq[0]]; l < qu_.dq.first[sq[0] + 1]; ++l)
-        cands.push_back({Candidate::edges, sp[0], qu_.dp.nbr[k], sq[0], qu_.dq.nbr[l], true, 0});
-    // Their order, a choice in doubles (the exact climbs decide whatever
-    // the order): the plane of the contact has h_P = l_Q, a plane that
-    // proves nothing h_P > l_Q.  So each candidate's normal, oriented as
-    // the exact one will be, and the gap l_Q − h_P along it over the double
-    // supports (climbed from the simplex's first pair) rank them, largest
-    // first; the exact climbs start from those supports.
-    const auto rank = [&](std::vector<Candidate>& list) {
-      for (Candidate& c : list) {
-        V3 nd = normal_double(c);
-        if (c.orient) {
-          // Orient N so that P's centre (a facet of P), Q's centre (a facet
-          // of Q), or Q's centre minus P's (edges) lies on its side.
-          const V3 a = c.kind == Candidate::q_facet ? qu_.Q.point(c.a) : qu_.P.point(c.a);
-          const double side = c.kind == Candidate::p_facet   ? -dot(nd, cp - a)
-                              : c.kind == Candidate::q_facet ? dot(nd, cq - a)
-                                                             : dot(nd, cq - cp);
-          c.flip = side < 0;
-          if (c.flip) nd = -nd;
-        }
-        const double l = std::sqrt(dot(nd, nd));
-        if (!(l > 0) || !std::isfinite(l)) {
-          c.gap = -std::numeric_limits<double>::infinity();
-          c.from_p = sp[0], c.from_q = sq[0];
-          continue;
-        }
-        nd = (1 / l) * nd;
-        c.from_p = qu_.P.support(nd, sp[0]), c.from_q = qu_.Q.support(-nd, sq[0]);
-        c.gap = dot(nd, qu_.Q.point(c.from_q) - qu_.P.point(c.from_p));
-        if (!std::isfinite(c.gap)) c.gap = -std::numeric_limits<double>::infinity();
-      }
-      std::stable_sort(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) { return a.gap > b.gap; });
-    };
+    simplex_vertices(s, n, ip, iq, sp, sq);
+    std::vector<Candidate> cands = candidates(sp, sq);
     // Each is tried in that order; the first plane that decides answers.
     const auto attempt = [&](std::vector<Candidate>& list) -> std::optional<FeatureContact> {
-      rank(list);
+      rank(list, sp, sq);
       for (const Candidate& c : list) {
         Point3 nrm = normal_exact(c);
         if (is_zero(nrm)) continue;
@@ -538,7 +476,7 @@ class FeaturePlane {
       std::vector<Index> around;
       for (Index v : seeds)
         for (Index k = d.first[v]; k < d.first[v + 1]; ++k)
-          if (std::find(seeds.begin(), seeds.end(), d.nbr[k]) == seeds.end()) add(around, d.nbr[k]);
+          if (std::find(seeds.begin(), seeds.end(), d.nbr[k]) == seeds.end()) add_unique(around, d.nbr[k]);
       for (Index v : around)
         for (Index k = d.first[v], e = d.first[v + 1]; k < e; ++k) {
           const Index w = d.nbr[k], x = d.nbr[k + 1 < e ? k + 1 : d.first[v]];
@@ -551,7 +489,70 @@ class FeaturePlane {
     return attempt(ring);
   }
 
+  // Penetrating within rounding (decide() answered nothing: every
+  // candidate plane has h_P > l_Q), a tetrahedron of D that holds the
+  // origin strictly, into t.  Near such a pose the origin lies just inside
+  // the facet of D nearest to it, whose plane is a candidate's: along the
+  // candidate's exact normal N, D's face is F_P − F_Q (the level sets of
+  // the exact climbs, whose differences include its corners), and the
+  // origin, below that face by h_P − l_Q, projects into it.  Three corners
+  // of that face and the vertex of D lowest along N (the exact climbs the
+  // other way) make tetrahedra that cover the pyramid over the face; each
+  // is certified exactly (placed_tetrahedron_holds_origin), so whatever is
+  // returned is a proof.  The four best-ranked candidates whose bodies
+  // overlap along them are tried, and faces of at most 8 corners.
+  bool inward_tetrahedron(const std::array<SimplexVertex, 4>& s, int n, Index ip, Index iq,
+                          std::array<SimplexVertex, 4>& t) {
+    std::vector<Index> sp, sq;
+    simplex_vertices(s, n, ip, iq, sp, sq);
+    std::vector<Candidate> cands = candidates(sp, sq);
+    rank(cands, sp, sq);
+    int tried = 0;
+    for (const Candidate& c : cands) {
+      if (tried == 4) break;
+      Point3 nrm = normal_exact(c);
+      if (is_zero(nrm)) continue;
+      if (c.flip) nrm = -nrm;
+      const PulledNormalFilter filter_p(qu_.P.map, nrm), filter_q(qu_.Q.map, nrm);
+      const auto ptp = [&](Index v) -> const Point3& { return pp(v); };
+      const auto ptq = [&](Index v) -> const Point3& { return pq(v); };
+      const Index top_p = climb(qu_.dp, ptp, filter_p, nrm, 1, c.from_p);
+      const Index top_q = climb(qu_.dq, ptq, filter_q, nrm, -1, c.from_q);
+      if (dot_difference_sign(nrm, pp(top_p), pq(top_q)) >= 0) continue;  // not overlapping along N
+      ++tried;
+      std::vector<Index> vp, vq;
+      std::vector<std::pair<Index, Index>> ep, eq;
+      face(qu_.dp, ptp, filter_p, nrm, top_p, vp, ep);
+      face(qu_.dq, ptq, filter_q, nrm, top_q, vq, eq);
+      if (vp.size() * vq.size() > 8) continue;
+      const Index low_p = climb(qu_.dp, ptp, filter_p, nrm, -1, top_p);
+      const Index low_q = climb(qu_.dq, ptq, filter_q, nrm, 1, top_q);
+      const auto pair = [&](Index a, Index b) { return SimplexVertex{qu_.P.point(a) - qu_.Q.point(b), a, b}; };
+      std::vector<SimplexVertex> corners;
+      for (Index a : vp)
+        for (Index b : vq) corners.push_back(pair(a, b));
+      const SimplexVertex apex = pair(low_p, low_q);
+      for (std::size_t i = 0; i < corners.size(); ++i)
+        for (std::size_t j = i + 1; j < corners.size(); ++j)
+          for (std::size_t k = j + 1; k < corners.size(); ++k) {
+            t = {corners[i], corners[j], corners[k], apex};
+            if (qu_.filter_tetrahedron(t) != 0 && qu_.certify_tetrahedron(t)) return true;
+          }
+    }
+    return false;
+  }
+
  private:
+  static void add_unique(std::vector<Index>& v, Index i) {
+    if (std::find(v.begin(), v.end(), i) == v.end()) v.push_back(i);
+  }
+  // The search's vertices of P and of Q (its simplex, then its last pair).
+  static void simplex_vertices(const std::array<SimplexVertex, 4>& s, int n, Index ip, Index iq,
+                               std::vector<Index>& sp, std::vector<Index>& sq) {
+    for (int k = 0; k < n; ++k) add_unique(sp, s[k].p), add_unique(sq, s[k].q);
+    add_unique(sp, ip), add_unique(sq, iq);
+  }
+
   // A candidate plane: the facet of P' through the points a, b, c
   // (normal (b − a) × (c − a)), of Q' likewise, or the edges ab of P' and
   // cd of Q' (normal (b − a) × (d − c)); `orient`: the normal is turned by
@@ -574,6 +575,68 @@ class FeaturePlane {
       default:
         return cross(qu_.P.point(c.b) - qu_.P.point(c.a), qu_.Q.point(c.d) - qu_.Q.point(c.c));
     }
+  }
+  // The candidate planes: a facet of P' through three of its points in
+  // the simplex (P' below), a facet of Q' (Q' above), the edges of each;
+  // then, for a smaller simplex (the search stopped on an edge or a vertex
+  // of D), the facets around its vertices and the edges at its first
+  // pair.  Neighbours run counter-clockwise seen from outside, so two
+  // consecutive ones and the vertex span a facet, the cross product of
+  // their edges outward (a placement keeps orientation).
+  std::vector<Candidate> candidates(const std::vector<Index>& sp, const std::vector<Index>& sq) const {
+    std::vector<Candidate> cands;
+    if (sp.size() >= 3) cands.push_back({Candidate::p_facet, sp[0], sp[1], sp[2], 0, true, 0});
+    if (sq.size() >= 3) cands.push_back({Candidate::q_facet, sq[0], sq[1], sq[2], 0, true, 0});
+    for (std::size_t i = 0; i < sp.size(); ++i)
+      for (std::size_t j = i + 1; j < sp.size(); ++j)
+        for (std::size_t k = 0; k < sq.size(); ++k)
+          for (std::size_t l = k + 1; l < sq.size(); ++l)
+            cands.push_back({Candidate::edges, sp[i], sp[j], sq[k], sq[l], true, 0});
+    for (Index v : sp)
+      for (Index k = qu_.dp.first[v], e = qu_.dp.first[v + 1]; k < e; ++k)
+        cands.push_back({Candidate::p_facet, v, qu_.dp.nbr[k], qu_.dp.nbr[k + 1 < e ? k + 1 : qu_.dp.first[v]], 0,
+                         false, 0});
+    for (Index v : sq)
+      for (Index k = qu_.dq.first[v], e = qu_.dq.first[v + 1]; k < e; ++k)  // Q's inward normal
+        cands.push_back({Candidate::q_facet, v, qu_.dq.nbr[k + 1 < e ? k + 1 : qu_.dq.first[v]], qu_.dq.nbr[k], 0,
+                         false, 0});
+    for (Index k = qu_.dp.first[sp[0]]; k < qu_.dp.first[sp[0] + 1]; ++k)
+      for (Index l = qu_.dq.first[sq[0]]; l < qu_.dq.first[sq[0] + 1]; ++l)
+        cands.push_back({Candidate::edges, sp[0], qu_.dp.nbr[k], sq[0], qu_.dq.nbr[l], true, 0});
+    return cands;
+  }
+  // Their order, a choice in doubles (the exact climbs decide whatever
+  // the order): the plane of the contact has h_P = l_Q, a plane that
+  // proves nothing h_P > l_Q.  So each candidate's normal, oriented as
+  // the exact one will be, and the gap l_Q − h_P along it over the double
+  // supports (climbed from the simplex's first pair) rank them, largest
+  // first; the exact climbs start from those supports.
+  void rank(std::vector<Candidate>& list, const std::vector<Index>& sp, const std::vector<Index>& sq) const {
+    const V3 cp = centre(qu_.P), cq = centre(qu_.Q);
+    for (Candidate& c : list) {
+      V3 nd = normal_double(c);
+      if (c.orient) {
+        // Orient N so that P's centre (a facet of P), Q's centre (a facet
+        // of Q), or Q's centre minus P's (edges) lies on its side.
+        const V3 a = c.kind == Candidate::q_facet ? qu_.Q.point(c.a) : qu_.P.point(c.a);
+        const double side = c.kind == Candidate::p_facet   ? -dot(nd, cp - a)
+                            : c.kind == Candidate::q_facet ? dot(nd, cq - a)
+                                                           : dot(nd, cq - cp);
+        c.flip = side < 0;
+        if (c.flip) nd = -nd;
+      }
+      const double l = std::sqrt(dot(nd, nd));
+      if (!(l > 0) || !std::isfinite(l)) {
+        c.gap = -std::numeric_limits<double>::infinity();
+        c.from_p = sp[0], c.from_q = sq[0];
+        continue;
+      }
+      nd = (1 / l) * nd;
+      c.from_p = qu_.P.support(nd, sp[0]), c.from_q = qu_.Q.support(-nd, sq[0]);
+      c.gap = dot(nd, qu_.Q.point(c.from_q) - qu_.P.point(c.from_p));
+      if (!std::isfinite(c.gap)) c.gap = -std::numeric_limits<double>::infinity();
+    }
+    std::stable_sort(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) { return a.gap > b.gap; });
   }
   Point3 normal_exact(const Candidate& c) {
     switch (c.kind) {
@@ -1104,6 +1167,18 @@ RigidCollision collide_search(const RigidBody& p, const RigidPose& pose_p, const
       decided = true;
       tetra = &t;
     }
+  }
+  // Still undecided: the origin within rounding of ∂D, just inside it.  A
+  // tetrahedron over the face of D nearest it, certified exactly
+  // (FeaturePlane::inward_tetrahedron), before M.
+  std::array<SimplexVertex, 4> inward;
+  if (!decided && FeaturePlane(qu).inward_tetrahedron(s, n, ip, iq, inward)) {
+    r.status = ContactStatus::penetrating;
+    r.certificate = RigidCertificate::simplex;
+    r.p = inward[0].p, r.q = inward[0].q;
+    decided = true;
+    tetra = &inward;
+    ++g_stats.inward_tetrahedra;
   }
   if (!decided) {
     r.status = collide_exact(p, pose_p, q, pose_q);

@@ -31,6 +31,10 @@
 //     their faces in that plane, so touching when those faces meet (a
 //     vertex of one in the other, or two edges crossing; exact signs) and
 //     separate otherwise (certificate feature_plane);
+//   * penetrating within rounding (no candidate plane separates or
+//     touches): a tetrahedron over the face of D nearest the origin along
+//     a candidate's exact normal, with the vertex of D lowest along it,
+//     holding the origin strictly (exact signs; certificate simplex);
 //   * anything else — poses the double search and the feature plane leave
 //     undecided — is decided in exact arithmetic: M = R_P P ⊕ (−R_Q Q) is
 //     built exactly and asked for t_Q − t_P (the cost of building M).
@@ -142,6 +146,7 @@ struct RigidStats {
                 exit_facet = 0, feature_plane = 0;
   std::uint64_t iterations = 0, climb_steps = 0;
   std::uint64_t warm_tetrahedra = 0;  // collide answers proved by the warm start's tetrahedron (counted in simplex too)
+  std::uint64_t inward_tetrahedra = 0;  // ... by a tetrahedron over the face of D nearest the origin (simplex too)
 };
 RigidStats rigid_stats();
 

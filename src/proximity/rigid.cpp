@@ -1021,6 +1021,17 @@ ContactStatus collide_exact(const RigidBody& p, const RigidPose& pose_p, const R
 
 namespace {
 
+// FeaturePlane::inward_tetrahedron on its own frame; the tetrahedron found
+// replaces the contents of `out`.  (Out of line: collide's rare last step
+// before M.)
+bool inward_tetrahedron(const Query& qu, const std::array<SimplexVertex, 4>& s, int n, Index ip, Index iq,
+                        Tetrahedra& out) {
+  std::array<SimplexVertex, 4> t;
+  if (!FeaturePlane(qu).inward_tetrahedron(s, n, ip, iq, t)) return false;
+  out.assign(1, t);
+  return true;
+}
+
 // collide, with `warm_tetrahedron`: whether the warm start's tetrahedron is
 // tried first (the depths run the search, whose last direction and
 // witnesses their own search starts from).
@@ -1170,15 +1181,17 @@ RigidCollision collide_search(const RigidBody& p, const RigidPose& pose_p, const
   }
   // Still undecided: the origin within rounding of ∂D, just inside it.  A
   // tetrahedron over the face of D nearest it, certified exactly
-  // (FeaturePlane::inward_tetrahedron), before M.
-  std::array<SimplexVertex, 4> inward;
-  if (!decided && FeaturePlane(qu).inward_tetrahedron(s, n, ip, iq, inward)) {
-    r.status = ContactStatus::penetrating;
-    r.certificate = RigidCertificate::simplex;
-    r.p = inward[0].p, r.q = inward[0].q;
-    decided = true;
-    tetra = &inward;
-    ++g_stats.inward_tetrahedra;
+  // (FeaturePlane::inward_tetrahedron), before M; kept in `deferred` for
+  // the warm start.
+  if (!decided) [[unlikely]] {
+    if (inward_tetrahedron(qu, s, n, ip, iq, deferred)) {
+      r.status = ContactStatus::penetrating;
+      r.certificate = RigidCertificate::simplex;
+      r.p = deferred.front()[0].p, r.q = deferred.front()[0].q;
+      decided = true;
+      tetra = &deferred.front();
+      ++g_stats.inward_tetrahedra;
+    }
   }
   if (!decided) {
     r.status = collide_exact(p, pose_p, q, pose_q);

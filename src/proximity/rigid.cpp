@@ -1357,6 +1357,19 @@ bool certify_closest_subsets(const Query& qu, const std::array<SimplexVertex, 4>
 // followed by the certificate on the subsets; false when the origin is in
 // the hull (not separate) or no certificate came.
 constexpr int kRefineSteps = 16;
+
+// From v, to a neighbour w with sign(u, w) > 0 (w further along the climb's
+// direction than u, an exact sign) until none is: a vertex of the convex
+// polytope maximising the direction.
+template <class Sign>
+Index exact_climb(const RigidBody::Data& d, Index v, const Sign& sign) {
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (Index e = d.first[v]; e < d.first[v + 1] && !moved; ++e)
+      if (sign(v, d.nbr[e]) > 0) v = d.nbr[e], moved = true, ++g_stats.climb_steps;
+  }
+  return v;
+}
 bool refine_closest(const Query& qu, std::array<SimplexVertex, 4> s, int n, RigidDistance& r) {
   const RigidBody::Data &dp = qu.dp, &dq = qu.dq;
   for (int step = 0; step < kRefineSteps; ++step) {
@@ -1391,19 +1404,12 @@ bool refine_closest(const Query& qu, std::array<SimplexVertex, 4> s, int n, Rigi
     }
     if (!best) return false;
     // The exact supports along −v: P's maximum, Q's minimum.
-    Index a = best_sub[0].p, b = best_sub[0].q;
-    for (bool moved = true; moved;) {
-      moved = false;
-      for (Index e = dp.first[a]; e < dp.first[a + 1] && !moved; ++e)
-        if (best->climb_sign_p(dp.exact[a], dp.bounds[a], dp.exact[dp.nbr[e]], dp.bounds[dp.nbr[e]]) > 0)
-          a = dp.nbr[e], moved = true, ++g_stats.climb_steps;
-    }
-    for (bool moved = true; moved;) {
-      moved = false;
-      for (Index e = dq.first[b]; e < dq.first[b + 1] && !moved; ++e)
-        if (best->climb_sign_q(dq.exact[b], dq.bounds[b], dq.exact[dq.nbr[e]], dq.bounds[dq.nbr[e]]) > 0)
-          b = dq.nbr[e], moved = true, ++g_stats.climb_steps;
-    }
+    const Index a = exact_climb(dp, best_sub[0].p, [&](Index u, Index w) {
+      return best->climb_sign_p(dp.exact[u], dp.bounds[u], dp.exact[w], dp.bounds[w]);
+    });
+    const Index b = exact_climb(dq, best_sub[0].q, [&](Index u, Index w) {
+      return best->climb_sign_q(dq.exact[u], dq.bounds[u], dq.exact[w], dq.bounds[w]);
+    });
     // The first pair supports D along −v: every pair of the subset is level
     // with it, so v's certificate holds.
     if (a == best_sub[0].p && b == best_sub[0].q) return certify_closest(qu, best_sub, best_m, r);

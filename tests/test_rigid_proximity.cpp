@@ -197,13 +197,14 @@ TEST(PlacedPredicates, AgreeWithRationalsInAllRoundingModes) {
 
 TEST(PlacedPredicates, TriangleOnSharedEnclosuresAgreesWithRationals) {
   // PlacedTriangle from its pairs, and from the enclosures of its corners
-  // made once (placed_difference_bounds, as EPA's surface shares them):
+  // made once (placed_difference_bounds, as EPA's surface shares them),
+  // and both as one surface's filters (placed_surface_signs):
   // the same signs, each the sign of the rational polynomial.  Zeros on
   // purpose: the origin on the plane (P and Q placed alike, p_0 = q_0), two
   // triangles of one plane (the corners turned), a climb along no edge.
   const std::uint64_t seed = 3907;
   Rng r(seed);
-  int zeros = 0;
+  int zeros = 0, decided = 0;
   for (int trial = 0; trial < 300; ++trial) {
     SCOPED_TRACE("seed " + std::to_string(seed) + ", trial " + std::to_string(trial));
     const PlacedMap m = random_pose(r, 3, trial % 2 == 0).map();
@@ -250,6 +251,19 @@ TEST(PlacedPredicates, TriangleOnSharedEnclosuresAgreesWithRationals) {
       }
       const PlacedTriangle full(m, m2, pp, pbp, qp, qbp), shared(m, m2, pp, pbp, qp, qbp, dbp);
       const PlacedTriangle other(m, m2, pp2, pbp2, qp2, qbp2, dbp2);
+      // The same two triangles as one surface's (placed_surface_signs, f
+      // the second): each decided sign is the rational one.
+      const std::vector<PointBounds> corners{db[0], db[1], db[2], same_plane ? db[0] : d3b};
+      const std::vector<std::array<int, 3>> tris{{0, 1, 2}, same_plane ? std::array{1, 2, 0} : std::array{0, 1, 3}};
+      std::vector<std::array<int, 2>> signs;
+      placed_surface_signs(corners, tris, 1, signs);
+      ASSERT_EQ(signs.size(), 2u);
+      const std::array<int, 4> want{want_offset, want_compare, sgn(h2), 0};
+      const std::array<int, 4> got{signs[0][0], signs[0][1], signs[1][0], signs[1][1]};
+      for (int i = 0; i < 4; ++i) {
+        EXPECT_TRUE(got[i] == kUndecidedSign || got[i] == want[i]) << "mode " << mode << ", sign " << i;
+        decided += got[i] != kUndecidedSign;
+      }
       for (const PlacedTriangle* t : {&full, &shared}) {
         EXPECT_EQ(t->offset_sign(), want_offset) << "mode " << mode;
         EXPECT_EQ(compare_distance(*t, other), want_compare) << "mode " << mode;
@@ -266,6 +280,8 @@ TEST(PlacedPredicates, TriangleOnSharedEnclosuresAgreesWithRationals) {
     }
   }
   EXPECT_GT(zeros, 100);  // the zero cases were exercised
+  std::printf("surface signs decided: %d of %d\n", decided, 300 * 4 * 4);
+  EXPECT_GT(decided, 300 * 4 * 2);  // the filters decide most signs (f against itself: 0)
 }
 
 TEST(PlacedPredicates, NearZeroFallsBackToRationals) {

@@ -934,6 +934,26 @@ void PlacedTriangle::set_from(const std::array<PointBounds, 3>& db) {
   n_ = {to_bounds(n.x), to_bounds(n.y), to_bounds(n.z)};
 }
 
+static_assert(kUndecidedSign == kUncertain);
+
+void placed_surface_signs(const std::vector<PointBounds>& d, const std::vector<std::array<int, 3>>& tris, int f,
+                          std::vector<std::array<int, 2>>& signs) {
+  CGAL::Protect_FPU_rounding<true> upward;
+  const auto plane = [&](const std::array<int, 3>& t) {
+    const std::array<FastIPoint, 3> c{iv(d[t[0]]), iv(d[t[1]]), iv(d[t[2]])};
+    const FastIPoint n = cross(c[1] - c[0], c[2] - c[0]);
+    return std::pair{dot(n, c[0]), dot(n, n)};
+  };
+  const auto [hf, nf] = plane(tris[f]);
+  const FastInterval hf2 = hf * hf;
+  signs.resize(tris.size());
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    const auto [h, nn] = plane(tris[k]);
+    signs[k] = {sign_of(h), int(k) == f ? 0 : sign_of(h * h * nf - hf2 * nn)};
+    g_counts.filtered += (signs[k][0] != kUncertain) + (signs[k][1] != kUncertain);
+  }
+}
+
 PlacedTriangle::~PlacedTriangle() = default;
 PlacedTriangle::PlacedTriangle(PlacedTriangle&&) noexcept = default;
 

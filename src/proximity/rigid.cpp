@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 #include <tuple>
 #include <unordered_map>
 #include <vector>
@@ -1762,52 +1763,64 @@ PlacedTriangle placed_triangle(const Query& qu, const std::vector<SimplexVertex>
 // The certificate of a depth (rigid_proximity.hpp) on EPA's surface.
 bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, const std::vector<EpaFace>& faces,
                    RigidDepth& r) {
-  // A closed, consistently oriented surface of genus 0: its directed edges
-  // (a, b), each once, are its reversed edges (b, a) (two sorted lists of
-  // keys a·2^32 + b compared), and V − E + F = 2.
-  std::vector<std::uint64_t> edges, reversed;
-  std::vector<int> used;
-  std::vector<char> seen(verts.size(), 0);
+  std::vector<std::array<int, 3>> tris;
   std::vector<const EpaFace*> alive;
+  int nearest = 0;
   for (const EpaFace& f : faces) {
     if (!f.alive) continue;
+    if (alive.empty() || f.dist < alive[nearest]->dist) nearest = int(alive.size());
     alive.push_back(&f);
-    for (int e = 0; e < 3; ++e) {
-      const std::uint64_t a = std::uint32_t(f.v[e]), b = std::uint32_t(f.v[(e + 1) % 3]);
-      edges.push_back(a << 32 | b), reversed.push_back(b << 32 | a);
-      if (!seen[f.v[e]]) seen[f.v[e]] = 1, used.push_back(f.v[e]);
-    }
+    tris.push_back(f.v);
   }
   const int nf = int(alive.size());
-  std::sort(edges.begin(), edges.end());
-  std::sort(reversed.begin(), reversed.end());
-  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end() || edges != reversed) return false;
-  const int nv = int(used.size());
-  if (nv - int(edges.size()) / 2 + nf != 2) return false;
+  if (nf == 0) return false;
+  // A closed, consistently oriented surface of genus 0: each directed edge
+  // (a, b) once, and (b, a) one too (each vertex's out-edges listed), and
+  // V − E + F = 2.
+  const int n = int(verts.size());
+  std::vector<int> first(n + 2, 0), to(3 * nf);
+  for (const auto& t : tris)
+    for (int e = 0; e < 3; ++e) ++first[t[e] + 2];
+  for (int a = 0; a < n; ++a) first[a + 2] += first[a + 1];
+  for (const auto& t : tris)
+    for (int e = 0; e < 3; ++e) to[first[t[e] + 1]++] = t[(e + 1) % 3];
+  const auto out = [&](int a) { return std::span<const int>(to.data() + first[a], to.data() + first[a + 1]); };
+  int nv = 0;
+  for (int a = 0; a < n; ++a) {
+    const auto oa = out(a);
+    nv += !oa.empty();
+    for (std::size_t i = 0; i < oa.size(); ++i) {
+      if (std::find(oa.begin() + i + 1, oa.end(), oa[i]) != oa.end()) return false;
+      const auto ob = out(oa[i]);
+      if (std::find(ob.begin(), ob.end(), a) == ob.end()) return false;
+    }
+  }
+  if (nv - 3 * nf / 2 + nf != 2) return false;
   // The enclosures of the surface's vertices, once (each is a corner of
-  // several faces).
-  std::vector<PointBounds> db(verts.size());
-  for (int v = 0; v < nv; ++v) {
-    const SimplexVertex& x = verts[used[v]];
-    db[used[v]] = placed_difference_bounds(qu.P.map, qu.dp.bounds[x.p], qu.Q.map, qu.dq.bounds[x.q]);
-  }
-  std::vector<PlacedTriangle> tris;
-  tris.reserve(nf);
-  int nearest = 0;
-  for (int k = 0; k < nf; ++k) {
-    tris.push_back(placed_triangle(qu, verts, *alive[k], &db));
-    if (tris.back().offset_sign() <= 0) return false;
-    if (alive[k]->dist < alive[nearest]->dist) nearest = k;
-  }
-  const PlacedTriangle& F = tris[nearest];
+  // several faces), and the filters of every face on them.
+  std::vector<PointBounds> db(n);
+  for (int a = 0; a < n; ++a)
+    if (first[a + 1] > first[a])
+      db[a] = placed_difference_bounds(qu.P.map, qu.dp.bounds[verts[a].p], qu.Q.map, qu.dq.bounds[verts[a].q]);
+  std::vector<std::array<int, 2>> signs;
+  placed_surface_signs(db, tris, nearest, signs);
+  const PlacedTriangle F = placed_triangle(qu, verts, *alive[nearest], &db);
   const EpaFace& f = *alive[nearest];
   const LevelSets level = level_sets(qu, verts, f);
+  // Each face's exact signs only where its intervals leave them undecided.
   for (int k = 0; k < nf; ++k) {
-    if (k == nearest) continue;
+    const int offset = signs[k][0];
+    if (offset == 0 || offset == -1) return false;
+    if (offset == kUndecidedSign &&
+        (k == nearest ? F.offset_sign() : placed_triangle(qu, verts, *alive[k], &db).offset_sign()) <= 0)
+      return false;
+    if (k == nearest || signs[k][1] == 0 || signs[k][1] == 1) continue;
     bool coplanar = true;
     for (int j = 0; j < 3 && coplanar; ++j)
       coplanar = in(level.p, verts[alive[k]->v[j]].p) && in(level.q, verts[alive[k]->v[j]].q);
-    if (!coplanar && compare_distance(tris[k], F) < 0) return false;
+    if (!coplanar &&
+        (signs[k][1] == -1 || compare_distance(placed_triangle(qu, verts, *alive[k], &db), F) < 0))
+      return false;
   }
   if (!plane_supports(qu, F, level, verts[f.v[0]].p, verts[f.v[0]].q)) return false;
   for (int j = 0; j < 3; ++j) r.p[j] = verts[f.v[j]].p, r.q[j] = verts[f.v[j]].q;

@@ -79,6 +79,7 @@
 #include <memory>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace minksum {
 
@@ -394,6 +395,18 @@ class PlacedTriangle {
   mutable std::unique_ptr<Exact> exact_;
   void set_from(const std::array<PointBounds, 3>& d);
 };
+
+// PlacedTriangle's two filters for every triangle of one surface of D on
+// its corners' shared enclosures `d` (each from placed_difference_bounds),
+// in one rounding scope: signs[k] = {sign h_k, sign (h_k² |n_f|² −
+// h_f² |n_k|²)} for the triangle k of `tris` (indices into d) against the
+// triangle f (0 for f itself), each where its interval decides,
+// kUndecidedSign where it does not: the exact sign is then PlacedTriangle's
+// offset_sign or compare_distance.  The intervals are PlacedTriangle's, so
+// a sign decided here is the one its filter decides.
+inline constexpr int kUndecidedSign = 2;
+void placed_surface_signs(const std::vector<PointBounds>& d, const std::vector<std::array<int, 3>>& tris, int f,
+                          std::vector<std::array<int, 2>>& signs);
 
 // An enclosure of A_p p + t_p − (A_q q + t_q) from enclosures of p and q
 // (intervals rounded outward): the enclosure of a point of D that

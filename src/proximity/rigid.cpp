@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <span>
@@ -1587,9 +1588,11 @@ RigidDistanceExact exact_values(const RigidBody& p, const RigidPose& pose_p, con
 namespace {
 
 // EPA's surface: triangles of vertices of D, each outward (the origin on
-// the inner side), with the unit normal and distance of its plane.
+// the inner side), with the unit normal and distance of its plane, and
+// the face across each edge (v[e], v[e + 1]) as 3 · face + its edge.
 struct EpaFace {
   std::array<int, 3> v;
+  std::array<int, 3> adj;
   V3 n;
   double dist;
   bool alive;
@@ -1600,21 +1603,67 @@ bool epa_face(const std::vector<SimplexVertex>& verts, int a, int b, int c, EpaF
   const double l = std::sqrt(dot(n, n));
   if (!(l > 0) || !std::isfinite(l)) return false;
   f.v = {a, b, c};
+  f.adj = {-1, -1, -1};
   f.n = (1 / l) * n;
   f.dist = dot(f.n, verts[a].w);
   f.alive = true;
   return true;
 }
 
+// The faces of EPA's surface by distance (a min-heap of (dist, face);
+// faces no longer alive are skipped when they come up).
+using FaceQueue = std::vector<std::pair<double, int>>;
+
+void queue_face(FaceQueue& queue, const std::vector<EpaFace>& faces, int k) {
+  queue.push_back({faces[k].dist, k});
+  std::push_heap(queue.begin(), queue.end(), std::greater<>());
+}
+
+int nearest_face(const std::vector<SimplexVertex>&, const std::vector<EpaFace>& faces, FaceQueue& queue) {
+  while (!queue.empty() && !faces[queue.front().second].alive) {
+    std::pop_heap(queue.begin(), queue.end(), std::greater<>());
+    queue.pop_back();
+  }
+  return queue.empty() ? -1 : queue.front().second;
+}
+
+// An edge of the horizon: (a, b) as in the removed faces, and the face
+// left alive across it (3 · face + its edge).
+struct HorizonEdge {
+  int a, b, outer;
+};
+
+// The faces that see w, from the face g entered across its edge e (g's
+// side of an edge of a removed face): removed, depth first, each face's
+// other two edges in turn, so that the horizon comes out as one loop in
+// order when the removed faces form a disc.
+void remove_visible(const std::vector<SimplexVertex>& verts, std::vector<EpaFace>& faces, const V3& w, int g, int e,
+                    std::vector<HorizonEdge>& horizon) {
+  EpaFace& f = faces[g];
+  if (!f.alive) return;
+  if (!(dot(f.n, w - verts[f.v[0]].w) > 0)) {
+    horizon.push_back({f.v[(e + 1) % 3], f.v[e], 3 * g + e});
+    return;
+  }
+  f.alive = false;
+  for (int k = 1; k < 3; ++k) {
+    const int across = faces[g].adj[(e + k) % 3];
+    remove_visible(verts, faces, w, across / 3, across % 3, horizon);
+  }
+}
+
 // Grows the tetrahedron s (holding the origin) towards ∂D in doubles, each
 // time at the face `select` picks (EPA: the nearest; a ray: the one it
 // crosses), until the support along that face's normal brings no new
-// vertex.  False when the search degenerates (no certificate is tried).
+// vertex.  A new vertex replaces the faces that see it, found across the
+// surface's edges from the picked face, by the cone over their horizon.
+// False when the search degenerates (no certificate is tried).
 template <class Select>
 bool grow(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<SimplexVertex>& verts,
           std::vector<EpaFace>& faces, const Select& select) {
   verts.assign(s.begin(), s.end());
   faces.clear();
+  FaceQueue queue;
   static constexpr int tri[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
   for (const auto& t : tri) {
     EpaFace f;
@@ -1622,10 +1671,21 @@ bool grow(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<Si
     if (dot(f.n, verts[t[3]].w - verts[t[0]].w) > 0 && !epa_face(verts, t[0], t[2], t[1], f)) return false;
     faces.push_back(f);
   }
-  std::vector<std::pair<int, int>> edges;
+  for (int g = 0; g < 4; ++g)
+    for (int e = 0; e < 3; ++e)
+      for (int h = 0; h < 4; ++h)
+        for (int x = 0; x < 3; ++x)
+          if (faces[h].v[x] == faces[g].v[(e + 1) % 3] && faces[h].v[(x + 1) % 3] == faces[g].v[e])
+            faces[g].adj[e] = 3 * h + x;
+  for (int g = 0; g < 4; ++g) {
+    for (int e = 0; e < 3; ++e)
+      if (faces[g].adj[e] < 0) return false;
+    queue_face(queue, faces, g);
+  }
+  std::vector<HorizonEdge> horizon;
   for (int it = 0; it < 4 * kMaxIterations; ++it) {
     ++g_stats.iterations;
-    const int best = select(verts, faces);
+    const int best = select(verts, faces, queue);
     if (best < 0) return false;
     const EpaFace f = faces[best];
     const SimplexVertex& a0 = verts[f.v[0]];
@@ -1636,38 +1696,32 @@ bool grow(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<Si
     if (known || gain <= 1e-14 * std::max(1.0, std::fabs(f.dist))) return true;
     const int iw = int(verts.size());
     verts.push_back(w);
-    edges.clear();
-    for (EpaFace& g : faces) {
-      if (!g.alive || !(dot(g.n, w.w - verts[g.v[0]].w) > 0)) continue;
-      g.alive = false;
-      for (int e = 0; e < 3; ++e) edges.push_back({g.v[e], g.v[(e + 1) % 3]});
-    }
-    const std::size_t old = faces.size();
-    for (const auto& [a, b] : edges) {
-      bool twin = false;
-      for (const auto& [c, d] : edges) twin = twin || (c == b && d == a);
-      if (twin) continue;
+    horizon.clear();
+    faces[best].alive = false;
+    for (int e = 0; e < 3; ++e) remove_visible(verts, faces, w.w, f.adj[e] / 3, f.adj[e] % 3, horizon);
+    const int m = int(horizon.size());
+    if (m < 3) return false;
+    for (int k = 0; k < m; ++k)
+      if (horizon[k].b != horizon[(k + 1) % m].a) return false;
+    const int first = int(faces.size());
+    for (int k = 0; k < m; ++k) {
       EpaFace g;
-      if (!epa_face(verts, a, b, iw, g)) return false;
+      if (!epa_face(verts, horizon[k].a, horizon[k].b, iw, g)) return false;
+      g.adj = {horizon[k].outer, 3 * (first + (k + 1) % m) + 2, 3 * (first + (k + m - 1) % m) + 1};
+      faces[horizon[k].outer / 3].adj[horizon[k].outer % 3] = 3 * (first + k);
       faces.push_back(g);
+      queue_face(queue, faces, first + k);
     }
-    if (faces.size() == old) return false;
   }
   return false;
-}
-
-int nearest_face(const std::vector<SimplexVertex>&, const std::vector<EpaFace>& faces) {
-  int best = -1;
-  for (int k = 0; k < int(faces.size()); ++k)
-    if (faces[k].alive && (best < 0 || faces[k].dist < faces[best].dist)) best = k;
-  return best;
 }
 
 // The face whose cone from the origin holds the direction u best (the
 // largest of the smallest of its three edge determinants, normalised).
 struct CrossedFace {
   V3 u;
-  int operator()(const std::vector<SimplexVertex>& verts, const std::vector<EpaFace>& faces) const {
+  int operator()(const std::vector<SimplexVertex>& verts, const std::vector<EpaFace>& faces,
+                 const FaceQueue& = {}) const {
     int best = -1;
     double best_score = -std::numeric_limits<double>::infinity();
     for (int k = 0; k < int(faces.size()); ++k) {

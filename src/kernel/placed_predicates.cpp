@@ -370,18 +370,24 @@ void PulledDirection::make_enclosure() const {
   }
 }
 
+int PulledDirection::second_stage(const PointBounds& ab, const PointBounds& bb) const {
+  static_assert(kOpen == kUncertain);
+  if (!enclosure_) make_enclosure();
+  CGAL::Protect_FPU_rounding<true> upward;
+  const FastIPoint d = iv(bb) - iv(ab);
+  const int s = sign_of(iv(u_[0]) * d.x + iv(u_[1]) * d.y + iv(u_[2]) * d.z);
+  if (s != kUncertain) ++g_counts.filtered;
+  return s;
+}
+
+int PulledDirection::difference_sign_filter(const PointBounds& ab, const PointBounds& bb) const {
+  const int s = first_stage(ab, bb);
+  return s != kOpen ? s : second_stage(ab, bb);
+}
+
 int PulledDirection::difference_sign_later(const Point3& a, const PointBounds& ab, const Point3& b,
                                            const PointBounds& bb) const {
-  if (!enclosure_) make_enclosure();
-  {
-    CGAL::Protect_FPU_rounding<true> upward;
-    const FastIPoint d = iv(bb) - iv(ab);
-    const int s = sign_of(iv(u_[0]) * d.x + iv(u_[1]) * d.y + iv(u_[2]) * d.z);
-    if (s != kUncertain) {
-      ++g_counts.filtered;
-      return s;
-    }
-  }
+  if (const int s = second_stage(ab, bb); s != kOpen) return s;
   if (m_->linear_doubles() && exact_double(ab) && exact_double(bb)) return difference_sign_integers(ab, bb);
   if (!exact_) {
     Point3 u;

@@ -111,11 +111,10 @@ struct Placed {
     }
   }
   // The same with exact signs: from v, move to a neighbour that is further
-  // along n (exactly) until none is.  A vertex no neighbour of which is
-  // further is a maximum over the polytope (its cone of edges holds the
-  // polytope).
-  Index certified_support(const Vec3d& n, Index v) const {
-    const PulledDirection u(map, n);
+  // along u's direction n (exactly) until none is.  A vertex no neighbour of
+  // which is further is a maximum over the polytope (its cone of edges
+  // holds the polytope).
+  Index certified_support(const PulledDirection& u, Index v) const {
     for (;;) {
       Index next = v;
       const Point3& pv = d.exact[v];
@@ -130,6 +129,39 @@ struct Placed {
       v = next;
       ++g_stats.climb_steps;
     }
+  }
+  // The vertices near the maximum along u's direction n, by the filters
+  // alone (no exact sign): from v, move to a neighbour proved further while
+  // v is alone; then gather into `top` every vertex reached from it by an
+  // edge not proved to go down.  Every edge leaving `top` then goes strictly
+  // down, so the vertex of `top` highest along n has no higher neighbour:
+  // it is the maximum over the polytope.  False when more than
+  // TopCluster::kMax vertices would be gathered.
+  struct TopCluster {
+    static constexpr int kMax = 16;
+    std::array<Index, kMax> v;
+    int n = 0;
+    bool has(Index x) const { return std::find(v.begin(), v.begin() + n, x) != v.begin() + n; }
+  };
+  bool top_cluster(const PulledDirection& u, Index v, TopCluster& top) const {
+    top.v[0] = v, top.n = 1;
+    for (int i = 0; i < top.n; ++i) {
+      const Index x = top.v[i];
+      for (Index k = d.first[x]; k < d.first[x + 1]; ++k) {
+        const Index w = d.nbr[k];
+        if (top.has(w)) continue;
+        const int s = u.difference_sign_filter(d.bounds[x], d.bounds[w]);
+        if (s == -1) continue;
+        if (s == 1 && top.n == 1) {  // a climb step: start again from w
+          top.v[0] = w, i = -1;
+          ++g_stats.climb_steps;
+          break;
+        }
+        if (top.n == TopCluster::kMax) return false;
+        top.v[top.n++] = w;
+      }
+    }
+    return true;
   }
 };
 
@@ -256,8 +288,28 @@ struct Query {
   // `open`, a gap the filters leave open is not evaluated exactly: *open is
   // set and the caller may evaluate it later (exact_gap).
   bool certify_separation(const Vec3d& n, Index& ip, Index& iq, bool* open = nullptr) const {
-    ip = P.certified_support(n, ip);
-    iq = Q.certified_support(Vec3d{-n.x, -n.y, -n.z}, iq);
+    if (open) *open = false;
+    const PulledDirection up(P.map, n), uq(Q.map, Vec3d{-n.x, -n.y, -n.z});
+    // The filters alone first: the maximum of P along n lies in P's top
+    // cluster and the minimum of Q in Q's, so the plane separates strictly
+    // when every pair of the two is proved apart along n, and does not when
+    // one pair is proved not apart.  Near a contact a facet's vertices are
+    // level within rounding along its normal, where only exact signs would
+    // say which is the maximum; the gap between the bodies decides without
+    // it.
+    Placed::TopCluster tp, tq;
+    if (P.top_cluster(up, ip, tp) && Q.top_cluster(uq, iq, tq)) {
+      int worst = 1;
+      for (int i = 0; i < tp.n && worst == 1; ++i)
+        for (int j = 0; j < tq.n && worst == 1; ++j)
+          worst = placed_gap_filter(n, P.map, dp.bounds[tp.v[i]], Q.map, dq.bounds[tq.v[j]]);
+      if (worst != kGapOpen) {
+        ip = tp.v[0], iq = tq.v[0];
+        return worst == 1;
+      }
+    }
+    ip = P.certified_support(up, ip);
+    iq = Q.certified_support(uq, iq);
     if (open) {
       const int f = placed_gap_filter(n, P.map, dp.bounds[ip], Q.map, dq.bounds[iq]);
       *open = f == kGapOpen;

@@ -184,8 +184,24 @@ class PulledDirection {
   // once both are placed (the step of a support climb).  Degree 3 in the
   // entries of n, A and the points.
   int difference_sign(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const {
+    const int s = first_stage(ab, bb);
+    return s != kOpen ? s : difference_sign_later(a, ab, b, bb);
+  }
+  // Its first two stages alone (doubles, then intervals): −1, 0 or +1 when
+  // they decide, the sign above; kOpen when they do not.
+  static constexpr int kOpen = 2;
+  int difference_sign_filter(const PointBounds& ab, const PointBounds& bb) const;
+  const Vec3d& direction() const { return n_; }
+
+ private:
+  const PlacedMap* m_;
+  Vec3d n_;
+  mutable std::array<Bounds, 3> u_{};
+  mutable bool enclosure_ = false;
+  void make_enclosure() const;
+  // Stage 1 (the bound at the top of this header), or kOpen.
+  int first_stage(const PointBounds& ab, const PointBounds& bb) const {
     if (fast_ && ab.doubles && bb.doubles) {
-      // Stage 1 (the bound at the top of this header).
       const double ax = ab.x.lo, ay = ab.y.lo, az = ab.z.lo, bx = bb.x.lo, by = bb.y.lo, bz = bb.z.lo;
       const double s = (uf_[0] * (bx - ax) + uf_[1] * (by - ay)) + uf_[2] * (bz - az);
       const double m = (um_[0] * (std::fabs(ax) + std::fabs(bx)) + um_[1] * (std::fabs(ay) + std::fabs(by))) +
@@ -195,17 +211,10 @@ class PulledDirection {
       if (scaled < -m) return -1;
       if (m == 0) return 0;
     }
-    return difference_sign_later(a, ab, b, bb);
+    return kOpen;
   }
-  const Vec3d& direction() const { return n_; }
-
- private:
-  const PlacedMap* m_;
-  Vec3d n_;
-  mutable std::array<Bounds, 3> u_{};
-  mutable bool enclosure_ = false;
-  void make_enclosure() const;
-  // Stages 2 and 3.
+  // Stage 2 (intervals), or kOpen; stages 2 and 3.
+  int second_stage(const PointBounds& ab, const PointBounds& bb) const;
   int difference_sign_later(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
   int difference_sign_integers(const PointBounds& ab, const PointBounds& bb) const;
   // Stage 1: û and U (see the top), when A and n are doubles in range.

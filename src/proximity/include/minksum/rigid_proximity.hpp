@@ -114,9 +114,11 @@ const char* rigid_certificate_name(RigidCertificate c);
 struct RigidCollision {
   ContactStatus status = ContactStatus::separate;
   RigidCertificate certificate = RigidCertificate::exact;
-  // separating_plane: the direction n (taken exactly) and the vertices p of
-  // P and q of Q with n·p' = max over placed P, n·q' = min over placed Q,
-  // n·p' < n·q'.  feature_plane: n the nearest doubles of the plane's exact
+  // separating_plane: the direction n (taken exactly) and vertices p of P
+  // and q of Q with n·x' < n·q' for every vertex x of placed P and n·y' >
+  // n·p' for every vertex y of placed Q (p and q: where the search's climbs
+  // ended, at or within rounding of the maximum and the minimum along n;
+  // docs/proximity.md, "Certificates").  feature_plane: n the nearest doubles of the plane's exact
   // normal N, p and q with N·p' = max over placed P = min over placed Q
   // (touching) or < it (separate).  Otherwise n is zero and p, q the last
   // support pair of the search.

@@ -71,6 +71,10 @@ inline V3 cross(const V3& a, const V3& b) {
 }
 inline V3 v3(const Vec3d& v) { return {v.x, v.y, v.z}; }
 
+// Bodies of at most this many vertices are scanned whole for a support in
+// doubles: cheaper than a seed and a climb's branches at that size.
+constexpr std::size_t kScanVertices = 16;
+
 // One placed body for the search: the pose's doubles.
 struct Placed {
   const RigidBody::Data& d;
@@ -93,6 +97,13 @@ struct Placed {
   Index support(const V3& n, Index v) const {
     const V3 u = pull(n);
     double best = dot(u, v3(d.approx[v]));
+    if (d.approx.size() <= kScanVertices) {  // a few vertices: all of them (v kept on a tie)
+      for (Index w = 0; w < Index(d.approx.size()); ++w) {
+        const double s = dot(u, v3(d.approx[w]));
+        if (s > best) best = s, v = w;
+      }
+      return v;
+    }
     if (!d.seeds.empty()) {  // from the better of v and u's seed
       const Index s = d.seed(u.x, u.y, u.z);
       const double at_s = dot(u, v3(d.approx[s]));

@@ -1696,6 +1696,24 @@ struct HorizonEdge {
   int a, b, outer;
 };
 
+// EPA's working storage, kept by each thread from one query to the next
+// (cleared, not freed): a depth query then allocates nothing once warm.
+struct EpaScratch {
+  std::vector<SimplexVertex> verts;
+  std::vector<EpaFace> faces;
+  FaceQueue queue;
+  std::vector<HorizonEdge> horizon;
+  std::vector<std::array<int, 3>> tris;
+  std::vector<const EpaFace*> alive;
+  std::vector<int> first, to;
+  std::vector<PointBounds> db;
+  std::vector<std::array<int, 2>> signs;
+};
+EpaScratch& epa_scratch() {
+  thread_local EpaScratch s;
+  return s;
+}
+
 // The faces that see w, from the face g entered across its edge e (g's
 // side of an edge of a removed face): removed, depth first, each face's
 // other two edges in turn, so that the horizon comes out as one loop in
@@ -1726,7 +1744,8 @@ bool grow(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<Si
           std::vector<EpaFace>& faces, const Select& select) {
   verts.assign(s.begin(), s.end());
   faces.clear();
-  FaceQueue queue;
+  FaceQueue& queue = epa_scratch().queue;
+  queue.clear();
   static constexpr int tri[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
   for (const auto& t : tri) {
     EpaFace f;
@@ -1745,7 +1764,7 @@ bool grow(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<Si
       if (faces[g].adj[e] < 0) return false;
     queue_face(queue, faces, g);
   }
-  std::vector<HorizonEdge> horizon;
+  std::vector<HorizonEdge>& horizon = epa_scratch().horizon;
   for (int it = 0; it < 4 * kMaxIterations; ++it) {
     ++g_stats.iterations;
     const int best = select(verts, faces, queue);
@@ -1880,8 +1899,10 @@ PlacedTriangle placed_triangle(const Query& qu, const std::vector<SimplexVertex>
 // The certificate of a depth (rigid_proximity.hpp) on EPA's surface.
 bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, const std::vector<EpaFace>& faces,
                    RigidDepth& r) {
-  std::vector<std::array<int, 3>> tris;
-  std::vector<const EpaFace*> alive;
+  EpaScratch& scratch = epa_scratch();
+  std::vector<std::array<int, 3>>& tris = scratch.tris;
+  std::vector<const EpaFace*>& alive = scratch.alive;
+  tris.clear(), alive.clear();
   int nearest = 0;
   for (const EpaFace& f : faces) {
     if (!f.alive) continue;
@@ -1895,7 +1916,9 @@ bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, con
   // (a, b) once, and (b, a) one too (each vertex's out-edges listed), and
   // V − E + F = 2.
   const int n = int(verts.size());
-  std::vector<int> first(n + 2, 0), to(3 * nf);
+  std::vector<int>& first = scratch.first;
+  std::vector<int>& to = scratch.to;
+  first.assign(n + 2, 0), to.resize(3 * nf);
   for (const auto& t : tris)
     for (int e = 0; e < 3; ++e) ++first[t[e] + 2];
   for (int a = 0; a < n; ++a) first[a + 2] += first[a + 1];
@@ -1915,11 +1938,12 @@ bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, con
   if (nv - 3 * nf / 2 + nf != 2) return false;
   // The enclosures of the surface's vertices, once (each is a corner of
   // several faces), and the filters of every face on them.
-  std::vector<PointBounds> db(n);
+  std::vector<PointBounds>& db = scratch.db;
+  db.resize(n);
   for (int a = 0; a < n; ++a)
     if (first[a + 1] > first[a])
       db[a] = placed_difference_bounds(qu.P.map, qu.dp.bounds[verts[a].p], qu.Q.map, qu.dq.bounds[verts[a].q]);
-  std::vector<std::array<int, 2>> signs;
+  std::vector<std::array<int, 2>>& signs = scratch.signs;
   placed_surface_signs(db, tris, nearest, signs);
   const PlacedTriangle F = placed_triangle(qu, verts, *alive[nearest], &db);
   const EpaFace& f = *alive[nearest];
@@ -2013,8 +2037,8 @@ RigidDepth penetration_depth(const RigidBody& p, const RigidPose& pose_p, const 
   // EPA from collide's tetrahedron; when its surface is not certified (the
   // doubles' choices), once more from the search's.
   std::array<SimplexVertex, 4> s;
-  std::vector<SimplexVertex> verts;
-  std::vector<EpaFace> faces;
+  std::vector<SimplexVertex>& verts = epa_scratch().verts;
+  std::vector<EpaFace>& faces = epa_scratch().faces;
   if ((collision_tetrahedron(qu, *warm, s) && grow(qu, s, verts, faces, nearest_face) &&
        certify_depth(qu, verts, faces, r)) ||
       (search_tetrahedron(qu, checked_start(p, q, warm), s) && grow(qu, s, verts, faces, nearest_face) &&
@@ -2088,8 +2112,8 @@ RigidDirectionalDepth directional_depth(const RigidBody& p, const RigidPose& pos
   const Point3 u = -d;  // the ray leaves D at −α d
   const PointBounds ub = point_bounds(u);
   const Vec3d ud = to_double(u);
-  std::vector<SimplexVertex> verts;
-  std::vector<EpaFace> faces;
+  std::vector<SimplexVertex>& verts = epa_scratch().verts;
+  std::vector<EpaFace>& faces = epa_scratch().faces;
   const CrossedFace crossed{V3{ud.x, ud.y, ud.z}};
   // From collide's tetrahedron, then (its surface not certified) from the
   // search's, as for the depth.

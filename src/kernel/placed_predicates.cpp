@@ -380,11 +380,6 @@ int PulledDirection::second_stage(const PointBounds& ab, const PointBounds& bb) 
   return s;
 }
 
-int PulledDirection::difference_sign_filter(const PointBounds& ab, const PointBounds& bb) const {
-  const int s = first_stage(ab, bb);
-  return s != kOpen ? s : second_stage(ab, bb);
-}
-
 int PulledDirection::difference_sign_later(const Point3& a, const PointBounds& ab, const Point3& b,
                                            const PointBounds& bb) const {
   if (const int s = second_stage(ab, bb); s != kOpen) return s;

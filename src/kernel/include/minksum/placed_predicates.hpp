@@ -190,7 +190,10 @@ class PulledDirection {
   // Its first two stages alone (doubles, then intervals): −1, 0 or +1 when
   // they decide, the sign above; kOpen when they do not.
   static constexpr int kOpen = 2;
-  int difference_sign_filter(const PointBounds& ab, const PointBounds& bb) const;
+  int difference_sign_filter(const PointBounds& ab, const PointBounds& bb) const {
+    const int s = first_stage(ab, bb);
+    return s != kOpen ? s : second_stage(ab, bb);
+  }
   const Vec3d& direction() const { return n_; }
 
  private:

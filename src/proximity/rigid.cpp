@@ -630,6 +630,7 @@ class FeaturePlane {
     double gap;
     bool flip = false;
     Index from_p = 0, from_q = 0;  // the double supports along it
+    int order = 0;                 // its place in the list before ranking
   };
   V3 normal_double(const Candidate& c) const {
     switch (c.kind) {
@@ -675,10 +676,14 @@ class FeaturePlane {
   // proves nothing h_P > l_Q.  So each candidate's normal, oriented as
   // the exact one will be, and the gap l_Q − h_P along it over the double
   // supports (climbed from the simplex's first pair) rank them, largest
-  // first; the exact climbs start from those supports.
+  // first (ties in the list's order); the exact climbs start from those
+  // supports.  A facet of P found around a vertex (not oriented) supports
+  // P: its corner a is P's support along it, and likewise for Q's.
   void rank(std::vector<Candidate>& list, const std::vector<Index>& sp, const std::vector<Index>& sq) const {
     const V3 cp = centre(qu_.P), cq = centre(qu_.Q);
+    int order = 0;
     for (Candidate& c : list) {
+      c.order = order++;
       V3 nd = normal_double(c);
       if (c.orient) {
         // Orient N so that P's centre (a facet of P), Q's centre (a facet
@@ -697,11 +702,16 @@ class FeaturePlane {
         continue;
       }
       nd = (1 / l) * nd;
-      c.from_p = qu_.P.support(nd, sp[0]), c.from_q = qu_.Q.support(-nd, sq[0]);
+      const bool facet_p = c.kind == Candidate::p_facet && !c.orient;
+      const bool facet_q = c.kind == Candidate::q_facet && !c.orient;
+      c.from_p = facet_p ? c.a : qu_.P.support(nd, sp[0]);
+      c.from_q = facet_q ? c.a : qu_.Q.support(-nd, sq[0]);
       c.gap = dot(nd, qu_.Q.point(c.from_q) - qu_.P.point(c.from_p));
       if (!std::isfinite(c.gap)) c.gap = -std::numeric_limits<double>::infinity();
     }
-    std::stable_sort(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) { return a.gap > b.gap; });
+    std::sort(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) {
+      return a.gap > b.gap || (a.gap == b.gap && a.order < b.order);
+    });
   }
   Point3 normal_exact(const Candidate& c) {
     switch (c.kind) {

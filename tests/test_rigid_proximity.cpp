@@ -1607,6 +1607,60 @@ TEST(RigidDepth, AgreesWithTheExactObstacleOnRandomPoses) {
   expect_depths_agree("cube@scale:1/3", "tetra@rot:2", 40, 0.3, 95, 0);
 }
 
+TEST(RigidDepth, NearTouchingOnNearlyCoplanarFacetsGrowsPastRefutedFaces) {
+  // A cylinder at 1e-9 inside its contact with the flattened hull: EPA's
+  // doubles stop on a face whose plane a vertex of D passes by less than
+  // they resolve.  The exact climbs that refute the face find that vertex,
+  // and EPA grows on from it (penetration_depth's continuation) where M
+  // was built.  Every depth is the exact obstacle's.
+  const std::uint64_t seed = 52;
+  Rng r(seed);
+  // The box [-1, 1]^3 with faces bulging by 1e-7 (a 30 x 30 grid each) and
+  // a cylinder of 600 sides, radius 0.8, height 2, their points rounded to
+  // floats as a mesh file stores them: on the box, runs of facets within
+  // rounding of one plane.
+  const auto to_float = [](double x) { return double(float(x)); };
+  PointList box_points, cylinder_points;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double side : {-1.0, 1.0})
+      for (int i = 0; i < 30; ++i)
+        for (int j = 0; j < 30; ++j) {
+          double c[3];
+          const double x = -1 + i * 2 / 29.0, y = -1 + j * 2 / 29.0;
+          c[axis] = to_float(side * (1 + 0.5e-7 * (2 - x * x - y * y)));
+          c[(axis + 1) % 3] = to_float(x), c[(axis + 2) % 3] = to_float(y);
+          box_points.push_back(Vec3d{c[0], c[1], c[2]});
+        }
+  for (int k = 0; k < 600; ++k)
+    for (double z : {-1.0, 1.0}) {
+      const double t = 2 * M_PI * k / 600;
+      cylinder_points.push_back(Vec3d{to_float(0.8 * std::cos(t)), to_float(0.8 * std::sin(t)), z});
+    }
+  const ConvexPolytope hull = ConvexPolytope::hull(box_points), small = ConvexPolytope::hull(cylinder_points);
+  const RigidBody a(hull), b(small);
+  const RigidStats before = rigid_stats();
+  int penetrating = 0;
+  RigidWarmStart warm;
+  near_contact_poses(r, hull, small, 1 - 1e-9,
+                     [&](const RigidPose& pa, const RigidPose& pb, TranslationalObstacle& ob, const Point3& s,
+                         const std::string& where) {
+                       const RigidDepth d = penetration_depth(a, pa, b, pb, &warm);
+                       const std::string what = "seed " + std::to_string(seed) + ", " + where;
+                       const DepthResult want = ob.penetration_depth(Point3(0, 0, 0), s);
+                       ASSERT_EQ(d.status, want.status) << what;
+                       if (d.status != ContactStatus::penetrating) return;
+                       ++penetrating;
+                       EXPECT_EQ(exact_values(a, pa, b, pb, d).squared_depth, want.squared_depth()) << what;
+                     });
+  const RigidStats after = rigid_stats();
+  std::printf("vertices added past refuted faces: %llu; M built: %llu\n",
+              static_cast<unsigned long long>(after.epa_continuations - before.epa_continuations),
+              static_cast<unsigned long long>(after.exact - before.exact));
+  EXPECT_GT(penetrating, 150) << "seed " << seed;
+  EXPECT_GT(after.epa_continuations, before.epa_continuations) << "seed " << seed;
+  EXPECT_EQ(after.exact - before.exact, 0u) << "seed " << seed;  // 16 without the continuation
+}
+
 TEST(RigidDepth, AxisAlignedOverlapAndContactsAtAHair) {
   // Aligned cubes overlapping by 1/2 along x: D's nearest facet is a square
   // (the surface's triangles on it are coplanar: ties decided exactly).

@@ -354,6 +354,9 @@ struct Query {
 };
 
 constexpr int kMaxIterations = 128;
+// Vertices of D a depth's surface takes beyond a nearest face that the
+// exact climbs refute (penetration_depth), before M.
+constexpr int kDepthContinuations = 8;
 
 // The calling thread's count of answers proved by c.
 void count(RigidCertificate c) {
@@ -1743,15 +1746,10 @@ void remove_visible(const std::vector<SimplexVertex>& verts, std::vector<EpaFace
   }
 }
 
-// Grows the tetrahedron s (holding the origin) towards ∂D in doubles, each
-// time at the face `select` picks (EPA: the nearest; a ray: the one it
-// crosses), until the support along that face's normal brings no new
-// vertex.  A new vertex replaces the faces that see it, found across the
-// surface's edges from the picked face, by the cone over their horizon.
-// False when the search degenerates (no certificate is tried).
-template <class Select>
-bool grow(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<SimplexVertex>& verts,
-          std::vector<EpaFace>& faces, const Select& select) {
+// The tetrahedron s (holding the origin) as EPA's first surface: four
+// outward faces, their neighbours, the queue.
+bool start_surface(const std::array<SimplexVertex, 4>& s, std::vector<SimplexVertex>& verts,
+                   std::vector<EpaFace>& faces) {
   verts.assign(s.begin(), s.end());
   faces.clear();
   FaceQueue& queue = epa_scratch().queue;
@@ -1774,36 +1772,55 @@ bool grow(const Query& qu, const std::array<SimplexVertex, 4>& s, std::vector<Si
       if (faces[g].adj[e] < 0) return false;
     queue_face(queue, faces, g);
   }
+  return true;
+}
+
+// The vertex w, beyond the face `best`, replaces that face and the faces
+// that see it (found across edges from it) by the cone over their horizon.
+// False when the horizon is not one loop or a new face degenerates.
+bool insert_vertex(std::vector<SimplexVertex>& verts, std::vector<EpaFace>& faces, int best,
+                   const SimplexVertex& w) {
   std::vector<HorizonEdge>& horizon = epa_scratch().horizon;
+  const int iw = int(verts.size());
+  verts.push_back(w);
+  horizon.clear();
+  faces[best].alive = false;
+  const std::array<int, 3> adj = faces[best].adj;
+  for (int e = 0; e < 3; ++e) remove_visible(verts, faces, w.w, adj[e] / 3, adj[e] % 3, horizon);
+  const int m = int(horizon.size());
+  if (m < 3) return false;
+  for (int k = 0; k < m; ++k)
+    if (horizon[k].b != horizon[(k + 1) % m].a) return false;
+  const int first = int(faces.size());
+  for (int k = 0; k < m; ++k) {
+    EpaFace g;
+    if (!epa_face(verts, horizon[k].a, horizon[k].b, iw, g)) return false;
+    g.adj = {horizon[k].outer, 3 * (first + (k + 1) % m) + 2, 3 * (first + (k + m - 1) % m) + 1};
+    faces[horizon[k].outer / 3].adj[horizon[k].outer % 3] = 3 * (first + k);
+    faces.push_back(g);
+    queue_face(epa_scratch().queue, faces, first + k);
+  }
+  return true;
+}
+
+// Grows EPA's surface towards ∂D in doubles, each time at the face `select`
+// picks (EPA: the nearest; a ray: the one it crosses), until the support
+// along that face's normal brings no new vertex.  False when the search
+// degenerates (no certificate is tried).
+template <class Select>
+bool grow(const Query& qu, std::vector<SimplexVertex>& verts, std::vector<EpaFace>& faces, const Select& select) {
   for (int it = 0; it < 4 * kMaxIterations; ++it) {
     ++g_stats.iterations;
-    const int best = select(verts, faces, queue);
+    const int best = select(verts, faces, epa_scratch().queue);
     if (best < 0) return false;
-    const EpaFace f = faces[best];
+    const EpaFace& f = faces[best];
     const SimplexVertex& a0 = verts[f.v[0]];
     const SimplexVertex w = qu.support(f.n, a0.p, a0.q);
     const double gain = dot(f.n, w.w) - f.dist;
     bool known = false;
     for (const SimplexVertex& x : verts) known = known || (x.p == w.p && x.q == w.q);
     if (known || gain <= 1e-14 * std::max(1.0, std::fabs(f.dist))) return true;
-    const int iw = int(verts.size());
-    verts.push_back(w);
-    horizon.clear();
-    faces[best].alive = false;
-    for (int e = 0; e < 3; ++e) remove_visible(verts, faces, w.w, f.adj[e] / 3, f.adj[e] % 3, horizon);
-    const int m = int(horizon.size());
-    if (m < 3) return false;
-    for (int k = 0; k < m; ++k)
-      if (horizon[k].b != horizon[(k + 1) % m].a) return false;
-    const int first = int(faces.size());
-    for (int k = 0; k < m; ++k) {
-      EpaFace g;
-      if (!epa_face(verts, horizon[k].a, horizon[k].b, iw, g)) return false;
-      g.adj = {horizon[k].outer, 3 * (first + (k + 1) % m) + 2, 3 * (first + (k + m - 1) % m) + 1};
-      faces[horizon[k].outer / 3].adj[horizon[k].outer % 3] = 3 * (first + k);
-      faces.push_back(g);
-      queue_face(queue, faces, first + k);
-    }
+    if (!insert_vertex(verts, faces, best, w)) return false;
   }
   return false;
 }
@@ -1878,16 +1895,23 @@ LevelSets level_sets(const Query& qu, const std::vector<SimplexVertex>& verts, c
 // Whether the plane of F supports D, checked at the pair (ia, ja) of F:
 // no neighbour of ia further along n on placed P, none of ja further back
 // on placed Q (level neighbours skipped).
-bool plane_supports(const Query& qu, const PlacedTriangle& F, const LevelSets& level, Index ia, Index ja) {
+// When it does not, *beyond (if given) is the pair of D found strictly
+// beyond the plane (that neighbour with the other vertex of (ia, ja)).
+bool plane_supports(const Query& qu, const PlacedTriangle& F, const LevelSets& level, Index ia, Index ja,
+                    SimplexVertex* beyond = nullptr) {
   const RigidBody::Data &dp = qu.dp, &dq = qu.dq;
+  const auto found = [&](Index a, Index b) {
+    if (beyond) *beyond = {qu.P.point(a) - qu.Q.point(b), a, b};
+    return false;
+  };
   for (Index e = dp.first[ia]; e < dp.first[ia + 1]; ++e)
     if (!in(level.p, dp.nbr[e]) &&
         F.climb_sign_p(dp.exact[ia], dp.bounds[ia], dp.exact[dp.nbr[e]], dp.bounds[dp.nbr[e]]) > 0)
-      return false;
+      return found(dp.nbr[e], ja);
   for (Index e = dq.first[ja]; e < dq.first[ja + 1]; ++e)
     if (!in(level.q, dq.nbr[e]) &&
         F.climb_sign_q(dq.exact[ja], dq.bounds[ja], dq.exact[dq.nbr[e]], dq.bounds[dq.nbr[e]]) > 0)
-      return false;
+      return found(ia, dq.nbr[e]);
   return true;
 }
 
@@ -1906,9 +1930,12 @@ PlacedTriangle placed_triangle(const Query& qu, const std::vector<SimplexVertex>
   return PlacedTriangle(qu.P.map, qu.Q.map, p, pb, q, qb);
 }
 
-// The certificate of a depth (rigid_proximity.hpp) on EPA's surface.
+// The certificate of a depth (rigid_proximity.hpp) on EPA's surface.  When
+// every check holds but the last (the nearest face's plane supports D),
+// *unsupported is that face and *beyond the pair of D beyond its plane.
 bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, const std::vector<EpaFace>& faces,
-                   RigidDepth& r) {
+                   RigidDepth& r, int* unsupported = nullptr, SimplexVertex* beyond = nullptr) {
+  if (unsupported) *unsupported = -1;
   EpaScratch& scratch = epa_scratch();
   std::vector<std::array<int, 3>>& tris = scratch.tris;
   std::vector<const EpaFace*>& alive = scratch.alive;
@@ -1973,7 +2000,10 @@ bool certify_depth(const Query& qu, const std::vector<SimplexVertex>& verts, con
         (signs[k][1] == -1 || compare_distance(placed_triangle(qu, verts, *alive[k], &db), F) < 0))
       return false;
   }
-  if (!plane_supports(qu, F, level, verts[f.v[0]].p, verts[f.v[0]].q)) return false;
+  if (!plane_supports(qu, F, level, verts[f.v[0]].p, verts[f.v[0]].q, beyond)) {
+    if (unsupported && beyond) *unsupported = int(&f - faces.data());
+    return false;
+  }
   for (int j = 0; j < 3; ++j) r.p[j] = verts[f.v[j]].p, r.q[j] = verts[f.v[j]].q;
   r.status = ContactStatus::penetrating;
   r.certificate = RigidCertificate::nearest_facet;
@@ -2049,10 +2079,24 @@ RigidDepth penetration_depth(const RigidBody& p, const RigidPose& pose_p, const 
   std::array<SimplexVertex, 4> s;
   std::vector<SimplexVertex>& verts = epa_scratch().verts;
   std::vector<EpaFace>& faces = epa_scratch().faces;
-  if ((collision_tetrahedron(qu, *warm, s) && grow(qu, s, verts, faces, nearest_face) &&
-       certify_depth(qu, verts, faces, r)) ||
-      (search_tetrahedron(qu, checked_start(p, q, warm), s) && grow(qu, s, verts, faces, nearest_face) &&
-       certify_depth(qu, verts, faces, r))) {
+  // A surface whose nearest face's plane turns out not to support D
+  // exactly (a vertex of D beyond it by less than the doubles resolve) takes
+  // that vertex and grows on, a few times.
+  const auto epa = [&](const std::array<SimplexVertex, 4>& t) {
+    if (!start_surface(t, verts, faces) || !grow(qu, verts, faces, nearest_face)) return false;
+    for (int round = 0;; ++round) {
+      int unsupported = -1;
+      SimplexVertex beyond;
+      if (certify_depth(qu, verts, faces, r, &unsupported, &beyond)) return true;
+      if (unsupported < 0 || round == kDepthContinuations) return false;
+      for (const SimplexVertex& x : verts)
+        if (x.p == beyond.p && x.q == beyond.q) return false;
+      ++g_stats.epa_continuations;
+      if (!insert_vertex(verts, faces, unsupported, beyond) || !grow(qu, verts, faces, nearest_face)) return false;
+    }
+  };
+  if ((collision_tetrahedron(qu, *warm, s) && epa(s)) ||
+      (search_tetrahedron(qu, checked_start(p, q, warm), s) && epa(s))) {
     count(r.certificate);
     return r;
   }
@@ -2129,7 +2173,7 @@ RigidDirectionalDepth directional_depth(const RigidBody& p, const RigidPose& pos
   // search's, as for the depth.
   for (int attempt = 0; attempt < 2; ++attempt) {
     if (!(attempt == 0 ? collision_tetrahedron(qu, *warm, s) : search_tetrahedron(qu, checked_start(p, q, warm), s)) ||
-        !grow(qu, s, verts, faces, crossed))
+        !start_surface(s, verts, faces) || !grow(qu, verts, faces, crossed))
       continue;
     const int k = crossed(verts, faces);
     if (k < 0) continue;

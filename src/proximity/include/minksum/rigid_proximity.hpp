@@ -149,6 +149,7 @@ struct RigidStats {
   std::uint64_t iterations = 0, climb_steps = 0;
   std::uint64_t warm_tetrahedra = 0;  // collide answers proved by the warm start's tetrahedron (counted in simplex too)
   std::uint64_t inward_tetrahedra = 0;  // ... by a tetrahedron over the face of D nearest the origin (simplex too)
+  std::uint64_t epa_continuations = 0;  // depth: vertices of D added beyond a nearest face the exact climbs refuted
 };
 RigidStats rigid_stats();
 

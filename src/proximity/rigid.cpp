@@ -525,8 +525,9 @@ class FeaturePlane {
     std::vector<Candidate> cands = candidates(sp, sq);
     // Each is tried in that order; the first plane that decides answers.
     const auto attempt = [&](std::vector<Candidate>& list) -> std::optional<FeatureContact> {
-      rank(list, sp, sq);
-      for (const Candidate& c : list) {
+      Ranking ranking(*this, list, sp, sq);
+      while (const Candidate* next = ranking.next()) {
+        const Candidate& c = *next;
         Point3 nrm = normal_exact(c);
         if (is_zero(nrm)) continue;
         if (c.flip) nrm = -nrm;
@@ -574,9 +575,10 @@ class FeaturePlane {
     std::vector<Index> sp, sq;
     simplex_vertices(s, n, ip, iq, sp, sq);
     std::vector<Candidate> cands = candidates(sp, sq);
-    rank(cands, sp, sq);
+    Ranking ranking(*this, cands, sp, sq);
     int tried = 0;
-    for (const Candidate& c : cands) {
+    while (const Candidate* next = ranking.next()) {
+      const Candidate& c = *next;
       if (tried == 4) break;
       Point3 nrm = normal_exact(c);
       if (is_zero(nrm)) continue;
@@ -633,7 +635,7 @@ class FeaturePlane {
     double gap;
     bool flip = false;
     Index from_p = 0, from_q = 0;  // the double supports along it
-    int order = 0;                 // its place in the list before ranking
+    V3 unit;                       // its unit normal in doubles, oriented (ranking)
   };
   V3 normal_double(const Candidate& c) const {
     switch (c.kind) {
@@ -682,40 +684,97 @@ class FeaturePlane {
   // first (ties in the list's order); the exact climbs start from those
   // supports.  A facet of P found around a vertex (not oriented) supports
   // P: its corner a is P's support along it, and likewise for Q's.
-  void rank(std::vector<Candidate>& list, const std::vector<Index>& sp, const std::vector<Index>& sq) const {
-    const V3 cp = centre(qu_.P), cq = centre(qu_.Q);
-    int order = 0;
-    for (Candidate& c : list) {
-      c.order = order++;
-      V3 nd = normal_double(c);
-      if (c.orient) {
-        // Orient N so that P's centre (a facet of P), Q's centre (a facet
-        // of Q), or Q's centre minus P's (edges) lies on its side.
-        const V3 a = c.kind == Candidate::q_facet ? qu_.Q.point(c.a) : qu_.P.point(c.a);
-        const double side = c.kind == Candidate::p_facet   ? -dot(nd, cp - a)
-                            : c.kind == Candidate::q_facet ? dot(nd, cq - a)
-                                                           : dot(nd, cq - cp);
-        c.flip = side < 0;
-        if (c.flip) nd = -nd;
-      }
-      const double l = std::sqrt(dot(nd, nd));
-      if (!(l > 0) || !std::isfinite(l)) {
-        c.gap = -std::numeric_limits<double>::infinity();
+  //
+  // The gaps are climbed lazily, in that order: a candidate's gap is at
+  // most its bound over the simplex's points (l_Q ≤ n·y for the simplex's
+  // vertices y of Q, h_P ≥ n·x for its vertices x of P), so a candidate
+  // whose bound is below a climbed gap comes after it and is not climbed
+  // until that one is taken.  Near a contact the simplex spans the contact
+  // facet of D: a plane tilted from it leaves a simplex point on the wrong
+  // side and a negative bound, and only the planes through the contact
+  // are climbed before the first is tried.
+  class Ranking {
+   public:
+    Ranking(const FeaturePlane& fp, std::vector<Candidate>& list, const std::vector<Index>& sp,
+            const std::vector<Index>& sq)
+        : fp_(fp), list_(list), sp_(sp), sq_(sq) {
+      const Placed &P = fp.qu_.P, &Q = fp.qu_.Q;
+      std::vector<V3> xp, xq;
+      for (Index v : sp) xp.push_back(P.point(v));
+      for (Index v : sq) xq.push_back(Q.point(v));
+      const V3 cp = centre(P), cq = centre(Q);
+      constexpr double kNone = -std::numeric_limits<double>::infinity();
+      heap_.reserve(list.size());
+      for (int k = 0; k < int(list.size()); ++k) {
+        Candidate& c = list[k];
+        V3 nd = fp.normal_double(c);
+        if (c.orient) {
+          // Orient N so that P's centre (a facet of P), Q's centre (a facet
+          // of Q), or Q's centre minus P's (edges) lies on its side.
+          const V3 a = c.kind == Candidate::q_facet ? Q.point(c.a) : P.point(c.a);
+          const double side = c.kind == Candidate::p_facet   ? -dot(nd, cp - a)
+                              : c.kind == Candidate::q_facet ? dot(nd, cq - a)
+                                                             : dot(nd, cq - cp);
+          c.flip = side < 0;
+          if (c.flip) nd = -nd;
+        }
+        const double l = std::sqrt(dot(nd, nd));
         c.from_p = sp[0], c.from_q = sq[0];
-        continue;
+        if (!(l > 0) || !std::isfinite(l)) {
+          c.gap = kNone;
+          push({kNone, k, true});
+          continue;
+        }
+        c.unit = (1 / l) * nd;
+        double hp = kNone, lq = -kNone;
+        if (c.kind == Candidate::p_facet && !c.orient) hp = dot(c.unit, P.point(c.a));
+        else
+          for (const V3& x : xp) hp = std::max(hp, dot(c.unit, x));
+        if (c.kind == Candidate::q_facet && !c.orient) lq = dot(c.unit, Q.point(c.a));
+        else
+          for (const V3& y : xq) lq = std::min(lq, dot(c.unit, y));
+        const double bound = lq - hp;
+        push({std::isfinite(bound) ? bound : -kNone, k, false});
       }
-      nd = (1 / l) * nd;
-      const bool facet_p = c.kind == Candidate::p_facet && !c.orient;
-      const bool facet_q = c.kind == Candidate::q_facet && !c.orient;
-      c.from_p = facet_p ? c.a : qu_.P.support(nd, sp[0]);
-      c.from_q = facet_q ? c.a : qu_.Q.support(-nd, sq[0]);
-      c.gap = dot(nd, qu_.Q.point(c.from_q) - qu_.P.point(c.from_p));
-      if (!std::isfinite(c.gap)) c.gap = -std::numeric_limits<double>::infinity();
     }
-    std::sort(list.begin(), list.end(), [](const Candidate& a, const Candidate& b) {
-      return a.gap > b.gap || (a.gap == b.gap && a.order < b.order);
-    });
-  }
+    // The next candidate in rank order, or null.
+    const Candidate* next() {
+      while (!heap_.empty()) {
+        std::pop_heap(heap_.begin(), heap_.end(), Entry::below);
+        const Entry e = heap_.back();
+        heap_.pop_back();
+        if (e.climbed) return &list_[e.order];
+        Candidate& c = list_[e.order];
+        const Placed &P = fp_.qu_.P, &Q = fp_.qu_.Q;
+        c.from_p = c.kind == Candidate::p_facet && !c.orient ? c.a : P.support(c.unit, sp_[0]);
+        c.from_q = c.kind == Candidate::q_facet && !c.orient ? c.a : Q.support(-c.unit, sq_[0]);
+        c.gap = dot(c.unit, Q.point(c.from_q) - P.point(c.from_p));
+        if (!std::isfinite(c.gap)) c.gap = -std::numeric_limits<double>::infinity();
+        push({c.gap, e.order, true});
+      }
+      return nullptr;
+    }
+
+   private:
+    struct Entry {
+      double key;  // the gap when climbed, else its bound
+      int order;   // the candidate's place in the list
+      bool climbed;
+      // Max-heap order: larger key first, then the earlier candidate.
+      static bool below(const Entry& a, const Entry& b) {
+        return a.key < b.key || (a.key == b.key && a.order > b.order);
+      }
+    };
+    void push(const Entry& e) {
+      heap_.push_back(e);
+      std::push_heap(heap_.begin(), heap_.end(), Entry::below);
+    }
+    const FeaturePlane& fp_;
+    std::vector<Candidate>& list_;
+    const std::vector<Index>& sp_;
+    const std::vector<Index>& sq_;
+    std::vector<Entry> heap_;
+  };
   Point3 normal_exact(const Candidate& c) {
     switch (c.kind) {
       case Candidate::p_facet:

@@ -216,8 +216,9 @@ class PulledDirection {
     }
     return kOpen;
   }
-  // Stage 2 (intervals), or kOpen; stages 2 and 3.
+  // Stage 2 (intervals), or kOpen.
   int second_stage(const PointBounds& ab, const PointBounds& bb) const;
+  // Stages 2 and 3.
   int difference_sign_later(const Point3& a, const PointBounds& ab, const Point3& b, const PointBounds& bb) const;
   int difference_sign_integers(const PointBounds& ab, const PointBounds& bb) const;
   // Stage 1: û and U (see the top), when A and n are doubles in range.

@@ -60,16 +60,19 @@ test-long: build
 asan:
 	$(MAKE) --no-print-directory test BUILD=build-asan BUILD_TYPE=Debug SANITIZE=ON
 
-# The same build, with only the fast suites (what .ci/run runs): every unit
-# suite except the conformance matrix, the slope-diagram methods, CVMS and the
-# CGM sums (minutes each under the sanitizers; the same code paths run in the
+# The same build, with only the fast suites (what .ci/run runs): the unit
+# suites of the targets below (the convex core, I/O, the command line,
+# sweeps, proximity under translation and under rigid motion), without the
+# CGM sums (minutes under the sanitizers; the same code paths run in the
 # optimised suite), the predicates' bulk random agreement tests (their
 # degenerate, extreme-magnitude and rounding-mode cases stay), the layer
-# probes and the package test.  About 50 minutes (build 40, tests 12) on 2
-# loaded cores.
+# probes and the package test.  The conformance matrix, the slope-diagram
+# methods, CVMS and the non-convex engine's suites run in the optimised
+# suite only.
 ASAN_FAST_TARGETS = minksum_cli test_catalog test_cgm test_chms test_cli test_difference test_io \
                     test_mesh_support test_point_list test_polytope test_predicates test_progress \
-                    test_proximity test_reliability test_rounded_predicates test_roundtrip test_sweep test_walk
+                    test_proximity test_reliability test_rigid_proximity test_rounded_predicates test_roundtrip \
+                    test_sweep test_walk
 ASAN_FAST_EXCLUDE = ^((CgmSum|layers|package)[.]|PredicateTest[.](RandomUniform|Rationals|RandomSmallIntegers|RandomWideExponents)<)
 .PHONY: asan-fast
 asan-fast:

@@ -97,7 +97,7 @@ void print_text(std::ostream& report, const SumReport& r, const std::vector<std:
       const bool convex = std::string(o.kind) == "polytope";
       report << (i ? formula[1] : "") << printable(names[i]) << " (" << o.vertices << " V, " << o.facets << " F, "
              << (convex                ? std::string("convex")
-                 : n.swept == "ab"[i] ? std::to_string(i ? n.pieces_b : n.pieces_a) + " triangles swept"
+                 : n.swept == "ab"[i] ? std::to_string(i ? n.pieces_b : n.pieces_a) + " polygons swept"
                                       : std::to_string(i ? n.pieces_b : n.pieces_a) + " convex pieces")
              << ")";
     }

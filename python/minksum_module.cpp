@@ -1693,7 +1693,8 @@ non-convex Solid is a ValueError.)")
 The boundary of a ⊕ b (exact polygons; where the sum touches itself the
 boundary is kept as it is, an edge of four faces) and what 'minksum sum'
 prints of the sum: method ("sweep"), swept ("a", "b" or None), pieces (the
-triangles swept and the convex pieces of the other operand, (a, b)), pairs,
+polygons swept, coplanar triangles merged, and the convex pieces of the
+other operand, (a, b)), pairs,
 pair_facets, candidate_facets, culled_facets, clips, shells,
 non_manifold_edges, dropped_components, phases (seconds of "decompose",
 "pairs", "union", "boundary") and seconds (their sum).  erode, opening and

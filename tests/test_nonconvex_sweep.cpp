@@ -82,7 +82,9 @@ TEST(NonconvexSweep, CavityKeptShrinksAndVanishes) {
 
 TEST(NonconvexSweep, CullsTheFacetsOutsideTheNormalCones) {
   const NonconvexSum r = minkowski_sum_nonconvex(solid("torus:8:6"), solid("sphere:2@scale:1/10"));
-  EXPECT_EQ(r.pieces_a, 96u);  // 2 * 8 * 6 triangles swept
+  // 2 * 8 * 6 triangles swept as 80 convex polygons: the flat rings at the
+  // top and the bottom (16 triangles each) as 8 trapezoids each.
+  EXPECT_EQ(r.pieces_a, 80u);
   EXPECT_EQ(r.pieces_b, 1u);
   EXPECT_EQ(r.swept, 'a');
   EXPECT_EQ(r.candidate_facets + r.culled_facets, r.pair_facets);
@@ -404,6 +406,138 @@ TEST(NonconvexSweep, EachCandidateFacetIsBuiltOnce) {
   }
 }
 
+// SurfaceCones::merge_coplanar: every triangle in exactly one polygon, whose
+// corners include its triangles' corners; each polygon strictly convex,
+// counter-clockwise seen from outside and in its triangles' common plane
+// (their primitive normals equal), and exactly the union of its triangles
+// (the sum of their cross products is the polygon's: the same area, and the
+// triangles do not overlap); every edge of a polygon is the edge of the
+// triangle it names.  Exact counts: the cube's 12 triangles as its 6
+// squares, the torus:8:6's 96 as 80 (the flat rings at the top and the
+// bottom, 16 triangles each, as 8 trapezoids each), the hollow cube's 24 as
+// 12 squares.  Before merging, polygon g is triangle g.
+TEST(NonconvexSweep, CoplanarTrianglesMergeIntoStrictlyConvexPolygons) {
+  struct Case {
+    const char* name;
+    Solid solid;
+    std::size_t polygons;  // 0: not asserted
+  };
+  const Case cases[] = {{"cube", solid("cube"), 6},      {"torus:8:6", solid("torus:8:6"), 80},
+                        {"hollow", hollow_solid(), 12},  {"lshape", solid("lshape"), 0},
+                        {"tube", solid("tube"), 0},      {"gear:6", solid("gear:6"), 0}};
+  const Point3 zero(Rational(0), Rational(0), Rational(0));
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    nonconvex_detail::SurfaceCones cones(c.solid.triangles);
+    ASSERT_EQ(cones.polygons(), cones.triangles());
+    for (Index t = 0; t < cones.triangles(); ++t)
+      EXPECT_EQ(cones.polygon(t).corners, std::vector<Index>(cones.triangle(t).begin(), cones.triangle(t).end()));
+    cones.merge_coplanar();
+    if (c.polygons) {
+      EXPECT_EQ(cones.polygons(), c.polygons);
+    }
+    EXPECT_LT(cones.polygons(), cones.triangles());
+    std::vector<Point3> area(cones.polygons(), zero);
+    for (Index t = 0; t < cones.triangles(); ++t) {
+      const Index g = cones.polygon_of(t);
+      ASSERT_LT(g, cones.polygons());
+      const auto& corners = cones.polygon(g).corners;
+      const auto& q = cones.triangle(t);
+      for (Index v : q) EXPECT_NE(std::find(corners.begin(), corners.end(), v), corners.end()) << "triangle " << t;
+      EXPECT_EQ(cones.normal(t), cones.normal(cones.polygon(g).edge_triangle[0])) << "triangle " << t;
+      area[g] = area[g] + cross(cones.point(q[1]) - cones.point(q[0]), cones.point(q[2]) - cones.point(q[0]));
+    }
+    for (Index g = 0; g < cones.polygons(); ++g) {
+      const auto& p = cones.polygon(g);
+      const std::size_t m = p.corners.size();
+      ASSERT_GE(m, 3u);
+      ASSERT_LE(m, nonconvex_detail::SurfaceCones::kMaxCorners);
+      const Point3& n = cones.normal(p.edge_triangle[0]);
+      const Point3& o = cones.point(p.corners[0]);
+      Point3 fan = zero;
+      for (std::size_t k = 0; k < m; ++k) {
+        const Point3& a = cones.point(p.corners[k]);
+        const Point3& b = cones.point(p.corners[(k + 1) % m]);
+        const Point3& d = cones.point(p.corners[(k + 2) % m]);
+        EXPECT_EQ(sgn(dot(n, a - o)), 0) << "polygon " << g << " corner " << k;
+        EXPECT_GT(sgn(dot(n, cross(b - a, d - b))), 0) << "polygon " << g << " corner " << (k + 1) % m;
+        const auto& tri = cones.triangle(p.edge_triangle[k]);
+        const int j = p.edge_index[k];
+        EXPECT_EQ(tri[j], p.corners[k]) << "polygon " << g << " edge " << k;
+        EXPECT_EQ(tri[(j + 1) % 3], p.corners[(k + 1) % m]) << "polygon " << g << " edge " << k;
+        EXPECT_EQ(cones.polygon_of(p.edge_triangle[k]), g);
+        if (k >= 1 && k + 1 < m) fan = fan + cross(a - o, b - o);
+      }
+      EXPECT_EQ(fan, area[g]) << "polygon " << g;
+    }
+  }
+}
+
+// The pieces P ⊕ B of merged polygons (the sweep's pieces): every plane
+// once, and they are the facets of the exact hull of P's corners plus B's
+// vertices, each built from its tag and code; the box holds every point;
+// over a whole surface the candidates are the hull facets that
+// polygon_candidate accepts, each held by one piece only (polygon_keeps).
+TEST(NonconvexSweep, MergedPolygonPiecesAreTheHullsOfTheirSums) {
+  const std::pair<const char*, const char*> cases[] = {{"cube", "sphere:1@scale:1/4"},
+                                                       {"lshape", "box:1:1:1"},
+                                                       {"torus:8:6", "sphere:1@scale:1/5"},
+                                                       {"tube", "cube@scale:1/4@rot:3"},
+                                                       {"gear:6", "prism:8@scale:1/8"}};
+  for (const auto& [a, b] : cases) {
+    SCOPED_TRACE(std::string(a) + " + " + b);
+    const Solid s = solid(a);
+    nonconvex_detail::SurfaceCones cones(s.triangles);
+    cones.merge_coplanar();
+    const ConvexPolytope p = catalog_polytope(b);
+    const nonconvex_detail::SweptPolytope swept(p);
+    std::vector<std::pair<Plane, std::vector<Point3>>> got;
+    std::set<std::pair<Plane, std::vector<Point3>>> want;
+    std::size_t larger = 0;  // polygons of more than 3 corners
+    for (Index g = 0; g < cones.polygons(); ++g) {
+      SCOPED_TRACE("polygon " + std::to_string(g));
+      const auto& polygon = cones.polygon(g);
+      larger += polygon.corners.size() > 3;
+      const nonconvex_detail::Piece piece = swept.sum(cones, g);
+      std::vector<Point3> sums;
+      for (Index v : polygon.corners)
+        for (const Point3& q : p.points()) sums.push_back(cones.point(v) + q);
+      const ConvexPolytope hull = ConvexPolytope::hull(sums, "hull");
+      std::vector<Plane> built, expected;
+      for (Index k = 0; k < piece.num_planes(); ++k) {
+        built.push_back(piece.plane(k));
+        EXPECT_EQ(swept.build(piece, k), built.back()) << "plane " << k;
+      }
+      for (Index f = 0; f < hull.num_facets(); ++f) expected.push_back(hull.plane(f));
+      std::sort(built.begin(), built.end());
+      std::sort(expected.begin(), expected.end());
+      ASSERT_EQ(built, expected);
+      for (std::size_t c = 0; c < piece.candidates.size(); ++c)
+        got.emplace_back(piece.plane(piece.candidates[c]), rotated_to_smallest(piece.loops[c]));
+      for (Index f = 0; f < hull.num_facets(); ++f) {
+        const Plane& h = hull.plane(f);
+        const Point3 u(Rational(h.a), Rational(h.b), Rational(h.c));
+        const Vec3d ua = to_double(u);
+        if (!cones.polygon_candidate(g, RoundedPoint3{u, ua})) continue;
+        std::vector<Point3> loop;
+        for (Index v : hull.facet_vertices(f)) loop.push_back(hull.point(v));
+        want.emplace(h, rotated_to_smallest(loop));
+      }
+      for (const Point3& x : sums) {
+        const Vec3d d = to_double(x);
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_LE(piece.lo[k], d[k]);
+          EXPECT_GE(piece.hi[k], d[k]);
+        }
+      }
+    }
+    EXPECT_GT(larger, 0u);
+    const std::set<std::pair<Plane, std::vector<Point3>>> distinct(got.begin(), got.end());
+    EXPECT_EQ(distinct.size(), got.size()) << "a candidate facet held by two pieces";
+    EXPECT_EQ(distinct, want);
+  }
+}
+
 // Whole surfaces swept by convex operands: a curved genus-1 surface, a
 // box-like solid with parallel facets, a tube by a rotated cube, a gear by a prism.
 const std::pair<const char*, const char*> kWholeSurfaces[] = {{"torus:8:6", "sphere:1@scale:1/5"},
@@ -417,14 +551,16 @@ const std::pair<const char*, const char*> kWholeSurfaces[] = {{"torus:8:6", "sph
 // pair of pieces of whole surfaces; every candidate's own points are said
 // to be on its own plane; and neighbouring pieces share many such points.
 TEST(NonconvexSweep, ContainsSaysOnlyWhatIsExactlyTrue) {
-  for (const auto& [a, b] : kWholeSurfaces) {
-    SCOPED_TRACE(std::string(a) + " + " + b);
+  for (const auto& [a, b] : kWholeSurfaces)
+  for (const bool merged : {false, true}) {  // triangles, then convex polygons (merge_coplanar)
+    SCOPED_TRACE(std::string(a) + " + " + b + (merged ? ", polygons" : ", triangles"));
     const Solid s = solid(a);
-    const nonconvex_detail::SurfaceCones cones(s.triangles);
+    nonconvex_detail::SurfaceCones cones(s.triangles);
+    if (merged) cones.merge_coplanar();
     const ConvexPolytope p = catalog_polytope(b);
     const nonconvex_detail::SweptPolytope swept(p);
     std::vector<nonconvex_detail::Piece> pieces;
-    for (Index t = 0; t < cones.triangles(); ++t) pieces.push_back(swept.sum(cones, t));
+    for (Index g = 0; g < cones.polygons(); ++g) pieces.push_back(swept.sum(cones, g));
     std::vector<std::pair<std::uint64_t, const Point3*>> labelled;
     for (const auto& piece : pieces) {
       ASSERT_EQ(piece.labels.size(), piece.loops.size());
@@ -461,10 +597,12 @@ TEST(NonconvexSweep, ContainsSaysOnlyWhatIsExactlyTrue) {
 // test) are the pieces built without them: the same planes, lazy doubles,
 // tags and codes, candidates, loops and labels.
 TEST(NonconvexSweep, PreparedPiecesAreThePiecesWithoutTables) {
-  for (const auto& [a, b] : kWholeSurfaces) {
-    SCOPED_TRACE(std::string(a) + " + " + b);
+  for (const auto& [a, b] : kWholeSurfaces)
+  for (const bool merged : {false, true}) {  // triangles, then convex polygons (merge_coplanar)
+    SCOPED_TRACE(std::string(a) + " + " + b + (merged ? ", polygons" : ", triangles"));
     const Solid s = solid(a);
-    const nonconvex_detail::SurfaceCones cones(s.triangles);
+    nonconvex_detail::SurfaceCones cones(s.triangles);
+    if (merged) cones.merge_coplanar();
     std::map<std::pair<Index, Index>, int> runs;  // directed edge -> uses
     for (Index t = 0; t < cones.triangles(); ++t)
       for (int k = 0; k < 3; ++k) {
@@ -482,7 +620,7 @@ TEST(NonconvexSweep, PreparedPiecesAreThePiecesWithoutTables) {
     const nonconvex_detail::SweptPolytope plain(p);
     nonconvex_detail::SweptPolytope prepared(p);
     prepared.prepare(cones, 0);
-    for (Index t = 0; t < cones.triangles(); ++t) {
+    for (Index t = 0; t < cones.polygons(); ++t) {
       const nonconvex_detail::Piece x = plain.sum(cones, t), y = prepared.sum(cones, t);
       ASSERT_EQ(x.num_planes(), y.num_planes());
       for (Index k = 0; k < x.num_planes(); ++k) EXPECT_EQ(x.plane(k), y.plane(k)) << t << " " << k;

@@ -101,7 +101,14 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
     pieces.reserve(po.size());
     for (const ConvexPolytope& p : po) pieces.emplace_back(p);
   }
-  const nonconvex_detail::SurfaceCones cones(s.triangles);
+  nonconvex_detail::SurfaceCones cones(s.triangles);
+  // The pieces P ⊕ O_j from the Gaussian maps (triangle_sum.cpp), P a convex
+  // polygon of S's surface (coplanar triangles merged: SurfaceCones::
+  // merge_coplanar); with --method chms, t ⊕ O_j for each triangle t by the
+  // pairwise hull and the candidate test on each facet (a second,
+  // independent construction the tests compare it with).
+  const bool by_hull = method == Method::chms;
+  if (!by_hull) cones.merge_coplanar();
   // O's surface, when O is not convex: a facet of t ⊕ O_j is a candidate
   // only if its face of O_j can touch O's surface with its normal in O's
   // local cone there (SweptPolytope::on_surface).
@@ -111,7 +118,7 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
   Point3 inner(Rational(0), Rational(0), Rational(0));
   for (const Point3& p : po.front().points()) inner = inner + p;
   inner = Rational(1, long(po.front().num_vertices())) * inner;
-  const std::size_t nt = cones.triangles();
+  const std::size_t nt = by_hull ? cones.triangles() : cones.polygons();
   out.pieces_a = sweep_a ? nt : po.size();
   out.pieces_b = sweep_a ? po.size() : nt;
   out.seconds_decompose = since(t0);
@@ -119,10 +126,6 @@ NonconvexSum sum_by_sweep(const Solid& a, const Solid& b, const SumOptions& opti
   t0 = Clock::now();
   const std::size_t n = nt * po.size();
   std::vector<nonconvex_detail::Piece> sums(n);
-  // The pieces t ⊕ O_j from the Gaussian maps (triangle_sum.cpp); with
-  // --method chms, by the pairwise hull and the candidate test on each facet
-  // (a second, independent construction the tests compare it with).
-  const bool by_hull = method == Method::chms;
   out.pair_method = by_hull ? Method::chms : Method::walk;
   out.pieces_from_maps = !by_hull;
   std::vector<nonconvex_detail::SweptPolytope> swept;

@@ -15,6 +15,7 @@
 #include <atomic>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -134,6 +135,84 @@ SurfaceCones::SurfaceCones(const Mesh& triangles) {
         edge_ends_.push_back({a, b});
       }
     }
+  // Each triangle its own polygon (merge_coplanar groups them).
+  polygons_.resize(tri_.size());
+  polygon_of_.resize(tri_.size());
+  for (Index t = 0; t < tri_.size(); ++t) {
+    polygons_[t].corners.assign(tri_[t].begin(), tri_[t].end());
+    polygons_[t].edge_triangle.assign(3, t);
+    polygons_[t].edge_index = {0, 1, 2};
+    polygon_of_[t] = t;
+  }
+}
+
+void SurfaceCones::merge_coplanar() {
+  constexpr Index kNone = ~Index(0);
+  std::vector<Polygon> merged;
+  std::vector<Index> of(tri_.size(), kNone);
+  // sign n . ((y - x) x (z - y)) for the primitive normal n of the plane of
+  // x, y, z: > 0 when x, y, z turn counter-clockwise seen from outside.  In
+  // integers (each difference a positive multiple of the exact one).
+  auto turn = [&](const Point3& n, Index x, Index y, Index z) {
+    Integer d1[3], d2[3], c;
+    scaled_difference(scaled_[x], scaled_[y], d1);
+    scaled_difference(scaled_[y], scaled_[z], d2);
+    Integer sum;
+    for (int j = 0; j < 3; ++j) {
+      const int k = (j + 1) % 3, l = (j + 2) % 3;
+      mpz_mul(c.get_mpz_t(), d1[k].get_mpz_t(), d2[l].get_mpz_t());
+      mpz_submul(c.get_mpz_t(), d1[l].get_mpz_t(), d2[k].get_mpz_t());
+      mpz_addmul(sum.get_mpz_t(), c.get_mpz_t(), n[j].get_num().get_mpz_t());
+    }
+    return sgn(sum);
+  };
+  for (Index t0 = 0; t0 < tri_.size(); ++t0) {
+    if (of[t0] != kNone) continue;
+    const Index id = Index(merged.size());
+    Polygon p;
+    p.corners.assign(tri_[t0].begin(), tri_[t0].end());
+    p.edge_triangle.assign(3, t0);
+    p.edge_index = {0, 1, 2};
+    of[t0] = id;
+    const Point3& n = normal_[t0];
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (std::size_t k = 0; k < p.corners.size() && p.corners.size() < kMaxCorners; ++k) {
+        const Index t = p.edge_triangle[k];
+        const int j = p.edge_index[k];
+        const Index s = across_[t][j];
+        // A flat edge between two triangles of the same oriented plane
+        // (their primitive normals equal), s not grouped yet.
+        if (s == kNoTriangle || of[s] != kNone || kind_[t][j] != 0 || normal_[s] != n) continue;
+        const std::size_t m = p.corners.size();
+        const Index a = p.corners[k], b = p.corners[(k + 1) % m];
+        const Index w = opposite_[t][j];
+        const Index before = p.corners[(k + m - 1) % m], after = p.corners[(k + 2) % m];
+        // Strictly convex at a and b (at w it is: s is counter-clockwise).
+        if (turn(n, before, a, w) <= 0 || turn(n, w, b, after) <= 0) continue;
+        // s runs b, a, w: its edges (a, w) and (w, b) replace (a, b).
+        const auto& d = tri_[s];
+        int ia = 0;
+        while (d[ia] != a) ++ia;
+        const int iw = (ia + 1) % 3;
+        if (d[iw] != w || d[(iw + 1) % 3] != b) throw std::logic_error("SurfaceCones: a flat neighbour not across its edge");
+        p.corners.insert(p.corners.begin() + std::ptrdiff_t(k + 1), w);
+        p.edge_triangle[k] = s;
+        p.edge_index[k] = std::uint8_t(ia);
+        p.edge_triangle.insert(p.edge_triangle.begin() + std::ptrdiff_t(k + 1), s);
+        p.edge_index.insert(p.edge_index.begin() + std::ptrdiff_t(k + 1), std::uint8_t(iw));
+        of[s] = id;
+        grew = true;
+      }
+    }
+    merged.push_back(std::move(p));
+  }
+  polygons_ = std::move(merged);
+  polygon_of_ = std::move(of);
+  polygons_at_.assign(points_.size(), {});
+  for (Index g = 0; g < polygons_.size(); ++g)
+    for (Index v : polygons_[g].corners) polygons_at_[v].push_back(g);  // ascending in g
+  merged_ = true;
 }
 
 namespace {
@@ -245,6 +324,88 @@ bool SurfaceCones::keeps(Index t, const RoundedPoint3& u, const bool at_top[3]) 
     for (Index w : d)
       if (w != v && dot_difference_sign(u, at(v), at(w)) >= 0) below = false;
     if (below) return false;
+  }
+  return true;
+}
+
+namespace {
+
+// The number of P's corners at the top (at_top), the first of them, and
+// when two, the edge k (corners k, k + 1) they span.
+Top polygon_top(const bool* at_top, std::size_t m) {
+  Top t;
+  for (std::size_t k = 0; k < m; ++k)
+    if (at_top[k]) {
+      ++t.count;
+      if (t.first < 0) t.first = int(k);
+    }
+  if (t.count == 2) {
+    t.edge = 0;
+    while (!(at_top[t.edge] && at_top[(std::size_t(t.edge) + 1) % m])) ++t.edge;
+  } else if (t.count != 1 && std::size_t(t.count) != m) {
+    throw std::logic_error("SurfaceCones: the top of a convex polygon is not a corner, an edge or the polygon");
+  }
+  return t;
+}
+
+}  // namespace
+
+bool SurfaceCones::polygon_candidate(Index g, const RoundedPoint3& u, const bool* at_top, signed char* memo,
+                                     std::size_t stride) const {
+  const Polygon& p = polygons_[g];
+  const std::size_t m = p.corners.size();
+  const Top tp = polygon_top(at_top, m);
+  bool top3[3] = {true, true, true};
+  Index t = p.edge_triangle[0];
+  if (std::size_t(tp.count) != m) {  // a corner (the start of edge `first`) or edge `edge`: the triangle holding it
+    const std::size_t k = std::size_t(tp.count == 2 ? tp.edge : tp.first);
+    t = p.edge_triangle[k];
+    const int j = p.edge_index[k];
+    top3[0] = top3[1] = top3[2] = false;
+    top3[j] = true;
+    if (tp.count == 2) top3[(j + 1) % 3] = true;
+  }
+  return candidate(t, u, top3, memo, stride);
+}
+
+bool SurfaceCones::polygon_candidate(Index g, const RoundedPoint3& u) const {
+  const Polygon& p = polygons_[g];
+  const std::size_t m = p.corners.size();
+  std::size_t top = 0;
+  for (std::size_t k = 1; k < m; ++k)
+    if (dot_difference_sign(u, at(p.corners[top]), at(p.corners[k])) > 0) top = k;
+  std::vector<char> at_top(m);
+  for (std::size_t k = 0; k < m; ++k)
+    at_top[k] = k == top || dot_difference_sign(u, at(p.corners[top]), at(p.corners[k])) == 0;
+  std::unique_ptr<bool[]> flags(new bool[m]);
+  for (std::size_t k = 0; k < m; ++k) flags[k] = at_top[k] != 0;
+  return polygon_candidate(g, u, flags.get());
+}
+
+bool SurfaceCones::polygon_keeps(Index g, const RoundedPoint3& u, const bool* at_top) const {
+  if (!merged_) return keeps(g, u, at_top);
+  const Polygon& p = polygons_[g];
+  const std::size_t m = p.corners.size();
+  const Top tp = polygon_top(at_top, m);
+  if (std::size_t(tp.count) == m) return true;
+  if (tp.count == 2) {
+    const std::size_t k = std::size_t(tp.edge);
+    const Index t = p.edge_triangle[k];
+    const int j = p.edge_index[k];
+    const Index other = across_[t][j];
+    if (other == kNoTriangle || polygon_of_[other] > g) return true;
+    // (The polygon across holds the triangle across, whose far vertex is one of its corners off the edge.)
+    return dot_difference_sign(u, at(p.corners[k]), at(opposite_[t][j])) >= 0;
+  }
+  const Index v = p.corners[std::size_t(tp.first)];
+  for (Index q : polygons_at_[v]) {
+    if (q >= g) break;  // ascending
+    const std::vector<Index>& c = polygons_[q].corners;
+    const std::size_t n = c.size();
+    std::size_t i = 0;
+    while (c[i] != v) ++i;
+    if (dot_difference_sign(u, at(v), at(c[(i + 1) % n])) < 0 && dot_difference_sign(u, at(v), at(c[(i + n - 1) % n])) < 0)
+      return false;
   }
   return true;
 }

@@ -31,6 +31,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 namespace minksum::nonconvex_detail {
@@ -241,14 +242,17 @@ constexpr double kLazyFilterMax = 0x1p+480;
 // The doubles of s as a lazy plane (the key B's facets moved have too).
 void lazy_of(const SumPlane& s, LazyPlane& out) { lazy_plane_doubles(s.m, s.num, s.den, out); }
 
-// The tags of the lazy planes of t ⊕ B (LazyPlane::tag), with their codes:
-//   A. facet k of B (plane k) moved to vertex `tag` (0..2) of t, the one at
-//      its top;
-//   B. kBFacet + side: t + vertex `code` of B, normal n_t (side 0) or −n_t
+// The tags of the lazy planes of P ⊕ B (LazyPlane::tag; P a polygon of at
+// most kMaxCorners = SurfaceCones::kMaxCorners corners), with their codes:
+//   A. facet k of B (plane k) moved to corner `tag` (0 .. kMaxCorners − 1)
+//      of P, the first one at its top;
+//   B. kBFacet + side: P + vertex `code` of B, normal n_P (side 0) or −n_P
 //      (side 1);
-//   C. kCFacet + k + 3 (σ < 0): t's edge k (from corner k to k + 1) ⊕ edge
-//      `code` of B, normal σ (b − a) × (g1 − g0).
-constexpr std::uint8_t kBFacet = 3, kCFacet = 5;
+//   C. kCFacet + k + kMaxCorners (σ < 0): P's edge k (from corner k to
+//      k + 1) ⊕ edge `code` of B, normal σ (b − a) × (g1 − g0).
+constexpr std::size_t kMaxCorners = SurfaceCones::kMaxCorners;
+constexpr std::uint8_t kBFacet = kMaxCorners, kCFacet = kMaxCorners + 2;
+static_assert(kCFacet + 2 * kMaxCorners <= 256, "the tags fit in a byte");
 
 }  // namespace
 
@@ -342,22 +346,23 @@ Plane SweptPolytope::build(const Piece& piece, Index k) const {
     offset_along(facets_[k], *piece.scaled_corner[l.tag], n);
     return canonical_from_offset(facets_[k], n);
   }
-  const ScaledPoint* const* s = piece.scaled_corner;
+  const std::vector<const ScaledPoint*>& s = piece.scaled_corner;
+  const std::size_t m = s.size();
   if (l.tag < kCFacet) {
     Integer e1[3], e2[3];
     scaled_difference(*s[0], *s[1], e1);
     scaled_difference(*s[0], *s[2], e2);
-    cross_integers(e1, e2, n);  // a positive multiple of n_t
+    cross_integers(e1, e2, n);  // a positive multiple of n_P (P strictly convex, counter-clockwise)
     if (l.tag != kBFacet)
       for (Integer& x : n) mpz_neg(x.get_mpz_t(), x.get_mpz_t());
     return plane_through_sum(n, *s[0], scaled_[l.code]);
   }
-  const int edge = (l.tag - kCFacet) % 3;
+  const std::size_t edge = (l.tag - kCFacet) % kMaxCorners;
   const Edge& g = edges_[l.code];
   Integer e[3];
-  scaled_difference(*s[edge], *s[(edge + 1) % 3], e);
+  scaled_difference(*s[edge], *s[(edge + 1) % m], e);
   cross_integers(e, g.direction, n);
-  if (l.tag >= kCFacet + 3)
+  if (l.tag >= kCFacet + kMaxCorners)
     for (Integer& x : n) mpz_neg(x.get_mpz_t(), x.get_mpz_t());
   return plane_through_sum(n, *s[edge], scaled_[g.v0]);
 }
@@ -365,17 +370,17 @@ Plane SweptPolytope::build(const Piece& piece, Index k) const {
 bool SweptPolytope::contains(const Piece& piece, Index k, std::uint64_t label) const {
   const Index m = Index(label >> 32), v = Index(label & 0xffffffffu);
   const LazyPlane& l = piece.lazy[k];
-  const Index* id = piece.corner_id;
+  const std::vector<Index>& id = piece.corner_id;
   if (k < facets_.size()) {  // f + p_top: holds p_top + b for every vertex b of f
     const std::vector<Index>& loop = facets_[k].loop;
     return m == id[l.tag] && std::find(loop.begin(), loop.end(), v) != loop.end();
   }
-  if (l.tag < kCFacet)  // t + b_code (and more), normal ±n_t: holds every corner plus b_code
-    return v == l.code && (m == id[0] || m == id[1] || m == id[2]);
-  // e ⊕ g: holds both ends of t's edge plus both ends of g.
-  const int e = (l.tag - kCFacet) % 3;
+  if (l.tag < kCFacet)  // P + b_code (and more), normal ±n_P: holds every corner plus b_code
+    return v == l.code && std::find(id.begin(), id.end(), m) != id.end();
+  // e ⊕ g: holds both ends of P's edge plus both ends of g.
+  const std::size_t e = (l.tag - kCFacet) % kMaxCorners;
   const Edge& g = edges_[l.code];
-  return (v == g.v0 || v == g.v1) && (m == id[e] || m == id[(e + 1) % 3]);
+  return (v == g.v0 || v == g.v1) && (m == id[e] || m == id[(e + 1) % id.size()]);
 }
 
 // The vertices of B highest along sign · n_t (n_t the normal of t =
@@ -414,9 +419,15 @@ void SweptPolytope::extreme_face(const RoundedPoint3 p[3], const Vec3d& na, int 
   std::sort(face.begin(), face.end());
 }
 
-Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
-  const auto& c = cones.triangle(t);
-  const RoundedPoint3 p[3] = {cones.rounded(c[0]), cones.rounded(c[1]), cones.rounded(c[2])};
+Piece SweptPolytope::sum(const SurfaceCones& cones, Index g) const {
+  const SurfaceCones::Polygon& polygon = cones.polygon(g);
+  const std::vector<Index>& c = polygon.corners;
+  const std::size_t m = c.size();
+  std::vector<RoundedPoint3> p;
+  p.reserve(m);
+  for (Index v : c) p.push_back(cones.rounded(v));
+  // A triangle of P: its normal is P's.
+  const Index t0 = polygon.edge_triangle[0];
   // The planes, in the thread's buffer (copied out at their final count).
   thread_local std::vector<LazyPlane> buffer;
   std::vector<LazyPlane>& lazy = buffer;
@@ -425,8 +436,8 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   std::vector<Index> candidates;
   std::vector<std::vector<Point3>> loops;
   std::vector<std::vector<std::uint64_t>> labels;  // (contains)
-  // The label of the point p_k + b_v (corner k of t, vertex v of B).
-  auto label = [&](int k, Index v) { return std::uint64_t(c[k]) << 32 | v; };
+  // The label of the point p_k + b_v (corner k of P, vertex v of B).
+  auto label = [&](std::size_t k, Index v) { return std::uint64_t(c[k]) << 32 | v; };
   SumPlane plane;  // the last plane of kind B or C
   // That plane, a candidate: held exactly, with its loop and its points' labels.
   auto hold = [&](LazyPlane& lp, std::vector<Point3> loop, std::vector<std::uint64_t> names) {
@@ -436,36 +447,39 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
     loops.push_back(std::move(loop));
     labels.push_back(std::move(names));
   };
-  // t's points as integers over a common denominator.
-  const ScaledPoint* const sp[3] = {&cones.scaled(c[0]), &cones.scaled(c[1]), &cones.scaled(c[2])};
+  // P's points as integers over a common denominator.
+  std::vector<const ScaledPoint*> sp(m);
+  for (std::size_t k = 0; k < m; ++k) sp[k] = &cones.scaled(c[k]);
   Integer work[3];
+  std::unique_ptr<bool[]> at_top(new bool[m]);
 
-  // A. The facets of B, each moved by the face of t extreme along its normal.
-  // rise[f][k] = sign n_f · (p_{k+1} − p_k), the sign along f's normal of
-  // t's edge k, which also tells the arcs of kind C below.
-  std::vector<std::array<signed char, 3>> rise(facets_.size());
+  // A. The facets of B, each moved by the face of P extreme along its normal.
+  // rise[f * m + k] = sign n_f · (p_{k+1} − p_k), the sign along f's normal
+  // of P's edge k, which also tells the arcs of kind C below.
+  std::vector<signed char> rise(facets_.size() * m);
   const bool tabled = prepared_ == &cones && !rise_.empty();  // the edges' signs (prepare)
   for (std::size_t fi = 0; fi < facets_.size(); ++fi) {
     const Facet& f = facets_[fi];
     const RoundedPoint3 u{f.normal, f.normal_approx};
+    signed char* r = &rise[fi * m];
     if (tabled) {
       // Edge e run backwards: n_f . (p - q) = -(n_f . (q - p)).
-      for (int k = 0; k < 3; ++k) {
-        const Index e = cones.edge_of(t, k);
-        const signed char r = rise_[std::size_t(e >> 1) * facets_.size() + fi];
-        rise[fi][k] = static_cast<signed char>(e & 1 ? -r : r);
+      for (std::size_t k = 0; k < m; ++k) {
+        const Index e = cones.edge_of(polygon.edge_triangle[k], polygon.edge_index[k]);
+        const signed char x = rise_[std::size_t(e >> 1) * facets_.size() + fi];
+        r[k] = static_cast<signed char>(e & 1 ? -x : x);
       }
     } else {
-      for (int k = 0; k < 3; ++k) rise[fi][k] = static_cast<signed char>(dot_difference_sign(u, p[k], p[(k + 1) % 3]));
+      for (std::size_t k = 0; k < m; ++k) r[k] = static_cast<signed char>(dot_difference_sign(u, p[k], p[(k + 1) % m]));
     }
     // p_k is at the top when neither edge at it rises away from it.
-    bool at_top[3];
-    int count = 0, top = -1;
-    for (int k = 0; k < 3; ++k) {
-      at_top[k] = rise[fi][k] <= 0 && rise[fi][(k + 2) % 3] >= 0;
+    int count = 0;
+    std::size_t top = m;
+    for (std::size_t k = 0; k < m; ++k) {
+      at_top[k] = r[k] <= 0 && r[(k + m - 1) % m] >= 0;
       if (at_top[k]) {
         ++count;
-        if (top < 0) top = k;
+        if (top == m) top = k;
       }
     }
     const Point3& q = p[top].exact;
@@ -488,8 +502,9 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
       lazy_doubles(f, work, lp.d, lp.filtered);
     }
     if ((!surface_ || facet_on_surface_[fi]) &&
-        cones.candidate(t, u, at_top, below_.empty() || prepared_ != &cones ? nullptr : &below_[fi], facets_.size()) &&
-        cones.keeps(t, u, at_top)) {
+        cones.polygon_candidate(g, u, at_top.get(),
+                                below_.empty() || prepared_ != &cones ? nullptr : &below_[fi], facets_.size()) &&
+        cones.polygon_keeps(g, u, at_top.get())) {
       lp.exact = std::int32_t(lazy_exact.size());
       if (prepared_ == &cones) offset_along(f, *sp[top], work);
       lazy_exact.push_back(canonical_from_offset(f, work));
@@ -503,7 +518,7 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
         }
       } else {
         std::vector<Point3> sums;
-        for (int k = 0; k < 3; ++k)
+        for (std::size_t k = 0; k < m; ++k)
           if (at_top[k])
             for (Index v : f.loop) sums.push_back(points_[v] + p[k].exact);
         loop = plane_hull(std::move(sums), f.normal);
@@ -513,42 +528,45 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
     }
   }
 
-  // B. t plus the face of B extreme along n_t and along −n_t, when that face
+  // B. P plus the face of B extreme along n_P and along −n_P, when that face
   // is a vertex or an edge (a facet's sum is in A).
   {
-    std::vector<Index> faces[2];  // the vertices of B highest along n_t, and lowest (ascending)
-    for (int side = 0; side < 2; ++side) extreme_face(p, cones.normal_approx(t), side == 0 ? 1 : -1, faces[side]);
-    // n_t in integers: the primitive multiple of (p1 - p0) x (p2 - p0)
-    // that SurfaceCones keeps.
+    std::vector<Index> faces[2];  // the vertices of B highest along n_P, and lowest (ascending)
+    for (int side = 0; side < 2; ++side)
+      extreme_face(p.data(), cones.normal_approx(t0), side == 0 ? 1 : -1, faces[side]);
+    // n_P in integers: the primitive multiple of (p1 - p0) x (p2 - p0)
+    // that SurfaceCones keeps for P's triangles.
     Integer n[2][3];
     if (faces[0].size() < 3 || faces[1].size() < 3)
       for (int j = 0; j < 3; ++j) {
-        n[0][j] = cones.normal(t)[j].get_num();
+        n[0][j] = cones.normal(t0)[j].get_num();
         n[1][j] = -n[0][j];
       }
+    for (std::size_t k = 0; k < m; ++k) at_top[k] = true;  // P is face_u(P)
     for (int side = 0; side < 2; ++side) {
       const std::vector<Index>& face = faces[side];
       if (face.size() >= 3) continue;  // a facet of B: in A
-      const Point3 u = side == 0 ? cones.normal(t) : Rational(-1) * cones.normal(t);
-      const Vec3d ua = side == 0 ? cones.normal_approx(t) : Vec3d{-cones.normal_approx(t).x, -cones.normal_approx(t).y,
-                                                                   -cones.normal_approx(t).z};
+      const Point3 u = side == 0 ? cones.normal(t0) : Rational(-1) * cones.normal(t0);
+      const Vec3d ua = side == 0 ? cones.normal_approx(t0) : Vec3d{-cones.normal_approx(t0).x,
+                                                                    -cones.normal_approx(t0).y,
+                                                                    -cones.normal_approx(t0).z};
       LazyPlane& lp = lazy.emplace_back();
       sum_plane(n[side], *sp[0], scaled_[face[0]], plane);
       lazy_of(plane, lp);
       lp.tag = static_cast<std::uint8_t>(kBFacet + side);
       lp.code = face[0];
-      const bool whole[3] = {true, true, true};  // t is face_u(t)
-      if (cones.candidate(t, RoundedPoint3{u, ua}, whole) && on_surface(face[0], RoundedPoint3{u, ua})) {
+      if (cones.polygon_candidate(g, RoundedPoint3{u, ua}, at_top.get()) && on_surface(face[0], RoundedPoint3{u, ua})) {
         std::vector<Point3> loop;
         std::vector<std::uint64_t> names;
         if (face.size() == 1) {
-          for (int k = 0; k < 3; ++k) {
-            loop.push_back(p[side == 0 ? k : 2 - k].exact + points_[face[0]]);
-            names.push_back(label(side == 0 ? k : 2 - k, face[0]));
+          for (std::size_t i = 0; i < m; ++i) {
+            const std::size_t k = side == 0 ? i : m - 1 - i;
+            loop.push_back(p[k].exact + points_[face[0]]);
+            names.push_back(label(k, face[0]));
           }
         } else {
           std::vector<Point3> sums;
-          for (int k = 0; k < 3; ++k)
+          for (std::size_t k = 0; k < m; ++k)
             for (Index v : face) sums.push_back(p[k].exact + points_[v]);
           loop = plane_hull(std::move(sums), u);
         }
@@ -557,55 +575,55 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
     }
   }
 
-  // C. An edge a → b of t and an edge g of B whose open normal arcs cross.
+  // C. An edge a → b of P and an edge g of B whose open normal arcs cross.
   // The great circle normal to e = b − a crosses the open arc of g exactly
   // when the normals of g's two facets lie strictly on opposite sides of it
   // (rise of opposite non-zero signs); the crossing is ±(e × g), the sign σ
   // that puts it in g's arc (σ u · (w − g0) < 0 for the far vertex w of
-  // g's first facet, never zero there), and it lies on t's arc (a half
-  // circle) when σ u · (third − a) < 0.
-  for (int k = 0; k < 3; ++k) {
+  // g's first facet, never zero there), and it lies on P's arc (a half
+  // circle) when σ u · (third − a) < 0, `third` any corner of P off the edge
+  // (P lies on one side of the edge's line in its plane, strictly convex).
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::size_t j = (k + 1) % m;
     const RoundedPoint3& a = p[k];
-    const RoundedPoint3& b = p[(k + 1) % 3];
-    const RoundedPoint3& third = p[(k + 2) % 3];
+    const RoundedPoint3& b = p[j];
+    const RoundedPoint3& third = p[(k + 2) % m];
     Integer e[3];  // a positive multiple of b - a
     bool have_e = false;
-    for (const Edge& g : edges_) {
-      const int r0 = rise[g.f0][k], r1 = rise[g.f1][k];
+    for (std::size_t i = 0; i < m; ++i) at_top[i] = i == k || i == j;  // the edge a → b is face_u(P)
+    for (const Edge& eb : edges_) {
+      const int r0 = rise[eb.f0 * m + k], r1 = rise[eb.f1 * m + k];
       if (r0 * r1 >= 0) continue;
-      const RoundedPoint3 g0 = at(g.v0), g1 = at(g.v1);
-      const int sigma = -support_compare(g0, g1, at(g.w0), b, a);
+      const RoundedPoint3 g0 = at(eb.v0), g1 = at(eb.v1);
+      const int sigma = -support_compare(g0, g1, at(eb.w0), b, a);
       if (sigma == 0) throw std::logic_error("SweptPolytope: a far vertex on the crossing plane");
       // s = sign u · (third − a) for u = (b − a) × (g1 − g0).
       const int s = -support_compare(a, b, third, g1, g0);
       if (sigma * s >= 0) continue;
       if (!have_e) {
-        scaled_difference(*sp[k], *sp[(k + 1) % 3], e);
+        scaled_difference(*sp[k], *sp[j], e);
         have_e = true;
       }
       // u: a positive multiple of σ (b - a) × (g1 - g0), in integers.
       Integer n[3];
-      cross_integers(e, g.direction, n);
+      cross_integers(e, eb.direction, n);
       if (sigma < 0)
         for (Integer& x : n) mpz_neg(x.get_mpz_t(), x.get_mpz_t());
       LazyPlane& lp = lazy.emplace_back();
-      sum_plane(n, *sp[k], scaled_[g.v0], plane);
+      sum_plane(n, *sp[k], scaled_[eb.v0], plane);
       lazy_of(plane, lp);
-      lp.tag = static_cast<std::uint8_t>(kCFacet + k + (sigma < 0 ? 3 : 0));
-      lp.code = Index(&g - edges_.data());
+      lp.tag = static_cast<std::uint8_t>(kCFacet + k + (sigma < 0 ? kMaxCorners : 0));
+      lp.code = Index(&eb - edges_.data());
       const Point3 u{Rational(n[0]), Rational(n[1]), Rational(n[2])};
       // Faithful roundings (mpz_get_d truncates), as the cone tests allow.
       const Vec3d ua{mpz_get_d(n[0].get_mpz_t()), mpz_get_d(n[1].get_mpz_t()), mpz_get_d(n[2].get_mpz_t())};
-      bool on_edge[3] = {false, false, false};  // the edge a → b is face_u(t)
-      on_edge[k] = on_edge[(k + 1) % 3] = true;
-      if (cones.candidate(t, RoundedPoint3{u, ua}, on_edge) && cones.keeps(t, RoundedPoint3{u, ua}, on_edge) &&
-          on_surface(g.v0, RoundedPoint3{u, ua})) {
+      if (cones.polygon_candidate(g, RoundedPoint3{u, ua}, at_top.get()) &&
+          cones.polygon_keeps(g, RoundedPoint3{u, ua}, at_top.get()) && on_surface(eb.v0, RoundedPoint3{u, ua})) {
         // e ⊕ g with normal e × g is counter-clockwise in the order
         // a + g0, b + g0, b + g1, a + g1; reversed for σ < 0.
-        const int j = (k + 1) % 3;
-        std::vector<Point3> loop = {a.exact + points_[g.v0], b.exact + points_[g.v0], b.exact + points_[g.v1],
-                                    a.exact + points_[g.v1]};
-        std::vector<std::uint64_t> names = {label(k, g.v0), label(j, g.v0), label(j, g.v1), label(k, g.v1)};
+        std::vector<Point3> loop = {a.exact + points_[eb.v0], b.exact + points_[eb.v0], b.exact + points_[eb.v1],
+                                    a.exact + points_[eb.v1]};
+        std::vector<std::uint64_t> names = {label(k, eb.v0), label(j, eb.v0), label(j, eb.v1), label(k, eb.v1)};
         if (sigma < 0) {
           std::reverse(loop.begin(), loop.end());
           std::reverse(names.begin(), names.end());
@@ -620,22 +638,19 @@ Piece SweptPolytope::sum(const SurfaceCones& cones, Index t) const {
   Piece piece;
   piece.directions = &directions_;
   piece.builder = this;
-  for (int k = 0; k < 3; ++k) {
-    piece.corner[k] = &p[k].exact;
-    piece.scaled_corner[k] = sp[k];
-    piece.corner_id[k] = c[k];
-  }
+  piece.scaled_corner = std::move(sp);
+  piece.corner_id = c;
   piece.lazy.assign(lazy.begin(), lazy.end());
   piece.lazy_exact = std::move(lazy_exact);
   piece.candidates = std::move(candidates);
   piece.loops = std::move(loops);
   piece.labels = std::move(labels);
-  // The box: t's box plus B's, exactly, then rounded to nearest (monotone,
+  // The box: P's box plus B's, exactly, then rounded to nearest (monotone,
   // so it holds the nearest doubles of every point of the piece).
   for (int k = 0; k < 3; ++k) {
     const Rational* lo = &p[0].exact[k];
     const Rational* hi = lo;
-    for (int j = 1; j < 3; ++j) {
+    for (std::size_t j = 1; j < m; ++j) {
       if (cmp(p[j].exact[k], *lo) < 0) lo = &p[j].exact[k];
       if (cmp(p[j].exact[k], *hi) > 0) hi = &p[j].exact[k];
     }

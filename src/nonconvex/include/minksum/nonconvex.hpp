@@ -120,11 +120,14 @@ struct NonconvexSum {
   const char* method = "sweep";
   char swept = 0;
   Method pair_method = Method::walk;       // the method that summed the convex pieces
-  // Sweep: the pieces t ⊕ O_j built from the Gaussian maps of t and O_j
-  // (pair_method is then not used; false with --method chms, the pairwise hull).
+  // Sweep: the pieces P ⊕ O_j built from the Gaussian maps of P and O_j, P
+  // a convex polygon of the swept surface (pair_method is then not used;
+  // false with --method chms, the pairwise hull of each triangle's sums).
   bool pieces_from_maps = false;
-  // Decomposition: the convex pieces of A and B.  Sweep: the triangles of
-  // the swept operand's surface and the convex pieces of the other.
+  // Decomposition: the convex pieces of A and B.  Sweep: the convex
+  // polygons of the swept operand's surface (its triangles, coplanar ones
+  // merged; with --method chms its triangles) and the convex pieces of the
+  // other.
   std::size_t pieces_a = 0, pieces_b = 0;
   std::size_t pairs = 0;                   // convex pieces summed (pieces_a * pieces_b)
   // Facets of those sums that can lie on the boundary (the union's input)

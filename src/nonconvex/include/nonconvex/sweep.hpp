@@ -9,6 +9,7 @@
 #include "nonconvex/union.hpp"
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace minksum::nonconvex_detail {
@@ -76,6 +77,53 @@ class SurfaceCones {
   // each other's neighbours across it, t keeps the facet.
   bool keeps(Index t, const RoundedPoint3& u, const bool at_top[3]) const;
 
+  // The pieces of the sweep are convex polygons of the surface, P ⊕ C
+  // (docs/nonconvex.md, "Pieces"): each triangle its own polygon, until
+  // merge_coplanar groups triangles.  A polygon's corners are surface
+  // points, counter-clockwise seen from outside, strictly convex (no three
+  // on a line), each of them a corner of the polygon's triangles and every
+  // corner of those triangles one of them; its edges are edges of the
+  // surface, edge k from corner k to corner k + 1 being edge
+  // edge_index[k] of the polygon's triangle edge_triangle[k] (the same
+  // direction).
+  struct Polygon {
+    std::vector<Index> corners;
+    std::vector<Index> edge_triangle;
+    std::vector<std::uint8_t> edge_index;
+  };
+  // The most corners of a merged polygon (the sweep's plane tags hold a corner's number).
+  static constexpr std::size_t kMaxCorners = 64;
+  // Groups the triangles into strictly convex polygons: starting from each
+  // triangle not yet grouped, in order, the triangle across an edge of the
+  // polygon joins it when the edge is flat, the two triangles pair up across
+  // it and have the same outward normal, and the polygon stays strictly
+  // convex (exact orientations in the common plane).  The union of the
+  // pieces P ⊕ C is that of the triangles' pieces t ⊕ C (the sum
+  // distributes over the union of the triangles, which is P), with fewer
+  // pieces where the surface is flat.
+  void merge_coplanar();
+  std::size_t polygons() const { return polygons_.size(); }
+  const Polygon& polygon(Index g) const { return polygons_[g]; }
+  // The polygon holding triangle t.
+  Index polygon_of(Index t) const { return polygon_of_[t]; }
+  // candidate and keeps for a facet with outward normal u of P ⊕ C, P
+  // polygon g, at_top[k] telling whether P's k-th corner is highest along u
+  // (a corner, an edge or all of P).  The face of P extreme along u is a
+  // corner, an edge or P itself, and so is it for the triangle of P that
+  // holds it: candidate is the triangle's test on that face.  keeps:
+  //   * face_u(P) = P: only P builds the facet;
+  //   * an edge e: the polygon across e builds the same facet when its far
+  //     side is strictly below along u (one corner off e tells, P being
+  //     strictly convex); the lower number keeps it;
+  //   * a corner v: every polygon at v whose two neighbours of v are
+  //     strictly below builds f + v with the same test; the lowest number
+  //     keeps it.
+  // With each triangle its own polygon these are candidate and keeps above.
+  bool polygon_candidate(Index g, const RoundedPoint3& u, const bool* at_top, signed char* memo = nullptr,
+                         std::size_t stride = 0) const;
+  bool polygon_candidate(Index g, const RoundedPoint3& u) const;
+  bool polygon_keeps(Index g, const RoundedPoint3& u, const bool* at_top) const;
+
   // Whether q lies in the interior of the solid (q must not lie on its
   // surface): the parity of the crossings of an exact ray that meets no
   // edge or vertex of the surface.
@@ -122,6 +170,10 @@ class SurfaceCones {
   std::vector<std::array<Index, 3>> across_;       // edge k: the triangle across it, when the two pair up; else kNoTriangle
   std::vector<std::array<Index, 3>> edge_;         // edge k: edge_of
   std::vector<std::array<Index, 2>> edge_ends_;    // per edge
+  std::vector<Polygon> polygons_;                  // the pieces' polygons (merge_coplanar)
+  std::vector<Index> polygon_of_;                  // per triangle
+  std::vector<std::vector<Index>> polygons_at_;    // per point, the polygons holding it, ascending (merged only)
+  bool merged_ = false;                            // else polygon g is triangle g, polygons_at_ is incident_
   static constexpr Index kNoTriangle = ~Index(0);
 };
 
@@ -146,11 +198,13 @@ class SweptPolytope final : public PlaneBuilder {
   // end of the plane's edge of t and v an end of its edge of B (C).
   bool contains(const Piece& piece, Index k, std::uint64_t label) const override;
 
-  // t ⊕ B for triangle t of `cones`' surface, built from the Gaussian maps
-  // of t and B without constructing its vertices: every facet's lazy plane
+  // P ⊕ B for polygon g of `cones`' surface (SurfaceCones::polygon: a
+  // triangle, or coplanar triangles merged), built from the Gaussian maps
+  // of P and B without constructing its vertices: every facet's lazy plane
   // (the candidates' held exactly), the vertex loops of the facets that
-  // SurfaceCones::candidate keeps with their points' labels, and its box.
-  Piece sum(const SurfaceCones& cones, Index t) const;
+  // SurfaceCones::polygon_candidate keeps with their points' labels, and
+  // its box.
+  Piece sum(const SurfaceCones& cones, Index g) const;
   // Makes, for every point v of `cones`' surface and facet f of B, the
   // doubles of the lazy plane f + v (what sum computes for each triangle
   // at v, each vertex being shared by several triangles), in parallel;
@@ -189,8 +243,9 @@ class SweptPolytope final : public PlaneBuilder {
   // and SurfaceCones::candidate(t', u) holds: the test keeps every such
   // face (a superset; t' ranges over the triangles whose box meets B's).
   bool on_surface(Index x, const RoundedPoint3& u) const;
-  // The vertices of B highest along sign · n_t, t = p0 p1 p2 (na: n_t's
-  // nearest doubles), ascending.
+  // The vertices of B highest along sign · n_t, n_t the normal of p0 p1 p2
+  // (three corners of a polygon, counter-clockwise; na: n_t's nearest
+  // doubles), ascending.
   void extreme_face(const RoundedPoint3 p[3], const Vec3d& na, int sign, std::vector<Index>& face) const;
   static void offset_along(const Facet& f, const ScaledPoint& q, Integer work[3]);
   static void lazy_doubles(const Facet& f, const Integer work[3], double& d, bool& filtered);

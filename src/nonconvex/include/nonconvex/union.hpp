@@ -108,15 +108,16 @@ class PlaneBuilder {
 };
 
 // The facet planes: 0 .. lazy.size() − 1 are lazy (built by `builder`,
-// which reads `corner`), the others planes[k − lazy.size()]; a lazy plane
+// which reads the corners), the others planes[k − lazy.size()]; a lazy plane
 // that is a candidate is held exactly in lazy_exact.
 struct Piece {
   std::vector<LazyPlane> lazy;
   std::vector<Plane> lazy_exact;
   const PlaneBuilder* builder = nullptr;
-  const Point3* corner[3] = {nullptr, nullptr, nullptr};
-  const ScaledPoint* scaled_corner[3] = {nullptr, nullptr, nullptr};  // the corners over common denominators
-  Index corner_id[3] = {0, 0, 0};                                      // the builder's numbers of the corners
+  // The builder's: the corners of the swept polygon over common
+  // denominators, and their numbers.
+  std::vector<const ScaledPoint*> scaled_corner;
+  std::vector<Index> corner_id;
   std::vector<Plane> planes;
   std::vector<Index> candidates;
   std::vector<std::vector<Point3>> loops;  // one per candidate

@@ -1,21 +1,24 @@
-// The pieces t ⊕ B of the boundary sweep (docs/nonconvex.md, "Pieces"):
-// a triangle t of the swept surface summed with a convex polytope B, built
-// from the two Gaussian maps instead of by a hull or a walk.
+// The pieces P ⊕ B of the boundary sweep (docs/nonconvex.md, "Pieces"):
+// a convex polygon P of the swept surface (a triangle, or coplanar
+// triangles merged: SurfaceCones::merge_coplanar) summed with a convex
+// polytope B, built from the two Gaussian maps instead of by a hull or a
+// walk.
 //
-// For a direction u, face_u(t ⊕ B) = face_u(t) + face_u(B), and it is a
+// For a direction u, face_u(P ⊕ B) = face_u(P) + face_u(B), and it is a
 // facet exactly when the two faces span a plane.  With the dimensions of
 // the two faces:
-//   A. face_u(B) a facet f (u = f's normal): the facet f + face_u(t), one per
+//   A. face_u(B) a facet f (u = f's normal): the facet f + face_u(P), one per
 //      facet of B;
-//   B. face_u(t) = t (u = ±n_t) and face_u(B) a vertex or an edge: t plus it;
-//   C. face_u(t) an edge e of t and face_u(B) an edge g of B, not parallel:
+//   B. face_u(P) = P (u = ±n_P) and face_u(B) a vertex or an edge: P plus it;
+//   C. face_u(P) an edge e of P and face_u(B) an edge g of B, not parallel:
 //      u = ±(e × g), and u must lie in the open normal arcs of both edges:
-//      u · (o − a) < 0 for t's third vertex o (a an end of e) and
+//      u · (o − a) < 0 for a corner o of P off e (a an end of e; P is
+//      strictly convex, on one side of e's line) and
 //      u · (w − g0) < 0 for the vertex w off g of each of g's two facets;
 //      the facet is the parallelogram e ⊕ g.
 // Every other pair of faces sums to a segment or a point.  The three kinds
-// have different normals (A: facet normals of B; B: ±n_t, which are not
-// facet normals of B there; C: inside open arcs of B's map and not ±n_t), so
+// have different normals (A: facet normals of B; B: ±n_P, which are not
+// facet normals of B there; C: inside open arcs of B's map and not ±n_P), so
 // each facet is found once.  Every sign is a kernel predicate on the exact
 // points (support_compare and dot_difference_sign, filtered on cached roundings).
 // Every plane is lazy (LazyPlane): its doubles, and its exact canonical
@@ -383,8 +386,8 @@ bool SweptPolytope::contains(const Piece& piece, Index k, std::uint64_t label) c
   return (v == g.v0 || v == g.v1) && (m == id[e] || m == id[(e + 1) % id.size()]);
 }
 
-// The vertices of B highest along sign · n_t (n_t the normal of t =
-// p0 p1 p2), ascending.  B is convex, so a vertex with no strictly higher
+// The vertices of B highest along sign · n_t (n_t the normal of
+// p0 p1 p2, three corners of a polygon), ascending.  B is convex, so a vertex with no strictly higher
 // neighbour is highest of all, and the highest vertices (a vertex, an edge
 // or a facet of B) are connected by edges of B whose ends are equally high:
 // climb from the vertex highest by the doubles (`na`, the nearest doubles of

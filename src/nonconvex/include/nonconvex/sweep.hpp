@@ -177,25 +177,25 @@ class SurfaceCones {
   static constexpr Index kNoTriangle = ~Index(0);
 };
 
-// The convex operand B of the pieces t ⊕ B, prepared once for every
-// triangle t of the swept surface (triangle_sum.cpp, docs/nonconvex.md
+// The convex operand B of the pieces P ⊕ B, prepared once for every
+// polygon P of the swept surface (triangle_sum.cpp, docs/nonconvex.md
 // "Pieces"): its facets' planes and normals, its edges with the far vertex of
 // each adjacent facet, its exact bounding box.
 class SweptPolytope final : public PlaneBuilder {
  public:
   // `surface`, when given, is the surface of the non-convex solid O that B
-  // is a convex piece of (B ⊆ O): a facet of t ⊕ B is then also culled
+  // is a convex piece of (B ⊆ O): a facet of P ⊕ B is then also culled
   // unless its face of B can hold a point o of O's surface with the
   // facet's normal u in O's local normal cone at o (on_surface).
   explicit SweptPolytope(const ConvexPolytope& b, const SurfaceCones* surface = nullptr);
   // The canonical plane k of a piece, from its tag and code (triangle_sum.cpp):
-  // facet k of B moved to the vertex of t at its top, t plus a vertex of B,
-  // or an edge of t plus an edge of B.
+  // facet k of B moved to the corner of P at its top, P plus a vertex of B,
+  // or an edge of P plus an edge of B.
   Plane build(const Piece& piece, Index k) const override;
   // Whether plane k of a piece holds p_m + b_v, the label m << 32 | v
   // (surface point m, vertex v of B), by construction: m the top corner and
   // v on the facet (A), v the plane's vertex of B and m a corner (B), m an
-  // end of the plane's edge of t and v an end of its edge of B (C).
+  // end of the plane's edge of P and v an end of its edge of B (C).
   bool contains(const Piece& piece, Index k, std::uint64_t label) const override;
 
   // P ⊕ B for polygon g of `cones`' surface (SurfaceCones::polygon: a
@@ -206,11 +206,11 @@ class SweptPolytope final : public PlaneBuilder {
   // its box.
   Piece sum(const SurfaceCones& cones, Index g) const;
   // Makes, for every point v of `cones`' surface and facet f of B, the
-  // doubles of the lazy plane f + v (what sum computes for each triangle
-  // at v, each vertex being shared by several triangles), in parallel;
+  // doubles of the lazy plane f + v (what sum computes for each polygon
+  // at v, each point being shared by several polygons), in parallel;
   // sum then reads them.  Memory: 9 bytes per pair.  Also, when there are
   // at most 2^24 of them, the sign along each facet normal of B of every
-  // edge of the surface, which sum needs for both triangles at the edge
+  // edge of the surface, which sum needs for both polygons at the edge
   // (1 byte each).
   void prepare(const SurfaceCones& cones, unsigned threads);
   // Frees what prepare made (sum then computes it again).

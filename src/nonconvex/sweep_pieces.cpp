@@ -248,21 +248,25 @@ bool SurfaceCones::candidate(Index t, const RoundedPoint3& u) const {
 
 namespace {
 
-// The vertices of a triangle at its top along u (at_top): how many, the
-// first of them, and when two, the edge k = (c[k], c[k+1]) they span.
+// The corners of a convex polygon (a triangle: m = 3) at its top along u
+// (at_top): how many, the first of them, and when two, the edge k (corners
+// k, k + 1) they span.  The top of a convex polygon along a direction is a
+// corner, an edge or the whole polygon.
 struct Top {
   int count = 0, first = -1, edge = -1;
 };
-Top top_of(const bool at_top[3]) {
+Top top_of(const bool* at_top, std::size_t m = 3) {
   Top t;
-  for (int k = 0; k < 3; ++k)
+  for (std::size_t k = 0; k < m; ++k)
     if (at_top[k]) {
       ++t.count;
-      if (t.first < 0) t.first = k;
+      if (t.first < 0) t.first = int(k);
     }
   if (t.count == 2) {
     t.edge = 0;
-    while (!(at_top[t.edge] && at_top[(t.edge + 1) % 3])) ++t.edge;
+    while (!(at_top[t.edge] && at_top[(std::size_t(t.edge) + 1) % m])) ++t.edge;
+  } else if (t.count != 1 && std::size_t(t.count) != m) {
+    throw std::logic_error("SurfaceCones: the top of a convex polygon is not a corner, an edge or the polygon");
   }
   return t;
 }
@@ -328,33 +332,11 @@ bool SurfaceCones::keeps(Index t, const RoundedPoint3& u, const bool at_top[3]) 
   return true;
 }
 
-namespace {
-
-// The number of P's corners at the top (at_top), the first of them, and
-// when two, the edge k (corners k, k + 1) they span.
-Top polygon_top(const bool* at_top, std::size_t m) {
-  Top t;
-  for (std::size_t k = 0; k < m; ++k)
-    if (at_top[k]) {
-      ++t.count;
-      if (t.first < 0) t.first = int(k);
-    }
-  if (t.count == 2) {
-    t.edge = 0;
-    while (!(at_top[t.edge] && at_top[(std::size_t(t.edge) + 1) % m])) ++t.edge;
-  } else if (t.count != 1 && std::size_t(t.count) != m) {
-    throw std::logic_error("SurfaceCones: the top of a convex polygon is not a corner, an edge or the polygon");
-  }
-  return t;
-}
-
-}  // namespace
-
 bool SurfaceCones::polygon_candidate(Index g, const RoundedPoint3& u, const bool* at_top, signed char* memo,
                                      std::size_t stride) const {
   const Polygon& p = polygons_[g];
   const std::size_t m = p.corners.size();
-  const Top tp = polygon_top(at_top, m);
+  const Top tp = top_of(at_top, m);
   bool top3[3] = {true, true, true};
   Index t = p.edge_triangle[0];
   if (std::size_t(tp.count) != m) {  // a corner (the start of edge `first`) or edge `edge`: the triangle holding it
@@ -374,19 +356,17 @@ bool SurfaceCones::polygon_candidate(Index g, const RoundedPoint3& u) const {
   std::size_t top = 0;
   for (std::size_t k = 1; k < m; ++k)
     if (dot_difference_sign(u, at(p.corners[top]), at(p.corners[k])) > 0) top = k;
-  std::vector<char> at_top(m);
+  std::unique_ptr<bool[]> at_top(new bool[m]);
   for (std::size_t k = 0; k < m; ++k)
     at_top[k] = k == top || dot_difference_sign(u, at(p.corners[top]), at(p.corners[k])) == 0;
-  std::unique_ptr<bool[]> flags(new bool[m]);
-  for (std::size_t k = 0; k < m; ++k) flags[k] = at_top[k] != 0;
-  return polygon_candidate(g, u, flags.get());
+  return polygon_candidate(g, u, at_top.get());
 }
 
 bool SurfaceCones::polygon_keeps(Index g, const RoundedPoint3& u, const bool* at_top) const {
   if (!merged_) return keeps(g, u, at_top);
   const Polygon& p = polygons_[g];
   const std::size_t m = p.corners.size();
-  const Top tp = polygon_top(at_top, m);
+  const Top tp = top_of(at_top, m);
   if (std::size_t(tp.count) == m) return true;
   if (tp.count == 2) {
     const std::size_t k = std::size_t(tp.edge);
